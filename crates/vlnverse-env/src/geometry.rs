@@ -1,0 +1,283 @@
+//! Triangulation of object parts, shared by the glTF writer, the renderers, the occupancy
+//! rasteriser and the ray-cast backend so that they all see the same surfaces.
+
+use crate::scene::{Part, Pose, Scene, Shape};
+use glam::Vec3;
+
+/// Segments around a cylinder.
+pub const CYLINDER_SEGMENTS: u32 = 16;
+/// Latitude bands of a sphere (longitude uses twice as many).
+pub const SPHERE_BANDS: u32 = 6;
+
+/// An indexed triangle mesh with per-vertex normals.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TriMesh {
+    /// Vertex positions.
+    pub positions: Vec<[f32; 3]>,
+    /// Vertex normals (unit length; flat-shaded for boxes).
+    pub normals: Vec<[f32; 3]>,
+    /// Counter-clockwise triangles (front faces point outwards).
+    pub indices: Vec<[u32; 3]>,
+}
+
+impl TriMesh {
+    /// Append `other`, transformed by `pose`.
+    pub fn append_transformed(&mut self, other: &TriMesh, pose: &Pose) {
+        let base = self.positions.len() as u32;
+        let q = pose.quat();
+        self.positions.extend(
+            other
+                .positions
+                .iter()
+                .map(|p| pose.transform_point(Vec3::from_array(*p)).to_array()),
+        );
+        self.normals.extend(
+            other
+                .normals
+                .iter()
+                .map(|n| (q * Vec3::from_array(*n)).to_array()),
+        );
+        self.indices.extend(
+            other
+                .indices
+                .iter()
+                .map(|t| [t[0] + base, t[1] + base, t[2] + base]),
+        );
+    }
+
+    /// Number of triangles.
+    pub fn triangle_count(&self) -> usize {
+        self.indices.len()
+    }
+}
+
+/// Number of triangles [`triangulate`] produces for a shape.
+pub fn triangle_count(shape: &Shape) -> usize {
+    match shape {
+        Shape::Cuboid { .. } => 12,
+        Shape::Cylinder { .. } => (CYLINDER_SEGMENTS * 4) as usize,
+        Shape::Sphere { .. } => (SPHERE_BANDS * SPHERE_BANDS * 2 * 2) as usize,
+        Shape::Mesh(m) => m.indices.len(),
+    }
+}
+
+/// Corners of a conservative local bounding box of a shape (8 points).
+pub fn shape_corners(shape: &Shape) -> Vec<Vec3> {
+    let h = match shape {
+        Shape::Cuboid { half_extents } => Vec3::from_array(*half_extents),
+        Shape::Cylinder {
+            radius,
+            half_height,
+        } => Vec3::new(*radius, *half_height, *radius),
+        Shape::Sphere { radius } => Vec3::splat(*radius),
+        Shape::Mesh(m) => {
+            return m.positions.iter().map(|p| Vec3::from_array(*p)).collect();
+        }
+    };
+    let mut v = Vec::with_capacity(8);
+    for sx in [-1.0, 1.0] {
+        for sy in [-1.0, 1.0] {
+            for sz in [-1.0, 1.0] {
+                v.push(h * Vec3::new(sx, sy, sz));
+            }
+        }
+    }
+    v
+}
+
+/// Triangulate a shape in its own frame.
+pub fn triangulate(shape: &Shape) -> TriMesh {
+    match shape {
+        Shape::Cuboid { half_extents } => cuboid(Vec3::from_array(*half_extents)),
+        Shape::Cylinder {
+            radius,
+            half_height,
+        } => cylinder(*radius, *half_height),
+        Shape::Sphere { radius } => sphere(*radius),
+        Shape::Mesh(m) => mesh_with_normals(&m.positions, &m.indices),
+    }
+}
+
+/// Triangulate a part placed by `object_pose` (world space).
+pub fn triangulate_part(part: &Part, object_pose: &Pose) -> TriMesh {
+    let mut out = TriMesh::default();
+    out.append_transformed(&triangulate(&part.shape), &object_pose.mul(&part.transform));
+    out
+}
+
+/// One world-space triangle with the id and class of the object it belongs to.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WorldTriangle {
+    /// The three corners.
+    pub v: [Vec3; 3],
+    /// Object id (instance id).
+    pub object: u32,
+    /// Semantic class id.
+    pub class: u16,
+    /// Linear RGB colour of the part.
+    pub color: [f32; 3],
+}
+
+/// Every triangle of a scene in world space, tagged with its object.
+pub fn scene_triangles(scene: &Scene) -> Vec<WorldTriangle> {
+    let mut out = Vec::with_capacity(scene.triangle_count());
+    for o in &scene.objects {
+        for part in &o.parts {
+            let m = triangulate_part(part, &o.pose);
+            for t in &m.indices {
+                out.push(WorldTriangle {
+                    v: t.map(|i| Vec3::from_array(m.positions[i as usize])),
+                    object: o.id,
+                    class: o.class.id(),
+                    color: part.color,
+                });
+            }
+        }
+    }
+    out
+}
+
+fn cuboid(h: Vec3) -> TriMesh {
+    let mut m = TriMesh::default();
+    // Each face: normal axis, and two tangent axes chosen so (u x v) = n (CCW from outside).
+    let faces: [(Vec3, Vec3, Vec3); 6] = [
+        (Vec3::X, Vec3::NEG_Z, Vec3::Y),
+        (Vec3::NEG_X, Vec3::Z, Vec3::Y),
+        (Vec3::Y, Vec3::X, Vec3::NEG_Z),
+        (Vec3::NEG_Y, Vec3::X, Vec3::Z),
+        (Vec3::Z, Vec3::X, Vec3::Y),
+        (Vec3::NEG_Z, Vec3::NEG_X, Vec3::Y),
+    ];
+    for (n, u, v) in faces {
+        let base = m.positions.len() as u32;
+        for (su, sv) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+            let p = (n + u * su + v * sv) * h;
+            m.positions.push(p.to_array());
+            m.normals.push(n.to_array());
+        }
+        m.indices.push([base, base + 1, base + 2]);
+        m.indices.push([base, base + 2, base + 3]);
+    }
+    m
+}
+
+fn cylinder(r: f32, hh: f32) -> TriMesh {
+    let mut m = TriMesh::default();
+    let n = CYLINDER_SEGMENTS;
+    let ang = |i: u32| std::f32::consts::TAU * i as f32 / n as f32;
+    // Side: two vertices per segment boundary.
+    for i in 0..=n {
+        let (s, c) = ang(i).sin_cos();
+        let dir = Vec3::new(c, 0.0, -s);
+        m.positions.push((dir * r + Vec3::Y * hh).to_array());
+        m.normals.push(dir.to_array());
+        m.positions.push((dir * r - Vec3::Y * hh).to_array());
+        m.normals.push(dir.to_array());
+    }
+    for i in 0..n {
+        let (t0, b0, t1, b1) = (2 * i, 2 * i + 1, 2 * i + 2, 2 * i + 3);
+        m.indices.push([t0, b0, b1]);
+        m.indices.push([t0, b1, t1]);
+    }
+    // Caps as fans.
+    for (y, ny) in [(hh, 1.0f32), (-hh, -1.0)] {
+        let center = m.positions.len() as u32;
+        m.positions.push([0.0, y, 0.0]);
+        m.normals.push([0.0, ny, 0.0]);
+        for i in 0..=n {
+            let (s, c) = ang(i).sin_cos();
+            m.positions.push([c * r, y, -s * r]);
+            m.normals.push([0.0, ny, 0.0]);
+        }
+        for i in 0..n {
+            let (a, b) = (center + 1 + i, center + 2 + i);
+            if ny > 0.0 {
+                m.indices.push([center, a, b]);
+            } else {
+                m.indices.push([center, b, a]);
+            }
+        }
+    }
+    m
+}
+
+fn sphere(r: f32) -> TriMesh {
+    let mut m = TriMesh::default();
+    let lat = SPHERE_BANDS;
+    let lon = SPHERE_BANDS * 2;
+    for i in 0..=lat {
+        let theta = std::f32::consts::PI * i as f32 / lat as f32;
+        for j in 0..=lon {
+            let phi = std::f32::consts::TAU * j as f32 / lon as f32;
+            let d = Vec3::new(theta.sin() * phi.cos(), theta.cos(), -theta.sin() * phi.sin());
+            m.positions.push((d * r).to_array());
+            m.normals.push(d.to_array());
+        }
+    }
+    let row = lon + 1;
+    for i in 0..lat {
+        for j in 0..lon {
+            let a = i * row + j;
+            let b = a + row;
+            m.indices.push([a, b, b + 1]);
+            m.indices.push([a, b + 1, a + 1]);
+        }
+    }
+    m
+}
+
+/// Build a mesh with flat-ish normals (area-weighted vertex normals) from raw data.
+pub fn mesh_with_normals(positions: &[[f32; 3]], indices: &[[u32; 3]]) -> TriMesh {
+    let mut normals = vec![Vec3::ZERO; positions.len()];
+    for t in indices {
+        let [a, b, c] = t.map(|i| Vec3::from_array(positions[i as usize]));
+        let n = (b - a).cross(c - a);
+        for &i in t {
+            normals[i as usize] += n;
+        }
+    }
+    TriMesh {
+        positions: positions.to_vec(),
+        normals: normals
+            .into_iter()
+            .map(|n| n.try_normalize().unwrap_or(Vec3::Y).to_array())
+            .collect(),
+        indices: indices.to_vec(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn check_closed_outward(m: &TriMesh) {
+        // Outward winding: every triangle's geometric normal points away from the origin.
+        for t in &m.indices {
+            let [a, b, c] = t.map(|i| Vec3::from_array(m.positions[i as usize]));
+            let n = (b - a).cross(c - a);
+            let centroid = (a + b + c) / 3.0;
+            if n.length() < 1e-5 {
+                continue; // degenerate pole triangles of a sphere
+            }
+            assert!(n.dot(centroid) > 0.0, "inward triangle {t:?}");
+        }
+    }
+
+    #[test]
+    fn primitives_wind_outwards_and_counts_match() {
+        for s in [
+            Shape::Cuboid {
+                half_extents: [1.0, 2.0, 0.5],
+            },
+            Shape::Cylinder {
+                radius: 0.5,
+                half_height: 1.0,
+            },
+            Shape::Sphere { radius: 1.0 },
+        ] {
+            let m = triangulate(&s);
+            check_closed_outward(&m);
+            assert_eq!(m.triangle_count(), triangle_count(&s), "{s:?}");
+        }
+    }
+}

@@ -1,0 +1,444 @@
+//! The plain-data scene model shared by every layer.
+//!
+//! Conventions (DESIGN.md): metres, right-handed, **Y up**, the floor at `y = 0` for generated
+//! homes; quaternions `[x, y, z, w]`. Everything in a home is a [`SceneObject`], walls and floor
+//! included (their class says they are structure), so physics, rendering and occupancy walk one
+//! list.
+
+use crate::vocab::{RoomType, SemanticClass};
+use glam::{Quat, Vec3};
+use serde::{Deserialize, Serialize};
+
+/// Current version of the `scene.json` format.
+pub const SCENE_FORMAT_VERSION: u32 = 1;
+
+/// Identifier of an object, unique within its scene (also its instance id in renders; 0 is
+/// reserved for "nothing", so ids start at 1).
+pub type ObjectId = u32;
+/// Identifier of a room, unique within its scene.
+pub type RoomId = u32;
+
+/// Axis-aligned bounding box in world coordinates (metres).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Aabb {
+    /// Minimum corner.
+    pub min: [f32; 3],
+    /// Maximum corner.
+    pub max: [f32; 3],
+}
+
+impl Aabb {
+    /// The empty box (grows with [`Aabb::extend`]).
+    pub const EMPTY: Aabb = Aabb {
+        min: [f32::INFINITY; 3],
+        max: [f32::NEG_INFINITY; 3],
+    };
+
+    /// Box from two corners.
+    pub fn new(min: Vec3, max: Vec3) -> Self {
+        Aabb {
+            min: min.to_array(),
+            max: max.to_array(),
+        }
+    }
+
+    /// Minimum corner as a vector.
+    pub fn min_v(&self) -> Vec3 {
+        Vec3::from_array(self.min)
+    }
+
+    /// Maximum corner as a vector.
+    pub fn max_v(&self) -> Vec3 {
+        Vec3::from_array(self.max)
+    }
+
+    /// Centre of the box.
+    pub fn center(&self) -> Vec3 {
+        (self.min_v() + self.max_v()) * 0.5
+    }
+
+    /// Full size along each axis.
+    pub fn size(&self) -> Vec3 {
+        self.max_v() - self.min_v()
+    }
+
+    /// Whether nothing was added yet.
+    pub fn is_empty(&self) -> bool {
+        self.min[0] > self.max[0]
+    }
+
+    /// Grow to contain a point.
+    pub fn extend(&mut self, p: Vec3) {
+        self.min = self.min_v().min(p).to_array();
+        self.max = self.max_v().max(p).to_array();
+    }
+
+    /// Smallest box containing both.
+    pub fn union(&self, o: &Aabb) -> Aabb {
+        Aabb::new(self.min_v().min(o.min_v()), self.max_v().max(o.max_v()))
+    }
+
+    /// Overlap volume test with a tolerance: boxes that only touch (or overlap by less than
+    /// `eps` on some axis) do not intersect.
+    pub fn intersects(&self, o: &Aabb, eps: f32) -> bool {
+        (0..3).all(|i| self.min[i] + eps < o.max[i] && o.min[i] + eps < self.max[i])
+    }
+
+    /// Whether the XZ footprints overlap by more than `eps`.
+    pub fn intersects_xz(&self, o: &Aabb, eps: f32) -> bool {
+        [0, 2]
+            .iter()
+            .all(|&i| self.min[i] + eps < o.max[i] && o.min[i] + eps < self.max[i])
+    }
+}
+
+/// A rigid transform: position and orientation (`[x, y, z, w]`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Pose {
+    /// Position in metres.
+    pub position: [f32; 3],
+    /// Unit quaternion `[x, y, z, w]`.
+    pub rotation: [f32; 4],
+}
+
+impl Default for Pose {
+    fn default() -> Self {
+        Pose::IDENTITY
+    }
+}
+
+impl Pose {
+    /// No translation, no rotation.
+    pub const IDENTITY: Pose = Pose {
+        position: [0.0; 3],
+        rotation: [0.0, 0.0, 0.0, 1.0],
+    };
+
+    /// Pose from a position and a yaw about +Y (counter-clockwise seen from above; yaw 0 looks
+    /// along -Z).
+    pub fn from_yaw(position: Vec3, yaw: f32) -> Self {
+        Pose {
+            position: position.to_array(),
+            rotation: Quat::from_rotation_y(yaw).to_array(),
+        }
+    }
+
+    /// Position as a vector.
+    pub fn translation(&self) -> Vec3 {
+        Vec3::from_array(self.position)
+    }
+
+    /// Rotation as a quaternion.
+    pub fn quat(&self) -> Quat {
+        Quat::from_array(self.rotation)
+    }
+
+    /// Yaw about +Y (radians), assuming the rotation is (close to) a pure yaw.
+    pub fn yaw(&self) -> f32 {
+        let fwd = self.quat() * Vec3::NEG_Z;
+        (-fwd.x).atan2(-fwd.z)
+    }
+
+    /// Map a point from this pose's local frame to the parent frame.
+    pub fn transform_point(&self, p: Vec3) -> Vec3 {
+        self.quat() * p + self.translation()
+    }
+
+    /// Compose: `self * local` (apply `local` first, then `self`).
+    pub fn mul(&self, local: &Pose) -> Pose {
+        Pose {
+            position: self.transform_point(local.translation()).to_array(),
+            rotation: (self.quat() * local.quat()).normalize().to_array(),
+        }
+    }
+}
+
+/// Geometry of one part of an object, in the part's local frame (centred at its origin).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case")]
+pub enum Shape {
+    /// A box with the given half extents.
+    Cuboid {
+        /// Half sizes along x, y, z.
+        half_extents: [f32; 3],
+    },
+    /// A cylinder around the local Y axis.
+    Cylinder {
+        /// Radius in metres.
+        radius: f32,
+        /// Half of the height.
+        half_height: f32,
+    },
+    /// A sphere.
+    Sphere {
+        /// Radius in metres.
+        radius: f32,
+    },
+    /// An arbitrary triangle mesh (imported scenes). In `scene.json` the vertex data is not
+    /// written: it lives in `scene.glb` and is restored from there on load.
+    Mesh(MeshData),
+}
+
+/// Triangle mesh data.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct MeshData {
+    /// Vertex positions.
+    #[serde(skip)]
+    pub positions: Vec<[f32; 3]>,
+    /// Triangles as vertex index triples.
+    #[serde(skip)]
+    pub indices: Vec<[u32; 3]>,
+    /// Index of the glTF mesh in `scene.glb` holding the data.
+    pub glb_mesh: Option<u32>,
+}
+
+/// One primitive of an object: shape, placement relative to the object, colour.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Part {
+    /// Geometry in the part frame.
+    pub shape: Shape,
+    /// Part frame relative to the object's pose.
+    pub transform: Pose,
+    /// Linear RGB base colour in `[0, 1]`.
+    pub color: [f32; 3],
+}
+
+/// Whether the physics layer may move an object.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Motion {
+    /// Never moves (walls, heavy furniture).
+    Static,
+    /// A dynamic rigid body the agent can push (chairs, stools, small objects).
+    Dynamic,
+}
+
+/// Physical properties used by the simulator.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Physics {
+    /// Mass in kilograms.
+    pub mass: f32,
+    /// Coulomb friction coefficient.
+    pub friction: f32,
+    /// Static or dynamic.
+    pub motion: Motion,
+}
+
+/// Anything in a scene: walls, floor, furniture and small objects.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SceneObject {
+    /// Unique id within the scene (>= 1).
+    pub id: ObjectId,
+    /// Human-readable unique name, e.g. `chair_12` (the glTF node name).
+    pub name: String,
+    /// Semantic class.
+    pub class: SemanticClass,
+    /// Room the object stands in (None for walls and anything outside rooms).
+    pub room: Option<RoomId>,
+    /// Object frame in world coordinates.
+    pub pose: Pose,
+    /// World-space bounding box of all parts.
+    pub bbox: Aabb,
+    /// Colour word used in language ("red", "wooden", "white").
+    pub color: String,
+    /// Material word ("wood", "metal", "fabric", ...).
+    pub material: String,
+    /// Mass, friction, static/dynamic.
+    pub physics: Physics,
+    /// The object this one stands on (`X on Y`), if any.
+    pub supported_by: Option<ObjectId>,
+    /// Geometry, in the object frame.
+    pub parts: Vec<Part>,
+}
+
+impl SceneObject {
+    /// Whether the object is building structure.
+    pub fn is_structure(&self) -> bool {
+        self.class.is_structure()
+    }
+
+    /// Recompute `bbox` from the parts and the pose.
+    pub fn compute_bbox(&self) -> Aabb {
+        let mut b = Aabb::EMPTY;
+        for part in &self.parts {
+            let t = self.pose.mul(&part.transform);
+            for p in crate::geometry::shape_corners(&part.shape) {
+                b.extend(t.transform_point(p));
+            }
+        }
+        b
+    }
+}
+
+/// A room: type, floor polygon (x, z), name.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Room {
+    /// Unique id within the scene.
+    pub id: RoomId,
+    /// Room type.
+    pub kind: RoomType,
+    /// Unique name, e.g. `bedroom_2`.
+    pub name: String,
+    /// Floor polygon as `[x, z]` points, counter-clockwise seen from above.
+    pub polygon: Vec<[f32; 2]>,
+}
+
+impl Room {
+    /// Floor area of the polygon (m^2).
+    pub fn area(&self) -> f32 {
+        let n = self.polygon.len();
+        let mut a = 0.0;
+        for i in 0..n {
+            let p = self.polygon[i];
+            let q = self.polygon[(i + 1) % n];
+            a += p[0] * q[1] - q[0] * p[1];
+        }
+        (a * 0.5).abs()
+    }
+
+    /// Whether the point `(x, z)` is inside the polygon.
+    pub fn contains(&self, x: f32, z: f32) -> bool {
+        let n = self.polygon.len();
+        let mut inside = false;
+        let mut j = n.wrapping_sub(1);
+        for i in 0..n {
+            let (pi, pj) = (self.polygon[i], self.polygon[j]);
+            if (pi[1] > z) != (pj[1] > z)
+                && x < (pj[0] - pi[0]) * (z - pi[1]) / (pj[1] - pi[1]) + pi[0]
+            {
+                inside = !inside;
+            }
+            j = i;
+        }
+        inside
+    }
+
+    /// Centroid of the polygon's vertices.
+    pub fn center(&self) -> [f32; 2] {
+        let n = self.polygon.len().max(1) as f32;
+        let (sx, sz) = self
+            .polygon
+            .iter()
+            .fold((0.0, 0.0), |(a, b), p| (a + p[0], b + p[1]));
+        [sx / n, sz / n]
+    }
+}
+
+/// A doorway (with a frame) or an open-plan opening between two rooms.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Door {
+    /// Unique id within the scene.
+    pub id: u32,
+    /// Centre of the opening on the floor.
+    pub position: [f32; 3],
+    /// Clear width of the opening (m).
+    pub width: f32,
+    /// Unit normal of the wall the opening is cut in, `[x, z]`.
+    pub normal: [f32; 2],
+    /// The two rooms the opening connects.
+    pub rooms: [RoomId; 2],
+    /// True for a wide open-plan connection without a door frame.
+    pub open_plan: bool,
+}
+
+/// A whole scene.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Scene {
+    /// `scene.json` format version.
+    pub format_version: u32,
+    /// Scene id (also the folder name).
+    pub id: String,
+    /// Where it came from: `procgen` or `import:<file>`.
+    pub source: String,
+    /// Seed that generated it, for procedural scenes.
+    pub seed: Option<u64>,
+    /// Height of the walkable floor (y).
+    pub floor_height: f32,
+    /// Rooms.
+    pub rooms: Vec<Room>,
+    /// Doors and openings.
+    pub doors: Vec<Door>,
+    /// All objects, structure included, sorted by id.
+    pub objects: Vec<SceneObject>,
+}
+
+impl Scene {
+    /// Bounding box of every object.
+    pub fn bounds(&self) -> Aabb {
+        self.objects
+            .iter()
+            .fold(Aabb::EMPTY, |acc, o| acc.union(&o.bbox))
+    }
+
+    /// Object by id.
+    pub fn object(&self, id: ObjectId) -> Option<&SceneObject> {
+        self.objects
+            .binary_search_by_key(&id, |o| o.id)
+            .ok()
+            .map(|i| &self.objects[i])
+            .or_else(|| self.objects.iter().find(|o| o.id == id))
+    }
+
+    /// Room by id.
+    pub fn room(&self, id: RoomId) -> Option<&Room> {
+        self.rooms.iter().find(|r| r.id == id)
+    }
+
+    /// The room containing the floor point `(x, z)`, if any.
+    pub fn room_at(&self, x: f32, z: f32) -> Option<&Room> {
+        self.rooms.iter().find(|r| r.contains(x, z))
+    }
+
+    /// Objects that are not structure (furniture, small objects, unknown).
+    pub fn items(&self) -> impl Iterator<Item = &SceneObject> {
+        self.objects.iter().filter(|o| !o.is_structure())
+    }
+
+    /// Total number of triangles when every part is triangulated.
+    pub fn triangle_count(&self) -> usize {
+        self.objects
+            .iter()
+            .flat_map(|o| &o.parts)
+            .map(|p| crate::geometry::triangle_count(&p.shape))
+            .sum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn yaw_round_trips() {
+        for yaw in [-3.0f32, -1.0, 0.0, 0.5, 1.5, 3.0] {
+            let p = Pose::from_yaw(Vec3::ZERO, yaw);
+            assert!((p.yaw() - yaw).abs() < 1e-5, "{yaw} -> {}", p.yaw());
+        }
+        // yaw 0 looks along -Z; +90 deg (counter-clockwise from above) looks along -X.
+        let p = Pose::from_yaw(Vec3::ZERO, std::f32::consts::FRAC_PI_2);
+        let fwd = p.quat() * Vec3::NEG_Z;
+        assert!((fwd - Vec3::NEG_X).length() < 1e-5);
+    }
+
+    #[test]
+    fn room_area_and_contains() {
+        let r = Room {
+            id: 0,
+            kind: RoomType::Bedroom,
+            name: "bedroom_0".into(),
+            polygon: vec![[0.0, 0.0], [4.0, 0.0], [4.0, 3.0], [0.0, 3.0]],
+        };
+        assert!((r.area() - 12.0).abs() < 1e-6);
+        assert!(r.contains(1.0, 1.0));
+        assert!(!r.contains(5.0, 1.0));
+    }
+
+    #[test]
+    fn aabb_touching_boxes_do_not_intersect() {
+        let a = Aabb::new(Vec3::ZERO, Vec3::ONE);
+        let b = Aabb::new(Vec3::new(1.0, 0.0, 0.0), Vec3::new(2.0, 1.0, 1.0));
+        assert!(!a.intersects(&b, 1e-4));
+        let c = Aabb::new(Vec3::splat(0.5), Vec3::splat(1.5));
+        assert!(a.intersects(&c, 1e-4));
+    }
+}

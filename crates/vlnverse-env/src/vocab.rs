@@ -1,0 +1,239 @@
+//! The fixed semantic vocabulary: object classes and room types.
+//!
+//! Class ids are stable: they are written into semantic images and dataset files, so new classes
+//! are only ever appended. Id 0 is reserved for "nothing" in semantic images, so the first class
+//! has id 1. `docs/formats.md` lists the table.
+
+use serde::{Deserialize, Serialize};
+use std::fmt;
+use std::str::FromStr;
+
+macro_rules! vocabulary {
+    (
+        $(#[$meta:meta])*
+        $vis:vis enum $name:ident {
+            $( $variant:ident = ($id:expr, $text:expr, $kind:ident) ),* $(,)?
+        }
+    ) => {
+        $(#[$meta])*
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+        $vis enum $name {
+            $(
+                #[doc = concat!("`", $text, "`")]
+                $variant,
+            )*
+        }
+
+        impl $name {
+            /// Every member, in id order.
+            pub const ALL: &'static [$name] = &[$($name::$variant),*];
+
+            /// Stable numeric id (written into semantic images; 0 means "none").
+            pub fn id(self) -> u16 {
+                match self { $($name::$variant => $id),* }
+            }
+
+            /// Snake-case name used in files and instructions' metadata.
+            pub fn name(self) -> &'static str {
+                match self { $($name::$variant => $text),* }
+            }
+
+            /// Look a member up by its stable id.
+            pub fn from_id(id: u16) -> Option<Self> {
+                match id { $($id => Some($name::$variant),)* _ => None }
+            }
+
+            /// Look a member up by its snake-case name.
+            pub fn from_name(name: &str) -> Option<Self> {
+                match name { $($text => Some($name::$variant),)* _ => None }
+            }
+
+            fn kind_of(self) -> ClassKind {
+                match self { $($name::$variant => ClassKind::$kind),* }
+            }
+        }
+
+        impl fmt::Display for $name {
+            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str(self.name())
+            }
+        }
+
+        impl FromStr for $name {
+            type Err = String;
+            fn from_str(s: &str) -> Result<Self, String> {
+                Self::from_name(s).ok_or_else(|| format!("unknown {} `{s}`", stringify!($name)))
+            }
+        }
+
+        impl Serialize for $name {
+            fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+                s.serialize_str(self.name())
+            }
+        }
+
+        impl<'de> Deserialize<'de> for $name {
+            fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+                let s = String::deserialize(d)?;
+                Self::from_name(&s).ok_or_else(|| serde::de::Error::custom(format!(
+                    "unknown {} `{s}`", stringify!($name)
+                )))
+            }
+        }
+    };
+}
+
+/// What a class is: building structure, furniture standing on the floor, or a small object
+/// that stands on furniture.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ClassKind {
+    /// Walls, floor, ceiling, door frames: never a landmark or a target.
+    Structure,
+    /// Floor-standing furniture and appliances.
+    Furniture,
+    /// Objects small enough to stand on furniture (`X on Y` relations).
+    Small,
+    /// Anything the importer could not label.
+    Unknown,
+}
+
+vocabulary! {
+    /// Semantic class of a scene object (the fixed vocabulary, 60+ classes).
+    pub enum SemanticClass {
+        Wall = (1, "wall", Structure),
+        Floor = (2, "floor", Structure),
+        Ceiling = (3, "ceiling", Structure),
+        DoorFrame = (4, "door_frame", Structure),
+        Window = (5, "window", Structure),
+        Bed = (6, "bed", Furniture),
+        Nightstand = (7, "nightstand", Furniture),
+        Wardrobe = (8, "wardrobe", Furniture),
+        Dresser = (9, "dresser", Furniture),
+        Toilet = (10, "toilet", Furniture),
+        Sink = (11, "sink", Furniture),
+        Bathtub = (12, "bathtub", Furniture),
+        Shower = (13, "shower", Furniture),
+        Mirror = (14, "mirror", Furniture),
+        Fridge = (15, "fridge", Furniture),
+        Counter = (16, "counter", Furniture),
+        Stove = (17, "stove", Furniture),
+        Dishwasher = (18, "dishwasher", Furniture),
+        KitchenCabinet = (19, "kitchen_cabinet", Furniture),
+        Sofa = (20, "sofa", Furniture),
+        Armchair = (21, "armchair", Furniture),
+        Tv = (22, "tv", Furniture),
+        TvStand = (23, "tv_stand", Furniture),
+        CoffeeTable = (24, "coffee_table", Furniture),
+        DiningTable = (25, "dining_table", Furniture),
+        Chair = (26, "chair", Furniture),
+        Desk = (27, "desk", Furniture),
+        OfficeChair = (28, "office_chair", Furniture),
+        Bookshelf = (29, "bookshelf", Furniture),
+        PottedPlant = (30, "potted_plant", Furniture),
+        FloorLamp = (31, "floor_lamp", Furniture),
+        Rug = (32, "rug", Furniture),
+        Cabinet = (33, "cabinet", Furniture),
+        SideTable = (34, "side_table", Furniture),
+        ShoeRack = (35, "shoe_rack", Furniture),
+        CoatRack = (36, "coat_rack", Furniture),
+        WashingMachine = (37, "washing_machine", Furniture),
+        Piano = (38, "piano", Furniture),
+        Bench = (39, "bench", Furniture),
+        Stool = (40, "stool", Furniture),
+        TrashCan = (41, "trash_can", Furniture),
+        Cup = (42, "cup", Small),
+        Mug = (43, "mug", Small),
+        Book = (44, "book", Small),
+        Laptop = (45, "laptop", Small),
+        Vase = (46, "vase", Small),
+        Bowl = (47, "bowl", Small),
+        Bottle = (48, "bottle", Small),
+        Clock = (49, "clock", Small),
+        TableLamp = (50, "table_lamp", Small),
+        SmallPlant = (51, "small_plant", Small),
+        Monitor = (52, "monitor", Small),
+        Keyboard = (53, "keyboard", Small),
+        Remote = (54, "remote", Small),
+        Pillow = (55, "pillow", Small),
+        Toaster = (56, "toaster", Small),
+        Kettle = (57, "kettle", Small),
+        Microwave = (58, "microwave", Small),
+        Candle = (59, "candle", Small),
+        PictureFrame = (60, "picture_frame", Small),
+        Towel = (61, "towel", Small),
+        SoapDispenser = (62, "soap_dispenser", Small),
+        Plate = (63, "plate", Small),
+        Unknown = (64, "unknown", Unknown),
+    }
+}
+
+impl SemanticClass {
+    /// Whether the class is building structure (wall, floor, ceiling, door frame, window).
+    pub fn is_structure(self) -> bool {
+        self.kind_of() == ClassKind::Structure
+    }
+
+    /// Structure, furniture, small object or unknown.
+    pub fn kind(self) -> ClassKind {
+        self.kind_of()
+    }
+
+    /// Words used in text ("coffee table" for `coffee_table`).
+    pub fn words(self) -> String {
+        self.name().replace('_', " ")
+    }
+}
+
+vocabulary! {
+    /// Kind of room in a home.
+    pub enum RoomType {
+        LivingRoom = (1, "living_room", Structure),
+        Kitchen = (2, "kitchen", Structure),
+        DiningRoom = (3, "dining_room", Structure),
+        Bedroom = (4, "bedroom", Structure),
+        Bathroom = (5, "bathroom", Structure),
+        Hallway = (6, "hallway", Structure),
+        Office = (7, "office", Structure),
+        LaundryRoom = (8, "laundry_room", Structure),
+        Closet = (9, "closet", Structure),
+        Gym = (10, "gym", Structure),
+        Room = (11, "room", Structure),
+    }
+}
+
+impl RoomType {
+    /// Words used in text ("living room" for `living_room`).
+    pub fn words(self) -> String {
+        self.name().replace('_', " ")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ids_and_names_round_trip_and_are_unique() {
+        let mut ids = std::collections::HashSet::new();
+        for &c in SemanticClass::ALL {
+            assert!(ids.insert(c.id()), "duplicate id {}", c.id());
+            assert_eq!(SemanticClass::from_id(c.id()), Some(c));
+            assert_eq!(SemanticClass::from_name(c.name()), Some(c));
+        }
+        let objects = SemanticClass::ALL
+            .iter()
+            .filter(|c| matches!(c.kind(), ClassKind::Furniture | ClassKind::Small))
+            .count();
+        assert!(objects >= 40, "vocabulary has only {objects} object classes");
+    }
+
+    #[test]
+    fn serde_uses_snake_case_names() {
+        let json = serde_json::to_string(&SemanticClass::CoffeeTable).unwrap();
+        assert_eq!(json, "\"coffee_table\"");
+        let back: SemanticClass = serde_json::from_str(&json).unwrap();
+        assert_eq!(back, SemanticClass::CoffeeTable);
+        assert!(serde_json::from_str::<SemanticClass>("\"spaceship\"").is_err());
+    }
+}

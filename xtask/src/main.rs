@@ -1,0 +1,64 @@
+//! `cargo xtask ...`: the VLNVerse-rs command line. Each subcommand lives in its own module and
+//! wires the library crates into one job; library code never prints, this binary does.
+
+use clap::{Parser, Subcommand};
+
+mod cmd_evaluate;
+mod cmd_generate;
+mod cmd_import;
+mod cmd_render;
+mod cmd_scene_info;
+mod cmd_scenes;
+mod cmd_topdown;
+mod progress;
+
+/// VLNVerse-rs: scenes, datasets and evaluation for vision-language navigation.
+#[derive(Parser)]
+#[command(name = "cargo xtask", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Generate procedural homes (scene files, occupancy maps, scene graphs).
+    Scenes(cmd_scenes::Args),
+    /// Print statistics of a folder of scenes (navigable area, rooms, objects by class).
+    SceneInfo(cmd_scene_info::Args),
+    /// Draw a top-down PNG of a scene.
+    Topdown(cmd_topdown::Args),
+    /// Render the sensors of an agent placed in a scene.
+    Render(cmd_render::Args),
+    /// Import a glTF/GLB or OBJ home as a scene folder.
+    Import(cmd_import::Args),
+    /// Generate a VLN dataset (scenes, episodes of the five tasks).
+    Generate(cmd_generate::Args),
+    /// Evaluate an agent on a dataset split.
+    Evaluate(cmd_evaluate::Args),
+}
+
+fn main() {
+    tracing_subscriber::fmt()
+        .with_env_filter(
+            tracing_subscriber::EnvFilter::try_from_default_env()
+                .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new("info")),
+        )
+        .with_writer(std::io::stderr)
+        .with_target(false)
+        .init();
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Scenes(a) => cmd_scenes::run(a),
+        Command::SceneInfo(a) => cmd_scene_info::run(a),
+        Command::Topdown(a) => cmd_topdown::run(a),
+        Command::Render(a) => cmd_render::run(a),
+        Command::Import(a) => cmd_import::run(a),
+        Command::Generate(a) => cmd_generate::run(a),
+        Command::Evaluate(a) => cmd_evaluate::run(a),
+    };
+    if let Err(e) = result {
+        eprintln!("error: {e:#}");
+        std::process::exit(1);
+    }
+}
