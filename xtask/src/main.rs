@@ -3,12 +3,16 @@
 
 use clap::{Parser, Subcommand};
 
+mod cmd_bench;
 mod cmd_evaluate;
 mod cmd_generate;
 mod cmd_import;
+mod cmd_merge;
 mod cmd_render;
 mod cmd_scene_info;
 mod cmd_scenes;
+mod cmd_score;
+mod cmd_stats;
 mod cmd_topdown;
 mod progress;
 
@@ -34,8 +38,16 @@ enum Command {
     Import(cmd_import::Args),
     /// Generate a VLN dataset (scenes, episodes of the five tasks).
     Generate(cmd_generate::Args),
+    /// Join dataset parts generated with `--shard K/N` into one dataset.
+    Merge(cmd_merge::Args),
+    /// Statistics and plots of a generated dataset.
+    Stats(cmd_stats::Args),
     /// Evaluate an agent on a dataset split.
     Evaluate(cmd_evaluate::Args),
+    /// Score trajectories recorded elsewhere with the benchmark's metrics.
+    Score(cmd_score::Args),
+    /// Run the benchmarks that print figures (scenes, geodesic, physics, rendering, metrics).
+    Bench(cmd_bench::Args),
 }
 
 fn main() {
@@ -55,7 +67,11 @@ fn main() {
         Command::Render(a) => cmd_render::run(a),
         Command::Import(a) => cmd_import::run(a),
         Command::Generate(a) => cmd_generate::run(a),
+        Command::Merge(a) => cmd_merge::run(a),
+        Command::Stats(a) => cmd_stats::run(a),
         Command::Evaluate(a) => cmd_evaluate::run(a),
+        Command::Score(a) => cmd_score::run(a),
+        Command::Bench(a) => cmd_bench::run(a),
     };
     if let Err(e) = result {
         eprintln!("error: {e:#}");
