@@ -1,10 +1,179 @@
-//! `cargo xtask score` (not implemented yet).
+//! `cargo xtask score`: score trajectories recorded elsewhere (a real robot, another simulator)
+//! with the benchmark's metrics, writing the same files as `cargo xtask evaluate`
+//! (`summary.json`, `episodes.csv`, `report.md`).
+
+use std::path::PathBuf;
+
+use anyhow::Context as _;
+use vlnverse_task::metrics::{match_trajectories, score_all, GoalDistances, MetricsConfig};
+use vlnverse_task::report::{write_run, RunSummary};
+use vlnverse_task::{dataset, score, trajectory, Split, Task};
 
 /// Arguments of `cargo xtask score`.
-#[derive(clap::Args)]
-pub struct Args {}
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Dataset folder (holds `<task>/<split>/<split>.json.gz` and `scenes/<scene_id>/`).
+    #[arg(long)]
+    pub dataset: PathBuf,
+    /// Task: fine, coarse, visual_reference, long_horizon or dialogue.
+    #[arg(long)]
+    pub task: Task,
+    /// Split: train, val_seen, val_unseen or test.
+    #[arg(long)]
+    pub split: Split,
+    /// Trajectory file: JSON lines, or the VLN-CE inference format.
+    #[arg(long)]
+    pub trajectories: PathBuf,
+    /// Output folder of the run.
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Row label in report.md (default: the trajectory file's stem).
+    #[arg(long)]
+    pub method: Option<String>,
+    /// Setting label in report.md (e.g. strict, telhop).
+    #[arg(long)]
+    pub setting: Option<String>,
+    /// Score episodes without a trajectory as failures instead of stopping with an error.
+    #[arg(long)]
+    pub allow_missing: bool,
+    /// A noticeable collision fails the episode (the Strict rule applied after the fact).
+    #[arg(long)]
+    pub fail_on_collision: bool,
+    /// Success distance in metres.
+    #[arg(long, default_value_t = 3.0)]
+    pub success_distance: f32,
+    /// Straight-line instead of geodesic distances (no navigable maps needed).
+    #[arg(long)]
+    pub euclidean: bool,
+}
 
 /// Run the command.
-pub fn run(_args: Args) -> anyhow::Result<()> {
-    anyhow::bail!("`score` is not implemented yet")
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let cfg = MetricsConfig {
+        success_distance: args.success_distance,
+        fail_on_collision: args.fail_on_collision,
+        ..Default::default()
+    };
+    cfg.validate()?;
+    let episodes = dataset::read_split(&args.dataset, args.task, args.split)?;
+    let trajectories = trajectory::read_trajectories(&args.trajectories)?;
+    let trajectories = match_trajectories(&episodes, trajectories, args.allow_missing)
+        .with_context(|| format!("matching {} to the episodes", args.trajectories.display()))?;
+    tracing::info!(
+        "scoring {} episodes of {}/{}",
+        episodes.len(),
+        args.task,
+        args.split
+    );
+    let mut metrics = if args.euclidean {
+        score_all(&episodes, &trajectories, &GoalDistances::euclidean, &cfg)
+    } else {
+        let pb = crate::progress::bar(episodes.len() as u64, "scoring");
+        let m = score::score_on_maps(&args.dataset, &episodes, &trajectories, &cfg, &|n| {
+            pb.inc(n as u64)
+        })?;
+        pb.finish_and_clear();
+        m
+    };
+    for m in &mut metrics {
+        m.split = Some(args.split);
+    }
+    let method = args.method.clone().unwrap_or_else(|| {
+        args.trajectories
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "trajectories".into())
+    });
+    let run = RunSummary::new(
+        &method,
+        args.setting.as_deref(),
+        args.task,
+        args.split,
+        &metrics,
+    );
+    write_run(&args.out, &run, &metrics)?;
+    let s = &run.summary;
+    println!(
+        "{} episodes: SR {:.2}%  SPL {:.2}%  NE {}  nDTW {:.2}%  ({} unreachable) -> {}",
+        s.episodes,
+        100.0 * s.sr,
+        100.0 * s.spl,
+        s.ne.map_or_else(|| "-".into(), |v| format!("{v:.2} m")),
+        100.0 * s.ndtw,
+        s.unreachable,
+        args.out.display()
+    );
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use vlnverse_task::{Episode, EpisodeInfo, Goal, Instruction};
+
+    #[test]
+    fn score_writes_the_run_files_and_names_bad_input() {
+        let dir = tempfile::tempdir().unwrap();
+        let ep = Episode {
+            episode_id: 5,
+            trajectory_id: 5,
+            scene_id: "s".into(),
+            start_position: [0.0, 0.0, 0.0],
+            start_rotation: [0.0, 0.0, 0.0, 1.0],
+            goals: vec![Goal {
+                position: [2.0, 0.0, 0.0],
+                radius: 3.0,
+                object_id: None,
+            }],
+            instruction: Instruction::default(),
+            reference_path: vec![[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]],
+            info: EpisodeInfo {
+                geodesic_distance: 2.0,
+                ..Default::default()
+            },
+            task: Task::Fine,
+            target_object_id: None,
+            reference_image: None,
+            sub_goals: vec![],
+            oracle_budget: None,
+        };
+        dataset::write_split(dir.path(), Task::Fine, Split::Test, &[ep]).unwrap();
+        let traj = dir.path().join("robot.jsonl");
+        std::fs::write(
+            &traj,
+            "{\"episode_id\": 5, \"positions\": [[0,0,0],[1,0,0],[2,0,0]], \"stopped\": true}\n",
+        )
+        .unwrap();
+        let args = |trajectories: PathBuf, out: PathBuf| Args {
+            dataset: dir.path().to_path_buf(),
+            task: Task::Fine,
+            split: Split::Test,
+            trajectories,
+            out,
+            method: None,
+            setting: None,
+            allow_missing: false,
+            fail_on_collision: false,
+            success_distance: 3.0,
+            euclidean: true,
+        };
+        let out = dir.path().join("run");
+        run(args(traj, out.clone())).unwrap();
+        let summary: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+        assert_eq!(summary["sr"], 1.0);
+        assert_eq!(summary["method"], "robot");
+        let report = std::fs::read_to_string(out.join("report.md")).unwrap();
+        assert!(report.contains("| robot | - | 2.00 | 0.00 | 100.00 |"), "{report}");
+
+        let bad = dir.path().join("bad.jsonl");
+        std::fs::write(&bad, "{\"episode_id\": 5, \"positions\": 3, \"stopped\": true}\n").unwrap();
+        let err = format!("{:#}", run(args(bad, out.clone())).unwrap_err());
+        assert!(err.contains("bad.jsonl") && err.contains("line 1"), "{err}");
+        let unknown = dir.path().join("unknown.jsonl");
+        std::fs::write(&unknown, "{\"episode_id\": 9, \"positions\": [], \"stopped\": true}\n")
+            .unwrap();
+        let err = format!("{:#}", run(args(unknown, out)).unwrap_err());
+        assert!(err.contains("9") && err.contains("no episode"), "{err}");
+    }
 }

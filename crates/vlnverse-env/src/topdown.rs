@@ -1,1 +1,738 @@
-//! (in progress)
+//! Top-down pictures of a scene: rooms tinted by type, the navigable area shaded, walls dark,
+//! doors marked, objects as filled footprints coloured by class with labels and a legend, room
+//! names and a scale bar. [`Topdown::frame`] maps world points to pixels so other layers can
+//! draw trajectories on top ([`draw_path`], [`draw_marker`]).
+//!
+//! Image axes: pixel x grows with world x, pixel y grows with world z (so the picture is the
+//! scene seen from above with -Z, the agent's yaw-0 heading, pointing up).
+
+use crate::geometry::shape_corners;
+use crate::occupancy::GridMap;
+use crate::scene::{Pose, Scene, SceneObject, Shape};
+use crate::vocab::{ClassKind, RoomType, SemanticClass};
+use glam::{Vec2, Vec3};
+use image::{Rgb, RgbImage};
+
+/// Drawing options of [`render_topdown`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct TopdownOptions {
+    /// Pixels per metre (clamped so the image stays within `max_size` pixels).
+    pub px_per_m: f32,
+    /// Largest width or height of the map area in pixels.
+    pub max_size: u32,
+    /// Margin around the scene in pixels.
+    pub margin_px: u32,
+    /// Draw class-name labels on furniture.
+    pub labels: bool,
+    /// Draw a legend of the classes present on the right.
+    pub legend: bool,
+    /// Draw room names.
+    pub room_names: bool,
+    /// Title written in the top-left corner (e.g. the scene id); empty for none.
+    pub title: String,
+}
+
+impl Default for TopdownOptions {
+    fn default() -> Self {
+        TopdownOptions {
+            px_per_m: 50.0,
+            max_size: 3000,
+            margin_px: 36,
+            labels: true,
+            legend: true,
+            room_names: true,
+            title: String::new(),
+        }
+    }
+}
+
+/// The world -> pixel mapping of a top-down image.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WorldToPixel {
+    /// World `(x, z)` drawn at pixel `(origin_px.x, origin_px.y)`.
+    pub world_min: Vec2,
+    /// Pixel position of `world_min`.
+    pub origin_px: Vec2,
+    /// Pixels per metre.
+    pub px_per_m: f32,
+}
+
+impl WorldToPixel {
+    /// Pixel coordinates (continuous) of a world floor point `(x, z)`.
+    pub fn to_pixel(&self, p: Vec2) -> Vec2 {
+        self.origin_px + (p - self.world_min) * self.px_per_m
+    }
+
+    /// World floor point `(x, z)` under a pixel position.
+    pub fn to_world(&self, px: Vec2) -> Vec2 {
+        self.world_min + (px - self.origin_px) / self.px_per_m
+    }
+}
+
+/// A rendered top-down image and its world -> pixel mapping.
+#[derive(Clone, Debug)]
+pub struct Topdown {
+    /// The picture.
+    pub image: RgbImage,
+    /// Mapping from world `(x, z)` to pixels.
+    pub frame: WorldToPixel,
+}
+
+impl Topdown {
+    /// Draw a polyline of world points (see [`draw_path`]).
+    pub fn draw_path(&mut self, points: &[Vec2], color: [u8; 3], width_px: f32) {
+        draw_path(&mut self.image, &self.frame, points, color, width_px);
+    }
+
+    /// Draw a filled disc with a dark outline at a world point (see [`draw_marker`]).
+    pub fn draw_marker(&mut self, p: Vec2, color: [u8; 3], radius_px: f32) {
+        draw_marker(&mut self.image, &self.frame, p, color, radius_px);
+    }
+}
+
+/// Pastel tint of a room type.
+pub fn room_color(kind: RoomType) -> [u8; 3] {
+    match kind {
+        RoomType::LivingRoom => [246, 226, 196],
+        RoomType::Kitchen => [252, 240, 178],
+        RoomType::DiningRoom => [246, 212, 200],
+        RoomType::Bedroom => [214, 226, 250],
+        RoomType::Bathroom => [200, 238, 240],
+        RoomType::Hallway => [228, 228, 222],
+        RoomType::Office => [226, 240, 208],
+        RoomType::LaundryRoom => [236, 222, 246],
+        RoomType::Closet => [236, 232, 214],
+        RoomType::Gym => [250, 214, 226],
+        RoomType::Room => [234, 234, 234],
+    }
+}
+
+/// Colour of a semantic class: structure in greys, other classes spread around the hue circle
+/// (golden-angle steps over the class id, so neighbouring ids differ clearly).
+pub fn class_color(class: SemanticClass) -> [u8; 3] {
+    match class {
+        SemanticClass::Wall => [52, 52, 58],
+        SemanticClass::DoorFrame => [120, 86, 60],
+        SemanticClass::Window => [120, 180, 230],
+        SemanticClass::Floor | SemanticClass::Ceiling => [200, 200, 200],
+        SemanticClass::Unknown => [150, 150, 150],
+        _ => {
+            let hue = (class.id() as f32 * 137.508) % 360.0;
+            let (s, v) = match class.kind() {
+                ClassKind::Small => (0.75, 0.85),
+                _ => (0.55, 0.78),
+            };
+            hsv(hue, s, v)
+        }
+    }
+}
+
+fn hsv(h: f32, s: f32, v: f32) -> [u8; 3] {
+    let c = v * s;
+    let hp = h / 60.0;
+    let x = c * (1.0 - (hp % 2.0 - 1.0).abs());
+    let (r, g, b) = match hp as u32 {
+        0 => (c, x, 0.0),
+        1 => (x, c, 0.0),
+        2 => (0.0, c, x),
+        3 => (0.0, x, c),
+        4 => (x, 0.0, c),
+        _ => (c, 0.0, x),
+    };
+    let m = v - c;
+    [r, g, b].map(|u| ((u + m) * 255.0).round() as u8)
+}
+
+fn darker(c: [u8; 3], f: f32) -> [u8; 3] {
+    c.map(|u| (u as f32 * f) as u8)
+}
+
+/// Blend `color` into a pixel with opacity `alpha` (ignored outside the image).
+fn blend(img: &mut RgbImage, x: i64, y: i64, color: [u8; 3], alpha: f32) {
+    if x < 0 || y < 0 || x >= img.width() as i64 || y >= img.height() as i64 {
+        return;
+    }
+    let p = img.get_pixel_mut(x as u32, y as u32);
+    for i in 0..3 {
+        p.0[i] = (p.0[i] as f32 * (1.0 - alpha) + color[i] as f32 * alpha).round() as u8;
+    }
+}
+
+/// Fill a polygon given in pixel coordinates (even-odd rule, pixel centres sampled).
+fn fill_polygon(img: &mut RgbImage, pts: &[Vec2], color: [u8; 3], alpha: f32) {
+    if pts.len() < 3 {
+        return;
+    }
+    let (mut y0, mut y1) = (f32::INFINITY, f32::NEG_INFINITY);
+    for p in pts {
+        y0 = y0.min(p.y);
+        y1 = y1.max(p.y);
+    }
+    let ys = (y0 - 0.5).ceil().max(0.0) as i64;
+    let ye = ((y1 - 0.5).floor() as i64).min(img.height() as i64 - 1);
+    let mut xs = Vec::new();
+    for y in ys..=ye {
+        let sy = y as f32 + 0.5;
+        xs.clear();
+        for i in 0..pts.len() {
+            let (a, b) = (pts[i], pts[(i + 1) % pts.len()]);
+            if (a.y > sy) != (b.y > sy) {
+                xs.push(a.x + (sy - a.y) / (b.y - a.y) * (b.x - a.x));
+            }
+        }
+        xs.sort_by(f32::total_cmp);
+        for pair in xs.chunks_exact(2) {
+            let xa = (pair[0] - 0.5).ceil().max(0.0) as i64;
+            let xb = ((pair[1] - 0.5).floor() as i64).min(img.width() as i64 - 1);
+            for x in xa..=xb {
+                blend(img, x, y, color, alpha);
+            }
+        }
+    }
+}
+
+fn fill_disc(img: &mut RgbImage, c: Vec2, r: f32, color: [u8; 3], alpha: f32) {
+    let (x0, x1) = ((c.x - r).floor() as i64, (c.x + r).ceil() as i64);
+    let (y0, y1) = ((c.y - r).floor() as i64, (c.y + r).ceil() as i64);
+    for y in y0..=y1 {
+        for x in x0..=x1 {
+            let d = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) - c;
+            if d.length_squared() <= r * r {
+                blend(img, x, y, color, alpha);
+            }
+        }
+    }
+}
+
+/// A thick segment in pixel coordinates with round caps.
+fn thick_line(img: &mut RgbImage, a: Vec2, b: Vec2, width: f32, color: [u8; 3]) {
+    let d = b - a;
+    let r = width * 0.5;
+    if d.length() > 1e-3 {
+        let n = d.perp().normalize() * r;
+        fill_polygon(img, &[a + n, b + n, b - n, a - n], color, 1.0);
+    }
+    fill_disc(img, a, r, color, 1.0);
+    fill_disc(img, b, r, color, 1.0);
+}
+
+fn outline(img: &mut RgbImage, pts: &[Vec2], color: [u8; 3]) {
+    for i in 0..pts.len() {
+        let (a, b) = (pts[i], pts[(i + 1) % pts.len()]);
+        let n = ((b - a).length().ceil() as usize).max(1);
+        for k in 0..=n {
+            let p = a + (b - a) * (k as f32 / n as f32);
+            blend(img, p.x.floor() as i64, p.y.floor() as i64, color, 0.9);
+        }
+    }
+}
+
+/// Draw a polyline of world floor points `(x, z)` onto a top-down image.
+pub fn draw_path(
+    img: &mut RgbImage,
+    frame: &WorldToPixel,
+    points: &[Vec2],
+    color: [u8; 3],
+    width_px: f32,
+) {
+    let px: Vec<Vec2> = points.iter().map(|p| frame.to_pixel(*p)).collect();
+    for w in px.windows(2) {
+        thick_line(img, w[0], w[1], width_px, color);
+    }
+    if let [p] = px.as_slice() {
+        fill_disc(img, *p, width_px * 0.5, color, 1.0);
+    }
+}
+
+/// Draw a filled disc with a dark outline at a world floor point `(x, z)` (start/goal marks).
+pub fn draw_marker(
+    img: &mut RgbImage,
+    frame: &WorldToPixel,
+    p: Vec2,
+    color: [u8; 3],
+    radius_px: f32,
+) {
+    let c = frame.to_pixel(p);
+    fill_disc(img, c, radius_px + 1.5, [20, 20, 20], 1.0);
+    fill_disc(img, c, radius_px, color, 1.0);
+}
+
+/// Width in pixels of `text` drawn with [`draw_text`] at `scale`.
+pub fn text_width(text: &str, scale: u32) -> u32 {
+    text.chars().count() as u32 * 8 * scale
+}
+
+/// Draw ASCII text (8x8 font, `scale` times enlarged) with its top-left corner at `(x, y)`;
+/// `halo` draws a 1-pixel light outline first for readability on busy backgrounds.
+pub fn draw_text(
+    img: &mut RgbImage,
+    x: i64,
+    y: i64,
+    text: &str,
+    scale: u32,
+    color: [u8; 3],
+    halo: bool,
+) {
+    let s = scale.max(1) as i64;
+    let glyph_pass = |img: &mut RgbImage, dx: i64, dy: i64, c: [u8; 3]| {
+        for (i, ch) in text.chars().enumerate() {
+            let code = ch as usize;
+            let glyph = font8x8::legacy::BASIC_LEGACY
+                .get(code)
+                .copied()
+                .unwrap_or(font8x8::legacy::BASIC_LEGACY[b'?' as usize]);
+            for (row, bits) in glyph.iter().enumerate() {
+                for col in 0..8 {
+                    if bits >> col & 1 == 1 {
+                        for yy in 0..s {
+                            for xx in 0..s {
+                                blend(
+                                    img,
+                                    x + dx + (i as i64 * 8 + col) * s + xx,
+                                    y + dy + row as i64 * s + yy,
+                                    c,
+                                    1.0,
+                                );
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    };
+    if halo {
+        for (dx, dy) in [
+            (-1, 0),
+            (1, 0),
+            (0, -1),
+            (0, 1),
+            (-1, -1),
+            (1, 1),
+            (-1, 1),
+            (1, -1),
+        ] {
+            glyph_pass(img, dx, dy, [255, 255, 255]);
+        }
+    }
+    glyph_pass(img, 0, 0, color);
+}
+
+/// Footprint of one part in world `(x, z)`: a disc `(centre, radius)` for upright cylinders and
+/// spheres, else the convex hull of its projected corners.
+enum Footprint {
+    Disc(Vec2, f32),
+    Polygon(Vec<Vec2>),
+}
+
+fn part_footprint(shape: &Shape, pose: &Pose) -> Footprint {
+    let up = pose.quat() * Vec3::Y;
+    let c = pose.translation();
+    match shape {
+        Shape::Sphere { radius } => return Footprint::Disc(Vec2::new(c.x, c.z), *radius),
+        Shape::Cylinder { radius, .. } if up.y.abs() > 0.999 => {
+            return Footprint::Disc(Vec2::new(c.x, c.z), *radius)
+        }
+        _ => {}
+    }
+    let pts: Vec<Vec2> = shape_corners(shape)
+        .into_iter()
+        .map(|p| {
+            let w = pose.transform_point(p);
+            Vec2::new(w.x, w.z)
+        })
+        .collect();
+    Footprint::Polygon(convex_hull(pts))
+}
+
+/// Convex hull (monotone chain), counter-clockwise in (x, z).
+fn convex_hull(mut pts: Vec<Vec2>) -> Vec<Vec2> {
+    pts.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    pts.dedup();
+    if pts.len() < 3 {
+        return pts;
+    }
+    let cross = |o: Vec2, a: Vec2, b: Vec2| (a - o).perp_dot(b - o);
+    let mut lower: Vec<Vec2> = Vec::new();
+    for &p in &pts {
+        while lower.len() >= 2 && cross(lower[lower.len() - 2], lower[lower.len() - 1], p) <= 0.0 {
+            lower.pop();
+        }
+        lower.push(p);
+    }
+    let mut upper: Vec<Vec2> = Vec::new();
+    for &p in pts.iter().rev() {
+        while upper.len() >= 2 && cross(upper[upper.len() - 2], upper[upper.len() - 1], p) <= 0.0 {
+            upper.pop();
+        }
+        upper.push(p);
+    }
+    lower.pop();
+    upper.pop();
+    lower.extend(upper);
+    lower
+}
+
+fn draw_object(
+    img: &mut RgbImage,
+    frame: &WorldToPixel,
+    o: &SceneObject,
+    fill: [u8; 3],
+    alpha: f32,
+) {
+    let edge = darker(fill, 0.55);
+    for part in &o.parts {
+        let pose = o.pose.mul(&part.transform);
+        match part_footprint(&part.shape, &pose) {
+            Footprint::Disc(c, r) => {
+                let (c, r) = (frame.to_pixel(c), r * frame.px_per_m);
+                fill_disc(img, c, r + 0.7, edge, alpha);
+                fill_disc(img, c, (r - 0.7).max(0.5), fill, alpha);
+            }
+            Footprint::Polygon(pts) => {
+                let px: Vec<Vec2> = pts.iter().map(|p| frame.to_pixel(*p)).collect();
+                fill_polygon(img, &px, fill, alpha);
+                outline(img, &px, edge);
+            }
+        }
+    }
+}
+
+/// Pixel centre for a room name of `w` x `h` pixels: among candidate spots inside the room, the
+/// one overlapping the fewest furniture footprints (ties: nearest the room's centre).
+fn room_label_spot(
+    room: &crate::scene::Room,
+    frame: &WorldToPixel,
+    w: f32,
+    h: f32,
+    boxes: &[[f32; 4]],
+) -> Vec2 {
+    let centre = Vec2::from_array(room.center());
+    let (mut lo, mut hi) = (Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY));
+    for p in &room.polygon {
+        lo = lo.min(Vec2::from_array(*p));
+        hi = hi.max(Vec2::from_array(*p));
+    }
+    let mut best = (f32::INFINITY, f32::INFINITY, frame.to_pixel(centre));
+    for i in 0..=6 {
+        for j in 0..=6 {
+            let f = Vec2::new(0.2 + 0.6 * i as f32 / 6.0, 0.2 + 0.6 * j as f32 / 6.0);
+            let p = lo + (hi - lo) * f;
+            if !room.contains(p.x, p.y) {
+                continue;
+            }
+            let c = frame.to_pixel(p);
+            let r = [c.x - w * 0.5, c.y - h * 0.5, c.x + w * 0.5, c.y + h * 0.5];
+            let overlap: f32 = boxes
+                .iter()
+                .map(|b| {
+                    let ox = (r[2].min(b[2]) - r[0].max(b[0])).max(0.0);
+                    let oy = (r[3].min(b[3]) - r[1].max(b[1])).max(0.0);
+                    ox * oy
+                })
+                .sum();
+            let d = (p - centre).length();
+            if (overlap, d) < (best.0, best.1) {
+                best = (overlap, d, c);
+            }
+        }
+    }
+    best.2
+}
+
+fn draw_order(o: &SceneObject) -> u8 {
+    match (o.class, o.class.kind()) {
+        (SemanticClass::Rug, _) => 0,
+        (_, ClassKind::Furniture | ClassKind::Unknown) => 1,
+        (SemanticClass::Window, _) => 2,
+        (SemanticClass::Wall, _) => 3,
+        (SemanticClass::DoorFrame, _) => 4,
+        (_, ClassKind::Small) => 5,
+        _ => 6,
+    }
+}
+
+/// Render a top-down picture of `scene`; `navigable` (the agent-dilated map) shades the area an
+/// agent can reach.
+pub fn render_topdown(
+    scene: &Scene,
+    navigable: Option<&GridMap>,
+    opts: &TopdownOptions,
+) -> Topdown {
+    // Extent: rooms and objects (ceilings excluded, they cover everything anyway).
+    let mut lo = Vec2::splat(f32::INFINITY);
+    let mut hi = Vec2::splat(f32::NEG_INFINITY);
+    for o in scene
+        .objects
+        .iter()
+        .filter(|o| o.class != SemanticClass::Ceiling)
+    {
+        if !o.bbox.is_empty() {
+            lo = lo.min(Vec2::new(o.bbox.min[0], o.bbox.min[2]));
+            hi = hi.max(Vec2::new(o.bbox.max[0], o.bbox.max[2]));
+        }
+    }
+    for p in scene.rooms.iter().flat_map(|r| &r.polygon) {
+        lo = lo.min(Vec2::from_array(*p));
+        hi = hi.max(Vec2::from_array(*p));
+    }
+    if !(lo.x <= hi.x && lo.y <= hi.y) {
+        lo = Vec2::ZERO;
+        hi = Vec2::ONE;
+    }
+    let extent = (hi - lo).max(Vec2::splat(0.5));
+    let ppm = opts
+        .px_per_m
+        .min(opts.max_size as f32 / extent.max_element())
+        .max(1.0);
+    let margin = opts.margin_px as f32;
+    let title_h = if opts.title.is_empty() { 0.0 } else { 22.0 };
+    let map_w = (extent.x * ppm).ceil() as u32 + 2 * opts.margin_px;
+    let map_h = (extent.y * ppm).ceil() as u32 + 2 * opts.margin_px + title_h as u32 + 26;
+    let frame = WorldToPixel {
+        world_min: lo,
+        origin_px: Vec2::new(margin, margin + title_h),
+        px_per_m: ppm,
+    };
+    // Classes present (legend), in vocabulary order.
+    let mut present: Vec<SemanticClass> = scene
+        .objects
+        .iter()
+        .map(|o| o.class)
+        .filter(|c| !matches!(c, SemanticClass::Floor | SemanticClass::Ceiling))
+        .collect();
+    present.sort_by_key(|c| c.id());
+    present.dedup();
+    let legend_w = if opts.legend {
+        present
+            .iter()
+            .map(|c| text_width(c.name(), 1))
+            .max()
+            .unwrap_or(0)
+            + 40
+    } else {
+        0
+    };
+    let legend_h = if opts.legend {
+        present.len() as u32 * 14 + 3 * 14 + 22 + title_h as u32 + 2 * opts.margin_px
+    } else {
+        0
+    };
+    let mut img = RgbImage::from_pixel(map_w + legend_w, map_h.max(legend_h), Rgb([250, 250, 248]));
+
+    // Rooms.
+    for r in &scene.rooms {
+        let px: Vec<Vec2> = r
+            .polygon
+            .iter()
+            .map(|p| frame.to_pixel(Vec2::from_array(*p)))
+            .collect();
+        fill_polygon(&mut img, &px, room_color(r.kind), 1.0);
+    }
+    // Navigable area.
+    if let Some(nav) = navigable {
+        let (w, h) = (img.width(), img.height());
+        for y in 0..h {
+            for x in 0..w {
+                let p = frame.to_world(Vec2::new(x as f32 + 0.5, y as f32 + 0.5));
+                if nav.is_free_at(p) {
+                    blend(&mut img, x as i64, y as i64, [96, 180, 110], 0.28);
+                }
+            }
+        }
+    }
+    // Objects, in layers: rugs, furniture, walls and frames, small objects.
+    let mut objs: Vec<&SceneObject> = scene
+        .objects
+        .iter()
+        .filter(|o| !matches!(o.class, SemanticClass::Floor | SemanticClass::Ceiling))
+        .collect();
+    objs.sort_by_key(|o| (draw_order(o), o.id));
+    for o in &objs {
+        let alpha = if o.class == SemanticClass::Rug {
+            0.45
+        } else {
+            1.0
+        };
+        draw_object(&mut img, &frame, o, class_color(o.class), alpha);
+    }
+    // Doors: a coloured bar across the opening (dashed for open-plan connections).
+    for d in &scene.doors {
+        let n = Vec2::from_array(d.normal).normalize_or(Vec2::X);
+        let t = n.perp();
+        let c = Vec2::new(d.position[0], d.position[2]);
+        let (a, b) = (c - t * d.width * 0.5, c + t * d.width * 0.5);
+        let color = if d.open_plan {
+            [90, 150, 220]
+        } else {
+            [230, 130, 30]
+        };
+        if d.open_plan {
+            let segs = 6;
+            for k in (0..segs).step_by(2) {
+                let p0 = a + (b - a) * (k as f32 / segs as f32);
+                let p1 = a + (b - a) * ((k + 1) as f32 / segs as f32);
+                thick_line(&mut img, frame.to_pixel(p0), frame.to_pixel(p1), 3.0, color);
+            }
+        } else {
+            thick_line(&mut img, frame.to_pixel(a), frame.to_pixel(b), 4.0, color);
+        }
+    }
+    // Furniture labels (skipping ones that would overlap an earlier label).
+    let mut placed: Vec<[i64; 4]> = Vec::new();
+    if opts.room_names {
+        // Furniture footprints in pixels, to keep room names off them where possible.
+        let boxes: Vec<[f32; 4]> = objs
+            .iter()
+            .filter(|o| matches!(o.class.kind(), ClassKind::Furniture | ClassKind::Small))
+            .map(|o| {
+                let a = frame.to_pixel(Vec2::new(o.bbox.min[0], o.bbox.min[2]));
+                let b = frame.to_pixel(Vec2::new(o.bbox.max[0], o.bbox.max[2]));
+                [a.x, a.y, b.x, b.y]
+            })
+            .collect();
+        for r in &scene.rooms {
+            let name = r.kind.words();
+            let w = text_width(&name, 2) as i64;
+            let c = room_label_spot(r, &frame, w as f32, 16.0, &boxes);
+            let (x, y) = (c.x as i64 - w / 2, c.y as i64 - 8);
+            draw_text(&mut img, x, y, &name, 2, [30, 30, 30], true);
+            placed.push([x - 2, y - 2, x + w + 2, y + 18]);
+        }
+    }
+    if opts.labels {
+        let mut furniture: Vec<&&SceneObject> = objs
+            .iter()
+            .filter(|o| o.class.kind() == ClassKind::Furniture && o.class != SemanticClass::Rug)
+            .collect();
+        // Big objects first: they have room for their label.
+        furniture.sort_by(|a, b| {
+            let area = |o: &SceneObject| o.bbox.size().x * o.bbox.size().z;
+            area(b).total_cmp(&area(a)).then(a.id.cmp(&b.id))
+        });
+        for o in furniture {
+            let c = frame.to_pixel(Vec2::new(o.bbox.center().x, o.bbox.center().z));
+            let name = o.class.words();
+            let w = text_width(&name, 1) as i64;
+            let (x, y) = (c.x as i64 - w / 2, c.y as i64 - 4);
+            let rect = [x - 1, y - 1, x + w + 1, y + 9];
+            let overlaps = placed
+                .iter()
+                .any(|p| rect[0] < p[2] && p[0] < rect[2] && rect[1] < p[3] && p[1] < rect[3]);
+            if !overlaps {
+                draw_text(&mut img, x, y, &name, 1, [20, 20, 20], true);
+                placed.push(rect);
+            }
+        }
+    }
+    // Title, scale bar and axes note.
+    if !opts.title.is_empty() {
+        draw_text(
+            &mut img,
+            margin as i64,
+            8,
+            &opts.title,
+            2,
+            [20, 20, 20],
+            false,
+        );
+    }
+    let bar_m = [0.5f32, 1.0, 2.0, 5.0, 10.0]
+        .into_iter()
+        .find(|m| m * ppm >= 60.0)
+        .unwrap_or(10.0);
+    let y = (map_h - 16) as f32;
+    let x0 = margin;
+    let x1 = margin + bar_m * ppm;
+    thick_line(
+        &mut img,
+        Vec2::new(x0, y),
+        Vec2::new(x1, y),
+        3.0,
+        [20, 20, 20],
+    );
+    for x in [x0, x1] {
+        thick_line(
+            &mut img,
+            Vec2::new(x, y - 5.0),
+            Vec2::new(x, y + 5.0),
+            2.0,
+            [20, 20, 20],
+        );
+    }
+    draw_text(
+        &mut img,
+        x1 as i64 + 8,
+        y as i64 - 4,
+        &format!("{bar_m} m"),
+        1,
+        [20, 20, 20],
+        false,
+    );
+    let axes = "+x right, +z down";
+    draw_text(
+        &mut img,
+        (map_w as i64 - margin as i64 - text_width(axes, 1) as i64).max(x1 as i64 + 60),
+        y as i64 - 4,
+        axes,
+        1,
+        [90, 90, 90],
+        false,
+    );
+    // Legend.
+    if opts.legend {
+        let lx = map_w as i64 + 4;
+        let mut ly = margin as i64 + title_h as i64;
+        draw_text(&mut img, lx, ly, "classes", 1, [20, 20, 20], false);
+        ly += 16;
+        for c in &present {
+            let col = class_color(*c);
+            for yy in 0..10 {
+                for xx in 0..14 {
+                    let edge = yy == 0 || yy == 9 || xx == 0 || xx == 13;
+                    blend(
+                        &mut img,
+                        lx + xx,
+                        ly + yy,
+                        if edge { darker(col, 0.55) } else { col },
+                        1.0,
+                    );
+                }
+            }
+            draw_text(&mut img, lx + 20, ly + 1, c.name(), 1, [30, 30, 30], false);
+            ly += 14;
+        }
+        ly += 6;
+        if navigable.is_some() {
+            for yy in 0..10 {
+                for xx in 0..14 {
+                    blend(&mut img, lx + xx, ly + yy, [170, 210, 170], 1.0);
+                }
+            }
+            draw_text(
+                &mut img,
+                lx + 20,
+                ly + 1,
+                "navigable",
+                1,
+                [30, 30, 30],
+                false,
+            );
+            ly += 14;
+        }
+        for (label, col, dashed) in [
+            ("door", [230, 130, 30], false),
+            ("open plan", [90, 150, 220], true),
+        ] {
+            for xx in 0..14 {
+                if !dashed || (xx / 4) % 2 == 0 {
+                    for yy in 3..7 {
+                        blend(&mut img, lx + xx, ly + yy, col, 1.0);
+                    }
+                }
+            }
+            draw_text(&mut img, lx + 20, ly + 1, label, 1, [30, 30, 30], false);
+            ly += 14;
+        }
+    }
+    Topdown { image: img, frame }
+}

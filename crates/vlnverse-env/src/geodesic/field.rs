@@ -1,0 +1,169 @@
+//! Distance field from one goal to every reachable cell.
+
+use super::search::{lazy_theta, Grid};
+use super::{check_finite, resolve, Endpoint, GeodesicDistance, GeodesicPath};
+use crate::error::Result;
+use crate::occupancy::GridMap;
+use glam::Vec2;
+
+/// Geodesic distance from every cell of a map to one goal (any-angle Lazy Theta* run without a
+/// target from the goal's cell). Each reachable cell stores its distance and its *anchor*, the
+/// visible vertex it walks to in a straight line, so a query is O(1) and exact (Euclidean) when
+/// the goal is in sight.
+#[derive(Clone, Debug)]
+pub struct DistanceField {
+    map: GridMap,
+    root: Option<usize>,
+    goal: Option<Endpoint>,
+    /// Distance (cells) from the root cell centre along anchors; infinite when unreachable.
+    g: Vec<f32>,
+    parent: Vec<u32>,
+    /// First vertex after the root on each cell's anchor chain.
+    first: Vec<u32>,
+}
+
+impl DistanceField {
+    /// Field from `goal` `(x, z)` over the free cells of `map` (a goal outside the free cells is
+    /// snapped like [`super::shortest_path`] does; if it cannot be, every query is
+    /// unreachable). Errors only for non-finite coordinates.
+    pub fn new(map: &GridMap, goal: Vec2) -> Result<DistanceField> {
+        check_finite("goal", goal)?;
+        let grid = Grid::new(map);
+        let goal = resolve(map, goal, |i| grid.free_index(i));
+        let mut f = DistanceField::from_root(map, goal.map(|e| e.cell));
+        f.goal = goal;
+        Ok(f)
+    }
+
+    /// Field rooted at the centre of cell `root` (a free cell), without a goal point.
+    pub(crate) fn from_root(map: &GridMap, root: Option<usize>) -> DistanceField {
+        let n = map.len();
+        let Some(root) = root else {
+            return DistanceField {
+                map: map.clone(),
+                root: None,
+                goal: None,
+                g: vec![f32::INFINITY; n],
+                parent: vec![u32::MAX; n],
+                first: Vec::new(),
+            };
+        };
+        let grid = Grid::new(map);
+        let res = lazy_theta(&grid, root, None);
+        let mut first = vec![u32::MAX; n];
+        for &c in &res.order {
+            let c = c as usize;
+            let p = res.parent[c] as usize;
+            first[c] = if p == root { c as u32 } else { first[p] };
+        }
+        DistanceField {
+            map: map.clone(),
+            root: Some(root),
+            goal: None,
+            g: res.g,
+            parent: res.parent,
+            first,
+        }
+    }
+
+    /// The root cell index (None when the goal was unreachable / off the map).
+    pub(crate) fn root(&self) -> Option<usize> {
+        self.root
+    }
+
+    /// The map the field was computed on.
+    pub fn map(&self) -> &GridMap {
+        &self.map
+    }
+
+    /// The goal as given to [`DistanceField::new`] (None for an unusable goal).
+    pub fn goal(&self) -> Option<Vec2> {
+        self.goal.map(|e| e.point)
+    }
+
+    /// Number of cells with a finite distance.
+    pub fn reachable_cells(&self) -> usize {
+        self.g.iter().filter(|d| d.is_finite()).count()
+    }
+
+    fn center(&self, i: usize) -> Vec2 {
+        let (c, r) = self.map.cell_of_index(i);
+        self.map.cell_center(c, r)
+    }
+
+    fn start_endpoint(&self, p: Vec2) -> Option<Endpoint> {
+        if !p.is_finite() {
+            return None;
+        }
+        resolve(&self.map, p, |i| self.g[i].is_finite())
+    }
+
+    /// Geodesic distance from `p` to the field's goal (O(1)).
+    pub fn distance(&self, p: Vec2) -> GeodesicDistance {
+        match self.goal {
+            Some(goal) => self.distance_to(p, &goal),
+            None => GeodesicDistance::Unreachable,
+        }
+    }
+
+    /// Distance from `p` to a goal point lying in the root cell.
+    pub(crate) fn distance_to(&self, p: Vec2, goal: &Endpoint) -> GeodesicDistance {
+        let (Some(root), Some(s)) = (self.root, self.start_endpoint(p)) else {
+            return GeodesicDistance::Unreachable;
+        };
+        let a = self.parent[s.cell] as usize;
+        let res = self.map.resolution;
+        let core = if a == root {
+            s.on_grid.distance(goal.on_grid)
+        } else {
+            let v1 = self.first[a] as usize;
+            s.on_grid.distance(self.center(a))
+                + (self.g[a] - self.g[v1]) * res
+                + self.center(v1).distance(goal.on_grid)
+        };
+        GeodesicDistance::Reachable(core + s.snap_len() + goal.snap_len())
+    }
+
+    /// The point to walk to in a straight line from `p` towards the goal (the goal itself when
+    /// it is in sight); None when unreachable.
+    pub fn next_waypoint(&self, p: Vec2) -> Option<Vec2> {
+        let goal = self.goal?;
+        let root = self.root?;
+        let s = self.start_endpoint(p)?;
+        if s.snap_len() > 0.0 {
+            return Some(s.on_grid);
+        }
+        let a = self.parent[s.cell] as usize;
+        Some(if a == root {
+            goal.on_grid
+        } else {
+            self.center(a)
+        })
+    }
+
+    /// The whole path from `p` to the goal along the field's anchors; None when unreachable.
+    pub fn path(&self, p: Vec2) -> Option<GeodesicPath> {
+        let goal = self.goal?;
+        self.path_to(p, &goal)
+    }
+
+    pub(crate) fn path_to(&self, p: Vec2, goal: &Endpoint) -> Option<GeodesicPath> {
+        let root = self.root?;
+        let s = self.start_endpoint(p)?;
+        let mut pts = vec![s.point];
+        if s.snap_len() > 0.0 {
+            pts.push(s.on_grid);
+        }
+        let mut c = self.parent[s.cell] as usize;
+        while c != root {
+            pts.push(self.center(c));
+            c = self.parent[c] as usize;
+        }
+        pts.push(goal.on_grid);
+        if goal.snap_len() > 0.0 {
+            pts.push(goal.point);
+        }
+        pts.dedup();
+        Some(GeodesicPath::from_points(pts))
+    }
+}

@@ -1,0 +1,476 @@
+//! `scene.glb`: a glTF 2.0 binary with one node per object.
+//!
+//! Layout (see `docs/formats.md`): node `i` (a root node) is object `i` of the scene, named after
+//! the object, with the object pose as its translation/rotation and `extras` holding id, class
+//! and physics. Its mesh holds the object's primitive parts (cuboids, cylinders, spheres) in
+//! object-local coordinates, one glTF primitive per distinct colour. Mesh parts
+//! ([`Shape::Mesh`]) each get a child node carrying the part transform and a mesh of their own;
+//! the `k`-th mesh part of the scene (object order, then part order) is glTF mesh `k`, which is
+//! what [`MeshData::glb_mesh`] names.
+
+use crate::error::{EnvError, Result};
+use crate::geometry::{mesh_with_normals, triangulate, TriMesh};
+use crate::scene::{MeshData, Motion, Pose, Scene, SceneObject, Shape};
+use serde_json::{json, Value};
+use std::collections::BTreeMap;
+use std::path::Path;
+
+const GLB_MAGIC: u32 = 0x4654_6C67; // "glTF"
+const CHUNK_JSON: u32 = 0x4E4F_534A;
+const CHUNK_BIN: u32 = 0x004E_4942;
+const ARRAY_BUFFER: u32 = 34962;
+const ELEMENT_ARRAY_BUFFER: u32 = 34963;
+const FLOAT: u32 = 5126;
+const UNSIGNED_INT: u32 = 5125;
+
+/// Give every mesh part of the scene its canonical glTF mesh index (`k` for the `k`-th mesh
+/// part in object order, then part order), the index [`write_glb`] uses.
+pub fn assign_glb_mesh_indices(scene: &mut Scene) {
+    let mut k = 0u32;
+    for o in &mut scene.objects {
+        for p in &mut o.parts {
+            if let Shape::Mesh(m) = &mut p.shape {
+                m.glb_mesh = Some(k);
+                k += 1;
+            }
+        }
+    }
+}
+
+/// Accumulates the BIN chunk, buffer views and accessors.
+#[derive(Default)]
+struct Bin {
+    data: Vec<u8>,
+    views: Vec<Value>,
+    accessors: Vec<Value>,
+}
+
+impl Bin {
+    fn view(&mut self, bytes: &[u8], target: u32) -> usize {
+        while self.data.len() % 4 != 0 {
+            self.data.push(0);
+        }
+        let offset = self.data.len();
+        self.data.extend_from_slice(bytes);
+        self.views.push(json!({
+            "buffer": 0, "byteOffset": offset, "byteLength": bytes.len(), "target": target
+        }));
+        self.views.len() - 1
+    }
+
+    fn vec3(&mut self, v: &[[f32; 3]], with_bounds: bool) -> usize {
+        let bytes: Vec<u8> = v.iter().flatten().flat_map(|x| x.to_le_bytes()).collect();
+        let view = self.view(&bytes, ARRAY_BUFFER);
+        let mut acc = json!({
+            "bufferView": view, "componentType": FLOAT, "count": v.len(), "type": "VEC3"
+        });
+        if with_bounds {
+            let mut lo = [f32::INFINITY; 3];
+            let mut hi = [f32::NEG_INFINITY; 3];
+            for p in v {
+                for i in 0..3 {
+                    lo[i] = lo[i].min(p[i]);
+                    hi[i] = hi[i].max(p[i]);
+                }
+            }
+            acc["min"] = json!(lo);
+            acc["max"] = json!(hi);
+        }
+        self.accessors.push(acc);
+        self.accessors.len() - 1
+    }
+
+    fn indices(&mut self, t: &[[u32; 3]]) -> usize {
+        let bytes: Vec<u8> = t.iter().flatten().flat_map(|x| x.to_le_bytes()).collect();
+        let view = self.view(&bytes, ELEMENT_ARRAY_BUFFER);
+        self.accessors.push(json!({
+            "bufferView": view, "componentType": UNSIGNED_INT, "count": t.len() * 3, "type": "SCALAR"
+        }));
+        self.accessors.len() - 1
+    }
+
+    fn primitive(&mut self, m: &TriMesh, material: usize) -> Value {
+        let pos = self.vec3(&m.positions, true);
+        let nrm = self.vec3(&m.normals, false);
+        let idx = self.indices(&m.indices);
+        json!({
+            "attributes": {"POSITION": pos, "NORMAL": nrm},
+            "indices": idx,
+            "material": material,
+            "mode": 4
+        })
+    }
+}
+
+/// Materials deduplicated by (colour, metallic) in order of first use.
+#[derive(Default)]
+struct Materials {
+    index: BTreeMap<([u32; 3], bool), usize>,
+    list: Vec<Value>,
+}
+
+impl Materials {
+    fn get(&mut self, color: [f32; 3], metal: bool) -> usize {
+        let key = (color.map(f32::to_bits), metal);
+        if let Some(&i) = self.index.get(&key) {
+            return i;
+        }
+        let srgb = color.map(|c| (linear_to_srgb(c) * 255.0).round() as u8);
+        let name = format!(
+            "{}{:02x}{:02x}{:02x}",
+            if metal { "metal_" } else { "color_" },
+            srgb[0],
+            srgb[1],
+            srgb[2]
+        );
+        self.list.push(json!({
+            "name": name,
+            "pbrMetallicRoughness": {
+                "baseColorFactor": [color[0], color[1], color[2], 1.0],
+                "metallicFactor": if metal { 0.6 } else { 0.0 },
+                "roughnessFactor": if metal { 0.35 } else { 0.8 }
+            },
+            "doubleSided": false
+        }));
+        self.index.insert(key, self.list.len() - 1);
+        self.list.len() - 1
+    }
+}
+
+/// Linear -> sRGB transfer function for one channel in `[0, 1]`.
+pub fn linear_to_srgb(c: f32) -> f32 {
+    let c = c.clamp(0.0, 1.0);
+    if c <= 0.003_130_8 {
+        c * 12.92
+    } else {
+        1.055 * c.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+/// The `extras` object of an object's node.
+pub fn node_extras(o: &SceneObject) -> Value {
+    json!({
+        "id": o.id,
+        "class": o.class.name(),
+        "class_id": o.class.id(),
+        "room": o.room,
+        "color": o.color,
+        "material": o.material,
+        "mass": o.physics.mass,
+        "friction": o.physics.friction,
+        "motion": match o.physics.motion { Motion::Static => "static", Motion::Dynamic => "dynamic" },
+        "supported_by": o.supported_by,
+    })
+}
+
+fn set_pose(node: &mut Value, pose: &Pose) {
+    if pose.position != [0.0; 3] {
+        node["translation"] = json!(pose.position);
+    }
+    if pose.rotation != [0.0, 0.0, 0.0, 1.0] {
+        node["rotation"] = json!(pose.quat().normalize().to_array());
+    }
+}
+
+/// Encode a scene as a glTF 2.0 binary (`scene.glb`). Deterministic: the same scene gives the
+/// same bytes.
+pub fn write_glb(scene: &Scene) -> Vec<u8> {
+    let mut bin = Bin::default();
+    let mut mats = Materials::default();
+    let mut meshes: Vec<Value> = Vec::new();
+    let mut nodes: Vec<Value> = Vec::new();
+    // Mesh parts first so their glTF mesh index is their canonical index.
+    for o in &scene.objects {
+        let metal = o.material == "metal";
+        for (k, p) in o.parts.iter().enumerate() {
+            if let Shape::Mesh(m) = &p.shape {
+                let mat = mats.get(p.color, metal);
+                let tri = mesh_with_normals(&m.positions, &m.indices);
+                let prims = if tri.indices.is_empty() {
+                    vec![]
+                } else {
+                    vec![bin.primitive(&tri, mat)]
+                };
+                meshes.push(json!({"name": format!("{}/part{k}", o.name), "primitives": prims}));
+            }
+        }
+    }
+    let n_objects = scene.objects.len();
+    let mut children_nodes: Vec<Value> = Vec::new();
+    let mut mesh_part = 0usize;
+    for o in &scene.objects {
+        let metal = o.material == "metal";
+        // Group primitive parts by material, in order of first appearance.
+        let mut groups: Vec<(usize, TriMesh)> = Vec::new();
+        let mut children = Vec::new();
+        for (k, p) in o.parts.iter().enumerate() {
+            let mat = mats.get(p.color, metal);
+            if let Shape::Mesh(_) = p.shape {
+                let mut child = json!({"name": format!("{}/part{k}", o.name), "mesh": mesh_part});
+                set_pose(&mut child, &p.transform);
+                if meshes[mesh_part]["primitives"]
+                    .as_array()
+                    .is_none_or(|a| a.is_empty())
+                {
+                    child.as_object_mut().map(|c| c.remove("mesh"));
+                }
+                children.push(n_objects + children_nodes.len());
+                children_nodes.push(child);
+                mesh_part += 1;
+                continue;
+            }
+            let tri = triangulate(&p.shape);
+            let gi = match groups.iter().position(|(m, _)| *m == mat) {
+                Some(gi) => gi,
+                None => {
+                    groups.push((mat, TriMesh::default()));
+                    groups.len() - 1
+                }
+            };
+            groups[gi].1.append_transformed(&tri, &p.transform);
+        }
+        let mut node = json!({"name": o.name, "extras": node_extras(o)});
+        set_pose(&mut node, &o.pose);
+        let prims: Vec<Value> = groups
+            .iter()
+            .filter(|(_, m)| !m.indices.is_empty())
+            .map(|(mat, m)| bin.primitive(m, *mat))
+            .collect();
+        if !prims.is_empty() {
+            meshes.push(json!({"name": o.name, "primitives": prims}));
+            node["mesh"] = json!(meshes.len() - 1);
+        }
+        if !children.is_empty() {
+            node["children"] = json!(children);
+        }
+        nodes.push(node);
+    }
+    // A mesh without primitives is invalid glTF; empty mesh parts (whose nodes dropped the
+    // reference) keep their index with one degenerate triangle, flagged so readers skip it.
+    for m in &mut meshes {
+        if m["primitives"].as_array().is_some_and(|a| a.is_empty()) {
+            let tri = TriMesh {
+                positions: vec![[0.0; 3]; 3],
+                normals: vec![[0.0, 1.0, 0.0]; 3],
+                indices: vec![[0, 1, 2]],
+            };
+            let mat = mats.get([0.5; 3], false);
+            m["primitives"] = json!([bin.primitive(&tri, mat)]);
+            m["extras"] = json!({"empty": true});
+        }
+    }
+    nodes.extend(children_nodes);
+    let roots: Vec<usize> = (0..n_objects).collect();
+    let mut doc = json!({
+        "asset": {"version": "2.0", "generator": concat!("vlnverse-rs ", env!("CARGO_PKG_VERSION"))},
+        "scene": 0,
+        "scenes": [{
+            "name": scene.id,
+            "nodes": roots,
+            "extras": {"scene_id": scene.id, "source": scene.source, "format_version": scene.format_version}
+        }],
+        "nodes": nodes,
+    });
+    if !meshes.is_empty() {
+        doc["meshes"] = json!(meshes);
+        doc["materials"] = json!(mats.list);
+        doc["accessors"] = json!(bin.accessors);
+        doc["bufferViews"] = json!(bin.views);
+    }
+    while bin.data.len() % 4 != 0 {
+        bin.data.push(0);
+    }
+    if !bin.data.is_empty() {
+        doc["buffers"] = json!([{"byteLength": bin.data.len()}]);
+    }
+    let mut json_bytes = serde_json::to_vec(&doc).expect("glTF JSON is always serialisable");
+    while json_bytes.len() % 4 != 0 {
+        json_bytes.push(b' ');
+    }
+    let total = 12
+        + 8
+        + json_bytes.len()
+        + if bin.data.is_empty() {
+            0
+        } else {
+            8 + bin.data.len()
+        };
+    let mut out = Vec::with_capacity(total);
+    out.extend_from_slice(&GLB_MAGIC.to_le_bytes());
+    out.extend_from_slice(&2u32.to_le_bytes());
+    out.extend_from_slice(&(total as u32).to_le_bytes());
+    out.extend_from_slice(&(json_bytes.len() as u32).to_le_bytes());
+    out.extend_from_slice(&CHUNK_JSON.to_le_bytes());
+    out.extend_from_slice(&json_bytes);
+    if !bin.data.is_empty() {
+        out.extend_from_slice(&(bin.data.len() as u32).to_le_bytes());
+        out.extend_from_slice(&CHUNK_BIN.to_le_bytes());
+        out.extend_from_slice(&bin.data);
+    }
+    out
+}
+
+/// A node read back from a `.glb`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GlbNode {
+    /// Node name.
+    pub name: Option<String>,
+    /// Local translation.
+    pub translation: [f32; 3],
+    /// Local rotation `[x, y, z, w]`.
+    pub rotation: [f32; 4],
+    /// The node's mesh index.
+    pub mesh: Option<u32>,
+    /// Child node indices.
+    pub children: Vec<u32>,
+    /// The `extras` JSON, if any.
+    pub extras: Option<Value>,
+}
+
+/// A mesh read back from a `.glb`: the triangles of all its primitives, concatenated.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct GlbMesh {
+    /// Mesh name.
+    pub name: Option<String>,
+    /// Vertex positions in the mesh's frame.
+    pub positions: Vec<[f32; 3]>,
+    /// Triangles (indices into `positions`).
+    pub indices: Vec<[u32; 3]>,
+    /// Number of glTF primitives.
+    pub primitives: usize,
+}
+
+/// The content of a `.glb` as far as scenes need it.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct GlbContents {
+    /// Every node, in file order.
+    pub nodes: Vec<GlbNode>,
+    /// Root nodes of the default scene.
+    pub roots: Vec<u32>,
+    /// Every mesh, in file order.
+    pub meshes: Vec<GlbMesh>,
+}
+
+/// Read a `.glb` file (with the `gltf` crate).
+pub fn read_glb(path: impl AsRef<Path>) -> Result<GlbContents> {
+    let path = path.as_ref();
+    let bytes = std::fs::read(path).map_err(|e| EnvError::io(path, e))?;
+    read_glb_bytes(&bytes, path)
+}
+
+/// Parse `.glb` bytes; `path` only names the source in errors.
+pub fn read_glb_bytes(bytes: &[u8], path: &Path) -> Result<GlbContents> {
+    let gltf = gltf::Gltf::from_slice(bytes)
+        .map_err(|e| EnvError::parse(path, format!("not a valid glTF 2.0 binary: {e}")))?;
+    let blob = gltf.blob.as_deref();
+    let get = |b: gltf::Buffer<'_>| match b.source() {
+        gltf::buffer::Source::Bin => blob,
+        gltf::buffer::Source::Uri(_) => None,
+    };
+    let mut out = GlbContents::default();
+    for n in gltf.nodes() {
+        let (t, r, _) = n.transform().decomposed();
+        let extras = match n.extras() {
+            Some(raw) => Some(serde_json::from_str(raw.get()).map_err(|e| {
+                EnvError::parse(
+                    path,
+                    format!("node {} `extras`: invalid JSON: {e}", n.index()),
+                )
+            })?),
+            None => None,
+        };
+        out.nodes.push(GlbNode {
+            name: n.name().map(str::to_string),
+            translation: t,
+            rotation: r,
+            mesh: n.mesh().map(|m| m.index() as u32),
+            children: n.children().map(|c| c.index() as u32).collect(),
+            extras,
+        });
+    }
+    if let Some(s) = gltf.default_scene().or_else(|| gltf.scenes().next()) {
+        out.roots = s.nodes().map(|n| n.index() as u32).collect();
+    }
+    for m in gltf.meshes() {
+        let mut mesh = GlbMesh {
+            name: m.name().map(str::to_string),
+            ..Default::default()
+        };
+        let empty = m
+            .extras()
+            .as_ref()
+            .and_then(|raw| serde_json::from_str::<Value>(raw.get()).ok())
+            .is_some_and(|v| v["empty"] == json!(true));
+        for p in m.primitives().filter(|_| !empty) {
+            let what = |x: &str| format!("mesh {} primitive {}: {x}", m.index(), p.index());
+            if p.mode() != gltf::mesh::Mode::Triangles {
+                return Err(EnvError::parse(path, what("mode is not TRIANGLES")));
+            }
+            let r = p.reader(get);
+            let base = mesh.positions.len() as u32;
+            let pos: Vec<[f32; 3]> = r
+                .read_positions()
+                .ok_or_else(|| EnvError::parse(path, what("missing or unreadable POSITION")))?
+                .collect();
+            let n = pos.len() as u32;
+            let idx: Vec<u32> = match r.read_indices() {
+                Some(i) => i.into_u32().collect(),
+                None => (0..n).collect(),
+            };
+            if idx.len() % 3 != 0 {
+                return Err(EnvError::parse(
+                    path,
+                    what("index count is not a multiple of 3"),
+                ));
+            }
+            if let Some(bad) = idx.iter().find(|&&i| i >= n) {
+                return Err(EnvError::parse(
+                    path,
+                    what(&format!("index {bad} >= vertex count {n}")),
+                ));
+            }
+            mesh.positions.extend(pos);
+            mesh.indices.extend(
+                idx.chunks_exact(3)
+                    .map(|c| [c[0] + base, c[1] + base, c[2] + base]),
+            );
+            mesh.primitives += 1;
+        }
+        out.meshes.push(mesh);
+    }
+    Ok(out)
+}
+
+/// Fill the vertex data of every mesh part of `scene` from `glb` (by [`MeshData::glb_mesh`]).
+pub fn restore_mesh_parts(scene: &mut Scene, glb: &GlbContents, path: &Path) -> Result<()> {
+    for o in &mut scene.objects {
+        for (k, p) in o.parts.iter_mut().enumerate() {
+            if let Shape::Mesh(MeshData {
+                positions,
+                indices,
+                glb_mesh,
+            }) = &mut p.shape
+            {
+                let i = glb_mesh.ok_or_else(|| {
+                    EnvError::parse(
+                        path,
+                        format!("object {} part {k}: mesh part without `glb_mesh`", o.id),
+                    )
+                })?;
+                let m = glb.meshes.get(i as usize).ok_or_else(|| {
+                    EnvError::parse(
+                        path,
+                        format!(
+                            "object {} part {k}: `glb_mesh` = {i} but the file has {} meshes",
+                            o.id,
+                            glb.meshes.len()
+                        ),
+                    )
+                })?;
+                positions.clone_from(&m.positions);
+                indices.clone_from(&m.indices);
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,48 @@
+//! `scene.json`: the scene model as JSON (mesh vertex data excluded; it lives in `scene.glb`).
+
+use crate::error::{EnvError, Result};
+use crate::scene::{Scene, SCENE_FORMAT_VERSION};
+use std::path::Path;
+
+/// Serialise a scene as pretty-printed `scene.json` bytes (ends with a newline).
+pub fn scene_to_json(scene: &Scene) -> Vec<u8> {
+    let mut v = serde_json::to_vec_pretty(scene).expect("the scene model is always serialisable");
+    v.push(b'\n');
+    v
+}
+
+/// Parse `scene.json` bytes; `path` names the file in errors. Checks `format_version` first so
+/// a file from another version says so instead of failing on a field.
+pub fn scene_from_json(bytes: &[u8], path: &Path) -> Result<Scene> {
+    #[derive(serde::Deserialize)]
+    struct Version {
+        format_version: Option<serde_json::Value>,
+    }
+    let v: Version = serde_json::from_slice(bytes).map_err(|e| json_error(path, &e))?;
+    match v.format_version {
+        None => {
+            return Err(EnvError::parse(path, "missing field `format_version`"));
+        }
+        Some(serde_json::Value::Number(n)) if n.as_u64() == Some(SCENE_FORMAT_VERSION as u64) => {}
+        Some(other) => {
+            return Err(EnvError::parse(
+                path,
+                format!(
+                    "field `format_version` = {other}: this build reads version {SCENE_FORMAT_VERSION}"
+                ),
+            ));
+        }
+    }
+    serde_json::from_slice(bytes).map_err(|e| json_error(path, &e))
+}
+
+fn json_error(path: &Path, e: &serde_json::Error) -> EnvError {
+    let what = match e.classify() {
+        serde_json::error::Category::Io => "cannot read JSON",
+        serde_json::error::Category::Syntax => "invalid JSON",
+        serde_json::error::Category::Data => "invalid scene",
+        serde_json::error::Category::Eof => "truncated JSON",
+    };
+    // serde's message already says "at line L column C".
+    EnvError::parse(path, format!("{what}: {e}"))
+}

@@ -1,0 +1,401 @@
+//! Reading glTF 2.0 and Wavefront OBJ files into world-space triangle soups per node, before any
+//! labelling. Axis conversion and unit scale are applied here, so everything downstream is in
+//! metres, Y up.
+
+use crate::{ImportOptions, UpAxis};
+use glam::{Mat4, Vec3};
+use serde::Deserialize;
+use std::path::Path;
+use vlnverse_env::{EnvError, Motion, Result, SemanticClass};
+
+/// What a label source (glTF extras or a mapping rule) says about some geometry.
+#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
+pub struct RawLabel {
+    /// Semantic class (None only for `drop` rules).
+    pub class: Option<SemanticClass>,
+    /// Static or dynamic override.
+    pub motion: Option<Motion>,
+    /// Mass override (kg).
+    pub mass: Option<f32>,
+    /// Friction override.
+    pub friction: Option<f32>,
+    /// Colour word override.
+    pub color: Option<String>,
+    /// Material word override.
+    pub material: Option<String>,
+    /// Leave the geometry out.
+    pub drop: bool,
+}
+
+/// One primitive: world-space triangles and a colour.
+#[derive(Clone, Debug, Default)]
+pub struct RawPrim {
+    /// Vertex positions (metres, Y up, world frame).
+    pub positions: Vec<Vec3>,
+    /// Triangles.
+    pub indices: Vec<[u32; 3]>,
+    /// Linear RGB base colour.
+    pub color: [f32; 3],
+    /// Material name, if any.
+    pub material: Option<String>,
+}
+
+/// A node of the source file that carries geometry.
+#[derive(Clone, Debug, Default)]
+pub struct RawNode {
+    /// Index of the node in the file (glTF node index, OBJ model index).
+    pub index: usize,
+    /// Node name (`node_<i>` when unnamed).
+    pub name: String,
+    /// Mesh name, if any.
+    pub mesh_name: Option<String>,
+    /// Label from the node's own `extras`.
+    pub extras: Option<RawLabel>,
+    /// Ancestors, nearest first: (node index, name, label from extras).
+    pub ancestors: Vec<(usize, String, Option<RawLabel>)>,
+    /// Primitives.
+    pub prims: Vec<RawPrim>,
+}
+
+/// Required glTF extensions whose data we can ignore without losing geometry.
+const IGNORABLE_REQUIRED: &[&str] = &[
+    "KHR_materials_unlit",
+    "KHR_texture_transform",
+    "KHR_materials_pbrSpecularGlossiness",
+    "KHR_materials_emissive_strength",
+    "KHR_materials_ior",
+    "KHR_materials_transmission",
+    "KHR_lights_punctual",
+];
+
+fn axis_matrix(opts: &ImportOptions) -> Mat4 {
+    let s = opts.unit.meters();
+    let axis = match opts.up {
+        UpAxis::Y => Mat4::IDENTITY,
+        // (x, y, z)_zup -> (x, z, -y)_yup: a -90 degree turn about +X.
+        UpAxis::Z => Mat4::from_cols_array(&[
+            1.0, 0.0, 0.0, 0.0, //
+            0.0, 0.0, -1.0, 0.0, //
+            0.0, 1.0, 0.0, 0.0, //
+            0.0, 0.0, 0.0, 1.0,
+        ]),
+    };
+    Mat4::from_scale(Vec3::splat(s)) * axis
+}
+
+/// Parse a label from a glTF `extras` object: `{"class": "bed", "motion": "dynamic", ...}`
+/// (`semantic_class` is accepted as an alias of `class`).
+fn label_from_extras(path: &Path, what: &str, extras: &gltf::json::Extras) -> Result<Option<RawLabel>> {
+    let Some(raw) = extras else { return Ok(None) };
+    let v: serde_json::Value = serde_json::from_str(raw.get())
+        .map_err(|e| EnvError::parse(path, format!("{what}.extras: {e}")))?;
+    let Some(obj) = v.as_object() else { return Ok(None) };
+    let class_v = obj.get("class").or_else(|| obj.get("semantic_class"));
+    let Some(class_s) = class_v.and_then(|c| c.as_str()) else {
+        return Ok(None);
+    };
+    let class = SemanticClass::from_name(class_s).ok_or_else(|| {
+        EnvError::parse(
+            path,
+            format!("{what}.extras.class = `{class_s}` is not a semantic class name"),
+        )
+    })?;
+    let motion = match obj.get("motion").and_then(|m| m.as_str()) {
+        None => None,
+        Some("static") => Some(Motion::Static),
+        Some("dynamic") => Some(Motion::Dynamic),
+        Some(other) => {
+            return Err(EnvError::parse(
+                path,
+                format!("{what}.extras.motion = `{other}`: expected `static` or `dynamic`"),
+            ))
+        }
+    };
+    let num = |k: &str| obj.get(k).and_then(|x| x.as_f64()).map(|x| x as f32);
+    let text = |k: &str| obj.get(k).and_then(|x| x.as_str()).map(str::to_string);
+    Ok(Some(RawLabel {
+        class: Some(class),
+        motion,
+        mass: num("mass"),
+        friction: num("friction"),
+        color: text("color"),
+        material: text("material"),
+        drop: false,
+    }))
+}
+
+fn gltf_err(path: &Path, e: gltf::Error) -> EnvError {
+    let msg = match e {
+        gltf::Error::Validation(errs) => {
+            let list: Vec<String> = errs.iter().map(|(p, e)| format!("{p}: {e}")).collect();
+            format!("invalid glTF: {}", list.join("; "))
+        }
+        other => format!("glTF: {other}"),
+    };
+    EnvError::parse(path, msg)
+}
+
+/// Read a `.gltf` or `.glb` file.
+pub fn load_gltf(path: &Path, opts: &ImportOptions) -> Result<Vec<RawNode>> {
+    let bytes = std::fs::read(path).map_err(|e| EnvError::io(path, e))?;
+    if bytes.starts_with(b"glTF") && bytes.len() >= 12 {
+        let declared = u32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]]) as usize;
+        if declared > bytes.len() {
+            return Err(EnvError::parse(
+                path,
+                format!(
+                    "truncated GLB: the header says {declared} bytes, the file has {}",
+                    bytes.len()
+                ),
+            ));
+        }
+    }
+    let gltf::Gltf { document, blob } =
+        gltf::Gltf::from_slice_without_validation(&bytes).map_err(|e| gltf_err(path, e))?;
+    let unsupported: Vec<&str> = document
+        .extensions_required()
+        .filter(|e| !IGNORABLE_REQUIRED.contains(e))
+        .collect();
+    if !unsupported.is_empty() {
+        return Err(EnvError::parse(
+            path,
+            format!(
+                "extensionsRequired = [{}]: not supported (decompress the file first, e.g. with \
+                 `gltf-transform copy` or Blender)",
+                unsupported.join(", ")
+            ),
+        ));
+    }
+    // Full validation now that we know the extensions are fine.
+    gltf::Gltf::from_slice(&bytes).map_err(|e| gltf_err(path, e))?;
+    let base = path.parent();
+    for b in document.buffers() {
+        if let gltf::buffer::Source::Uri(uri) = b.source() {
+            if !uri.starts_with("data:") {
+                let file = base.unwrap_or(Path::new(".")).join(uri);
+                if !file.is_file() {
+                    return Err(EnvError::parse(
+                        path,
+                        format!(
+                            "buffers[{}].uri = `{uri}`: buffer file {} not found",
+                            b.index(),
+                            file.display()
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+    let buffers = gltf::import_buffers(&document, base, blob).map_err(|e| gltf_err(path, e))?;
+    // Textures are optional: a missing or undecodable image only loses its average colour.
+    let images = match gltf::import_images(&document, base, &buffers) {
+        Ok(i) => Some(i),
+        Err(e) => {
+            tracing::warn!(file = %path.display(), "textures not loaded ({e}); using base colour factors");
+            None
+        }
+    };
+    let tex_avg: Vec<Option<[f32; 3]>> = images
+        .as_ref()
+        .map(|imgs| imgs.iter().map(average_color).collect())
+        .unwrap_or_default();
+
+    let scene = document
+        .default_scene()
+        .or_else(|| document.scenes().next())
+        .ok_or_else(|| EnvError::parse(path, "scenes: the file has no scene"))?;
+    let root = axis_matrix(opts);
+    let mut out = Vec::new();
+    let mut stack: Vec<(gltf::Node, Mat4, Vec<(usize, String, Option<RawLabel>)>)> = scene
+        .nodes()
+        .map(|n| (n, root, Vec::new()))
+        .collect();
+    stack.reverse();
+    let mut visited = 0usize;
+    while let Some((node, parent, ancestors)) = stack.pop() {
+        visited += 1;
+        if visited > 1_000_000 {
+            return Err(EnvError::parse(path, "nodes: hierarchy too deep or cyclic"));
+        }
+        let local = Mat4::from_cols_array_2d(&node.transform().matrix());
+        let world = parent * local;
+        let name = node
+            .name()
+            .map(str::to_string)
+            .unwrap_or_else(|| format!("node_{}", node.index()));
+        let what = format!("nodes[{}]", node.index());
+        let extras = label_from_extras(path, &what, node.extras())?;
+        if let Some(mesh) = node.mesh() {
+            let flip = world.determinant() < 0.0;
+            let mut prims = Vec::new();
+            for prim in mesh.primitives() {
+                if prim.mode() != gltf::mesh::Mode::Triangles {
+                    tracing::debug!(node = %name, "skipping a non-triangle primitive");
+                    continue;
+                }
+                let reader = prim.reader(|b| buffers.get(b.index()).map(|d| &d.0[..]));
+                let Some(pos) = reader.read_positions() else {
+                    continue;
+                };
+                let positions: Vec<Vec3> = pos
+                    .map(|p| world.transform_point3(Vec3::from_array(p)))
+                    .collect();
+                let n = positions.len() as u32;
+                let flat: Vec<u32> = match reader.read_indices() {
+                    Some(ix) => ix.into_u32().collect(),
+                    None => (0..n).collect(),
+                };
+                let mut indices = Vec::with_capacity(flat.len() / 3);
+                for t in flat.chunks_exact(3) {
+                    if t.iter().any(|&i| i >= n) {
+                        return Err(EnvError::parse(
+                            path,
+                            format!(
+                                "meshes[{}].primitives[{}].indices: index out of range ({} vertices)",
+                                mesh.index(),
+                                prim.index(),
+                                n
+                            ),
+                        ));
+                    }
+                    indices.push(if flip { [t[0], t[2], t[1]] } else { [t[0], t[1], t[2]] });
+                }
+                let mat = prim.material();
+                let pbr = mat.pbr_metallic_roughness();
+                let f = pbr.base_color_factor();
+                let mut color = [f[0], f[1], f[2]];
+                if let Some(info) = pbr.base_color_texture() {
+                    let img = info.texture().source().index();
+                    if let Some(Some(avg)) = tex_avg.get(img) {
+                        color = [color[0] * avg[0], color[1] * avg[1], color[2] * avg[2]];
+                    }
+                }
+                if mat.index().is_none() {
+                    color = crate::classify::DEFAULT_COLOR;
+                }
+                prims.push(RawPrim {
+                    positions,
+                    indices,
+                    color,
+                    material: mat.name().map(str::to_string),
+                });
+            }
+            out.push(RawNode {
+                index: node.index(),
+                name: name.clone(),
+                mesh_name: mesh.name().map(str::to_string),
+                extras: extras.clone(),
+                ancestors: ancestors.clone(),
+                prims,
+            });
+        }
+        let mut chain = Vec::with_capacity(ancestors.len() + 1);
+        chain.push((node.index(), name, extras));
+        chain.extend(ancestors);
+        let children: Vec<_> = node.children().collect();
+        for c in children.into_iter().rev() {
+            stack.push((c, world, chain.clone()));
+        }
+    }
+    Ok(out)
+}
+
+fn srgb_to_linear(c: f32) -> f32 {
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+/// Mean linear colour of a decoded texture (sampled on a sparse grid: it only tints a part).
+fn average_color(img: &gltf::image::Data) -> Option<[f32; 3]> {
+    use gltf::image::Format;
+    let ch = match img.format {
+        Format::R8G8B8 => 3,
+        Format::R8G8B8A8 => 4,
+        _ => return None,
+    };
+    let n = (img.width as usize) * (img.height as usize);
+    if n == 0 || img.pixels.len() < n * ch {
+        return None;
+    }
+    let step = (n / 4096).max(1);
+    let mut sum = [0.0f64; 3];
+    let mut cnt = 0usize;
+    for i in (0..n).step_by(step) {
+        for (k, s) in sum.iter_mut().enumerate() {
+            *s += srgb_to_linear(img.pixels[i * ch + k] as f32 / 255.0) as f64;
+        }
+        cnt += 1;
+    }
+    Some(sum.map(|s| (s / cnt as f64) as f32))
+}
+
+/// Read a Wavefront `.obj` (and its `.mtl` files): one node per object/group, one primitive per
+/// material, colours from `Kd`.
+pub fn load_obj(path: &Path, opts: &ImportOptions) -> Result<Vec<RawNode>> {
+    let load = tobj::LoadOptions {
+        triangulate: true,
+        single_index: true,
+        ignore_points: true,
+        ignore_lines: true,
+        ..Default::default()
+    };
+    let (models, materials) =
+        tobj::load_obj(path, &load).map_err(|e| EnvError::parse(path, format!("OBJ: {e}")))?;
+    let materials = match materials {
+        Ok(m) => m,
+        Err(e) => {
+            tracing::warn!(file = %path.display(), "materials not loaded ({e}); using grey");
+            Vec::new()
+        }
+    };
+    let m = axis_matrix(opts);
+    let mut by_name: Vec<RawNode> = Vec::new();
+    for (i, model) in models.iter().enumerate() {
+        let mesh = &model.mesh;
+        let positions: Vec<Vec3> = mesh
+            .positions
+            .chunks_exact(3)
+            .map(|p| m.transform_point3(Vec3::new(p[0], p[1], p[2])))
+            .collect();
+        let n = positions.len() as u32;
+        let mut indices = Vec::with_capacity(mesh.indices.len() / 3);
+        for t in mesh.indices.chunks_exact(3) {
+            if t.iter().any(|&k| k >= n) {
+                return Err(EnvError::parse(
+                    path,
+                    format!("object `{}`: face index out of range", model.name),
+                ));
+            }
+            indices.push([t[0], t[1], t[2]]);
+        }
+        let mat = mesh.material_id.and_then(|k| materials.get(k));
+        let color = mat
+            .and_then(|m| m.diffuse)
+            .unwrap_or(crate::classify::DEFAULT_COLOR);
+        let prim = RawPrim {
+            positions,
+            indices,
+            color,
+            material: mat.map(|m| m.name.clone()),
+        };
+        let name = if model.name.is_empty() {
+            format!("object_{i}")
+        } else {
+            model.name.clone()
+        };
+        // tobj splits an object at each material change: put the pieces back together.
+        match by_name.iter_mut().find(|n| n.name == name) {
+            Some(node) => node.prims.push(prim),
+            None => by_name.push(RawNode {
+                index: i,
+                name,
+                prims: vec![prim],
+                ..Default::default()
+            }),
+        }
+    }
+    Ok(by_name)
+}

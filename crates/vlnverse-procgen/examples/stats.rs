@@ -1,0 +1,48 @@
+//! Statistics of a preset: rooms, areas, objects, triangles, time per scene.
+use std::time::Instant;
+use vlnverse_env::SceneSource;
+use vlnverse_procgen::{HomeGenerator, Preset};
+
+fn main() -> Result<(), vlnverse_env::EnvError> {
+    let name = std::env::args().nth(1).unwrap_or_else(|| "vlnverse".into());
+    let preset: Preset = name.parse()?;
+    let g = HomeGenerator::from_preset(preset)?;
+    let mut rooms = Vec::new();
+    let mut areas = Vec::new();
+    let mut items = Vec::new();
+    let mut tris = Vec::new();
+    let mut times = Vec::new();
+    let mut classes = std::collections::BTreeMap::new();
+    for i in 0..g.len() {
+        let t = Instant::now();
+        let s = match g.scene(i) {
+            Ok(s) => s,
+            Err(e) => {
+                println!("scene {i}: {e}");
+                continue;
+            }
+        };
+        times.push(t.elapsed().as_secs_f64() * 1e3);
+        rooms.push(s.rooms.len());
+        areas.push(s.rooms.iter().map(|r| r.area()).sum::<f32>());
+        items.push(s.items().count());
+        tris.push(s.triangle_count());
+        for o in s.items() {
+            *classes.entry(o.class.name()).or_insert(0) += 1;
+        }
+    }
+    let stat = |v: &[f64]| {
+        let mut v = v.to_vec();
+        v.sort_by(f64::total_cmp);
+        format!("min {:.1} med {:.1} max {:.1}", v[0], v[v.len() / 2], v[v.len() - 1])
+    };
+    let f = |v: &[usize]| v.iter().map(|&x| x as f64).collect::<Vec<_>>();
+    println!("scenes {}", rooms.len());
+    println!("rooms {}", stat(&f(&rooms)));
+    println!("area {}", stat(&areas.iter().map(|&a| a as f64).collect::<Vec<_>>()));
+    println!("items {}", stat(&f(&items)));
+    println!("tris {}", stat(&f(&tris)));
+    println!("ms {}", stat(&times));
+    println!("{classes:?}");
+    Ok(())
+}

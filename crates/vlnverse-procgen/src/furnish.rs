@@ -1,0 +1,835 @@
+//! Furniture placement by room type.
+//!
+//! A room's recipe is a list of groups (a bed with its nightstands, a sofa with a coffee table
+//! and a rug, a table with chairs, a kitchen run...). A group has its own frame (front -Z, back
+//! +Z) and is placed as a unit: against a wall (back to the wall), in a corner, or free in the
+//! room. A placement is kept only if its footprint stays inside the room, clear of the other
+//! groups and of every doorway's clearance box, and the room's free space stays one connected
+//! island reaching every doorway ([`NavGrid`]). Small objects then go on the flat tops.
+
+use crate::config::ProcgenConfig;
+use crate::floorplan::{Plan, PlanRoom};
+use crate::home::{clearance_rect, Builder};
+use crate::models::{self, Model};
+use crate::navgrid::NavGrid;
+use crate::rect::Rect;
+use glam::{Quat, Vec3};
+use rand::seq::IndexedRandom;
+use rand::Rng;
+use rand_chacha::ChaCha8Rng;
+use std::f32::consts::{FRAC_PI_2, PI};
+use vlnverse_env::{ObjectId, Pose, RoomId, RoomType, SemanticClass as C};
+
+/// Grid cell of the in-room navigability check (m).
+const NAV_CELL: f32 = 0.1;
+/// Distance kept between furniture and walls (m).
+const WALL_GAP: f32 = 0.01;
+
+/// One object of a group, in the group frame.
+#[derive(Clone, Debug)]
+struct Item {
+    model: Model,
+    x: f32,
+    z: f32,
+    /// Height of its base (> 0 when standing on another item of the group).
+    y: f32,
+    /// Yaw relative to the group (a multiple of 90 degrees).
+    yaw: f32,
+    /// Index of the item it stands on.
+    on: Option<usize>,
+    /// Rugs: walkable, may lie under other items.
+    flat: bool,
+    /// No small objects on this one (its top is taken).
+    bare: bool,
+}
+
+impl Item {
+    fn at(model: Model, x: f32, z: f32, yaw: f32) -> Item {
+        Item {
+            flat: model.class == C::Rug,
+            model,
+            x,
+            z,
+            y: 0.0,
+            yaw,
+            on: None,
+            bare: false,
+        }
+    }
+
+    /// Footprint in the group frame.
+    fn rect(&self) -> Rect {
+        let (w, d) = if quarter(self.yaw) % 2 == 1 {
+            (self.model.d, self.model.w)
+        } else {
+            (self.model.w, self.model.d)
+        };
+        Rect::centered(self.x, self.z, w, d)
+    }
+}
+
+/// Number of quarter turns of a yaw (0..4).
+fn quarter(yaw: f32) -> i32 {
+    ((yaw / FRAC_PI_2).round() as i32).rem_euclid(4)
+}
+
+/// How a group is placed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Mode {
+    /// Back against a wall.
+    Wall,
+    /// Back against a wall, at one end of it.
+    Corner,
+    /// Free in the room, at least a walkway away from the walls.
+    Center,
+}
+
+#[derive(Clone, Debug)]
+struct Group {
+    items: Vec<Item>,
+    mode: Mode,
+}
+
+impl Group {
+    fn one(model: Model, mode: Mode) -> Group {
+        Group {
+            items: vec![Item::at(model, 0.0, 0.0, 0.0)],
+            mode,
+        }
+    }
+
+    /// Union of the item footprints, and re-centre the items on it.
+    fn normalise(&mut self) -> (f32, f32) {
+        let mut r = self.items[0].rect();
+        for it in &self.items[1..] {
+            let q = it.rect();
+            r = Rect {
+                x0: r.x0.min(q.x0),
+                z0: r.z0.min(q.z0),
+                x1: r.x1.max(q.x1),
+                z1: r.z1.max(q.z1),
+            };
+        }
+        let (cx, cz) = r.center();
+        for it in &mut self.items {
+            it.x -= cx;
+            it.z -= cz;
+        }
+        (r.w(), r.d())
+    }
+}
+
+/// Rotate a group-frame offset by a yaw.
+fn rotate(x: f32, z: f32, yaw: f32) -> (f32, f32) {
+    let v = Quat::from_rotation_y(yaw) * Vec3::new(x, 0.0, z);
+    (v.x, v.z)
+}
+
+struct RoomState<'a> {
+    cfg: &'a ProcgenConfig,
+    id: RoomId,
+    interior: Rect,
+    keepout: Vec<Rect>,
+    placed: Vec<Rect>,
+    grid: NavGrid,
+    seeds: Vec<(f32, f32)>,
+}
+
+/// A placed group item, ready to become a scene object.
+struct Placed {
+    model: Model,
+    pose: Pose,
+    on: Option<usize>,
+    bare: bool,
+}
+
+impl RoomState<'_> {
+    /// Try to place a group; returns the world poses of its items.
+    fn place(&mut self, g: &mut Group, rng: &mut ChaCha8Rng) -> Option<Vec<Placed>> {
+        let (gw, gd) = g.normalise();
+        let ir = self.interior.inset(WALL_GAP);
+        for _ in 0..self.cfg.furniture.attempts {
+            let (cx, cz, yaw) = match g.mode {
+                Mode::Wall | Mode::Corner => {
+                    // Inward normals of the four walls, drawn by wall length.
+                    let sides = [
+                        (0.0f32, 1.0f32, ir.w()),
+                        (0.0, -1.0, ir.w()),
+                        (1.0, 0.0, ir.d()),
+                        (-1.0, 0.0, ir.d()),
+                    ];
+                    let lens: Vec<f32> = sides
+                        .iter()
+                        .map(|s| if s.2 >= gw { s.2 } else { 0.0 })
+                        .collect();
+                    let i = crate::floorplan::weighted_index(&lens, rng)?;
+                    let (nx, nz, len) = sides[i];
+                    let yaw = (-nx).atan2(-nz);
+                    let slack = len - gw;
+                    let t = if g.mode == Mode::Corner || rng.random_bool(0.25) {
+                        if rng.random_bool(0.5) {
+                            0.0
+                        } else {
+                            slack
+                        }
+                    } else {
+                        rng.random_range(0.0..=slack)
+                    };
+                    let along = -len * 0.5 + gw * 0.5 + t;
+                    let (mx, mz) = ir.center();
+                    let (cx, cz) = if nx != 0.0 {
+                        let x = if nx > 0.0 { ir.x0 } else { ir.x1 };
+                        (x + nx * gd * 0.5, mz + along)
+                    } else {
+                        let z = if nz > 0.0 { ir.z0 } else { ir.z1 };
+                        (mx + along, z + nz * gd * 0.5)
+                    };
+                    (cx, cz, yaw)
+                }
+                Mode::Center => {
+                    let q = rng.random_range(0..4);
+                    let yaw = q as f32 * FRAC_PI_2;
+                    let (ew, ed) = if q % 2 == 1 { (gd, gw) } else { (gw, gd) };
+                    let walk = 0.6;
+                    let free_x = ir.w() - ew - 2.0 * walk;
+                    let free_z = ir.d() - ed - 2.0 * walk;
+                    if free_x < 0.0 || free_z < 0.0 {
+                        continue;
+                    }
+                    let (mx, mz) = ir.center();
+                    // Mostly near the middle: that is where tables and rugs go.
+                    let fx = (rng.random::<f32>() + rng.random::<f32>()) * 0.5 - 0.5;
+                    let fz = (rng.random::<f32>() + rng.random::<f32>()) * 0.5 - 0.5;
+                    (mx + fx * free_x, mz + fz * free_z, yaw)
+                }
+            };
+            let q = quarter(yaw);
+            let (ew, ed) = if q % 2 == 1 { (gd, gw) } else { (gw, gd) };
+            let foot = Rect::centered(cx, cz, ew, ed);
+            if !ir.contains_rect(&foot, 1e-4)
+                || self.keepout.iter().any(|k| k.overlaps(&foot, 0.0))
+                || self
+                    .placed
+                    .iter()
+                    .any(|p| p.overlaps(&foot, -self.cfg.furniture.gap))
+            {
+                continue;
+            }
+            // World footprints of the solid items.
+            let solid: Vec<Rect> = g
+                .items
+                .iter()
+                .filter(|it| !it.flat && it.on.is_none())
+                .map(|it| {
+                    let r = it.rect();
+                    let (x, z) = rotate(r.center().0, r.center().1, yaw);
+                    let (w, d) = if q % 2 == 1 { (r.d(), r.w()) } else { (r.w(), r.d()) };
+                    Rect::centered(cx + x, cz + z, w, d)
+                })
+                .collect();
+            for r in &solid {
+                self.grid.stamp(r, true);
+            }
+            if !self.grid.connected(&self.seeds) {
+                for r in &solid {
+                    self.grid.stamp(r, false);
+                }
+                continue;
+            }
+            self.placed.push(foot);
+            let placed = g
+                .items
+                .iter()
+                .map(|it| {
+                    let (x, z) = rotate(it.x, it.z, yaw);
+                    Placed {
+                        model: it.model.clone(),
+                        pose: Pose::from_yaw(Vec3::new(cx + x, it.y, cz + z), yaw + it.yaw),
+                        on: it.on,
+                        bare: it.bare,
+                    }
+                })
+                .collect();
+            return Some(placed);
+        }
+        None
+    }
+}
+
+/// Draw with probability `p` scaled by the furniture density.
+fn maybe(cfg: &ProcgenConfig, rng: &mut ChaCha8Rng, p: f32) -> bool {
+    rng.random_bool((p * cfg.furniture.density).clamp(0.0, 1.0) as f64)
+}
+
+/// Sofa facing a coffee table on a rug, maybe an armchair beside the table.
+fn sofa_group(rng: &mut ChaCha8Rng, max_w: f32, armchair: bool) -> Group {
+    let sw = rng.random_range(1.5f32..2.3).min(max_w);
+    let sofa = models::sofa(rng, sw);
+    let table = models::coffee_table(rng);
+    let sofa_z = sofa.d * 0.5;
+    let table_z = -0.4 - table.d * 0.5;
+    let rw = (table.w + rng.random_range(0.8f32..1.2)).min(sofa.w + 0.4);
+    let rd = table.d + rng.random_range(0.7f32..1.0);
+    let rug = models::rug(rng, rw, rd);
+    let mut items = vec![
+        Item::at(sofa, 0.0, sofa_z, 0.0),
+        Item::at(table.clone(), 0.0, table_z, 0.0),
+    ];
+    if rng.random_bool(0.6) {
+        items.push(Item::at(rug, 0.0, table_z, 0.0));
+    }
+    if armchair {
+        let a = models::armchair(rng);
+        let side = if rng.random_bool(0.5) { -1.0 } else { 1.0 };
+        let x = side * (table.w * 0.5 + 0.45 + a.d * 0.5);
+        // Faces the table: front towards -side along x.
+        items.push(Item::at(a, x, table_z, side * FRAC_PI_2));
+    }
+    Group {
+        items,
+        mode: Mode::Wall,
+    }
+}
+
+/// TV on a stand.
+fn tv_group(rng: &mut ChaCha8Rng) -> Group {
+    let stand = models::tv_stand(rng);
+    let tv = models::tv(rng, stand.w - 0.1);
+    let h = stand.h;
+    let mut st = Item::at(stand, 0.0, 0.0, 0.0);
+    st.bare = true;
+    let mut t = Item::at(tv, 0.0, 0.0, 0.0);
+    t.y = h;
+    t.on = Some(0);
+    Group {
+        items: vec![st, t],
+        mode: Mode::Wall,
+    }
+}
+
+/// Bed with nightstands, maybe a rug at its foot.
+fn bed_group(rng: &mut ChaCha8Rng, double: bool, stands: usize) -> Group {
+    let bed = models::bed(rng, double);
+    let (bw, bd) = (bed.w, bed.d);
+    let mut items = vec![Item::at(bed, 0.0, 0.0, 0.0)];
+    let sides: &[f32] = match stands {
+        0 => &[],
+        1 => {
+            if rng.random_bool(0.5) {
+                &[-1.0]
+            } else {
+                &[1.0]
+            }
+        }
+        _ => &[-1.0, 1.0],
+    };
+    for &s in sides {
+        let ns = models::nightstand(rng);
+        let x = s * (bw * 0.5 + 0.04 + ns.w * 0.5);
+        let z = bd * 0.5 - ns.d * 0.5;
+        items.push(Item::at(ns, x, z, 0.0));
+    }
+    if rng.random_bool(0.35) {
+        let rd = rng.random_range(1.0f32..1.5);
+        let rug = models::rug(rng, bw + 0.6, rd);
+        let z = -bd * 0.5 + 0.3;
+        items.push(Item::at(rug, 0.0, z, 0.0));
+    }
+    Group {
+        items,
+        mode: Mode::Wall,
+    }
+}
+
+/// Table with chairs around it (`seats` per long side, maybe one at each end), maybe a rug.
+fn dining_group(rng: &mut ChaCha8Rng, per_side: usize, ends: bool, rug: bool) -> Group {
+    let w = 0.3 + 0.55 * per_side as f32 + rng.random_range(0.0f32..0.2);
+    let d = rng.random_range(0.8f32..1.0);
+    let table = models::dining_table(rng, w, d);
+    let chair = models::chair(rng);
+    let mut items = vec![Item::at(table.clone(), 0.0, 0.0, 0.0)];
+    let off = 0.03;
+    for i in 0..per_side {
+        let x = -table.w * 0.5 + table.w * (i as f32 + 0.5) / per_side as f32;
+        // Front side (z < 0) chairs face +Z (yaw pi); back side chairs face -Z.
+        items.push(Item::at(chair.clone(), x, -table.d * 0.5 - off - chair.d * 0.5, PI));
+        items.push(Item::at(chair.clone(), x, table.d * 0.5 + off + chair.d * 0.5, 0.0));
+    }
+    if ends {
+        for s in [-1.0f32, 1.0] {
+            let x = s * (table.w * 0.5 + off + chair.d * 0.5);
+            items.push(Item::at(chair.clone(), x, 0.0, -s * FRAC_PI_2));
+        }
+    }
+    if rug {
+        // The group is symmetric about the table, so the rug is centred on it.
+        let mut g = Group {
+            items: items.clone(),
+            mode: Mode::Center,
+        };
+        let (gw, gd) = g.normalise();
+        items.push(Item::at(models::rug(rng, gw + 0.3, gd + 0.3), 0.0, 0.0, 0.0));
+    }
+    Group {
+        items,
+        mode: Mode::Center,
+    }
+}
+
+/// Desk with a chair in front of it.
+fn desk_group(rng: &mut ChaCha8Rng, office_chair: bool) -> Group {
+    let desk = models::desk(rng);
+    let chair = if office_chair {
+        models::office_chair(rng)
+    } else {
+        models::chair(rng)
+    };
+    let dz = desk.d * 0.5;
+    let cz = -0.05 - chair.d * 0.5;
+    let x = rng.random_range(-0.15f32..0.15) * desk.w;
+    // The chair faces the desk (+Z).
+    Group {
+        items: vec![Item::at(desk, 0.0, dz, 0.0), Item::at(chair, x, cz, PI)],
+        mode: Mode::Wall,
+    }
+}
+
+/// Kitchen run along one wall: fridge, counters, stove, maybe a dishwasher.
+fn kitchen_run(rng: &mut ChaCha8Rng, target: f32) -> Group {
+    let fridge = models::fridge(rng);
+    let stove = models::stove(rng);
+    let dish = if target > 3.0 && rng.random_bool(0.6) {
+        Some(models::dishwasher(rng))
+    } else {
+        None
+    };
+    let fixed = fridge.w + stove.w + dish.as_ref().map_or(0.0, |d| d.w);
+    let rest = (target - fixed).max(0.6);
+    let (c1, c2) = if rest > 1.2 {
+        let a = rng.random_range(0.4f32..0.6) * rest;
+        (a, rest - a)
+    } else {
+        (rest, 0.0)
+    };
+    let mut seq = vec![fridge, models::counter(rng, c1), stove];
+    if c2 > 0.3 {
+        seq.push(models::counter(rng, c2));
+    }
+    if let Some(d) = dish {
+        seq.push(d);
+    }
+    if rng.random_bool(0.5) {
+        seq.reverse();
+    }
+    let mut items = Vec::with_capacity(seq.len());
+    let mut x = 0.0;
+    for m in seq {
+        let (w, d) = (m.w, m.d);
+        let mut it = Item::at(m, x + w * 0.5, -d * 0.5, 0.0);
+        it.bare = it.model.class == C::Dishwasher;
+        items.push(it);
+        x += w + 0.005;
+    }
+    // Backs flush: align every item's back to z = 0.
+    Group {
+        items,
+        mode: Mode::Wall,
+    }
+}
+
+fn wall(m: Model) -> Group {
+    Group::one(m, Mode::Wall)
+}
+
+fn corner(m: Model) -> Group {
+    Group::one(m, Mode::Corner)
+}
+
+/// Candidate groups of a room, most important first; each entry lists fall-back variants.
+fn recipe(
+    cfg: &ProcgenConfig,
+    kind: RoomType,
+    interior: Rect,
+    rng: &mut ChaCha8Rng,
+) -> Vec<Vec<Group>> {
+    let long = interior.w().max(interior.d());
+    let area = interior.area();
+    let mut out: Vec<Vec<Group>> = Vec::new();
+    match kind {
+        RoomType::LivingRoom => {
+            let arm = maybe(cfg, rng, 0.5);
+            out.push(vec![
+                sofa_group(rng, long - 0.4, arm),
+                sofa_group(rng, long - 0.4, false),
+                wall(models::sofa(rng, 1.5)),
+            ]);
+            if maybe(cfg, rng, 0.9) {
+                out.push(vec![tv_group(rng)]);
+            }
+            if maybe(cfg, rng, 0.4) {
+                out.push(vec![wall(models::bookshelf(rng))]);
+            }
+            if maybe(cfg, rng, 0.1) {
+                out.push(vec![wall(models::piano(rng))]);
+            }
+            for (p, f) in [
+                (0.6, models::potted_plant as fn(&mut ChaCha8Rng) -> Model),
+                (0.5, models::floor_lamp),
+                (0.4, models::side_table),
+                (0.3, models::cabinet),
+            ] {
+                if maybe(cfg, rng, p) {
+                    let m = f(rng);
+                    out.push(vec![corner(m)]);
+                }
+            }
+        }
+        RoomType::Kitchen => {
+            let target = (long - 0.3).min(rng.random_range(2.4f32..4.2));
+            let mut compact = kitchen_run(rng, 1.9);
+            compact.items.retain(|it| it.model.class != C::Fridge);
+            out.push(vec![
+                kitchen_run(rng, target),
+                kitchen_run(rng, target * 0.75),
+                kitchen_run(rng, 1.9),
+                compact,
+            ]);
+            // Only used when the kitchen run above had to leave its fridge out.
+            out.push(vec![corner(models::fridge(rng))]);
+            if maybe(cfg, rng, 0.4) {
+                out.push(vec![wall(models::kitchen_cabinet(rng))]);
+            }
+            if area > 11.0 && maybe(cfg, rng, 0.5) {
+                out.push(vec![dining_group(rng, 1, false, false)]);
+            } else if maybe(cfg, rng, 0.4) {
+                out.push(vec![wall(models::stool(rng))]);
+            }
+            if maybe(cfg, rng, 0.3) {
+                let w = rng.random_range(0.8f32..1.4);
+                out.push(vec![wall(models::counter(rng, w))]);
+            }
+            if maybe(cfg, rng, 0.6) {
+                out.push(vec![corner(models::trash_can(rng))]);
+            }
+            if maybe(cfg, rng, 0.3) {
+                out.push(vec![corner(models::potted_plant(rng))]);
+            }
+        }
+        RoomType::DiningRoom => {
+            let rug = maybe(cfg, rng, 0.35);
+            let (e3, e2) = (rng.random_bool(0.4), rng.random_bool(0.5));
+            out.push(vec![
+                dining_group(rng, 3, e3, rug),
+                dining_group(rng, 2, e2, false),
+                dining_group(rng, 2, false, false),
+                dining_group(rng, 1, false, false),
+            ]);
+            if maybe(cfg, rng, 0.6) {
+                out.push(vec![wall(models::cabinet(rng))]);
+            }
+            if maybe(cfg, rng, 0.5) {
+                out.push(vec![corner(models::potted_plant(rng))]);
+            }
+            if maybe(cfg, rng, 0.25) {
+                out.push(vec![corner(models::floor_lamp(rng))]);
+            }
+        }
+        RoomType::Bedroom => {
+            let double = area > 11.0 && rng.random_bool(0.75);
+            out.push(vec![
+                bed_group(rng, double, 2),
+                bed_group(rng, double, 1),
+                bed_group(rng, false, 1),
+                bed_group(rng, false, 0),
+            ]);
+            if maybe(cfg, rng, 0.8) {
+                out.push(vec![wall(models::wardrobe(rng))]);
+            }
+            if maybe(cfg, rng, 0.4) {
+                out.push(vec![wall(models::dresser(rng))]);
+            }
+            if maybe(cfg, rng, 0.25) {
+                let office = rng.random_bool(0.5);
+                out.push(vec![desk_group(rng, office)]);
+            }
+            for (p, f) in [
+                (0.3, models::potted_plant as fn(&mut ChaCha8Rng) -> Model),
+                (0.25, models::floor_lamp),
+                (0.15, models::armchair),
+            ] {
+                if maybe(cfg, rng, p) {
+                    let m = f(rng);
+                    out.push(vec![corner(m)]);
+                }
+            }
+        }
+        RoomType::Bathroom => {
+            out.push(vec![wall(models::toilet(rng))]);
+            out.push(vec![wall(models::sink(rng))]);
+            if maybe(cfg, rng, 0.55) {
+                out.push(vec![corner(models::bathtub(rng)), corner(models::shower(rng))]);
+            } else if maybe(cfg, rng, 0.6) {
+                out.push(vec![corner(models::shower(rng))]);
+            }
+            if maybe(cfg, rng, 0.5) {
+                out.push(vec![wall(models::cabinet(rng))]);
+            }
+            if maybe(cfg, rng, 0.4) {
+                out.push(vec![corner(models::trash_can(rng))]);
+            }
+        }
+        RoomType::Office => {
+            out.push(vec![desk_group(rng, true), desk_group(rng, false)]);
+            if maybe(cfg, rng, 0.8) {
+                out.push(vec![wall(models::bookshelf(rng))]);
+            }
+            if maybe(cfg, rng, 0.35) {
+                out.push(vec![wall(models::bookshelf(rng))]);
+            }
+            for (p, f) in [
+                (0.4, models::potted_plant as fn(&mut ChaCha8Rng) -> Model),
+                (0.3, models::floor_lamp),
+                (0.35, models::cabinet),
+                (0.2, models::armchair),
+                (0.5, models::trash_can),
+            ] {
+                if maybe(cfg, rng, p) {
+                    let m = f(rng);
+                    out.push(vec![corner(m)]);
+                }
+            }
+        }
+        RoomType::Hallway => {
+            for (p, f) in [
+                (0.6, models::shoe_rack as fn(&mut ChaCha8Rng) -> Model),
+                (0.45, models::coat_rack),
+                (0.35, models::bench),
+                (0.35, models::potted_plant),
+                (0.3, models::side_table),
+            ] {
+                if maybe(cfg, rng, p) {
+                    let m = f(rng);
+                    out.push(vec![wall(m)]);
+                }
+            }
+            if maybe(cfg, rng, 0.4) {
+                let (w, d) = (rng.random_range(0.7f32..1.0), rng.random_range(1.4f32..2.2));
+                let r = models::rug(rng, w, d);
+                out.push(vec![Group::one(r, Mode::Center)]);
+            }
+        }
+        RoomType::LaundryRoom => {
+            out.push(vec![wall(models::washing_machine(rng))]);
+            if maybe(cfg, rng, 0.45) {
+                out.push(vec![wall(models::washing_machine(rng))]);
+            }
+            if maybe(cfg, rng, 0.6) {
+                out.push(vec![wall(models::cabinet(rng))]);
+            }
+            if maybe(cfg, rng, 0.3) {
+                out.push(vec![corner(models::trash_can(rng))]);
+            }
+        }
+        _ => {
+            for (p, f) in [
+                (0.6, models::cabinet as fn(&mut ChaCha8Rng) -> Model),
+                (0.5, models::potted_plant),
+                (0.4, models::bookshelf),
+                (0.3, models::floor_lamp),
+            ] {
+                if maybe(cfg, rng, p) {
+                    let m = f(rng);
+                    out.push(vec![wall(m)]);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Small objects that fit on a support, by support class and room.
+fn small_choices(support: C, room: RoomType) -> &'static [C] {
+    match (support, room) {
+        (C::Nightstand, _) => &[C::TableLamp, C::Book, C::Clock, C::Cup, C::SmallPlant, C::Candle],
+        (C::Dresser, _) => &[
+            C::Vase,
+            C::PictureFrame,
+            C::Candle,
+            C::Clock,
+            C::TableLamp,
+            C::Book,
+            C::SmallPlant,
+        ],
+        (C::Counter, _) => &[
+            C::Toaster,
+            C::Kettle,
+            C::Microwave,
+            C::Bowl,
+            C::Plate,
+            C::Cup,
+            C::Mug,
+            C::Bottle,
+        ],
+        (C::CoffeeTable, _) => &[
+            C::Remote,
+            C::Book,
+            C::Vase,
+            C::Bowl,
+            C::Candle,
+            C::Cup,
+            C::Mug,
+            C::SmallPlant,
+        ],
+        (C::DiningTable, _) => &[C::Plate, C::Bowl, C::Vase, C::Cup, C::Bottle, C::Candle],
+        (C::SideTable, _) => &[C::TableLamp, C::Vase, C::Book, C::SmallPlant, C::Clock],
+        (C::Desk, _) => &[C::Laptop, C::Mug, C::Book, C::TableLamp, C::Cup],
+        (C::Cabinet, RoomType::Bathroom | RoomType::LaundryRoom) => {
+            &[C::Towel, C::SoapDispenser, C::Bottle]
+        }
+        (C::Cabinet, _) => &[C::Vase, C::Book, C::Bowl, C::SmallPlant, C::PictureFrame, C::Clock],
+        (C::WashingMachine, _) => &[C::Towel, C::Bottle],
+        (C::ShoeRack, _) => &[C::SmallPlant, C::Vase],
+        _ => &[],
+    }
+}
+
+/// Put up to `n` small objects on the top of `support`.
+fn add_smalls(
+    cfg: &ProcgenConfig,
+    rng: &mut ChaCha8Rng,
+    b: &mut Builder,
+    room: RoomId,
+    kind: RoomType,
+    support: &Model,
+    pose: &Pose,
+    support_id: ObjectId,
+) {
+    let Some(top) = support.top else {
+        return;
+    };
+    let fc = &cfg.furniture;
+    if fc.small_objects_max == 0 || !rng.random_bool(fc.small_object_probability as f64) {
+        return;
+    }
+    let choices = small_choices(support.class, kind);
+    if choices.is_empty() {
+        return;
+    }
+    let mut taken: Vec<Rect> = Vec::new();
+    let mut want: Vec<C> = Vec::new();
+    if support.class == C::Desk && rng.random_bool(0.5) {
+        want.extend([C::Monitor, C::Keyboard]);
+    }
+    let n = rng.random_range(1..=fc.small_objects_max);
+    while want.len() < n.max(want.len()) {
+        if let Some(&c) = choices.choose(rng) {
+            want.push(c);
+        }
+    }
+    for class in want {
+        let m = models::small(class, rng);
+        let q = rng.random_range(0..4);
+        // Screens and lamps face the front of the support.
+        let q = if matches!(class, C::Monitor | C::Keyboard | C::Laptop | C::PictureFrame | C::Clock) {
+            0
+        } else {
+            q
+        };
+        let (w, d) = if q % 2 == 1 { (m.d, m.w) } else { (m.w, m.d) };
+        if w > top.w() || d > top.d() {
+            continue;
+        }
+        for _ in 0..8 {
+            let x = rng.random_range(top.x0 + w * 0.5..=top.x1 - w * 0.5);
+            let z = rng.random_range(top.z0 + d * 0.5..=top.z1 - d * 0.5);
+            let r = Rect::centered(x, z, w, d);
+            if taken.iter().any(|t| t.overlaps(&r, -0.02)) {
+                continue;
+            }
+            taken.push(r);
+            let local = Pose::from_yaw(Vec3::new(x, support.h, z), q as f32 * FRAC_PI_2);
+            let world = pose.mul(&local);
+            // Keep the pose yaw-only and exactly on the support top.
+            let mut p = world.translation();
+            p.y = pose.position[1] + support.h;
+            let pose = Pose::from_yaw(p, world.yaw());
+            b.add_model(&m, room, pose, Some(support_id));
+            break;
+        }
+    }
+}
+
+/// Furnish every room of a plan.
+pub(crate) fn furnish(cfg: &ProcgenConfig, plan: &Plan, rng: &mut ChaCha8Rng, b: &mut Builder) {
+    let t = cfg.walls.thickness;
+    for (i, room) in plan.rooms.iter().enumerate() {
+        furnish_room(cfg, plan, i, room, t, rng, b);
+    }
+}
+
+fn furnish_room(
+    cfg: &ProcgenConfig,
+    plan: &Plan,
+    i: usize,
+    room: &PlanRoom,
+    t: f32,
+    rng: &mut ChaCha8Rng,
+    b: &mut Builder,
+) {
+    let interior = room.rect.inset(t * 0.5);
+    let mut keepout = Vec::new();
+    let mut seeds = Vec::new();
+    for o in plan.openings.iter().filter(|o| o.rooms.contains(&i)) {
+        keepout.push(clearance_rect(o, cfg, cfg.doors.clearance + 0.05, 0.1));
+        let (x, z) = o.position();
+        let (cx, cz) = room.rect.center();
+        // Approach point inside this room, far enough from the wall (and from furniture kept
+        // out of the clearance box) that its grid cell is free whatever the cell rounding.
+        let inside = t * 0.5 + cfg.furniture.nav_radius + NAV_CELL;
+        let (sx, sz) = if o.along_z {
+            (x + (cx - x).signum() * inside, z)
+        } else {
+            (x, z + (cz - z).signum() * inside)
+        };
+        seeds.push((sx, sz));
+    }
+    let mut st = RoomState {
+        cfg,
+        id: i as RoomId,
+        interior,
+        keepout,
+        placed: Vec::new(),
+        grid: NavGrid::new(interior, NAV_CELL, cfg.furniture.nav_radius),
+        seeds,
+    };
+    if !st.grid.connected(&st.seeds) {
+        tracing::debug!(room = i, "room free space is not connected before furnishing");
+        return;
+    }
+    let mut has_fridge = false;
+    for variants in recipe(cfg, room.kind, interior, rng) {
+        for mut g in variants {
+            let fridge = g.items.iter().any(|it| it.model.class == C::Fridge);
+            if fridge && has_fridge {
+                break;
+            }
+            let Some(placed) = st.place(&mut g, rng) else {
+                continue;
+            };
+            let mut ids: Vec<ObjectId> = Vec::with_capacity(placed.len());
+            for p in &placed {
+                let support = p.on.map(|k| ids[k]);
+                let id = b.add_model(&p.model, st.id, p.pose, support);
+                ids.push(id);
+            }
+            for (p, &id) in placed.iter().zip(&ids) {
+                if !p.bare {
+                    add_smalls(cfg, rng, b, st.id, room.kind, &p.model, &p.pose, id);
+                }
+            }
+            has_fridge |= fridge;
+            break;
+        }
+    }
+    tracing::trace!(room = i, free = st.grid.free_cells(), "room furnished");
+}

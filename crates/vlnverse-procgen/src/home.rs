@@ -1,0 +1,440 @@
+//! Assembling a home: structure (floors, walls with door gaps, door frames) from the floorplan,
+//! then furniture per room and small objects on furniture.
+
+use crate::config::ProcgenConfig;
+use crate::floorplan::{self, Opening, Plan};
+use crate::furnish;
+use crate::models::Model;
+use crate::palette::{self, Finish};
+use crate::rect::Rect;
+use glam::Vec3;
+use rand_chacha::ChaCha8Rng;
+use std::collections::BTreeMap;
+use vlnverse_env::{
+    Door, EnvError, Motion, ObjectId, Part, Physics, Pose, Result, Room, RoomId, RoomType, Scene,
+    SceneObject, SemanticClass as C, Shape, SCENE_FORMAT_VERSION,
+};
+
+/// Collects objects with sequential ids.
+pub(crate) struct Builder {
+    pub objects: Vec<SceneObject>,
+}
+
+impl Builder {
+    /// Add an object; returns its id.
+    pub fn add(
+        &mut self,
+        class: C,
+        room: Option<RoomId>,
+        pose: Pose,
+        parts: Vec<Part>,
+        color: &str,
+        material: &str,
+        mass: f32,
+        supported_by: Option<ObjectId>,
+    ) -> ObjectId {
+        let id = self.objects.len() as ObjectId + 1;
+        let motion = if matches!(class, C::Chair | C::Stool | C::OfficeChair | C::TrashCan)
+            || class.kind() == vlnverse_env::ClassKind::Small
+        {
+            Motion::Dynamic
+        } else {
+            Motion::Static
+        };
+        let mut o = SceneObject {
+            id,
+            name: format!("{}_{id}", class.name()),
+            class,
+            room,
+            pose,
+            bbox: vlnverse_env::Aabb::EMPTY,
+            color: color.to_string(),
+            material: material.to_string(),
+            physics: Physics {
+                mass,
+                friction: palette::friction(material),
+                motion,
+            },
+            supported_by,
+            parts,
+        };
+        o.bbox = o.compute_bbox();
+        self.objects.push(o);
+        id
+    }
+
+    /// Add a placed model.
+    pub fn add_model(
+        &mut self,
+        m: &Model,
+        room: RoomId,
+        pose: Pose,
+        supported_by: Option<ObjectId>,
+    ) -> ObjectId {
+        self.add(
+            m.class,
+            Some(room),
+            pose,
+            m.parts.clone(),
+            m.finish.color,
+            m.finish.material,
+            m.mass,
+            supported_by,
+        )
+    }
+}
+
+fn box_part(center: Vec3, size: Vec3, rgb: [f32; 3]) -> Part {
+    Part {
+        shape: Shape::Cuboid {
+            half_extents: (size * 0.5).to_array(),
+        },
+        transform: Pose {
+            position: center.to_array(),
+            rotation: [0.0, 0.0, 0.0, 1.0],
+        },
+        color: rgb,
+    }
+}
+
+fn floor_finish(kind: RoomType, rng: &mut ChaCha8Rng) -> Finish {
+    use rand::seq::IndexedRandom;
+    const WOOD: &[Finish] = &[
+        Finish {
+            color: "wooden",
+            material: "wood",
+            rgb: [0.5, 0.33, 0.18],
+        },
+        Finish {
+            color: "brown",
+            material: "wood",
+            rgb: [0.32, 0.2, 0.1],
+        },
+        Finish {
+            color: "beige",
+            material: "wood",
+            rgb: [0.72, 0.6, 0.42],
+        },
+    ];
+    const TILE: &[Finish] = &[
+        Finish {
+            color: "white",
+            material: "tile",
+            rgb: [0.85, 0.85, 0.83],
+        },
+        Finish {
+            color: "grey",
+            material: "tile",
+            rgb: [0.5, 0.5, 0.52],
+        },
+        Finish {
+            color: "beige",
+            material: "tile",
+            rgb: [0.75, 0.7, 0.6],
+        },
+    ];
+    let list = match kind {
+        RoomType::Kitchen | RoomType::Bathroom | RoomType::LaundryRoom => TILE,
+        _ => WOOD,
+    };
+    *list.choose(rng).unwrap_or(&list[0])
+}
+
+fn wall_finish(rng: &mut ChaCha8Rng) -> Finish {
+    use rand::seq::IndexedRandom;
+    const WALLS: &[Finish] = &[
+        Finish {
+            color: "white",
+            material: "plaster",
+            rgb: [0.88, 0.87, 0.84],
+        },
+        Finish {
+            color: "beige",
+            material: "plaster",
+            rgb: [0.8, 0.74, 0.62],
+        },
+        Finish {
+            color: "grey",
+            material: "plaster",
+            rgb: [0.62, 0.63, 0.65],
+        },
+        Finish {
+            color: "blue",
+            material: "plaster",
+            rgb: [0.55, 0.65, 0.78],
+        },
+        Finish {
+            color: "green",
+            material: "plaster",
+            rgb: [0.6, 0.72, 0.58],
+        },
+    ];
+    *WALLS.choose(rng).unwrap_or(&WALLS[0])
+}
+
+/// Quantise a coordinate to group collinear wall segments.
+fn key(v: f32) -> i64 {
+    (v * 1000.0).round() as i64
+}
+
+/// Subtract gaps `(lo, hi)` from the interval `(a, b)`.
+fn subtract(a: f32, b: f32, gaps: &[(f32, f32)]) -> Vec<(f32, f32)> {
+    let mut out = vec![(a, b)];
+    for &(g0, g1) in gaps {
+        let mut next = Vec::with_capacity(out.len() + 1);
+        for (s, e) in out {
+            if g1 <= s || g0 >= e {
+                next.push((s, e));
+                continue;
+            }
+            if g0 > s {
+                next.push((s, g0));
+            }
+            if g1 < e {
+                next.push((g1, e));
+            }
+        }
+        out = next;
+    }
+    out.retain(|(s, e)| e - s > 1e-3);
+    out
+}
+
+/// Merge overlapping or touching intervals.
+fn merge(mut v: Vec<(f32, f32)>) -> Vec<(f32, f32)> {
+    v.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut out: Vec<(f32, f32)> = Vec::with_capacity(v.len());
+    for (s, e) in v {
+        match out.last_mut() {
+            Some(last) if s <= last.1 + 1e-4 => last.1 = last.1.max(e),
+            _ => out.push((s, e)),
+        }
+    }
+    out
+}
+
+/// Floors, walls, door frames.
+fn build_structure(cfg: &ProcgenConfig, plan: &Plan, rng: &mut ChaCha8Rng, b: &mut Builder) {
+    let t = cfg.walls.thickness;
+    let h = cfg.walls.height;
+    for (i, room) in plan.rooms.iter().enumerate() {
+        let fin = floor_finish(room.kind, rng);
+        let (cx, cz) = room.rect.center();
+        let size = Vec3::new(room.rect.w(), 0.05, room.rect.d());
+        b.add(
+            C::Floor,
+            Some(i as RoomId),
+            Pose::from_yaw(Vec3::new(cx, 0.0, cz), 0.0),
+            vec![box_part(Vec3::new(0.0, -0.025, 0.0), size, fin.rgb)],
+            fin.color,
+            fin.material,
+            size.x * size.z * 50.0,
+            None,
+        );
+    }
+
+    // Wall lines: per orientation and coordinate, the union of room edges on that line.
+    let mut lines: BTreeMap<(bool, i64), (f32, Vec<(f32, f32)>)> = BTreeMap::new();
+    for room in &plan.rooms {
+        let r = room.rect;
+        for (along_z, line, a, c) in [
+            (true, r.x0, r.z0, r.z1),
+            (true, r.x1, r.z0, r.z1),
+            (false, r.z0, r.x0, r.x1),
+            (false, r.z1, r.x0, r.x1),
+        ] {
+            lines
+                .entry((along_z, key(line)))
+                .or_insert_with(|| (line, Vec::new()))
+                .1
+                .push((a, c));
+        }
+    }
+    let wall = wall_finish(rng);
+    for ((along_z, k), (line, spans)) in &lines {
+        let gaps: Vec<(f32, f32)> = plan
+            .openings
+            .iter()
+            .filter(|o| o.along_z == *along_z && key(o.line) == *k)
+            .map(|o| {
+                let g = o.gap(cfg) * 0.5;
+                (o.center - g, o.center + g)
+            })
+            .collect();
+        for (s, e) in merge(spans.clone()) {
+            // Extend by half a thickness so that corners close.
+            for (a, c) in subtract(s - t * 0.5, e + t * 0.5, &gaps) {
+                let len = c - a;
+                let mid = (a + c) * 0.5;
+                let (pos, size) = if *along_z {
+                    (Vec3::new(*line, 0.0, mid), Vec3::new(t, h, len))
+                } else {
+                    (Vec3::new(mid, 0.0, *line), Vec3::new(len, h, t))
+                };
+                b.add(
+                    C::Wall,
+                    None,
+                    Pose::from_yaw(pos, 0.0),
+                    vec![box_part(Vec3::new(0.0, h * 0.5, 0.0), size, wall.rgb)],
+                    wall.color,
+                    wall.material,
+                    size.x * size.y * size.z * 1500.0,
+                    None,
+                );
+            }
+        }
+    }
+
+    for o in plan.openings.iter().filter(|o| !o.open_plan) {
+        add_door_frame(cfg, o, rng, b);
+    }
+
+    if cfg.walls.ceiling {
+        for (i, room) in plan.rooms.iter().enumerate() {
+            let (cx, cz) = room.rect.center();
+            let size = Vec3::new(room.rect.w(), 0.05, room.rect.d());
+            b.add(
+                C::Ceiling,
+                Some(i as RoomId),
+                Pose::from_yaw(Vec3::new(cx, h, cz), 0.0),
+                vec![box_part(Vec3::new(0.0, 0.025, 0.0), size, wall.rgb)],
+                wall.color,
+                wall.material,
+                size.x * size.z * 30.0,
+                None,
+            );
+        }
+    }
+}
+
+/// Two posts and a lintel; the clear opening stays free up to the door head.
+fn add_door_frame(cfg: &ProcgenConfig, o: &Opening, rng: &mut ChaCha8Rng, b: &mut Builder) {
+    let fin = palette::pick(C::DoorFrame, rng);
+    let t = cfg.walls.thickness;
+    let h = cfg.walls.height;
+    let fw = cfg.doors.frame_width;
+    let head = cfg.doors.head_height;
+    let depth = t + 0.02;
+    let mut parts = Vec::with_capacity(3);
+    for s in [-1.0, 1.0] {
+        parts.push(box_part(
+            Vec3::new(s * (o.width + fw) * 0.5, head * 0.5, 0.0),
+            Vec3::new(fw, head, depth),
+            fin.rgb,
+        ));
+    }
+    parts.push(box_part(
+        Vec3::new(0.0, (head + h) * 0.5, 0.0),
+        Vec3::new(o.width + 2.0 * fw, h - head, t),
+        fin.rgb,
+    ));
+    let (x, z) = o.position();
+    // Local x runs along the wall.
+    let yaw = if o.along_z {
+        std::f32::consts::FRAC_PI_2
+    } else {
+        0.0
+    };
+    b.add(
+        C::DoorFrame,
+        None,
+        Pose::from_yaw(Vec3::new(x, 0.0, z), yaw),
+        parts,
+        fin.color,
+        fin.material,
+        25.0,
+        None,
+    );
+}
+
+/// Free box on both sides of an opening: along the wall it covers the gap plus `margin`, across
+/// it `depth` into each room.
+pub(crate) fn clearance_rect(o: &Opening, cfg: &ProcgenConfig, depth: f32, margin: f32) -> Rect {
+    let (x, z) = o.position();
+    let half = o.gap(cfg) * 0.5 + margin;
+    if o.along_z {
+        Rect {
+            x0: x - depth,
+            x1: x + depth,
+            z0: z - half,
+            z1: z + half,
+        }
+    } else {
+        Rect {
+            x0: x - half,
+            x1: x + half,
+            z0: z - depth,
+            z1: z + depth,
+        }
+    }
+}
+
+/// Generate one home from its seed.
+pub(crate) fn generate(cfg: &ProcgenConfig, seed: u64, id: &str) -> Result<Scene> {
+    use rand::SeedableRng;
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let plan = floorplan::generate(cfg, &mut rng).ok_or_else(|| EnvError::InvalidScene {
+        scene: id.to_string(),
+        message: format!(
+            "no floorplan satisfies rooms.min_side = {} and rooms.max_aspect = {} (seed {seed})",
+            cfg.rooms.min_side, cfg.rooms.max_aspect
+        ),
+    })?;
+    let mut b = Builder {
+        objects: Vec::with_capacity(256),
+    };
+    build_structure(cfg, &plan, &mut rng, &mut b);
+    furnish::furnish(cfg, &plan, &mut rng, &mut b);
+
+    let t = cfg.walls.thickness;
+    let mut counts: BTreeMap<RoomType, usize> = BTreeMap::new();
+    let rooms = plan
+        .rooms
+        .iter()
+        .enumerate()
+        .map(|(i, r)| {
+            let n = counts.entry(r.kind).or_insert(0);
+            *n += 1;
+            let inner = r.rect.inset(t * 0.5);
+            Room {
+                id: i as RoomId,
+                kind: r.kind,
+                name: format!("{}_{}", r.kind.name(), *n),
+                // Counter-clockwise seen from above (+Y): with x right and z towards the
+                // viewer's bottom, that is the order (x0,z0) (x0,z1) (x1,z1) (x1,z0).
+                polygon: vec![
+                    [inner.x0, inner.z0],
+                    [inner.x0, inner.z1],
+                    [inner.x1, inner.z1],
+                    [inner.x1, inner.z0],
+                ],
+            }
+        })
+        .collect();
+    let doors = plan
+        .openings
+        .iter()
+        .enumerate()
+        .map(|(i, o)| {
+            let (x, z) = o.position();
+            Door {
+                id: i as u32,
+                position: [x, 0.0, z],
+                width: o.width,
+                normal: o.normal(&plan),
+                rooms: [o.rooms[0] as RoomId, o.rooms[1] as RoomId],
+                open_plan: o.open_plan,
+            }
+        })
+        .collect();
+    Ok(Scene {
+        format_version: SCENE_FORMAT_VERSION,
+        id: id.to_string(),
+        source: "procgen".into(),
+        seed: Some(seed),
+        floor_height: 0.0,
+        rooms,
+        doors,
+        objects: b.objects,
+    })
+}

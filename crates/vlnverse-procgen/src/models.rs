@@ -1,0 +1,839 @@
+//! Primitive-built object models. Each model is built in its own frame: origin at the centre of
+//! its footprint on the floor, width along x, depth along z, height along +y, its front facing
+//! -Z (so a sofa's back, a bed's headboard or a wardrobe's back is at +Z and goes to the wall).
+//! Cuboids are preferred (12 triangles each); cylinders and spheres only where the shape needs
+//! them.
+
+use crate::palette::{self, shade, tone, Finish};
+use crate::rect::Rect;
+use glam::{Quat, Vec3};
+use rand::Rng;
+use rand_chacha::ChaCha8Rng;
+use vlnverse_env::{Part, Pose, SemanticClass as C, Shape};
+
+/// An object model in its own frame.
+#[derive(Clone, Debug)]
+pub(crate) struct Model {
+    pub class: C,
+    pub parts: Vec<Part>,
+    /// Footprint width (x), height (y), depth (z).
+    pub w: f32,
+    pub h: f32,
+    pub d: f32,
+    /// Flat top at height `h` where small objects may stand (rectangle in the model frame).
+    pub top: Option<Rect>,
+    pub finish: Finish,
+    pub mass: f32,
+}
+
+impl Model {
+    /// Model from parts; the footprint and height are measured from the parts (`size` is only
+    /// the nominal size) so that placement is exact even where handles stick out.
+    fn new(class: C, finish: Finish, size: [f32; 3], mass: f32, parts: Vec<Part>) -> Model {
+        let mut m = Model {
+            class,
+            parts,
+            w: size[0],
+            h: size[1],
+            d: size[2],
+            top: None,
+            finish,
+            mass,
+        };
+        recentre(&mut m);
+        m
+    }
+
+    /// Mark the whole top (inset by `m`) as a support surface.
+    fn with_top(mut self, m: f32) -> Model {
+        self.top = Some(Rect::centered(0.0, 0.0, self.w, self.d).inset(m));
+        self
+    }
+}
+
+/// Box with its bottom centre at `(x, y0, z)`.
+fn cube(p: &mut Vec<Part>, x: f32, y0: f32, z: f32, size: [f32; 3], rgb: [f32; 3]) {
+    p.push(Part {
+        shape: Shape::Cuboid {
+            half_extents: [size[0] * 0.5, size[1] * 0.5, size[2] * 0.5],
+        },
+        transform: Pose {
+            position: [x, y0 + size[1] * 0.5, z],
+            rotation: [0.0, 0.0, 0.0, 1.0],
+        },
+        color: rgb,
+    });
+}
+
+/// Upright cylinder with its bottom centre at `(x, y0, z)`.
+fn cyl(p: &mut Vec<Part>, x: f32, y0: f32, z: f32, r: f32, h: f32, rgb: [f32; 3]) {
+    p.push(Part {
+        shape: Shape::Cylinder {
+            radius: r,
+            half_height: h * 0.5,
+        },
+        transform: Pose {
+            position: [x, y0 + h * 0.5, z],
+            rotation: [0.0, 0.0, 0.0, 1.0],
+        },
+        color: rgb,
+    });
+}
+
+/// Cylinder lying along z (a disc facing the front when short), centred at `c`.
+fn disc_z(p: &mut Vec<Part>, c: [f32; 3], r: f32, len: f32, rgb: [f32; 3]) {
+    p.push(Part {
+        shape: Shape::Cylinder {
+            radius: r,
+            half_height: len * 0.5,
+        },
+        transform: Pose {
+            position: c,
+            rotation: Quat::from_rotation_x(std::f32::consts::FRAC_PI_2).to_array(),
+        },
+        color: rgb,
+    });
+}
+
+/// Sphere centred at `c`.
+fn ball(p: &mut Vec<Part>, c: [f32; 3], r: f32, rgb: [f32; 3]) {
+    p.push(Part {
+        shape: Shape::Sphere { radius: r },
+        transform: Pose {
+            position: c,
+            rotation: [0.0, 0.0, 0.0, 1.0],
+        },
+        color: rgb,
+    });
+}
+
+/// Four square legs at the corners of a `w` x `d` footprint.
+fn legs(p: &mut Vec<Part>, w: f32, d: f32, h: f32, s: f32, rgb: [f32; 3]) {
+    for sx in [-1.0, 1.0] {
+        for sz in [-1.0, 1.0] {
+            cube(
+                p,
+                sx * (w - s) * 0.5,
+                0.0,
+                sz * (d - s) * 0.5,
+                [s, h, s],
+                rgb,
+            );
+        }
+    }
+}
+
+fn r(rng: &mut ChaCha8Rng, lo: f32, hi: f32) -> f32 {
+    rng.random_range(lo..=hi)
+}
+
+/// A double (or single) bed: frame, mattress, blanket, pillows, headboard.
+pub(crate) fn bed(rng: &mut ChaCha8Rng, double: bool) -> Model {
+    let fin = palette::pick(C::Bed, rng);
+    let w = if double { r(rng, 1.45, 1.8) } else { r(rng, 0.95, 1.1) };
+    let d = r(rng, 2.0, 2.15);
+    let head_h = r(rng, 0.9, 1.15);
+    let bedding = palette::fabric(rng);
+    let mut p = Vec::new();
+    cube(&mut p, 0.0, 0.0, -0.04, [w, 0.3, d - 0.08], fin.rgb);
+    cube(&mut p, 0.0, 0.3, -0.05, [w - 0.06, 0.2, d - 0.16], tone::LINEN);
+    cube(&mut p, 0.0, 0.5, -0.3, [w - 0.04, 0.03, d * 0.6], bedding);
+    let pillows = if double { 2 } else { 1 };
+    for i in 0..pillows {
+        let x = if pillows == 1 {
+            0.0
+        } else {
+            (i as f32 - 0.5) * w * 0.48
+        };
+        cube(&mut p, x, 0.5, d * 0.5 - 0.34, [0.5, 0.12, 0.34], tone::WHITE);
+    }
+    cube(
+        &mut p,
+        0.0,
+        0.0,
+        d * 0.5 - 0.04,
+        [w, head_h, 0.08],
+        shade(fin.rgb, 0.85),
+    );
+    Model::new(C::Bed, fin, [w, head_h, d], 60.0 + 20.0 * w, p)
+}
+
+/// A nightstand: body, drawer front, handle; small objects on top.
+pub(crate) fn nightstand(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::Nightstand, rng);
+    let (w, h, d) = (r(rng, 0.4, 0.5), r(rng, 0.5, 0.6), r(rng, 0.35, 0.42));
+    let mut p = Vec::new();
+    cube(&mut p, 0.0, 0.0, 0.0, [w, h, d], fin.rgb);
+    cube(
+        &mut p,
+        0.0,
+        h * 0.55,
+        -d * 0.5 - 0.005,
+        [w - 0.06, h * 0.3, 0.01],
+        shade(fin.rgb, 0.8),
+    );
+    cube(&mut p, 0.0, h * 0.68, -d * 0.5 - 0.02, [0.08, 0.02, 0.02], tone::METAL);
+    Model::new(C::Nightstand, fin, [w, h, d + 0.02], 12.0, p).with_top(0.04)
+}
+
+/// A wardrobe: body, two doors, handles.
+pub(crate) fn wardrobe(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::Wardrobe, rng);
+    let (w, h, d) = (r(rng, 0.9, 1.6), r(rng, 1.9, 2.2), r(rng, 0.55, 0.62));
+    let mut p = Vec::new();
+    cube(&mut p, 0.0, 0.0, 0.01, [w, h, d - 0.02], fin.rgb);
+    for s in [-1.0, 1.0] {
+        cube(
+            &mut p,
+            s * w * 0.25,
+            0.05,
+            -d * 0.5 + 0.01,
+            [w * 0.5 - 0.02, h - 0.1, 0.02],
+            shade(fin.rgb, 0.9),
+        );
+        cube(&mut p, s * 0.05, h * 0.5, -d * 0.5 - 0.005, [0.02, 0.2, 0.01], tone::METAL);
+    }
+    Model::new(C::Wardrobe, fin, [w, h, d], 70.0, p)
+}
+
+/// A dresser: body with three drawer fronts; small objects on top.
+pub(crate) fn dresser(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::Dresser, rng);
+    let (w, h, d) = (r(rng, 0.9, 1.4), r(rng, 0.75, 0.95), r(rng, 0.42, 0.52));
+    let mut p = Vec::new();
+    cube(&mut p, 0.0, 0.0, 0.01, [w, h, d - 0.02], fin.rgb);
+    for i in 0..3 {
+        let y = 0.06 + i as f32 * (h - 0.1) / 3.0;
+        cube(
+            &mut p,
+            0.0,
+            y,
+            -d * 0.5 + 0.005,
+            [w - 0.08, (h - 0.1) / 3.0 - 0.03, 0.01],
+            shade(fin.rgb, 0.85),
+        );
+    }
+    Model::new(C::Dresser, fin, [w, h, d], 45.0, p).with_top(0.05)
+}
+
+/// A toilet: base, bowl, seat, tank.
+pub(crate) fn toilet(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::Toilet, rng);
+    let (w, d) = (0.42, 0.7);
+    let mut p = Vec::new();
+    cube(&mut p, 0.0, 0.0, 0.0, [0.26, 0.3, 0.4], fin.rgb);
+    cyl(&mut p, 0.0, 0.3, -0.08, 0.19, 0.1, fin.rgb);
+    cyl(&mut p, 0.0, 0.4, -0.08, 0.2, 0.03, shade(fin.rgb, 0.9));
+    cube(&mut p, 0.0, 0.3, 0.26, [w, 0.5, 0.18], fin.rgb);
+    Model::new(C::Toilet, fin, [w, 0.8, d], 30.0, p)
+}
+
+/// A bathroom sink: vanity cabinet, basin, faucet.
+pub(crate) fn sink(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::Sink, rng);
+    let wood = palette::pick(C::Cabinet, rng);
+    let (w, h, d) = (r(rng, 0.6, 0.9), 0.85, 0.5);
+    let mut p = Vec::new();
+    cube(&mut p, 0.0, 0.0, 0.0, [w, h - 0.04, d], wood.rgb);
+    cube(&mut p, 0.0, h - 0.04, 0.0, [w, 0.04, d], fin.rgb);
+    cyl(&mut p, 0.0, h - 0.02, -0.03, 0.18, 0.04, shade(fin.rgb, 0.8));
+    cyl(&mut p, 0.0, h, d * 0.5 - 0.08, 0.02, 0.2, tone::STEEL);
+    cube(&mut p, 0.0, h + 0.16, d * 0.5 - 0.14, [0.03, 0.03, 0.12], tone::STEEL);
+    Model::new(C::Sink, fin, [w, h + 0.2, d], 35.0, p)
+}
+
+/// A bathtub: shell walls, floor, faucet.
+pub(crate) fn bathtub(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::Bathtub, rng);
+    let (w, h, d) = (r(rng, 1.5, 1.75), 0.56, r(rng, 0.72, 0.8));
+    let t = 0.08;
+    let mut p = Vec::new();
+    cube(&mut p, 0.0, 0.0, 0.0, [w, 0.12, d], fin.rgb);
+    cube(&mut p, 0.0, 0.12, -d * 0.5 + t * 0.5, [w, h - 0.12, t], fin.rgb);
+    cube(&mut p, 0.0, 0.12, d * 0.5 - t * 0.5, [w, h - 0.12, t], fin.rgb);
+    for s in [-1.0, 1.0] {
+        cube(
+            &mut p,
+            s * (w - t) * 0.5,
+            0.12,
+            0.0,
+            [t, h - 0.12, d - 2.0 * t],
+            fin.rgb,
+        );
+    }
+    cube(&mut p, 0.0, 0.12, 0.0, [w - 2.0 * t, 0.02, d - 2.0 * t], shade(fin.rgb, 0.85));
+    cyl(&mut p, -w * 0.5 + 0.04, h, 0.0, 0.02, 0.12, tone::STEEL);
+    Model::new(C::Bathtub, fin, [w, h + 0.12, d], 60.0, p)
+}
+
+/// A shower: tray, two glass panels, pole and head.
+pub(crate) fn shower(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::Shower, rng);
+    let s = r(rng, 0.85, 1.0);
+    let mut p = Vec::new();
+    cube(&mut p, 0.0, 0.0, 0.0, [s, 0.08, s], fin.rgb);
+    cube(&mut p, 0.0, 0.08, -s * 0.5 + 0.01, [s, 1.9, 0.02], tone::GLASS);
+    cube(&mut p, -s * 0.5 + 0.01, 0.08, 0.0, [0.02, 1.9, s - 0.04], tone::GLASS);
+    cube(&mut p, 0.0, 0.08, s * 0.5 - 0.04, [0.03, 1.9, 0.03], tone::STEEL);
+    cube(&mut p, 0.0, 1.93, s * 0.5 - 0.15, [0.15, 0.03, 0.2], tone::STEEL);
+    Model::new(C::Shower, fin, [s, 1.98, s], 40.0, p)
+}
+
+/// A fridge: body, freezer and fridge doors, handles.
+pub(crate) fn fridge(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::Fridge, rng);
+    let (w, h, d) = (r(rng, 0.6, 0.8), r(rng, 1.7, 1.95), 0.68);
+    let mut p = Vec::new();
+    cube(&mut p, 0.0, 0.0, 0.02, [w, h, d - 0.04], fin.rgb);
+    cube(&mut p, 0.0, 0.02, -d * 0.5 + 0.01, [w - 0.02, h * 0.62, 0.02], shade(fin.rgb, 0.93));
+    cube(
+        &mut p,
+        0.0,
+        h * 0.64 + 0.02,
+        -d * 0.5 + 0.01,
+        [w - 0.02, h * 0.36 - 0.04, 0.02],
+        shade(fin.rgb, 0.93),
+    );
+    cube(&mut p, w * 0.4, h * 0.35, -d * 0.5 - 0.01, [0.025, 0.35, 0.02], tone::METAL);
+    cube(&mut p, w * 0.4, h * 0.7, -d * 0.5 - 0.01, [0.025, 0.2, 0.02], tone::METAL);
+    Model::new(C::Fridge, fin, [w, h, d + 0.02], 80.0, p)
+}
+
+/// A kitchen counter of width `w`: plinth, cabinet body, door lines, worktop.
+pub(crate) fn counter(rng: &mut ChaCha8Rng, w: f32) -> Model {
+    let fin = palette::pick(C::Counter, rng);
+    let (h, d) = (0.9, 0.62);
+    let mut p = Vec::new();
+    cube(&mut p, 0.0, 0.0, 0.03, [w, 0.1, d - 0.08], tone::METAL);
+    cube(&mut p, 0.0, 0.1, 0.01, [w, h - 0.14, d - 0.04], fin.rgb);
+    let doors = (w / 0.5).round().max(1.0) as usize;
+    for i in 0..doors {
+        let dw = w / doors as f32;
+        let x = -w * 0.5 + dw * (i as f32 + 0.5);
+        cube(&mut p, x, 0.13, -d * 0.5 + 0.02, [dw - 0.02, h - 0.2, 0.01], shade(fin.rgb, 0.9));
+        cube(&mut p, x, h - 0.14, -d * 0.5 + 0.005, [0.12, 0.015, 0.015], tone::STEEL);
+    }
+    cube(&mut p, 0.0, h - 0.04, 0.0, [w, 0.04, d], [0.75, 0.74, 0.7]);
+    Model::new(C::Counter, fin, [w, h, d], 40.0 * w, p).with_top(0.06)
+}
+
+/// A stove: body, oven door with window, hob with four burners.
+pub(crate) fn stove(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::Stove, rng);
+    let (w, h, d) = (0.6, 0.9, 0.62);
+    let mut p = Vec::new();
+    cube(&mut p, 0.0, 0.0, 0.0, [w, h - 0.02, d], fin.rgb);
+    cube(&mut p, 0.0, 0.15, -d * 0.5 - 0.005, [w - 0.06, 0.45, 0.01], tone::SCREEN);
+    cube(&mut p, 0.0, 0.7, -d * 0.5 - 0.015, [w - 0.1, 0.02, 0.02], tone::STEEL);
+    cube(&mut p, 0.0, h - 0.02, 0.0, [w, 0.02, d], tone::SCREEN);
+    for sx in [-1.0, 1.0] {
+        for sz in [-1.0, 1.0] {
+            cyl(&mut p, sx * 0.14, h, sz * 0.14, 0.08, 0.01, tone::METAL);
+        }
+    }
+    Model::new(C::Stove, fin, [w, h + 0.01, d + 0.02], 50.0, p)
+}
+
+/// A dishwasher: body, door, handle.
+pub(crate) fn dishwasher(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::Dishwasher, rng);
+    let (w, h, d) = (0.6, 0.88, 0.62);
+    let mut p = Vec::new();
+    cube(&mut p, 0.0, 0.0, 0.0, [w, h, d], fin.rgb);
+    cube(&mut p, 0.0, 0.1, -d * 0.5 - 0.005, [w - 0.02, h - 0.15, 0.01], shade(fin.rgb, 0.9));
+    cube(&mut p, 0.0, h - 0.1, -d * 0.5 - 0.02, [w - 0.15, 0.02, 0.02], tone::STEEL);
+    Model::new(C::Dishwasher, fin, [w, h, d + 0.04], 45.0, p).with_top(0.05)
+}
+
+/// A tall kitchen cabinet (pantry): body, two doors, handles.
+pub(crate) fn kitchen_cabinet(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::KitchenCabinet, rng);
+    let (w, h, d) = (r(rng, 0.5, 0.8), r(rng, 1.9, 2.1), 0.6);
+    let mut p = Vec::new();
+    cube(&mut p, 0.0, 0.0, 0.01, [w, h, d - 0.02], fin.rgb);
+    cube(&mut p, 0.0, 0.05, -d * 0.5 + 0.005, [w - 0.03, h * 0.6, 0.01], shade(fin.rgb, 0.9));
+    cube(&mut p, 0.0, h * 0.62 + 0.05, -d * 0.5 + 0.005, [w - 0.03, h * 0.36, 0.01], shade(fin.rgb, 0.9));
+    cube(&mut p, w * 0.35, h * 0.5, -d * 0.5 - 0.01, [0.02, 0.15, 0.02], tone::STEEL);
+    Model::new(C::KitchenCabinet, fin, [w, h, d], 50.0, p)
+}
+
+/// A sofa of width `w`: base, seat cushions, back, arms, cushions.
+pub(crate) fn sofa(rng: &mut ChaCha8Rng, w: f32) -> Model {
+    let fin = palette::pick(C::Sofa, rng);
+    let (h, d) = (r(rng, 0.8, 0.9), r(rng, 0.85, 0.95));
+    let arm = 0.2;
+    let mut p = Vec::new();
+    legs(&mut p, w - 0.1, d - 0.1, 0.08, 0.05, tone::METAL);
+    cube(&mut p, 0.0, 0.08, 0.0, [w, 0.25, d], shade(fin.rgb, 0.9));
+    let seats = if w > 1.7 { 3 } else { 2 };
+    let sw = (w - 2.0 * arm) / seats as f32;
+    for i in 0..seats {
+        let x = -w * 0.5 + arm + sw * (i as f32 + 0.5);
+        cube(&mut p, x, 0.33, -0.08, [sw - 0.02, 0.12, d - 0.3], fin.rgb);
+    }
+    cube(&mut p, 0.0, 0.33, d * 0.5 - 0.11, [w, h - 0.33, 0.22], fin.rgb);
+    for s in [-1.0, 1.0] {
+        cube(&mut p, s * (w - arm) * 0.5, 0.08, 0.0, [arm, 0.55, d], shade(fin.rgb, 0.95));
+    }
+    let cushion = palette::fabric(rng);
+    for s in [-1.0, 1.0] {
+        cube(&mut p, s * (w * 0.5 - arm - 0.25), 0.45, d * 0.5 - 0.3, [0.4, 0.35, 0.12], cushion);
+    }
+    Model::new(C::Sofa, fin, [w, h, d], 30.0 + 25.0 * w, p)
+}
+
+/// An armchair: a one-seat sofa.
+pub(crate) fn armchair(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::Armchair, rng);
+    let (w, h, d) = (r(rng, 0.75, 0.9), r(rng, 0.8, 0.95), r(rng, 0.75, 0.85));
+    let arm = 0.15;
+    let mut p = Vec::new();
+    legs(&mut p, w - 0.1, d - 0.1, 0.1, 0.04, tone::WOOD);
+    cube(&mut p, 0.0, 0.1, 0.0, [w, 0.22, d], shade(fin.rgb, 0.9));
+    cube(&mut p, 0.0, 0.32, -0.06, [w - 2.0 * arm, 0.1, d - 0.22], fin.rgb);
+    cube(&mut p, 0.0, 0.32, d * 0.5 - 0.09, [w, h - 0.32, 0.18], fin.rgb);
+    for s in [-1.0, 1.0] {
+        cube(&mut p, s * (w - arm) * 0.5, 0.1, 0.0, [arm, 0.5, d], shade(fin.rgb, 0.95));
+    }
+    Model::new(C::Armchair, fin, [w, h, d], 25.0, p)
+}
+
+/// A flat-screen TV on a foot: panel, screen, neck, foot.
+pub(crate) fn tv(rng: &mut ChaCha8Rng, max_w: f32) -> Model {
+    let fin = palette::pick(C::Tv, rng);
+    let w = r(rng, 0.9, 1.45).min(max_w);
+    let h = w * 0.58;
+    let mut p = Vec::new();
+    cube(&mut p, 0.0, 0.0, 0.0, [w * 0.4, 0.02, 0.22], tone::METAL);
+    cube(&mut p, 0.0, 0.02, 0.02, [0.06, 0.08, 0.04], tone::METAL);
+    cube(&mut p, 0.0, 0.08, 0.02, [w, h, 0.05], fin.rgb);
+    cube(&mut p, 0.0, 0.1, -0.005, [w - 0.04, h - 0.04, 0.01], tone::SCREEN);
+    Model::new(C::Tv, fin, [w, h + 0.08, 0.22], 8.0 + 6.0 * w, p)
+}
+
+/// A TV stand: body, two compartments, legs.
+pub(crate) fn tv_stand(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::TvStand, rng);
+    let (w, h, d) = (r(rng, 1.2, 1.8), r(rng, 0.45, 0.55), r(rng, 0.4, 0.48));
+    let mut p = Vec::new();
+    legs(&mut p, w - 0.05, d - 0.05, 0.08, 0.04, tone::METAL);
+    cube(&mut p, 0.0, 0.08, 0.0, [w, h - 0.08, d], fin.rgb);
+    for s in [-1.0, 1.0] {
+        cube(
+            &mut p,
+            s * w * 0.25,
+            0.12,
+            -d * 0.5 - 0.005,
+            [w * 0.5 - 0.06, h - 0.16, 0.01],
+            shade(fin.rgb, 0.75),
+        );
+    }
+    Model::new(C::TvStand, fin, [w, h, d + 0.01], 30.0, p).with_top(0.02)
+}
+
+/// A table with a top and four legs (coffee, dining, side tables; desks).
+fn table(class: C, fin: Finish, w: f32, h: f32, d: f32, leg_rgb: [f32; 3], mass: f32) -> Model {
+    let mut p = Vec::new();
+    let top = 0.04;
+    cube(&mut p, 0.0, h - top, 0.0, [w, top, d], fin.rgb);
+    legs(&mut p, w - 0.06, d - 0.06, h - top, 0.05, leg_rgb);
+    Model::new(class, fin, [w, h, d], mass, p).with_top(0.05)
+}
+
+/// A coffee table.
+pub(crate) fn coffee_table(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::CoffeeTable, rng);
+    let (w, h, d) = (r(rng, 0.9, 1.2), r(rng, 0.38, 0.46), r(rng, 0.5, 0.65));
+    let mut m = table(C::CoffeeTable, fin, w, h, d, shade(fin.rgb, 0.8), 15.0);
+    // A lower shelf makes it read as a coffee table rather than a bench.
+    cube(&mut m.parts, 0.0, 0.08, 0.0, [w - 0.1, 0.02, d - 0.1], shade(fin.rgb, 0.8));
+    m
+}
+
+/// A dining table of the given size.
+pub(crate) fn dining_table(rng: &mut ChaCha8Rng, w: f32, d: f32) -> Model {
+    let fin = palette::pick(C::DiningTable, rng);
+    let legs_rgb = if rng.random_bool(0.5) {
+        tone::METAL
+    } else {
+        shade(fin.rgb, 0.85)
+    };
+    table(C::DiningTable, fin, w, 0.75, d, legs_rgb, 20.0 + 10.0 * w * d)
+}
+
+/// A side table.
+pub(crate) fn side_table(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::SideTable, rng);
+    let s = r(rng, 0.4, 0.55);
+    table(C::SideTable, fin, s, r(rng, 0.5, 0.62), s, shade(fin.rgb, 0.8), 6.0)
+}
+
+/// A desk: top, two side panels, a drawer block.
+pub(crate) fn desk(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::Desk, rng);
+    let (w, h, d) = (r(rng, 1.1, 1.5), 0.75, r(rng, 0.6, 0.7));
+    let mut p = Vec::new();
+    cube(&mut p, 0.0, h - 0.04, 0.0, [w, 0.04, d], fin.rgb);
+    for s in [-1.0, 1.0] {
+        cube(&mut p, s * (w * 0.5 - 0.02), 0.0, 0.0, [0.04, h - 0.04, d - 0.04], shade(fin.rgb, 0.85));
+    }
+    cube(&mut p, 0.0, h * 0.35, d * 0.5 - 0.03, [w - 0.08, h * 0.4, 0.02], shade(fin.rgb, 0.85));
+    cube(&mut p, w * 0.5 - 0.25, h - 0.2, -0.02, [0.4, 0.16, d - 0.1], shade(fin.rgb, 0.9));
+    Model::new(C::Desk, fin, [w, h, d], 30.0, p).with_top(0.05)
+}
+
+/// A chair: four legs, seat, backrest (with two posts).
+pub(crate) fn chair(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::Chair, rng);
+    let (w, d) = (r(rng, 0.42, 0.5), r(rng, 0.44, 0.52));
+    let seat = r(rng, 0.44, 0.48);
+    let h = r(rng, 0.85, 0.98);
+    let leg_rgb = if fin.material == "wood" {
+        shade(fin.rgb, 0.8)
+    } else {
+        tone::METAL
+    };
+    let mut p = Vec::new();
+    legs(&mut p, w, d, seat - 0.04, 0.035, leg_rgb);
+    cube(&mut p, 0.0, seat - 0.04, 0.0, [w, 0.04, d], fin.rgb);
+    for s in [-1.0, 1.0] {
+        cube(&mut p, s * (w - 0.035) * 0.5, seat, d * 0.5 - 0.0175, [0.035, h - seat - 0.16, 0.035], leg_rgb);
+    }
+    cube(&mut p, 0.0, h - 0.18, d * 0.5 - 0.02, [w, 0.18, 0.04], fin.rgb);
+    Model::new(C::Chair, fin, [w, h, d], 5.0, p)
+}
+
+/// An office chair: five-star base (two crossed bars), column, seat, backrest.
+pub(crate) fn office_chair(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::OfficeChair, rng);
+    let s = 0.6;
+    let h = r(rng, 0.95, 1.1);
+    let mut p = Vec::new();
+    cube(&mut p, 0.0, 0.02, 0.0, [s, 0.04, 0.06], tone::METAL);
+    cube(&mut p, 0.0, 0.02, 0.0, [0.06, 0.04, s], tone::METAL);
+    for (x, z) in [(s * 0.45, 0.0), (-s * 0.45, 0.0), (0.0, s * 0.45), (0.0, -s * 0.45)] {
+        cube(&mut p, x, 0.0, z, [0.05, 0.03, 0.05], tone::METAL);
+    }
+    cyl(&mut p, 0.0, 0.06, 0.0, 0.03, 0.36, tone::STEEL);
+    cube(&mut p, 0.0, 0.42, 0.0, [0.5, 0.08, 0.5], fin.rgb);
+    cube(&mut p, 0.0, 0.45, 0.24, [0.06, 0.15, 0.04], tone::METAL);
+    cube(&mut p, 0.0, 0.6, 0.25, [0.46, h - 0.6, 0.06], fin.rgb);
+    Model::new(C::OfficeChair, fin, [s, h, s], 12.0, p)
+}
+
+/// A bookshelf: sides, back, shelves, rows of books.
+pub(crate) fn bookshelf(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::Bookshelf, rng);
+    let (w, h, d) = (r(rng, 0.7, 1.2), r(rng, 1.5, 2.0), r(rng, 0.3, 0.38));
+    let t = 0.03;
+    let mut p = Vec::new();
+    for s in [-1.0, 1.0] {
+        cube(&mut p, s * (w - t) * 0.5, 0.0, 0.0, [t, h, d], fin.rgb);
+    }
+    cube(&mut p, 0.0, 0.0, d * 0.5 - 0.01, [w - 2.0 * t, h, 0.02], shade(fin.rgb, 0.8));
+    let shelves = (h / 0.38) as usize;
+    let gap = (h - t) / shelves as f32;
+    for i in 0..=shelves {
+        cube(&mut p, 0.0, i as f32 * gap, 0.0, [w - 2.0 * t, t, d], fin.rgb);
+    }
+    for i in 0..shelves {
+        // One block of books per shelf, in a varying colour and fill.
+        let fill = r(rng, 0.4, 0.9);
+        let bw = (w - 2.0 * t - 0.04) * fill;
+        let x = -w * 0.5 + t + 0.02 + bw * 0.5;
+        let rgb = palette::pick(C::Book, rng).rgb;
+        cube(&mut p, x, i as f32 * gap + t, 0.0, [bw, gap * 0.65, d - 0.08], rgb);
+    }
+    Model::new(C::Bookshelf, fin, [w, h, d], 35.0, p)
+}
+
+/// A potted plant: pot, soil, stem, foliage.
+pub(crate) fn potted_plant(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::PottedPlant, rng);
+    let pot_r = r(rng, 0.14, 0.2);
+    let h = r(rng, 0.8, 1.4);
+    let fol = (pot_r * 1.6).min(0.3);
+    let mut p = Vec::new();
+    cyl(&mut p, 0.0, 0.0, 0.0, pot_r, 0.35, fin.rgb);
+    cyl(&mut p, 0.0, 0.35, 0.0, pot_r - 0.02, 0.01, tone::SOIL);
+    cyl(&mut p, 0.0, 0.35, 0.0, 0.025, h - 0.35 - fol, tone::WOOD);
+    ball(&mut p, [0.0, h - fol, 0.0], fol, tone::LEAF);
+    let s = 2.0 * fol.max(pot_r);
+    Model::new(C::PottedPlant, fin, [s, h, s], 10.0, p)
+}
+
+/// A floor lamp: base, pole, shade.
+pub(crate) fn floor_lamp(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::FloorLamp, rng);
+    let h = r(rng, 1.5, 1.8);
+    let mut p = Vec::new();
+    cyl(&mut p, 0.0, 0.0, 0.0, 0.15, 0.03, tone::METAL);
+    cyl(&mut p, 0.0, 0.03, 0.0, 0.015, h - 0.33, tone::METAL);
+    cyl(&mut p, 0.0, h - 0.32, 0.0, 0.17, 0.32, fin.rgb);
+    Model::new(C::FloorLamp, fin, [0.34, h, 0.34], 5.0, p)
+}
+
+/// A flat rug of the given size (under 2 cm high).
+pub(crate) fn rug(rng: &mut ChaCha8Rng, w: f32, d: f32) -> Model {
+    let fin = palette::pick(C::Rug, rng);
+    let mut p = Vec::new();
+    cube(&mut p, 0.0, 0.0, 0.0, [w, 0.01, d], fin.rgb);
+    cube(&mut p, 0.0, 0.0, 0.0, [w * 0.7, 0.012, d * 0.6], shade(fin.rgb, 1.4));
+    Model::new(C::Rug, fin, [w, 0.012, d], 3.0 * w * d, p)
+}
+
+/// A low cabinet: body, two doors, handles; small objects on top.
+pub(crate) fn cabinet(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::Cabinet, rng);
+    let (w, h, d) = (r(rng, 0.6, 1.0), r(rng, 0.75, 0.95), r(rng, 0.38, 0.48));
+    let mut p = Vec::new();
+    cube(&mut p, 0.0, 0.0, 0.01, [w, h, d - 0.02], fin.rgb);
+    for s in [-1.0, 1.0] {
+        cube(&mut p, s * w * 0.25, 0.04, -d * 0.5 + 0.005, [w * 0.5 - 0.03, h - 0.08, 0.01], shade(fin.rgb, 0.85));
+        cube(&mut p, s * 0.04, h * 0.6, -d * 0.5 - 0.005, [0.015, 0.1, 0.01], tone::STEEL);
+    }
+    Model::new(C::Cabinet, fin, [w, h, d], 25.0, p).with_top(0.04)
+}
+
+/// A shoe rack: sides and three shelves with shoes.
+pub(crate) fn shoe_rack(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::ShoeRack, rng);
+    let (w, h, d) = (r(rng, 0.6, 1.0), r(rng, 0.45, 0.6), 0.32);
+    let mut p = Vec::new();
+    for s in [-1.0, 1.0] {
+        cube(&mut p, s * (w - 0.03) * 0.5, 0.0, 0.0, [0.03, h, d], fin.rgb);
+    }
+    for i in 0..3 {
+        cube(&mut p, 0.0, i as f32 * (h - 0.03) / 2.0, 0.0, [w - 0.06, 0.03, d], fin.rgb);
+    }
+    for i in 0..2 {
+        let y = 0.03 + i as f32 * (h - 0.03) / 2.0;
+        cube(&mut p, -w * 0.2, y, 0.0, [0.1, 0.08, 0.26], palette::fabric(rng));
+        cube(&mut p, w * 0.15, y, 0.0, [0.1, 0.08, 0.26], palette::fabric(rng));
+    }
+    Model::new(C::ShoeRack, fin, [w, h, d], 8.0, p).with_top(0.04)
+}
+
+/// A coat rack: base, pole, hooks, a coat.
+pub(crate) fn coat_rack(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::CoatRack, rng);
+    let h = r(rng, 1.7, 1.85);
+    let mut p = Vec::new();
+    cube(&mut p, 0.0, 0.0, 0.0, [0.45, 0.03, 0.06], fin.rgb);
+    cube(&mut p, 0.0, 0.0, 0.0, [0.06, 0.03, 0.45], fin.rgb);
+    cyl(&mut p, 0.0, 0.03, 0.0, 0.02, h - 0.03, fin.rgb);
+    cube(&mut p, 0.0, h - 0.12, 0.0, [0.36, 0.02, 0.02], fin.rgb);
+    cube(&mut p, 0.0, h - 0.12, 0.0, [0.02, 0.02, 0.36], fin.rgb);
+    cube(&mut p, 0.12, h - 0.95, 0.0, [0.08, 0.8, 0.3], palette::fabric(rng));
+    Model::new(C::CoatRack, fin, [0.45, h, 0.45], 6.0, p)
+}
+
+/// A washing machine: body, round door, control strip.
+pub(crate) fn washing_machine(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::WashingMachine, rng);
+    let (w, h, d) = (0.6, 0.85, 0.6);
+    let mut p = Vec::new();
+    cube(&mut p, 0.0, 0.0, 0.0, [w, h, d], fin.rgb);
+    disc_z(&mut p, [0.0, h * 0.45, -d * 0.5 - 0.015], 0.19, 0.03, tone::SCREEN);
+    disc_z(&mut p, [0.0, h * 0.45, -d * 0.5 - 0.03], 0.14, 0.01, tone::GLASS);
+    cube(&mut p, 0.0, h - 0.12, -d * 0.5 - 0.005, [w - 0.04, 0.1, 0.01], shade(fin.rgb, 0.8));
+    Model::new(C::WashingMachine, fin, [w, h, d + 0.07], 65.0, p).with_top(0.05)
+}
+
+/// An upright piano: body, keyboard shelf, keys, legs.
+pub(crate) fn piano(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::Piano, rng);
+    let (w, h, d) = (1.45, r(rng, 1.1, 1.3), 0.6);
+    let mut p = Vec::new();
+    cube(&mut p, 0.0, 0.0, 0.1, [w, h, 0.4], fin.rgb);
+    cube(&mut p, 0.0, 0.7, -0.15, [w, 0.06, 0.3], fin.rgb);
+    cube(&mut p, 0.0, 0.76, -0.2, [w - 0.2, 0.02, 0.16], tone::WHITE);
+    for s in [-1.0, 1.0] {
+        cube(&mut p, s * (w * 0.5 - 0.05), 0.0, -0.2, [0.06, 0.7, 0.06], fin.rgb);
+    }
+    Model::new(C::Piano, fin, [w, h, d], 200.0, p)
+}
+
+/// A bench: seat on two solid sides.
+pub(crate) fn bench(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::Bench, rng);
+    let wood = palette::pick(C::SideTable, rng);
+    let (w, h, d) = (r(rng, 0.9, 1.3), 0.46, 0.38);
+    let mut p = Vec::new();
+    for s in [-1.0, 1.0] {
+        cube(&mut p, s * (w * 0.5 - 0.03), 0.0, 0.0, [0.05, h - 0.06, d], wood.rgb);
+    }
+    cube(&mut p, 0.0, h - 0.06, 0.0, [w, 0.06, d], fin.rgb);
+    Model::new(C::Bench, fin, [w, h, d], 12.0, p)
+}
+
+/// A stool: round seat on four legs.
+pub(crate) fn stool(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::Stool, rng);
+    let h = r(rng, 0.45, 0.7);
+    let mut p = Vec::new();
+    legs(&mut p, 0.3, 0.3, h - 0.04, 0.03, tone::METAL);
+    cyl(&mut p, 0.0, h - 0.04, 0.0, 0.17, 0.04, fin.rgb);
+    Model::new(C::Stool, fin, [0.34, h, 0.34], 3.0, p)
+}
+
+/// A trash can: bin and lid.
+pub(crate) fn trash_can(rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(C::TrashCan, rng);
+    let h = r(rng, 0.35, 0.55);
+    let mut p = Vec::new();
+    cyl(&mut p, 0.0, 0.0, 0.0, 0.14, h - 0.02, fin.rgb);
+    cyl(&mut p, 0.0, h - 0.02, 0.0, 0.15, 0.02, shade(fin.rgb, 0.7));
+    Model::new(C::TrashCan, fin, [0.3, h, 0.3], 2.0, p)
+}
+
+/// A small object that stands on furniture. The footprint is its local bounding box.
+pub(crate) fn small(class: C, rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(class, rng);
+    let c = fin.rgb;
+    let mut p = Vec::new();
+    let (size, mass) = match class {
+        C::Cup => {
+            cyl(&mut p, 0.0, 0.0, 0.0, 0.04, 0.1, c);
+            ([0.08, 0.1, 0.08], 0.2)
+        }
+        C::Mug => {
+            cyl(&mut p, -0.015, 0.0, 0.0, 0.045, 0.1, c);
+            cube(&mut p, 0.045, 0.02, 0.0, [0.03, 0.06, 0.015], c);
+            ([0.12, 0.1, 0.09], 0.3)
+        }
+        C::Book => {
+            let (w, d, t) = (r(rng, 0.13, 0.18), r(rng, 0.19, 0.25), r(rng, 0.02, 0.05));
+            cube(&mut p, 0.0, 0.0, 0.0, [w, t, d], c);
+            cube(&mut p, 0.005, 0.003, 0.0, [w - 0.005, t - 0.006, d - 0.01], tone::LINEN);
+            ([w, t, d], 0.4)
+        }
+        C::Laptop => {
+            cube(&mut p, 0.0, 0.0, 0.0, [0.33, 0.02, 0.23], c);
+            cube(&mut p, 0.0, 0.02, 0.11, [0.33, 0.22, 0.01], c);
+            cube(&mut p, 0.0, 0.03, 0.104, [0.3, 0.19, 0.003], tone::SCREEN);
+            ([0.33, 0.24, 0.24], 1.5)
+        }
+        C::Vase => {
+            let h = r(rng, 0.18, 0.32);
+            cyl(&mut p, 0.0, 0.0, 0.0, 0.07, h * 0.75, c);
+            cyl(&mut p, 0.0, h * 0.75, 0.0, 0.04, h * 0.25, c);
+            ([0.14, h, 0.14], 0.8)
+        }
+        C::Bowl => {
+            cyl(&mut p, 0.0, 0.0, 0.0, 0.05, 0.02, c);
+            cyl(&mut p, 0.0, 0.02, 0.0, 0.09, 0.05, c);
+            ([0.18, 0.07, 0.18], 0.4)
+        }
+        C::Plate => {
+            cyl(&mut p, 0.0, 0.0, 0.0, 0.12, 0.015, c);
+            ([0.24, 0.015, 0.24], 0.4)
+        }
+        C::Bottle => {
+            let h = r(rng, 0.25, 0.32);
+            cyl(&mut p, 0.0, 0.0, 0.0, 0.035, h * 0.7, c);
+            cyl(&mut p, 0.0, h * 0.7, 0.0, 0.014, h * 0.3, c);
+            ([0.07, h, 0.07], 0.8)
+        }
+        C::Clock => {
+            cube(&mut p, 0.0, 0.0, 0.0, [0.16, 0.03, 0.07], c);
+            disc_z(&mut p, [0.0, 0.1, 0.0], 0.08, 0.05, c);
+            disc_z(&mut p, [0.0, 0.1, -0.026], 0.065, 0.004, tone::WHITE);
+            ([0.16, 0.18, 0.07], 0.5)
+        }
+        C::TableLamp => {
+            let h = r(rng, 0.35, 0.5);
+            cyl(&mut p, 0.0, 0.0, 0.0, 0.08, 0.03, tone::METAL);
+            cyl(&mut p, 0.0, 0.03, 0.0, 0.012, h - 0.2, tone::METAL);
+            cyl(&mut p, 0.0, h - 0.18, 0.0, 0.12, 0.18, c);
+            ([0.24, h, 0.24], 1.5)
+        }
+        C::SmallPlant => {
+            cyl(&mut p, 0.0, 0.0, 0.0, 0.06, 0.1, c);
+            ball(&mut p, [0.0, 0.18, 0.0], 0.08, tone::LEAF);
+            ([0.16, 0.26, 0.16], 0.8)
+        }
+        C::Monitor => {
+            let w = r(rng, 0.48, 0.62);
+            cube(&mut p, 0.0, 0.0, 0.0, [0.22, 0.02, 0.16], tone::METAL);
+            cube(&mut p, 0.0, 0.02, 0.02, [0.04, 0.12, 0.03], tone::METAL);
+            cube(&mut p, 0.0, 0.1, 0.0, [w, w * 0.6, 0.03], c);
+            cube(&mut p, 0.0, 0.115, -0.016, [w - 0.03, w * 0.6 - 0.03, 0.003], tone::SCREEN);
+            ([w, 0.1 + w * 0.6, 0.16], 4.0)
+        }
+        C::Keyboard => {
+            cube(&mut p, 0.0, 0.0, 0.0, [0.44, 0.02, 0.14], c);
+            cube(&mut p, 0.0, 0.02, 0.0, [0.4, 0.008, 0.11], shade(c, 0.6));
+            ([0.44, 0.028, 0.14], 0.7)
+        }
+        C::Remote => {
+            cube(&mut p, 0.0, 0.0, 0.0, [0.05, 0.02, 0.18], c);
+            ([0.05, 0.02, 0.18], 0.15)
+        }
+        C::Toaster => {
+            cube(&mut p, 0.0, 0.0, 0.0, [0.28, 0.19, 0.17], c);
+            cube(&mut p, 0.0, 0.19, -0.035, [0.2, 0.005, 0.03], tone::SCREEN);
+            cube(&mut p, 0.0, 0.19, 0.035, [0.2, 0.005, 0.03], tone::SCREEN);
+            ([0.28, 0.195, 0.17], 1.5)
+        }
+        C::Kettle => {
+            cyl(&mut p, 0.0, 0.0, 0.0, 0.09, 0.2, c);
+            cube(&mut p, 0.09, 0.05, 0.0, [0.03, 0.13, 0.02], tone::METAL);
+            cube(&mut p, -0.1, 0.12, 0.0, [0.04, 0.02, 0.02], c);
+            ([0.24, 0.2, 0.18], 1.0)
+        }
+        C::Microwave => {
+            cube(&mut p, 0.0, 0.0, 0.0, [0.48, 0.28, 0.36], c);
+            cube(&mut p, -0.06, 0.04, -0.181, [0.3, 0.2, 0.002], tone::SCREEN);
+            ([0.48, 0.28, 0.362], 12.0)
+        }
+        C::Candle => {
+            let h = r(rng, 0.08, 0.2);
+            cyl(&mut p, 0.0, 0.0, 0.0, 0.035, h, c);
+            ([0.07, h, 0.07], 0.2)
+        }
+        C::PictureFrame => {
+            cube(&mut p, 0.0, 0.0, 0.0, [0.2, 0.26, 0.02], c);
+            cube(&mut p, 0.0, 0.03, -0.011, [0.16, 0.2, 0.002], palette::fabric(rng));
+            cube(&mut p, 0.0, 0.0, 0.05, [0.03, 0.18, 0.08], c);
+            ([0.2, 0.26, 0.12], 0.4)
+        }
+        C::Towel => {
+            cube(&mut p, 0.0, 0.0, 0.0, [0.3, 0.06, 0.2], c);
+            ([0.3, 0.06, 0.2], 0.4)
+        }
+        C::SoapDispenser => {
+            cyl(&mut p, 0.0, 0.0, 0.0, 0.035, 0.13, c);
+            cyl(&mut p, 0.0, 0.13, 0.0, 0.01, 0.04, tone::STEEL);
+            ([0.07, 0.17, 0.07], 0.3)
+        }
+        // Anything else becomes a plain box, so a caller can never get an empty model.
+        _ => {
+            cube(&mut p, 0.0, 0.0, 0.0, [0.15, 0.15, 0.15], c);
+            ([0.15, 0.15, 0.15], 0.5)
+        }
+    };
+    Model::new(class, fin, size, mass, p)
+}
+
+/// Shift the parts so that their x/z extent is centred on the origin and record the exact
+/// footprint (small objects are built by eye, this keeps their placement exact).
+fn recentre(m: &mut Model) {
+    let mut lo = Vec3::splat(f32::INFINITY);
+    let mut hi = Vec3::splat(f32::NEG_INFINITY);
+    for part in &m.parts {
+        for c in vlnverse_env::geometry::shape_corners(&part.shape) {
+            let q = part.transform.transform_point(c);
+            lo = lo.min(q);
+            hi = hi.max(q);
+        }
+    }
+    let shift = Vec3::new((lo.x + hi.x) * 0.5, 0.0, (lo.z + hi.z) * 0.5);
+    for part in &mut m.parts {
+        let p = Vec3::from_array(part.transform.position) - shift;
+        part.transform.position = p.to_array();
+    }
+    m.w = hi.x - lo.x;
+    m.h = hi.y.max(0.0);
+    m.d = hi.z - lo.z;
+}

@@ -1,0 +1,302 @@
+//! The physics world built from a [`Scene`]: static colliders for structure and static
+//! furniture, dynamic bodies for movable furniture, and the agent body. Built once per
+//! (scene, agent) and shared (`Arc`) by every environment in that scene; shapes are
+//! reference-counted so an environment's copy costs only the per-collider records.
+
+use crate::config::{AgentConfig, AgentShape};
+use crate::error::{Result, SimError};
+use rapier3d::prelude::*;
+use std::hash::{Hash, Hasher};
+use vlnverse_env::{Motion, ObjectId, Scene, SceneObject, SemanticClass, Shape};
+
+/// The mutable part of a rapier world (what an environment owns and a snapshot copies).
+#[derive(Clone)]
+pub(crate) struct World {
+    pub bodies: RigidBodySet,
+    pub colliders: ColliderSet,
+    pub broad_phase: BroadPhaseBvh,
+    pub narrow_phase: NarrowPhase,
+    pub islands: IslandManager,
+    pub impulse_joints: ImpulseJointSet,
+    pub multibody_joints: MultibodyJointSet,
+    pub soft_bodies: SoftBodySet,
+    pub ccd_solver: CCDSolver,
+}
+
+impl World {
+    fn new() -> Self {
+        World {
+            bodies: RigidBodySet::new(),
+            colliders: ColliderSet::new(),
+            broad_phase: BroadPhaseBvh::new(),
+            narrow_phase: NarrowPhase::new(),
+            islands: IslandManager::new(),
+            impulse_joints: ImpulseJointSet::new(),
+            multibody_joints: MultibodyJointSet::new(),
+            soft_bodies: SoftBodySet::new(),
+            ccd_solver: CCDSolver::new(),
+        }
+    }
+}
+
+/// A scene turned into a physics world for one agent embodiment, ready to be copied into
+/// environments (see [`crate::RapierSimulator::reset_in`]).
+pub struct PhysicsScene {
+    pub(crate) scene_id: String,
+    pub(crate) fingerprint: u64,
+    pub(crate) agent: AgentConfig,
+    pub(crate) world: World,
+    pub(crate) agent_body: RigidBodyHandle,
+    pub(crate) agent_collider: ColliderHandle,
+    pub(crate) agent_shape: SharedShape,
+    /// Height of the agent shape's centre above its base (feet).
+    pub(crate) agent_center: f32,
+    /// Horizontal scene bounds `[min_x, min_z, max_x, max_z]` (None for an empty scene).
+    pub(crate) bounds: Option<[f32; 4]>,
+    pub(crate) has_floor: bool,
+    pub(crate) dynamic_objects: Vec<(ObjectId, RigidBodyHandle)>,
+}
+
+impl std::fmt::Debug for PhysicsScene {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("PhysicsScene")
+            .field("scene_id", &self.scene_id)
+            .field("colliders", &self.world.colliders.len())
+            .field("dynamic_objects", &self.dynamic_objects.len())
+            .finish()
+    }
+}
+
+impl PhysicsScene {
+    /// Build the physics world of `scene` for an agent with embodiment `agent`.
+    pub fn build(scene: &Scene, agent: &AgentConfig) -> Result<PhysicsScene> {
+        agent.validate()?;
+        let mut w = World::new();
+        let mut dynamic_objects = Vec::new();
+        for o in &scene.objects {
+            let dynamic = o.physics.motion == Motion::Dynamic
+                && o.physics.mass.is_finite()
+                && o.physics.mass > 0.0;
+            let friction = if o.physics.friction.is_finite() && o.physics.friction >= 0.0 {
+                o.physics.friction
+            } else {
+                0.5
+            };
+            let (mut convex, meshes) = object_shapes(o, dynamic);
+            let pose = to_iso(&o.pose);
+            let user = o.id as u128;
+            if dynamic {
+                if convex.is_empty() {
+                    continue;
+                }
+                let body = w
+                    .bodies
+                    .insert(RigidBodyBuilder::dynamic().pose(pose).user_data(user));
+                let col = ColliderBuilder::compound(convex)
+                    .mass(o.physics.mass)
+                    .friction(friction)
+                    .user_data(user);
+                w.colliders.insert_with_parent(col, body, &mut w.bodies);
+                dynamic_objects.push((o.id, body));
+            } else {
+                let single = match convex.len() {
+                    0 => None,
+                    1 => convex.pop(),
+                    _ => Some((Pose::IDENTITY, SharedShape::compound(convex))),
+                };
+                if let Some((local, s)) = single {
+                    w.colliders.insert(
+                        ColliderBuilder::new(s)
+                            .position(pose * local)
+                            .friction(friction)
+                            .user_data(user),
+                    );
+                }
+                insert_meshes(&mut w, meshes, pose, friction, user);
+            }
+        }
+
+        let (agent_shape, agent_center) = agent_shape(agent);
+        let agent_body = w.bodies.insert(
+            RigidBodyBuilder::dynamic()
+                .translation(Vector::new(0.0, -1000.0, 0.0))
+                .enabled_translations(true, false, true)
+                .lock_rotations()
+                .gravity_scale(0.0)
+                .ccd_enabled(true)
+                .can_sleep(false),
+        );
+        let agent_collider = w.colliders.insert_with_parent(
+            ColliderBuilder::new(agent_shape.clone())
+                .translation(Vector::new(0.0, agent_center, 0.0))
+                .mass(agent.mass)
+                .friction(if agent.allow_sliding { 0.0 } else { 1.0 })
+                .friction_combine_rule(CoefficientCombineRule::Min)
+                .user_data(0),
+            agent_body,
+            &mut w.bodies,
+        );
+
+        // Fill the broad phase (scene queries) without advancing time.
+        let mut collisions = CollisionPipeline::new();
+        collisions.step(
+            IntegrationParameters::default().prediction_distance(),
+            &mut w.islands,
+            &mut w.broad_phase,
+            &mut w.narrow_phase,
+            &mut w.bodies,
+            &mut w.colliders,
+            &(),
+            &(),
+        );
+        // The collision pipeline consumed the "modified" marks without registering the
+        // dynamic bodies in the island manager; mark them again for the physics pipeline.
+        let movable: Vec<RigidBodyHandle> = dynamic_objects.iter().map(|(_, h)| *h).collect();
+        for h in movable.into_iter().chain([agent_body]) {
+            if let Some(b) = w.bodies.get_mut(h) {
+                b.wake_up(true);
+            }
+        }
+
+        let b = scene.bounds();
+        let bounds = (!b.is_empty()).then(|| [b.min[0], b.min[2], b.max[0], b.max[2]]);
+        Ok(PhysicsScene {
+            scene_id: scene.id.clone(),
+            fingerprint: fingerprint(scene),
+            agent: agent.clone(),
+            world: w,
+            agent_body,
+            agent_collider,
+            agent_shape,
+            agent_center,
+            bounds,
+            has_floor: scene.objects.iter().any(|o| o.class == SemanticClass::Floor),
+            dynamic_objects,
+        })
+    }
+
+    /// Id of the scene this world was built from.
+    pub fn scene_id(&self) -> &str {
+        &self.scene_id
+    }
+
+    /// Number of colliders (agent included).
+    pub fn collider_count(&self) -> usize {
+        self.world.colliders.len()
+    }
+
+    /// Ids of the objects simulated as dynamic bodies.
+    pub fn dynamic_object_ids(&self) -> Vec<ObjectId> {
+        self.dynamic_objects.iter().map(|(id, _)| *id).collect()
+    }
+}
+
+fn insert_meshes(w: &mut World, meshes: Vec<(Pose, SharedShape)>, pose: Pose, friction: f32, user: u128) {
+    for (local, s) in meshes {
+        w.colliders.insert(
+            ColliderBuilder::new(s)
+                .position(pose * local)
+                .friction(friction)
+                .user_data(user),
+        );
+    }
+}
+
+/// Convex parts (for a compound) and triangle-mesh parts (static objects only; dynamic
+/// objects get the convex hull of a mesh instead).
+fn object_shapes(o: &SceneObject, dynamic: bool) -> (Vec<(Pose, SharedShape)>, Vec<(Pose, SharedShape)>) {
+    let mut convex = Vec::new();
+    let mut meshes = Vec::new();
+    for (i, part) in o.parts.iter().enumerate() {
+        let local = to_iso(&part.transform);
+        let ok = |v: f32| v.is_finite() && v > 0.0;
+        let shape = match &part.shape {
+            Shape::Cuboid { half_extents: h } if h.iter().all(|v| ok(*v)) => {
+                Some(SharedShape::cuboid(h[0], h[1], h[2]))
+            }
+            Shape::Cylinder {
+                radius,
+                half_height,
+            } if ok(*radius) && ok(*half_height) => Some(SharedShape::cylinder(*half_height, *radius)),
+            Shape::Sphere { radius } if ok(*radius) => Some(SharedShape::ball(*radius)),
+            Shape::Mesh(m) if !m.positions.is_empty() && !m.indices.is_empty() => {
+                let pts: Vec<Vector> = m.positions.iter().map(|p| Vector::from_array(*p)).collect();
+                if dynamic {
+                    SharedShape::convex_hull(&pts)
+                } else {
+                    match SharedShape::trimesh(pts, m.indices.clone()) {
+                        Ok(s) => {
+                            meshes.push((local, s));
+                            continue;
+                        }
+                        Err(e) => {
+                            tracing::warn!(object = o.id, part = i, "mesh part skipped: {e}");
+                            None
+                        }
+                    }
+                }
+            }
+            _ => None,
+        };
+        match shape {
+            Some(s) => convex.push((local, s)),
+            None => tracing::warn!(object = o.id, part = i, "degenerate part skipped by physics"),
+        }
+    }
+    (convex, meshes)
+}
+
+/// The agent's collision shape and the height of its centre above the feet.
+pub(crate) fn agent_shape(agent: &AgentConfig) -> (SharedShape, f32) {
+    let h = agent.shape.height();
+    let center = agent.ground_clearance + 0.5 * (h - agent.ground_clearance);
+    let half = 0.5 * (h - agent.ground_clearance);
+    let s = match agent.shape {
+        AgentShape::Cylinder { radius, .. } => SharedShape::cylinder(half, radius),
+        AgentShape::Capsule { radius, .. } => {
+            SharedShape::capsule_y((half - radius).max(0.0), radius.min(half))
+        }
+        AgentShape::Box { width, length, .. } => SharedShape::cuboid(0.5 * width, half, 0.5 * length),
+    };
+    (s, center)
+}
+
+/// Scene pose to rapier pose.
+pub(crate) fn to_iso(p: &vlnverse_env::Pose) -> Pose {
+    Pose::from_parts(p.translation(), p.quat().normalize())
+}
+
+/// A cheap content hash deciding whether a cached physics world still matches a scene.
+pub(crate) fn fingerprint(scene: &Scene) -> u64 {
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    scene.id.hash(&mut h);
+    scene.objects.len().hash(&mut h);
+    for o in &scene.objects {
+        o.id.hash(&mut h);
+        for v in o.pose.position.iter().chain(&o.pose.rotation) {
+            v.to_bits().hash(&mut h);
+        }
+        for v in o.bbox.min.iter().chain(&o.bbox.max) {
+            v.to_bits().hash(&mut h);
+        }
+        o.physics.mass.to_bits().hash(&mut h);
+        o.physics.friction.to_bits().hash(&mut h);
+        (o.physics.motion == Motion::Dynamic).hash(&mut h);
+        o.parts.len().hash(&mut h);
+    }
+    h.finish()
+}
+
+/// Check that an agent of this embodiment can be placed in the world (used by tests).
+pub(crate) fn check_agent(t: &PhysicsScene, agent: &AgentConfig) -> Result<()> {
+    if &t.agent != agent {
+        return Err(SimError::InvalidScene {
+            scene: t.scene_id.clone(),
+            message: format!(
+                "physics world was built for agent `{}`, not `{}`",
+                t.agent.name, agent.name
+            ),
+        });
+    }
+    Ok(())
+}

@@ -1,0 +1,168 @@
+//! Split files: `DIR/<task>/<split>/<split>.json.gz`, gzip-compressed `{"episodes": [...]}`.
+//!
+//! Writing is deterministic (fixed compression level, zero timestamp and unknown OS in the gzip
+//! header, struct field order, shortest float formatting) and atomic (a temporary file in the same
+//! folder, then a rename), so the same episodes always give the same bytes and a reader never sees
+//! half a file.
+
+use std::io::{Read, Write};
+use std::path::{Path, PathBuf};
+
+use flate2::{read::GzDecoder, Compression, GzBuilder};
+use serde::Deserialize;
+
+use crate::episode::{Dataset, Episode, Split, Task};
+use crate::error::{Result, TaskError};
+
+/// Compression level of split files (fixed so bytes do not depend on flate2 defaults).
+pub const GZIP_LEVEL: u32 = 6;
+
+/// Path of a split file: `dir/<task>/<split>/<split>.json.gz`.
+pub fn split_path(dir: &Path, task: Task, split: Split) -> PathBuf {
+    dir.join(task.name())
+        .join(split.name())
+        .join(format!("{}.json.gz", split.name()))
+}
+
+/// Serialize episodes to the gzip bytes of a split file.
+pub fn to_gzip_bytes(episodes: &[Episode]) -> Result<Vec<u8>> {
+    #[derive(serde::Serialize)]
+    struct Borrowed<'a> {
+        episodes: &'a [Episode],
+    }
+    let json = serde_json::to_vec(&Borrowed { episodes })
+        .map_err(|e| TaskError::invalid("episodes", "<episodes>", e.to_string()))?;
+    gzip(&json)
+}
+
+/// Gzip `data` deterministically (no file name, mtime 0, OS byte 255 = unknown).
+pub fn gzip(data: &[u8]) -> Result<Vec<u8>> {
+    let mut enc = GzBuilder::new()
+        .mtime(0)
+        .operating_system(255)
+        .write(Vec::with_capacity(data.len() / 4 + 64), Compression::new(GZIP_LEVEL));
+    enc.write_all(data)
+        .and_then(|_| enc.finish())
+        .map_err(|e| TaskError::io("<memory>", e))
+}
+
+/// Write `bytes` to `path` atomically: a temporary file next to it, then a rename.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    let dir = path.parent().unwrap_or(Path::new("."));
+    std::fs::create_dir_all(dir).map_err(|e| TaskError::io(dir, e))?;
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let tmp = dir.join(format!(".{name}.tmp{}", std::process::id()));
+    std::fs::write(&tmp, bytes).map_err(|e| TaskError::io(&tmp, e))?;
+    std::fs::rename(&tmp, path).map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        TaskError::io(path, e)
+    })
+}
+
+/// Write the split file of `task`/`split` under `dir`; returns its path.
+pub fn write_split(dir: &Path, task: Task, split: Split, episodes: &[Episode]) -> Result<PathBuf> {
+    let path = split_path(dir, task, split);
+    write_atomic(&path, &to_gzip_bytes(episodes)?)?;
+    Ok(path)
+}
+
+/// Read the split file of `task`/`split` under `dir`.
+pub fn read_split(dir: &Path, task: Task, split: Split) -> Result<Vec<Episode>> {
+    read_file(&split_path(dir, task, split))
+}
+
+/// Read a split file (`.json.gz`, or plain `.json`), with errors naming the file, the episode
+/// index and the field.
+pub fn read_file(path: &Path) -> Result<Vec<Episode>> {
+    let raw = std::fs::read(path).map_err(|e| TaskError::io(path, e))?;
+    let json = if raw.starts_with(&[0x1f, 0x8b]) {
+        let mut out = Vec::with_capacity(raw.len() * 6);
+        GzDecoder::new(&raw[..])
+            .read_to_end(&mut out)
+            .map_err(|e| TaskError::parse(path, "gzip stream", e))?;
+        out
+    } else {
+        raw
+    };
+    from_json_bytes(path, &json)
+}
+
+/// Parse the JSON of a split file; `path` only names the source in errors.
+pub fn from_json_bytes(path: &Path, json: &[u8]) -> Result<Vec<Episode>> {
+    match serde_json::from_slice::<Dataset>(json) {
+        Ok(d) => Ok(d.episodes),
+        // Slow path only on failure: find which episode and field is wrong.
+        Err(first) => Err(locate_error(path, json, first)),
+    }
+}
+
+fn locate_error(path: &Path, json: &[u8], first: serde_json::Error) -> TaskError {
+    let value: serde_json::Value = match serde_json::from_slice(json) {
+        Ok(v) => v,
+        Err(e) => return TaskError::parse(path, format!("line {}", e.line()), e),
+    };
+    let Some(episodes) = value.get("episodes") else {
+        return TaskError::parse(path, "top level", "missing field `episodes`");
+    };
+    let Some(list) = episodes.as_array() else {
+        return TaskError::parse(path, "episodes", "expected a list of episodes");
+    };
+    for (i, ep) in list.iter().enumerate() {
+        if let Err(e) = Episode::deserialize_value(ep) {
+            let id = ep
+                .get("episode_id")
+                .map(|v| format!(" (episode_id {v})"))
+                .unwrap_or_default();
+            return TaskError::parse(path, format!("episodes[{i}]{id}"), e);
+        }
+    }
+    TaskError::parse(path, format!("line {}", first.line()), first)
+}
+
+impl Episode {
+    /// Deserialize one episode from a JSON value, naming the offending field on error
+    /// (`instruction.style: unknown variant ...`).
+    pub fn deserialize_value(value: &serde_json::Value) -> std::result::Result<Episode, String> {
+        match Episode::deserialize(value) {
+            Ok(ep) => Ok(ep),
+            Err(e) => {
+                let Some(obj) = value.as_object() else {
+                    return Err(format!("expected an object: {e}"));
+                };
+                Err(find_field(obj, &e.to_string()).unwrap_or_else(|| e.to_string()))
+            }
+        }
+    }
+}
+
+/// Walk the known nested keys to find the one whose value does not parse.
+fn find_field(obj: &serde_json::Map<String, serde_json::Value>, msg: &str) -> Option<String> {
+    use crate::episode::{EpisodeInfo, Goal, Instruction};
+    fn check<T: serde::de::DeserializeOwned>(v: &serde_json::Value) -> Option<String> {
+        T::deserialize(v).err().map(|e| e.to_string())
+    }
+    let checks: [(&str, fn(&serde_json::Value) -> Option<String>); 11] = [
+        ("episode_id", check::<u64>),
+        ("trajectory_id", check::<u64>),
+        ("scene_id", check::<String>),
+        ("start_position", check::<[f32; 3]>),
+        ("start_rotation", check::<[f32; 4]>),
+        ("goals", check::<Vec<Goal>>),
+        ("instruction", check::<Instruction>),
+        ("reference_path", check::<Vec<[f32; 3]>>),
+        ("info", check::<EpisodeInfo>),
+        ("task", check::<Task>),
+        ("sub_goals", check::<Vec<Goal>>),
+    ];
+    for (key, f) in checks {
+        if let Some(v) = obj.get(key) {
+            if let Some(e) = f(v) {
+                return Some(format!("field `{key}`: {e}"));
+            }
+        }
+    }
+    Some(msg.to_string())
+}

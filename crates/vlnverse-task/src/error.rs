@@ -1,0 +1,76 @@
+//! Errors of the task layer. Every variant names the file (when there is one), the place in it
+//! (line, episode index, field) and the offending value, so a user can fix the input.
+
+use std::path::PathBuf;
+
+/// Result alias of the task layer.
+pub type Result<T, E = TaskError> = std::result::Result<T, E>;
+
+/// What went wrong while reading, writing or scoring task data.
+#[derive(Debug, thiserror::Error)]
+pub enum TaskError {
+    /// A file could not be read or written.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The OS error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// A file exists but its content is not what the format says.
+    #[error("{path}: {location}: {message}")]
+    Parse {
+        /// The file.
+        path: PathBuf,
+        /// Where in the file: `line 12`, `episodes[3]`, `line 4, field \`positions\``.
+        location: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// A value is out of range or inconsistent.
+    #[error("invalid `{field}` = {value}: {reason}")]
+    Invalid {
+        /// Dotted field name.
+        field: String,
+        /// The offending value as written.
+        value: String,
+        /// What is allowed.
+        reason: String,
+    },
+    /// An error of the environment layer (scene, map, geodesic).
+    #[error(transparent)]
+    Env(#[from] vlnverse_env::EnvError),
+}
+
+impl TaskError {
+    /// Shorthand for [`TaskError::Io`].
+    pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+        TaskError::Io {
+            path: path.into(),
+            source,
+        }
+    }
+
+    /// Shorthand for [`TaskError::Parse`].
+    pub fn parse(
+        path: impl Into<PathBuf>,
+        location: impl Into<String>,
+        message: impl ToString,
+    ) -> Self {
+        TaskError::Parse {
+            path: path.into(),
+            location: location.into(),
+            message: message.to_string(),
+        }
+    }
+
+    /// Shorthand for [`TaskError::Invalid`].
+    pub fn invalid(field: impl Into<String>, value: impl ToString, reason: impl Into<String>) -> Self {
+        TaskError::Invalid {
+            field: field.into(),
+            value: value.to_string(),
+            reason: reason.into(),
+        }
+    }
+}

@@ -1,0 +1,221 @@
+//! Result files of a run (`cargo xtask score` and `cargo xtask evaluate` write the same ones):
+//! - `summary.json`: [`RunSummary`], the [`Summary`] keys at top level (`episodes, tl, ne, sr,
+//!   osr, spl, ndtw, sdtw, cr`, `sr_1..sr_3, sr_all` for long-horizon) plus method, setting,
+//!   task, split and a per-style breakdown;
+//! - `episodes.csv`: one row per episode, every metric ([`episodes_csv`]);
+//! - `report.md`: a markdown table laid out like the paper's tables ([`markdown_table`]).
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+
+use crate::dataset::write_atomic;
+use crate::episode::{Split, Task};
+use crate::error::{Result, TaskError};
+use crate::metrics::{aggregate, aggregate_by, EpisodeMetrics, Summary};
+
+/// Content of `summary.json`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RunSummary {
+    /// Agent or method name (a row label of the table).
+    pub method: String,
+    /// Evaluation setting (`strict`, `telhop`, `lenient`), when known.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub setting: Option<String>,
+    /// Task of the split.
+    pub task: Task,
+    /// Split.
+    pub split: Split,
+    /// The metrics over all episodes (keys at top level).
+    #[serde(flatten)]
+    pub summary: Summary,
+    /// The same per instruction style (coarse-grained tasks).
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub by_style: BTreeMap<String, Summary>,
+}
+
+impl RunSummary {
+    /// Aggregate episode metrics of one task and split.
+    pub fn new(
+        method: &str,
+        setting: Option<&str>,
+        task: Task,
+        split: Split,
+        ms: &[EpisodeMetrics],
+    ) -> Self {
+        RunSummary {
+            method: method.to_string(),
+            setting: setting.map(str::to_string),
+            task,
+            split,
+            summary: aggregate(ms),
+            by_style: aggregate_by(ms, |m| m.style.map(|s| s.to_string())),
+        }
+    }
+}
+
+/// One row of a results table.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReportRow {
+    /// Method / agent name.
+    pub method: String,
+    /// Setting (Strict, Tel-Hop, ...); `-` when empty.
+    pub setting: Option<String>,
+    /// The metrics.
+    pub summary: Summary,
+}
+
+/// Header of `episodes.csv`.
+pub const CSV_HEADER: &str = "episode_id,trajectory_id,scene_id,task,split,style,geodesic_distance,tl,ne,oracle_ne,success,oracle_success,spl,ndtw,sdtw,collisions,steps,cr,stuck,unreachable,sub_goals,sub_goals_reached";
+
+fn csv_field(s: &str) -> String {
+    if s.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}
+
+fn opt<T: ToString>(v: Option<T>) -> String {
+    v.map(|v| v.to_string()).unwrap_or_default()
+}
+
+/// `episodes.csv`: the header and one row per episode (empty cell = not available, e.g. NE of
+/// an unreachable goal; booleans as 0/1).
+pub fn episodes_csv(ms: &[EpisodeMetrics]) -> String {
+    let mut s = String::with_capacity(128 * (ms.len() + 1));
+    s.push_str(CSV_HEADER);
+    s.push('\n');
+    let b = |x: bool| if x { "1" } else { "0" };
+    for m in ms {
+        let _ = writeln!(
+            s,
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+            m.episode_id,
+            m.trajectory_id,
+            csv_field(&m.scene_id),
+            m.task,
+            opt(m.split),
+            opt(m.style),
+            m.geodesic_distance,
+            m.tl,
+            opt(m.ne),
+            opt(m.oracle_ne),
+            b(m.success),
+            b(m.oracle_success),
+            m.spl,
+            m.ndtw,
+            m.sdtw,
+            m.collisions,
+            m.steps,
+            m.cr,
+            opt(m.stuck.map(|x| b(x))),
+            b(m.unreachable),
+            m.sub_goals,
+            m.sub_goals_reached,
+        );
+    }
+    s
+}
+
+/// A markdown table laid out like the paper's: rows = method / setting, columns TL NE SR OSR SPL
+/// nDTW CR (and SR1 SR2 SR3 SR-All when a row has long-horizon numbers); rates in percent.
+pub fn markdown_table(rows: &[ReportRow]) -> String {
+    let lh = rows.iter().any(|r| r.summary.sr_1.is_some());
+    let mut s = String::from("| Method | Setting | TL | NE↓ | SR↑ | OSR↑ | SPL↑ | nDTW↑ | CR↓ |");
+    let mut rule = String::from("|---|---|---:|---:|---:|---:|---:|---:|---:|");
+    if lh {
+        s.push_str(" SR1↑ | SR2↑ | SR3↑ | SR-All↑ |");
+        rule.push_str("---:|---:|---:|---:|");
+    }
+    s.push('\n');
+    s.push_str(&rule);
+    s.push('\n');
+    let pct = |v: f64| format!("{:.2}", 100.0 * v);
+    let pct_opt = |v: Option<f64>| v.map_or_else(|| "-".to_string(), pct);
+    for r in rows {
+        let m = &r.summary;
+        let _ = write!(
+            s,
+            "| {} | {} | {:.2} | {} | {} | {} | {} | {} | {} |",
+            r.method.replace('|', "\\|"),
+            r.setting.as_deref().unwrap_or("-").replace('|', "\\|"),
+            m.tl,
+            m.ne.map_or_else(|| "-".to_string(), |v| format!("{v:.2}")),
+            pct(m.sr),
+            pct(m.osr),
+            pct(m.spl),
+            pct(m.ndtw),
+            pct(m.cr),
+        );
+        if lh {
+            let _ = write!(
+                s,
+                " {} | {} | {} | {} |",
+                pct_opt(m.sr_1),
+                pct_opt(m.sr_2),
+                pct_opt(m.sr_3),
+                pct_opt(m.sr_all)
+            );
+        }
+        s.push('\n');
+    }
+    s
+}
+
+/// `report.md` of one run: the main table, a per-style table when there are styles, and the
+/// counts a reader needs to trust the means.
+pub fn markdown_report(run: &RunSummary) -> String {
+    let mut s = format!(
+        "# {} on {} / {}\n\n",
+        run.method,
+        run.task,
+        run.split
+    );
+    s.push_str(&markdown_table(&[ReportRow {
+        method: run.method.clone(),
+        setting: run.setting.clone(),
+        summary: run.summary.clone(),
+    }]));
+    if !run.by_style.is_empty() {
+        s.push_str("\nPer instruction style:\n\n");
+        let rows: Vec<ReportRow> = run
+            .by_style
+            .iter()
+            .map(|(style, sum)| ReportRow {
+                method: run.method.clone(),
+                setting: Some(style.clone()),
+                summary: sum.clone(),
+            })
+            .collect();
+        s.push_str(&markdown_table(&rows));
+    }
+    let m = &run.summary;
+    let _ = write!(
+        s,
+        "\n{} episodes; {} with the goal unreachable from the final position (left out of NE); \
+         mean steps {:.1}; SDTW {:.2}%; oracle NE {}.\n\
+         Rates in percent; TL and NE in metres; CR = noticeable collisions per action.\n",
+        m.episodes,
+        m.unreachable,
+        m.steps,
+        100.0 * m.sdtw,
+        m.oracle_ne.map_or_else(|| "-".to_string(), |v| format!("{v:.2} m")),
+    );
+    s
+}
+
+/// Write `summary.json`, `episodes.csv` and `report.md` into `dir` (created if needed), each
+/// atomically.
+pub fn write_run(dir: &Path, run: &RunSummary, ms: &[EpisodeMetrics]) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|e| TaskError::io(dir, e))?;
+    let mut json = serde_json::to_string_pretty(run)
+        .map_err(|e| TaskError::invalid("summary", &run.method, e.to_string()))?;
+    json.push('\n');
+    write_atomic(&dir.join("summary.json"), json.as_bytes())?;
+    write_atomic(&dir.join("episodes.csv"), episodes_csv(ms).as_bytes())?;
+    write_atomic(&dir.join("report.md"), markdown_report(run).as_bytes())?;
+    Ok(())
+}

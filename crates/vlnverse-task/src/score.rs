@@ -1,0 +1,140 @@
+//! Scoring a split on the scenes' navigable maps: geodesic distances come from one
+//! [`DistanceField`] per goal, built on `DIR/scenes/<scene_id>/navigable.yaml`.
+//!
+//! Episodes are processed scene by scene, in chunks of at most [`MAX_FIELDS_PER_CHUNK`] distinct
+//! goals, so memory stays bounded however large the split is; fields are built and episodes
+//! scored in parallel (rayon). Results come back in input order.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use glam::Vec2;
+use rayon::prelude::*;
+use vlnverse_env::geodesic::DistanceField;
+use vlnverse_env::occupancy::GridMap;
+
+use crate::episode::Episode;
+use crate::error::{Result, TaskError};
+use crate::metrics::{score_episode, EpisodeMetrics, GoalDistance, GoalDistances, MetricsConfig, Nearest};
+use crate::trajectory::Trajectory;
+
+/// Distinct goals whose distance fields are alive at once.
+pub const MAX_FIELDS_PER_CHUNK: usize = 32;
+
+/// `dataset_dir/scenes/<scene_id>/navigable.yaml`.
+pub fn navigable_map_path(dataset_dir: &Path, scene_id: &str) -> PathBuf {
+    dataset_dir
+        .join("scenes")
+        .join(scene_id)
+        .join("navigable.yaml")
+}
+
+/// A goal's floor point `(x, z)` as exact bits, to share fields between episodes.
+type GoalKey = (u32, u32);
+
+fn key(p: [f32; 3]) -> GoalKey {
+    (p[0].to_bits(), p[2].to_bits())
+}
+
+fn episode_keys(ep: &Episode) -> impl Iterator<Item = GoalKey> + '_ {
+    ep.goals.iter().chain(&ep.sub_goals).map(|g| key(g.position))
+}
+
+/// Score `episodes[i]` with `trajectories[i]` using geodesic distances on each scene's navigable
+/// map under `dataset_dir`. `on_done(n)` is called after each chunk of `n` scored episodes
+/// (for progress bars).
+pub fn score_on_maps(
+    dataset_dir: &Path,
+    episodes: &[Episode],
+    trajectories: &[Trajectory],
+    cfg: &MetricsConfig,
+    on_done: &(dyn Fn(usize) + Sync),
+) -> Result<Vec<EpisodeMetrics>> {
+    if episodes.len() != trajectories.len() {
+        return Err(TaskError::invalid(
+            "trajectories",
+            trajectories.len(),
+            format!("expected one per episode ({})", episodes.len()),
+        ));
+    }
+    let mut by_scene: BTreeMap<&str, Vec<usize>> = BTreeMap::new();
+    for (i, ep) in episodes.iter().enumerate() {
+        by_scene.entry(ep.scene_id.as_str()).or_default().push(i);
+    }
+    let mut out: Vec<Option<EpisodeMetrics>> = vec![None; episodes.len()];
+    for (scene, mut idxs) in by_scene {
+        let path = navigable_map_path(dataset_dir, scene);
+        let map = GridMap::load_ros(&path)?;
+        // Episodes sharing goals (the three coarse styles of a path) end up in one chunk.
+        idxs.sort_by_key(|&i| (episode_keys(&episodes[i]).next(), i));
+        for chunk in chunks(episodes, &idxs) {
+            let keys: BTreeSet<GoalKey> = chunk
+                .iter()
+                .flat_map(|&i| episode_keys(&episodes[i]))
+                .collect();
+            let fields: BTreeMap<GoalKey, Arc<DistanceField>> = keys
+                .into_par_iter()
+                .map(|k| {
+                    let goal = Vec2::new(f32::from_bits(k.0), f32::from_bits(k.1));
+                    DistanceField::new(&map, goal).map(|f| (k, Arc::new(f)))
+                })
+                .collect::<std::result::Result<_, _>>()?;
+            let scored: Vec<(usize, EpisodeMetrics)> = chunk
+                .par_iter()
+                .map(|&i| {
+                    let d = distances(&episodes[i], &fields);
+                    (i, score_episode(&episodes[i], &trajectories[i], &d, cfg))
+                })
+                .collect();
+            for (i, m) in scored {
+                out[i] = Some(m);
+            }
+            on_done(chunk.len());
+        }
+    }
+    Ok(out.into_iter().flatten().collect())
+}
+
+/// Split a scene's episodes into runs with at most [`MAX_FIELDS_PER_CHUNK`] distinct goals.
+fn chunks(episodes: &[Episode], idxs: &[usize]) -> Vec<Vec<usize>> {
+    let mut out: Vec<Vec<usize>> = Vec::new();
+    let mut cur: Vec<usize> = Vec::new();
+    let mut seen: BTreeSet<GoalKey> = BTreeSet::new();
+    for &i in idxs {
+        let new: BTreeSet<GoalKey> = episode_keys(&episodes[i])
+            .filter(|k| !seen.contains(k))
+            .collect();
+        if !cur.is_empty() && seen.len() + new.len() > MAX_FIELDS_PER_CHUNK {
+            out.push(std::mem::take(&mut cur));
+            seen.clear();
+            seen.extend(episode_keys(&episodes[i]));
+        } else {
+            seen.extend(new);
+        }
+        cur.push(i);
+    }
+    if !cur.is_empty() {
+        out.push(cur);
+    }
+    out
+}
+
+fn distances(ep: &Episode, fields: &BTreeMap<GoalKey, Arc<DistanceField>>) -> GoalDistances {
+    let field = |p: [f32; 3]| -> Arc<dyn GoalDistance> {
+        // Every key of the chunk has a field; a missing one would be a bug, not user input.
+        fields
+            .get(&key(p))
+            .map(|f| f.clone() as Arc<dyn GoalDistance>)
+            .unwrap_or_else(|| Arc::new(crate::metrics::Euclidean(p)))
+    };
+    let goal = if ep.goals.len() == 1 {
+        field(ep.goals[0].position)
+    } else {
+        Arc::new(Nearest(ep.goals.iter().map(|g| field(g.position)).collect()))
+    };
+    GoalDistances {
+        goal,
+        sub_goals: ep.sub_goals.iter().map(|g| field(g.position)).collect(),
+    }
+}
