@@ -164,15 +164,25 @@ mod tests {
         assert_eq!(summary["sr"], 1.0);
         assert_eq!(summary["method"], "robot");
         let report = std::fs::read_to_string(out.join("report.md")).unwrap();
-        assert!(report.contains("| robot | - | 2.00 | 0.00 | 100.00 |"), "{report}");
+        assert!(
+            report.contains("| robot | - | 2.00 | 0.00 | 100.00 |"),
+            "{report}"
+        );
 
         let bad = dir.path().join("bad.jsonl");
-        std::fs::write(&bad, "{\"episode_id\": 5, \"positions\": 3, \"stopped\": true}\n").unwrap();
+        std::fs::write(
+            &bad,
+            "{\"episode_id\": 5, \"positions\": 3, \"stopped\": true}\n",
+        )
+        .unwrap();
         let err = format!("{:#}", run(args(bad, out.clone())).unwrap_err());
         assert!(err.contains("bad.jsonl") && err.contains("line 1"), "{err}");
         let unknown = dir.path().join("unknown.jsonl");
-        std::fs::write(&unknown, "{\"episode_id\": 9, \"positions\": [], \"stopped\": true}\n")
-            .unwrap();
+        std::fs::write(
+            &unknown,
+            "{\"episode_id\": 9, \"positions\": [], \"stopped\": true}\n",
+        )
+        .unwrap();
         let err = format!("{:#}", run(args(unknown, out)).unwrap_err());
         assert!(err.contains("9") && err.contains("no episode"), "{err}");
     }

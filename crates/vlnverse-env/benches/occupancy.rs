@@ -5,7 +5,7 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use glam::{Mat4, Vec3};
 use std::hint::black_box;
 use std::path::Path;
-use vlnverse_env::occupancy::{build_maps, synthetic::grid_home, OccupancyConfig};
+use vlnverse_env::occupancy::{build_maps, dilate, keep_largest_island, synthetic::grid_home, OccupancyConfig};
 use vlnverse_env::{
     Aabb, MeshData, Motion, Part, Physics, Pose, Scene, SceneObject, SemanticClass, Shape,
     SCENE_FORMAT_VERSION,
@@ -84,6 +84,18 @@ fn bench(c: &mut Criterion) {
     let home = grid_home(4, 4, 5.0, 7);
     c.bench_function("build_maps/grid_home_20x20m_5cm", |b| {
         b.iter(|| black_box(build_maps(black_box(&home), &cfg).expect("maps")))
+    });
+    // Stages, to see where the time goes.
+    let maps = build_maps(&home, &cfg).expect("maps");
+    c.bench_function("stage/dilate_grid_home", |b| {
+        b.iter(|| black_box(dilate(black_box(&maps.occupancy), cfg.agent_radius)))
+    });
+    let dilated = dilate(&maps.occupancy, cfg.agent_radius);
+    c.bench_function("stage/largest_island_grid_home", |b| {
+        b.iter(|| {
+            let mut m = dilated.clone();
+            black_box(keep_largest_island(&mut m))
+        })
     });
     let aws = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../../shared/scenes/aws_small_house/aws_small_house_yup.glb");

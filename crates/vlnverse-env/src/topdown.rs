@@ -153,8 +153,8 @@ fn blend(img: &mut RgbImage, x: i64, y: i64, color: [u8; 3], alpha: f32) {
         return;
     }
     let p = img.get_pixel_mut(x as u32, y as u32);
-    for i in 0..3 {
-        p.0[i] = (p.0[i] as f32 * (1.0 - alpha) + color[i] as f32 * alpha).round() as u8;
+    for (c, t) in p.0.iter_mut().zip(color) {
+        *c = (*c as f32 * (1.0 - alpha) + t as f32 * alpha).round() as u8;
     }
 }
 

@@ -26,8 +26,8 @@ fn glb_reloads_with_gltf_crate_with_every_object_node_and_extras() {
         assert_eq!(node.name(), Some(o.name.as_str()));
         let (t, r, s) = node.transform().decomposed();
         assert_eq!(t, o.pose.position);
-        for i in 0..4 {
-            assert!((r[i] - o.pose.rotation[i]).abs() < 1e-6);
+        for (a, b) in r.iter().zip(o.pose.rotation) {
+            assert!((a - b).abs() < 1e-6);
         }
         assert_eq!(s, [1.0; 3]);
         let extras: serde_json::Value =
@@ -57,8 +57,8 @@ fn glb_reloads_with_gltf_crate_with_every_object_node_and_extras() {
         let bb = p.bounding_box();
         let r = p.reader(|_| Some(&blob[..]));
         for v in r.read_positions().unwrap() {
-            for i in 0..3 {
-                assert!(v[i] >= bb.min[i] && v[i] <= bb.max[i]);
+            for (i, x) in v.iter().enumerate() {
+                assert!(*x >= bb.min[i] && *x <= bb.max[i]);
             }
             world.extend(table.pose.transform_point(glam::Vec3::from_array(v)));
         }

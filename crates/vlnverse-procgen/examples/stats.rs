@@ -27,6 +27,22 @@ fn main() -> Result<(), vlnverse_env::EnvError> {
         areas.push(s.rooms.iter().map(|r| r.area()).sum::<f32>());
         items.push(s.items().count());
         tris.push(s.triangle_count());
+        for r in &s.rooms {
+            use vlnverse_env::{RoomType as R, SemanticClass as C};
+            let key = match r.kind {
+                R::Bedroom => C::Bed,
+                R::Bathroom => C::Toilet,
+                R::Kitchen => C::Stove,
+                R::LivingRoom => C::Sofa,
+                R::DiningRoom => C::DiningTable,
+                R::Office => C::Desk,
+                R::LaundryRoom => C::WashingMachine,
+                _ => continue,
+            };
+            if !s.items().any(|o| o.room == Some(r.id) && o.class == key) {
+                println!("{} {} lacks {}", s.id, r.name, key);
+            }
+        }
         for o in s.items() {
             *classes.entry(o.class.name()).or_insert(0) += 1;
         }

@@ -251,6 +251,7 @@ fn hub_weight(k: RoomType) -> f32 {
         RoomType::DiningRoom => 2.0,
         RoomType::Kitchen => 1.2,
         RoomType::Bathroom | RoomType::LaundryRoom | RoomType::Closet => 0.03,
+        RoomType::Bedroom => 0.15,
         _ => 0.5,
     }
 }
@@ -386,13 +387,19 @@ pub(crate) fn generate(cfg: &ProcgenConfig, rng: &mut ChaCha8Rng) -> Option<Plan
         openings.push(make_opening(cfg, &rooms, &shared[i], rng));
     }
     for (i, s) in shared.iter().enumerate() {
-        let private_only = matches!(
-            rooms[s.a].kind,
-            RoomType::Bathroom | RoomType::LaundryRoom | RoomType::Closet
-        ) || matches!(
-            rooms[s.b].kind,
-            RoomType::Bathroom | RoomType::LaundryRoom | RoomType::Closet
-        );
+        // Extra doors only between rooms people walk through, so private rooms keep their
+        // walls for furniture.
+        let walk_through = |k: RoomType| {
+            matches!(
+                k,
+                RoomType::LivingRoom
+                    | RoomType::Kitchen
+                    | RoomType::DiningRoom
+                    | RoomType::Hallway
+                    | RoomType::Office
+            )
+        };
+        let private_only = !walk_through(rooms[s.a].kind) || !walk_through(rooms[s.b].kind);
         if !used[i]
             && !private_only
             && rng.random_bool(cfg.doors.extra_door_probability as f64)

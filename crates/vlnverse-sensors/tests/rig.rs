@@ -87,7 +87,7 @@ fn normalised_depth_is_depth_over_far() {
         assert!((x.min(4.0) / 4.0 - y).abs() < 1e-5, "{x} {y}");
     }
     assert!(
-        b.depth.iter().any(|d| *d == 1.0),
+        b.depth.contains(&1.0),
         "something beyond 4 m is clipped"
     );
 }

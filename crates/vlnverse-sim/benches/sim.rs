@@ -30,7 +30,10 @@ fn starts(scene: &Scene, sim: &mut RapierSimulator, n: usize) -> Vec<Pose> {
         );
         if scene.room_at(x, z).is_some() && sim.is_free(x, z) {
             let yaw = rng.random_range(-3.1..3.1);
-            out.push(Pose::from_yaw(glam::Vec3::new(x, scene.floor_height, z), yaw));
+            out.push(Pose::from_yaw(
+                glam::Vec3::new(x, scene.floor_height, z),
+                yaw,
+            ));
         }
     }
     out

@@ -59,7 +59,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         physics.collider_count()
     );
     println!("shared physics world:            {:8.3} MiB", m1 - m0);
-    println!("per environment (shared world):  {:8.3} MiB", (m2 - m1) / n as f64);
+    println!(
+        "per environment (shared world):  {:8.3} MiB",
+        (m2 - m1) / n as f64
+    );
     println!("one environment, own world:      {:8.3} MiB", m3 - m2);
     println!("one snapshot:                    {:8.3} MiB", m4 - m3);
     drop((envs, snap));

@@ -106,7 +106,11 @@ impl Action {
 
 fn check(field: &str, v: f32, lo: f32, hi: f32) -> Result<()> {
     if !v.is_finite() || v < lo || v > hi {
-        return Err(SimError::action(field, v, format!("must be finite and in [{lo}, {hi}]")));
+        return Err(SimError::action(
+            field,
+            v,
+            format!("must be finite and in [{lo}, {hi}]"),
+        ));
     }
     Ok(())
 }

@@ -70,7 +70,10 @@ impl AgentShape {
                     return Err(SimError::invalid(
                         "shape.height",
                         height,
-                        format!("a capsule must be at least 2 * radius = {} high", 2.0 * radius),
+                        format!(
+                            "a capsule must be at least 2 * radius = {} high",
+                            2.0 * radius
+                        ),
                     ));
                 }
                 Ok(())
@@ -166,21 +169,33 @@ impl Default for AgentConfig {
 
 /// The shipped profiles, embedded from `configs/agent/*.toml`.
 pub const PROFILES: &[(&str, &str)] = &[
-    ("vlnverse", include_str!("../../../configs/agent/vlnverse.toml")),
+    (
+        "vlnverse",
+        include_str!("../../../configs/agent/vlnverse.toml"),
+    ),
     ("vlnce", include_str!("../../../configs/agent/vlnce.toml")),
     ("rxr", include_str!("../../../configs/agent/rxr.toml")),
-    ("locobot", include_str!("../../../configs/agent/locobot.toml")),
+    (
+        "locobot",
+        include_str!("../../../configs/agent/locobot.toml"),
+    ),
 ];
 
 impl AgentConfig {
     /// One of the shipped profiles by name: `vlnverse`, `vlnce`, `rxr`, `locobot`.
     pub fn profile(name: &str) -> Result<AgentConfig> {
-        let (_, text) = PROFILES.iter().find(|(n, _)| *n == name).ok_or_else(|| {
-            SimError::UnknownProfile {
-                name: name.into(),
-                known: PROFILES.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", "),
-            }
-        })?;
+        let (_, text) =
+            PROFILES
+                .iter()
+                .find(|(n, _)| *n == name)
+                .ok_or_else(|| SimError::UnknownProfile {
+                    name: name.into(),
+                    known: PROFILES
+                        .iter()
+                        .map(|(n, _)| *n)
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                })?;
         Self::from_toml_str(text, Path::new(&format!("profile:{name}")))
     }
 
@@ -217,12 +232,27 @@ impl AgentConfig {
         check_range("max_pitch_deg", self.max_pitch_deg, 0.0, 90.0)?;
         check_range("collision_threshold", self.collision_threshold, 0.0, 1.0)?;
         check_range("max_linear_speed", self.max_linear_speed, 0.01, 20.0)?;
-        check_range("max_angular_speed_deg", self.max_angular_speed_deg, 1.0, 3600.0)?;
+        check_range(
+            "max_angular_speed_deg",
+            self.max_angular_speed_deg,
+            1.0,
+            3600.0,
+        )?;
         check_range("max_linear_accel", self.max_linear_accel, 0.01, 100.0)?;
-        check_range("max_angular_accel_deg", self.max_angular_accel_deg, 1.0, 36_000.0)?;
+        check_range(
+            "max_angular_accel_deg",
+            self.max_angular_accel_deg,
+            1.0,
+            36_000.0,
+        )?;
         if let Some(d) = &self.differential_drive {
             check_range("differential_drive.wheel_base", d.wheel_base, 0.01, 5.0)?;
-            check_range("differential_drive.max_wheel_speed", d.max_wheel_speed, 0.01, 20.0)?;
+            check_range(
+                "differential_drive.max_wheel_speed",
+                d.max_wheel_speed,
+                0.01,
+                20.0,
+            )?;
         }
         Ok(())
     }
@@ -327,7 +357,11 @@ impl SimConfig {
 
 fn check_range(field: &str, v: f32, lo: f32, hi: f32) -> Result<()> {
     if !v.is_finite() || v < lo || v > hi {
-        return Err(SimError::invalid(field, v, format!("must be in [{lo}, {hi}]")));
+        return Err(SimError::invalid(
+            field,
+            v,
+            format!("must be in [{lo}, {hi}]"),
+        ));
     }
     Ok(())
 }
@@ -338,7 +372,10 @@ mod tests {
 
     #[test]
     fn default_is_the_vlnverse_profile() {
-        assert_eq!(AgentConfig::profile("vlnverse").unwrap(), AgentConfig::default());
+        assert_eq!(
+            AgentConfig::profile("vlnverse").unwrap(),
+            AgentConfig::default()
+        );
     }
 
     #[test]
@@ -352,7 +389,10 @@ mod tests {
         let rxr = AgentConfig::profile("rxr").unwrap();
         assert!(!rxr.allow_sliding);
         assert_eq!(rxr.turn_angle_deg, 30.0);
-        assert!(AgentConfig::profile("locobot").unwrap().differential_drive.is_some());
+        assert!(AgentConfig::profile("locobot")
+            .unwrap()
+            .differential_drive
+            .is_some());
     }
 
     #[test]
@@ -367,7 +407,10 @@ mod tests {
         let e = AgentConfig::from_toml_str(text, Path::new("bad.toml"))
             .unwrap_err()
             .to_string();
-        assert!(e.contains("bad.toml") && e.contains("shape.radius") && e.contains("-0.3"), "{e}");
+        assert!(
+            e.contains("bad.toml") && e.contains("shape.radius") && e.contains("-0.3"),
+            "{e}"
+        );
 
         let e = AgentConfig::from_toml_str("step_size = nan\n", Path::new("nan.toml"))
             .unwrap_err()
@@ -407,7 +450,11 @@ mod tests {
             physics_dt: 0.0,
             ..Default::default()
         };
-        assert!(cfg.validate().unwrap_err().to_string().contains("physics_dt"));
+        assert!(cfg
+            .validate()
+            .unwrap_err()
+            .to_string()
+            .contains("physics_dt"));
         assert!(SimConfig::default().validate().is_ok());
     }
 }

@@ -74,7 +74,11 @@ pub enum SimError {
 
 impl SimError {
     /// Shorthand for [`SimError::InvalidConfig`] without a file.
-    pub fn invalid(field: impl Into<String>, value: impl ToString, reason: impl Into<String>) -> Self {
+    pub fn invalid(
+        field: impl Into<String>,
+        value: impl ToString,
+        reason: impl Into<String>,
+    ) -> Self {
         SimError::InvalidConfig {
             path: None,
             field: field.into(),
@@ -84,7 +88,11 @@ impl SimError {
     }
 
     /// Shorthand for [`SimError::InvalidAction`].
-    pub fn action(field: impl Into<String>, value: impl ToString, reason: impl Into<String>) -> Self {
+    pub fn action(
+        field: impl Into<String>,
+        value: impl ToString,
+        reason: impl Into<String>,
+    ) -> Self {
         SimError::InvalidAction {
             field: field.into(),
             value: value.to_string(),

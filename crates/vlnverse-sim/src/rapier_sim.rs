@@ -8,12 +8,13 @@
 use crate::config::{CollisionSetting, SimConfig};
 use crate::error::{Result, SimError};
 use crate::simulator::{Failure, Hop, Simulator, StepOutcome};
-use crate::world::{check_agent, fingerprint, PhysicsScene, World};
+use crate::world::{check_agent, fingerprint, PhysicsScene, World, AGENT_QUERY};
 use crate::{Action, WaypointMode};
 use glam::{Quat, Vec2, Vec3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rapier3d::control::{CharacterLength, KinematicCharacterController};
+use rapier3d::parry::query::ShapeCastOptions;
 use rapier3d::prelude::*;
 use std::collections::BTreeSet;
 use std::f64::consts::{PI, TAU};
@@ -116,7 +117,11 @@ impl RapierSimulator {
 
     /// Start an episode in an already built physics world (shared between environments:
     /// its static colliders are not copied, only per-collider records).
-    pub fn reset_in(&mut self, scene: Arc<PhysicsScene>, start: vlnverse_env::Pose) -> Result<vlnverse_env::Pose> {
+    pub fn reset_in(
+        &mut self,
+        scene: Arc<PhysicsScene>,
+        start: vlnverse_env::Pose,
+    ) -> Result<vlnverse_env::Pose> {
         check_agent(&scene, &self.cfg.agent)?;
         let p = start.translation();
         let yaw = start.yaw();
@@ -221,7 +226,9 @@ impl RapierSimulator {
             w.narrow_phase.query_dispatcher(),
             &w.bodies,
             &w.colliders,
-            QueryFilter::default().exclude_rigid_body(s.agent_body),
+            QueryFilter::default()
+                .exclude_rigid_body(s.agent_body)
+                .groups(AGENT_QUERY),
         );
         let shape = s.agent_shape.as_ref();
         let handles: Vec<ColliderHandle> = qp
@@ -296,14 +303,40 @@ impl RapierSimulator {
             w.narrow_phase.query_dispatcher(),
             &w.bodies,
             &w.colliders,
-            QueryFilter::default().exclude_rigid_body(s.agent_body),
+            QueryFilter::default()
+                .exclude_rigid_body(s.agent_body)
+                .groups(AGENT_QUERY),
         );
+        let shape_pose = self.shape_pose(self.state.base, self.quat());
+        // Fast path: nothing in the way (the common case) needs no controller iterations.
+        let dist = desired.length();
+        let free = dist < 1e-6
+            || qp
+                .cast_shape(
+                    &shape_pose,
+                    desired / dist,
+                    s.agent_shape.as_ref(),
+                    ShapeCastOptions {
+                        target_distance: SKIN,
+                        stop_at_penetration: false,
+                        max_time_of_impact: dist,
+                        compute_impact_geometry_on_penetration: true,
+                    },
+                )
+                .is_none();
+        if free {
+            self.state.base += desired;
+            self.state.speed = 0.0;
+            self.state.omega = 0.0;
+            self.sync_body(Vec3::ZERO);
+            return (desired, vec![]);
+        }
         let mut hits = Vec::new();
         let mv = controller.move_shape(
             self.params.dt,
             &qp,
             s.agent_shape.as_ref(),
-            &self.shape_pose(self.state.base, self.quat()),
+            &shape_pose,
             desired,
             |c| hits.push(c.handle),
         );
@@ -324,10 +357,13 @@ impl RapierSimulator {
         out.collided = !at_target.is_empty();
         out.hit = at_target;
         let offsets = Arc::clone(&self.hop_offsets);
-        let landed = offsets.iter().map(|o| target + Vec3::new(o.x, 0.0, o.y)).find(|p| {
-            (*p == target && out.hit.is_empty() || *p != target && self.overlaps(*p).is_empty())
-                && self.supported(*p)
-        });
+        let landed = offsets
+            .iter()
+            .map(|o| target + Vec3::new(o.x, 0.0, o.y))
+            .find(|p| {
+                (*p == target && out.hit.is_empty() || *p != target && self.overlaps(*p).is_empty())
+                    && self.supported(*p)
+            });
         match landed {
             Some(p) => {
                 out.hop = Some(Hop::Landed {
@@ -416,7 +452,11 @@ impl RapierSimulator {
                 }
             }
         }
-        if let Some(b) = self.world.as_ref().and_then(|w| w.bodies.get(scene.agent_body)) {
+        if let Some(b) = self
+            .world
+            .as_ref()
+            .and_then(|w| w.bodies.get(scene.agent_body))
+        {
             let t = b.translation();
             self.state.base = Vec3::new(t.x, start.y, t.z);
         }
@@ -447,7 +487,11 @@ impl RapierSimulator {
 impl Simulator for RapierSimulator {
     type Snapshot = RapierSnapshot;
 
-    fn reset(&mut self, scene: &vlnverse_env::Scene, start: vlnverse_env::Pose) -> Result<vlnverse_env::Pose> {
+    fn reset(
+        &mut self,
+        scene: &vlnverse_env::Scene,
+        start: vlnverse_env::Pose,
+    ) -> Result<vlnverse_env::Pose> {
         let same = self
             .scene
             .as_ref()
@@ -523,7 +567,9 @@ impl Simulator for RapierSimulator {
         out.noticeable = miss.length() > self.cfg.agent.collision_threshold
             || matches!(out.hop, Some(Hop::NoFreeSpot { .. }));
         if out.noticeable && self.cfg.setting == CollisionSetting::Strict {
-            out.failure = Some(Failure::Collision { hit: out.hit.clone() });
+            out.failure = Some(Failure::Collision {
+                hit: out.hit.clone(),
+            });
             out.done = true;
             self.state.over = Some(format!("noticeable collision with {:?}", out.hit));
         }

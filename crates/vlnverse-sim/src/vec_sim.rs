@@ -99,7 +99,10 @@ impl VecSimulator {
             return Err(SimError::action(
                 format!("{what}.len"),
                 n,
-                format!("must equal the number of environments ({})", self.envs.len()),
+                format!(
+                    "must equal the number of environments ({})",
+                    self.envs.len()
+                ),
             ));
         }
         Ok(())

@@ -9,6 +9,16 @@ use rapier3d::prelude::*;
 use std::hash::{Hash, Hasher};
 use vlnverse_env::{Motion, ObjectId, Scene, SceneObject, SemanticClass, Shape};
 
+/// Collision group of floors and objects lower than the agent's ground clearance.
+const GROUND: InteractionGroups =
+    InteractionGroups::new(Group::GROUP_2, Group::ALL, InteractionTestMode::And);
+/// Collision group of everything else (the agent included).
+const SOLID: InteractionGroups =
+    InteractionGroups::new(Group::GROUP_1, Group::ALL, InteractionTestMode::And);
+/// Query groups of the agent's moves and overlap tests: everything but the ground.
+pub(crate) const AGENT_QUERY: InteractionGroups =
+    InteractionGroups::new(Group::GROUP_1, Group::GROUP_1, InteractionTestMode::And);
+
 /// The mutable part of a rapier world (what an environment owns and a snapshot copies).
 #[derive(Clone)]
 pub(crate) struct World {
@@ -85,6 +95,11 @@ impl PhysicsScene {
             let (mut convex, meshes) = object_shapes(o, dynamic);
             let pose = to_iso(&o.pose);
             let user = o.id as u128;
+            // Floors and anything the agent drives over never block a horizontal move; keeping
+            // them out of the agent's queries saves most of the controller's contact work.
+            let ground = o.class == SemanticClass::Floor
+                || o.bbox.max[1] < scene.floor_height + agent.ground_clearance;
+            let groups = if ground { GROUND } else { SOLID };
             if dynamic {
                 if convex.is_empty() {
                     continue;
@@ -95,6 +110,7 @@ impl PhysicsScene {
                 let col = ColliderBuilder::compound(convex)
                     .mass(o.physics.mass)
                     .friction(friction)
+                    .collision_groups(groups)
                     .user_data(user);
                 w.colliders.insert_with_parent(col, body, &mut w.bodies);
                 dynamic_objects.push((o.id, body));
@@ -109,10 +125,11 @@ impl PhysicsScene {
                         ColliderBuilder::new(s)
                             .position(pose * local)
                             .friction(friction)
+                            .collision_groups(groups)
                             .user_data(user),
                     );
                 }
-                insert_meshes(&mut w, meshes, pose, friction, user);
+                insert_meshes(&mut w, meshes, pose, friction, groups, user);
             }
         }
 
@@ -132,6 +149,7 @@ impl PhysicsScene {
                 .mass(agent.mass)
                 .friction(if agent.allow_sliding { 0.0 } else { 1.0 })
                 .friction_combine_rule(CoefficientCombineRule::Min)
+                .collision_groups(SOLID)
                 .user_data(0),
             agent_body,
             &mut w.bodies,
@@ -170,7 +188,10 @@ impl PhysicsScene {
             agent_shape,
             agent_center,
             bounds,
-            has_floor: scene.objects.iter().any(|o| o.class == SemanticClass::Floor),
+            has_floor: scene
+                .objects
+                .iter()
+                .any(|o| o.class == SemanticClass::Floor),
             dynamic_objects,
         })
     }
@@ -191,12 +212,20 @@ impl PhysicsScene {
     }
 }
 
-fn insert_meshes(w: &mut World, meshes: Vec<(Pose, SharedShape)>, pose: Pose, friction: f32, user: u128) {
+fn insert_meshes(
+    w: &mut World,
+    meshes: Vec<(Pose, SharedShape)>,
+    pose: Pose,
+    friction: f32,
+    groups: InteractionGroups,
+    user: u128,
+) {
     for (local, s) in meshes {
         w.colliders.insert(
             ColliderBuilder::new(s)
                 .position(pose * local)
                 .friction(friction)
+                .collision_groups(groups)
                 .user_data(user),
         );
     }
@@ -204,7 +233,10 @@ fn insert_meshes(w: &mut World, meshes: Vec<(Pose, SharedShape)>, pose: Pose, fr
 
 /// Convex parts (for a compound) and triangle-mesh parts (static objects only; dynamic
 /// objects get the convex hull of a mesh instead).
-fn object_shapes(o: &SceneObject, dynamic: bool) -> (Vec<(Pose, SharedShape)>, Vec<(Pose, SharedShape)>) {
+fn object_shapes(
+    o: &SceneObject,
+    dynamic: bool,
+) -> (Vec<(Pose, SharedShape)>, Vec<(Pose, SharedShape)>) {
     let mut convex = Vec::new();
     let mut meshes = Vec::new();
     for (i, part) in o.parts.iter().enumerate() {
@@ -217,7 +249,9 @@ fn object_shapes(o: &SceneObject, dynamic: bool) -> (Vec<(Pose, SharedShape)>, V
             Shape::Cylinder {
                 radius,
                 half_height,
-            } if ok(*radius) && ok(*half_height) => Some(SharedShape::cylinder(*half_height, *radius)),
+            } if ok(*radius) && ok(*half_height) => {
+                Some(SharedShape::cylinder(*half_height, *radius))
+            }
             Shape::Sphere { radius } if ok(*radius) => Some(SharedShape::ball(*radius)),
             Shape::Mesh(m) if !m.positions.is_empty() && !m.indices.is_empty() => {
                 let pts: Vec<Vector> = m.positions.iter().map(|p| Vector::from_array(*p)).collect();
@@ -240,7 +274,11 @@ fn object_shapes(o: &SceneObject, dynamic: bool) -> (Vec<(Pose, SharedShape)>, V
         };
         match shape {
             Some(s) => convex.push((local, s)),
-            None => tracing::warn!(object = o.id, part = i, "degenerate part skipped by physics"),
+            None => tracing::warn!(
+                object = o.id,
+                part = i,
+                "degenerate part skipped by physics"
+            ),
         }
     }
     (convex, meshes)
@@ -256,7 +294,9 @@ pub(crate) fn agent_shape(agent: &AgentConfig) -> (SharedShape, f32) {
         AgentShape::Capsule { radius, .. } => {
             SharedShape::capsule_y((half - radius).max(0.0), radius.min(half))
         }
-        AgentShape::Box { width, length, .. } => SharedShape::cuboid(0.5 * width, half, 0.5 * length),
+        AgentShape::Box { width, length, .. } => {
+            SharedShape::cuboid(0.5 * width, half, 0.5 * length)
+        }
     };
     (s, center)
 }

@@ -25,26 +25,44 @@ fn xz(p: &vlnverse_env::Pose) -> Vec2 {
 #[test]
 fn discrete_moves_never_pass_through_a_wall() {
     // A thin (2 cm) wall across the room at z = -2, and the room wall at z = -5.
-    let scene = room_with(vec![wall(6, Vec3::new(0.0, 1.25, -2.0), Vec3::new(4.0, 1.25, 0.01))]);
+    let scene = room_with(vec![wall(
+        6,
+        Vec3::new(0.0, 1.25, -2.0),
+        Vec3::new(4.0, 1.25, 0.01),
+    )]);
     let mut s = sim(CollisionSetting::Lenient);
     s.reset(&scene, at(0.0, 0.0, 0.0)).unwrap();
     for _ in 0..20 {
         let out = s.step(Action::MoveForward(action::MAX_FORWARD)).unwrap();
-        assert!(out.pose.position[2] > -2.0 + 0.01 + 0.3 - 1e-3, "{:?}", out.pose);
+        assert!(
+            out.pose.position[2] > -2.0 + 0.01 + 0.3 - 1e-3,
+            "{:?}",
+            out.pose
+        );
     }
     let out = s.step(Action::MoveForward(1.0)).unwrap();
     assert!(out.collided && out.hit.contains(&6), "{out:?}");
     // Facing the outer wall diagonally: never leaves the room.
     s.reset(&scene, at(3.0, 3.0, -PI * 0.75)).unwrap();
     for _ in 0..20 {
-        let p = s.step(Action::MoveForward(action::MAX_FORWARD)).unwrap().pose;
-        assert!(p.position[0] <= 5.0 - 0.3 + 1e-3 && p.position[2] <= 5.0 - 0.3 + 1e-3, "{p:?}");
+        let p = s
+            .step(Action::MoveForward(action::MAX_FORWARD))
+            .unwrap()
+            .pose;
+        assert!(
+            p.position[0] <= 5.0 - 0.3 + 1e-3 && p.position[2] <= 5.0 - 0.3 + 1e-3,
+            "{p:?}"
+        );
     }
 }
 
 #[test]
 fn continuous_control_never_passes_through_a_wall_at_max_speed() {
-    let scene = room_with(vec![wall(6, Vec3::new(0.0, 1.25, -2.0), Vec3::new(4.0, 1.25, 0.02))]);
+    let scene = room_with(vec![wall(
+        6,
+        Vec3::new(0.0, 1.25, -2.0),
+        Vec3::new(4.0, 1.25, 0.02),
+    )]);
     let mut s = sim(CollisionSetting::Lenient);
     s.reset(&scene, at(0.0, 0.0, 0.0)).unwrap();
     let vmax = s.config().agent.max_linear_speed;
@@ -59,7 +77,10 @@ fn continuous_control_never_passes_through_a_wall_at_max_speed() {
         assert!(out.pose.position[2] > -2.0 + 0.02, "{:?}", out.pose);
     }
     let p = s.pose().position;
-    assert!(p[2] < -1.5, "agent should be pressed against the wall, is at {p:?}");
+    assert!(
+        p[2] < -1.5,
+        "agent should be pressed against the wall, is at {p:?}"
+    );
 }
 
 /// Agent heading 30 degrees into the wall at z = -5 (inner face), 5 cm from touching it.
@@ -73,7 +94,9 @@ fn thirty_degrees_into_wall(sliding: bool) -> (Vec2, Vec2, Vec<StepOutcome>) {
     // forward = (-sin yaw, -cos yaw); yaw = -60 deg gives (0.866, -0.5): 30 deg to the wall.
     let start = at(-2.0, -5.0 + 0.3 + 0.05, -PI / 3.0);
     s.reset(&room(), start).unwrap();
-    let outs: Vec<_> = (0..8).map(|_| s.step(Action::MoveForward(0.25)).unwrap()).collect();
+    let outs: Vec<_> = (0..8)
+        .map(|_| s.step(Action::MoveForward(0.25)).unwrap())
+        .collect();
     (xz(&start), xz(&s.pose()), outs)
 }
 
@@ -141,7 +164,10 @@ fn a_heavy_sofa_stops_the_agent() {
     assert!(moved < 0.05, "sofa moved {moved}");
     // Agent stops at the sofa face (z = -0.7) with its radius 0.3.
     assert!(agent.y > -0.45, "agent went through: {agent:?}");
-    assert!(out.collided && out.noticeable && out.hit.contains(&6), "{out:?}");
+    assert!(
+        out.collided && out.noticeable && out.hit.contains(&6),
+        "{out:?}"
+    );
 }
 
 fn table_scene() -> vlnverse_env::Scene {
@@ -172,7 +198,10 @@ fn telhop_into_furniture_lands_on_the_nearest_free_spot() {
     let Some(Hop::Landed { shift }) = out.hop else {
         panic!("{out:?}")
     };
-    assert!(shift >= 0.7 - 1e-3 && shift <= 0.7 + 0.06, "shift {shift}, at {p}");
+    assert!(
+        shift >= 0.7 - 1e-3 && shift <= 0.7 + 0.06,
+        "shift {shift}, at {p}"
+    );
     assert!(s.is_free(p.x, p.y), "landed inside something at {p}");
     assert!((p - Vec2::new(2.1, 0.1)).length() <= 0.76);
     assert!(out.collided && out.noticeable && out.hit == vec![6]);
@@ -231,7 +260,11 @@ fn telhop_without_a_free_spot_fails_and_says_so() {
 #[test]
 fn telhop_setting_teleports_forward_moves() {
     // In the Tel-Hop setting a forward move hops over the thin wall and lands behind it.
-    let scene = room_with(vec![wall(6, Vec3::new(0.0, 1.25, -1.0), Vec3::new(4.0, 1.25, 0.01))]);
+    let scene = room_with(vec![wall(
+        6,
+        Vec3::new(0.0, 1.25, -1.0),
+        Vec3::new(4.0, 1.25, 0.01),
+    )]);
     let mut s = sim(CollisionSetting::TelHop);
     s.reset(&scene, at(0.0, 0.0, 0.0)).unwrap();
     let out = s.step(Action::MoveForward(2.0)).unwrap();
@@ -248,12 +281,18 @@ fn turns_are_exact() {
         s.step(Action::TurnLeft(step)).unwrap();
     }
     let q = s.pose().rotation;
-    assert!((q[3].abs() - 1.0).abs() < 1e-6 && q[1].abs() < 1e-6, "{q:?}");
+    assert!(
+        (q[3].abs() - 1.0).abs() < 1e-6 && q[1].abs() < 1e-6,
+        "{q:?}"
+    );
     for _ in 0..24 {
         s.step(Action::TurnRight(step)).unwrap();
     }
     let q = s.pose().rotation;
-    assert!((q[3].abs() - 1.0).abs() < 1e-6 && q[1].abs() < 1e-6, "{q:?}");
+    assert!(
+        (q[3].abs() - 1.0).abs() < 1e-6 && q[1].abs() < 1e-6,
+        "{q:?}"
+    );
     // Six left turns: exactly 90 degrees.
     for _ in 0..6 {
         s.step(Action::TurnLeft(step)).unwrap();
@@ -465,7 +504,9 @@ fn strict_fails_at_the_first_noticeable_collision_lenient_only_counts() {
     let out = lenient.step(Action::MoveForward(1.0)).unwrap();
     assert!(out.noticeable && !out.done && out.failure.is_none());
     // A graze below the threshold is a collision but not a noticeable one.
-    lenient.reset(&room(), at(0.0, -5.0 + 0.3 + 0.05, 0.0)).unwrap();
+    lenient
+        .reset(&room(), at(0.0, -5.0 + 0.3 + 0.05, 0.0))
+        .unwrap();
     let out = lenient.step(Action::MoveForward(0.1)).unwrap();
     assert!(out.collided && !out.noticeable, "{out:?}");
 }
@@ -537,7 +578,9 @@ fn vec_simulator_matches_single_environments() {
         ..Default::default()
     };
     let mut v = VecSimulator::new(n, cfg.clone(), Some(2)).unwrap();
-    let starts: Vec<_> = (0..n).map(|i| at(-2.0 + 0.8 * i as f32, 0.0, 0.2 * i as f32)).collect();
+    let starts: Vec<_> = (0..n)
+        .map(|i| at(-2.0 + 0.8 * i as f32, 0.0, 0.2 * i as f32))
+        .collect();
     v.reset_all(&scene, &starts).unwrap();
     let seqs: Vec<_> = (0..n).map(|i| random_actions(100 + i as u64, 40)).collect();
     let mut batched = vec![vec![]; n];
@@ -553,7 +596,10 @@ fn vec_simulator_matches_single_environments() {
         let single: Vec<_> = seqs[i].iter().map(|a| s.step(*a).unwrap()).collect();
         assert_eq!(bits(&single), bits(&batched[i]), "env {i}");
     }
-    assert!(v.step(&[Action::Stop]).is_err(), "wrong batch size must error");
+    assert!(
+        v.step(&[Action::Stop]).is_err(),
+        "wrong batch size must error"
+    );
 }
 
 #[test]

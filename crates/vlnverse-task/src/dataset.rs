@@ -37,10 +37,10 @@ pub fn to_gzip_bytes(episodes: &[Episode]) -> Result<Vec<u8>> {
 
 /// Gzip `data` deterministically (no file name, mtime 0, OS byte 255 = unknown).
 pub fn gzip(data: &[u8]) -> Result<Vec<u8>> {
-    let mut enc = GzBuilder::new()
-        .mtime(0)
-        .operating_system(255)
-        .write(Vec::with_capacity(data.len() / 4 + 64), Compression::new(GZIP_LEVEL));
+    let mut enc = GzBuilder::new().mtime(0).operating_system(255).write(
+        Vec::with_capacity(data.len() / 4 + 64),
+        Compression::new(GZIP_LEVEL),
+    );
     enc.write_all(data)
         .and_then(|_| enc.finish())
         .map_err(|e| TaskError::io("<memory>", e))

@@ -20,7 +20,9 @@ use serde::{Deserialize, Deserializer, Serialize};
 use crate::error::TaskError;
 
 /// The five tasks of the benchmark.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default, Serialize, Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default, Serialize, Deserialize,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum Task {
     /// Fine-grained, step-by-step instructions (R2R-style). The default for VLN-CE files.
@@ -131,7 +133,11 @@ macro_rules! name_impls {
                     .find(|v| v.name() == s)
                     .ok_or_else(|| {
                         let names: Vec<&str> = $ty::ALL.iter().map(|v| v.name()).collect();
-                        TaskError::invalid($what, s, format!("expected one of {}", names.join(", ")))
+                        TaskError::invalid(
+                            $what,
+                            s,
+                            format!("expected one of {}", names.join(", ")),
+                        )
                     })
             }
         }

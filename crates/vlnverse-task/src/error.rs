@@ -66,7 +66,11 @@ impl TaskError {
     }
 
     /// Shorthand for [`TaskError::Invalid`].
-    pub fn invalid(field: impl Into<String>, value: impl ToString, reason: impl Into<String>) -> Self {
+    pub fn invalid(
+        field: impl Into<String>,
+        value: impl ToString,
+        reason: impl Into<String>,
+    ) -> Self {
         TaskError::Invalid {
             field: field.into(),
             value: value.to_string(),

@@ -3,13 +3,15 @@
 pub mod dataset;
 pub mod episode;
 pub mod error;
+pub mod instructions;
 pub mod metrics;
 pub mod report;
 pub mod score;
 pub mod trajectory;
 
 pub use episode::{
-    Dataset, Episode, EpisodeInfo, Goal, GroundedObject, Instruction, Role, Side, Split, Style, Task,
+    Dataset, Episode, EpisodeInfo, Goal, GroundedObject, Instruction, Role, Side, Split, Style,
+    Task,
 };
 pub use error::{Result, TaskError};
 pub use metrics::{

@@ -75,7 +75,11 @@ impl MetricsConfig {
             }
         }
         if self.stuck_window == 0 {
-            return Err(TaskError::invalid("stuck_window", 0, "must be at least 1 step"));
+            return Err(TaskError::invalid(
+                "stuck_window",
+                0,
+                "must be at least 1 step",
+            ));
         }
         if !(self.stuck_distance >= 0.0 && self.stuck_angle_deg >= 0.0) {
             return Err(TaskError::invalid(
@@ -252,7 +256,11 @@ pub fn spl(success: bool, shortest: f32, travelled: f32) -> f32 {
 /// `0` when both are empty, `inf` when exactly one is.
 pub fn dtw(r: &[[f32; 3]], q: &[[f32; 3]]) -> f64 {
     if r.is_empty() || q.is_empty() {
-        return if r.is_empty() && q.is_empty() { 0.0 } else { f64::INFINITY };
+        return if r.is_empty() && q.is_empty() {
+            0.0
+        } else {
+            f64::INFINITY
+        };
     }
     let m = q.len();
     let mut prev = vec![f64::INFINITY; m + 1];

@@ -111,7 +111,7 @@ pub fn episodes_csv(ms: &[EpisodeMetrics]) -> String {
             m.collisions,
             m.steps,
             m.cr,
-            opt(m.stuck.map(|x| b(x))),
+            opt(m.stuck.map(b)),
             b(m.unreachable),
             m.sub_goals,
             m.sub_goals_reached,
@@ -168,12 +168,7 @@ pub fn markdown_table(rows: &[ReportRow]) -> String {
 /// `report.md` of one run: the main table, a per-style table when there are styles, and the
 /// counts a reader needs to trust the means.
 pub fn markdown_report(run: &RunSummary) -> String {
-    let mut s = format!(
-        "# {} on {} / {}\n\n",
-        run.method,
-        run.task,
-        run.split
-    );
+    let mut s = format!("# {} on {} / {}\n\n", run.method, run.task, run.split);
     s.push_str(&markdown_table(&[ReportRow {
         method: run.method.clone(),
         setting: run.setting.clone(),
@@ -202,7 +197,8 @@ pub fn markdown_report(run: &RunSummary) -> String {
         m.unreachable,
         m.steps,
         100.0 * m.sdtw,
-        m.oracle_ne.map_or_else(|| "-".to_string(), |v| format!("{v:.2} m")),
+        m.oracle_ne
+            .map_or_else(|| "-".to_string(), |v| format!("{v:.2} m")),
     );
     s
 }

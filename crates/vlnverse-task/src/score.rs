@@ -16,7 +16,9 @@ use vlnverse_env::occupancy::GridMap;
 
 use crate::episode::Episode;
 use crate::error::{Result, TaskError};
-use crate::metrics::{score_episode, EpisodeMetrics, GoalDistance, GoalDistances, MetricsConfig, Nearest};
+use crate::metrics::{
+    score_episode, EpisodeMetrics, GoalDistance, GoalDistances, MetricsConfig, Nearest,
+};
 use crate::trajectory::Trajectory;
 
 /// Distinct goals whose distance fields are alive at once.
@@ -38,7 +40,10 @@ fn key(p: [f32; 3]) -> GoalKey {
 }
 
 fn episode_keys(ep: &Episode) -> impl Iterator<Item = GoalKey> + '_ {
-    ep.goals.iter().chain(&ep.sub_goals).map(|g| key(g.position))
+    ep.goals
+        .iter()
+        .chain(&ep.sub_goals)
+        .map(|g| key(g.position))
 }
 
 /// Score `episodes[i]` with `trajectories[i]` using geodesic distances on each scene's navigable
@@ -131,7 +136,9 @@ fn distances(ep: &Episode, fields: &BTreeMap<GoalKey, Arc<DistanceField>>) -> Go
     let goal = if ep.goals.len() == 1 {
         field(ep.goals[0].position)
     } else {
-        Arc::new(Nearest(ep.goals.iter().map(|g| field(g.position)).collect()))
+        Arc::new(Nearest(
+            ep.goals.iter().map(|g| field(g.position)).collect(),
+        ))
     };
     GoalDistances {
         goal,

@@ -82,7 +82,11 @@ impl Trajectory {
                 ));
             }
         }
-        if let Some(&bad) = self.stops.iter().find(|&&i| i as usize >= self.positions.len()) {
+        if let Some(&bad) = self
+            .stops
+            .iter()
+            .find(|&&i| i as usize >= self.positions.len())
+        {
             return Err(format!(
                 "field `stops`: index {bad} is past the last position ({})",
                 self.positions.len().saturating_sub(1)
@@ -91,7 +95,11 @@ impl Trajectory {
         if self.stops.windows(2).any(|w| w[0] > w[1]) {
             return Err("field `stops`: indices must not decrease".into());
         }
-        if let Some(p) = self.positions.iter().find(|p| p.iter().any(|c| !c.is_finite())) {
+        if let Some(p) = self
+            .positions
+            .iter()
+            .find(|p| p.iter().any(|c| !c.is_finite()))
+        {
             return Err(format!("field `positions`: non-finite point {p:?}"));
         }
         Ok(())
@@ -148,7 +156,10 @@ fn field<T: serde::de::DeserializeOwned>(
 fn short(v: &Value) -> String {
     let s = v.to_string();
     if s.len() > 60 {
-        format!("{}...", &s[..s.char_indices().nth(57).map_or(s.len(), |(i, _)| i)])
+        format!(
+            "{}...",
+            &s[..s.char_indices().nth(57).map_or(s.len(), |(i, _)| i)]
+        )
     } else {
         s
     }
@@ -161,7 +172,12 @@ fn episode_id(v: &Value) -> std::result::Result<u64, String> {
         Value::String(s) => s.trim().parse().ok(),
         _ => None,
     }
-    .ok_or_else(|| format!("field `episode_id`: expected a non-negative integer, got {}", short(v)))
+    .ok_or_else(|| {
+        format!(
+            "field `episode_id`: expected a non-negative integer, got {}",
+            short(v)
+        )
+    })
 }
 
 fn trajectory_from_object(obj: &Map<String, Value>) -> std::result::Result<Trajectory, String> {
@@ -171,7 +187,8 @@ fn trajectory_from_object(obj: &Map<String, Value>) -> std::result::Result<Traje
         .and_then(episode_id)?;
     let positions: Vec<[f32; 3]> =
         field(obj, "positions")?.ok_or_else(|| "missing field `positions`".to_string())?;
-    let stopped: bool = field(obj, "stopped")?.ok_or_else(|| "missing field `stopped`".to_string())?;
+    let stopped: bool =
+        field(obj, "stopped")?.ok_or_else(|| "missing field `stopped`".to_string())?;
     let default_steps = positions.len().saturating_sub(1) as u32;
     let t = Trajectory {
         episode_id: id,
@@ -201,8 +218,11 @@ fn parse_vlnce(path: &Path, map: Map<String, Value>) -> Result<Vec<Trajectory>> 
     for (key, value) in map {
         let err = |msg: String| TaskError::parse(path, format!("episode `{key}`"), msg);
         let id = episode_id(&Value::String(key.clone())).map_err(err)?;
-        let entries: Vec<Entry> = Vec::<Entry>::deserialize(&value)
-            .map_err(|e| err(format!("expected a list of {{position, heading, stop}}: {e}")))?;
+        let entries: Vec<Entry> = Vec::<Entry>::deserialize(&value).map_err(|e| {
+            err(format!(
+                "expected a list of {{position, heading, stop}}: {e}"
+            ))
+        })?;
         let headings: Option<Vec<f32>> = entries.iter().map(|e| e.heading).collect();
         let stopped = entries.last().is_some_and(|e| e.stop);
         let t = Trajectory {

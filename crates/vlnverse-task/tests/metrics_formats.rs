@@ -94,12 +94,23 @@ fn split_files_round_trip_with_deterministic_bytes() {
     let dir = tempfile::tempdir().unwrap();
     let eps: Vec<Episode> = (0..5).map(coarse_episode).collect();
     let path = write_split(dir.path(), Task::Coarse, Split::ValUnseen, &eps).unwrap();
-    assert_eq!(path, dir.path().join("coarse/val_unseen/val_unseen.json.gz"));
+    assert_eq!(
+        path,
+        dir.path().join("coarse/val_unseen/val_unseen.json.gz")
+    );
     assert_eq!(path, split_path(dir.path(), Task::Coarse, Split::ValUnseen));
     let bytes = std::fs::read(&path).unwrap();
     assert_eq!(&bytes[..2], &[0x1f, 0x8b]);
-    assert_eq!(&bytes[4..8], &[0, 0, 0, 0], "no timestamp in the gzip header");
-    assert_eq!(bytes, to_gzip_bytes(&eps).unwrap(), "same episodes, same bytes");
+    assert_eq!(
+        &bytes[4..8],
+        &[0, 0, 0, 0],
+        "no timestamp in the gzip header"
+    );
+    assert_eq!(
+        bytes,
+        to_gzip_bytes(&eps).unwrap(),
+        "same episodes, same bytes"
+    );
     write_split(dir.path(), Task::Coarse, Split::ValUnseen, &eps).unwrap();
     assert_eq!(std::fs::read(&path).unwrap(), bytes);
     let back = read_split(dir.path(), Task::Coarse, Split::ValUnseen).unwrap();
@@ -123,14 +134,24 @@ fn malformed_split_names_file_episode_and_field() {
     .unwrap();
     let err = read_file(&file).unwrap_err().to_string();
     assert!(err.contains("bad.json"), "{err}");
-    assert!(err.contains("episodes[1]") && err.contains("episode_id 2"), "{err}");
+    assert!(
+        err.contains("episodes[1]") && err.contains("episode_id 2"),
+        "{err}"
+    );
     assert!(err.contains("start_position"), "{err}");
 
     let mut bad_style = serde_json::to_value(coarse_episode(3)).unwrap();
     bad_style["instruction"]["style"] = serde_json::json!("poetic");
-    std::fs::write(&file, serde_json::json!({ "episodes": [bad_style] }).to_string()).unwrap();
+    std::fs::write(
+        &file,
+        serde_json::json!({ "episodes": [bad_style] }).to_string(),
+    )
+    .unwrap();
     let err = read_file(&file).unwrap_err().to_string();
-    assert!(err.contains("instruction") && err.contains("poetic"), "{err}");
+    assert!(
+        err.contains("instruction") && err.contains("poetic"),
+        "{err}"
+    );
 
     let missing = read_split(dir.path(), Task::Fine, Split::Test).unwrap_err();
     assert!(matches!(missing, TaskError::Io { .. }));
@@ -183,21 +204,45 @@ fn malformed_trajectory_line_is_named() {
     assert!(err.contains("`positions`"), "{err}");
 
     let cases = [
-        (r#"{"positions": [[0,0,0]], "stopped": true}"#, "`episode_id`"),
+        (
+            r#"{"positions": [[0,0,0]], "stopped": true}"#,
+            "`episode_id`",
+        ),
         (r#"{"episode_id": 1, "positions": [[0,0,0]]}"#, "`stopped`"),
-        (r#"{"episode_id": -1, "positions": [[0,0,0]], "stopped": true}"#, "`episode_id`"),
-        (r#"{"episode_id": 1, "positions": [[0,0,0]], "stopped": "yes"}"#, "`stopped`"),
-        (r#"{"episode_id": 1, "positions": [[0,0,0]], "stopped": true, "stops": [4]}"#, "`stops`"),
-        (r#"{"episode_id": 1, "positions": [[0,0,0]], "stopped": true, "headings": [1, 2]}"#, "`headings`"),
-        (r#"{"episode_id": 1, "positions": [[0,0,0]], "stopped": true, "collisions": 1.5}"#, "`collisions`"),
-        (r#"{"episode_id": 1, "positions": [[0,0,0]], "stopped": true"#, "line 1"),
+        (
+            r#"{"episode_id": -1, "positions": [[0,0,0]], "stopped": true}"#,
+            "`episode_id`",
+        ),
+        (
+            r#"{"episode_id": 1, "positions": [[0,0,0]], "stopped": "yes"}"#,
+            "`stopped`",
+        ),
+        (
+            r#"{"episode_id": 1, "positions": [[0,0,0]], "stopped": true, "stops": [4]}"#,
+            "`stops`",
+        ),
+        (
+            r#"{"episode_id": 1, "positions": [[0,0,0]], "stopped": true, "headings": [1, 2]}"#,
+            "`headings`",
+        ),
+        (
+            r#"{"episode_id": 1, "positions": [[0,0,0]], "stopped": true, "collisions": 1.5}"#,
+            "`collisions`",
+        ),
+        (
+            r#"{"episode_id": 1, "positions": [[0,0,0]], "stopped": true"#,
+            "line 1",
+        ),
         (r#"[1, 2]"#, "line 1"),
     ];
     for (line, needle) in cases {
         let err = parse_trajectories(Path::new("x.jsonl"), line)
             .unwrap_err()
             .to_string();
-        assert!(err.contains(needle) && err.contains("line 1"), "{line}: {err}");
+        assert!(
+            err.contains(needle) && err.contains("line 1"),
+            "{line}: {err}"
+        );
     }
 }
 
@@ -222,7 +267,10 @@ fn vlnce_inference_format_is_read() {
     let err = parse_trajectories(Path::new("inference.json"), bad)
         .unwrap_err()
         .to_string();
-    assert!(err.contains("inference.json") && err.contains("episode `12`"), "{err}");
+    assert!(
+        err.contains("inference.json") && err.contains("episode `12`"),
+        "{err}"
+    );
     assert!(err.contains("position"), "{err}");
 }
 

@@ -1,7 +1,9 @@
 //! Property tests of the metrics.
 
 use proptest::prelude::*;
-use vlnverse_task::metrics::{aggregate, ndtw, resample, score_episode, GoalDistances, MetricsConfig};
+use vlnverse_task::metrics::{
+    aggregate, ndtw, resample, score_episode, GoalDistances, MetricsConfig,
+};
 use vlnverse_task::{Episode, EpisodeInfo, Goal, Instruction, Task, Trajectory};
 
 fn point() -> impl Strategy<Value = [f32; 3]> {
@@ -46,7 +48,7 @@ proptest! {
         prop_assert_eq!(ndtw(&r, &r, 3.0), 1.0);
         let (rr, rq) = (resample(&r, 0.25), resample(&q, 0.25));
         let w = ndtw(&rr, &rq, 3.0);
-        prop_assert!(w >= 0.0 && w <= 1.0, "resampled ndtw {w}");
+        prop_assert!((0.0..=1.0).contains(&w), "resampled ndtw {w}");
         prop_assert_eq!(ndtw(&rr, &rr, 3.0), 1.0);
     }
 

@@ -6,7 +6,9 @@ use glam::Vec2;
 use vlnverse_env::occupancy::{CellState, GridMap};
 use vlnverse_task::dataset::{read_split, write_split};
 use vlnverse_task::metrics::{match_trajectories, score_all, GoalDistances, MetricsConfig};
-use vlnverse_task::report::{episodes_csv, markdown_table, write_run, ReportRow, RunSummary, CSV_HEADER};
+use vlnverse_task::report::{
+    episodes_csv, markdown_table, write_run, ReportRow, RunSummary, CSV_HEADER,
+};
 use vlnverse_task::score::{navigable_map_path, score_on_maps};
 use vlnverse_task::trajectory::read_trajectories;
 use vlnverse_task::{Episode, EpisodeInfo, Goal, Instruction, Split, Style, Task};
@@ -20,7 +22,8 @@ fn write_map(dir: &Path, scene: &str) {
             map.set(col, row, CellState::Occupied);
         }
     }
-    map.save_ros(dir.join("scenes").join(scene), "navigable").unwrap();
+    map.save_ros(dir.join("scenes").join(scene), "navigable")
+        .unwrap();
 }
 
 fn episode(id: u64, start: [f32; 3], goal: [f32; 3], style: Style) -> Episode {
@@ -93,11 +96,18 @@ fn score_on_the_navigable_map_end_to_end() {
     assert!(ne > 13.0 && ne < 16.0, "geodesic NE around the wall: {ne}");
     assert!(!behind.success && !behind.oracle_success);
     let euclid = score_all(&eps, &trajs, &GoalDistances::euclidean, &cfg);
-    assert!(euclid[0].success, "a straight-line NE would call it a success");
+    assert!(
+        euclid[0].success,
+        "a straight-line NE would call it a success"
+    );
 
     let around = &ms[1];
     assert!(around.success && around.oracle_success);
-    assert!((around.ne.unwrap() - 0.5).abs() < 0.15, "ne {:?}", around.ne);
+    assert!(
+        (around.ne.unwrap() - 0.5).abs() < 0.15,
+        "ne {:?}",
+        around.ne
+    );
     assert!(around.spl > 0.9 && around.spl <= 1.0, "spl {}", around.spl);
     assert_eq!(around.cr, 1.0 / 40.0);
 
@@ -123,10 +133,18 @@ fn score_on_the_navigable_map_end_to_end() {
     write_run(&out, &run, &ms).unwrap();
     let summary: serde_json::Value =
         serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
-    for key in ["episodes", "tl", "ne", "sr", "osr", "spl", "ndtw", "sdtw", "cr"] {
-        assert!(summary[key].is_number(), "summary.json key {key}: {summary}");
+    for key in [
+        "episodes", "tl", "ne", "sr", "osr", "spl", "ndtw", "sdtw", "cr",
+    ] {
+        assert!(
+            summary[key].is_number(),
+            "summary.json key {key}: {summary}"
+        );
     }
-    assert!(summary.get("sr_1").is_none(), "no SR_n outside long-horizon");
+    assert!(
+        summary.get("sr_1").is_none(),
+        "no SR_n outside long-horizon"
+    );
     assert_eq!(summary["task"], "coarse");
     let back: RunSummary = serde_json::from_value(summary).unwrap();
     assert_eq!((back.summary.episodes, back.by_style.len()), (3, 3));
@@ -139,7 +157,11 @@ fn score_on_the_navigable_map_end_to_end() {
     let cols = CSV_HEADER.split(',').count();
     assert!(rows.iter().all(|r| r.split(',').count() == cols));
     // Episode 2: empty NE cell, unreachable = 1.
-    assert!(rows[3].starts_with("2,0,walled,coarse,test,casual,15,"), "{}", rows[3]);
+    assert!(
+        rows[3].starts_with("2,0,walled,coarse,test,casual,15,"),
+        "{}",
+        rows[3]
+    );
     assert!(rows[3].contains(",,"), "{}", rows[3]);
 
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
@@ -158,7 +180,9 @@ fn missing_map_and_missing_trajectories_are_errors() {
         .unwrap_err()
         .to_string();
     assert!(err.contains("scenes/walled/navigable.yaml"), "{err}");
-    let err = match_trajectories(&eps, vec![], false).unwrap_err().to_string();
+    let err = match_trajectories(&eps, vec![], false)
+        .unwrap_err()
+        .to_string();
     assert!(err.contains("no trajectory") && err.contains('0'), "{err}");
 }
 
@@ -167,9 +191,20 @@ fn csv_quotes_and_long_horizon_columns() {
     let mut ep = episode(4, [0.0; 3], [1.0, 0.0, 0.0], Style::Formal);
     ep.scene_id = "a,\"b\"".into();
     let t = vlnverse_task::Trajectory::from_positions(4, vec![[0.0; 3]], true);
-    let m = vlnverse_task::score_episode(&ep, &t, &GoalDistances::euclidean(&ep), &MetricsConfig::default());
+    let m = vlnverse_task::score_episode(
+        &ep,
+        &t,
+        &GoalDistances::euclidean(&ep),
+        &MetricsConfig::default(),
+    );
     let csv = episodes_csv(&[m.clone()]);
-    assert!(csv.lines().nth(1).unwrap().starts_with("4,1,\"a,\"\"b\"\"\",coarse,,formal,"), "{csv}");
+    assert!(
+        csv.lines()
+            .nth(1)
+            .unwrap()
+            .starts_with("4,1,\"a,\"\"b\"\"\",coarse,,formal,"),
+        "{csv}"
+    );
 
     let mut lh = vlnverse_task::aggregate(&[m]);
     lh.sr_1 = Some(0.5);

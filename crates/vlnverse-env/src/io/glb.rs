@@ -23,6 +23,12 @@ const ELEMENT_ARRAY_BUFFER: u32 = 34963;
 const FLOAT: u32 = 5126;
 const UNSIGNED_INT: u32 = 5125;
 
+/// Pad to a multiple of 4 bytes (GLB chunks and buffer views are 4-byte aligned).
+fn pad4(v: &mut Vec<u8>, byte: u8) {
+    let n = (4 - v.len() % 4) % 4;
+    v.resize(v.len() + n, byte);
+}
+
 /// Give every mesh part of the scene its canonical glTF mesh index (`k` for the `k`-th mesh
 /// part in object order, then part order), the index [`write_glb`] uses.
 pub fn assign_glb_mesh_indices(scene: &mut Scene) {
@@ -47,9 +53,7 @@ struct Bin {
 
 impl Bin {
     fn view(&mut self, bytes: &[u8], target: u32) -> usize {
-        while self.data.len() % 4 != 0 {
-            self.data.push(0);
-        }
+        pad4(&mut self.data, 0);
         let offset = self.data.len();
         self.data.extend_from_slice(bytes);
         self.views.push(json!({
@@ -277,16 +281,12 @@ pub fn write_glb(scene: &Scene) -> Vec<u8> {
         doc["accessors"] = json!(bin.accessors);
         doc["bufferViews"] = json!(bin.views);
     }
-    while bin.data.len() % 4 != 0 {
-        bin.data.push(0);
-    }
+    pad4(&mut bin.data, 0);
     if !bin.data.is_empty() {
         doc["buffers"] = json!([{"byteLength": bin.data.len()}]);
     }
     let mut json_bytes = serde_json::to_vec(&doc).expect("glTF JSON is always serialisable");
-    while json_bytes.len() % 4 != 0 {
-        json_bytes.push(b' ');
-    }
+    pad4(&mut json_bytes, b' ');
     let total = 12
         + 8
         + json_bytes.len()
@@ -417,7 +417,7 @@ pub fn read_glb_bytes(bytes: &[u8], path: &Path) -> Result<GlbContents> {
                 Some(i) => i.into_u32().collect(),
                 None => (0..n).collect(),
             };
-            if idx.len() % 3 != 0 {
+            if !idx.chunks_exact(3).remainder().is_empty() {
                 return Err(EnvError::parse(
                     path,
                     what("index count is not a multiple of 3"),

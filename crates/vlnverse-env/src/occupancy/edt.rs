@@ -87,17 +87,81 @@ fn dt_1d(f: &[f64], d: &mut [f64], v: &mut [usize], z: &mut [f64]) {
 /// Free cells of `map` whose centre is at least `radius + resolution/2` from the centre of every
 /// occupied cell stay free; other free cells become occupied; unknown cells stay unknown.
 /// (Measured to occupied cells only: the edge of the known floor does not push the agent away.)
+///
+/// Exact Euclidean test in O(cells): the vertical distance to the nearest occupied cell of each
+/// column (capped at the radius), then per row every column with a small vertical distance blocks
+/// the interval of cells within the radius (a difference array), which is the row pass of the
+/// separable distance transform specialised to one threshold.
 pub fn dilate(map: &GridMap, radius: f32) -> GridMap {
-    let cells = map.cells();
-    let d2 = squared_distance_transform(map.width, map.height, |i| {
-        cells[i] == CellState::Occupied
-    });
+    let (w, h) = (map.width as usize, map.height as usize);
     let need = (radius.max(0.0) / map.resolution) as f64 + 0.5;
     let need2 = need * need;
+    // Vertical distances >= `cap` never block.
+    let cap = need.ceil().min(u16::MAX as f64 - 1.0) as u16;
+    // Half-width of the blocked interval for each vertical distance (-1: blocks nothing).
+    let hw: Vec<i64> = (0..=cap as i64)
+        .map(|g| {
+            let g2 = (g * g) as f64;
+            if g2 >= need2 {
+                return -1;
+            }
+            let mut dx = (need2 - g2).sqrt().floor() as i64;
+            while dx > 0 && (dx * dx) as f64 + g2 >= need2 {
+                dx -= 1;
+            }
+            dx
+        })
+        .collect();
+    let cells = map.cells();
+    let mut gv = vec![cap; w * h];
+    let mut last = vec![cap; w];
+    for y in 0..h {
+        let row = &cells[y * w..(y + 1) * w];
+        let out = &mut gv[y * w..(y + 1) * w];
+        for x in 0..w {
+            last[x] = if row[x] == CellState::Occupied {
+                0
+            } else {
+                (last[x] + 1).min(cap)
+            };
+            out[x] = last[x];
+        }
+    }
+    last.fill(cap);
+    for y in (0..h).rev() {
+        let row = &cells[y * w..(y + 1) * w];
+        let out = &mut gv[y * w..(y + 1) * w];
+        for x in 0..w {
+            last[x] = if row[x] == CellState::Occupied {
+                0
+            } else {
+                (last[x] + 1).min(cap)
+            };
+            out[x] = out[x].min(last[x]);
+        }
+    }
     let mut out = map.clone();
-    for (i, c) in out.cells_mut().iter_mut().enumerate() {
-        if *c == CellState::Free && d2[i] < need2 {
-            *c = CellState::Occupied;
+    let mut diff = vec![0i32; w + 1];
+    let dst = out.cells_mut();
+    for y in 0..h {
+        diff.fill(0);
+        let g = &gv[y * w..(y + 1) * w];
+        for (x, &gx) in g.iter().enumerate() {
+            let r = hw[gx as usize];
+            if r >= 0 {
+                let a = (x as i64 - r).max(0) as usize;
+                let b = (x as i64 + r + 1).min(w as i64) as usize;
+                diff[a] += 1;
+                diff[b] -= 1;
+            }
+        }
+        let mut acc = 0;
+        let row = &mut dst[y * w..(y + 1) * w];
+        for x in 0..w {
+            acc += diff[x];
+            if acc > 0 && row[x] == CellState::Free {
+                row[x] = CellState::Occupied;
+            }
         }
     }
     out
@@ -105,50 +169,84 @@ pub fn dilate(map: &GridMap, radius: f32) -> GridMap {
 
 /// Keep only the largest 4-connected island of free cells (ties: the island with the smallest
 /// first cell in row-major order); other free cells become occupied. Returns the island size.
+///
+/// Union-find over horizontal runs of free cells, so the cost is one pass over the cells plus a
+/// little per run.
 pub fn keep_largest_island(map: &mut GridMap) -> usize {
     let (w, h) = (map.width as usize, map.height as usize);
     let cells = map.cells_mut();
-    let mut label = vec![0u32; w * h];
-    let mut stack = Vec::new();
-    let mut best = (0usize, 0u32);
-    let mut next = 0u32;
-    for start in 0..w * h {
-        if cells[start] != CellState::Free || label[start] != 0 {
-            continue;
+    // Runs as (row start index, x0, x1 exclusive); row_start[y] = first run of row y.
+    let mut runs: Vec<(usize, usize)> = Vec::new();
+    let mut run_row: Vec<usize> = Vec::new();
+    let mut row_start = vec![0usize; h + 1];
+    let mut parent: Vec<u32> = Vec::new();
+    fn find(parent: &mut [u32], mut i: u32) -> u32 {
+        while parent[i as usize] != i {
+            let p = parent[i as usize];
+            parent[i as usize] = parent[p as usize];
+            i = p;
         }
-        next += 1;
-        label[start] = next;
-        stack.push(start);
-        let mut size = 0usize;
-        while let Some(i) = stack.pop() {
-            size += 1;
-            let (x, y) = (i % w, i / w);
-            let mut visit = |j: usize| {
-                if cells[j] == CellState::Free && label[j] == 0 {
-                    label[j] = next;
-                    stack.push(j);
+        i
+    }
+    for y in 0..h {
+        row_start[y] = runs.len();
+        let row = &cells[y * w..(y + 1) * w];
+        let mut x = 0;
+        while x < w {
+            if row[x] != CellState::Free {
+                x += 1;
+                continue;
+            }
+            let x0 = x;
+            while x < w && row[x] == CellState::Free {
+                x += 1;
+            }
+            let id = runs.len() as u32;
+            runs.push((x0, x));
+            run_row.push(y);
+            parent.push(id);
+        }
+        if y > 0 {
+            // Merge with overlapping runs of the previous row (two pointers).
+            let (mut i, mut j) = (row_start[y - 1], row_start[y]);
+            let (end_prev, end_cur) = (row_start[y], runs.len());
+            while i < end_prev && j < end_cur {
+                let (a0, a1) = runs[i];
+                let (b0, b1) = runs[j];
+                if a0 < b1 && b0 < a1 {
+                    let (ra, rb) = (find(&mut parent, i as u32), find(&mut parent, j as u32));
+                    if ra != rb {
+                        // The smaller index stays root: roots order components by first cell.
+                        let (lo, hi) = (ra.min(rb), ra.max(rb));
+                        parent[hi as usize] = lo;
+                    }
                 }
-            };
-            if x > 0 {
-                visit(i - 1);
+                if a1 < b1 {
+                    i += 1;
+                } else {
+                    j += 1;
+                }
             }
-            if x + 1 < w {
-                visit(i + 1);
-            }
-            if y > 0 {
-                visit(i - w);
-            }
-            if y + 1 < h {
-                visit(i + w);
-            }
-        }
-        if size > best.0 {
-            best = (size, next);
         }
     }
-    for (c, &l) in cells.iter_mut().zip(&label) {
-        if *c == CellState::Free && l != best.1 {
-            *c = CellState::Occupied;
+    row_start[h] = runs.len();
+    let mut size = vec![0usize; runs.len()];
+    let mut root = vec![0u32; runs.len()];
+    for r in 0..runs.len() {
+        let rt = find(&mut parent, r as u32);
+        root[r] = rt;
+        size[rt as usize] += runs[r].1 - runs[r].0;
+    }
+    let mut best = (0usize, u32::MAX);
+    for (r, &s) in size.iter().enumerate() {
+        if s > best.0 {
+            best = (s, r as u32);
+        }
+    }
+    for (r, &(x0, x1)) in runs.iter().enumerate() {
+        if root[r] != best.1 {
+            let base = run_row[r] * w;
+            cells[base + x0..base + x1].fill(CellState::Occupied);
         }
     }
     best.0
@@ -178,5 +276,94 @@ mod tests {
         }
         let none = squared_distance_transform(4, 3, |_| false);
         assert!(none.iter().all(|x| x.is_infinite()));
+    }
+
+    fn pseudo_random_map(w: u32, h: u32, seed: u64) -> GridMap {
+        let mut state = seed;
+        let cells = (0..w * h)
+            .map(|_| {
+                state = state
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                match (state >> 33) % 23 {
+                    0 => CellState::Occupied,
+                    1 => CellState::Unknown,
+                    _ => CellState::Free,
+                }
+            })
+            .collect();
+        GridMap::from_cells(w, h, 0.05, glam::Vec2::ZERO, cells).unwrap()
+    }
+
+    #[test]
+    fn dilation_matches_the_full_distance_transform() {
+        for (seed, radius) in [(1, 0.3f32), (2, 0.12), (3, 0.0), (4, 0.51)] {
+            let m = pseudo_random_map(61, 47, seed);
+            let d2 = squared_distance_transform(m.width, m.height, |i| {
+                m.cells()[i] == CellState::Occupied
+            });
+            let need = (radius / m.resolution) as f64 + 0.5;
+            let fast = dilate(&m, radius);
+            for i in 0..m.len() {
+                let expect = match m.cells()[i] {
+                    CellState::Free if d2[i] < need * need => CellState::Occupied,
+                    c => c,
+                };
+                assert_eq!(fast.cells()[i], expect, "seed {seed} cell {i}");
+            }
+        }
+    }
+
+    #[test]
+    fn largest_island_matches_flood_fill() {
+        for seed in 0..6 {
+            let mut m = pseudo_random_map(40, 30, seed);
+            // Sparse free space so that there are many islands.
+            for (i, c) in m.cells_mut().iter_mut().enumerate() {
+                if *c == CellState::Free && (i * 7 + seed as usize) % 3 == 0 {
+                    *c = CellState::Occupied;
+                }
+            }
+            let orig = m.clone();
+            let kept = keep_largest_island(&mut m);
+            // Reference: BFS labelling.
+            let (w, h) = (40usize, 30usize);
+            let mut label = vec![usize::MAX; w * h];
+            let mut best = (0usize, usize::MAX);
+            for s in 0..w * h {
+                if orig.cells()[s] != CellState::Free || label[s] != usize::MAX {
+                    continue;
+                }
+                let mut stack = vec![s];
+                label[s] = s;
+                let mut n = 0;
+                while let Some(i) = stack.pop() {
+                    n += 1;
+                    let (x, y) = (i % w, i / w);
+                    let mut nb = Vec::new();
+                    if x > 0 { nb.push(i - 1); }
+                    if x + 1 < w { nb.push(i + 1); }
+                    if y > 0 { nb.push(i - w); }
+                    if y + 1 < h { nb.push(i + w); }
+                    for j in nb {
+                        if orig.cells()[j] == CellState::Free && label[j] == usize::MAX {
+                            label[j] = s;
+                            stack.push(j);
+                        }
+                    }
+                }
+                if n > best.0 {
+                    best = (n, s);
+                }
+            }
+            assert_eq!(kept, best.0);
+            for i in 0..w * h {
+                let expect = match orig.cells()[i] {
+                    CellState::Free if label[i] != best.1 => CellState::Occupied,
+                    c => c,
+                };
+                assert_eq!(m.cells()[i], expect, "seed {seed} cell {i}");
+            }
+        }
     }
 }

@@ -125,6 +125,8 @@ fn part_footprint(shape: &Shape, pose: &Pose, band: Option<Band>, out: &mut Foot
         }
         Shape::Mesh(m) => {
             let aff = Affine3A::from_rotation_translation(q, t);
+            out.points.reserve(m.indices.len() * 3);
+            out.items.reserve(m.indices.len());
             let world: Vec<Vec3> = m
                 .positions
                 .iter()
@@ -220,19 +222,34 @@ struct Canvas {
     cells: Vec<bool>,
 }
 
+/// `floor` without a libm call (values here are far inside the i64 range).
+#[inline]
+fn ffloor(x: f64) -> i64 {
+    let t = x as i64;
+    if (t as f64) > x {
+        t - 1
+    } else {
+        t
+    }
+}
+
 /// Inclusive cell range covered by `[lo, hi]` (cell units), or None when outside `[0, n)`.
+#[inline]
 fn cover(lo: f64, hi: f64, n: u32) -> Option<(u32, u32)> {
-    let (mut a, mut b) = ((lo + EPS).floor(), (hi - EPS).floor());
+    if !(lo.is_finite() && hi.is_finite()) {
+        return None;
+    }
+    let (mut a, mut b) = (ffloor(lo + EPS), ffloor(hi - EPS));
     if b < a {
         // Thinner than 2*EPS (e.g. a vertical wall triangle seen from above): its own cell.
-        let m = (0.5 * (lo + hi)).floor();
+        let m = ffloor(0.5 * (lo + hi));
         a = m;
         b = m;
     }
-    if b < 0.0 || a >= n as f64 {
+    if b < 0 || a >= n as i64 {
         return None;
     }
-    Some((a.max(0.0) as u32, b.min(n as f64 - 1.0) as u32))
+    Some((a.max(0) as u32, b.min(n as i64 - 1) as u32))
 }
 
 impl Canvas {

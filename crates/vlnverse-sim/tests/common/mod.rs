@@ -41,7 +41,15 @@ pub fn boxed(
 
 /// Static wall.
 pub fn wall(id: u32, center: Vec3, half: Vec3) -> SceneObject {
-    boxed(id, SemanticClass::Wall, center, half, Motion::Static, 1000.0, 0.5)
+    boxed(
+        id,
+        SemanticClass::Wall,
+        center,
+        half,
+        Motion::Static,
+        1000.0,
+        0.5,
+    )
 }
 
 /// A 10 m x 10 m room centred at the origin: floor (id 1) and four 0.2 m walls (ids 2-5)
