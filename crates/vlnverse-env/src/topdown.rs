@@ -592,11 +592,23 @@ pub fn render_topdown(
             .collect();
         for r in &scene.rooms {
             let name = r.kind.words();
-            let w = text_width(&name, 2) as i64;
-            let c = room_label_spot(r, &frame, w as f32, 16.0, &boxes);
-            let (x, y) = (c.x as i64 - w / 2, c.y as i64 - 8);
-            draw_text(&mut img, x, y, &name, 2, [30, 30, 30], true);
-            placed.push([x - 2, y - 2, x + w + 2, y + 18]);
+            let room_w = r
+                .polygon
+                .iter()
+                .map(|p| p[0])
+                .fold(f32::NEG_INFINITY, f32::max)
+                - r.polygon.iter().map(|p| p[0]).fold(f32::INFINITY, f32::min);
+            // Large text unless it would spill out of a narrow room.
+            let scale = if text_width(&name, 2) as f32 <= room_w * ppm * 0.9 {
+                2
+            } else {
+                1
+            };
+            let (w, h) = (text_width(&name, scale) as i64, 8 * scale as i64);
+            let c = room_label_spot(r, &frame, w as f32, h as f32, &boxes);
+            let (x, y) = (c.x as i64 - w / 2, c.y as i64 - h / 2);
+            draw_text(&mut img, x, y, &name, scale, [30, 30, 30], true);
+            placed.push([x - 2, y - 2, x + w + 2, y + h + 2]);
         }
     }
     if opts.labels {
@@ -613,7 +625,8 @@ pub fn render_topdown(
             let c = frame.to_pixel(Vec2::new(o.bbox.center().x, o.bbox.center().z));
             let name = o.class.words();
             let w = text_width(&name, 1) as i64;
-            let (x, y) = (c.x as i64 - w / 2, c.y as i64 - 4);
+            let x = (c.x as i64 - w / 2).clamp(2, (map_w as i64 - w - 2).max(2));
+            let y = c.y as i64 - 4;
             let rect = [x - 1, y - 1, x + w + 1, y + 9];
             let overlaps = placed
                 .iter()

@@ -286,3 +286,65 @@ fn write_atomic_replaces_and_cleans_up() {
     let e = io::write_atomic(dir.path().join("missing/a.bin"), b"x").unwrap_err();
     assert!(e.to_string().contains("missing"), "{e}");
 }
+
+struct Fixed(Vec<vlnverse_env::Scene>);
+
+impl vlnverse_env::SceneSource for Fixed {
+    fn len(&self) -> usize {
+        self.0.len()
+    }
+    fn scene_id(&self, index: usize) -> String {
+        self.0[index].id.clone()
+    }
+    fn scene(&self, index: usize) -> vlnverse_env::Result<vlnverse_env::Scene> {
+        Ok(self.0[index].clone())
+    }
+}
+
+#[test]
+fn source_bundles_write_every_file_then_resume_and_force() {
+    use vlnverse_env::io::BundleOutcome;
+    use vlnverse_env::occupancy::OccupancyConfig;
+    let scenes: Vec<_> = (0..3)
+        .map(|i| {
+            let mut s = fixture_scene();
+            s.id = format!("fx_{i}");
+            s
+        })
+        .collect();
+    let src = Fixed(scenes);
+    let dir = tempfile::tempdir().unwrap();
+    let occ = OccupancyConfig::default();
+    let count = std::sync::atomic::AtomicUsize::new(0);
+    let tick = |_: &BundleOutcome| {
+        count.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    };
+    let out = io::write_source_bundles(&src, &[2, 0, 1], dir.path(), &occ, false, &tick).unwrap();
+    let ids: Vec<_> = out
+        .iter()
+        .map(|o| match o {
+            BundleOutcome::Written { id, rooms, .. } => {
+                assert_eq!(*rooms, 1);
+                id.clone()
+            }
+            BundleOutcome::Skipped { .. } => panic!("nothing to skip yet"),
+        })
+        .collect();
+    assert_eq!(ids, ["fx_2", "fx_0", "fx_1"]);
+    assert_eq!(count.load(std::sync::atomic::Ordering::Relaxed), 3);
+    for i in 0..3 {
+        let d = dir.path().join(format!("fx_{i}"));
+        assert!(io::is_complete_scene_dir(&d));
+        // The graph file is the scene graph's own JSON, readable back.
+        let g = std::fs::read_to_string(d.join("scene_graph.json")).unwrap();
+        assert!(vlnverse_env::scene_graph::SceneGraph::from_json(&g).is_ok());
+        let nav = vlnverse_env::occupancy::GridMap::load_ros(d.join("navigable.yaml")).unwrap();
+        assert!(nav.free_area_m2() > 1.0);
+    }
+    let again = io::write_source_bundles(&src, &[0, 1, 2], dir.path(), &occ, false, &tick).unwrap();
+    assert!(again
+        .iter()
+        .all(|o| matches!(o, BundleOutcome::Skipped { .. })));
+    let forced = io::write_source_bundles(&src, &[1], dir.path(), &occ, true, &tick).unwrap();
+    assert!(matches!(forced[0], BundleOutcome::Written { .. }));
+}

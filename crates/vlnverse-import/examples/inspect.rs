@@ -38,6 +38,20 @@ fn main() {
                 });
                 img.save(png).unwrap();
             }
+            if let Some(yaml) = args.get(5) {
+                use vlnverse_env::occupancy::{CellState, GridMap};
+                let slam = GridMap::load_ros(yaml).unwrap();
+                let occ = vlnverse_env::occupancy::build_maps(&scene, &Default::default()).unwrap().occupancy;
+                let img = image::RgbImage::from_fn(slam.width, slam.height, |x, y| {
+                    let p = slam.cell_center(x, y);
+                    let s = slam.state(x, y);
+                    let o = occ.world_to_cell(p).map(|(c, r)| occ.state(c, r));
+                    let mut px = match s { CellState::Occupied => [0, 0, 255], CellState::Free => [230, 230, 230], CellState::Unknown => [120, 120, 120] };
+                    if o == Some(CellState::Occupied) { px[0] = 255; if s != CellState::Occupied { px[1] = 0; px[2] = 0; } }
+                    image::Rgb(px)
+                });
+                img.save("/tmp/slam_overlay.png").unwrap();
+            }
             for o in &scene.objects {
                 println!("  {:3} {:28} {:16} room {:?} bbox {:?}..{:?}", o.id, o.name, o.class.name(), o.room,
                     o.bbox.min.map(|v| (v * 100.0).round() / 100.0), o.bbox.max.map(|v| (v * 100.0).round() / 100.0));

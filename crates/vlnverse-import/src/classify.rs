@@ -84,7 +84,7 @@ pub fn structure_guess(b: &Aabb, floor: f32) -> SemanticClass {
     let footprint = s.x * s.z;
     let thin_h = s.x.min(s.z);
     let long_h = s.x.max(s.z);
-    if s.y < 0.2 && s.x > 1.0 && s.z > 1.0 && footprint > 2.0 {
+    if s.y < 0.3 && s.x > 1.0 && s.z > 1.0 && footprint > 2.0 {
         if (b.min[1] - floor).abs() < 0.15 {
             return SemanticClass::Floor;
         }

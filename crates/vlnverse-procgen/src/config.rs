@@ -170,7 +170,7 @@ impl Default for RoomsConfig {
             min_side: 2.2,
             max_aspect: 2.6,
             area_scale_min: 0.85,
-            area_scale_max: 1.6,
+            area_scale_max: 1.75,
             kinds: vec![
                 kind(RoomType::LivingRoom, 1, 1, 0.0, 20.0, 40.0),
                 kind(RoomType::Bedroom, 1, 4, 3.0, 10.0, 20.0),

@@ -144,65 +144,73 @@ struct Placed {
 }
 
 impl RoomState<'_> {
-    /// Try to place a group; returns the world poses of its items.
-    fn place(&mut self, g: &mut Group, rng: &mut ChaCha8Rng) -> Option<Vec<Placed>> {
-        let (gw, gd) = g.normalise();
+    /// Candidate centres and yaws of a group of footprint `gw` x `gd`, in trial order: along
+    /// walls every 15 cm (only the ends for corners), or random spots for free groups.
+    fn candidates(&self, mode: Mode, gw: f32, gd: f32, rng: &mut ChaCha8Rng) -> Vec<(f32, f32, f32)> {
+        use rand::seq::SliceRandom;
         let ir = self.interior.inset(WALL_GAP);
-        for _ in 0..self.cfg.furniture.attempts {
-            let (cx, cz, yaw) = match g.mode {
-                Mode::Wall | Mode::Corner => {
-                    // Inward normals of the four walls, drawn by wall length.
-                    let sides = [
-                        (0.0f32, 1.0f32, ir.w()),
-                        (0.0, -1.0, ir.w()),
-                        (1.0, 0.0, ir.d()),
-                        (-1.0, 0.0, ir.d()),
-                    ];
-                    let lens: Vec<f32> = sides
-                        .iter()
-                        .map(|s| if s.2 >= gw { s.2 } else { 0.0 })
-                        .collect();
-                    let i = crate::floorplan::weighted_index(&lens, rng)?;
-                    let (nx, nz, len) = sides[i];
+        let (mx, mz) = ir.center();
+        let mut out = Vec::new();
+        match mode {
+            Mode::Wall | Mode::Corner => {
+                // Inward normals of the four walls and the wall lengths.
+                for (nx, nz, len) in [
+                    (0.0f32, 1.0f32, ir.w()),
+                    (0.0, -1.0, ir.w()),
+                    (1.0, 0.0, ir.d()),
+                    (-1.0, 0.0, ir.d()),
+                ] {
+                    if len < gw {
+                        continue;
+                    }
                     let yaw = (-nx).atan2(-nz);
                     let slack = len - gw;
-                    let t = if g.mode == Mode::Corner || rng.random_bool(0.25) {
-                        if rng.random_bool(0.5) {
-                            0.0
+                    let n = if mode == Mode::Corner {
+                        1
+                    } else {
+                        ((slack / 0.15).floor() as usize).max(1)
+                    };
+                    for k in 0..=n {
+                        let along = -len * 0.5 + gw * 0.5 + slack * k as f32 / n as f32;
+                        let (cx, cz) = if nx != 0.0 {
+                            let x = if nx > 0.0 { ir.x0 } else { ir.x1 };
+                            (x + nx * gd * 0.5, mz + along)
                         } else {
-                            slack
-                        }
-                    } else {
-                        rng.random_range(0.0..=slack)
-                    };
-                    let along = -len * 0.5 + gw * 0.5 + t;
-                    let (mx, mz) = ir.center();
-                    let (cx, cz) = if nx != 0.0 {
-                        let x = if nx > 0.0 { ir.x0 } else { ir.x1 };
-                        (x + nx * gd * 0.5, mz + along)
-                    } else {
-                        let z = if nz > 0.0 { ir.z0 } else { ir.z1 };
-                        (mx + along, z + nz * gd * 0.5)
-                    };
-                    (cx, cz, yaw)
+                            let z = if nz > 0.0 { ir.z0 } else { ir.z1 };
+                            (mx + along, z + nz * gd * 0.5)
+                        };
+                        out.push((cx, cz, yaw));
+                    }
                 }
-                Mode::Center => {
+                out.shuffle(rng);
+            }
+            Mode::Center => {
+                let walk = 0.6;
+                for _ in 0..self.cfg.furniture.attempts * 3 {
                     let q = rng.random_range(0..4);
-                    let yaw = q as f32 * FRAC_PI_2;
                     let (ew, ed) = if q % 2 == 1 { (gd, gw) } else { (gw, gd) };
-                    let walk = 0.6;
                     let free_x = ir.w() - ew - 2.0 * walk;
                     let free_z = ir.d() - ed - 2.0 * walk;
                     if free_x < 0.0 || free_z < 0.0 {
                         continue;
                     }
-                    let (mx, mz) = ir.center();
                     // Mostly near the middle: that is where tables and rugs go.
                     let fx = (rng.random::<f32>() + rng.random::<f32>()) * 0.5 - 0.5;
                     let fz = (rng.random::<f32>() + rng.random::<f32>()) * 0.5 - 0.5;
-                    (mx + fx * free_x, mz + fz * free_z, yaw)
+                    out.push((mx + fx * free_x, mz + fz * free_z, q as f32 * FRAC_PI_2));
                 }
-            };
+            }
+        }
+        out
+    }
+
+    /// Try to place a group; returns the world poses of its items.
+    fn place(&mut self, g: &mut Group, rng: &mut ChaCha8Rng) -> Option<Vec<Placed>> {
+        let (gw, gd) = g.normalise();
+        let ir = self.interior.inset(WALL_GAP);
+        let candidates = self.candidates(g.mode, gw, gd, rng);
+        let mut checks = 0;
+        for (cx, cz, yaw) in candidates {
             let q = quarter(yaw);
             let (ew, ed) = if q % 2 == 1 { (gd, gw) } else { (gw, gd) };
             let foot = Rect::centered(cx, cz, ew, ed);
@@ -214,6 +222,10 @@ impl RoomState<'_> {
                     .any(|p| p.overlaps(&foot, -self.cfg.furniture.gap))
             {
                 continue;
+            }
+            checks += 1;
+            if checks > self.cfg.furniture.attempts {
+                break;
             }
             // World footprints of the solid items.
             let solid: Vec<Rect> = g
@@ -342,7 +354,8 @@ fn bed_group(rng: &mut ChaCha8Rng, double: bool, stands: usize) -> Group {
 }
 
 /// Table with chairs around it (`seats` per long side, maybe one at each end), maybe a rug.
-fn dining_group(rng: &mut ChaCha8Rng, per_side: usize, ends: bool, rug: bool) -> Group {
+/// With `wall`, the table stands against a wall with no chairs on that side.
+fn dining_group(rng: &mut ChaCha8Rng, per_side: usize, ends: bool, rug: bool, wall: bool) -> Group {
     let w = 0.3 + 0.55 * per_side as f32 + rng.random_range(0.0f32..0.2);
     let d = rng.random_range(0.8f32..1.0);
     let table = models::dining_table(rng, w, d);
@@ -353,7 +366,9 @@ fn dining_group(rng: &mut ChaCha8Rng, per_side: usize, ends: bool, rug: bool) ->
         let x = -table.w * 0.5 + table.w * (i as f32 + 0.5) / per_side as f32;
         // Front side (z < 0) chairs face +Z (yaw pi); back side chairs face -Z.
         items.push(Item::at(chair.clone(), x, -table.d * 0.5 - off - chair.d * 0.5, PI));
-        items.push(Item::at(chair.clone(), x, table.d * 0.5 + off + chair.d * 0.5, 0.0));
+        if !wall {
+            items.push(Item::at(chair.clone(), x, table.d * 0.5 + off + chair.d * 0.5, 0.0));
+        }
     }
     if ends {
         for s in [-1.0f32, 1.0] {
@@ -361,7 +376,7 @@ fn dining_group(rng: &mut ChaCha8Rng, per_side: usize, ends: bool, rug: bool) ->
             items.push(Item::at(chair.clone(), x, 0.0, -s * FRAC_PI_2));
         }
     }
-    if rug {
+    if rug && !wall {
         // The group is symmetric about the table, so the rug is centred on it.
         let mut g = Group {
             items: items.clone(),
@@ -372,7 +387,7 @@ fn dining_group(rng: &mut ChaCha8Rng, per_side: usize, ends: bool, rug: bool) ->
     }
     Group {
         items,
-        mode: Mode::Center,
+        mode: if wall { Mode::Wall } else { Mode::Center },
     }
 }
 
@@ -450,6 +465,7 @@ fn recipe(
     cfg: &ProcgenConfig,
     kind: RoomType,
     interior: Rect,
+    has_kitchen: bool,
     rng: &mut ChaCha8Rng,
 ) -> Vec<Vec<Group>> {
     let long = interior.w().max(interior.d());
@@ -463,6 +479,12 @@ fn recipe(
                 sofa_group(rng, long - 0.4, false),
                 wall(models::sofa(rng, 1.5)),
             ]);
+            if !has_kitchen {
+                // A home without a kitchen gets a kitchenette in the living room.
+                let mut compact = kitchen_run(rng, 1.9);
+                compact.items.retain(|it| it.model.class != C::Fridge);
+                out.push(vec![kitchen_run(rng, 2.4), kitchen_run(rng, 1.9), compact]);
+            }
             if maybe(cfg, rng, 0.9) {
                 out.push(vec![tv_group(rng)]);
             }
@@ -500,7 +522,7 @@ fn recipe(
                 out.push(vec![wall(models::kitchen_cabinet(rng))]);
             }
             if area > 11.0 && maybe(cfg, rng, 0.5) {
-                out.push(vec![dining_group(rng, 1, false, false)]);
+                out.push(vec![dining_group(rng, 1, false, false, false)]);
             } else if maybe(cfg, rng, 0.4) {
                 out.push(vec![wall(models::stool(rng))]);
             }
@@ -519,10 +541,12 @@ fn recipe(
             let rug = maybe(cfg, rng, 0.35);
             let (e3, e2) = (rng.random_bool(0.4), rng.random_bool(0.5));
             out.push(vec![
-                dining_group(rng, 3, e3, rug),
-                dining_group(rng, 2, e2, false),
-                dining_group(rng, 2, false, false),
-                dining_group(rng, 1, false, false),
+                dining_group(rng, 3, e3, rug, false),
+                dining_group(rng, 2, e2, false, false),
+                dining_group(rng, 2, false, false, false),
+                dining_group(rng, 1, false, false, false),
+                dining_group(rng, 2, true, false, true),
+                dining_group(rng, 1, false, false, true),
             ]);
             if maybe(cfg, rng, 0.6) {
                 out.push(vec![wall(models::cabinet(rng))]);
@@ -541,6 +565,10 @@ fn recipe(
                 bed_group(rng, double, 1),
                 bed_group(rng, false, 1),
                 bed_group(rng, false, 0),
+                Group {
+                    mode: Mode::Center,
+                    ..bed_group(rng, false, 0)
+                },
             ]);
             if maybe(cfg, rng, 0.8) {
                 out.push(vec![wall(models::wardrobe(rng))]);
@@ -762,8 +790,9 @@ fn add_smalls(
 /// Furnish every room of a plan.
 pub(crate) fn furnish(cfg: &ProcgenConfig, plan: &Plan, rng: &mut ChaCha8Rng, b: &mut Builder) {
     let t = cfg.walls.thickness;
+    let has_kitchen = plan.rooms.iter().any(|r| r.kind == RoomType::Kitchen);
     for (i, room) in plan.rooms.iter().enumerate() {
-        furnish_room(cfg, plan, i, room, t, rng, b);
+        furnish_room(cfg, plan, i, room, t, has_kitchen, rng, b);
     }
 }
 
@@ -773,6 +802,7 @@ fn furnish_room(
     i: usize,
     room: &PlanRoom,
     t: f32,
+    has_kitchen: bool,
     rng: &mut ChaCha8Rng,
     b: &mut Builder,
 ) {
@@ -807,7 +837,7 @@ fn furnish_room(
         return;
     }
     let mut has_fridge = false;
-    for variants in recipe(cfg, room.kind, interior, rng) {
+    for variants in recipe(cfg, room.kind, interior, has_kitchen, rng) {
         for mut g in variants {
             let fridge = g.items.iter().any(|it| it.model.class == C::Fridge);
             if fridge && has_fridge {

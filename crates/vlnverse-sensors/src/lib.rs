@@ -1,5 +1,6 @@
 #![doc = include_str!("../README.md")]
 
+pub mod bvh;
 pub mod camera;
 pub mod config;
 pub mod demo;

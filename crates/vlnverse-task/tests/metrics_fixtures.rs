@@ -309,7 +309,7 @@ fn stuck_needs_a_still_window_and_headings() {
     );
     // Headings wrap: oscillating across +-pi is a small turn.
     let wrap: Vec<f32> = (0..25)
-        .map(|i| if i % 2 == 0 { 3.1 } else { -3.1 })
+        .map(|i| (std::f32::consts::PI - 0.001) * if i % 2 == 0 { 1.0 } else { -1.0 })
         .collect();
     assert!(is_stuck(&still, &wrap, 20, 0.2, 15.0));
 

@@ -197,7 +197,7 @@ fn csv_quotes_and_long_horizon_columns() {
         &GoalDistances::euclidean(&ep),
         &MetricsConfig::default(),
     );
-    let csv = episodes_csv(&[m.clone()]);
+    let csv = episodes_csv(std::slice::from_ref(&m));
     assert!(
         csv.lines()
             .nth(1)

@@ -1,6 +1,6 @@
 //! Distance field from one goal to every reachable cell.
 
-use super::search::{lazy_theta, Grid};
+use super::search::{sweep, Grid};
 use super::{check_finite, resolve, Endpoint, GeodesicDistance, GeodesicPath};
 use crate::error::Result;
 use crate::occupancy::GridMap;
@@ -49,7 +49,7 @@ impl DistanceField {
             };
         };
         let grid = Grid::new(map);
-        let res = lazy_theta(&grid, root, None);
+        let res = sweep(&grid, root);
         let mut first = vec![u32::MAX; n];
         for &c in &res.order {
             let c = c as usize;

@@ -29,7 +29,13 @@ pub use field::DistanceField;
 use crate::error::{EnvError, Result};
 use crate::occupancy::GridMap;
 use glam::Vec2;
-use search::{lazy_theta, Grid};
+use search::{lazy_theta, Grid, Scratch};
+use std::cell::RefCell;
+
+thread_local! {
+    /// Search buffers reused by the point-to-point queries of this thread.
+    static SCRATCH: RefCell<Scratch> = RefCell::new(Scratch::new());
+}
 use serde::{Deserialize, Serialize};
 
 /// A geodesic distance: reachable with a length in metres, or explicitly unreachable.
@@ -168,16 +174,22 @@ pub fn shortest_path(map: &GridMap, start: Vec2, goal: Vec2) -> Result<Option<Ge
         pts.push(a.on_grid);
     }
     if a.cell != b.cell && !map.line_of_sight(a.on_grid, b.on_grid) {
-        let res = lazy_theta(&grid, a.cell, Some(b.cell));
-        if !res.reached {
+        let chain = SCRATCH.with(|sc| {
+            let sc = &mut *sc.borrow_mut();
+            if !lazy_theta(&grid, a.cell, Some(b.cell), sc) {
+                return None;
+            }
+            let mut chain = vec![b.cell];
+            let mut c = b.cell;
+            while sc.parent(c) != c {
+                c = sc.parent(c);
+                chain.push(c);
+            }
+            Some(chain)
+        });
+        let Some(chain) = chain else {
             return Ok(None);
-        }
-        let mut chain = vec![b.cell];
-        let mut c = b.cell;
-        while res.parent[c] as usize != c {
-            c = res.parent[c] as usize;
-            chain.push(c);
-        }
+        };
         pts.extend(chain.iter().rev().map(|&i| {
             let (col, row) = map.cell_of_index(i);
             map.cell_center(col, row)

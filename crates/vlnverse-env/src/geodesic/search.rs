@@ -54,53 +54,49 @@ impl<'a> Grid<'a> {
         ((i as i64) % self.w, (i as i64) / self.w)
     }
 
-    /// Euclidean distance between two cell centres, in cells.
-    #[inline]
-    pub fn dist(&self, a: usize, b: usize) -> f32 {
-        let (ax, ay) = self.xy(a);
-        let (bx, by) = self.xy(b);
-        (((ax - bx) * (ax - bx) + (ay - by) * (ay - by)) as f32).sqrt()
-    }
-
     /// Supercover line of sight between two free cell centres (exact integer arithmetic; a
     /// segment through a grid corner needs both cells beside the corner free).
     pub fn los(&self, a: usize, b: usize) -> bool {
-        let (mut x, mut y) = self.xy(a);
+        let (x0, y0) = self.xy(a);
         let (x1, y1) = self.xy(b);
-        let (dx, dy) = ((x1 - x).abs(), (y1 - y).abs());
-        let (sx, sy) = ((x1 - x).signum(), (y1 - y).signum());
-        let w = self.w;
+        let (dx, dy) = ((x1 - x0).abs(), (y1 - y0).abs());
+        let sx: isize = if x1 > x0 { 1 } else { -1 };
+        let sy: isize = if y1 > y0 { self.w as isize } else { -(self.w as isize) };
         let cells = self.cells;
-        let free = |x: i64, y: i64| cells[(y * w + x) as usize] == CellState::Free;
-        let (mut ix, mut iy) = (0i64, 0i64);
-        while ix < dx || iy < dy {
-            let decision = (1 + 2 * ix) * dy - (1 + 2 * iy) * dx;
+        let mut i = a as isize;
+        // decision = (1 + 2 ix) dy - (1 + 2 iy) dx, kept incrementally.
+        let mut decision = dy - dx;
+        let (mut nx, mut ny) = (dx, dy);
+        while nx > 0 || ny > 0 {
             if decision == 0 {
-                if !free(x + sx, y) || !free(x, y + sy) {
+                if cells[(i + sx) as usize] != CellState::Free
+                    || cells[(i + sy) as usize] != CellState::Free
+                {
                     return false;
                 }
-                x += sx;
-                y += sy;
-                ix += 1;
-                iy += 1;
+                i += sx + sy;
+                decision += 2 * dy - 2 * dx;
+                nx -= 1;
+                ny -= 1;
             } else if decision < 0 {
-                x += sx;
-                ix += 1;
+                i += sx;
+                decision += 2 * dy;
+                nx -= 1;
             } else {
-                y += sy;
-                iy += 1;
+                i += sy;
+                decision -= 2 * dx;
+                ny -= 1;
             }
-            if !free(x, y) {
+            if cells[i as usize] != CellState::Free {
                 return false;
             }
         }
         true
     }
 
-    /// Calls `f(neighbour, step_cost)` for every allowed move from free cell `i`.
+    /// Calls `f(neighbour, nx, ny, step_cost)` for every allowed move from free cell `(x, y)`.
     #[inline]
-    fn neighbours(&self, i: usize, mut f: impl FnMut(usize, f32)) {
-        let (x, y) = self.xy(i);
+    fn neighbours(&self, x: i64, y: i64, mut f: impl FnMut(usize, i64, i64, f32)) {
         for (k, &(dx, dy)) in DIRS.iter().enumerate() {
             let (nx, ny) = (x + dx, y + dy);
             if !self.free_xy(nx, ny) {
@@ -110,93 +106,185 @@ impl<'a> Grid<'a> {
                 continue;
             }
             let cost = if k >= 4 { std::f32::consts::SQRT_2 } else { 1.0 };
-            f((ny * self.w + nx) as usize, cost);
+            f((ny * self.w + nx) as usize, nx, ny, cost);
         }
     }
 }
 
-/// Result of a search: distance (cells) and parent of every closed cell.
+#[inline]
+fn hypot(dx: i64, dy: i64) -> f32 {
+    ((dx * dx + dy * dy) as f32).sqrt()
+}
+
+/// Reusable search buffers; cells are valid for the current generation only, so a new search
+/// does not clear them.
+pub(crate) struct Scratch {
+    g: Vec<f32>,
+    parent: Vec<u32>,
+    /// `2*gen` seen this search, `2*gen + 1` closed; older values mean untouched.
+    mark: Vec<u32>,
+    gen: u32,
+    heap: BinaryHeap<Reverse<(u64, u32)>>,
+    order: Vec<u32>,
+}
+
+impl Scratch {
+    pub fn new() -> Scratch {
+        Scratch {
+            g: Vec::new(),
+            parent: Vec::new(),
+            mark: Vec::new(),
+            gen: 0,
+            heap: BinaryHeap::new(),
+            order: Vec::new(),
+        }
+    }
+
+    fn reset(&mut self, n: usize) {
+        if self.mark.len() != n || self.gen >= u32::MAX / 2 - 1 {
+            self.g = vec![f32::INFINITY; n];
+            self.parent = vec![u32::MAX; n];
+            self.mark = vec![0; n];
+            self.gen = 0;
+        }
+        self.gen += 1;
+        self.heap.clear();
+        self.order.clear();
+    }
+
+    #[inline]
+    fn closed(&self, i: usize) -> bool {
+        self.mark[i] == 2 * self.gen + 1
+    }
+
+    /// Parent of a cell reached by the last search.
+    #[inline]
+    pub fn parent(&self, i: usize) -> usize {
+        self.parent[i] as usize
+    }
+}
+
+/// Result of a full sweep: distance (cells) and parent of every reachable cell.
 pub(crate) struct SearchResult {
     pub g: Vec<f32>,
     pub parent: Vec<u32>,
     /// Cells in the order they were closed (parents always come before children).
     pub order: Vec<u32>,
-    /// Whether the target (if any) was reached.
-    pub reached: bool,
 }
 
-/// Lazy Theta* from `root`; stops when `target` is closed (A* with the Euclidean heuristic,
-/// admissible and consistent for any-angle lengths) or, with no target, when every reachable
-/// cell is closed (a distance field). `root` must be a free cell.
-pub(crate) fn lazy_theta(grid: &Grid<'_>, root: usize, target: Option<usize>) -> SearchResult {
+/// Heap key: f first, then larger g first (ties broken towards the target), then index.
+#[inline]
+fn key(f: f32, g: f32) -> u64 {
+    ((f.to_bits() as u64) << 32) | (!g.to_bits()) as u64
+}
+
+/// Lazy Theta* from `root` in `sc`; stops when `target` is closed (A* with the Euclidean
+/// heuristic, admissible and consistent for any-angle lengths) or, with no target, when every
+/// reachable cell is closed. Returns whether the target was reached. `root` must be free.
+pub(crate) fn lazy_theta(
+    grid: &Grid<'_>,
+    root: usize,
+    target: Option<usize>,
+    sc: &mut Scratch,
+) -> bool {
     let n = (grid.w * grid.h) as usize;
-    let mut g = vec![f32::INFINITY; n];
-    let mut parent = vec![u32::MAX; n];
-    let mut closed = vec![false; n];
-    let mut order = Vec::new();
-    let mut heap: BinaryHeap<Reverse<(u32, u32)>> = BinaryHeap::new();
-    let h = |i: usize| target.map_or(0.0, |t| grid.dist(i, t));
-    g[root] = 0.0;
-    parent[root] = root as u32;
-    heap.push(Reverse((h(root).to_bits(), root as u32)));
-    let mut reached = false;
-    while let Some(Reverse((_, s))) = heap.pop() {
+    sc.reset(n);
+    let seen = 2 * sc.gen;
+    let closed_mark = seen + 1;
+    let (tx, ty) = target.map_or((0, 0), |t| grid.xy(t));
+    let h = |x: i64, y: i64| {
+        if target.is_some() {
+            hypot(x - tx, y - ty)
+        } else {
+            0.0
+        }
+    };
+    sc.g[root] = 0.0;
+    sc.parent[root] = root as u32;
+    sc.mark[root] = seen;
+    let (rx, ry) = grid.xy(root);
+    sc.heap.push(Reverse((key(h(rx, ry), 0.0), root as u32)));
+    while let Some(Reverse((_, s))) = sc.heap.pop() {
         let s = s as usize;
-        if closed[s] {
+        if sc.mark[s] == closed_mark {
             continue;
         }
+        let (x, y) = grid.xy(s);
         // Lazy line-of-sight check of the optimistic parent.
-        let p = parent[s] as usize;
+        let p = sc.parent[s] as usize;
         if p != s && !grid.los(p, s) {
             // Fall back to the best closed neighbour, or to a neighbour's parent when it is in
             // sight (plain Lazy Theta* only takes the neighbour, which leaves staircase bends).
             let mut cands: [(f32, u32, bool); 16] = [(f32::INFINITY, u32::MAX, false); 16];
-            let mut n = 0;
-            grid.neighbours(s, |nb, cost| {
-                if closed[nb] {
-                    cands[n] = (g[nb] + cost, nb as u32, false);
-                    n += 1;
-                    let pn = parent[nb] as usize;
+            let mut k = 0;
+            grid.neighbours(x, y, |nb, _, _, cost| {
+                if sc.closed(nb) {
+                    cands[k] = (sc.g[nb] + cost, nb as u32, false);
+                    k += 1;
+                    let pn = sc.parent[nb] as usize;
                     if pn != nb && pn != p {
-                        cands[n] = (g[pn] + grid.dist(pn, s), pn as u32, true);
-                        n += 1;
+                        let (px, py) = grid.xy(pn);
+                        cands[k] = (sc.g[pn] + hypot(px - x, py - y), pn as u32, true);
+                        k += 1;
                     }
                 }
             });
-            let cands = &mut cands[..n];
+            let cands = &mut cands[..k];
             cands.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
             for &(cost, via, needs_los) in cands.iter() {
                 if !needs_los || grid.los(via as usize, s) {
-                    g[s] = cost;
-                    parent[s] = via;
+                    sc.g[s] = cost;
+                    sc.parent[s] = via;
                     break;
                 }
             }
         }
-        closed[s] = true;
-        order.push(s as u32);
+        sc.mark[s] = closed_mark;
+        sc.order.push(s as u32);
         if Some(s) == target {
-            reached = true;
-            break;
+            return true;
         }
-        let ps = parent[s] as usize;
-        let gps = g[ps];
-        grid.neighbours(s, |nb, _| {
-            if closed[nb] {
+        let ps = sc.parent[s] as usize;
+        let gps = sc.g[ps];
+        let (px, py) = grid.xy(ps);
+        let Scratch {
+            g,
+            parent,
+            mark,
+            heap,
+            ..
+        } = sc;
+        grid.neighbours(x, y, |nb, nx, ny, _| {
+            let m = mark[nb];
+            if m == closed_mark {
                 return;
             }
-            let cand = gps + grid.dist(ps, nb);
-            if cand < g[nb] {
+            let cand = gps + hypot(nx - px, ny - py);
+            if m != seen || cand < g[nb] {
                 g[nb] = cand;
                 parent[nb] = ps as u32;
-                heap.push(Reverse(((cand + h(nb)).to_bits(), nb as u32)));
+                mark[nb] = seen;
+                heap.push(Reverse((key(cand + h(nx, ny), cand), nb as u32)));
             }
         });
     }
+    false
+}
+
+/// Lazy Theta* sweep from `root` over every reachable cell (a distance field).
+pub(crate) fn sweep(grid: &Grid<'_>, root: usize) -> SearchResult {
+    let mut sc = Scratch::new();
+    lazy_theta(grid, root, None, &mut sc);
+    let seen = 2 * sc.gen;
+    let mut g = std::mem::take(&mut sc.g);
+    for (gi, &m) in g.iter_mut().zip(&sc.mark) {
+        if m < seen {
+            *gi = f32::INFINITY;
+        }
+    }
     SearchResult {
         g,
-        parent,
-        order,
-        reached,
+        parent: std::mem::take(&mut sc.parent),
+        order: std::mem::take(&mut sc.order),
     }
 }

@@ -23,6 +23,16 @@ const ELEMENT_ARRAY_BUFFER: u32 = 34963;
 const FLOAT: u32 = 5126;
 const UNSIGNED_INT: u32 = 5125;
 
+/// An `f32` as the `f64` with the same shortest decimal form, so the JSON reads `0.85` rather
+/// than `0.8500000238418579` (and still parses back to the same `f32`).
+fn short(x: f32) -> f64 {
+    x.to_string().parse().unwrap_or(x as f64)
+}
+
+fn short_all<const N: usize>(v: [f32; N]) -> [f64; N] {
+    v.map(short)
+}
+
 /// Pad to a multiple of 4 bytes (GLB chunks and buffer views are 4-byte aligned).
 fn pad4(v: &mut Vec<u8>, byte: u8) {
     let n = (4 - v.len() % 4) % 4;
@@ -77,8 +87,8 @@ impl Bin {
                     hi[i] = hi[i].max(p[i]);
                 }
             }
-            acc["min"] = json!(lo);
-            acc["max"] = json!(hi);
+            acc["min"] = json!(short_all(lo));
+            acc["max"] = json!(short_all(hi));
         }
         self.accessors.push(acc);
         self.accessors.len() - 1
@@ -130,7 +140,7 @@ impl Materials {
         self.list.push(json!({
             "name": name,
             "pbrMetallicRoughness": {
-                "baseColorFactor": [color[0], color[1], color[2], 1.0],
+                "baseColorFactor": [short(color[0]), short(color[1]), short(color[2]), 1.0],
                 "metallicFactor": if metal { 0.6 } else { 0.0 },
                 "roughnessFactor": if metal { 0.35 } else { 0.8 }
             },
@@ -160,8 +170,8 @@ pub fn node_extras(o: &SceneObject) -> Value {
         "room": o.room,
         "color": o.color,
         "material": o.material,
-        "mass": o.physics.mass,
-        "friction": o.physics.friction,
+        "mass": short(o.physics.mass),
+        "friction": short(o.physics.friction),
         "motion": match o.physics.motion { Motion::Static => "static", Motion::Dynamic => "dynamic" },
         "supported_by": o.supported_by,
     })
@@ -169,10 +179,10 @@ pub fn node_extras(o: &SceneObject) -> Value {
 
 fn set_pose(node: &mut Value, pose: &Pose) {
     if pose.position != [0.0; 3] {
-        node["translation"] = json!(pose.position);
+        node["translation"] = json!(short_all(pose.position));
     }
     if pose.rotation != [0.0, 0.0, 0.0, 1.0] {
-        node["rotation"] = json!(pose.quat().normalize().to_array());
+        node["rotation"] = json!(short_all(pose.quat().normalize().to_array()));
     }
 }
 

@@ -104,8 +104,6 @@ impl SceneGraph {
             });
         }
 
-        edges.sort_by_key(Edge::sort_key);
-        edges.dedup_by(|a, b| a.sort_key() == b.sort_key());
         SceneGraph::assemble(scene.id.clone(), nodes, edges)
     }
 }

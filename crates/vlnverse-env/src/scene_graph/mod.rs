@@ -235,6 +235,7 @@ pub struct SceneGraph {
     graph: DiGraph<Node, Edge>,
     rooms: BTreeMap<RoomId, NodeIndex>,
     objects: BTreeMap<ObjectId, NodeIndex>,
+    by_class: BTreeMap<SemanticClass, Vec<ObjectId>>,
 }
 
 impl PartialEq for SceneGraph {
@@ -249,11 +250,13 @@ impl SceneGraph {
     /// Assemble from nodes and edges (any order; sorted here so output is deterministic).
     fn assemble(scene_id: String, mut nodes: Vec<Node>, mut edges: Vec<Edge>) -> SceneGraph {
         nodes.sort_by_key(Node::key);
-        edges.sort_by(|a, b| {
+        // Declared and geometric support may both give `a on b`: keep one.
+        edges.sort_unstable_by(|a, b| {
             a.sort_key()
                 .cmp(&b.sort_key())
                 .then(a.distance.total_cmp_opt(&b.distance))
         });
+        edges.dedup_by(|a, b| a.sort_key() == b.sort_key());
         let mut graph = DiGraph::with_capacity(nodes.len(), edges.len());
         let mut rooms = BTreeMap::new();
         let mut objects = BTreeMap::new();
@@ -274,11 +277,18 @@ impl SceneGraph {
             };
             graph.add_edge(a, b, edge);
         }
+        let mut by_class: BTreeMap<SemanticClass, Vec<ObjectId>> = BTreeMap::new();
+        for n in graph.node_weights() {
+            if let Node::Object(o) = n {
+                by_class.entry(o.class).or_default().push(o.object);
+            }
+        }
         SceneGraph {
             scene_id,
             graph,
             rooms,
             objects,
+            by_class,
         }
     }
 
@@ -408,6 +418,11 @@ impl SceneGraph {
         out.sort();
         out.dedup();
         out
+    }
+
+    /// Ids of the object nodes of a class, sorted.
+    pub fn objects_of_class(&self, class: SemanticClass) -> &[ObjectId] {
+        self.by_class.get(&class).map_or(&[], Vec::as_slice)
     }
 
     /// Room of an object (its `in` edge).

@@ -108,14 +108,17 @@ impl ReferringExpression {
             + usize::from(self.reference.is_some())
     }
 
-    /// Every object of `scene` the words fit, sorted by id: the class and colour, resting on
+    /// Every object of `scene` (among the graph's nodes) the words fit, sorted by id: the class and colour, resting on
     /// something that fits the support, in a room of the named type, near / next to something
     /// that fits the reference. A good expression matches exactly `[target]`.
     pub fn matches(&self, scene: &Scene, graph: &SceneGraph) -> Vec<ObjectId> {
         let fits_id = |id: ObjectId, m: &Mention| scene.object(id).is_some_and(|o| m.fits(o));
-        let mut out: Vec<ObjectId> = scene
-            .items()
-            .filter(|o| o.class == self.class)
+        // Objects of the class: the graph's index, checked against the scene.
+        let mut out: Vec<ObjectId> = graph
+            .objects_of_class(self.class)
+            .iter()
+            .filter_map(|&id| scene.object(id))
+            .filter(|o| o.class == self.class && !o.is_structure())
             .filter(|o| self.color.as_ref().is_none_or(|c| *c == o.color))
             .filter(|o| {
                 self.support
@@ -148,13 +151,20 @@ impl ReferringExpression {
 
 /// A unique short description of `o` on its own (class, else colour + class), for use as a
 /// reference object.
-fn unique_mention(scene: &Scene, o: &SceneObject) -> Option<Mention> {
+fn unique_mention(scene: &Scene, graph: &SceneGraph, o: &SceneObject) -> Option<Mention> {
     let mut m = Mention {
         object: o.id,
         class: o.class,
         color: None,
     };
-    let count = |m: &Mention| scene.items().filter(|x| m.fits(x)).count();
+    let count = |m: &Mention| {
+        graph
+            .objects_of_class(m.class)
+            .iter()
+            .filter_map(|&id| scene.object(id))
+            .filter(|x| m.fits(x))
+            .count()
+    };
     if count(&m) == 1 {
         return Some(m);
     }
@@ -274,7 +284,7 @@ impl SceneGraph {
                 if o.class == obj.class {
                     continue;
                 }
-                if let Some(m) = unique_mention(scene, o) {
+                if let Some(m) = unique_mention(scene, self, o) {
                     refs.push((rel, m));
                 }
             }
