@@ -39,7 +39,11 @@ fn bench(c: &mut Criterion) {
     c.bench_function("geodesic/cached_query", |b| {
         b.iter(|| {
             j = (j + 1) % pts.len();
-            black_box(cache.distance(pts[j], goals[j % goals.len()]).expect("query"))
+            black_box(
+                cache
+                    .distance(pts[j], goals[j % goals.len()])
+                    .expect("query"),
+            )
         })
     });
 }
@@ -57,7 +61,12 @@ fn main() {
     eprintln!(
         "geodesic summary (1 thread, {} free cells): cold A* {:.0} q/s; field build {:.1} ms; \
          cached {:.0} q/s; amortised over {} queries to {} goals {:.0} q/s",
-        r.free_cells, r.cold_qps, r.field_build_ms, r.cached_qps, r.cached_queries, r.goals,
+        r.free_cells,
+        r.cold_qps,
+        r.field_build_ms,
+        r.cached_qps,
+        r.cached_queries,
+        r.goals,
         r.amortised_qps
     );
 }

@@ -5,7 +5,9 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use glam::{Mat4, Vec3};
 use std::hint::black_box;
 use std::path::Path;
-use vlnverse_env::occupancy::{build_maps, dilate, keep_largest_island, synthetic::grid_home, OccupancyConfig};
+use vlnverse_env::occupancy::{
+    build_maps, dilate, keep_largest_island, synthetic::grid_home, OccupancyConfig,
+};
 use vlnverse_env::{
     Aabb, MeshData, Motion, Part, Physics, Pose, Scene, SceneObject, SemanticClass, Shape,
     SCENE_FORMAT_VERSION,

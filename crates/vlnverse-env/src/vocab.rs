@@ -48,6 +48,7 @@ macro_rules! vocabulary {
                 match name { $($text => Some($name::$variant),)* _ => None }
             }
 
+            #[allow(dead_code)] // used by SemanticClass only
             fn kind_of(self) -> ClassKind {
                 match self { $($name::$variant => ClassKind::$kind),* }
             }

@@ -50,8 +50,14 @@ fn open_space_geodesic_is_euclidean() {
         let e = p.distance(goal);
         let a = meters(geodesic_distance(&map, p, goal).expect("query"));
         let f = meters(field.distance(p));
-        assert!((a - e).abs() <= 0.01 * e + 1e-4, "A* {a} vs euclid {e} from {p}");
-        assert!((f - e).abs() <= 0.01 * e + 1e-4, "field {f} vs euclid {e} from {p}");
+        assert!(
+            (a - e).abs() <= 0.01 * e + 1e-4,
+            "A* {a} vs euclid {e} from {p}"
+        );
+        assert!(
+            (f - e).abs() <= 0.01 * e + 1e-4,
+            "field {f} vs euclid {e} from {p}"
+        );
     }
 }
 
@@ -78,7 +84,9 @@ fn path_around_a_wall_matches_the_hand_computed_length() {
     let lo = around_wall_tip(s, g, 0.3);
     let hi = around_wall_tip(s, g, 0.3 + 1.5 * map.resolution);
     assert!(lo > 11.0 && lo < 12.0, "hand computation {lo}");
-    let path = shortest_path(&map, s, g).expect("query").expect("reachable");
+    let path = shortest_path(&map, s, g)
+        .expect("query")
+        .expect("reachable");
     assert!(
         path.length >= lo * 0.999 && path.length <= hi * 1.005,
         "A* {} not in [{lo}, {hi}]",
@@ -89,13 +97,22 @@ fn path_around_a_wall_matches_the_hand_computed_length() {
     assert_eq!(path.points.first(), Some(&s));
     assert_eq!(path.points.last(), Some(&g));
     for w in path.points.windows(2) {
-        assert!(map.line_of_sight(w[0], w[1]), "segment {} -> {} blocked", w[0], w[1]);
+        assert!(
+            map.line_of_sight(w[0], w[1]),
+            "segment {} -> {} blocked",
+            w[0],
+            w[1]
+        );
     }
     // The path passes above the tip of the wall.
     assert!(path.points.iter().any(|p| p.y > 7.3));
     let field = DistanceField::new(&map, g).expect("field");
     let f = meters(field.distance(s));
-    assert!((f - path.length).abs() <= 0.01 * path.length, "field {f} vs A* {}", path.length);
+    assert!(
+        (f - path.length).abs() <= 0.01 * path.length,
+        "field {f} vs A* {}",
+        path.length
+    );
 }
 
 #[test]
@@ -145,7 +162,10 @@ fn following_the_field_reaches_the_goal() {
         p = next;
     }
     assert_eq!(p, g);
-    assert!((walked - total).abs() < 0.01 * total, "walked {walked} vs {total}");
+    assert!(
+        (walked - total).abs() < 0.01 * total,
+        "walked {walked} vs {total}"
+    );
 }
 
 #[test]
@@ -155,7 +175,10 @@ fn unreachable_is_explicit() {
     let cases = [
         (CLOSED_ROOM, "other island"),
         (Vec2::new(100.0, 2.0), "outside the map"),
-        (Vec2::new(0.0, 2.5), "inside a wall, beyond the snap distance"),
+        (
+            Vec2::new(0.0, 2.5),
+            "inside a wall, beyond the snap distance",
+        ),
         (Vec2::new(7.8, 3.5), "outside the floor"),
     ];
     for (p, what) in cases {
@@ -174,7 +197,10 @@ fn unreachable_is_explicit() {
         assert_eq!(field.distance(p), GeodesicDistance::Unreachable, "{what}");
         assert_eq!(field.next_waypoint(p), None);
         let unreachable_goal = DistanceField::new(&map, p).expect("field");
-        assert_eq!(unreachable_goal.distance(inside), GeodesicDistance::Unreachable);
+        assert_eq!(
+            unreachable_goal.distance(inside),
+            GeodesicDistance::Unreachable
+        );
         assert_eq!(unreachable_goal.reachable_cells(), 0);
         let mut cache = GeodesicCache::new(map.clone(), 4);
         assert_eq!(
@@ -203,7 +229,10 @@ fn points_just_inside_the_margin_are_snapped() {
     assert!(!map.is_free_at(p));
     let goal = Vec2::new(4.0, 2.5);
     let d = meters(geodesic_distance(&map, p, goal).expect("query"));
-    assert!(d >= p.distance(goal) - 1e-4 && d < p.distance(goal) + 0.05, "{d}");
+    assert!(
+        d >= p.distance(goal) - 1e-4 && d < p.distance(goal) + 0.05,
+        "{d}"
+    );
     let path = shortest_path(&map, p, goal).expect("query").expect("path");
     assert_eq!(path.points.first(), Some(&p));
     let f = meters(DistanceField::new(&map, goal).expect("field").distance(p));
@@ -244,7 +273,10 @@ fn non_finite_points_are_errors_naming_the_argument() {
     let map = navigable(&open_room(3.0));
     let nan = Vec2::new(f32::NAN, 1.0);
     for (e, field) in [
-        (geodesic_distance(&map, nan, Vec2::ONE).unwrap_err(), "start"),
+        (
+            geodesic_distance(&map, nan, Vec2::ONE).unwrap_err(),
+            "start",
+        ),
         (shortest_path(&map, Vec2::ONE, nan).unwrap_err(), "goal"),
         (DistanceField::new(&map, nan).unwrap_err(), "goal"),
         (
@@ -260,4 +292,3 @@ fn non_finite_points_are_errors_naming_the_argument() {
         }
     }
 }
-

@@ -74,14 +74,39 @@ fn only_geometry_in_the_height_band_counts() {
     let mut s = open_room(6.0);
     let id = 100;
     // Above the agent (1.5 m): ignored.
-    s.objects.push(boxed(id, SemanticClass::Bookshelf, [1.0, 1.6, 1.0], [1.6, 1.7, 1.6]));
+    s.objects.push(boxed(
+        id,
+        SemanticClass::Bookshelf,
+        [1.0, 1.6, 1.0],
+        [1.6, 1.7, 1.6],
+    ));
     // A rug below the floor clearance: ignored.
-    s.objects.push(boxed(id + 1, SemanticClass::Rug, [3.0, 0.0, 1.0], [4.0, 0.01, 2.0]));
+    s.objects.push(boxed(
+        id + 1,
+        SemanticClass::Rug,
+        [3.0, 0.0, 1.0],
+        [4.0, 0.01, 2.0],
+    ));
     // A floating table top inside the band: an obstacle.
-    s.objects.push(boxed(id + 2, SemanticClass::DiningTable, [1.0, 0.70, 3.5], [2.0, 0.75, 4.5]));
+    s.objects.push(boxed(
+        id + 2,
+        SemanticClass::DiningTable,
+        [1.0, 0.70, 3.5],
+        [2.0, 0.75, 4.5],
+    ));
     // Ceiling and floor classes are never obstacles, whatever their height.
-    s.objects.push(boxed(id + 3, SemanticClass::Ceiling, [3.5, 0.9, 3.5], [4.5, 1.0, 4.5]));
-    s.objects.push(boxed(id + 4, SemanticClass::Floor, [4.5, 0.5, 1.0], [5.0, 1.0, 1.5]));
+    s.objects.push(boxed(
+        id + 3,
+        SemanticClass::Ceiling,
+        [3.5, 0.9, 3.5],
+        [4.5, 1.0, 4.5],
+    ));
+    s.objects.push(boxed(
+        id + 4,
+        SemanticClass::Floor,
+        [4.5, 0.5, 1.0],
+        [5.0, 1.0, 1.5],
+    ));
     let m = maps(&s);
     let occ = |x: f32, z: f32| state_at(&m.occupancy, Vec2::new(x, z));
     assert_eq!(occ(1.3, 1.3), CellState::Free);
@@ -129,10 +154,19 @@ fn yawed_box_and_cylinder_use_their_true_footprint() {
     ] {
         assert_eq!(state_at(&m.occupancy, p), CellState::Free, "{p}");
     }
-    assert_eq!(state_at(&m.occupancy, Vec2::new(4.5, 4.5)), CellState::Occupied);
-    assert_eq!(state_at(&m.occupancy, Vec2::new(4.5, 4.66)), CellState::Occupied);
+    assert_eq!(
+        state_at(&m.occupancy, Vec2::new(4.5, 4.5)),
+        CellState::Occupied
+    );
+    assert_eq!(
+        state_at(&m.occupancy, Vec2::new(4.5, 4.66)),
+        CellState::Occupied
+    );
     assert_eq!(state_at(&m.occupancy, Vec2::new(4.5, 4.8)), CellState::Free);
-    assert_eq!(state_at(&m.occupancy, Vec2::new(4.66, 4.66)), CellState::Free);
+    assert_eq!(
+        state_at(&m.occupancy, Vec2::new(4.66, 4.66)),
+        CellState::Free
+    );
 }
 
 #[test]
@@ -159,21 +193,35 @@ fn thin_mesh_wall_splits_a_room_and_mesh_parts_are_clipped_to_the_band() {
     ));
     let m = maps(&s);
     for z in [0.3f32, 1.0, 3.0, 5.7] {
-        assert_eq!(state_at(&m.occupancy, Vec2::new(2.02, z)), CellState::Occupied);
+        assert_eq!(
+            state_at(&m.occupancy, Vec2::new(2.02, z)),
+            CellState::Occupied
+        );
     }
     // The larger side survives in the navigable map, the smaller is cut off.
     assert!(m.navigable.is_free_at(Vec2::new(4.0, 3.0)));
     assert!(!m.navigable.is_free_at(Vec2::new(1.0, 3.0)));
     // Band top is y = 1.5, reached at x = 3 + 2.5 * 0.75 = 4.875 along the slanted edge.
-    assert_eq!(state_at(&m.occupancy, Vec2::new(5.2, 5.02)), CellState::Occupied);
-    assert_eq!(state_at(&m.occupancy, Vec2::new(4.5, 5.02)), CellState::Free);
+    assert_eq!(
+        state_at(&m.occupancy, Vec2::new(5.2, 5.02)),
+        CellState::Occupied
+    );
+    assert_eq!(
+        state_at(&m.occupancy, Vec2::new(4.5, 5.02)),
+        CellState::Free
+    );
 }
 
 #[test]
 fn pgm_orientation_follows_ros_map_frame() {
     // An asymmetric fixture: a pillar near the min-x, min-z corner of a 4 x 3 m room.
     let mut s = open_room(4.0);
-    s.objects.push(boxed(100, SemanticClass::Wardrobe, [0.5, 0.0, 0.5], [1.0, 2.0, 0.8]));
+    s.objects.push(boxed(
+        100,
+        SemanticClass::Wardrobe,
+        [0.5, 0.0, 0.5],
+        [1.0, 2.0, 0.8],
+    ));
     let m = maps(&s).occupancy;
     let pgm = m.to_pgm_bytes();
     let header = format!("P5\n{} {}\n255\n", m.width, m.height);
@@ -212,7 +260,10 @@ fn pgm_orientation_follows_ros_map_frame() {
 fn ros_files_round_trip() {
     let dir = tempfile::tempdir().expect("tempdir");
     let built = maps(&room_and_closed_room());
-    for (stem, map) in [("occupancy", &built.occupancy), ("navigable", &built.navigable)] {
+    for (stem, map) in [
+        ("occupancy", &built.occupancy),
+        ("navigable", &built.navigable),
+    ] {
         map.save_ros(dir.path(), stem).expect("save");
         let yaml = std::fs::read_to_string(dir.path().join(format!("{stem}.yaml"))).expect("yaml");
         assert!(yaml.contains(&format!("image: {stem}.pgm")));
@@ -222,7 +273,12 @@ fn ros_files_round_trip() {
         let back = GridMap::load_ros(dir.path().join(format!("{stem}.yaml"))).expect("load");
         assert_eq!((back.width, back.height), (map.width, map.height));
         assert_eq!(back.resolution, map.resolution);
-        assert!(back.origin.distance(map.origin) < 1e-5, "{} vs {}", back.origin, map.origin);
+        assert!(
+            back.origin.distance(map.origin) < 1e-5,
+            "{} vs {}",
+            back.origin,
+            map.origin
+        );
         assert_eq!(back.cells(), map.cells());
         // No temporary files left behind.
         assert!(!dir.path().join(format!("{stem}.pgm.tmp")).exists());
@@ -255,7 +311,11 @@ fn load_ros_errors_name_the_file_and_the_problem() {
         let msg = e.to_string();
         assert!(msg.contains("m.pgm") && msg.contains(what), "{msg}");
     }
-    std::fs::write(d.join("m.pgm"), b"P5\n# comment\n2 2\n255\n\xfe\x00\xcd\xfe").expect("write");
+    std::fs::write(
+        d.join("m.pgm"),
+        b"P5\n# comment\n2 2\n255\n\xfe\x00\xcd\xfe",
+    )
+    .expect("write");
     let ok = GridMap::load_ros(d.join("m.yaml")).expect("valid");
     assert_eq!(ok.state(0, 0), CellState::Free);
     assert_eq!(ok.state(1, 0), CellState::Occupied);
@@ -267,10 +327,16 @@ fn load_ros_errors_name_the_file_and_the_problem() {
         (good_yaml.replace("resolution: 0.05\n", ""), "resolution"),
         (good_yaml.replace("0.05", "-0.05"), "resolution"),
         (good_yaml.replace("0.05", "abc"), "resolution"),
-        (good_yaml.replace("[-1.0, -2.0, 0.0]", "[-1.0, -2.0]"), "origin"),
+        (
+            good_yaml.replace("[-1.0, -2.0, 0.0]", "[-1.0, -2.0]"),
+            "origin",
+        ),
         (good_yaml.replace("[-1.0, -2.0, 0.0]", "-1.0"), "origin"),
         (good_yaml.replace("image: m.pgm\n", ""), "image"),
-        (good_yaml.replace("free_thresh: 0.196", "free_thresh: 0.9"), "free_thresh"),
+        (
+            good_yaml.replace("free_thresh: 0.196", "free_thresh: 0.9"),
+            "free_thresh",
+        ),
         (good_yaml.replace("negate: 0", "negate: maybe"), "negate"),
     ] {
         std::fs::write(d.join("bad.yaml"), &yaml).expect("write");
@@ -338,7 +404,8 @@ fn bad_config_names_the_field() {
 
 #[test]
 fn config_parses_from_toml_with_defaults() {
-    let cfg: OccupancyConfig = toml::from_str("resolution = 0.1\nagent_radius = 0.2").expect("toml");
+    let cfg: OccupancyConfig =
+        toml::from_str("resolution = 0.1\nagent_radius = 0.2").expect("toml");
     assert_eq!(cfg.resolution, 0.1);
     assert_eq!(cfg.agent_radius, 0.2);
     assert_eq!(cfg.agent_height, 1.5);
@@ -357,8 +424,31 @@ fn coarser_resolution_gives_consistent_areas() {
         },
     )
     .expect("maps");
-    let (a, b) = (fine.navigable.free_area_m2(), coarse.navigable.free_area_m2());
+    let (a, b) = (
+        fine.navigable.free_area_m2(),
+        coarse.navigable.free_area_m2(),
+    );
     // Conservative rasterisation loses more at coarse resolution, but not much.
     assert!(b <= a * 1.02 && b > a * 0.8, "fine {a} coarse {b}");
     assert!(coarse.navigable.is_free_at(ROOM_B));
+}
+
+#[test]
+fn floor_gaps_under_doorways_stay_free_and_the_outside_is_unknown() {
+    let mut s = two_rooms(0.9);
+    // Two slabs that stop short of the partition wall's centre line, leaving a floor gap under
+    // the doorway.
+    s.objects.retain(|o| o.class != SemanticClass::Floor);
+    s.objects.push(floor(50, -0.05, -0.05, 3.97, 4.05));
+    s.objects.push(floor(51, 4.03, -0.05, 7.05, 4.05));
+    let m = maps(&s);
+    assert_eq!(state_at(&m.occupancy, Vec2::new(4.0, 2.0)), CellState::Free);
+    assert!(m.navigable.is_free_at(ROOM_A) && m.navigable.is_free_at(ROOM_B));
+    for p in [
+        Vec2::new(-0.2, 2.0),
+        Vec2::new(3.5, 4.2),
+        Vec2::new(7.2, 0.0),
+    ] {
+        assert_eq!(state_at(&m.occupancy, p), CellState::Unknown, "{p}");
+    }
 }

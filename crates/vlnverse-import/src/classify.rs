@@ -77,7 +77,7 @@ pub fn color_word(c: [f32; 3]) -> &'static str {
 }
 
 /// Guess the class of unlabelled geometry from its world bounding box (floor at `y = floor`):
-/// thin, large and horizontal at floor level -> floor; the same high up -> ceiling; tall, thin
+/// thin, large and horizontal with its top at floor level -> floor; the same high up -> ceiling; tall, thin
 /// and long -> wall; much larger than furniture -> wall (a building shell); else unknown.
 pub fn structure_guess(b: &Aabb, floor: f32) -> SemanticClass {
     let s = b.size();
@@ -85,7 +85,7 @@ pub fn structure_guess(b: &Aabb, floor: f32) -> SemanticClass {
     let thin_h = s.x.min(s.z);
     let long_h = s.x.max(s.z);
     if s.y < 0.3 && s.x > 1.0 && s.z > 1.0 && footprint > 2.0 {
-        if (b.min[1] - floor).abs() < 0.15 {
+        if (b.max[1] - floor).abs() < 0.15 {
             return SemanticClass::Floor;
         }
         if b.min[1] - floor > 1.8 {

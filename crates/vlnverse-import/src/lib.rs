@@ -18,8 +18,8 @@ use std::fmt;
 use std::path::{Path, PathBuf};
 use vlnverse_env::occupancy::OccupancyConfig;
 use vlnverse_env::{
-    Aabb, EnvError, MeshData, Motion, Part, Physics, Pose, Result, Scene, SceneObject,
-    SceneSource, SemanticClass, Shape, SCENE_FORMAT_VERSION,
+    Aabb, EnvError, MeshData, Motion, Part, Physics, Pose, Result, Scene, SceneObject, SceneSource,
+    SemanticClass, Shape, SCENE_FORMAT_VERSION,
 };
 
 /// Which axis points up in the source file.
@@ -183,7 +183,13 @@ pub struct ImportReport {
 
 impl fmt::Display for ImportReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        writeln!(f, "imported {} ({}) as `{}`", self.file.display(), self.format, self.scene_id)?;
+        writeln!(
+            f,
+            "imported {} ({}) as `{}`",
+            self.file.display(),
+            self.format,
+            self.scene_id
+        )?;
         writeln!(
             f,
             "  size {:.2} x {:.2} x {:.2} m, floor detected at y = {:.3} (shifted by {:+.3})",
@@ -195,7 +201,11 @@ impl fmt::Display for ImportReport {
             self.nodes,
             self.objects,
             self.triangles,
-            if self.mapping.is_empty() { "none" } else { &self.mapping }
+            if self.mapping.is_empty() {
+                "none"
+            } else {
+                &self.mapping
+            }
         )?;
         let join = |m: &BTreeMap<String, usize>| {
             m.iter()
@@ -284,7 +294,11 @@ struct Group {
 
 /// Resolve labels and merge geometry into object groups (see the crate documentation for the
 /// order of label sources).
-fn group_nodes(nodes: Vec<RawNode>, mapping: Option<&Mapping>, dropped: &mut Vec<String>) -> Vec<Group> {
+fn group_nodes(
+    nodes: Vec<RawNode>,
+    mapping: Option<&Mapping>,
+    dropped: &mut Vec<String>,
+) -> Vec<Group> {
     let mut groups: Vec<Group> = Vec::new();
     let mut index: BTreeMap<(usize, Option<String>), usize> = BTreeMap::new();
     let mut add = |key: (usize, Option<String>),
@@ -317,7 +331,14 @@ fn group_nodes(nodes: Vec<RawNode>, mapping: Option<&Mapping>, dropped: &mut Vec
                     .find_map(|(i, n, l)| l.clone().map(|l| (*i, n.clone(), l)))
             });
         if let Some((i, n, l)) = extras {
-            add((i, None), n, Some(l), LabelSource::Extras, node.prims, &mut groups);
+            add(
+                (i, None),
+                n,
+                Some(l),
+                LabelSource::Extras,
+                node.prims,
+                &mut groups,
+            );
             continue;
         }
         // 2. mapping on the node name, the mesh name, then ancestors' names.
@@ -332,7 +353,8 @@ fn group_nodes(nodes: Vec<RawNode>, mapping: Option<&Mapping>, dropped: &mut Vec
                 })
                 .or_else(|| {
                     node.ancestors.iter().find_map(|(i, n, _)| {
-                        m.lookup(n, MatchOn::Node).map(|l| (*i, n.clone(), l.clone()))
+                        m.lookup(n, MatchOn::Node)
+                            .map(|l| (*i, n.clone(), l.clone()))
                     })
                 })
         });
@@ -341,15 +363,23 @@ fn group_nodes(nodes: Vec<RawNode>, mapping: Option<&Mapping>, dropped: &mut Vec
                 dropped.push(n);
                 continue;
             }
-            add((i, None), n, Some(l), LabelSource::Mapping, node.prims, &mut groups);
+            add(
+                (i, None),
+                n,
+                Some(l),
+                LabelSource::Mapping,
+                node.prims,
+                &mut groups,
+            );
             continue;
         }
         // 3. mapping on material names, primitive by primitive; the rest stays with the node.
         for prim in node.prims {
             let hit = mapping.and_then(|m| {
-                prim.material
-                    .as_deref()
-                    .and_then(|mat| m.lookup(mat, MatchOn::Material).map(|l| (mat.to_string(), l.clone())))
+                prim.material.as_deref().and_then(|mat| {
+                    m.lookup(mat, MatchOn::Material)
+                        .map(|l| (mat.to_string(), l.clone()))
+                })
             });
             match hit {
                 Some((mat, l)) if l.drop => dropped.push(format!("{}/{mat}", node.name)),
@@ -492,8 +522,8 @@ pub fn import_scene_full(path: &Path, opts: &ImportOptions) -> Result<ImportOutp
                 let [a, b, c] = t.map(|i| p.positions[i as usize]);
                 let area = (b - a).cross(c - a).length() * 0.5;
                 area_acc += area;
-                for k in 0..3 {
-                    color_acc[k] += p.color[k] * area;
+                for (acc, c) in color_acc.iter_mut().zip(p.color) {
+                    *acc += c * area;
                 }
                 indices.push(t.map(|i| {
                     let r = &mut remap[i as usize];
@@ -531,8 +561,14 @@ pub fn import_scene_full(path: &Path, opts: &ImportOptions) -> Result<ImportOutp
         } else {
             format!("{}_{}", g.name, n)
         };
-        *report.objects_by_source.entry(source_name(source).into()).or_insert(0) += 1;
-        *report.objects_by_class.entry(class.name().into()).or_insert(0) += 1;
+        *report
+            .objects_by_source
+            .entry(source_name(source).into())
+            .or_insert(0) += 1;
+        *report
+            .objects_by_class
+            .entry(class.name().into())
+            .or_insert(0) += 1;
         objects.push(SceneObject {
             id: objects.len() as u32 + 1,
             name,
@@ -547,7 +583,10 @@ pub fn import_scene_full(path: &Path, opts: &ImportOptions) -> Result<ImportOutp
                 .color
                 .clone()
                 .unwrap_or_else(|| color_word(mean_color).to_string()),
-            material: label.material.clone().unwrap_or_else(|| material.to_string()),
+            material: label
+                .material
+                .clone()
+                .unwrap_or_else(|| material.to_string()),
             physics: Physics {
                 mass: label.mass.unwrap_or(mass),
                 friction: label.friction.unwrap_or(friction),
@@ -564,7 +603,9 @@ pub fn import_scene_full(path: &Path, opts: &ImportOptions) -> Result<ImportOutp
         id: scene_id,
         source: format!(
             "import:{}",
-            path.file_name().map(|f| f.to_string_lossy()).unwrap_or_default()
+            path.file_name()
+                .map(|f| f.to_string_lossy())
+                .unwrap_or_default()
         ),
         seed: None,
         floor_height,
@@ -587,7 +628,10 @@ pub fn import_scene_full(path: &Path, opts: &ImportOptions) -> Result<ImportOutp
         report.rooms_source = "none".into();
     }
     for r in &scene.rooms {
-        *report.rooms_by_type.entry(r.kind.name().into()).or_insert(0) += 1;
+        *report
+            .rooms_by_type
+            .entry(r.kind.name().into())
+            .or_insert(0) += 1;
     }
     report.doors = scene.doors.len();
     report.objects_in_rooms = scene
@@ -619,7 +663,13 @@ fn source_name(s: LabelSource) -> &'static str {
 fn set_supports(objects: &mut [SceneObject]) {
     let boxes: Vec<(u32, Aabb, bool)> = objects
         .iter()
-        .map(|o| (o.id, o.bbox, o.is_structure() || o.class == SemanticClass::Rug))
+        .map(|o| {
+            (
+                o.id,
+                o.bbox,
+                o.is_structure() || o.class == SemanticClass::Rug,
+            )
+        })
         .collect();
     for o in objects.iter_mut() {
         if o.is_structure() {
@@ -688,7 +738,11 @@ impl SceneSource for Importer {
 
     fn scene(&self, index: usize) -> Result<Scene> {
         let file = self.files.get(index).ok_or_else(|| {
-            EnvError::invalid("index", index, format!("the importer has {} files", self.files.len()))
+            EnvError::invalid(
+                "index",
+                index,
+                format!("the importer has {} files", self.files.len()),
+            )
         })?;
         let mut opts = self.options.clone();
         opts.scene_id = Some(self.scene_id(index));
@@ -719,6 +773,9 @@ mod tests {
 
     #[test]
     fn scene_ids_are_sanitised() {
-        assert_eq!(scene_id_from_path(Path::new("/a/My House.v2.glb")), "my_house_v2");
+        assert_eq!(
+            scene_id_from_path(Path::new("/a/My House.v2.glb")),
+            "my_house_v2"
+        );
     }
 }

@@ -167,7 +167,9 @@ impl Mapping {
     pub fn lookup(&self, name: &str, kind: MatchOn) -> Option<&RawLabel> {
         self.rules
             .iter()
-            .find(|r| (r.match_on == MatchOn::Any || r.match_on == kind) && r.pattern.is_match(name))
+            .find(|r| {
+                (r.match_on == MatchOn::Any || r.match_on == kind) && r.pattern.is_match(name)
+            })
             .map(|r| &r.label)
     }
 }
@@ -197,7 +199,10 @@ mod tests {
         let e = Mapping::from_toml("[[rule]]\npattern = \"x\"\nclass = \"spaceship\"\n", p)
             .unwrap_err()
             .to_string();
-        assert!(e.contains("rule[0].class") && e.contains("spaceship"), "{e}");
+        assert!(
+            e.contains("rule[0].class") && e.contains("spaceship"),
+            "{e}"
+        );
         let e = Mapping::from_toml("[[rule]]\npattern = \"x\"\n", p)
             .unwrap_err()
             .to_string();

@@ -85,11 +85,17 @@ fn axis_matrix(opts: &ImportOptions) -> Mat4 {
 
 /// Parse a label from a glTF `extras` object: `{"class": "bed", "motion": "dynamic", ...}`
 /// (`semantic_class` is accepted as an alias of `class`).
-fn label_from_extras(path: &Path, what: &str, extras: &gltf::json::Extras) -> Result<Option<RawLabel>> {
+fn label_from_extras(
+    path: &Path,
+    what: &str,
+    extras: &gltf::json::Extras,
+) -> Result<Option<RawLabel>> {
     let Some(raw) = extras else { return Ok(None) };
     let v: serde_json::Value = serde_json::from_str(raw.get())
         .map_err(|e| EnvError::parse(path, format!("{what}.extras: {e}")))?;
-    let Some(obj) = v.as_object() else { return Ok(None) };
+    let Some(obj) = v.as_object() else {
+        return Ok(None);
+    };
     let class_v = obj.get("class").or_else(|| obj.get("semantic_class"));
     let Some(class_s) = class_v.and_then(|c| c.as_str()) else {
         return Ok(None);
@@ -206,10 +212,8 @@ pub fn load_gltf(path: &Path, opts: &ImportOptions) -> Result<Vec<RawNode>> {
         .ok_or_else(|| EnvError::parse(path, "scenes: the file has no scene"))?;
     let root = axis_matrix(opts);
     let mut out = Vec::new();
-    let mut stack: Vec<(gltf::Node, Mat4, Vec<(usize, String, Option<RawLabel>)>)> = scene
-        .nodes()
-        .map(|n| (n, root, Vec::new()))
-        .collect();
+    let mut stack: Vec<(gltf::Node, Mat4, Vec<(usize, String, Option<RawLabel>)>)> =
+        scene.nodes().map(|n| (n, root, Vec::new())).collect();
     stack.reverse();
     let mut visited = 0usize;
     while let Some((node, parent, ancestors)) = stack.pop() {
@@ -258,7 +262,11 @@ pub fn load_gltf(path: &Path, opts: &ImportOptions) -> Result<Vec<RawNode>> {
                             ),
                         ));
                     }
-                    indices.push(if flip { [t[0], t[2], t[1]] } else { [t[0], t[1], t[2]] });
+                    indices.push(if flip {
+                        [t[0], t[2], t[1]]
+                    } else {
+                        [t[0], t[1], t[2]]
+                    });
                 }
                 let mat = prim.material();
                 let pbr = mat.pbr_metallic_roughness();
@@ -340,7 +348,6 @@ pub fn load_obj(path: &Path, opts: &ImportOptions) -> Result<Vec<RawNode>> {
         single_index: true,
         ignore_points: true,
         ignore_lines: true,
-        ..Default::default()
     };
     let (models, materials) =
         tobj::load_obj(path, &load).map_err(|e| EnvError::parse(path, format!("OBJ: {e}")))?;

@@ -43,9 +43,7 @@ use std::path::Path;
 use vlnverse_env::occupancy::{
     build_maps, squared_distance_transform, CellState, GridMap, OccupancyConfig,
 };
-use vlnverse_env::{
-    Door, EnvError, Result, Room, RoomId, RoomType, Scene, SemanticClass,
-};
+use vlnverse_env::{Door, EnvError, Result, Room, RoomId, RoomType, Scene, SemanticClass};
 
 /// Room segmentation settings.
 #[derive(Clone, Debug, PartialEq)]
@@ -303,7 +301,11 @@ fn structure_grid(scene: &Scene, occ: &OccupancyConfig) -> Result<Labels> {
                 }
             }
         }
-        let inside = free.iter().zip(&outside).filter(|(f, o)| **f && !**o).count();
+        let inside = free
+            .iter()
+            .zip(&outside)
+            .filter(|(f, o)| **f && !**o)
+            .count();
         if inside as f32 * map.resolution * map.resolution > 2.0 {
             for (f, o) in free.iter_mut().zip(&outside) {
                 *f &= !o;
@@ -525,9 +527,9 @@ fn split_open_plan(g: &mut Labels, scene: &Scene, min_area: f32) {
                 }
             }
         }
-        for i in 0..g.w * g.h {
-            if g.label[i] == l && lab[i] != 0 {
-                g.label[i] = lab[i];
+        for (x, &y) in g.label.iter_mut().zip(&lab) {
+            if *x == l && y != 0 {
+                *x = y;
             }
         }
     }
@@ -659,10 +661,10 @@ fn outline(g: &Labels, l: u32) -> Vec<[f32; 2]> {
     let (outside, _) = {
         let (lab, _) = components(g, |i| !member(i));
         let mut border_labels = std::collections::BTreeSet::new();
-        for i in 0..g.w * g.h {
+        for (i, &x) in lab.iter().enumerate() {
             let (c, r) = (i % g.w, i / g.w);
-            if (c == 0 || r == 0 || c + 1 == g.w || r + 1 == g.h) && lab[i] != 0 {
-                border_labels.insert(lab[i]);
+            if (c == 0 || r == 0 || c + 1 == g.w || r + 1 == g.h) && x != 0 {
+                border_labels.insert(x);
             }
         }
         (
@@ -746,12 +748,7 @@ fn outline(g: &Labels, l: u32) -> Vec<[f32; 2]> {
     }
     let mut poly: Vec<[f32; 2]> = simple
         .into_iter()
-        .map(|(c, r)| {
-            [
-                g.origin.x + c as f32 * g.res,
-                g.origin.y + r as f32 * g.res,
-            ]
-        })
+        .map(|(c, r)| [g.origin.x + c as f32 * g.res, g.origin.y + r as f32 * g.res])
         .collect();
     make_ccw_from_above(&mut poly);
     poly
@@ -759,8 +756,9 @@ fn outline(g: &Labels, l: u32) -> Vec<[f32; 2]> {
 
 /// Doors: each connected stretch of border between two labels (labels are room index + 1).
 fn find_doors(g: &Labels, room_ids: &[RoomId], floor: f32, open_plan_width: f32) -> Vec<Door> {
-    // Border cells of label a next to label b (a < b), with the direction a -> b.
-    let mut pairs: BTreeMap<(u32, u32), Vec<(usize, Vec2)>> = BTreeMap::new();
+    // Border cell pairs (i in label a, j in label b, a < b): clear half-width there (the
+    // smaller wall distance of the two) and the direction a -> b.
+    let mut pairs: BTreeMap<(u32, u32), Vec<(usize, usize)>> = BTreeMap::new();
     for i in 0..g.w * g.h {
         let a = g.label[i];
         if a == 0 {
@@ -769,23 +767,20 @@ fn find_doors(g: &Labels, room_ids: &[RoomId], floor: f32, open_plan_width: f32)
         for j in g.neighbours(i) {
             let b = g.label[j];
             if b != 0 && a < b {
-                let d = (g.center(j) - g.center(i)).normalize_or_zero();
-                pairs.entry((a, b)).or_default().push((i, d));
+                pairs.entry((a, b)).or_default().push((i, j));
             }
         }
     }
     let mut doors = Vec::new();
-    for ((a, b), cells) in pairs {
-        // Cluster border cells 8-connected.
-        let set: BTreeMap<usize, Vec2> = {
-            let mut m: BTreeMap<usize, Vec2> = BTreeMap::new();
-            for (i, d) in &cells {
-                *m.entry(*i).or_insert(Vec2::ZERO) += *d;
-            }
-            m
-        };
+    for ((a, b), list) in pairs {
+        let by_cell: BTreeMap<usize, Vec<usize>> =
+            list.iter().fold(BTreeMap::new(), |mut m, &(i, j)| {
+                m.entry(i).or_insert_with(Vec::new).push(j);
+                m
+            });
+        // Cluster the a-side border cells 8-connected: one opening per cluster.
         let mut seen = std::collections::BTreeSet::new();
-        for &s in set.keys() {
+        for &s in by_cell.keys() {
             if !seen.insert(s) {
                 continue;
             }
@@ -801,7 +796,7 @@ fn find_doors(g: &Labels, room_ids: &[RoomId], floor: f32, open_plan_width: f32)
                             continue;
                         }
                         let j = y as usize * g.w + x as usize;
-                        if set.contains_key(&j) && seen.insert(j) {
+                        if by_cell.contains_key(&j) && seen.insert(j) {
                             stack.push(j);
                         }
                     }
@@ -810,18 +805,23 @@ fn find_doors(g: &Labels, room_ids: &[RoomId], floor: f32, open_plan_width: f32)
             if cluster.len() < 2 {
                 continue;
             }
-            let centre = *cluster
-                .iter()
-                .max_by(|&&x, &&y| g.dist[x].total_cmp(&g.dist[y]).then(y.cmp(&x)))
-                .unwrap_or(&cluster[0]);
-            let normal = cluster
-                .iter()
-                .map(|i| set[i])
-                .fold(Vec2::ZERO, |s, d| s + d)
-                .normalize_or_zero();
-            let p = g.center(centre) + normal * (g.res * 0.5);
+            cluster.sort_unstable();
+            let mut best: Option<(f32, usize, usize)> = None;
+            let mut normal = Vec2::ZERO;
+            for &i in &cluster {
+                for &j in &by_cell[&i] {
+                    normal += (g.center(j) - g.center(i)).normalize_or_zero();
+                    let d = g.dist[i].min(g.dist[j]);
+                    if best.is_none_or(|(bd, _, _)| d > bd) {
+                        best = Some((d, i, j));
+                    }
+                }
+            }
+            let Some((d, i, j)) = best else { continue };
+            let normal = normal.normalize_or_zero();
+            let p = (g.center(i) + g.center(j)) * 0.5;
             // Wall distances are between cell centres: the clear gap is one cell less.
-            let width = (2.0 * g.dist[centre] - g.res).max(g.res);
+            let width = (2.0 * d - g.res).max(g.res);
             doors.push(Door {
                 id: doors.len() as u32,
                 position: [p.x, floor, p.y],
@@ -845,9 +845,7 @@ fn assign_objects(scene: &mut Scene, g: &Labels, room_ids: &[RoomId], snap: f32)
         }
         let c = o.bbox.center();
         let p = Vec2::new(c.x, c.z);
-        o.room = g
-            .label_near(p, snap)
-            .map(|l| room_ids[l as usize - 1]);
+        o.room = g.label_near(p, snap).map(|l| room_ids[l as usize - 1]);
     }
 }
 
@@ -874,9 +872,7 @@ fn classify_room(scene: &Scene, room: RoomId, area: f32, polygon: &[[f32; 2]]) -
             C::DiningTable => (RoomType::DiningRoom, 1.5),
             C::Desk | C::OfficeChair => (RoomType::Office, 1.5),
             C::WashingMachine => (RoomType::LaundryRoom, 3.0),
-            _ if name_has(o, GYM_WORDS) => {
-                (RoomType::Gym, 3.0)
-            }
+            _ if name_has(o, GYM_WORDS) => (RoomType::Gym, 3.0),
             _ => continue,
         };
         *score.entry(t).or_insert(0.0) += s;
@@ -988,14 +984,22 @@ mod tests {
         assert!(shoelace_xz(&a.rooms[0].polygon) < 0.0);
         assert!((a.rooms[0].area() - 12.0).abs() < 1e-5);
         let bad = "[[room]]\nkind = \"ballroom\"\npolygon = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]]\n";
-        let e = RoomAnnotation::from_toml(bad, Path::new("r.toml")).unwrap_err().to_string();
-        assert!(e.contains("r.toml") && e.contains("room[0].kind") && e.contains("ballroom"), "{e}");
+        let e = RoomAnnotation::from_toml(bad, Path::new("r.toml"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("r.toml") && e.contains("room[0].kind") && e.contains("ballroom"),
+            "{e}"
+        );
     }
 
     fn grid_from(rows: &[&str]) -> Labels {
         let h = rows.len();
         let w = rows[0].len();
-        let free: Vec<bool> = rows.iter().flat_map(|r| r.bytes().map(|b| b != b'#')).collect();
+        let free: Vec<bool> = rows
+            .iter()
+            .flat_map(|r| r.bytes().map(|b| b != b'#'))
+            .collect();
         let d2 = squared_distance_transform(w as u32, h as u32, |i| !free[i]);
         Labels {
             w,
@@ -1035,7 +1039,10 @@ mod tests {
         assert_eq!(doors.len(), 1, "{doors:?}");
         let d = &doors[0];
         assert!((d.width - 3.0).abs() < 1e-4, "{d:?}");
-        assert!((d.position[2] - 4.5).abs() < 1e-4 && (7.0..=10.0).contains(&d.position[0]), "{d:?}");
+        assert!(
+            (d.position[2] - 4.5).abs() < 1e-4 && (7.0..=10.0).contains(&d.position[0]),
+            "{d:?}"
+        );
         assert!((d.normal[0].abs() - 1.0).abs() < 1e-4, "{d:?}");
         assert!(!d.open_plan);
         for l in 1..=2 {
@@ -1047,7 +1054,11 @@ mod tests {
             };
             assert!(shoelace_xz(&room.polygon) < 0.0);
             let cells = g.label.iter().filter(|&&x| x == l).count() as f32;
-            assert!((room.area() - cells).abs() < 1e-3, "{} vs {cells}", room.area());
+            assert!(
+                (room.area() - cells).abs() < 1e-3,
+                "{} vs {cells}",
+                room.area()
+            );
         }
         // A lower door ratio treats the same door as an open-plan opening.
         let mut g = grid_from(&rows);

@@ -135,7 +135,11 @@ fn hierarchy_transforms_are_baked_and_extras_label_the_subtree() {
     assert!(scene.floor_height.abs() < 1e-4);
     assert!(bed.bbox.min[1].abs() < 1e-4, "{:?}", bed.bbox);
     let slab = scene.objects.iter().find(|o| o.name == "Slab").unwrap();
-    assert_eq!(slab.class, SemanticClass::Floor, "heuristic: thin, large, at floor height");
+    assert_eq!(
+        slab.class,
+        SemanticClass::Floor,
+        "heuristic: thin, large, at floor height"
+    );
     assert_eq!(report.unmatched_names, vec!["Slab".to_string()]);
     // Object-local vertices: pose at the bbox bottom centre, parts in world space around it.
     let Shape::Mesh(m) = &bed.parts[0].shape else {
@@ -143,7 +147,10 @@ fn hierarchy_transforms_are_baked_and_extras_label_the_subtree() {
     };
     assert_eq!(bed.pose.position, [3.0, 0.0, -1.0]);
     let xs: Vec<f32> = m.positions.iter().map(|p| p[0]).collect();
-    assert!(xs.iter().all(|x| (-2.0 - 1e-4..=0.0 + 1e-4).contains(x)), "{xs:?}");
+    assert!(
+        xs.iter().all(|x| (-2.0 - 1e-4..=0.0 + 1e-4).contains(x)),
+        "{xs:?}"
+    );
     assert_eq!(bed.color, "red");
     assert!((bed.parts[0].color[0] - 0.8).abs() < 1e-6);
 }
@@ -162,7 +169,10 @@ fn z_up_and_units_are_converted() {
     };
     let (scene, _) = import_scene(&path, &o).unwrap();
     let s = scene.bounds().size();
-    assert!((s.x - 1.0).abs() < 1e-4 && (s.y - 3.0).abs() < 1e-4 && (s.z - 2.0).abs() < 1e-4, "{s}");
+    assert!(
+        (s.x - 1.0).abs() < 1e-4 && (s.y - 3.0).abs() < 1e-4 && (s.z - 2.0).abs() < 1e-4,
+        "{s}"
+    );
 }
 
 #[test]
@@ -188,7 +198,10 @@ fn missing_buffer_file_is_a_clear_error() {
     let dir = tempfile::tempdir().unwrap();
     let path = write(dir.path(), "scene.gltf", &serde_json::to_vec(&doc).unwrap());
     let e = import_scene(&path, &opts()).unwrap_err().to_string();
-    assert!(e.contains("scene.gltf") && e.contains("absent.bin") && e.contains("not found"), "{e}");
+    assert!(
+        e.contains("scene.gltf") && e.contains("absent.bin") && e.contains("not found"),
+        "{e}"
+    );
     // With the buffer beside it, the same file imports.
     write(dir.path(), "absent.bin", &bin);
     let (scene, _) = import_scene(&path, &opts()).unwrap();
@@ -205,7 +218,9 @@ fn draco_required_extension_is_a_clear_error() {
     let path = write(dir.path(), "draco.glb", &glb_bytes(doc, &bin));
     let e = import_scene(&path, &opts()).unwrap_err().to_string();
     assert!(
-        e.contains("draco.glb") && e.contains("KHR_draco_mesh_compression") && e.contains("not supported"),
+        e.contains("draco.glb")
+            && e.contains("KHR_draco_mesh_compression")
+            && e.contains("not supported"),
         "{e}"
     );
 }
@@ -226,15 +241,41 @@ const MTL: &str = "newmtl red_wood\nKd 0.6 0.02 0.02\n\nnewmtl blue_fabric\nKd 0
 fn obj_text() -> String {
     // A floor (5 x 5 m), a table top (1 x 1 m at 75 cm) and a lamp column, in centimetres.
     let mut s = String::from("mtllib home.mtl\n");
-    let quad = |s: &mut String, name: &str, mat: &str, y: f32, x0: f32, x1: f32, z0: f32, z1: f32, base: usize| {
+    let quad = |s: &mut String,
+                name: &str,
+                mat: &str,
+                y: f32,
+                x0: f32,
+                x1: f32,
+                z0: f32,
+                z1: f32,
+                base: usize| {
         s.push_str(&format!("o {name}\nusemtl {mat}\n"));
         for (x, z) in [(x0, z0), (x1, z0), (x1, z1), (x0, z1)] {
             s.push_str(&format!("v {x} {y} {z}\n"));
         }
-        s.push_str(&format!("f {} {} {} {}\n", base + 1, base + 4, base + 3, base + 2));
+        s.push_str(&format!(
+            "f {} {} {} {}\n",
+            base + 1,
+            base + 4,
+            base + 3,
+            base + 2
+        ));
     };
-    quad(&mut s, "Floor_main", "red_wood", 0.0, -250.0, 250.0, -250.0, 250.0, 0);
-    quad(&mut s, "Table_01", "red_wood", 75.0, 0.0, 100.0, 0.0, 100.0, 4);
+    quad(
+        &mut s,
+        "Floor_main",
+        "red_wood",
+        0.0,
+        -250.0,
+        250.0,
+        -250.0,
+        250.0,
+        0,
+    );
+    quad(
+        &mut s, "Table_01", "red_wood", 75.0, 0.0, 100.0, 0.0, 100.0, 4,
+    );
     s.push_str("o Lamp_01\nusemtl blue_fabric\n");
     s.push_str("v 200 0 200\nv 210 0 200\nv 210 150 200\nv 200 150 200\n");
     s.push_str("f 9 10 11\nf 9 11 12\n");
@@ -271,7 +312,10 @@ fn obj_without_its_mtl_still_imports_in_grey() {
     let path = write(dir.path(), "home.obj", obj_text().as_bytes());
     let (scene, _) = import_scene(&path, &opts()).unwrap();
     assert_eq!(scene.objects.len(), 3);
-    assert!(scene.objects.iter().all(|o| o.parts[0].color == vlnverse_import::DEFAULT_COLOR));
+    assert!(scene
+        .objects
+        .iter()
+        .all(|o| o.parts[0].color == vlnverse_import::DEFAULT_COLOR));
 }
 
 #[test]
@@ -298,5 +342,8 @@ fn mapping_file_overrides_and_drops() {
     assert_eq!(scene.objects.len(), 2);
     // The floor was matched by no rule of this file: geometry heuristics make it a floor.
     assert_eq!(report.unmatched_names, vec!["Floor_main".to_string()]);
-    assert_eq!(scene.objects.iter().map(|o| o.id).collect::<Vec<_>>(), vec![1, 2]);
+    assert_eq!(
+        scene.objects.iter().map(|o| o.id).collect::<Vec<_>>(),
+        vec![1, 2]
+    );
 }

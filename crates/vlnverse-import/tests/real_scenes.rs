@@ -3,12 +3,18 @@
 
 use glam::Vec2;
 use std::path::PathBuf;
-use vlnverse_env::occupancy::{build_maps, squared_distance_transform, CellState, GridMap, OccupancyConfig};
+use vlnverse_env::occupancy::{
+    build_maps, squared_distance_transform, CellState, GridMap, OccupancyConfig,
+};
 use vlnverse_env::{RoomType, Scene, SceneSource, SemanticClass};
 use vlnverse_import::{import_scene, ImportOptions, ImportReport, Importer, UpAxis};
 
 fn shared(rel: &str) -> Option<PathBuf> {
-    let p = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/scenes")).join(rel);
+    let p = PathBuf::from(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../../shared/scenes"
+    ))
+    .join(rel);
     if p.exists() {
         Some(p)
     } else {
@@ -18,7 +24,10 @@ fn shared(rel: &str) -> Option<PathBuf> {
 }
 
 fn aws_mapping() -> PathBuf {
-    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../configs/import/aws_small_house.toml"))
+    PathBuf::from(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../configs/import/aws_small_house.toml"
+    ))
 }
 
 fn import_aws() -> Option<(Scene, ImportReport)> {
@@ -40,53 +49,88 @@ fn object<'a>(scene: &'a Scene, name: &str) -> &'a vlnverse_env::SceneObject {
 
 #[test]
 fn aws_house_has_the_right_scale_and_orientation() {
-    let Some((scene, report)) = import_aws() else { return };
+    let Some((scene, report)) = import_aws() else {
+        return;
+    };
     let s = scene.bounds().size();
     assert!((s.x - 19.0).abs() < 0.2, "x size {}", s.x);
     assert!((s.y - 3.0).abs() < 0.2, "height {}", s.y);
     assert!((s.z - 11.4).abs() < 0.2, "z size {}", s.z);
-    assert!(scene.floor_height.abs() < 0.02, "floor {}", scene.floor_height);
+    assert!(
+        scene.floor_height.abs() < 0.02,
+        "floor {}",
+        scene.floor_height
+    );
     assert_eq!(report.nodes, 87);
     assert!(report.triangles > 140_000, "{}", report.triangles);
     // Upright: the fridge is taller than wide and stands on the floor; the bed's top is below
     // 1.5 m.
     let fridge = object(&scene, "Refrigerator_01_001").bbox;
-    assert!(fridge.size().y > 1.5 && fridge.size().y > fridge.size().x, "{fridge:?}");
+    assert!(
+        fridge.size().y > 1.5 && fridge.size().y > fridge.size().x,
+        "{fridge:?}"
+    );
     assert!(fridge.min[1].abs() < 0.05);
     let bed = object(&scene, "Bed_01_001").bbox;
-    assert!(bed.max[1] < 1.5 && bed.size().x > 1.5 && bed.size().z > 1.5, "{bed:?}");
+    assert!(
+        bed.max[1] < 1.5 && bed.size().x > 1.5 && bed.size().z > 1.5,
+        "{bed:?}"
+    );
 }
 
 #[test]
 fn aws_house_mapping_labels_at_least_30_objects() {
-    let Some((scene, report)) = import_aws() else { return };
-    let from_mapping = report.objects_by_source.get("mapping").copied().unwrap_or(0);
+    let Some((scene, report)) = import_aws() else {
+        return;
+    };
+    let from_mapping = report
+        .objects_by_source
+        .get("mapping")
+        .copied()
+        .unwrap_or(0);
     let labelled = scene
         .objects
         .iter()
         .filter(|o| o.class != SemanticClass::Unknown && !report.unmatched_names.contains(&o.name))
         .count();
-    println!("AWS house: {from_mapping} objects matched by the mapping, {labelled} of them with a class");
+    println!(
+        "AWS house: {from_mapping} objects matched by the mapping, {labelled} of them with a class"
+    );
     assert!(labelled >= 30, "{report}");
     assert_eq!(object(&scene, "Bed_01_001").class, SemanticClass::Bed);
-    assert_eq!(object(&scene, "Refrigerator_01_001").class, SemanticClass::Fridge);
-    assert_eq!(object(&scene, "HouseWallB_01_001").class, SemanticClass::Wall);
+    assert_eq!(
+        object(&scene, "Refrigerator_01_001").class,
+        SemanticClass::Fridge
+    );
+    assert_eq!(
+        object(&scene, "HouseWallB_01_001").class,
+        SemanticClass::Wall
+    );
     assert_eq!(object(&scene, "FloorB_01_001").class, SemanticClass::Floor);
     let chair = object(&scene, "ChairA_01_001");
     assert_eq!(chair.class, SemanticClass::Chair);
     assert_eq!(chair.physics.motion, vlnverse_env::Motion::Dynamic);
     assert_eq!(chair.physics.mass, 6.0);
-    assert_eq!(object(&scene, "SofaC_01_001").physics.motion, vlnverse_env::Motion::Static);
+    assert_eq!(
+        object(&scene, "SofaC_01_001").physics.motion,
+        vlnverse_env::Motion::Static
+    );
     // Every name nothing matched is counted.
-    assert!(report.unmatched_names.contains(&"Chandelier_01_001".to_string()));
-    assert_eq!(report.objects_by_class.values().sum::<usize>(), scene.objects.len());
+    assert!(report
+        .unmatched_names
+        .contains(&"Chandelier_01_001".to_string()));
+    assert_eq!(
+        report.objects_by_class.values().sum::<usize>(),
+        scene.objects.len()
+    );
 }
 
 /// Share of the SLAM map's occupied cells that lie within `tol` metres of one of our occupied
 /// cells.
 fn slam_agreement(ours: &GridMap, slam: &GridMap, tol: f32) -> (f32, usize) {
     let cells = ours.cells();
-    let d2 = squared_distance_transform(ours.width, ours.height, |i| cells[i] == CellState::Occupied);
+    let d2 =
+        squared_distance_transform(ours.width, ours.height, |i| cells[i] == CellState::Occupied);
     let reach = (tol / ours.resolution).ceil() as i64 + 1;
     let (mut hit, mut total) = (0usize, 0usize);
     for (i, c) in slam.cells().iter().enumerate() {
@@ -96,7 +140,9 @@ fn slam_agreement(ours: &GridMap, slam: &GridMap, tol: f32) -> (f32, usize) {
         total += 1;
         let (sc, sr) = slam.cell_of_index(i);
         let p = slam.cell_center(sc, sr);
-        let Some((c0, r0)) = ours.world_to_cell(p) else { continue };
+        let Some((c0, r0)) = ours.world_to_cell(p) else {
+            continue;
+        };
         // Cheap reject: the nearest occupied cell centre is too far.
         if (d2[ours.index(c0, r0)].sqrt() as f32 - 1.5) * ours.resolution > tol {
             continue;
@@ -114,7 +160,10 @@ fn slam_agreement(ours: &GridMap, slam: &GridMap, tol: f32) -> (f32, usize) {
                 // Distance from p to the square of that cell.
                 let q = ours.cell_center(c as u32, r as u32);
                 let h = ours.resolution * 0.5;
-                let d = Vec2::new(((p.x - q.x).abs() - h).max(0.0), ((p.y - q.y).abs() - h).max(0.0));
+                let d = Vec2::new(
+                    ((p.x - q.x).abs() - h).max(0.0),
+                    ((p.y - q.y).abs() - h).max(0.0),
+                );
                 if d.length() <= tol {
                     near = true;
                     break 'search;
@@ -128,8 +177,12 @@ fn slam_agreement(ours: &GridMap, slam: &GridMap, tol: f32) -> (f32, usize) {
 
 #[test]
 fn aws_house_occupancy_agrees_with_the_slam_map() {
-    let Some((scene, _)) = import_aws() else { return };
-    let Some(yaml) = shared("aws_small_house/map.yaml") else { return };
+    let Some((scene, _)) = import_aws() else {
+        return;
+    };
+    let Some(yaml) = shared("aws_small_house/map.yaml") else {
+        return;
+    };
     let slam = GridMap::load_ros(&yaml).expect("SLAM map loads");
     let maps = build_maps(&scene, &OccupancyConfig::default()).unwrap();
     let (share, total) = slam_agreement(&maps.occupancy, &slam, 0.10);
@@ -148,7 +201,9 @@ fn aws_house_occupancy_agrees_with_the_slam_map() {
 
 #[test]
 fn aws_house_rooms_are_segmented() {
-    let Some((scene, report)) = import_aws() else { return };
+    let Some((scene, report)) = import_aws() else {
+        return;
+    };
     println!("{report}");
     let n = scene.rooms.len();
     assert!((3..=8).contains(&n), "{n} rooms: {report}");
@@ -159,7 +214,9 @@ fn aws_house_rooms_are_segmented() {
         assert!(r.polygon.len() >= 4);
     }
     let room_of = |name: &str| {
-        let id = object(&scene, name).room.unwrap_or_else(|| panic!("{name} has no room"));
+        let id = object(&scene, name)
+            .room
+            .unwrap_or_else(|| panic!("{name} has no room"));
         scene.room(id).unwrap()
     };
     assert_eq!(room_of("Bed_01_001").kind, RoomType::Bedroom);
@@ -180,12 +237,17 @@ fn aws_house_rooms_are_segmented() {
         assert!(d.width > 0.3 && d.width < 12.0, "{d:?}");
     }
     // Most furniture got a room.
-    assert!(report.objects_in_rooms as f32 >= 0.9 * scene.items().count() as f32, "{report}");
+    assert!(
+        report.objects_in_rooms as f32 >= 0.9 * scene.items().count() as f32,
+        "{report}"
+    );
 }
 
 #[test]
 fn simple_room_is_right_side_up_with_the_z_up_option() {
-    let Some(file) = shared("habitat_simple_room/simple_room.glb") else { return };
+    let Some(file) = shared("habitat_simple_room/simple_room.glb") else {
+        return;
+    };
     let opts = ImportOptions {
         up: UpAxis::Z,
         ..Default::default()
@@ -196,10 +258,23 @@ fn simple_room_is_right_side_up_with_the_z_up_option() {
     let floor = object(&scene, "Cube");
     assert_eq!(floor.class, SemanticClass::Floor, "{report}");
     let top = object(&scene, "Cube.002").bbox;
-    assert!(top.size().y < 0.1 && top.size().x > 0.5 && top.size().z > 0.5, "{top:?}");
-    assert!((1.0..=1.25).contains(&top.max[1]), "table top at {}", top.max[1]);
-    // Everything stands on or above the floor.
-    assert!(scene.bounds().min[1] > -0.15, "{:?}", scene.bounds());
+    assert!(
+        top.size().y < 0.1 && top.size().x > 0.5 && top.size().z > 0.5,
+        "{top:?}"
+    );
+    assert!(
+        (1.0..=1.25).contains(&top.max[1]),
+        "table top at {}",
+        top.max[1]
+    );
+    // Everything but the floor slab stands on or above the floor.
+    for o in scene
+        .objects
+        .iter()
+        .filter(|o| o.class != SemanticClass::Floor)
+    {
+        assert!(o.bbox.min[1] > -0.02, "{}: {:?}", o.name, o.bbox);
+    }
     // Read as Y up, the same file is lying on its side: the floor slab is vertical.
     let (side, _) = import_scene(&file, &ImportOptions::default()).unwrap();
     assert!(object(&side, "Cube").bbox.size().y > 5.0);
@@ -207,17 +282,24 @@ fn simple_room_is_right_side_up_with_the_z_up_option() {
 
 #[test]
 fn godot_living_room_splits_by_material_names() {
-    let Some(file) = shared("godot_living_room/living_room.glb") else { return };
+    let Some(file) = shared("godot_living_room/living_room.glb") else {
+        return;
+    };
     let (scene, report) = import_scene(&file, &ImportOptions::default()).unwrap();
     let has = |c: SemanticClass| scene.objects.iter().any(|o| o.class == c);
-    assert!(has(SemanticClass::Wall) && has(SemanticClass::Ceiling), "{report}");
+    assert!(
+        has(SemanticClass::Wall) && has(SemanticClass::Ceiling),
+        "{report}"
+    );
     assert!(scene.objects.iter().any(|o| o.name == "Cube/ceiling"));
     assert!(!scene.rooms.is_empty());
 }
 
 #[test]
 fn importer_is_a_scene_source() {
-    let Some(file) = shared("habitat_simple_room/simple_room.glb") else { return };
+    let Some(file) = shared("habitat_simple_room/simple_room.glb") else {
+        return;
+    };
     let src = Importer::new(
         vec![file],
         ImportOptions {
@@ -232,4 +314,36 @@ fn importer_is_a_scene_source() {
     assert_eq!(a, b, "deterministic");
     assert_eq!(a.id, "simple_room");
     assert!(src.scene(1).is_err());
+}
+
+#[test]
+fn imported_scene_round_trips_through_a_scene_folder() {
+    let Some(file) = shared("habitat_simple_room/simple_room.glb") else {
+        return;
+    };
+    let opts = ImportOptions {
+        up: UpAxis::Z,
+        ..Default::default()
+    };
+    let (scene, _) = import_scene(&file, &opts).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let (_, folder) =
+        vlnverse_env::io::write_scene_bundle(dir.path(), scene.clone(), &opts.occupancy).unwrap();
+    assert!(vlnverse_env::io::is_complete_scene_dir(&folder));
+    let back = vlnverse_env::io::load_scene(&folder).unwrap();
+    assert_eq!(back.objects.len(), scene.objects.len());
+    assert_eq!(back.triangle_count(), scene.triangle_count());
+    for (a, b) in scene.objects.iter().zip(&back.objects) {
+        assert_eq!(
+            (a.id, &a.name, a.class, a.room),
+            (b.id, &b.name, b.class, b.room)
+        );
+        for k in 0..3 {
+            assert!(
+                (a.bbox.min[k] - b.bbox.min[k]).abs() < 1e-4
+                    && (a.bbox.max[k] - b.bbox.max[k]).abs() < 1e-4
+            );
+        }
+    }
+    assert_eq!(back.rooms.len(), scene.rooms.len());
 }

@@ -50,12 +50,20 @@ fn main() -> Result<(), vlnverse_env::EnvError> {
     let stat = |v: &[f64]| {
         let mut v = v.to_vec();
         v.sort_by(f64::total_cmp);
-        format!("min {:.1} med {:.1} max {:.1}", v[0], v[v.len() / 2], v[v.len() - 1])
+        format!(
+            "min {:.1} med {:.1} max {:.1}",
+            v[0],
+            v[v.len() / 2],
+            v[v.len() - 1]
+        )
     };
     let f = |v: &[usize]| v.iter().map(|&x| x as f64).collect::<Vec<_>>();
     println!("scenes {}", rooms.len());
     println!("rooms {}", stat(&f(&rooms)));
-    println!("area {}", stat(&areas.iter().map(|&a| a as f64).collect::<Vec<_>>()));
+    println!(
+        "area {}",
+        stat(&areas.iter().map(|&a| a as f64).collect::<Vec<_>>())
+    );
     println!("items {}", stat(&f(&items)));
     println!("tris {}", stat(&f(&tris)));
     println!("ms {}", stat(&times));

@@ -248,7 +248,12 @@ fn check(ok: bool, field: &str, value: impl ToString, reason: &str) -> Result<()
 }
 
 fn positive(field: &str, v: f32) -> Result<()> {
-    check(v.is_finite() && v > 0.0, field, v, "must be a positive number")
+    check(
+        v.is_finite() && v > 0.0,
+        field,
+        v,
+        "must be a positive number",
+    )
 }
 
 fn probability(field: &str, v: f32) -> Result<()> {
@@ -333,7 +338,10 @@ impl ProcgenConfig {
             r.area_scale_min <= r.area_scale_max,
             "rooms.area_scale_min",
             r.area_scale_min,
-            &format!("must not exceed rooms.area_scale_max = {}", r.area_scale_max),
+            &format!(
+                "must not exceed rooms.area_scale_max = {}",
+                r.area_scale_max
+            ),
         )?;
         check(
             !r.kinds.is_empty(),

@@ -321,7 +321,10 @@ fn make_opening(
         let w = rng.random_range(d.open_plan_width_min..=d.open_plan_width_max.min(usable));
         (w, w, true)
     } else {
-        let max = d.width_max.min(usable - 2.0 * d.frame_width).max(d.width_min);
+        let max = d
+            .width_max
+            .min(usable - 2.0 * d.frame_width)
+            .max(d.width_min);
         let w = rng.random_range(d.width_min..=max);
         (w, w + 2.0 * d.frame_width, false)
     };
@@ -400,10 +403,7 @@ pub(crate) fn generate(cfg: &ProcgenConfig, rng: &mut ChaCha8Rng) -> Option<Plan
             )
         };
         let private_only = !walk_through(rooms[s.a].kind) || !walk_through(rooms[s.b].kind);
-        if !used[i]
-            && !private_only
-            && rng.random_bool(cfg.doors.extra_door_probability as f64)
-        {
+        if !used[i] && !private_only && rng.random_bool(cfg.doors.extra_door_probability as f64) {
             openings.push(make_opening(cfg, &rooms, s, rng));
         }
     }

@@ -146,7 +146,13 @@ struct Placed {
 impl RoomState<'_> {
     /// Candidate centres and yaws of a group of footprint `gw` x `gd`, in trial order: along
     /// walls every 15 cm (only the ends for corners), or random spots for free groups.
-    fn candidates(&self, mode: Mode, gw: f32, gd: f32, rng: &mut ChaCha8Rng) -> Vec<(f32, f32, f32)> {
+    fn candidates(
+        &self,
+        mode: Mode,
+        gw: f32,
+        gd: f32,
+        rng: &mut ChaCha8Rng,
+    ) -> Vec<(f32, f32, f32)> {
         use rand::seq::SliceRandom;
         let ir = self.interior.inset(WALL_GAP);
         let (mx, mz) = ir.center();
@@ -235,7 +241,11 @@ impl RoomState<'_> {
                 .map(|it| {
                     let r = it.rect();
                     let (x, z) = rotate(r.center().0, r.center().1, yaw);
-                    let (w, d) = if q % 2 == 1 { (r.d(), r.w()) } else { (r.w(), r.d()) };
+                    let (w, d) = if q % 2 == 1 {
+                        (r.d(), r.w())
+                    } else {
+                        (r.w(), r.d())
+                    };
                     Rect::centered(cx + x, cz + z, w, d)
                 })
                 .collect();
@@ -365,9 +375,19 @@ fn dining_group(rng: &mut ChaCha8Rng, per_side: usize, ends: bool, rug: bool, wa
     for i in 0..per_side {
         let x = -table.w * 0.5 + table.w * (i as f32 + 0.5) / per_side as f32;
         // Front side (z < 0) chairs face +Z (yaw pi); back side chairs face -Z.
-        items.push(Item::at(chair.clone(), x, -table.d * 0.5 - off - chair.d * 0.5, PI));
+        items.push(Item::at(
+            chair.clone(),
+            x,
+            -table.d * 0.5 - off - chair.d * 0.5,
+            PI,
+        ));
         if !wall {
-            items.push(Item::at(chair.clone(), x, table.d * 0.5 + off + chair.d * 0.5, 0.0));
+            items.push(Item::at(
+                chair.clone(),
+                x,
+                table.d * 0.5 + off + chair.d * 0.5,
+                0.0,
+            ));
         }
     }
     if ends {
@@ -383,7 +403,12 @@ fn dining_group(rng: &mut ChaCha8Rng, per_side: usize, ends: bool, rug: bool, wa
             mode: Mode::Center,
         };
         let (gw, gd) = g.normalise();
-        items.push(Item::at(models::rug(rng, gw + 0.3, gd + 0.3), 0.0, 0.0, 0.0));
+        items.push(Item::at(
+            models::rug(rng, gw + 0.3, gd + 0.3),
+            0.0,
+            0.0,
+            0.0,
+        ));
     }
     Group {
         items,
@@ -595,7 +620,10 @@ fn recipe(
             out.push(vec![wall(models::toilet(rng))]);
             out.push(vec![wall(models::sink(rng))]);
             if maybe(cfg, rng, 0.55) {
-                out.push(vec![corner(models::bathtub(rng)), corner(models::shower(rng))]);
+                out.push(vec![
+                    corner(models::bathtub(rng)),
+                    corner(models::shower(rng)),
+                ]);
             } else if maybe(cfg, rng, 0.6) {
                 out.push(vec![corner(models::shower(rng))]);
             }
@@ -678,7 +706,14 @@ fn recipe(
 /// Small objects that fit on a support, by support class and room.
 fn small_choices(support: C, room: RoomType) -> &'static [C] {
     match (support, room) {
-        (C::Nightstand, _) => &[C::TableLamp, C::Book, C::Clock, C::Cup, C::SmallPlant, C::Candle],
+        (C::Nightstand, _) => &[
+            C::TableLamp,
+            C::Book,
+            C::Clock,
+            C::Cup,
+            C::SmallPlant,
+            C::Candle,
+        ],
         (C::Dresser, _) => &[
             C::Vase,
             C::PictureFrame,
@@ -714,7 +749,14 @@ fn small_choices(support: C, room: RoomType) -> &'static [C] {
         (C::Cabinet, RoomType::Bathroom | RoomType::LaundryRoom) => {
             &[C::Towel, C::SoapDispenser, C::Bottle]
         }
-        (C::Cabinet, _) => &[C::Vase, C::Book, C::Bowl, C::SmallPlant, C::PictureFrame, C::Clock],
+        (C::Cabinet, _) => &[
+            C::Vase,
+            C::Book,
+            C::Bowl,
+            C::SmallPlant,
+            C::PictureFrame,
+            C::Clock,
+        ],
         (C::WashingMachine, _) => &[C::Towel, C::Bottle],
         (C::ShoeRack, _) => &[C::SmallPlant, C::Vase],
         _ => &[],
@@ -758,7 +800,10 @@ fn add_smalls(
         let m = models::small(class, rng);
         let q = rng.random_range(0..4);
         // Screens and lamps face the front of the support.
-        let q = if matches!(class, C::Monitor | C::Keyboard | C::Laptop | C::PictureFrame | C::Clock) {
+        let q = if matches!(
+            class,
+            C::Monitor | C::Keyboard | C::Laptop | C::PictureFrame | C::Clock
+        ) {
             0
         } else {
             q
@@ -833,7 +878,10 @@ fn furnish_room(
         seeds,
     };
     if !st.grid.connected(&st.seeds) {
-        tracing::debug!(room = i, "room free space is not connected before furnishing");
+        tracing::debug!(
+            room = i,
+            "room free space is not connected before furnishing"
+        );
         return;
     }
     let mut has_fridge = false;

@@ -130,13 +130,24 @@ fn r(rng: &mut ChaCha8Rng, lo: f32, hi: f32) -> f32 {
 /// A double (or single) bed: frame, mattress, blanket, pillows, headboard.
 pub(crate) fn bed(rng: &mut ChaCha8Rng, double: bool) -> Model {
     let fin = palette::pick(C::Bed, rng);
-    let w = if double { r(rng, 1.45, 1.8) } else { r(rng, 0.95, 1.1) };
+    let w = if double {
+        r(rng, 1.45, 1.8)
+    } else {
+        r(rng, 0.95, 1.1)
+    };
     let d = r(rng, 2.0, 2.15);
     let head_h = r(rng, 0.9, 1.15);
     let bedding = palette::fabric(rng);
     let mut p = Vec::new();
     cube(&mut p, 0.0, 0.0, -0.04, [w, 0.3, d - 0.08], fin.rgb);
-    cube(&mut p, 0.0, 0.3, -0.05, [w - 0.06, 0.2, d - 0.16], tone::LINEN);
+    cube(
+        &mut p,
+        0.0,
+        0.3,
+        -0.05,
+        [w - 0.06, 0.2, d - 0.16],
+        tone::LINEN,
+    );
     cube(&mut p, 0.0, 0.5, -0.3, [w - 0.04, 0.03, d * 0.6], bedding);
     let pillows = if double { 2 } else { 1 };
     for i in 0..pillows {
@@ -145,7 +156,14 @@ pub(crate) fn bed(rng: &mut ChaCha8Rng, double: bool) -> Model {
         } else {
             (i as f32 - 0.5) * w * 0.48
         };
-        cube(&mut p, x, 0.5, d * 0.5 - 0.34, [0.5, 0.12, 0.34], tone::WHITE);
+        cube(
+            &mut p,
+            x,
+            0.5,
+            d * 0.5 - 0.34,
+            [0.5, 0.12, 0.34],
+            tone::WHITE,
+        );
     }
     cube(
         &mut p,
@@ -172,7 +190,14 @@ pub(crate) fn nightstand(rng: &mut ChaCha8Rng) -> Model {
         [w - 0.06, h * 0.3, 0.01],
         shade(fin.rgb, 0.8),
     );
-    cube(&mut p, 0.0, h * 0.68, -d * 0.5 - 0.02, [0.08, 0.02, 0.02], tone::METAL);
+    cube(
+        &mut p,
+        0.0,
+        h * 0.68,
+        -d * 0.5 - 0.02,
+        [0.08, 0.02, 0.02],
+        tone::METAL,
+    );
     Model::new(C::Nightstand, fin, [w, h, d + 0.02], 12.0, p).with_top(0.04)
 }
 
@@ -191,7 +216,14 @@ pub(crate) fn wardrobe(rng: &mut ChaCha8Rng) -> Model {
             [w * 0.5 - 0.02, h - 0.1, 0.02],
             shade(fin.rgb, 0.9),
         );
-        cube(&mut p, s * 0.05, h * 0.5, -d * 0.5 - 0.005, [0.02, 0.2, 0.01], tone::METAL);
+        cube(
+            &mut p,
+            s * 0.05,
+            h * 0.5,
+            -d * 0.5 - 0.005,
+            [0.02, 0.2, 0.01],
+            tone::METAL,
+        );
     }
     Model::new(C::Wardrobe, fin, [w, h, d], 70.0, p)
 }
@@ -236,9 +268,24 @@ pub(crate) fn sink(rng: &mut ChaCha8Rng) -> Model {
     let mut p = Vec::new();
     cube(&mut p, 0.0, 0.0, 0.0, [w, h - 0.04, d], wood.rgb);
     cube(&mut p, 0.0, h - 0.04, 0.0, [w, 0.04, d], fin.rgb);
-    cyl(&mut p, 0.0, h - 0.02, -0.03, 0.18, 0.04, shade(fin.rgb, 0.8));
+    cyl(
+        &mut p,
+        0.0,
+        h - 0.02,
+        -0.03,
+        0.18,
+        0.04,
+        shade(fin.rgb, 0.8),
+    );
     cyl(&mut p, 0.0, h, d * 0.5 - 0.08, 0.02, 0.2, tone::STEEL);
-    cube(&mut p, 0.0, h + 0.16, d * 0.5 - 0.14, [0.03, 0.03, 0.12], tone::STEEL);
+    cube(
+        &mut p,
+        0.0,
+        h + 0.16,
+        d * 0.5 - 0.14,
+        [0.03, 0.03, 0.12],
+        tone::STEEL,
+    );
     Model::new(C::Sink, fin, [w, h + 0.2, d], 35.0, p)
 }
 
@@ -249,8 +296,22 @@ pub(crate) fn bathtub(rng: &mut ChaCha8Rng) -> Model {
     let t = 0.08;
     let mut p = Vec::new();
     cube(&mut p, 0.0, 0.0, 0.0, [w, 0.12, d], fin.rgb);
-    cube(&mut p, 0.0, 0.12, -d * 0.5 + t * 0.5, [w, h - 0.12, t], fin.rgb);
-    cube(&mut p, 0.0, 0.12, d * 0.5 - t * 0.5, [w, h - 0.12, t], fin.rgb);
+    cube(
+        &mut p,
+        0.0,
+        0.12,
+        -d * 0.5 + t * 0.5,
+        [w, h - 0.12, t],
+        fin.rgb,
+    );
+    cube(
+        &mut p,
+        0.0,
+        0.12,
+        d * 0.5 - t * 0.5,
+        [w, h - 0.12, t],
+        fin.rgb,
+    );
     for s in [-1.0, 1.0] {
         cube(
             &mut p,
@@ -261,7 +322,14 @@ pub(crate) fn bathtub(rng: &mut ChaCha8Rng) -> Model {
             fin.rgb,
         );
     }
-    cube(&mut p, 0.0, 0.12, 0.0, [w - 2.0 * t, 0.02, d - 2.0 * t], shade(fin.rgb, 0.85));
+    cube(
+        &mut p,
+        0.0,
+        0.12,
+        0.0,
+        [w - 2.0 * t, 0.02, d - 2.0 * t],
+        shade(fin.rgb, 0.85),
+    );
     cyl(&mut p, -w * 0.5 + 0.04, h, 0.0, 0.02, 0.12, tone::STEEL);
     Model::new(C::Bathtub, fin, [w, h + 0.12, d], 60.0, p)
 }
@@ -272,10 +340,38 @@ pub(crate) fn shower(rng: &mut ChaCha8Rng) -> Model {
     let s = r(rng, 0.85, 1.0);
     let mut p = Vec::new();
     cube(&mut p, 0.0, 0.0, 0.0, [s, 0.08, s], fin.rgb);
-    cube(&mut p, 0.0, 0.08, -s * 0.5 + 0.01, [s, 1.9, 0.02], tone::GLASS);
-    cube(&mut p, -s * 0.5 + 0.01, 0.08, 0.0, [0.02, 1.9, s - 0.04], tone::GLASS);
-    cube(&mut p, 0.0, 0.08, s * 0.5 - 0.04, [0.03, 1.9, 0.03], tone::STEEL);
-    cube(&mut p, 0.0, 1.93, s * 0.5 - 0.15, [0.15, 0.03, 0.2], tone::STEEL);
+    cube(
+        &mut p,
+        0.0,
+        0.08,
+        -s * 0.5 + 0.01,
+        [s, 1.9, 0.02],
+        tone::GLASS,
+    );
+    cube(
+        &mut p,
+        -s * 0.5 + 0.01,
+        0.08,
+        0.0,
+        [0.02, 1.9, s - 0.04],
+        tone::GLASS,
+    );
+    cube(
+        &mut p,
+        0.0,
+        0.08,
+        s * 0.5 - 0.04,
+        [0.03, 1.9, 0.03],
+        tone::STEEL,
+    );
+    cube(
+        &mut p,
+        0.0,
+        1.93,
+        s * 0.5 - 0.15,
+        [0.15, 0.03, 0.2],
+        tone::STEEL,
+    );
     Model::new(C::Shower, fin, [s, 1.98, s], 40.0, p)
 }
 
@@ -285,7 +381,14 @@ pub(crate) fn fridge(rng: &mut ChaCha8Rng) -> Model {
     let (w, h, d) = (r(rng, 0.6, 0.8), r(rng, 1.7, 1.95), 0.68);
     let mut p = Vec::new();
     cube(&mut p, 0.0, 0.0, 0.02, [w, h, d - 0.04], fin.rgb);
-    cube(&mut p, 0.0, 0.02, -d * 0.5 + 0.01, [w - 0.02, h * 0.62, 0.02], shade(fin.rgb, 0.93));
+    cube(
+        &mut p,
+        0.0,
+        0.02,
+        -d * 0.5 + 0.01,
+        [w - 0.02, h * 0.62, 0.02],
+        shade(fin.rgb, 0.93),
+    );
     cube(
         &mut p,
         0.0,
@@ -294,8 +397,22 @@ pub(crate) fn fridge(rng: &mut ChaCha8Rng) -> Model {
         [w - 0.02, h * 0.36 - 0.04, 0.02],
         shade(fin.rgb, 0.93),
     );
-    cube(&mut p, w * 0.4, h * 0.35, -d * 0.5 - 0.01, [0.025, 0.35, 0.02], tone::METAL);
-    cube(&mut p, w * 0.4, h * 0.7, -d * 0.5 - 0.01, [0.025, 0.2, 0.02], tone::METAL);
+    cube(
+        &mut p,
+        w * 0.4,
+        h * 0.35,
+        -d * 0.5 - 0.01,
+        [0.025, 0.35, 0.02],
+        tone::METAL,
+    );
+    cube(
+        &mut p,
+        w * 0.4,
+        h * 0.7,
+        -d * 0.5 - 0.01,
+        [0.025, 0.2, 0.02],
+        tone::METAL,
+    );
     Model::new(C::Fridge, fin, [w, h, d + 0.02], 80.0, p)
 }
 
@@ -310,8 +427,22 @@ pub(crate) fn counter(rng: &mut ChaCha8Rng, w: f32) -> Model {
     for i in 0..doors {
         let dw = w / doors as f32;
         let x = -w * 0.5 + dw * (i as f32 + 0.5);
-        cube(&mut p, x, 0.13, -d * 0.5 + 0.02, [dw - 0.02, h - 0.2, 0.01], shade(fin.rgb, 0.9));
-        cube(&mut p, x, h - 0.14, -d * 0.5 + 0.005, [0.12, 0.015, 0.015], tone::STEEL);
+        cube(
+            &mut p,
+            x,
+            0.13,
+            -d * 0.5 + 0.02,
+            [dw - 0.02, h - 0.2, 0.01],
+            shade(fin.rgb, 0.9),
+        );
+        cube(
+            &mut p,
+            x,
+            h - 0.14,
+            -d * 0.5 + 0.005,
+            [0.12, 0.015, 0.015],
+            tone::STEEL,
+        );
     }
     cube(&mut p, 0.0, h - 0.04, 0.0, [w, 0.04, d], [0.75, 0.74, 0.7]);
     Model::new(C::Counter, fin, [w, h, d], 40.0 * w, p).with_top(0.06)
@@ -323,8 +454,22 @@ pub(crate) fn stove(rng: &mut ChaCha8Rng) -> Model {
     let (w, h, d) = (0.6, 0.9, 0.62);
     let mut p = Vec::new();
     cube(&mut p, 0.0, 0.0, 0.0, [w, h - 0.02, d], fin.rgb);
-    cube(&mut p, 0.0, 0.15, -d * 0.5 - 0.005, [w - 0.06, 0.45, 0.01], tone::SCREEN);
-    cube(&mut p, 0.0, 0.7, -d * 0.5 - 0.015, [w - 0.1, 0.02, 0.02], tone::STEEL);
+    cube(
+        &mut p,
+        0.0,
+        0.15,
+        -d * 0.5 - 0.005,
+        [w - 0.06, 0.45, 0.01],
+        tone::SCREEN,
+    );
+    cube(
+        &mut p,
+        0.0,
+        0.7,
+        -d * 0.5 - 0.015,
+        [w - 0.1, 0.02, 0.02],
+        tone::STEEL,
+    );
     cube(&mut p, 0.0, h - 0.02, 0.0, [w, 0.02, d], tone::SCREEN);
     for sx in [-1.0, 1.0] {
         for sz in [-1.0, 1.0] {
@@ -340,8 +485,22 @@ pub(crate) fn dishwasher(rng: &mut ChaCha8Rng) -> Model {
     let (w, h, d) = (0.6, 0.88, 0.62);
     let mut p = Vec::new();
     cube(&mut p, 0.0, 0.0, 0.0, [w, h, d], fin.rgb);
-    cube(&mut p, 0.0, 0.1, -d * 0.5 - 0.005, [w - 0.02, h - 0.15, 0.01], shade(fin.rgb, 0.9));
-    cube(&mut p, 0.0, h - 0.1, -d * 0.5 - 0.02, [w - 0.15, 0.02, 0.02], tone::STEEL);
+    cube(
+        &mut p,
+        0.0,
+        0.1,
+        -d * 0.5 - 0.005,
+        [w - 0.02, h - 0.15, 0.01],
+        shade(fin.rgb, 0.9),
+    );
+    cube(
+        &mut p,
+        0.0,
+        h - 0.1,
+        -d * 0.5 - 0.02,
+        [w - 0.15, 0.02, 0.02],
+        tone::STEEL,
+    );
     Model::new(C::Dishwasher, fin, [w, h, d + 0.04], 45.0, p).with_top(0.05)
 }
 
@@ -351,9 +510,30 @@ pub(crate) fn kitchen_cabinet(rng: &mut ChaCha8Rng) -> Model {
     let (w, h, d) = (r(rng, 0.5, 0.8), r(rng, 1.9, 2.1), 0.6);
     let mut p = Vec::new();
     cube(&mut p, 0.0, 0.0, 0.01, [w, h, d - 0.02], fin.rgb);
-    cube(&mut p, 0.0, 0.05, -d * 0.5 + 0.005, [w - 0.03, h * 0.6, 0.01], shade(fin.rgb, 0.9));
-    cube(&mut p, 0.0, h * 0.62 + 0.05, -d * 0.5 + 0.005, [w - 0.03, h * 0.36, 0.01], shade(fin.rgb, 0.9));
-    cube(&mut p, w * 0.35, h * 0.5, -d * 0.5 - 0.01, [0.02, 0.15, 0.02], tone::STEEL);
+    cube(
+        &mut p,
+        0.0,
+        0.05,
+        -d * 0.5 + 0.005,
+        [w - 0.03, h * 0.6, 0.01],
+        shade(fin.rgb, 0.9),
+    );
+    cube(
+        &mut p,
+        0.0,
+        h * 0.62 + 0.05,
+        -d * 0.5 + 0.005,
+        [w - 0.03, h * 0.36, 0.01],
+        shade(fin.rgb, 0.9),
+    );
+    cube(
+        &mut p,
+        w * 0.35,
+        h * 0.5,
+        -d * 0.5 - 0.01,
+        [0.02, 0.15, 0.02],
+        tone::STEEL,
+    );
     Model::new(C::KitchenCabinet, fin, [w, h, d], 50.0, p)
 }
 
@@ -371,13 +551,34 @@ pub(crate) fn sofa(rng: &mut ChaCha8Rng, w: f32) -> Model {
         let x = -w * 0.5 + arm + sw * (i as f32 + 0.5);
         cube(&mut p, x, 0.33, -0.08, [sw - 0.02, 0.12, d - 0.3], fin.rgb);
     }
-    cube(&mut p, 0.0, 0.33, d * 0.5 - 0.11, [w, h - 0.33, 0.22], fin.rgb);
+    cube(
+        &mut p,
+        0.0,
+        0.33,
+        d * 0.5 - 0.11,
+        [w, h - 0.33, 0.22],
+        fin.rgb,
+    );
     for s in [-1.0, 1.0] {
-        cube(&mut p, s * (w - arm) * 0.5, 0.08, 0.0, [arm, 0.55, d], shade(fin.rgb, 0.95));
+        cube(
+            &mut p,
+            s * (w - arm) * 0.5,
+            0.08,
+            0.0,
+            [arm, 0.55, d],
+            shade(fin.rgb, 0.95),
+        );
     }
     let cushion = palette::fabric(rng);
     for s in [-1.0, 1.0] {
-        cube(&mut p, s * (w * 0.5 - arm - 0.25), 0.45, d * 0.5 - 0.3, [0.4, 0.35, 0.12], cushion);
+        cube(
+            &mut p,
+            s * (w * 0.5 - arm - 0.25),
+            0.45,
+            d * 0.5 - 0.3,
+            [0.4, 0.35, 0.12],
+            cushion,
+        );
     }
     Model::new(C::Sofa, fin, [w, h, d], 30.0 + 25.0 * w, p)
 }
@@ -390,10 +591,31 @@ pub(crate) fn armchair(rng: &mut ChaCha8Rng) -> Model {
     let mut p = Vec::new();
     legs(&mut p, w - 0.1, d - 0.1, 0.1, 0.04, tone::WOOD);
     cube(&mut p, 0.0, 0.1, 0.0, [w, 0.22, d], shade(fin.rgb, 0.9));
-    cube(&mut p, 0.0, 0.32, -0.06, [w - 2.0 * arm, 0.1, d - 0.22], fin.rgb);
-    cube(&mut p, 0.0, 0.32, d * 0.5 - 0.09, [w, h - 0.32, 0.18], fin.rgb);
+    cube(
+        &mut p,
+        0.0,
+        0.32,
+        -0.06,
+        [w - 2.0 * arm, 0.1, d - 0.22],
+        fin.rgb,
+    );
+    cube(
+        &mut p,
+        0.0,
+        0.32,
+        d * 0.5 - 0.09,
+        [w, h - 0.32, 0.18],
+        fin.rgb,
+    );
     for s in [-1.0, 1.0] {
-        cube(&mut p, s * (w - arm) * 0.5, 0.1, 0.0, [arm, 0.5, d], shade(fin.rgb, 0.95));
+        cube(
+            &mut p,
+            s * (w - arm) * 0.5,
+            0.1,
+            0.0,
+            [arm, 0.5, d],
+            shade(fin.rgb, 0.95),
+        );
     }
     Model::new(C::Armchair, fin, [w, h, d], 25.0, p)
 }
@@ -407,7 +629,14 @@ pub(crate) fn tv(rng: &mut ChaCha8Rng, max_w: f32) -> Model {
     cube(&mut p, 0.0, 0.0, 0.0, [w * 0.4, 0.02, 0.22], tone::METAL);
     cube(&mut p, 0.0, 0.02, 0.02, [0.06, 0.08, 0.04], tone::METAL);
     cube(&mut p, 0.0, 0.08, 0.02, [w, h, 0.05], fin.rgb);
-    cube(&mut p, 0.0, 0.1, -0.005, [w - 0.04, h - 0.04, 0.01], tone::SCREEN);
+    cube(
+        &mut p,
+        0.0,
+        0.1,
+        -0.005,
+        [w - 0.04, h - 0.04, 0.01],
+        tone::SCREEN,
+    );
     Model::new(C::Tv, fin, [w, h + 0.08, 0.22], 8.0 + 6.0 * w, p)
 }
 
@@ -446,7 +675,14 @@ pub(crate) fn coffee_table(rng: &mut ChaCha8Rng) -> Model {
     let (w, h, d) = (r(rng, 0.9, 1.2), r(rng, 0.38, 0.46), r(rng, 0.5, 0.65));
     let mut m = table(C::CoffeeTable, fin, w, h, d, shade(fin.rgb, 0.8), 15.0);
     // A lower shelf makes it read as a coffee table rather than a bench.
-    cube(&mut m.parts, 0.0, 0.08, 0.0, [w - 0.1, 0.02, d - 0.1], shade(fin.rgb, 0.8));
+    cube(
+        &mut m.parts,
+        0.0,
+        0.08,
+        0.0,
+        [w - 0.1, 0.02, d - 0.1],
+        shade(fin.rgb, 0.8),
+    );
     m
 }
 
@@ -458,14 +694,30 @@ pub(crate) fn dining_table(rng: &mut ChaCha8Rng, w: f32, d: f32) -> Model {
     } else {
         shade(fin.rgb, 0.85)
     };
-    table(C::DiningTable, fin, w, 0.75, d, legs_rgb, 20.0 + 10.0 * w * d)
+    table(
+        C::DiningTable,
+        fin,
+        w,
+        0.75,
+        d,
+        legs_rgb,
+        20.0 + 10.0 * w * d,
+    )
 }
 
 /// A side table.
 pub(crate) fn side_table(rng: &mut ChaCha8Rng) -> Model {
     let fin = palette::pick(C::SideTable, rng);
     let s = r(rng, 0.4, 0.55);
-    table(C::SideTable, fin, s, r(rng, 0.5, 0.62), s, shade(fin.rgb, 0.8), 6.0)
+    table(
+        C::SideTable,
+        fin,
+        s,
+        r(rng, 0.5, 0.62),
+        s,
+        shade(fin.rgb, 0.8),
+        6.0,
+    )
 }
 
 /// A desk: top, two side panels, a drawer block.
@@ -475,10 +727,31 @@ pub(crate) fn desk(rng: &mut ChaCha8Rng) -> Model {
     let mut p = Vec::new();
     cube(&mut p, 0.0, h - 0.04, 0.0, [w, 0.04, d], fin.rgb);
     for s in [-1.0, 1.0] {
-        cube(&mut p, s * (w * 0.5 - 0.02), 0.0, 0.0, [0.04, h - 0.04, d - 0.04], shade(fin.rgb, 0.85));
+        cube(
+            &mut p,
+            s * (w * 0.5 - 0.02),
+            0.0,
+            0.0,
+            [0.04, h - 0.04, d - 0.04],
+            shade(fin.rgb, 0.85),
+        );
     }
-    cube(&mut p, 0.0, h * 0.35, d * 0.5 - 0.03, [w - 0.08, h * 0.4, 0.02], shade(fin.rgb, 0.85));
-    cube(&mut p, w * 0.5 - 0.25, h - 0.2, -0.02, [0.4, 0.16, d - 0.1], shade(fin.rgb, 0.9));
+    cube(
+        &mut p,
+        0.0,
+        h * 0.35,
+        d * 0.5 - 0.03,
+        [w - 0.08, h * 0.4, 0.02],
+        shade(fin.rgb, 0.85),
+    );
+    cube(
+        &mut p,
+        w * 0.5 - 0.25,
+        h - 0.2,
+        -0.02,
+        [0.4, 0.16, d - 0.1],
+        shade(fin.rgb, 0.9),
+    );
     Model::new(C::Desk, fin, [w, h, d], 30.0, p).with_top(0.05)
 }
 
@@ -497,9 +770,23 @@ pub(crate) fn chair(rng: &mut ChaCha8Rng) -> Model {
     legs(&mut p, w, d, seat - 0.04, 0.035, leg_rgb);
     cube(&mut p, 0.0, seat - 0.04, 0.0, [w, 0.04, d], fin.rgb);
     for s in [-1.0, 1.0] {
-        cube(&mut p, s * (w - 0.035) * 0.5, seat, d * 0.5 - 0.0175, [0.035, h - seat - 0.16, 0.035], leg_rgb);
+        cube(
+            &mut p,
+            s * (w - 0.035) * 0.5,
+            seat,
+            d * 0.5 - 0.0175,
+            [0.035, h - seat - 0.16, 0.035],
+            leg_rgb,
+        );
     }
-    cube(&mut p, 0.0, h - 0.18, d * 0.5 - 0.02, [w, 0.18, 0.04], fin.rgb);
+    cube(
+        &mut p,
+        0.0,
+        h - 0.18,
+        d * 0.5 - 0.02,
+        [w, 0.18, 0.04],
+        fin.rgb,
+    );
     Model::new(C::Chair, fin, [w, h, d], 5.0, p)
 }
 
@@ -511,7 +798,12 @@ pub(crate) fn office_chair(rng: &mut ChaCha8Rng) -> Model {
     let mut p = Vec::new();
     cube(&mut p, 0.0, 0.02, 0.0, [s, 0.04, 0.06], tone::METAL);
     cube(&mut p, 0.0, 0.02, 0.0, [0.06, 0.04, s], tone::METAL);
-    for (x, z) in [(s * 0.45, 0.0), (-s * 0.45, 0.0), (0.0, s * 0.45), (0.0, -s * 0.45)] {
+    for (x, z) in [
+        (s * 0.45, 0.0),
+        (-s * 0.45, 0.0),
+        (0.0, s * 0.45),
+        (0.0, -s * 0.45),
+    ] {
         cube(&mut p, x, 0.0, z, [0.05, 0.03, 0.05], tone::METAL);
     }
     cyl(&mut p, 0.0, 0.06, 0.0, 0.03, 0.36, tone::STEEL);
@@ -530,11 +822,25 @@ pub(crate) fn bookshelf(rng: &mut ChaCha8Rng) -> Model {
     for s in [-1.0, 1.0] {
         cube(&mut p, s * (w - t) * 0.5, 0.0, 0.0, [t, h, d], fin.rgb);
     }
-    cube(&mut p, 0.0, 0.0, d * 0.5 - 0.01, [w - 2.0 * t, h, 0.02], shade(fin.rgb, 0.8));
+    cube(
+        &mut p,
+        0.0,
+        0.0,
+        d * 0.5 - 0.01,
+        [w - 2.0 * t, h, 0.02],
+        shade(fin.rgb, 0.8),
+    );
     let shelves = (h / 0.38) as usize;
     let gap = (h - t) / shelves as f32;
     for i in 0..=shelves {
-        cube(&mut p, 0.0, i as f32 * gap, 0.0, [w - 2.0 * t, t, d], fin.rgb);
+        cube(
+            &mut p,
+            0.0,
+            i as f32 * gap,
+            0.0,
+            [w - 2.0 * t, t, d],
+            fin.rgb,
+        );
     }
     for i in 0..shelves {
         // One block of books per shelf, in a varying colour and fill.
@@ -542,7 +848,14 @@ pub(crate) fn bookshelf(rng: &mut ChaCha8Rng) -> Model {
         let bw = (w - 2.0 * t - 0.04) * fill;
         let x = -w * 0.5 + t + 0.02 + bw * 0.5;
         let rgb = palette::pick(C::Book, rng).rgb;
-        cube(&mut p, x, i as f32 * gap + t, 0.0, [bw, gap * 0.65, d - 0.08], rgb);
+        cube(
+            &mut p,
+            x,
+            i as f32 * gap + t,
+            0.0,
+            [bw, gap * 0.65, d - 0.08],
+            rgb,
+        );
     }
     Model::new(C::Bookshelf, fin, [w, h, d], 35.0, p)
 }
@@ -578,7 +891,14 @@ pub(crate) fn rug(rng: &mut ChaCha8Rng, w: f32, d: f32) -> Model {
     let fin = palette::pick(C::Rug, rng);
     let mut p = Vec::new();
     cube(&mut p, 0.0, 0.0, 0.0, [w, 0.01, d], fin.rgb);
-    cube(&mut p, 0.0, 0.0, 0.0, [w * 0.7, 0.012, d * 0.6], shade(fin.rgb, 1.4));
+    cube(
+        &mut p,
+        0.0,
+        0.0,
+        0.0,
+        [w * 0.7, 0.012, d * 0.6],
+        shade(fin.rgb, 1.4),
+    );
     Model::new(C::Rug, fin, [w, 0.012, d], 3.0 * w * d, p)
 }
 
@@ -589,8 +909,22 @@ pub(crate) fn cabinet(rng: &mut ChaCha8Rng) -> Model {
     let mut p = Vec::new();
     cube(&mut p, 0.0, 0.0, 0.01, [w, h, d - 0.02], fin.rgb);
     for s in [-1.0, 1.0] {
-        cube(&mut p, s * w * 0.25, 0.04, -d * 0.5 + 0.005, [w * 0.5 - 0.03, h - 0.08, 0.01], shade(fin.rgb, 0.85));
-        cube(&mut p, s * 0.04, h * 0.6, -d * 0.5 - 0.005, [0.015, 0.1, 0.01], tone::STEEL);
+        cube(
+            &mut p,
+            s * w * 0.25,
+            0.04,
+            -d * 0.5 + 0.005,
+            [w * 0.5 - 0.03, h - 0.08, 0.01],
+            shade(fin.rgb, 0.85),
+        );
+        cube(
+            &mut p,
+            s * 0.04,
+            h * 0.6,
+            -d * 0.5 - 0.005,
+            [0.015, 0.1, 0.01],
+            tone::STEEL,
+        );
     }
     Model::new(C::Cabinet, fin, [w, h, d], 25.0, p).with_top(0.04)
 }
@@ -601,15 +935,43 @@ pub(crate) fn shoe_rack(rng: &mut ChaCha8Rng) -> Model {
     let (w, h, d) = (r(rng, 0.6, 1.0), r(rng, 0.45, 0.6), 0.32);
     let mut p = Vec::new();
     for s in [-1.0, 1.0] {
-        cube(&mut p, s * (w - 0.03) * 0.5, 0.0, 0.0, [0.03, h, d], fin.rgb);
+        cube(
+            &mut p,
+            s * (w - 0.03) * 0.5,
+            0.0,
+            0.0,
+            [0.03, h, d],
+            fin.rgb,
+        );
     }
     for i in 0..3 {
-        cube(&mut p, 0.0, i as f32 * (h - 0.03) / 2.0, 0.0, [w - 0.06, 0.03, d], fin.rgb);
+        cube(
+            &mut p,
+            0.0,
+            i as f32 * (h - 0.03) / 2.0,
+            0.0,
+            [w - 0.06, 0.03, d],
+            fin.rgb,
+        );
     }
     for i in 0..2 {
         let y = 0.03 + i as f32 * (h - 0.03) / 2.0;
-        cube(&mut p, -w * 0.2, y, 0.0, [0.1, 0.08, 0.26], palette::fabric(rng));
-        cube(&mut p, w * 0.15, y, 0.0, [0.1, 0.08, 0.26], palette::fabric(rng));
+        cube(
+            &mut p,
+            -w * 0.2,
+            y,
+            0.0,
+            [0.1, 0.08, 0.26],
+            palette::fabric(rng),
+        );
+        cube(
+            &mut p,
+            w * 0.15,
+            y,
+            0.0,
+            [0.1, 0.08, 0.26],
+            palette::fabric(rng),
+        );
     }
     Model::new(C::ShoeRack, fin, [w, h, d], 8.0, p).with_top(0.04)
 }
@@ -624,7 +986,14 @@ pub(crate) fn coat_rack(rng: &mut ChaCha8Rng) -> Model {
     cyl(&mut p, 0.0, 0.03, 0.0, 0.02, h - 0.03, fin.rgb);
     cube(&mut p, 0.0, h - 0.12, 0.0, [0.36, 0.02, 0.02], fin.rgb);
     cube(&mut p, 0.0, h - 0.12, 0.0, [0.02, 0.02, 0.36], fin.rgb);
-    cube(&mut p, 0.12, h - 0.95, 0.0, [0.08, 0.8, 0.3], palette::fabric(rng));
+    cube(
+        &mut p,
+        0.12,
+        h - 0.95,
+        0.0,
+        [0.08, 0.8, 0.3],
+        palette::fabric(rng),
+    );
     Model::new(C::CoatRack, fin, [0.45, h, 0.45], 6.0, p)
 }
 
@@ -634,9 +1003,28 @@ pub(crate) fn washing_machine(rng: &mut ChaCha8Rng) -> Model {
     let (w, h, d) = (0.6, 0.85, 0.6);
     let mut p = Vec::new();
     cube(&mut p, 0.0, 0.0, 0.0, [w, h, d], fin.rgb);
-    disc_z(&mut p, [0.0, h * 0.45, -d * 0.5 - 0.015], 0.19, 0.03, tone::SCREEN);
-    disc_z(&mut p, [0.0, h * 0.45, -d * 0.5 - 0.03], 0.14, 0.01, tone::GLASS);
-    cube(&mut p, 0.0, h - 0.12, -d * 0.5 - 0.005, [w - 0.04, 0.1, 0.01], shade(fin.rgb, 0.8));
+    disc_z(
+        &mut p,
+        [0.0, h * 0.45, -d * 0.5 - 0.015],
+        0.19,
+        0.03,
+        tone::SCREEN,
+    );
+    disc_z(
+        &mut p,
+        [0.0, h * 0.45, -d * 0.5 - 0.03],
+        0.14,
+        0.01,
+        tone::GLASS,
+    );
+    cube(
+        &mut p,
+        0.0,
+        h - 0.12,
+        -d * 0.5 - 0.005,
+        [w - 0.04, 0.1, 0.01],
+        shade(fin.rgb, 0.8),
+    );
     Model::new(C::WashingMachine, fin, [w, h, d + 0.07], 65.0, p).with_top(0.05)
 }
 
@@ -649,7 +1037,14 @@ pub(crate) fn piano(rng: &mut ChaCha8Rng) -> Model {
     cube(&mut p, 0.0, 0.7, -0.15, [w, 0.06, 0.3], fin.rgb);
     cube(&mut p, 0.0, 0.76, -0.2, [w - 0.2, 0.02, 0.16], tone::WHITE);
     for s in [-1.0, 1.0] {
-        cube(&mut p, s * (w * 0.5 - 0.05), 0.0, -0.2, [0.06, 0.7, 0.06], fin.rgb);
+        cube(
+            &mut p,
+            s * (w * 0.5 - 0.05),
+            0.0,
+            -0.2,
+            [0.06, 0.7, 0.06],
+            fin.rgb,
+        );
     }
     Model::new(C::Piano, fin, [w, h, d], 200.0, p)
 }
@@ -661,7 +1056,14 @@ pub(crate) fn bench(rng: &mut ChaCha8Rng) -> Model {
     let (w, h, d) = (r(rng, 0.9, 1.3), 0.46, 0.38);
     let mut p = Vec::new();
     for s in [-1.0, 1.0] {
-        cube(&mut p, s * (w * 0.5 - 0.03), 0.0, 0.0, [0.05, h - 0.06, d], wood.rgb);
+        cube(
+            &mut p,
+            s * (w * 0.5 - 0.03),
+            0.0,
+            0.0,
+            [0.05, h - 0.06, d],
+            wood.rgb,
+        );
     }
     cube(&mut p, 0.0, h - 0.06, 0.0, [w, 0.06, d], fin.rgb);
     Model::new(C::Bench, fin, [w, h, d], 12.0, p)
@@ -705,7 +1107,14 @@ pub(crate) fn small(class: C, rng: &mut ChaCha8Rng) -> Model {
         C::Book => {
             let (w, d, t) = (r(rng, 0.13, 0.18), r(rng, 0.19, 0.25), r(rng, 0.02, 0.05));
             cube(&mut p, 0.0, 0.0, 0.0, [w, t, d], c);
-            cube(&mut p, 0.005, 0.003, 0.0, [w - 0.005, t - 0.006, d - 0.01], tone::LINEN);
+            cube(
+                &mut p,
+                0.005,
+                0.003,
+                0.0,
+                [w - 0.005, t - 0.006, d - 0.01],
+                tone::LINEN,
+            );
             ([w, t, d], 0.4)
         }
         C::Laptop => {
@@ -758,7 +1167,14 @@ pub(crate) fn small(class: C, rng: &mut ChaCha8Rng) -> Model {
             cube(&mut p, 0.0, 0.0, 0.0, [0.22, 0.02, 0.16], tone::METAL);
             cube(&mut p, 0.0, 0.02, 0.02, [0.04, 0.12, 0.03], tone::METAL);
             cube(&mut p, 0.0, 0.1, 0.0, [w, w * 0.6, 0.03], c);
-            cube(&mut p, 0.0, 0.115, -0.016, [w - 0.03, w * 0.6 - 0.03, 0.003], tone::SCREEN);
+            cube(
+                &mut p,
+                0.0,
+                0.115,
+                -0.016,
+                [w - 0.03, w * 0.6 - 0.03, 0.003],
+                tone::SCREEN,
+            );
             ([w, 0.1 + w * 0.6, 0.16], 4.0)
         }
         C::Keyboard => {
@@ -794,7 +1210,14 @@ pub(crate) fn small(class: C, rng: &mut ChaCha8Rng) -> Model {
         }
         C::PictureFrame => {
             cube(&mut p, 0.0, 0.0, 0.0, [0.2, 0.26, 0.02], c);
-            cube(&mut p, 0.0, 0.03, -0.011, [0.16, 0.2, 0.002], palette::fabric(rng));
+            cube(
+                &mut p,
+                0.0,
+                0.03,
+                -0.011,
+                [0.16, 0.2, 0.002],
+                palette::fabric(rng),
+            );
             cube(&mut p, 0.0, 0.0, 0.05, [0.03, 0.18, 0.08], c);
             ([0.2, 0.26, 0.12], 0.4)
         }

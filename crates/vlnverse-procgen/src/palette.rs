@@ -151,7 +151,12 @@ fn choices(class: C) -> &'static [Finish] {
         C::Sofa | C::Armchair | C::OfficeChair | C::Bench => FABRIC,
         C::Chair | C::Stool => CHAIR,
         C::Toilet | C::Sink | C::Bathtub | C::Shower => SANITARY,
-        C::Fridge | C::Stove | C::Dishwasher | C::WashingMachine | C::Toaster | C::Kettle
+        C::Fridge
+        | C::Stove
+        | C::Dishwasher
+        | C::WashingMachine
+        | C::Toaster
+        | C::Kettle
         | C::Microwave => APPLIANCE,
         C::Tv | C::Monitor | C::Laptop | C::Keyboard | C::Remote => SCREEN,
         C::Cup | C::Mug | C::Bowl | C::Plate | C::Vase | C::SoapDispenser => CERAMIC,

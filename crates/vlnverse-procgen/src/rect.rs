@@ -61,7 +61,10 @@ impl Rect {
 
     /// Whether `o` lies inside `self` (with tolerance `eps`).
     pub fn contains_rect(&self, o: &Rect, eps: f32) -> bool {
-        o.x0 >= self.x0 - eps && o.x1 <= self.x1 + eps && o.z0 >= self.z0 - eps && o.z1 <= self.z1 + eps
+        o.x0 >= self.x0 - eps
+            && o.x1 <= self.x1 + eps
+            && o.z0 >= self.z0 - eps
+            && o.z1 <= self.z1 + eps
     }
 
     /// Distance from a point to the rectangle (0 inside).

@@ -199,7 +199,7 @@ fn telhop_into_furniture_lands_on_the_nearest_free_spot() {
         panic!("{out:?}")
     };
     assert!(
-        shift >= 0.7 - 1e-3 && shift <= 0.7 + 0.06,
+        (0.7 - 1e-3..=0.7 + 0.06).contains(&shift),
         "shift {shift}, at {p}"
     );
     assert!(s.is_free(p.x, p.y), "landed inside something at {p}");
@@ -478,7 +478,7 @@ fn bad_actions_give_clear_errors_and_change_nothing() {
         assert!(e.contains(needle), "{a:?}: {e}");
     }
     assert_eq!(s.pose(), before);
-    assert!(!s.step(Action::Stop).unwrap().failure.is_some());
+    assert!(s.step(Action::Stop).unwrap().failure.is_none());
     assert!(matches!(
         s.step(Action::MoveForward(0.25)),
         Err(SimError::EpisodeOver(_))

@@ -2,7 +2,7 @@
 
 use super::field::DistanceField;
 use super::search::Grid;
-use super::{check_finite, resolve, GeodesicDistance, GeodesicPath};
+use super::{check_finite, resolve, Endpoint, GeodesicDistance, GeodesicPath};
 use crate::error::Result;
 use crate::occupancy::GridMap;
 use glam::Vec2;
@@ -65,6 +65,13 @@ impl GeodesicCache {
     /// placed on a free cell. Note the field's own `goal()` is the first goal point seen for
     /// that cell; prefer [`GeodesicCache::distance`] for exact goals.
     pub fn field(&mut self, goal: Vec2) -> Result<Option<Arc<DistanceField>>> {
+        Ok(self
+            .entry(goal)?
+            .map(|(key, _)| self.fields[&key].0.clone()))
+    }
+
+    /// Make sure the field of `goal`'s cell exists; its key and the resolved goal.
+    fn entry(&mut self, goal: Vec2) -> Result<Option<(usize, Endpoint)>> {
         check_finite("goal", goal)?;
         let grid = Grid::new(&self.map);
         let Some(g) = resolve(&self.map, goal, |i| grid.free_index(i)) else {
@@ -75,7 +82,7 @@ impl GeodesicCache {
         if let Some(entry) = self.fields.get_mut(&g.cell) {
             entry.1 = tick;
             self.hits += 1;
-            return Ok(Some(entry.0.clone()));
+            return Ok(Some((g.cell, g)));
         }
         self.misses += 1;
         if self.fields.len() >= self.capacity {
@@ -91,33 +98,25 @@ impl GeodesicCache {
         }
         let field = Arc::new(DistanceField::new(&self.map, goal)?);
         debug_assert_eq!(field.root(), Some(g.cell));
-        self.fields.insert(g.cell, (field.clone(), tick));
-        Ok(Some(field))
+        self.fields.insert(g.cell, (field, tick));
+        Ok(Some((g.cell, g)))
     }
 
     /// Geodesic distance from `a` to `b` (builds or reuses the field of `b`'s cell).
     pub fn distance(&mut self, a: Vec2, b: Vec2) -> Result<GeodesicDistance> {
         check_finite("start", a)?;
-        let Some(field) = self.field(b)? else {
-            return Ok(GeodesicDistance::Unreachable);
-        };
-        let grid = Grid::new(&self.map);
-        let Some(goal) = resolve(&self.map, b, |i| grid.free_index(i)) else {
-            return Ok(GeodesicDistance::Unreachable);
-        };
-        Ok(field.distance_to(a, &goal))
+        Ok(match self.entry(b)? {
+            Some((key, goal)) => self.fields[&key].0.distance_to(a, &goal),
+            None => GeodesicDistance::Unreachable,
+        })
     }
 
     /// Shortest path from `a` to `b` along the cached field of `b`'s cell.
     pub fn shortest_path(&mut self, a: Vec2, b: Vec2) -> Result<Option<GeodesicPath>> {
         check_finite("start", a)?;
-        let Some(field) = self.field(b)? else {
-            return Ok(None);
-        };
-        let grid = Grid::new(&self.map);
-        let Some(goal) = resolve(&self.map, b, |i| grid.free_index(i)) else {
-            return Ok(None);
-        };
-        Ok(field.path_to(a, &goal))
+        Ok(match self.entry(b)? {
+            Some((key, goal)) => self.fields[&key].0.path_to(a, &goal),
+            None => None,
+        })
     }
 }

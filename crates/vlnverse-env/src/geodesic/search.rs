@@ -61,7 +61,11 @@ impl<'a> Grid<'a> {
         let (x1, y1) = self.xy(b);
         let (dx, dy) = ((x1 - x0).abs(), (y1 - y0).abs());
         let sx: isize = if x1 > x0 { 1 } else { -1 };
-        let sy: isize = if y1 > y0 { self.w as isize } else { -(self.w as isize) };
+        let sy: isize = if y1 > y0 {
+            self.w as isize
+        } else {
+            -(self.w as isize)
+        };
         let cells = self.cells;
         let mut i = a as isize;
         // decision = (1 + 2 ix) dy - (1 + 2 iy) dx, kept incrementally.
@@ -105,7 +109,11 @@ impl<'a> Grid<'a> {
             if k >= 4 && !(self.free_xy(x + dx, y) && self.free_xy(x, y + dy)) {
                 continue;
             }
-            let cost = if k >= 4 { std::f32::consts::SQRT_2 } else { 1.0 };
+            let cost = if k >= 4 {
+                std::f32::consts::SQRT_2
+            } else {
+                1.0
+            };
             f((ny * self.w + nx) as usize, nx, ny, cost);
         }
     }

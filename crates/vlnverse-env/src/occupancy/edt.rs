@@ -253,6 +253,7 @@ pub fn keep_largest_island(map: &mut GridMap) -> usize {
 }
 
 #[cfg(test)]
+#[allow(clippy::needless_range_loop)]
 mod tests {
     use super::*;
 
@@ -341,10 +342,18 @@ mod tests {
                     n += 1;
                     let (x, y) = (i % w, i / w);
                     let mut nb = Vec::new();
-                    if x > 0 { nb.push(i - 1); }
-                    if x + 1 < w { nb.push(i + 1); }
-                    if y > 0 { nb.push(i - w); }
-                    if y + 1 < h { nb.push(i + w); }
+                    if x > 0 {
+                        nb.push(i - 1);
+                    }
+                    if x + 1 < w {
+                        nb.push(i + 1);
+                    }
+                    if y > 0 {
+                        nb.push(i - w);
+                    }
+                    if y + 1 < h {
+                        nb.push(i + w);
+                    }
                     for j in nb {
                         if orig.cells()[j] == CellState::Free && label[j] == usize::MAX {
                             label[j] = s;

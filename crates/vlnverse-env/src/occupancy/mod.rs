@@ -19,8 +19,11 @@
 //!   edge does not count). Cuboids and cylinders whose axis stays vertical (pure yaw) and spheres
 //!   take an exact fast path; anything else (imported meshes, tilted primitives) is triangulated,
 //!   each triangle clipped to the band and its convex footprint rasterised row by row.
-//! - When the scene has objects of class `floor`, cells not over any floor footprint are
-//!   [`CellState::Unknown`] (outside the home); otherwise every non-occupied cell is free.
+//! - When the scene has objects of class `floor`, the cells that are neither occupied nor over a
+//!   floor footprint and connect to the map border through such cells are
+//!   [`CellState::Unknown`] (the outside of the home); small floor gaps enclosed by walls and
+//!   floor (e.g. between two room slabs under a doorway) stay free. Without any floor object
+//!   every non-occupied cell is free.
 //! - Navigable: a free cell whose centre is at least `agent_radius + res/2` from the centre of the
 //!   nearest occupied cell (exact Euclidean distance transform), restricted to the largest
 //!   **4-connected** island (4-connectivity matches the geodesic search, which never cuts a
@@ -428,7 +431,13 @@ pub(crate) fn los_float(
     let d = ub - ua;
     let sx: i64 = if d.x > 0.0 { 1 } else { -1 };
     let sy: i64 = if d.y > 0.0 { 1 } else { -1 };
-    let inv = |v: f32| if v != 0.0 { 1.0 / v.abs() } else { f32::INFINITY };
+    let inv = |v: f32| {
+        if v != 0.0 {
+            1.0 / v.abs()
+        } else {
+            f32::INFINITY
+        }
+    };
     let (tdx, tdy) = (inv(d.x), inv(d.y));
     let next_x = if d.x > 0.0 {
         (cx as f32 + 1.0 - ua.x) * tdx
@@ -515,7 +524,10 @@ mod tests {
         }
         assert_eq!(m.world_to_cell(Vec2::new(-1.01, 0.0)), None);
         assert_eq!(m.world_to_cell(Vec2::new(f32::NAN, 0.0)), None);
-        assert_eq!(m.world_to_cell(Vec2::new(1.0 - 1e-4, 1.0 - 1e-4)), Some((19, 29)));
+        assert_eq!(
+            m.world_to_cell(Vec2::new(1.0 - 1e-4, 1.0 - 1e-4)),
+            Some((19, 29))
+        );
     }
 
     #[test]

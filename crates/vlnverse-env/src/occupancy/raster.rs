@@ -147,7 +147,8 @@ fn part_footprint(shape: &Shape, pose: &Pose, band: Option<Band>, out: &mut Foot
             let local = geometry::triangulate(other);
             let aff = Affine3A::from_rotation_translation(q, t);
             for tri in &local.indices {
-                let v = tri.map(|i| aff.transform_point3(Vec3::from_array(local.positions[i as usize])));
+                let v = tri
+                    .map(|i| aff.transform_point3(Vec3::from_array(local.positions[i as usize])));
                 triangle_footprint(v, band, out);
             }
         }
@@ -365,6 +366,45 @@ impl Canvas {
     }
 }
 
+/// Cells that are neither occupied nor on the floor and connect (4-neighbours) to the map border
+/// through such cells: the outside of the home. Floor gaps enclosed by walls and floor (e.g.
+/// between two room slabs under a doorway) are not outside.
+fn outside_floor(occupied: &[bool], floor: &[bool], w: usize, h: usize) -> Vec<bool> {
+    let open = |i: usize| !occupied[i] && !floor[i];
+    let mut out = vec![false; w * h];
+    let mut stack: Vec<usize> = Vec::new();
+    let seed = |i: usize, out: &mut Vec<bool>, stack: &mut Vec<usize>| {
+        if open(i) && !out[i] {
+            out[i] = true;
+            stack.push(i);
+        }
+    };
+    for x in 0..w {
+        seed(x, &mut out, &mut stack);
+        seed((h - 1) * w + x, &mut out, &mut stack);
+    }
+    for y in 0..h {
+        seed(y * w, &mut out, &mut stack);
+        seed(y * w + w - 1, &mut out, &mut stack);
+    }
+    while let Some(i) = stack.pop() {
+        let (x, y) = (i % w, i / w);
+        if x > 0 {
+            seed(i - 1, &mut out, &mut stack);
+        }
+        if x + 1 < w {
+            seed(i + 1, &mut out, &mut stack);
+        }
+        if y > 0 {
+            seed(i - w, &mut out, &mut stack);
+        }
+        if y + 1 < h {
+            seed(i + w, &mut out, &mut stack);
+        }
+    }
+    out
+}
+
 /// Raw occupancy map of a scene (see the module docs for the rules).
 pub(super) fn rasterize_scene(scene: &Scene, cfg: &OccupancyConfig) -> Result<GridMap> {
     if !scene.floor_height.is_finite() {
@@ -441,13 +481,12 @@ pub(super) fn rasterize_scene(scene: &Scene, cfg: &OccupancyConfig) -> Result<Gr
     };
     canvas.paint(&obstacles);
     let occupied = std::mem::take(&mut canvas.cells);
-    let has_floor = !floors.is_empty();
-    let floor = if has_floor {
+    let outside = if floors.is_empty() {
+        Vec::new()
+    } else {
         canvas.cells = vec![false; w as usize * h as usize];
         canvas.paint(&floors);
-        canvas.cells
-    } else {
-        Vec::new()
+        outside_floor(&occupied, &canvas.cells, w as usize, h as usize)
     };
     let cells = occupied
         .iter()
@@ -455,20 +494,14 @@ pub(super) fn rasterize_scene(scene: &Scene, cfg: &OccupancyConfig) -> Result<Gr
         .map(|(i, &occ)| {
             if occ {
                 CellState::Occupied
-            } else if has_floor && !floor[i] {
+            } else if outside.get(i).copied().unwrap_or(false) {
                 CellState::Unknown
             } else {
                 CellState::Free
             }
         })
         .collect();
-    GridMap::from_cells(
-        w,
-        h,
-        cfg.resolution,
-        Vec2::new(ox as f32, oz as f32),
-        cells,
-    )
+    GridMap::from_cells(w, h, cfg.resolution, Vec2::new(ox as f32, oz as f32), cells)
 }
 
 #[cfg(test)]
@@ -506,10 +539,18 @@ mod tests {
     fn thin_segment_marks_cells_and_diagonal_is_conservative() {
         let mut c = canvas(10, 10);
         // A vertical wall triangle seen from above: a segment along z at x = 3.5.
-        c.poly(&[Vec2::new(3.5, 1.2), Vec2::new(3.5, 6.7), Vec2::new(3.5, 1.2)]);
+        c.poly(&[
+            Vec2::new(3.5, 1.2),
+            Vec2::new(3.5, 6.7),
+            Vec2::new(3.5, 1.2),
+        ]);
         assert_eq!(count(&c), 6);
         let mut d = canvas(10, 10);
-        d.poly(&[Vec2::new(0.5, 0.5), Vec2::new(4.5, 2.5), Vec2::new(0.5, 0.5)]);
+        d.poly(&[
+            Vec2::new(0.5, 0.5),
+            Vec2::new(4.5, 2.5),
+            Vec2::new(0.5, 0.5),
+        ]);
         // Every cell the segment crosses is marked.
         for k in 0..=40 {
             let p = Vec2::new(0.5, 0.5) + Vec2::new(4.0, 2.0) * (k as f32 / 40.0);

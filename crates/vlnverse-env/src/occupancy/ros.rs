@@ -137,7 +137,9 @@ impl MapYaml {
         }
         let resolution = num("resolution", need("resolution")?)?;
         if resolution <= 0.0 {
-            return Err(err(format!("field `resolution` = {resolution} must be > 0")));
+            return Err(err(format!(
+                "field `resolution` = {resolution} must be > 0"
+            )));
         }
         let o = need("origin")?;
         let inner = o

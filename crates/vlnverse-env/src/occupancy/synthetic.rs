@@ -1,7 +1,9 @@
 //! A deterministic synthetic home (a grid of rooms joined by doors, with furniture), for
 //! benchmarks and tests that need a realistic map before any generator exists.
 
-use crate::scene::{Aabb, Motion, Part, Physics, Pose, Scene, SceneObject, Shape, SCENE_FORMAT_VERSION};
+use crate::scene::{
+    Aabb, Motion, Part, Physics, Pose, Scene, SceneObject, Shape, SCENE_FORMAT_VERSION,
+};
 use crate::vocab::SemanticClass;
 use glam::Vec3;
 
@@ -142,11 +144,7 @@ pub fn grid_home(rooms_x: u32, rooms_z: u32, room_size: f32, seed: u64) -> Scene
                     0.4,
                     z0 + room_size * qz + (rng.next_f32() - 0.5) * 0.3,
                 );
-                let half = [
-                    0.3 + rng.next_f32() * 0.4,
-                    0.4,
-                    0.2 + rng.next_f32() * 0.3,
-                ];
+                let half = [0.3 + rng.next_f32() * 0.4, 0.4, 0.2 + rng.next_f32() * 0.3];
                 objs.push(object(
                     next_id(),
                     *class,

@@ -3,7 +3,7 @@
 
 use glam::{Vec2, Vec3};
 use vlnverse_env::{
-    Aabb, MeshData, Motion, Part, Physics, Pose, Scene, SceneObject, Shape, SemanticClass,
+    Aabb, MeshData, Motion, Part, Physics, Pose, Scene, SceneObject, SemanticClass, Shape,
     SCENE_FORMAT_VERSION,
 };
 
@@ -156,7 +156,12 @@ pub fn room_with_long_wall() -> Scene {
 }
 
 /// A triangle-mesh object (positions in world space, identity pose).
-pub fn mesh(id: u32, class: SemanticClass, positions: Vec<[f32; 3]>, indices: Vec<[u32; 3]>) -> SceneObject {
+pub fn mesh(
+    id: u32,
+    class: SemanticClass,
+    positions: Vec<[f32; 3]>,
+    indices: Vec<[u32; 3]>,
+) -> SceneObject {
     object(
         id,
         class,
