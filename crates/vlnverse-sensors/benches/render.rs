@@ -17,7 +17,10 @@ fn poses(n: usize) -> Vec<Pose> {
     (0..n)
         .map(|i| {
             let t = i as f32 / n as f32;
-            Pose::from_yaw(Vec3::new(1.0 + 3.0 * t, 0.0, 1.5 + 3.0 * t), t * std::f32::consts::TAU)
+            Pose::from_yaw(
+                Vec3::new(1.0 + 3.0 * t, 0.0, 1.5 + 3.0 * t),
+                t * std::f32::consts::TAU,
+            )
         })
         .collect()
 }

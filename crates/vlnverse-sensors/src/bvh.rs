@@ -98,7 +98,11 @@ impl TriBvh {
             if ext[axis] <= 0.0 {
                 continue;
             }
-            let mut bins = [(Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY), 0usize); BINS];
+            let mut bins = [(
+                Vec3::splat(f32::INFINITY),
+                Vec3::splat(f32::NEG_INFINITY),
+                0usize,
+            ); BINS];
             for &t in ids.iter() {
                 let t = t as usize;
                 let (a, b) = tri_box(t);
@@ -108,14 +112,22 @@ impl TriBvh {
                 bin.2 += 1;
             }
             let mut right = [(0.0f32, 0usize); BINS];
-            let (mut rl, mut rh, mut rc) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY), 0);
+            let (mut rl, mut rh, mut rc) = (
+                Vec3::splat(f32::INFINITY),
+                Vec3::splat(f32::NEG_INFINITY),
+                0,
+            );
             for i in (1..BINS).rev() {
                 rl = rl.min(bins[i].0);
                 rh = rh.max(bins[i].1);
                 rc += bins[i].2;
                 right[i] = (area(rl, rh), rc);
             }
-            let (mut ll, mut lh, mut lc) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY), 0);
+            let (mut ll, mut lh, mut lc) = (
+                Vec3::splat(f32::INFINITY),
+                Vec3::splat(f32::NEG_INFINITY),
+                0,
+            );
             for i in 0..BINS - 1 {
                 ll = ll.min(bins[i].0);
                 lh = lh.max(bins[i].1);
@@ -152,7 +164,9 @@ impl TriBvh {
                 2
             };
             let mid = ids.len() / 2;
-            ids.select_nth_unstable_by(mid, |a, b| cen[*a as usize][axis].total_cmp(&cen[*b as usize][axis]));
+            ids.select_nth_unstable_by(mid, |a, b| {
+                cen[*a as usize][axis].total_cmp(&cen[*b as usize][axis])
+            });
             mid
         } else {
             mid
@@ -179,16 +193,20 @@ impl TriBvh {
             return None;
         }
         // Avoid 0 * inf = NaN in the slab test for axis-parallel rays.
-        let safe = |x: f32| if x.abs() < 1e-20 { 1e-20f32.copysign(x) } else { x };
+        let safe = |x: f32| {
+            if x.abs() < 1e-20 {
+                1e-20f32.copysign(x)
+            } else {
+                x
+            }
+        };
         let inv = Vec3::new(1.0 / safe(dir.x), 1.0 / safe(dir.y), 1.0 / safe(dir.z));
         let mut best_t = t_max;
         let mut best = None;
         let mut stack = [0u32; 64];
         let mut sp = 0usize;
         let mut node = 0usize;
-        if self.enter(node, origin, inv, best_t).is_none() {
-            return None;
-        }
+        self.enter(node, origin, inv, best_t)?;
         loop {
             let n = &self.nodes[node];
             if n.count > 0 {
@@ -201,7 +219,10 @@ impl TriBvh {
                 }
             } else {
                 let (l, r) = (n.start as usize, n.start as usize + 1);
-                let (tl, tr) = (self.enter(l, origin, inv, best_t), self.enter(r, origin, inv, best_t));
+                let (tl, tr) = (
+                    self.enter(l, origin, inv, best_t),
+                    self.enter(r, origin, inv, best_t),
+                );
                 match (tl, tr) {
                     (Some(a), Some(b)) => {
                         let (near, far) = if a <= b { (l, r) } else { (r, l) };
@@ -281,7 +302,13 @@ mod tests {
     #[test]
     fn bvh_finds_the_same_nearest_hit_as_brute_force() {
         let mut rng = ChaCha8Rng::seed_from_u64(11);
-        let mut r = |s: f32| Vec3::new(rng.random_range(-s..s), rng.random_range(-s..s), rng.random_range(-s..s));
+        let mut r = |s: f32| {
+            Vec3::new(
+                rng.random_range(-s..s),
+                rng.random_range(-s..s),
+                rng.random_range(-s..s),
+            )
+        };
         let mut pos = Vec::new();
         for _ in 0..500 {
             let c = r(5.0);

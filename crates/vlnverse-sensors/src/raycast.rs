@@ -2,10 +2,10 @@
 //! triangulation the rasteriser draws), rows in parallel with rayon. Single queries and LiDAR go
 //! through parry's BVH ([`SceneRaycaster::cast`]); images through a flat [`TriBvh`].
 
+use crate::bvh::TriBvh;
 use crate::camera::Camera;
 use crate::error::{Result, SensorError};
 use crate::frame::{Frame, View};
-use crate::bvh::TriBvh;
 use crate::renderer::Renderer;
 use crate::scene_mesh::SceneMesh;
 use crate::shading;
@@ -68,11 +68,13 @@ impl SceneRaycaster {
 
     /// [`SceneRaycaster::cast`] on the image BVH ([`TriBvh`]): same triangles, faster.
     pub fn cast_fast(&self, origin: Vec3, dir: Vec3, max_distance: f32) -> Option<Hit> {
-        self.fast.cast(origin, dir, max_distance).map(|(t, tri)| Hit {
-            distance: t,
-            triangle: tri,
-            object: self.mesh.object[tri as usize],
-        })
+        self.fast
+            .cast(origin, dir, max_distance)
+            .map(|(t, tri)| Hit {
+                distance: t,
+                triangle: tri,
+                object: self.mesh.object[tri as usize],
+            })
     }
 
     /// Render one view (rows in parallel).

@@ -86,10 +86,7 @@ fn normalised_depth_is_depth_over_far() {
     for (x, y) in a.depth.iter().zip(&b.depth) {
         assert!((x.min(4.0) / 4.0 - y).abs() < 1e-5, "{x} {y}");
     }
-    assert!(
-        b.depth.contains(&1.0),
-        "something beyond 4 m is clipped"
-    );
+    assert!(b.depth.contains(&1.0), "something beyond 4 m is clipped");
 }
 
 #[test]

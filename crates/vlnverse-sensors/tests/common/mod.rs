@@ -52,7 +52,10 @@ pub fn free_poses(
         // Inside the house: the floor is below and the ceiling above.
         let in_house = scene.room_at(p.x, p.z).is_some();
         if !inside_some && in_house {
-            out.push(Pose::from_yaw(p, rng.random_range(-std::f32::consts::PI..std::f32::consts::PI)));
+            out.push(Pose::from_yaw(
+                p,
+                rng.random_range(-std::f32::consts::PI..std::f32::consts::PI),
+            ));
         }
     }
     out

@@ -1,0 +1,242 @@
+//! Path geometry shared by the generators, the grounding check and the oracle: headings, turns,
+//! sides, visibility.
+
+use crate::episode::Side;
+use glam::Vec2;
+use serde::{Deserialize, Serialize};
+use vlnverse_env::occupancy::GridMap;
+use vlnverse_env::scene_graph::Side as EnvSide;
+use vlnverse_env::Scene;
+
+/// Floor points `(x, z)` of 3-D path points.
+pub fn floor_points(path: &[[f32; 3]]) -> Vec<Vec2> {
+    path.iter().map(|p| Vec2::new(p[0], p[2])).collect()
+}
+
+/// Viewing direction `(x, z)` of a yaw (yaw 0 looks along -Z, counter-clockwise from above).
+pub fn direction_of_yaw(yaw: f32) -> Vec2 {
+    Vec2::new(-yaw.sin(), -yaw.cos())
+}
+
+/// Unit heading of each segment `pts[i] -> pts[i + 1]`; zero-length segments borrow a
+/// neighbour's heading (-Z when every segment is degenerate).
+pub fn segment_headings(pts: &[Vec2]) -> Vec<Vec2> {
+    let mut h: Vec<Option<Vec2>> = pts
+        .windows(2)
+        .map(|w| (w[1] - w[0]).try_normalize())
+        .collect();
+    let mut last = None;
+    for x in h.iter_mut() {
+        if x.is_none() {
+            *x = last;
+        }
+        last = *x;
+    }
+    let mut next = None;
+    for x in h.iter_mut().rev() {
+        if x.is_none() {
+            *x = next;
+        }
+        next = *x;
+    }
+    h.into_iter()
+        .map(|x| x.unwrap_or(Vec2::new(0.0, -1.0)))
+        .collect()
+}
+
+/// Signed turn angle in degrees from heading `from` to heading `to`: positive to the right,
+/// negative to the left, in `[-180, 180]`.
+pub fn signed_turn_deg(from: Vec2, to: Vec2) -> f32 {
+    let f = from.try_normalize().unwrap_or(Vec2::new(0.0, -1.0));
+    // Right of a heading (x, z) is (-z, x) (as in the scene graph's `side_of`).
+    let right = Vec2::new(-f.y, f.x);
+    to.dot(right).atan2(to.dot(f)).to_degrees()
+}
+
+/// Angle thresholds (degrees) that name a change of heading.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct TurnConfig {
+    /// Below this the walk counts as straight on.
+    pub slight_deg: f32,
+    /// From `slight_deg` to this: a slight turn; above: a turn.
+    pub turn_deg: f32,
+    /// From this on: turning around.
+    pub around_deg: f32,
+}
+
+impl Default for TurnConfig {
+    fn default() -> Self {
+        TurnConfig {
+            slight_deg: 25.0,
+            turn_deg: 65.0,
+            around_deg: 150.0,
+        }
+    }
+}
+
+/// A named change of heading.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Turn {
+    /// No turn worth naming.
+    Straight,
+    /// A slight turn; the side is [`Side::Left`] or [`Side::Right`].
+    Slight(Side),
+    /// A clear turn; the side is [`Side::Left`] or [`Side::Right`].
+    Turn(Side),
+    /// Turning around.
+    Around,
+}
+
+/// Name the change of heading from `from` to `to`.
+pub fn classify_turn(from: Vec2, to: Vec2, cfg: &TurnConfig) -> Turn {
+    let a = signed_turn_deg(from, to);
+    let side = if a > 0.0 { Side::Right } else { Side::Left };
+    let m = a.abs();
+    if m < cfg.slight_deg {
+        Turn::Straight
+    } else if m < cfg.turn_deg {
+        Turn::Slight(side)
+    } else if m < cfg.around_deg {
+        Turn::Turn(side)
+    } else {
+        Turn::Around
+    }
+}
+
+/// The task layer's side of the scene graph's side.
+pub fn env_side(s: EnvSide) -> Side {
+    match s {
+        EnvSide::Left => Side::Left,
+        EnvSide::Right => Side::Right,
+        EnvSide::Ahead => Side::Ahead,
+        EnvSide::Behind => Side::Behind,
+    }
+}
+
+/// Word for a left / right side ("left", "right"; "ahead", "behind" otherwise).
+pub fn side_word(s: Side) -> &'static str {
+    match s {
+        Side::Left => "left",
+        Side::Right => "right",
+        Side::Ahead => "ahead",
+        Side::Behind => "behind",
+    }
+}
+
+/// Whether the segment `a..b` crosses the rectangle `[lo, hi]` (slab test).
+pub(crate) fn segment_hits_rect(a: Vec2, b: Vec2, lo: Vec2, hi: Vec2) -> bool {
+    let d = b - a;
+    let (mut t0, mut t1) = (0.0f32, 1.0f32);
+    for (o, v, l, h) in [(a.x, d.x, lo.x, hi.x), (a.y, d.y, lo.y, hi.y)] {
+        if v.abs() < 1e-9 {
+            if o < l || o > h {
+                return false;
+            }
+        } else {
+            let (mut ta, mut tb) = ((l - o) / v, (h - o) / v);
+            if ta > tb {
+                std::mem::swap(&mut ta, &mut tb);
+            }
+            t0 = t0.max(ta);
+            t1 = t1.min(tb);
+            if t0 > t1 {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+/// Footprints `(min, max)` of the scene's walls.
+pub(crate) fn wall_rects(scene: &Scene) -> Vec<(Vec2, Vec2)> {
+    scene
+        .objects
+        .iter()
+        .filter(|o| o.class == vlnverse_env::SemanticClass::Wall)
+        .map(|o| {
+            (
+                Vec2::new(o.bbox.min[0], o.bbox.min[2]),
+                Vec2::new(o.bbox.max[0], o.bbox.max[2]),
+            )
+        })
+        .collect()
+}
+
+/// Whether `b` (a point just in front of an object) can be seen from the path point `a`: the
+/// navigable map is free along the sight line except its last `slack` metres (the navigable map
+/// is dilated by the agent radius around every obstacle, the object included), and no wall
+/// footprint crosses it.
+pub(crate) fn visible(
+    map: &GridMap,
+    walls: &[(Vec2, Vec2)],
+    a: Vec2,
+    b: Vec2,
+    slack: f32,
+) -> bool {
+    if walls.iter().any(|&(lo, hi)| segment_hits_rect(a, b, lo, hi)) {
+        return false;
+    }
+    let d = b - a;
+    let len = d.length();
+    if len <= slack {
+        return true;
+    }
+    map.line_of_sight(a, a + d * ((len - slack) / len))
+}
+
+/// Distance from `p` to the rectangle `[lo, hi]`.
+pub(crate) fn rect_distance(p: Vec2, lo: Vec2, hi: Vec2) -> f32 {
+    (p.clamp(lo, hi) - p).length()
+}
+
+/// Footprint `(min, max)` of an object's box.
+pub(crate) fn footprint(o: &vlnverse_env::SceneObject) -> (Vec2, Vec2) {
+    (
+        Vec2::new(o.bbox.min[0], o.bbox.min[2]),
+        Vec2::new(o.bbox.max[0], o.bbox.max[2]),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn turn_signs_follow_side_of() {
+        // Heading -Z; +X is on the right, so turning towards +X is a right turn.
+        let fwd = Vec2::new(0.0, -1.0);
+        let cfg = TurnConfig::default();
+        assert_eq!(
+            classify_turn(fwd, Vec2::new(1.0, 0.0), &cfg),
+            Turn::Turn(Side::Right)
+        );
+        assert_eq!(
+            classify_turn(fwd, Vec2::new(-1.0, 0.0), &cfg),
+            Turn::Turn(Side::Left)
+        );
+        assert_eq!(
+            classify_turn(fwd, Vec2::new(0.6, -1.0), &cfg),
+            Turn::Slight(Side::Right)
+        );
+        assert_eq!(classify_turn(fwd, Vec2::new(0.0, 1.0), &cfg), Turn::Around);
+        assert_eq!(classify_turn(fwd, fwd, &cfg), Turn::Straight);
+        // Consistent with the scene graph's side_of for the same heading.
+        let s = vlnverse_env::scene_graph::side_of_heading(Vec2::ZERO, fwd, Vec2::new(1.0, 0.0));
+        assert_eq!(env_side(s), Side::Right);
+    }
+
+    #[test]
+    fn segment_rect_crossing() {
+        let (lo, hi) = (Vec2::new(1.0, -1.0), Vec2::new(1.1, 1.0));
+        assert!(segment_hits_rect(Vec2::ZERO, Vec2::new(2.0, 0.0), lo, hi));
+        assert!(!segment_hits_rect(Vec2::ZERO, Vec2::new(0.9, 0.0), lo, hi));
+        assert!(!segment_hits_rect(
+            Vec2::new(0.0, 2.0),
+            Vec2::new(2.0, 2.0),
+            lo,
+            hi
+        ));
+    }
+}
