@@ -1,0 +1,1 @@
+//! Optional LLM stage (placeholder, filled in below).
