@@ -262,16 +262,21 @@ pub fn goal_spot(
     let (lo, hi) = footprint(o);
     let (blo, bhi) = footprint(base_object(scene, o));
     let reach = cfg.goal_max_distance;
-    let (Some(c0), Some(c1)) = (
-        nav.world_to_cell(lo - Vec2::splat(reach)).or(Some((0, 0))),
-        nav.world_to_cell(hi + Vec2::splat(reach))
-            .or(Some((nav.width.saturating_sub(1), nav.height.saturating_sub(1)))),
-    ) else {
-        return None;
+    let clamp_cell = |q: Vec2| {
+        let u = ((q - nav.origin) / nav.resolution).floor();
+        (
+            u.x.clamp(0.0, nav.width.saturating_sub(1) as f32) as u32,
+            u.y.clamp(0.0, nav.height.saturating_sub(1) as f32) as u32,
+        )
     };
+    if nav.width == 0 || nav.height == 0 {
+        return None;
+    }
+    let c0 = clamp_cell(lo - Vec2::splat(reach));
+    let c1 = clamp_cell(hi + Vec2::splat(reach));
     let mut cands: Vec<(f32, u32, u32)> = Vec::new();
-    for row in c0.1.min(c1.1)..=c1.1.max(c0.1).min(nav.height.saturating_sub(1)) {
-        for col in c0.0.min(c1.0)..=c1.0.max(c0.0).min(nav.width.saturating_sub(1)) {
+    for row in c0.1..=c1.1 {
+        for col in c0.0..=c1.0 {
             if !nav.is_free(col, row) {
                 continue;
             }
