@@ -2,7 +2,9 @@
 
 pub mod dataset;
 pub mod episode;
+pub mod generate;
 pub mod error;
+pub mod eval;
 pub mod instructions;
 pub mod metrics;
 pub mod report;

@@ -1,0 +1,117 @@
+//! Built-in agents: `oracle`, `random`, `forward`, `stop`, `semantic` and `external`.
+
+pub mod external;
+pub mod forward;
+pub mod oracle;
+pub mod random;
+pub mod semantic;
+pub mod stop;
+
+use glam::Vec2;
+
+use crate::error::{Result, TaskError};
+use crate::eval::agent::{Agent, AgentFactory};
+
+/// Names of the built-in agents.
+pub const BUILTIN: [&str; 6] = ["oracle", "random", "forward", "stop", "semantic", "external"];
+
+/// A factory from a closure (for agents with no shared state).
+pub struct FnFactory<F> {
+    name: String,
+    privileged: bool,
+    make: F,
+}
+
+impl<F: Fn() -> Box<dyn Agent> + Sync> FnFactory<F> {
+    /// A factory named `name` calling `make` for each agent.
+    pub fn new(name: &str, privileged: bool, make: F) -> Self {
+        FnFactory {
+            name: name.to_string(),
+            privileged,
+            make,
+        }
+    }
+}
+
+impl<F: Fn() -> Box<dyn Agent> + Sync> AgentFactory for FnFactory<F> {
+    fn name(&self) -> String {
+        self.name.clone()
+    }
+    fn make(&self) -> Result<Box<dyn Agent>> {
+        Ok((self.make)())
+    }
+    fn privileged(&self) -> bool {
+        self.privileged
+    }
+}
+
+/// The factory of a built-in agent; `command` is the shell command of `external`.
+pub fn builtin(name: &str, command: Option<&str>) -> Result<Box<dyn AgentFactory>> {
+    Ok(match name {
+        "oracle" => Box::new(FnFactory::new("oracle", true, || {
+            Box::new(oracle::OracleAgent::default())
+        })),
+        "random" => Box::new(FnFactory::new("random", false, || {
+            Box::new(random::RandomAgent::default())
+        })),
+        "forward" => Box::new(FnFactory::new("forward", false, || {
+            Box::new(forward::ForwardAgent::default())
+        })),
+        "stop" => Box::new(FnFactory::new("stop", false, || Box::new(stop::StopAgent))),
+        "semantic" => Box::new(FnFactory::new("semantic", false, || {
+            Box::new(semantic::SemanticAgent::default())
+        })),
+        "external" => {
+            let Some(cmd) = command.filter(|c| !c.trim().is_empty()) else {
+                return Err(TaskError::invalid(
+                    "agent_cmd",
+                    "<none>",
+                    "the external agent needs a command (--agent-cmd \"python3 examples/python/random_agent.py\")",
+                ));
+            };
+            Box::new(external::ExternalFactory::new(cmd))
+        }
+        _ => {
+            return Err(TaskError::invalid(
+                "agent",
+                name,
+                format!("expected one of {}", BUILTIN.join(", ")),
+            ))
+        }
+    })
+}
+
+/// Yaw that faces the floor direction `d = (dx, dz)` (yaw 0 looks along -Z, counter-clockwise).
+pub fn yaw_towards(d: Vec2) -> f32 {
+    (-d.x).atan2(-d.y)
+}
+
+/// Angle wrapped into [-pi, pi].
+pub fn wrap_angle(a: f32) -> f32 {
+    let t = std::f32::consts::TAU;
+    let r = (a + std::f32::consts::PI).rem_euclid(t) - std::f32::consts::PI;
+    if r < -std::f32::consts::PI {
+        r + t
+    } else {
+        r
+    }
+}
+
+/// Floor point `(x, z)` of a pose.
+pub fn floor_point(p: &vlnverse_env::Pose) -> Vec2 {
+    Vec2::new(p.position[0], p.position[2])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn yaw_towards_follows_the_convention() {
+        // Yaw 0 looks along -Z; a quarter turn left looks along -X.
+        assert!(yaw_towards(Vec2::new(0.0, -1.0)).abs() < 1e-6);
+        let left = yaw_towards(Vec2::new(-1.0, 0.0));
+        assert!((left - std::f32::consts::FRAC_PI_2).abs() < 1e-6);
+        assert!((wrap_angle(3.0 * std::f32::consts::PI) - std::f32::consts::PI).abs() < 1e-5);
+    }
+}

@@ -1,0 +1,17 @@
+//! Evaluation: the protocol (`configs/eval/*.toml`), the [`Agent`] trait and the built-in
+//! agents, the parallel, resumable evaluation loop behind `cargo xtask evaluate`, and the
+//! JSON-lines protocol of external agents (docs/agents.md).
+
+pub mod agent;
+pub mod agents;
+pub mod plots;
+pub mod protocol;
+pub mod resume;
+pub mod runner;
+
+pub use agent::{
+    Agent, AgentFactory, EpisodeInputs, OracleHandle, Privileged, StepInput, SubGoalProgress,
+};
+pub use protocol::{ActionSpace, EvalConfig, Setting};
+pub use resume::EpisodeRecord;
+pub use runner::{evaluate, EvalOutcome, EvalRequest};
