@@ -1,0 +1,75 @@
+//! A small dataset for the evaluation tests: procgen `tiny` homes, their maps, and fine-grained
+//! episodes whose reference path is the geodesic shortest path (until `cargo xtask generate`
+//! output is available to tests).
+#![allow(dead_code)]
+
+use std::path::Path;
+
+use glam::{Vec2, Vec3};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use vlnverse_env::geodesic::shortest_path;
+use vlnverse_env::io::write_scene_bundle;
+use vlnverse_env::occupancy::OccupancyConfig;
+use vlnverse_env::Pose;
+use vlnverse_procgen::{HomeGenerator, Preset};
+use vlnverse_task::{dataset, Episode, EpisodeInfo, Goal, Instruction, Split, Task};
+
+/// Write `scenes` tiny homes and `per_scene` episodes each (test split of `task`) under `dir`.
+pub fn make_dataset(dir: &Path, task: Task, scenes: usize, per_scene: usize, seed: u64) -> Vec<Episode> {
+    let gen = HomeGenerator::from_preset(Preset::Tiny).unwrap();
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut episodes = Vec::new();
+    for s in 0..scenes {
+        let id = format!("tiny_{s:03}");
+        let scene = gen.generate(seed.wrapping_add(s as u64), &id).unwrap();
+        let (bundle, _) =
+            write_scene_bundle(dir.join("scenes"), scene, &OccupancyConfig::default()).unwrap();
+        let nav = &bundle.maps.navigable;
+        let free: Vec<Vec2> = nav.free_cells().map(|(c, r)| nav.cell_center(c, r)).collect();
+        let y = bundle.scene.floor_height;
+        let mut made = 0;
+        let mut tries = 0;
+        while made < per_scene && tries < 10_000 {
+            tries += 1;
+            let a = free[rng.random_range(0..free.len())];
+            let b = free[rng.random_range(0..free.len())];
+            let Ok(Some(path)) = shortest_path(nav, a, b) else { continue };
+            if !(4.0..=14.0).contains(&path.length) {
+                continue;
+            }
+            let yaw = rng.random_range(-std::f32::consts::PI..std::f32::consts::PI);
+            let start = Pose::from_yaw(Vec3::new(a.x, y, a.y), yaw);
+            let id = episodes.len() as u64 + 1;
+            episodes.push(Episode {
+                episode_id: id,
+                trajectory_id: id,
+                scene_id: bundle.scene.id.clone(),
+                start_position: start.position,
+                start_rotation: start.rotation,
+                goals: vec![Goal {
+                    position: [b.x, y, b.y],
+                    radius: 3.0,
+                    object_id: None,
+                }],
+                instruction: Instruction {
+                    instruction_text: "Walk to the goal.".into(),
+                    ..Default::default()
+                },
+                reference_path: path.points.iter().map(|p| [p.x, y, p.y]).collect(),
+                info: EpisodeInfo {
+                    geodesic_distance: path.length,
+                    ..Default::default()
+                },
+                task,
+                target_object_id: None,
+                reference_image: None,
+                sub_goals: vec![],
+                oracle_budget: None,
+            });
+            made += 1;
+        }
+    }
+    dataset::write_split(dir, task, Split::Test, &episodes).unwrap();
+    episodes
+}
