@@ -1,10 +1,119 @@
-//! `cargo xtask evaluate` (not implemented yet).
+//! `cargo xtask evaluate`: run an agent on a dataset split under an evaluation protocol and
+//! write `summary.json`, `episodes.csv`, `trajectories.jsonl`, `report.md` and top-down plots.
+//! An interrupted run resumes from `RUN/progress.jsonl`.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use vlnverse_sensors::Backend;
+use vlnverse_task::eval::agents::builtin;
+use vlnverse_task::eval::{evaluate, EvalConfig, EvalRequest, Setting};
+use vlnverse_task::{Split, Task};
 
 /// Arguments of `cargo xtask evaluate`.
-#[derive(clap::Args)]
-pub struct Args {}
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Dataset folder (holds `<task>/<split>/<split>.json.gz` and `scenes/<scene_id>/`).
+    #[arg(long)]
+    pub dataset: PathBuf,
+    /// Task: fine, coarse, visual_reference, long_horizon or dialogue.
+    #[arg(long)]
+    pub task: Task,
+    /// Split: train, val_seen, val_unseen or test.
+    #[arg(long)]
+    pub split: Split,
+    /// Agent: oracle, random, forward, stop, semantic or external.
+    #[arg(long)]
+    pub agent: String,
+    /// Setting: strict, telhop or lenient (picks `configs/eval/<setting>.toml` unless --config).
+    #[arg(long, default_value = "strict")]
+    pub setting: Setting,
+    /// Protocol file (overrides the setting's default file; its `setting` must agree).
+    #[arg(long)]
+    pub config: Option<PathBuf>,
+    /// Only the first N episodes of the split.
+    #[arg(long)]
+    pub episodes: Option<usize>,
+    /// Worker threads (default: one per core).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Shell command of the external agent.
+    #[arg(long)]
+    pub agent_cmd: Option<String>,
+    /// Renderer backend override: auto, wgpu or raycast.
+    #[arg(long)]
+    pub backend: Option<String>,
+    /// Do not render observations (agents that do not look, e.g. timing the oracle).
+    #[arg(long)]
+    pub no_render: bool,
+    /// Output folder of the run.
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
+fn config(args: &Args) -> anyhow::Result<EvalConfig> {
+    let default_file = PathBuf::from("configs/eval").join(format!("{}.toml", args.setting));
+    let mut cfg = match &args.config {
+        Some(p) => EvalConfig::load(p)?,
+        None if default_file.is_file() => EvalConfig::load(&default_file)?,
+        None => EvalConfig::for_setting(args.setting),
+    };
+    if args.config.is_some() && cfg.setting != args.setting {
+        anyhow::bail!(
+            "--setting {} disagrees with `setting = \"{}\"` in {}",
+            args.setting,
+            cfg.setting,
+            args.config.as_ref().map(|p| p.display().to_string()).unwrap_or_default()
+        );
+    }
+    cfg.setting = args.setting;
+    if let Some(b) = &args.backend {
+        cfg.backend = Some(b.parse::<Backend>()?);
+    }
+    if args.no_render {
+        cfg.render = false;
+    }
+    Ok(cfg)
+}
 
 /// Run the command.
-pub fn run(_args: Args) -> anyhow::Result<()> {
-    anyhow::bail!("`evaluate` is not implemented yet")
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let cfg = config(&args)?;
+    let factory = builtin(&args.agent, args.agent_cmd.as_deref(), &cfg)?;
+    let n = vlnverse_task::dataset::read_split(&args.dataset, args.task, args.split)?.len();
+    let n = args.episodes.map_or(n, |k| k.min(n));
+    let req = EvalRequest {
+        dataset: args.dataset.clone(),
+        task: args.task,
+        split: args.split,
+        episodes: args.episodes,
+        threads: args.threads,
+        out: args.out.clone(),
+        config: cfg,
+    };
+    let pb = crate::progress::bar(n as u64, "evaluating");
+    let t0 = Instant::now();
+    let out = evaluate(&req, &*factory, &|| pb.inc(1))?;
+    pb.finish_and_clear();
+    let secs = t0.elapsed().as_secs_f64();
+    let s = &out.summary.summary;
+    println!(
+        "{} on {}/{} ({}): {} episodes ({} resumed), SR {:.2}%  SPL {:.2}%  NE {}  nDTW {:.2}%  CR {:.4}; {} steps in {:.1} s ({:.0} steps/s) -> {}",
+        out.summary.method,
+        args.task,
+        args.split,
+        args.setting,
+        s.episodes,
+        out.resumed,
+        100.0 * s.sr,
+        100.0 * s.spl,
+        s.ne.map_or_else(|| "-".into(), |v| format!("{v:.2} m")),
+        100.0 * s.ndtw,
+        s.cr,
+        out.steps_run,
+        secs,
+        out.steps_run as f64 / secs.max(1e-9),
+        args.out.display()
+    );
+    Ok(())
 }

@@ -36,7 +36,10 @@ fn walls_objects_rooms_doors_and_navigable_area_are_drawn() {
     let scene = fixture_scene();
     let plain = render_topdown(&scene, None, &TopdownOptions::default());
     // Wall (z = -2, 10 cm thick): dark.
-    assert_eq!(px(&plain, Vec2::new(-1.0, -2.0)), class_color(SemanticClass::Wall));
+    assert_eq!(
+        px(&plain, Vec2::new(-1.0, -2.0)),
+        class_color(SemanticClass::Wall)
+    );
     // Table top centre (no label there with labels off), vase drawn on top of the table.
     let no_text = TopdownOptions {
         labels: false,
@@ -48,9 +51,15 @@ fn walls_objects_rooms_doors_and_navigable_area_are_drawn() {
     let edge = Vec2::new(table.pose.position[0], table.pose.position[2])
         + Vec2::from_angle(-table.pose.yaw()).rotate(Vec2::new(0.45, 0.0));
     assert_eq!(px(&td, edge), class_color(SemanticClass::DiningTable));
-    assert_eq!(px(&td, Vec2::new(0.5, 0.25)), class_color(SemanticClass::Vase));
+    assert_eq!(
+        px(&td, Vec2::new(0.5, 0.25)),
+        class_color(SemanticClass::Vase)
+    );
     // Empty floor of the dining room: its room tint.
-    assert_eq!(px(&td, Vec2::new(1.5, 1.5)), room_color(RoomType::DiningRoom));
+    assert_eq!(
+        px(&td, Vec2::new(1.5, 1.5)),
+        room_color(RoomType::DiningRoom)
+    );
     // The door at (2, 0): orange bar.
     assert_eq!(px(&td, Vec2::new(2.0, 0.0)), [230, 130, 30]);
 

@@ -12,13 +12,16 @@ use vlnverse_env::Pose;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Backend {
-    /// wgpu when an adapter (GPU or lavapipe) exists, else the ray caster.
+    /// wgpu on a hardware GPU when one exists, else the CPU rasteriser ([`Backend::Raster`]),
+    /// which beats wgpu on a software driver (lavapipe) several times over.
     #[default]
     Auto,
-    /// The wgpu rasteriser; fails when no adapter exists.
+    /// The wgpu rasteriser (a hardware GPU or lavapipe); fails when no adapter exists.
     Wgpu,
     /// The CPU ray caster.
     Raycast,
+    /// The CPU software rasteriser ([`crate::RasterRenderer`]); needs no graphics stack.
+    Raster,
 }
 
 impl std::str::FromStr for Backend {
@@ -28,10 +31,11 @@ impl std::str::FromStr for Backend {
             "auto" => Ok(Backend::Auto),
             "wgpu" => Ok(Backend::Wgpu),
             "raycast" => Ok(Backend::Raycast),
+            "raster" => Ok(Backend::Raster),
             _ => Err(SensorError::invalid(
                 "backend",
                 s,
-                "one of auto, wgpu, raycast",
+                "one of auto, wgpu, raycast, raster",
             )),
         }
     }

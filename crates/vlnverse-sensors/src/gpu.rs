@@ -1,16 +1,25 @@
 //! The wgpu offscreen rasteriser.
 //!
-//! One render pass writes three targets per view: lit colour (`Rgba8Unorm`), linear depth along
-//! the optical axis as `bitcast<u32>(f32)` in an `R32Uint` target (works on Vulkan and GL, which
-//! can neither copy `Depth32Float` to a buffer nor render `R32Float`), and the object id
-//! (`R32Uint`; the class comes from a lookup table). A batch of views is laid out as tiles of one
-//! 2-D atlas (no texture arrays: on GL a square array with 6k layers silently becomes a cube map),
-//! rendered and read back in one submission. The scene is uploaded once as one vertex buffer with
-//! a contiguous range per object; each view draws only the objects whose box meets its frustum.
+//! Targets: lit colour (`Rgba8Unorm`), linear depth along the optical axis as `bitcast<u32>(f32)`
+//! in an `R32Uint` target (works on Vulkan and GL, which can neither copy `Depth32Float` to a
+//! buffer nor render `R32Float`), and the object id (`R32Uint`; the class comes from a lookup
+//! table). Views are grouped by the targets their channels need (an RGB + semantic view writes
+//! colour and id, a depth view only depth); each group is one render pass over a 2-D atlas of
+//! tiles holding only those targets (no texture arrays: on GL a square array with 6k layers
+//! silently becomes a cube map). All groups are rendered, copied into one readback buffer and
+//! mapped in one submission. The scene is uploaded once as one vertex buffer with a contiguous
+//! range per object; each view draws only the objects whose box meets its frustum.
+//!
+//! Cost model on a software driver (lavapipe): the time goes into per-fragment work and into
+//! clearing and copying target texels, so shading is flat (triangle normals and colours are
+//! constant, so the vertex stage computes the lit colour once per vertex and the fragment stage
+//! only stores), views write only the targets they need, atlases are sized to the views, and
+//! textures, readback and uniform buffers are cached between calls.
 //!
 //! The device is process-wide and created lazily ([`shared_context`]): on a CPU the software
 //! driver (lavapipe) already uses every core, so several devices would only oversubscribe.
 
+use crate::camera::Camera;
 use crate::error::{Result, SensorError};
 use crate::frame::{Channels, Frame, View};
 use crate::renderer::Renderer;
@@ -22,12 +31,36 @@ use wgpu::util::DeviceExt;
 /// Packages that provide a software Vulkan driver on Debian/Ubuntu.
 pub const SOFTWARE_VULKAN_PACKAGES: &str = "mesa-vulkan-drivers libvulkan1";
 
-const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
-const UINT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 const UNIFORM_STRIDE: u64 = 256;
+/// Row pitch and region alignment of texture-to-buffer copies.
+const COPY_ALIGN: u64 = 256;
+/// Atlases kept between calls (one per target set and size seen recently).
+const ATLAS_CACHE: usize = 8;
 
-const SHADER: &str = r#"
+/// Render targets, in attachment order: colour, linear depth, object id.
+const TARGETS: [(wgpu::TextureFormat, &str); 3] = [
+    (wgpu::TextureFormat::Rgba8Unorm, "color"),
+    (wgpu::TextureFormat::R32Uint, "linear depth"),
+    (wgpu::TextureFormat::R32Uint, "instance"),
+];
+const COLOR: usize = 0;
+const DEPTH: usize = 1;
+const ID: usize = 2;
+
+/// The set of targets a view writes: bit `k` is `TARGETS[k]`.
+fn target_mask(c: Channels) -> u8 {
+    u8::from(c.rgb) << COLOR | u8::from(c.depth) << DEPTH | u8::from(c.ids()) << ID
+}
+
+fn has(mask: u8, k: usize) -> bool {
+    mask & (1 << k) != 0
+}
+
+/// Vertex stage shared by all target sets. Normals and colours are per triangle, so the lit
+/// colour (same model as [`shading`]) is flat and computed per vertex; linear depth is linear in
+/// world position, so perspective-correct interpolation gives it exactly.
+const VERTEX_SHADER: &str = r#"
 struct ViewU { view_proj: mat4x4<f32>, cam_pos: vec4<f32>, forward: vec4<f32>, light: vec4<f32> };
 @group(0) @binding(0) var<uniform> u: ViewU;
 
@@ -39,37 +72,47 @@ struct VIn {
 };
 struct VOut {
     @builtin(position) clip: vec4<f32>,
-    @location(0) rel: vec3<f32>,
-    @location(1) normal: vec3<f32>,
-    @location(2) color: vec3<f32>,
-    @location(3) @interpolate(flat) id: u32,
+    @location(0) @interpolate(flat) color: vec4<f32>,
+    @location(1) dist: f32,
+    @location(2) @interpolate(flat) id: u32,
 };
 @vertex fn vs(v: VIn) -> VOut {
     var o: VOut;
     o.clip = u.view_proj * vec4<f32>(v.pos, 1.0);
-    o.rel = v.pos - u.cam_pos.xyz;
-    o.normal = v.normal;
-    o.color = v.color.rgb;
+    let rel = v.pos - u.cam_pos.xyz;
+    var n = normalize(v.normal);
+    if (dot(n, rel) > 0.0) { n = -n; }
+    let k = u.light.w + u.cam_pos.w * max(dot(n, u.light.xyz), 0.0);
+    let c = pow(clamp(v.color.rgb * k, vec3<f32>(0.0), vec3<f32>(1.0)), vec3<f32>(1.0 / 2.2));
+    o.color = vec4<f32>(c, 1.0);
+    o.dist = dot(rel, u.forward.xyz);
     o.id = v.id;
     return o;
 }
-struct FOut {
-    @location(0) color: vec4<f32>,
-    @location(1) depth: u32,
-    @location(2) id: u32,
-};
-@fragment fn fs(i: VOut) -> FOut {
-    var n = normalize(i.normal);
-    if (dot(n, i.rel) > 0.0) { n = -n; }
-    let k = u.light.w + u.cam_pos.w * max(dot(n, u.light.xyz), 0.0);
-    let c = pow(clamp(i.color * k, vec3<f32>(0.0), vec3<f32>(1.0)), vec3<f32>(1.0 / 2.2));
-    var o: FOut;
-    o.color = vec4<f32>(c, 1.0);
-    o.depth = bitcast<u32>(dot(i.rel, u.forward.xyz));
-    o.id = i.id;
-    return o;
-}
 "#;
+
+/// The shader of one target set: the shared vertex stage and a fragment stage that stores only
+/// the targets in `mask`, at consecutive locations.
+fn shader_source(mask: u8) -> String {
+    let outputs = [
+        ("color: vec4<f32>", "o.color = i.color;"),
+        ("depth: u32", "o.depth = bitcast<u32>(i.dist);"),
+        ("id: u32", "o.id = i.id;"),
+    ];
+    let (mut fields, mut body) = (String::new(), String::new());
+    for (loc, (field, store)) in (0..3)
+        .filter(|&k| has(mask, k))
+        .map(|k| outputs[k])
+        .enumerate()
+    {
+        fields += &format!("    @location({loc}) {field},\n");
+        body += &format!("    {store}\n");
+    }
+    format!(
+        "{VERTEX_SHADER}struct FOut {{\n{fields}}};\n\
+         @fragment fn fs(i: VOut) -> FOut {{\n    var o: FOut;\n{body}    return o;\n}}\n"
+    )
+}
 
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
@@ -91,13 +134,15 @@ struct ViewUniform {
     light: [f32; 4],
 }
 
-/// The process-wide wgpu device, queue and pipeline.
+/// The process-wide wgpu device, queue and pipelines.
 pub struct GpuContext {
     device: wgpu::Device,
     queue: wgpu::Queue,
     info: wgpu::AdapterInfo,
-    pipeline: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
+    pipeline_layout: wgpu::PipelineLayout,
+    /// One pipeline per target set, built on first use.
+    pipelines: [OnceLock<wgpu::RenderPipeline>; 8],
     max_dim: u32,
 }
 
@@ -110,6 +155,67 @@ impl GpuContext {
     /// Whether the adapter is a software rasteriser running on the CPU.
     pub fn is_cpu(&self) -> bool {
         self.info.device_type == wgpu::DeviceType::Cpu
+    }
+
+    fn pipeline(&self, mask: u8) -> &wgpu::RenderPipeline {
+        self.pipelines[mask as usize].get_or_init(|| self.create_pipeline(mask))
+    }
+
+    fn create_pipeline(&self, mask: u8) -> wgpu::RenderPipeline {
+        let shader = self
+            .device
+            .create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("vlnverse-sensors shader"),
+                source: wgpu::ShaderSource::Wgsl(shader_source(mask).into()),
+            });
+        let attrs =
+            wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Unorm8x4, 3 => Uint32];
+        let targets: Vec<Option<wgpu::ColorTargetState>> = (0..3)
+            .filter(|&k| has(mask, k))
+            .map(|k| {
+                Some(wgpu::ColorTargetState {
+                    format: TARGETS[k].0,
+                    blend: None,
+                    write_mask: wgpu::ColorWrites::ALL,
+                })
+            })
+            .collect();
+        self.device
+            .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some("scene"),
+                layout: Some(&self.pipeline_layout),
+                vertex: wgpu::VertexState {
+                    module: &shader,
+                    entry_point: Some("vs"),
+                    compilation_options: Default::default(),
+                    buffers: &[Some(wgpu::VertexBufferLayout {
+                        array_stride: std::mem::size_of::<Vertex>() as u64,
+                        step_mode: wgpu::VertexStepMode::Vertex,
+                        attributes: &attrs,
+                    })],
+                },
+                // Two-sided: imported meshes have any winding, and the ray caster is two-sided.
+                primitive: wgpu::PrimitiveState {
+                    cull_mode: None,
+                    ..Default::default()
+                },
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format: DEPTH_FORMAT,
+                    depth_write_enabled: Some(true),
+                    depth_compare: Some(wgpu::CompareFunction::Less),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                }),
+                multisample: Default::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &shader,
+                    entry_point: Some("fs"),
+                    compilation_options: Default::default(),
+                    targets: &targets,
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
     }
 }
 
@@ -161,10 +267,6 @@ fn create_context() -> std::result::Result<GpuContext, String> {
         ..Default::default()
     }))
     .map_err(|e| format!("adapter {} refused a device: {e}", info.name))?;
-    let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("vlnverse-sensors shader"),
-        source: wgpu::ShaderSource::Wgsl(SHADER.into()),
-    });
     let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("view"),
         entries: &[wgpu::BindGroupLayoutEntry {
@@ -178,78 +280,95 @@ fn create_context() -> std::result::Result<GpuContext, String> {
             count: None,
         }],
     });
-    let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some("view"),
         bind_group_layouts: &[Some(&layout)],
         immediate_size: 0,
-    });
-    let attrs =
-        wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Unorm8x4, 3 => Uint32];
-    let target = |format| {
-        Some(wgpu::ColorTargetState {
-            format,
-            blend: None,
-            write_mask: wgpu::ColorWrites::ALL,
-        })
-    };
-    let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some("scene"),
-        layout: Some(&pl),
-        vertex: wgpu::VertexState {
-            module: &shader,
-            entry_point: Some("vs"),
-            compilation_options: Default::default(),
-            buffers: &[Some(wgpu::VertexBufferLayout {
-                array_stride: std::mem::size_of::<Vertex>() as u64,
-                step_mode: wgpu::VertexStepMode::Vertex,
-                attributes: &attrs,
-            })],
-        },
-        // Two-sided: imported meshes have any winding, and the ray caster is two-sided too.
-        primitive: wgpu::PrimitiveState {
-            cull_mode: None,
-            ..Default::default()
-        },
-        depth_stencil: Some(wgpu::DepthStencilState {
-            format: DEPTH_FORMAT,
-            depth_write_enabled: Some(true),
-            depth_compare: Some(wgpu::CompareFunction::Less),
-            stencil: Default::default(),
-            bias: Default::default(),
-        }),
-        multisample: Default::default(),
-        fragment: Some(wgpu::FragmentState {
-            module: &shader,
-            entry_point: Some("fs"),
-            compilation_options: Default::default(),
-            targets: &[
-                target(COLOR_FORMAT),
-                target(UINT_FORMAT),
-                target(UINT_FORMAT),
-            ],
-        }),
-        multiview_mask: None,
-        cache: None,
     });
     let max_dim = limits.max_texture_dimension_2d;
     Ok(GpuContext {
         device,
         queue,
         info,
-        pipeline,
         layout,
+        pipeline_layout,
+        pipelines: std::array::from_fn(|_| OnceLock::new()),
         max_dim,
     })
 }
 
+/// The targets of one target set at one size.
 struct Atlas {
+    mask: u8,
     size: (u32, u32),
-    color: wgpu::Texture,
-    depth: wgpu::Texture,
-    id: wgpu::Texture,
+    /// `(target index, texture, view)` for each target in the mask, in attachment order.
+    targets: Vec<(usize, wgpu::Texture, wgpu::TextureView)>,
     zbuf: wgpu::TextureView,
-    readback: [wgpu::Buffer; 3],
+}
+
+impl Atlas {
+    fn new(device: &wgpu::Device, mask: u8, size: (u32, u32)) -> Self {
+        let tex = |format, label, usage| {
+            device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d {
+                    width: size.0,
+                    height: size.1,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage,
+                view_formats: &[],
+            })
+        };
+        let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC;
+        let targets = (0..3)
+            .filter(|&k| has(mask, k))
+            .map(|k| {
+                let t = tex(TARGETS[k].0, TARGETS[k].1, usage);
+                let v = t.create_view(&Default::default());
+                (k, t, v)
+            })
+            .collect();
+        let zbuf = tex(
+            DEPTH_FORMAT,
+            "zbuffer",
+            wgpu::TextureUsages::RENDER_ATTACHMENT,
+        )
+        .create_view(&Default::default());
+        Atlas {
+            mask,
+            size,
+            targets,
+            zbuf,
+        }
+    }
+}
+
+/// Views of one chunk that write the same targets, laid out as tiles of one atlas.
+struct Group {
+    mask: u8,
+    /// Indices into the chunk's views, in order; view `members[s]` sits in tile `s`.
+    members: Vec<usize>,
+    tile: (u32, u32),
+    cols: u32,
+    /// Atlas size in pixels.
+    size: (u32, u32),
+    /// Index into the renderer's atlas cache.
+    atlas: usize,
+    /// Offset of each target's region in the readback buffer (by target index).
+    offsets: [u64; 3],
     bytes_per_row: u32,
+}
+
+impl Group {
+    fn origin(&self, slot: usize) -> (u32, u32) {
+        let s = slot as u32;
+        ((s % self.cols) * self.tile.0, (s / self.cols) * self.tile.1)
+    }
 }
 
 struct GpuScene {
@@ -261,7 +380,9 @@ struct GpuScene {
 pub struct GpuRenderer {
     ctx: Arc<GpuContext>,
     scene: Option<GpuScene>,
-    atlas: Option<Atlas>,
+    /// Recently used atlases, most recent last.
+    atlases: Vec<Atlas>,
+    readback: Option<wgpu::Buffer>,
     uniforms: Option<(wgpu::Buffer, wgpu::BindGroup, usize)>,
 }
 
@@ -271,7 +392,8 @@ impl GpuRenderer {
         Ok(GpuRenderer {
             ctx: shared_context()?,
             scene: None,
-            atlas: None,
+            atlases: Vec::new(),
+            readback: None,
             uniforms: None,
         })
     }
@@ -281,50 +403,37 @@ impl GpuRenderer {
         &self.ctx
     }
 
-    fn ensure_atlas(&mut self, w: u32, h: u32) {
-        if self.atlas.as_ref().is_some_and(|a| a.size == (w, h)) {
+    /// Index of a cached atlas for `mask` at `size`, created if needed. The cache is kept in
+    /// least-recently-used order and evicts the oldest, so the at most 7 atlases of one chunk
+    /// never evict each other.
+    fn atlas(&mut self, mask: u8, size: (u32, u32)) -> usize {
+        let hit = self
+            .atlases
+            .iter()
+            .position(|a| a.mask == mask && a.size == size);
+        let atlas = match hit {
+            Some(i) => self.atlases.remove(i),
+            None => {
+                if self.atlases.len() >= ATLAS_CACHE {
+                    self.atlases.remove(0);
+                }
+                Atlas::new(&self.ctx.device, mask, size)
+            }
+        };
+        self.atlases.push(atlas);
+        self.atlases.len() - 1
+    }
+
+    fn ensure_readback(&mut self, size: u64) {
+        if self.readback.as_ref().is_some_and(|b| b.size() >= size) {
             return;
         }
-        let d = &self.ctx.device;
-        let tex = |format, label| {
-            d.create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size: wgpu::Extent3d {
-                    width: w,
-                    height: h,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-                view_formats: &[],
-            })
-        };
-        let bytes_per_row = (w * 4).div_ceil(256) * 256;
-        let buf = |label| {
-            d.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: bytes_per_row as u64 * h as u64,
-                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            })
-        };
-        let zbuf = tex(DEPTH_FORMAT, "zbuffer").create_view(&Default::default());
-        self.atlas = Some(Atlas {
-            size: (w, h),
-            color: tex(COLOR_FORMAT, "color"),
-            depth: tex(UINT_FORMAT, "linear depth"),
-            id: tex(UINT_FORMAT, "instance"),
-            zbuf,
-            readback: [
-                buf("color readback"),
-                buf("depth readback"),
-                buf("id readback"),
-            ],
-            bytes_per_row,
-        });
+        self.readback = Some(self.ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("readback"),
+            size: size.next_power_of_two(),
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        }));
     }
 
     fn ensure_uniforms(&mut self, n: usize) {
@@ -354,14 +463,66 @@ impl GpuRenderer {
         self.uniforms = Some((buf, bg, n));
     }
 
-    /// Render views that fit in one atlas.
-    fn render_chunk(&mut self, views: &[View], tile: (u32, u32), cols: u32) -> Result<Vec<Frame>> {
-        let rows = (views.len() as u32).div_ceil(cols);
-        let cols_used = cols.min(views.len() as u32);
-        self.ensure_atlas(cols_used * tile.0, rows * tile.1);
+    /// Split a chunk's views into groups by target set (in mask order) and place them.
+    fn plan(&mut self, views: &[View]) -> (Vec<Group>, u64) {
+        let max = self.ctx.max_dim;
+        let mut groups = Vec::new();
+        let mut end = 0u64;
+        for mask in 1..8u8 {
+            let members: Vec<usize> = (0..views.len())
+                .filter(|&i| target_mask(views[i].channels) == mask)
+                .collect();
+            if members.is_empty() {
+                continue;
+            }
+            let tile = members.iter().fold((1, 1), |(w, h), &i| {
+                let c = &views[i].camera;
+                (w.max(c.width), h.max(c.height))
+            });
+            let n = members.len() as u32;
+            let cols = (max / tile.0).max(1).min(n);
+            let size = (cols * tile.0, n.div_ceil(cols) * tile.1);
+            let bytes_per_row = (size.0 as u64 * 4).div_ceil(COPY_ALIGN) * COPY_ALIGN;
+            let mut offsets = [0; 3];
+            for (k, off) in offsets.iter_mut().enumerate() {
+                if has(mask, k) {
+                    *off = end;
+                    end += (bytes_per_row * size.1 as u64).div_ceil(COPY_ALIGN) * COPY_ALIGN;
+                }
+            }
+            groups.push(Group {
+                mask,
+                members,
+                tile,
+                cols,
+                size,
+                atlas: 0,
+                offsets,
+                bytes_per_row: bytes_per_row as u32,
+            });
+        }
+        for g in &mut groups {
+            self.atlas(g.mask, g.size);
+        }
+        // Positions are final only once every group's atlas is in the cache.
+        for g in &mut groups {
+            g.atlas = self
+                .atlases
+                .iter()
+                .position(|a| a.mask == g.mask && a.size == g.size)
+                .unwrap_or_default();
+        }
+        (groups, end)
+    }
+
+    /// Render views that fit in one atlas per target set.
+    fn render_chunk(&mut self, views: &[View]) -> Result<Vec<Frame>> {
+        let (groups, readback_size) = self.plan(views);
         self.ensure_uniforms(views.len());
+        if readback_size > 0 {
+            self.ensure_readback(readback_size);
+        }
         let scene = self.scene.as_ref().ok_or(SensorError::NoScene)?;
-        let atlas = self.atlas.as_ref().ok_or(SensorError::NoScene)?;
         let (ubuf, bg, _) = self.uniforms.as_ref().ok_or(SensorError::NoScene)?;
         let ctx = &self.ctx;
         let mut data = vec![0u8; UNIFORM_STRIDE as usize * views.len()];
@@ -381,24 +542,26 @@ impl GpuRenderer {
         ctx.queue.write_buffer(ubuf, 0, &data);
 
         let mut enc = ctx.device.create_command_encoder(&Default::default());
-        let cv = atlas.color.create_view(&Default::default());
-        let dv = atlas.depth.create_view(&Default::default());
-        let iv = atlas.id.create_view(&Default::default());
-        {
-            let att = |view| {
-                Some(wgpu::RenderPassColorAttachment {
-                    view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                        store: wgpu::StoreOp::Store,
-                    },
+        for g in &groups {
+            let atlas = &self.atlases[g.atlas];
+            let attachments: Vec<Option<wgpu::RenderPassColorAttachment>> = atlas
+                .targets
+                .iter()
+                .map(|(_, _, view)| {
+                    Some(wgpu::RenderPassColorAttachment {
+                        view,
+                        depth_slice: None,
+                        resolve_target: None,
+                        ops: wgpu::Operations {
+                            load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                            store: wgpu::StoreOp::Store,
+                        },
+                    })
                 })
-            };
+                .collect();
             let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("views"),
-                color_attachments: &[att(&cv), att(&dv), att(&iv)],
+                color_attachments: &attachments,
                 depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                     view: &atlas.zbuf,
                     depth_ops: Some(wgpu::Operations {
@@ -411,155 +574,179 @@ impl GpuRenderer {
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            pass.set_pipeline(&ctx.pipeline);
+            pass.set_pipeline(ctx.pipeline(g.mask));
             pass.set_vertex_buffer(0, scene.vertices.slice(..));
-            for (i, v) in views.iter().enumerate() {
-                let (x, y) = ((i as u32 % cols) * tile.0, (i as u32 / cols) * tile.1);
-                let (w, h) = (v.camera.width, v.camera.height);
-                pass.set_viewport(x as f32, y as f32, w as f32, h as f32, 0.0, 1.0);
-                pass.set_scissor_rect(x, y, w, h);
+            for (slot, &i) in g.members.iter().enumerate() {
+                let c = &views[i].camera;
+                let (x, y) = g.origin(slot);
+                pass.set_viewport(
+                    x as f32,
+                    y as f32,
+                    c.width as f32,
+                    c.height as f32,
+                    0.0,
+                    1.0,
+                );
+                pass.set_scissor_rect(x, y, c.width, c.height);
                 pass.set_bind_group(0, bg, &[(i as u64 * UNIFORM_STRIDE) as u32]);
-                let frustum = v.camera.frustum();
-                let mut run: Option<(u32, u32)> = None;
-                for o in &scene.mesh.objects {
-                    if frustum.intersects_aabb(&o.bbox) {
-                        run = match run {
-                            Some((s, e)) if e == o.first => Some((s, o.first + o.count)),
-                            Some((s, e)) => {
-                                pass.draw(s * 3..e * 3, 0..1);
-                                Some((o.first, o.first + o.count))
-                            }
-                            None => Some((o.first, o.first + o.count)),
-                        };
-                    }
-                }
-                if let Some((s, e)) = run {
-                    pass.draw(s * 3..e * 3, 0..1);
-                }
+                draw_visible(&mut pass, &scene.mesh, c);
             }
         }
-        let want = views
-            .iter()
-            .fold(Channels::default(), |a, v| a.union(v.channels));
-        let targets = [
-            (&atlas.color, want.rgb),
-            (&atlas.depth, want.depth),
-            (&atlas.id, want.ids()),
-        ];
-        for (k, (tex, wanted)) in targets.iter().enumerate() {
-            if !wanted {
-                continue;
+        if let Some(buffer) = self.readback.as_ref().filter(|_| readback_size > 0) {
+            for g in &groups {
+                let atlas = &self.atlases[g.atlas];
+                for (k, tex, _) in &atlas.targets {
+                    enc.copy_texture_to_buffer(
+                        tex.as_image_copy(),
+                        wgpu::TexelCopyBufferInfo {
+                            buffer,
+                            layout: wgpu::TexelCopyBufferLayout {
+                                offset: g.offsets[*k],
+                                bytes_per_row: Some(g.bytes_per_row),
+                                rows_per_image: None,
+                            },
+                        },
+                        wgpu::Extent3d {
+                            width: atlas.size.0,
+                            height: atlas.size.1,
+                            depth_or_array_layers: 1,
+                        },
+                    );
+                }
             }
-            enc.copy_texture_to_buffer(
-                tex.as_image_copy(),
-                wgpu::TexelCopyBufferInfo {
-                    buffer: &atlas.readback[k],
-                    layout: wgpu::TexelCopyBufferLayout {
-                        offset: 0,
-                        bytes_per_row: Some(atlas.bytes_per_row),
-                        rows_per_image: None,
-                    },
-                },
-                wgpu::Extent3d {
-                    width: atlas.size.0,
-                    height: atlas.size.1,
-                    depth_or_array_layers: 1,
-                },
-            );
         }
         ctx.queue.submit([enc.finish()]);
-        let (tx, rx) = std::sync::mpsc::channel();
-        for (k, (_, wanted)) in targets.iter().enumerate() {
-            if *wanted {
-                let tx = tx.clone();
-                atlas.readback[k].map_async(wgpu::MapMode::Read, .., move |r| {
-                    let _ = tx.send(r);
-                });
-            }
-        }
-        drop(tx);
-        ctx.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| SensorError::Gpu(e.to_string()))?;
-        for r in rx.iter() {
-            r.map_err(|e| SensorError::Gpu(format!("readback failed: {e}")))?;
-        }
-        let mapped: Vec<Option<wgpu::BufferView>> = targets
+        let mut frames: Vec<Frame> = views
             .iter()
-            .enumerate()
-            .map(|(k, (_, wanted))| {
-                wanted
-                    .then(|| atlas.readback[k].get_mapped_range(..))
-                    .transpose()
-                    .map_err(|e| SensorError::Gpu(format!("readback failed: {e:?}")))
-            })
-            .collect::<Result<_>>()?;
-        let bpr = atlas.bytes_per_row as usize;
-        let mut frames = Vec::with_capacity(views.len());
-        for (i, v) in views.iter().enumerate() {
-            let (x0, y0) = (
-                ((i as u32 % cols) * tile.0) as usize,
-                ((i as u32 / cols) * tile.1) as usize,
-            );
-            let (w, h) = (v.camera.width as usize, v.camera.height as usize);
-            let mut f = Frame {
+            .map(|v| Frame {
                 width: v.camera.width,
                 height: v.camera.height,
                 ..Default::default()
-            };
-            let rows = |k: usize| {
-                let m: &[u8] = mapped[k].as_deref().unwrap_or(&[]);
-                (0..h).map(move |r| {
-                    let s = (y0 + r) * bpr + x0 * 4;
-                    &m[s..s + w * 4]
-                })
-            };
-            if v.channels.rgb {
-                f.rgb.reserve(w * h * 3);
-                for row in rows(0) {
-                    for px in row.chunks_exact(4) {
-                        f.rgb.extend_from_slice(&px[..3]);
+            })
+            .collect();
+        let Some(buffer) = self.readback.as_ref().filter(|_| readback_size > 0) else {
+            return Ok(frames);
+        };
+        let slice = buffer.slice(..readback_size);
+        let (tx, rx) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        ctx.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| SensorError::Gpu(e.to_string()))?;
+        rx.recv()
+            .map_err(|e| SensorError::Gpu(format!("readback never finished: {e}")))?
+            .map_err(|e| SensorError::Gpu(format!("readback failed: {e}")))?;
+        {
+            let mapped = slice
+                .get_mapped_range()
+                .map_err(|e| SensorError::Gpu(format!("readback failed: {e:?}")))?;
+            for g in &groups {
+                let bpr = g.bytes_per_row as usize;
+                for (slot, &i) in g.members.iter().enumerate() {
+                    let v = &views[i];
+                    let (x0, y0) = g.origin(slot);
+                    let tile = TileRows {
+                        x0: x0 as usize,
+                        y0: y0 as usize,
+                        w: v.camera.width as usize,
+                        h: v.camera.height as usize,
+                        bpr,
+                    };
+                    let region = |k: usize| &mapped[g.offsets[k] as usize..];
+                    let f = &mut frames[i];
+                    if v.channels.rgb {
+                        f.rgb = tile.rgb(region(COLOR));
+                    }
+                    if v.channels.depth {
+                        f.depth = tile.depth(region(DEPTH), v.camera.far);
+                    }
+                    if v.channels.semantic {
+                        let m = &scene.mesh;
+                        f.semantic = tile.map_u32(region(ID), |id| m.class(id));
+                    }
+                    if v.channels.instance {
+                        f.instance = tile.map_u32(region(ID), |id| id);
                     }
                 }
             }
-            if v.channels.depth {
-                let far = v.camera.far;
-                f.depth.reserve(w * h);
-                for row in rows(1) {
-                    f.depth.extend(row.chunks_exact(4).map(|b| {
-                        let d = f32::from_bits(u32::from_le_bytes([b[0], b[1], b[2], b[3]]));
-                        if d > 0.0 && d < far {
-                            d
-                        } else {
-                            far
-                        }
-                    }));
-                }
-            }
-            if v.channels.ids() {
-                let mut ids = Vec::with_capacity(w * h);
-                for row in rows(2) {
-                    ids.extend(
-                        row.chunks_exact(4)
-                            .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]])),
-                    );
-                }
-                if v.channels.semantic {
-                    f.semantic = ids.iter().map(|&id| scene.mesh.class(id)).collect();
-                }
-                if v.channels.instance {
-                    f.instance = ids;
-                }
-            }
-            frames.push(f);
         }
-        drop(mapped);
-        for (k, (_, wanted)) in targets.iter().enumerate() {
-            if *wanted {
-                atlas.readback[k].unmap();
-            }
-        }
+        buffer.unmap();
         Ok(frames)
+    }
+}
+
+/// Draw the objects whose boxes meet the camera's frustum, merging contiguous ranges.
+fn draw_visible(pass: &mut wgpu::RenderPass<'_>, mesh: &SceneMesh, camera: &Camera) {
+    let frustum = camera.frustum();
+    let mut run: Option<(u32, u32)> = None;
+    for o in &mesh.objects {
+        if frustum.intersects_aabb(&o.bbox) {
+            run = match run {
+                Some((s, e)) if e == o.first => Some((s, o.first + o.count)),
+                Some((s, e)) => {
+                    pass.draw(s * 3..e * 3, 0..1);
+                    Some((o.first, o.first + o.count))
+                }
+                None => Some((o.first, o.first + o.count)),
+            };
+        }
+    }
+    if let Some((s, e)) = run {
+        pass.draw(s * 3..e * 3, 0..1);
+    }
+}
+
+/// One view's tile of 4-byte texels in a mapped target region.
+struct TileRows {
+    x0: usize,
+    y0: usize,
+    w: usize,
+    h: usize,
+    bpr: usize,
+}
+
+impl TileRows {
+    fn rows<'a>(&self, m: &'a [u8]) -> impl Iterator<Item = &'a [u8]> + 'a {
+        let (x0, y0, w, bpr) = (self.x0, self.y0, self.w, self.bpr);
+        (0..self.h).map(move |r| {
+            let s = (y0 + r) * bpr + x0 * 4;
+            &m[s..s + w * 4]
+        })
+    }
+
+    fn rgb(&self, m: &[u8]) -> Vec<u8> {
+        let mut out = vec![0u8; self.w * self.h * 3];
+        for (dst, row) in out.chunks_exact_mut(self.w * 3).zip(self.rows(m)) {
+            for (d, s) in dst.chunks_exact_mut(3).zip(row.chunks_exact(4)) {
+                d.copy_from_slice(&s[..3]);
+            }
+        }
+        out
+    }
+
+    fn depth(&self, m: &[u8], far: f32) -> Vec<f32> {
+        // Cleared (0) or beyond far: nothing within range.
+        self.map_u32(m, |bits| {
+            let d = f32::from_bits(bits);
+            if d > 0.0 && d < far {
+                d
+            } else {
+                far
+            }
+        })
+    }
+
+    fn map_u32<T>(&self, m: &[u8], f: impl Fn(u32) -> T) -> Vec<T> {
+        let mut out = Vec::with_capacity(self.w * self.h);
+        for row in self.rows(m) {
+            out.extend(
+                row.chunks_exact(4)
+                    .map(|b| f(u32::from_le_bytes([b[0], b[1], b[2], b[3]]))),
+            );
+        }
+        out
     }
 }
 
@@ -613,12 +800,156 @@ impl Renderer for GpuRenderer {
                 format!("the device allows at most {max} pixels per side"),
             ));
         }
-        let cols = (max / tile.0).max(1);
-        let per_chunk = (cols * (max / tile.1).max(1)) as usize;
+        // Every group's tile is at most `tile`, so a chunk of this many views fits any group.
+        let per_chunk = ((max / tile.0).max(1) * (max / tile.1).max(1)) as usize;
         let mut out = Vec::with_capacity(views.len());
         for chunk in views.chunks(per_chunk) {
-            out.extend(self.render_chunk(chunk, tile, cols)?);
+            out.extend(self.render_chunk(chunk)?);
         }
         Ok(out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::CameraSpec;
+    use glam::Vec3;
+    use vlnverse_env::Pose;
+
+    #[test]
+    fn target_sets_follow_channels() {
+        assert_eq!(target_mask(Channels::default()), 0);
+        assert_eq!(target_mask(Channels::DEPTH), 1 << DEPTH);
+        let rgb_sem = Channels {
+            rgb: true,
+            semantic: true,
+            ..Default::default()
+        };
+        assert_eq!(target_mask(rgb_sem), 1 << COLOR | 1 << ID);
+        assert_eq!(target_mask(Channels::ALL), 7);
+    }
+
+    #[test]
+    fn fragment_stage_stores_only_its_targets_at_consecutive_locations() {
+        let s = shader_source(1 << DEPTH | 1 << ID);
+        assert!(s.contains("@location(0) depth: u32"));
+        assert!(s.contains("@location(1) id: u32"));
+        assert!(!s.contains("o.color ="));
+        let s = shader_source(1 << COLOR);
+        assert!(s.contains("@location(0) color: vec4<f32>"));
+        assert!(!s.contains("o.depth =") && !s.contains("o.id ="));
+    }
+
+    /// Views that ask for different channels (so land in different passes and atlas tiles)
+    /// give the same images as each view rendered alone with every channel.
+    #[test]
+    fn mixed_channel_batches_match_single_full_renders() {
+        let mut gpu = match GpuRenderer::new() {
+            Ok(g) => g,
+            Err(e) if std::env::var_os("VLNVERSE_REQUIRE_GPU_BACKEND").is_none() => {
+                eprintln!("skipping: {e}");
+                return;
+            }
+            Err(e) => panic!("{e}"),
+        };
+        let mesh = Arc::new(SceneMesh::new(&crate::demo::demo_scene(0)).unwrap());
+        gpu.set_scene(mesh).unwrap();
+        let channel_sets = [
+            Channels {
+                rgb: true,
+                semantic: true,
+                ..Default::default()
+            },
+            Channels::DEPTH,
+            Channels::ALL,
+            Channels::RGB,
+            Channels {
+                instance: true,
+                ..Default::default()
+            },
+            Channels::default(),
+            Channels::DEPTH,
+        ];
+        let views: Vec<View> = channel_sets
+            .iter()
+            .enumerate()
+            .map(|(i, &channels)| {
+                let spec = CameraSpec {
+                    width: 40 + 16 * i as u32,
+                    height: 90 - 8 * i as u32,
+                    ..CameraSpec::default()
+                };
+                let base = Pose::from_yaw(Vec3::new(1.0 + 0.4 * i as f32, 0.0, 2.0), i as f32);
+                View {
+                    camera: spec.camera(&base),
+                    channels,
+                }
+            })
+            .collect();
+        let batch = gpu.render(&views).unwrap();
+        for (v, f) in views.iter().zip(&batch) {
+            let one = &gpu
+                .render(&[View {
+                    channels: Channels::ALL,
+                    ..*v
+                }])
+                .unwrap()[0];
+            assert_eq!((f.width, f.height), (one.width, one.height));
+            let c = v.channels;
+            let n = one.pixels();
+            // Integer tile offsets may move a rare edge sample, so allow 0.5 % of pixels.
+            let agree = |same: usize, what: &str| {
+                assert!(same * 200 >= n * 199, "{what}: {same} of {n} agree");
+            };
+            assert_eq!(f.rgb.len(), if c.rgb { 3 * n } else { 0 });
+            assert_eq!(f.depth.len(), if c.depth { n } else { 0 });
+            assert_eq!(f.semantic.len(), if c.semantic { n } else { 0 });
+            assert_eq!(f.instance.len(), if c.instance { n } else { 0 });
+            if c.rgb {
+                agree(
+                    f.rgb
+                        .chunks(3)
+                        .zip(one.rgb.chunks(3))
+                        .filter(|(a, b)| a == b)
+                        .count(),
+                    "rgb",
+                );
+            }
+            if c.depth {
+                assert!(
+                    one.depth.iter().any(|d| *d < v.camera.far),
+                    "sees something"
+                );
+                agree(
+                    f.depth
+                        .iter()
+                        .zip(&one.depth)
+                        .filter(|(a, b)| a == b)
+                        .count(),
+                    "depth",
+                );
+            }
+            if c.semantic {
+                agree(
+                    f.semantic
+                        .iter()
+                        .zip(&one.semantic)
+                        .filter(|(a, b)| a == b)
+                        .count(),
+                    "semantic",
+                );
+            }
+            if c.instance {
+                agree(
+                    f.instance
+                        .iter()
+                        .zip(&one.instance)
+                        .filter(|(a, b)| a == b)
+                        .count(),
+                    "instance",
+                );
+            }
+        }
     }
 }

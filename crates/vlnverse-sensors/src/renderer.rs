@@ -35,9 +35,10 @@ use crate::scene_mesh::SceneMesh;
 use std::sync::Arc;
 
 /// Makes images of a scene from cameras. Implemented by the wgpu rasteriser
-/// ([`crate::GpuRenderer`]) and the CPU ray caster ([`crate::RaycastRenderer`]).
+/// ([`crate::GpuRenderer`]), the CPU ray caster ([`crate::RaycastRenderer`]) and the CPU
+/// rasteriser ([`crate::RasterRenderer`]).
 pub trait Renderer: Send {
-    /// Short backend name for logs (`"wgpu"`, `"raycast"`).
+    /// Short backend name for logs (`"wgpu"`, `"raycast"`, `"raster"`).
     fn name(&self) -> &'static str;
 
     /// Prepare a scene once; later calls to [`Renderer::render`] show it.
@@ -48,13 +49,18 @@ pub trait Renderer: Send {
     fn render(&mut self, views: &[View]) -> Result<Vec<Frame>>;
 }
 
-/// Make the renderer a config asks for. `Auto` takes wgpu when an adapter exists and the
-/// ray caster otherwise; either way one `info` line says which backend renders and why.
+/// Make the renderer a config asks for. `Auto` takes wgpu on a hardware GPU and the CPU
+/// rasteriser otherwise (it beats wgpu on lavapipe, and needs no graphics stack); either way
+/// one `info` line says which backend renders and why.
 pub fn create_renderer(backend: Backend) -> Result<Box<dyn Renderer>> {
     match backend {
         Backend::Raycast => {
             tracing::info!("rendering with the CPU ray-cast backend (configured)");
             Ok(Box::new(crate::RaycastRenderer::new()))
+        }
+        Backend::Raster => {
+            tracing::info!("rendering with the CPU rasteriser (configured)");
+            Ok(Box::new(crate::RasterRenderer::new()))
         }
         Backend::Wgpu => {
             let r = crate::GpuRenderer::new()?;
@@ -64,18 +70,49 @@ pub fn create_renderer(backend: Backend) -> Result<Box<dyn Renderer>> {
             );
             Ok(Box::new(r))
         }
-        Backend::Auto => match crate::GpuRenderer::new() {
-            Ok(r) => {
+        Backend::Auto => match hardware_gpu() {
+            Some(name) => match crate::GpuRenderer::new() {
+                Ok(r) => {
+                    tracing::info!(
+                        "rendering with wgpu on {} (backend = auto, GPU {name} found)",
+                        r.context().adapter_description()
+                    );
+                    Ok(Box::new(r))
+                }
+                Err(e) => {
+                    tracing::info!("rendering with the CPU rasteriser (backend = auto): {e}");
+                    Ok(Box::new(crate::RasterRenderer::new()))
+                }
+            },
+            None => {
                 tracing::info!(
-                    "rendering with wgpu on {} (backend = auto)",
-                    r.context().adapter_description()
+                    "rendering with the CPU rasteriser (backend = auto: no hardware GPU adapter; \
+                     set backend = \"wgpu\" to use a software Vulkan driver instead)"
                 );
-                Ok(Box::new(r))
-            }
-            Err(e) => {
-                tracing::info!("rendering with the CPU ray-cast backend (backend = auto): {e}");
-                Ok(Box::new(crate::RaycastRenderer::new()))
+                Ok(Box::new(crate::RasterRenderer::new()))
             }
         },
     }
+}
+
+/// Name of a hardware (or virtualised) GPU adapter, if any, without creating a device. Looks at
+/// the backends `WGPU_BACKEND` names, else the native ones (Vulkan, Metal, DX12).
+fn hardware_gpu() -> Option<String> {
+    let backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::PRIMARY);
+    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
+        backends,
+        ..wgpu::InstanceDescriptor::new_without_display_handle()
+    });
+    pollster::block_on(instance.enumerate_adapters(backends))
+        .into_iter()
+        .map(|a| a.get_info())
+        .find(|i| {
+            matches!(
+                i.device_type,
+                wgpu::DeviceType::DiscreteGpu
+                    | wgpu::DeviceType::IntegratedGpu
+                    | wgpu::DeviceType::VirtualGpu
+            )
+        })
+        .map(|i| i.name)
 }

@@ -1,7 +1,7 @@
 //! [`RapierSimulator`]: the [`Simulator`] over rapier3d.
 //!
-//! Discrete moves and driven waypoints use rapier's kinematic character controller (a shape
-//! cast with sliding, a few microseconds); velocity commands run the full rigid-body
+//! Discrete moves and driven waypoints are kinematic: a short loop of shape casts that stops
+//! at, or slides along, what it hits (a few microseconds); velocity commands run the full rigid-body
 //! pipeline with the agent as a dynamic body, so it pushes light furniture and is stopped
 //! by heavy furniture; Tel-Hop teleports and searches the nearest collision-free spot.
 
@@ -13,7 +13,6 @@ use crate::{Action, WaypointMode};
 use glam::{Quat, Vec2, Vec3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rapier3d::control::{CharacterLength, KinematicCharacterController};
 use rapier3d::parry::query::ShapeCastOptions;
 use rapier3d::prelude::*;
 use std::collections::BTreeSet;
@@ -22,8 +21,14 @@ use std::hash::{Hash, Hasher};
 use std::sync::Arc;
 use vlnverse_env::ObjectId;
 
-/// Gap kept between the agent and obstacles by the character controller (m).
+/// Gap kept between the agent and obstacles by discrete moves (m).
 const SKIN: f32 = 0.005;
+/// Most shape casts of one discrete move (free move: 1; slide along a wall: 2; corner: 3).
+const MAX_SLIDES: usize = 4;
+/// Motion below this is no motion (m).
+const MIN_MOVE: f32 = 1e-6;
+/// Push of a slide's remainder away from the surface it slides along (m).
+const NUDGE: f32 = 1e-4;
 /// Drive force limit as a multiple of `mass * max_linear_accel` (margin to track the ramp).
 const DRIVE_MARGIN: f32 = 2.0;
 
@@ -284,20 +289,17 @@ impl RapierSimulator {
         self.sync_body(Vec3::ZERO);
     }
 
-    /// Character-controller move by `desired` (horizontal); returns achieved and hits.
+    /// Move the agent shape by `desired` (horizontal) with a shape-cast slide loop; returns
+    /// the achieved displacement and the objects hit.
+    ///
+    /// Each iteration casts the shape along the remaining motion, stops `SKIN` short of the
+    /// first hit and, with sliding on, keeps only the part of the remainder along the hit
+    /// surface's horizontal tangent. At most `MAX_SLIDES` casts: rapier's character
+    /// controller also tests ground contacts and may loop 20 times at a wall, which made
+    /// blocked moves ten times dearer than free ones.
     fn slide_move(&mut self, desired: Vec3) -> (Vec3, Vec<ObjectId>) {
         let (Some(s), Some(w)) = (self.scene.as_ref(), self.world.as_ref()) else {
             return (Vec3::ZERO, vec![]);
-        };
-        let controller = KinematicCharacterController {
-            up: Vec3::Y,
-            offset: CharacterLength::Absolute(SKIN),
-            slide: self.cfg.agent.allow_sliding,
-            autostep: None,
-            max_slope_climb_angle: std::f32::consts::FRAC_PI_4,
-            min_slope_slide_angle: std::f32::consts::FRAC_PI_4,
-            snap_to_ground: None,
-            normal_nudge_factor: 1.0e-4,
         };
         let qp = w.broad_phase.as_query_pipeline(
             w.narrow_phase.query_dispatcher(),
@@ -307,40 +309,55 @@ impl RapierSimulator {
                 .exclude_rigid_body(s.agent_body)
                 .groups(AGENT_QUERY),
         );
-        let shape_pose = self.shape_pose(self.state.base, self.quat());
-        // Fast path: nothing in the way (the common case) needs no controller iterations.
-        let dist = desired.length();
-        let free = dist < 1e-6
-            || qp
-                .cast_shape(
-                    &shape_pose,
-                    desired / dist,
-                    s.agent_shape.as_ref(),
-                    ShapeCastOptions {
-                        target_distance: SKIN,
-                        stop_at_penetration: false,
-                        max_time_of_impact: dist,
-                        compute_impact_geometry_on_penetration: true,
-                    },
-                )
-                .is_none();
-        if free {
-            self.state.base += desired;
-            self.state.speed = 0.0;
-            self.state.omega = 0.0;
-            self.sync_body(Vec3::ZERO);
-            return (desired, vec![]);
-        }
+        let rot = self.quat();
+        let sliding = self.cfg.agent.allow_sliding;
+        let mut achieved = Vec3::ZERO;
+        let mut remaining = Vec3::new(desired.x, 0.0, desired.z);
         let mut hits = Vec::new();
-        let mv = controller.move_shape(
-            self.params.dt,
-            &qp,
-            s.agent_shape.as_ref(),
-            &shape_pose,
-            desired,
-            |c| hits.push(c.handle),
-        );
-        let achieved = Vec3::new(mv.translation.x, 0.0, mv.translation.z);
+        let mut normals: Vec<Vec3> = Vec::new();
+        for _ in 0..MAX_SLIDES {
+            let dist = remaining.length();
+            if dist < MIN_MOVE {
+                break;
+            }
+            let dir = remaining / dist;
+            let cast = qp.cast_shape(
+                &self.shape_pose(self.state.base + achieved, rot),
+                dir,
+                s.agent_shape.as_ref(),
+                ShapeCastOptions {
+                    target_distance: SKIN,
+                    stop_at_penetration: false,
+                    max_time_of_impact: dist,
+                    compute_impact_geometry_on_penetration: true,
+                },
+            );
+            let Some((handle, hit)) = cast else {
+                achieved += remaining;
+                break;
+            };
+            hits.push(handle);
+            let toi = hit.time_of_impact.clamp(0.0, dist);
+            achieved += dir * toi;
+            remaining -= dir * toi;
+            if !sliding {
+                break;
+            }
+            // Keep the horizontal tangent part of the remainder (drop what goes into the surface).
+            let n = Vec3::new(hit.normal1.x, 0.0, hit.normal1.z).normalize_or_zero();
+            if n == Vec3::ZERO {
+                break;
+            }
+            remaining -= n * remaining.dot(n).min(0.0);
+            // In a corner the slide along one surface runs into the other: stop there.
+            if remaining.length() < MIN_MOVE || normals.iter().any(|m| remaining.dot(*m) < -MIN_MOVE) {
+                break;
+            }
+            normals.push(n);
+            // A hair away from the surface so the next cast does not start touching it.
+            remaining += n * NUDGE;
+        }
+        if std::env::var("DBG_CASTS").is_ok() { tracing::error!("CASTS {} {} {:?}", hits.len(), normals.len(), remaining); eprintln!("CASTS hits={} normals={} rem={:?} ach={:?}", hits.len(), normals.len(), remaining, achieved); }
         let hits = self.ids(hits);
         self.state.base += achieved;
         self.state.speed = 0.0;

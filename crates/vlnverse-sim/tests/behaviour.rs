@@ -113,6 +113,57 @@ fn thirty_degrees_into_a_wall_slides_with_sliding_on() {
 }
 
 #[test]
+fn a_blocked_step_keeps_exactly_its_tangential_part() {
+    let (_, _, outs) = thirty_degrees_into_wall(true);
+    // Once against the wall, a 0.25 m step at 30 deg keeps 0.25 * cos 30 along the wall and
+    // loses the normal part; the agent stays at the wall (skin 5 mm).
+    for o in &outs[2..] {
+        let [ax, az] = o.achieved;
+        assert!((ax - 0.25 * 30f32.to_radians().cos()).abs() < 1e-3, "{o:?}");
+        // The cast's contact normal on a cylinder is good to a fraction of a degree: mm jitter.
+        assert!(az.abs() < 5e-3, "{o:?}");
+        assert!((o.pose.position[2] - (-5.0 + 0.3)).abs() < 0.01, "{o:?}");
+        assert!(o.collided && o.hit == vec![2]);
+    }
+}
+
+#[test]
+fn head_on_into_a_wall_stops_and_stays_put() {
+    let mut s = sim(CollisionSetting::Lenient);
+    s.reset(&room(), at(0.0, -4.0, 0.0)).unwrap();
+    let outs: Vec<_> = (0..10)
+        .map(|_| s.step(Action::MoveForward(0.25)).unwrap())
+        .collect();
+    // 0.7 m of free travel, then every step is blocked and achieves nothing.
+    let first = outs[2].pose.position;
+    assert!((first[2] - (-5.0 + 0.3)).abs() < 0.01, "{first:?}");
+    for o in &outs[3..] {
+        assert!(o.collided && o.noticeable && o.hit == vec![2], "{o:?}");
+        assert!(Vec2::from(o.achieved).length() < 1e-3, "{o:?}");
+        assert!((xz(&o.pose) - Vec2::new(first[0], first[2])).length() < 1e-3);
+    }
+}
+
+#[test]
+fn pushed_into_a_corner_stays_in_the_corner() {
+    // Heading diagonally into the corner of walls 2 (z = -5) and 5 (x = +5).
+    let mut s = sim(CollisionSetting::Lenient);
+    s.reset(&room(), at(3.0, -3.0, -PI / 4.0)).unwrap();
+    let mut last = None;
+    for _ in 0..20 {
+        let o = s.step(Action::MoveForward(0.25)).unwrap();
+        let p = xz(&o.pose);
+        assert!(p.x <= 5.0 - 0.3 + 1e-3 && p.y >= -5.0 + 0.3 - 1e-3, "{o:?}");
+        last = Some(o);
+    }
+    let o = last.unwrap();
+    let p = xz(&o.pose);
+    assert!((p - Vec2::new(4.7, -4.7)).length() < 0.02, "{o:?}");
+    assert!(Vec2::from(o.achieved).length() < 1e-3, "{o:?}");
+    assert!(o.hit.contains(&2) || o.hit.contains(&5), "{o:?}");
+}
+
+#[test]
 fn thirty_degrees_into_a_wall_stops_with_sliding_off() {
     let (a, b, outs) = thirty_degrees_into_wall(false);
     let d = b - a;

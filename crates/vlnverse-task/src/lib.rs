@@ -7,6 +7,7 @@ pub mod error;
 pub mod eval;
 pub mod instructions;
 pub mod metrics;
+pub mod oracle;
 pub mod report;
 pub mod score;
 pub mod trajectory;

@@ -62,19 +62,25 @@ struct Bin {
 }
 
 impl Bin {
-    fn view(&mut self, bytes: &[u8], target: u32) -> usize {
+    /// Append a buffer view of `n` bytes written by `fill` (4-byte aligned start).
+    fn view(&mut self, n: usize, target: u32, fill: impl FnOnce(&mut Vec<u8>)) -> usize {
         pad4(&mut self.data, 0);
         let offset = self.data.len();
-        self.data.extend_from_slice(bytes);
+        self.data.reserve(n);
+        fill(&mut self.data);
+        debug_assert_eq!(self.data.len(), offset + n);
         self.views.push(json!({
-            "buffer": 0, "byteOffset": offset, "byteLength": bytes.len(), "target": target
+            "buffer": 0, "byteOffset": offset, "byteLength": n, "target": target
         }));
         self.views.len() - 1
     }
 
     fn vec3(&mut self, v: &[[f32; 3]], with_bounds: bool) -> usize {
-        let bytes: Vec<u8> = v.iter().flatten().flat_map(|x| x.to_le_bytes()).collect();
-        let view = self.view(&bytes, ARRAY_BUFFER);
+        let view = self.view(v.len() * 12, ARRAY_BUFFER, |d| {
+            for x in v.iter().flatten() {
+                d.extend_from_slice(&x.to_le_bytes());
+            }
+        });
         let mut acc = json!({
             "bufferView": view, "componentType": FLOAT, "count": v.len(), "type": "VEC3"
         });
@@ -95,8 +101,11 @@ impl Bin {
     }
 
     fn indices(&mut self, t: &[[u32; 3]]) -> usize {
-        let bytes: Vec<u8> = t.iter().flatten().flat_map(|x| x.to_le_bytes()).collect();
-        let view = self.view(&bytes, ELEMENT_ARRAY_BUFFER);
+        let view = self.view(t.len() * 12, ELEMENT_ARRAY_BUFFER, |d| {
+            for x in t.iter().flatten() {
+                d.extend_from_slice(&x.to_le_bytes());
+            }
+        });
         self.accessors.push(json!({
             "bufferView": view, "componentType": UNSIGNED_INT, "count": t.len() * 3, "type": "SCALAR"
         }));

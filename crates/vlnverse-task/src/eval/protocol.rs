@@ -8,6 +8,10 @@
 //! backend = "raycast"         # optional override of the rig's renderer backend
 //! agent_profile = "vlnverse"  # a shipped profile name, or a path to an agent TOML
 //! action_space = "discrete"   # discrete | continuous | waypoint
+//! render = true               # render the rig every step
+//! seed = 0                    # per-episode seeds derive from it
+//! plots = 6                   # top-down trajectory PNGs per run
+//! external_observations = "files"   # files | base64 (external agents)
 //! ```
 
 use std::path::{Path, PathBuf};
@@ -148,6 +152,8 @@ pub struct EvalConfig {
     pub seed: u64,
     /// Top-down trajectory plots written per run.
     pub plots: u32,
+    /// How the `external` agent receives images: `files` or `base64`.
+    pub external_observations: crate::eval::agents::external::ObsEncoding,
     /// Folder the relative paths resolve against (set by [`EvalConfig::load`]).
     #[serde(skip)]
     pub base_dir: Option<PathBuf>,
@@ -166,6 +172,7 @@ impl Default for EvalConfig {
             render: true,
             seed: 0,
             plots: 6,
+            external_observations: Default::default(),
             base_dir: None,
         }
     }

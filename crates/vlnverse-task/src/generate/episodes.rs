@@ -338,9 +338,15 @@ impl SceneTaskContext<'_> {
             out.push(ep);
         }
         if let Some(r) = renderer {
+            let centre = self
+                .sampler
+                .scene
+                .object(spot.object)
+                .map(|o| o.bbox.center())
+                .unwrap_or(glam::Vec3::new(spot.goal.x, self.floor(), spot.goal.y));
             let png = self
                 .times
-                .time(Stage::Images, || r.render_png(spot.goal, spot.yaw))?;
+                .time(Stage::Images, || r.render_png(spot.goal, centre))?;
             self.times.time(Stage::Writing, || -> Result<()> {
                 for (j, ep) in out.iter_mut().enumerate() {
                     let id = first_id + j as u64;
@@ -446,7 +452,10 @@ impl SceneTaskContext<'_> {
         ep.target_object_id = Some(last.object);
         ep.info.extra.insert(
             "sub_goal_distances".into(),
-            serde_json::json!(legs.iter().map(|(_, l)| l.length).collect::<Vec<f32>>()),
+            serde_json::json!(legs
+                .iter()
+                .map(|(_, l)| (l.length as f64 * 1000.0).round() / 1000.0)
+                .collect::<Vec<f64>>()),
         );
         Ok(Ok(vec![ep]))
     }

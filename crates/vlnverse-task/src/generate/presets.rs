@@ -263,8 +263,10 @@ impl GenerateConfig {
         let cfg: GenerateConfig = toml::from_str(text).map_err(|e| {
             let loc = match e.span() {
                 Some(span) => {
-                    let line = text[..span.start.min(text.len())].lines().count().max(1);
-                    format!("line {line}")
+                    let start = span.start.min(text.len());
+                    let line = text[..start].matches('\n').count() + 1;
+                    let src = text.lines().nth(line - 1).unwrap_or("").trim();
+                    format!("line {line} `{src}`")
                 }
                 None => "top level".to_string(),
             };

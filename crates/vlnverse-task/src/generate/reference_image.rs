@@ -4,7 +4,7 @@
 
 use std::sync::Arc;
 
-use glam::{Vec2, Vec3};
+use glam::{Quat, Vec2, Vec3};
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 use image::{ExtendedColorType, ImageEncoder};
 use vlnverse_env::{Pose, Scene};
@@ -17,6 +17,8 @@ use crate::error::{Result, TaskError};
 const NEAR: f32 = 0.05;
 /// Far clipping distance of the reference camera (m).
 const FAR: f32 = 20.0;
+/// Steepest camera pitch towards a target (radians, 50 degrees).
+pub const MAX_PITCH: f32 = 0.87;
 
 /// Renders reference images in one scene.
 pub struct ReferenceRenderer {
@@ -40,12 +42,15 @@ impl ReferenceRenderer {
         })
     }
 
-    /// RGB pixels (row-major, top row first) seen from `goal` `(x, z)` at `yaw`.
-    pub fn render_rgb(&self, goal: Vec2, yaw: f32) -> Vec<u8> {
-        let pose = Pose::from_yaw(
-            Vec3::new(goal.x, self.floor + self.cfg.camera_height, goal.y),
-            yaw,
-        );
+    /// RGB pixels (row-major, top row first) seen from `goal` `(x, z)` at `yaw`, the camera
+    /// pitched by `pitch` (radians, positive looks up).
+    pub fn render_rgb(&self, goal: Vec2, yaw: f32, pitch: f32) -> Vec<u8> {
+        let position = Vec3::new(goal.x, self.floor + self.cfg.camera_height, goal.y);
+        let rotation = Quat::from_rotation_y(yaw) * Quat::from_rotation_x(pitch);
+        let pose = Pose {
+            position: position.to_array(),
+            rotation: rotation.to_array(),
+        };
         let camera = Camera::new(
             &pose,
             self.cfg.width,
@@ -62,10 +67,26 @@ impl ReferenceRenderer {
             .rgb
     }
 
-    /// PNG bytes of the view from `goal` at `yaw`.
-    pub fn render_png(&self, goal: Vec2, yaw: f32) -> Result<Vec<u8>> {
-        let rgb = self.render_rgb(goal, yaw);
+    /// PNG bytes of the view from `goal` facing `target` (a 3-D point, e.g. the centre of the
+    /// target object's box): turned towards it and pitched towards it within
+    /// [-`MAX_PITCH`, `MAX_PITCH`].
+    pub fn render_png(&self, goal: Vec2, target: Vec3) -> Result<Vec<u8>> {
+        let (yaw, pitch) = self.aim(goal, target);
+        let rgb = self.render_rgb(goal, yaw, pitch);
         encode_png(&rgb, self.cfg.width, self.cfg.height)
+    }
+
+    /// Yaw and pitch that look from the camera above `goal` at `target`.
+    pub fn aim(&self, goal: Vec2, target: Vec3) -> (f32, f32) {
+        let flat = Vec2::new(target.x, target.z) - goal;
+        let yaw = if flat.length_squared() > 1e-10 {
+            vlnverse_env::scene_graph::yaw_from_direction(flat)
+        } else {
+            0.0
+        };
+        let dy = target.y - (self.floor + self.cfg.camera_height);
+        let pitch = dy.atan2(flat.length().max(0.05)).clamp(-MAX_PITCH, MAX_PITCH);
+        (yaw, pitch)
     }
 }
 

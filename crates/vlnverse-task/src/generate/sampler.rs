@@ -20,7 +20,8 @@ use glam::Vec2;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
-use vlnverse_env::geodesic::{shortest_path, DistanceField, GeodesicPath};
+use vlnverse_env::geodesic::{polyline_length, shortest_path, DistanceField, GeodesicPath};
+use vlnverse_env::occupancy::GridMap;
 use vlnverse_env::occupancy::OccupancyMaps;
 use vlnverse_env::scene_graph::{yaw_from_direction, SceneGraph};
 use vlnverse_env::{ObjectId, Scene, SceneObject};
@@ -191,10 +192,15 @@ impl<'a> SceneSampler<'a> {
         if let Some(r) = check_length(d, task) {
             return Ok(Err(r));
         }
-        Ok(match field.path(start) {
-            Some(p) => Ok(to_sampled(p)),
-            None => Err(Reject::NoPath),
-        })
+        let Some(p) = field.path(start) else {
+            return Ok(Err(Reject::NoPath));
+        };
+        let points = string_pull(&self.maps.navigable, &p.points);
+        let length = polyline_length(&points);
+        if let Some(r) = check_length(length, task) {
+            return Ok(Err(r));
+        }
+        Ok(Ok(SampledPath { points, length }))
     }
 
     /// A fine-grained path: free start and goal, A* between them, within the length limits.
@@ -225,6 +231,27 @@ fn to_sampled(p: GeodesicPath) -> SampledPath {
         length: p.length,
         points: p.points,
     }
+}
+
+/// Greedy line-of-sight smoothing: from each kept point jump to the last point of the run of
+/// later points that stay in sight (linear in the number of points). Consecutive output points
+/// always see each other when consecutive input points do.
+pub fn string_pull(map: &GridMap, pts: &[Vec2]) -> Vec<Vec2> {
+    let mut out: Vec<Vec2> = Vec::with_capacity(pts.len());
+    let mut i = 0;
+    if let Some(&p) = pts.first() {
+        out.push(p);
+    }
+    while i + 1 < pts.len() {
+        let mut k = i + 1;
+        while k + 1 < pts.len() && map.line_of_sight(pts[i], pts[k + 1]) {
+            k += 1;
+        }
+        out.push(pts[k]);
+        i = k;
+    }
+    out.dedup();
+    out
 }
 
 fn check_length(d: f32, task: &TaskConfig) -> Option<Reject> {

@@ -1,1 +1,322 @@
-//! Dataset statistics (placeholder until the plots land).
+//! Dataset statistics as in the paper: navigable area and rooms per scene, path lengths per
+//! task, instruction lengths per task and style, landmark vocabulary. Written as PNG charts
+//! (drawn here with the env crate's 8x8 font, no plotting crate) and a markdown summary.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+use image::{Rgb, RgbImage};
+use serde::Serialize;
+use vlnverse_env::io::json::scene_from_json;
+use vlnverse_env::occupancy::GridMap;
+use vlnverse_env::topdown::{draw_text, text_width};
+
+use crate::dataset::{read_split, split_path, write_atomic};
+use crate::episode::{Role, Split, Task};
+use crate::error::{Result, TaskError};
+
+/// Summary numbers of a list of values.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Summary {
+    /// Count.
+    pub n: usize,
+    /// Mean.
+    pub mean: f64,
+    /// Minimum.
+    pub min: f64,
+    /// Median.
+    pub median: f64,
+    /// Maximum.
+    pub max: f64,
+}
+
+impl Summary {
+    /// Summary of `values` (all zero when empty).
+    pub fn of(values: &[f64]) -> Summary {
+        if values.is_empty() {
+            return Summary::default();
+        }
+        let mut v = values.to_vec();
+        v.sort_by(f64::total_cmp);
+        Summary {
+            n: v.len(),
+            mean: v.iter().sum::<f64>() / v.len() as f64,
+            min: v[0],
+            median: v[v.len() / 2],
+            max: v[v.len() - 1],
+        }
+    }
+}
+
+/// Statistics of a dataset folder.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct DatasetStats {
+    /// Navigable area per scene (m^2), by scene id.
+    pub navigable_m2: BTreeMap<String, f64>,
+    /// Rooms per scene, by scene id.
+    pub rooms: BTreeMap<String, usize>,
+    /// Episodes per task and split.
+    pub episodes: BTreeMap<String, BTreeMap<String, usize>>,
+    /// Geodesic path lengths (m) per task.
+    pub path_length: BTreeMap<String, Vec<f64>>,
+    /// Instruction lengths (words) per task and style (`all` for every style).
+    pub instruction_words: BTreeMap<String, BTreeMap<String, Vec<f64>>>,
+    /// Classes of the grounded landmark objects, over all tasks.
+    pub landmark_classes: BTreeSet<String>,
+    /// Classes of all grounded objects (landmarks, targets, references).
+    pub grounded_classes: BTreeSet<String>,
+    /// Distinct lower-case words over all instructions.
+    pub word_vocabulary: usize,
+}
+
+/// Read a dataset folder: `DIR/scenes/*` and every split file present.
+pub fn collect(dir: &Path) -> Result<DatasetStats> {
+    let mut st = DatasetStats::default();
+    let scenes = dir.join("scenes");
+    if scenes.is_dir() {
+        let mut ids: Vec<PathBuf> = std::fs::read_dir(&scenes)
+            .map_err(|e| TaskError::io(&scenes, e))?
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .filter(|p| p.join("scene.json").is_file())
+            .collect();
+        ids.sort();
+        for p in ids {
+            let id = p
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            let json_path = p.join("scene.json");
+            let raw = std::fs::read(&json_path).map_err(|e| TaskError::io(&json_path, e))?;
+            let scene = scene_from_json(&raw, &json_path)?;
+            st.rooms.insert(id.clone(), scene.rooms.len());
+            let yaml = p.join("navigable.yaml");
+            if yaml.is_file() {
+                let map = GridMap::load_ros(&yaml)?;
+                st.navigable_m2.insert(id, map.free_area_m2() as f64);
+            }
+        }
+    }
+    let mut words: BTreeSet<String> = BTreeSet::new();
+    for task in Task::ALL {
+        for split in Split::ALL {
+            if !split_path(dir, task, split).is_file() {
+                continue;
+            }
+            let eps = read_split(dir, task, split)?;
+            st.episodes
+                .entry(task.name().into())
+                .or_default()
+                .insert(split.name().into(), eps.len());
+            for ep in &eps {
+                st.path_length
+                    .entry(task.name().into())
+                    .or_default()
+                    .push(ep.info.geodesic_distance as f64);
+                let text = &ep.instruction.instruction_text;
+                let n = text.split_whitespace().count() as f64;
+                let per_style = st.instruction_words.entry(task.name().into()).or_default();
+                per_style.entry("all".into()).or_default().push(n);
+                if let Some(s) = ep.instruction.style {
+                    per_style.entry(s.name().into()).or_default().push(n);
+                }
+                for w in text.split(|c: char| !c.is_alphanumeric() && c != '\'') {
+                    if !w.is_empty() {
+                        words.insert(w.to_lowercase());
+                    }
+                }
+                for g in &ep.instruction.grounding {
+                    st.grounded_classes.insert(g.class.clone());
+                    if g.role == Role::Landmark {
+                        st.landmark_classes.insert(g.class.clone());
+                    }
+                }
+            }
+        }
+    }
+    st.word_vocabulary = words.len();
+    Ok(st)
+}
+
+/// Histogram of `values` in `bins` equal bins over `[min, max]`: labels and counts.
+pub fn histogram(values: &[f64], bins: usize) -> (Vec<String>, Vec<f64>) {
+    let bins = bins.max(1);
+    if values.is_empty() {
+        return (Vec::new(), Vec::new());
+    }
+    let lo = values.iter().copied().fold(f64::INFINITY, f64::min).floor();
+    let hi = values.iter().copied().fold(f64::NEG_INFINITY, f64::max).ceil();
+    let width = ((hi - lo) / bins as f64).max(1e-9);
+    let mut counts = vec![0.0; bins];
+    for &v in values {
+        let i = (((v - lo) / width) as usize).min(bins - 1);
+        counts[i] += 1.0;
+    }
+    let labels = (0..bins)
+        .map(|i| format!("{:.0}", lo + width * i as f64))
+        .collect();
+    (labels, counts)
+}
+
+/// A bar chart: title, one bar per label, value axis from 0, values written over the bars.
+pub fn bar_chart(title: &str, x_label: &str, labels: &[String], values: &[f64]) -> RgbImage {
+    let n = labels.len().max(1) as u32;
+    let bar_w = (560 / n).clamp(8, 60);
+    let (left, right, top, bottom) = (60u32, 20u32, 40u32, 60u32);
+    let w = (left + right + bar_w * n).max(420);
+    let h = 360u32;
+    let mut img = RgbImage::from_pixel(w, h, Rgb([255, 255, 255]));
+    let ink = [30, 30, 30];
+    let title_x = (w.saturating_sub(text_width(title, 2)) / 2) as i64;
+    draw_text(&mut img, title_x, 10, title, 2, ink, false);
+    let plot_h = h - top - bottom;
+    let vmax = values.iter().copied().fold(0.0, f64::max).max(1e-9);
+    // Axes.
+    for y in top..=top + plot_h {
+        img.put_pixel(left - 1, y, Rgb(ink));
+    }
+    for x in left - 1..w - right {
+        img.put_pixel(x, top + plot_h, Rgb(ink));
+    }
+    draw_text(&mut img, 4, top as i64 - 4, &fmt_value(vmax), 1, ink, false);
+    draw_text(&mut img, 4, (top + plot_h - 8) as i64, "0", 1, ink, false);
+    let every = (labels.len() as u32 * 8 * 5 / (bar_w * n).max(1)).max(1) as usize;
+    for (i, (&v, label)) in values.iter().zip(labels).enumerate() {
+        let x0 = left + i as u32 * bar_w + 1;
+        let bh = ((v / vmax) * plot_h as f64).round() as u32;
+        for x in x0..x0 + bar_w.saturating_sub(2).max(1) {
+            for y in top + plot_h - bh..top + plot_h {
+                img.put_pixel(x, y, Rgb([70, 120, 190]));
+            }
+        }
+        if bar_w >= 24 || i % every == 0 {
+            let t: String = label.chars().take((bar_w / 8).max(5) as usize).collect();
+            draw_text(&mut img, x0 as i64, (top + plot_h + 6) as i64, &t, 1, ink, false);
+        }
+        if bar_w >= 32 {
+            let vt = fmt_value(v);
+            let y = (top + plot_h - bh) as i64 - 10;
+            draw_text(&mut img, x0 as i64, y.max(top as i64), &vt, 1, ink, false);
+        }
+    }
+    let xl = (w.saturating_sub(text_width(x_label, 1)) / 2) as i64;
+    draw_text(&mut img, xl, (h - 20) as i64, x_label, 1, ink, false);
+    img
+}
+
+fn fmt_value(v: f64) -> String {
+    if v >= 100.0 || v.fract() == 0.0 {
+        format!("{v:.0}")
+    } else {
+        format!("{v:.1}")
+    }
+}
+
+fn save_png(img: &RgbImage, path: &Path) -> Result<()> {
+    let png = super::reference_image::encode_png(img.as_raw(), img.width(), img.height())?;
+    write_atomic(path, &png)
+}
+
+/// Write `DIR/stats/`: `navigable_area.png`, `rooms.png`, `path_length.png`,
+/// `instruction_length.png`, `stats.json` and `stats.md`; returns the markdown.
+pub fn write_stats(dir: &Path) -> Result<String> {
+    let st = collect(dir)?;
+    let out = dir.join("stats");
+    let areas: Vec<f64> = st.navigable_m2.values().copied().collect();
+    let (l, c) = histogram(&areas, 12);
+    save_png(
+        &bar_chart("Navigable area per scene", "m^2 (bin start)", &l, &c),
+        &out.join("navigable_area.png"),
+    )?;
+    let mut room_counts: BTreeMap<usize, f64> = BTreeMap::new();
+    for &r in st.rooms.values() {
+        *room_counts.entry(r).or_default() += 1.0;
+    }
+    let (l, c): (Vec<String>, Vec<f64>) = room_counts
+        .iter()
+        .map(|(k, v)| (k.to_string(), *v))
+        .unzip();
+    save_png(
+        &bar_chart("Rooms per scene", "rooms", &l, &c),
+        &out.join("rooms.png"),
+    )?;
+    let all_len: Vec<f64> = st.path_length.values().flatten().copied().collect();
+    let (l, c) = histogram(&all_len, 15);
+    save_png(
+        &bar_chart("Path length (all tasks)", "metres (bin start)", &l, &c),
+        &out.join("path_length.png"),
+    )?;
+    let mut il_labels = Vec::new();
+    let mut il_values = Vec::new();
+    for (task, per) in &st.instruction_words {
+        for (style, v) in per {
+            if style == "all" && per.len() > 1 {
+                continue;
+            }
+            let short: String = task.chars().take(6).collect();
+            let label = if style == "all" {
+                short
+            } else {
+                format!("{short}/{}", &style[..3.min(style.len())])
+            };
+            il_labels.push(label);
+            il_values.push(Summary::of(v).mean);
+        }
+    }
+    save_png(
+        &bar_chart(
+            "Mean instruction length (words)",
+            "task / style",
+            &il_labels,
+            &il_values,
+        ),
+        &out.join("instruction_length.png"),
+    )?;
+    let mut md = String::from("# Dataset statistics\n\n");
+    md.push_str(&format!("Dataset: `{}`\n\n", dir.display()));
+    md.push_str("| quantity | n | mean | min | median | max |\n|---|---|---|---|---|---|\n");
+    let row = |md: &mut String, name: &str, s: Summary| {
+        md.push_str(&format!(
+            "| {name} | {} | {:.2} | {:.2} | {:.2} | {:.2} |\n",
+            s.n, s.mean, s.min, s.median, s.max
+        ));
+    };
+    row(&mut md, "navigable area per scene (m^2)", Summary::of(&areas));
+    let rooms: Vec<f64> = st.rooms.values().map(|&r| r as f64).collect();
+    row(&mut md, "rooms per scene", Summary::of(&rooms));
+    for (task, v) in &st.path_length {
+        row(&mut md, &format!("path length, {task} (m)"), Summary::of(v));
+    }
+    for (task, per) in &st.instruction_words {
+        for (style, v) in per {
+            row(
+                &mut md,
+                &format!("instruction words, {task}, {style}"),
+                Summary::of(v),
+            );
+        }
+    }
+    md.push_str("\n| task | train | val_seen | val_unseen | test |\n|---|---|---|---|---|\n");
+    for (task, per) in &st.episodes {
+        let g = |s: &str| per.get(s).copied().unwrap_or(0);
+        md.push_str(&format!(
+            "| {task} | {} | {} | {} | {} |\n",
+            g("train"),
+            g("val_seen"),
+            g("val_unseen"),
+            g("test")
+        ));
+    }
+    md.push_str(&format!(
+        "\nLandmark vocabulary: {} object classes named as landmarks ({} classes grounded in all); \
+         {} distinct words over all instructions.\n",
+        st.landmark_classes.len(),
+        st.grounded_classes.len(),
+        st.word_vocabulary
+    ));
+    md.push_str("\nPlots: `navigable_area.png`, `rooms.png`, `path_length.png`, `instruction_length.png`.\n");
+    write_atomic(&out.join("stats.md"), md.as_bytes())?;
+    let json = serde_json::to_vec_pretty(&st)
+        .map_err(|e| TaskError::invalid("stats", "<stats>", e.to_string()))?;
+    write_atomic(&out.join("stats.json"), &json)?;
+    Ok(md)
+}

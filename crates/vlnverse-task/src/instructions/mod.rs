@@ -93,12 +93,19 @@ pub fn check_grounding(ctx: &PathContext<'_>, ins: &Instruction, max_distance: f
             continue;
         };
         if o.class.name() != g.class {
-            problems.push(format!("{what}: class `{}` but the scene says `{}`", g.class, o.class.name()));
+            problems.push(format!(
+                "{what}: class `{}` but the scene says `{}`",
+                g.class,
+                o.class.name()
+            ));
         }
         let Some(idx) = g.path_index else { continue };
         let idx = idx as usize;
         if idx >= pts.len() {
-            problems.push(format!("{what}: path index {idx} beyond the path ({} points)", pts.len()));
+            problems.push(format!(
+                "{what}: path index {idx} beyond the path ({} points)",
+                pts.len()
+            ));
             continue;
         }
         let (lo, hi) = path::footprint(o);
@@ -120,15 +127,23 @@ pub fn check_grounding(ctx: &PathContext<'_>, ins: &Instruction, max_distance: f
             .collect();
         let dmin = samples.iter().map(|s| s.1).fold(f32::INFINITY, f32::min);
         if dmin > max_distance {
-            problems.push(format!("{what}: {dmin:.2} m from path point {idx}, more than {max_distance} m"));
+            problems.push(format!(
+                "{what}: {dmin:.2} m from path point {idx}, more than {max_distance} m"
+            ));
         }
         if let Some(side) = g.side {
             let ok = samples.iter().filter(|s| s.1 <= dmin + 0.02).any(|s| {
-                env_side(vlnverse_env::scene_graph::side_of_heading(s.0, heading, center)) == side
+                env_side(vlnverse_env::scene_graph::side_of_heading(
+                    s.0, heading, center,
+                )) == side
             });
             if !ok {
-                let seen = env_side(vlnverse_env::scene_graph::side_of_heading(a, heading, center));
-                problems.push(format!("{what}: stated {side:?} but it is {seen:?} from path point {idx}"));
+                let seen = env_side(vlnverse_env::scene_graph::side_of_heading(
+                    a, heading, center,
+                ));
+                problems.push(format!(
+                    "{what}: stated {side:?} but it is {seen:?} from path point {idx}"
+                ));
             }
         }
     }

@@ -168,14 +168,11 @@ pub(crate) fn wall_rects(scene: &Scene) -> Vec<(Vec2, Vec2)> {
 /// navigable map is free along the sight line except its last `slack` metres (the navigable map
 /// is dilated by the agent radius around every obstacle, the object included), and no wall
 /// footprint crosses it.
-pub(crate) fn visible(
-    map: &GridMap,
-    walls: &[(Vec2, Vec2)],
-    a: Vec2,
-    b: Vec2,
-    slack: f32,
-) -> bool {
-    if walls.iter().any(|&(lo, hi)| segment_hits_rect(a, b, lo, hi)) {
+pub(crate) fn visible(map: &GridMap, walls: &[(Vec2, Vec2)], a: Vec2, b: Vec2, slack: f32) -> bool {
+    if walls
+        .iter()
+        .any(|&(lo, hi)| segment_hits_rect(a, b, lo, hi))
+    {
         return false;
     }
     let d = b - a;

@@ -314,7 +314,8 @@ pub(crate) const NATURAL: &[&str] = &[
 pub(crate) const NATURAL_SUP: &[&str] = &[" on {obj}", " sitting on {obj}", " on top of {obj}"];
 
 /// Natural "next to" clause.
-pub(crate) const NATURAL_NEXT: &[&str] = &[" next to {obj}", " right beside {obj}", " beside {obj}"];
+pub(crate) const NATURAL_NEXT: &[&str] =
+    &[" next to {obj}", " right beside {obj}", " beside {obj}"];
 
 /// Natural "near" clause.
 pub(crate) const NATURAL_NEAR: &[&str] = &[" near {obj}", " close to {obj}", " not far from {obj}"];

@@ -13,7 +13,8 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 use vlnverse_env::scene_graph::{
-    is_landmark, rooms_along_path, side_of_heading, Mention, Relation, RoomMention,
+    is_landmark, rooms_along_path, side_of_heading, Mention, ReferringExpression, Relation,
+    RoomMention,
 };
 use vlnverse_env::{ObjectId, RoomId, Scene, SceneObject};
 
@@ -125,7 +126,11 @@ fn room_phrase(scene: &Scene, room: RoomId) -> Option<String> {
 
 fn distance_phrase(d: f32, rng: &mut ChaCha8Rng) -> String {
     if d < 1.25 {
-        pick(rng, &["a short way", "a step or two", "a little", "a few steps"]).to_string()
+        pick(
+            rng,
+            &["a short way", "a step or two", "a little", "a few steps"],
+        )
+        .to_string()
     } else if d < 1.75 {
         pick(rng, &["about a metre and a half", "one or two metres"]).to_string()
     } else {
@@ -304,7 +309,11 @@ impl InstructionGenerator for TemplateGenerator {
                 .filter(|l| Some(l.object) != end_obj.map(|o| o.id))
                 .filter(|l| !matches!(env_side(l.side), Side::Behind))
                 .collect();
-            mine.sort_by(|a, b| a.distance.total_cmp(&b.distance).then(a.object.cmp(&b.object)));
+            mine.sort_by(|a, b| {
+                a.distance
+                    .total_cmp(&b.distance)
+                    .then(a.object.cmp(&b.object))
+            });
             let mut chosen: Vec<&vlnverse_env::scene_graph::Landmark> = Vec::new();
             for l in mine {
                 if chosen.len() >= cfg.max_landmarks_per_leg {
@@ -313,10 +322,11 @@ impl InstructionGenerator for TemplateGenerator {
                 let Some(o) = ctx.scene.object(l.object) else {
                     continue;
                 };
-                if chosen
-                    .iter()
-                    .any(|c| ctx.scene.object(c.object).is_some_and(|x| x.class == o.class))
-                {
+                if chosen.iter().any(|c| {
+                    ctx.scene
+                        .object(c.object)
+                        .is_some_and(|x| x.class == o.class)
+                }) {
                     continue;
                 }
                 chosen.push(l);
@@ -340,7 +350,10 @@ impl InstructionGenerator for TemplateGenerator {
                     fill(pick(&mut rng, ph::TOWARDS), &[("obj", &obj)])
                 } else {
                     let sp = fill(pick(&mut rng, ph::SIDE), &[("dir", side_word(side))]);
-                    fill(pick(&mut rng, ph::PASS_SIDE), &[("obj", &obj), ("side", &sp)])
+                    fill(
+                        pick(&mut rng, ph::PASS_SIDE),
+                        &[("obj", &obj), ("side", &sp)],
+                    )
                 };
                 lm_clauses.push(c);
                 grounding.push(grounded(o, Role::Landmark, Some(side), Some(l.path_index)));
@@ -379,7 +392,10 @@ impl InstructionGenerator for TemplateGenerator {
                     to
                 };
                 let c = match rng.random_range(0..3) {
-                    0 => fill(pick(&mut rng, ph::ROOM_TO_ROOM), &[("from", &from), ("room", &to)]),
+                    0 => fill(
+                        pick(&mut rng, ph::ROOM_TO_ROOM),
+                        &[("from", &from), ("room", &to)],
+                    ),
                     1 => fill(pick(&mut rng, ph::ENTER_ROOM), &[("room", &to)]),
                     _ => format!(
                         "{} and {}",
@@ -444,7 +460,9 @@ impl InstructionGenerator for TemplateGenerator {
             Style::Natural => 0x6e61_7475,
             Style::Casual => 0x6361_7375,
         };
-        let mut rng = ChaCha8Rng::seed_from_u64(seed ^ salt);
+        let mut rng = ChaCha8Rng::seed_from_u64(
+            seed ^ salt ^ u64::from(target).wrapping_mul(0x9E37_79B9_7F4A_7C15),
+        );
         let words = |m: &Mention| format!("the {}", m.words());
         let desc = match &expr.color {
             Some(c) => format!("the {c} {}", expr.class.words()),
@@ -550,16 +568,45 @@ fn capitalize_sentence(s: &str, style: Style) -> String {
     }
 }
 
-/// The description a coarse instruction of `target` renders: the scene graph's shortest unique
-/// referring expression, with the target's room added for the natural style (it reads "go to
-/// the kitchen and ..."). The result always matches exactly `[target]`
-/// ([`vlnverse_env::scene_graph::ReferringExpression::matches`]).
+/// A short description of `o` alone in the scene: its class, else colour + class; `None` when
+/// neither is unique.
+fn unique_mention(ctx: &PathContext<'_>, o: &SceneObject) -> Option<Mention> {
+    let count = |m: &Mention| {
+        ctx.graph
+            .objects_of_class(m.class)
+            .iter()
+            .filter_map(|&id| ctx.scene.object(id))
+            .filter(|x| m.fits(x))
+            .count()
+    };
+    let mut m = Mention {
+        object: o.id,
+        class: o.class,
+        color: None,
+    };
+    if count(&m) == 1 {
+        return Some(m);
+    }
+    if o.color.is_empty() {
+        return None;
+    }
+    m.color = Some(o.color.clone());
+    (count(&m) == 1).then_some(m)
+}
+
+/// The description a coarse instruction of `target` renders, unique within the scene: the scene
+/// graph's shortest referring expression, enriched per style so that it names the class, the
+/// colour and a relation to a reference object or room (formal: colour, support or reference
+/// object, room; natural: colour, room, support or reference; casual: colour, support or
+/// reference, else room). Every addition is checked with
+/// [`vlnverse_env::scene_graph::ReferringExpression::matches`]; the result always matches
+/// exactly `[target]`.
 pub fn coarse_expression(
     ctx: &PathContext<'_>,
     target: ObjectId,
     style: Style,
-) -> Result<vlnverse_env::scene_graph::ReferringExpression> {
-    let mut expr = ctx
+) -> Result<ReferringExpression> {
+    let expr = ctx
         .graph
         .referring_expression(ctx.scene, target)
         .ok_or_else(|| {
@@ -573,21 +620,99 @@ pub fn coarse_expression(
                 ),
             )
         })?;
-    if style == Style::Natural && expr.room.is_none() {
+    let Some(obj) = ctx.scene.object(target) else {
+        return Ok(expr);
+    };
+    let unique = |e: &ReferringExpression| e.matches(ctx.scene, ctx.graph) == [target];
+    let mut e = expr;
+    let mut try_add = |e: &mut ReferringExpression, f: &dyn Fn(&mut ReferringExpression)| {
+        let mut c = e.clone();
+        f(&mut c);
+        if c != *e && unique(&c) {
+            *e = c;
+            true
+        } else {
+            false
+        }
+    };
+    if !obj.color.is_empty() {
+        try_add(&mut e, &|c| c.color = Some(obj.color.clone()));
+    }
+    let add_room = |c: &mut ReferringExpression| {
         if let Some(r) = ctx.graph.room_of(target) {
             if let Some(room) = ctx.scene.room(r) {
-                let mut with_room = expr.clone();
-                with_room.room = Some(RoomMention {
+                c.room = Some(RoomMention {
                     room: r,
                     kind: room.kind,
                 });
-                if with_room.matches(ctx.scene, ctx.graph) == [target] {
-                    expr = with_room;
+            }
+        }
+    };
+    let add_support = |c: &mut ReferringExpression| {
+        if c.support.is_some() {
+            return;
+        }
+        let mut supports = ctx.graph.supports_of(target);
+        if let Some(s) = obj.supported_by {
+            supports.sort_by_key(|&x| x != s);
+        }
+        if let Some(s) = supports.first().and_then(|&s| ctx.scene.object(s)) {
+            c.support = Some(Mention {
+                object: s.id,
+                class: s.class,
+                color: None,
+            });
+        }
+    };
+    let add_reference = |c: &mut ReferringExpression| {
+        if c.reference.is_some() {
+            return;
+        }
+        let support = c.support.as_ref().map(|m| m.object);
+        for rel in [Relation::NextTo, Relation::Near] {
+            let mut ns = ctx.graph.neighbours(target, rel);
+            ns.sort_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
+            for (n, _) in ns {
+                let Some(o) = ctx.scene.object(n) else {
+                    continue;
+                };
+                if o.class == obj.class || o.is_structure() || Some(n) == support {
+                    continue;
+                }
+                if let Some(m) = unique_mention(ctx, o) {
+                    c.relation = Some(rel);
+                    c.reference = Some(m);
+                    return;
                 }
             }
         }
+    };
+    let relation = |e: &mut ReferringExpression,
+                    try_add: &mut dyn FnMut(
+        &mut ReferringExpression,
+        &dyn Fn(&mut ReferringExpression),
+    ) -> bool| {
+        if e.support.is_none() && e.reference.is_none() && !try_add(e, &add_support) {
+            try_add(e, &add_reference);
+        }
+    };
+    match style {
+        Style::Formal => {
+            relation(&mut e, &mut try_add);
+            try_add(&mut e, &add_room);
+        }
+        Style::Natural => {
+            try_add(&mut e, &add_room);
+            relation(&mut e, &mut try_add);
+        }
+        Style::Casual => {
+            relation(&mut e, &mut try_add);
+            if e.support.is_none() && e.reference.is_none() {
+                try_add(&mut e, &add_room);
+            }
+        }
     }
-    Ok(expr)
+    Ok(e)
 }
 
 /// Join coarse sub-instructions in order: "First, ...; then ...; finally ...". The grounding of

@@ -73,3 +73,80 @@ pub fn make_dataset(dir: &Path, task: Task, scenes: usize, per_scene: usize, see
     dataset::write_split(dir, task, Split::Test, &episodes).unwrap();
     episodes
 }
+
+/// Coarse-style episodes: the goal is the navigable point nearest to a furniture object, the
+/// instruction names its class.
+pub fn make_object_dataset(dir: &Path, scenes: usize, per_scene: usize, seed: u64) -> Vec<Episode> {
+    use vlnverse_env::vocab::ClassKind;
+    let gen = HomeGenerator::from_preset(Preset::Tiny).unwrap();
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut episodes = Vec::new();
+    for s in 0..scenes {
+        let id = format!("tiny_{s:03}");
+        let scene = gen.generate(seed.wrapping_add(s as u64), &id).unwrap();
+        let (bundle, _) =
+            write_scene_bundle(dir.join("scenes"), scene, &OccupancyConfig::default()).unwrap();
+        let nav = &bundle.maps.navigable;
+        let free: Vec<Vec2> = nav.free_cells().map(|(c, r)| nav.cell_center(c, r)).collect();
+        let y = bundle.scene.floor_height;
+        let objects: Vec<_> = bundle
+            .scene
+            .objects
+            .iter()
+            .filter(|o| o.class.kind() == ClassKind::Furniture && o.class != vlnverse_env::SemanticClass::Rug)
+            .collect();
+        let mut made = 0;
+        let mut tries = 0;
+        while made < per_scene && tries < 10_000 && !objects.is_empty() {
+            tries += 1;
+            let o = objects[rng.random_range(0..objects.len())];
+            // Only classes that occur once, so the instruction is unambiguous.
+            if objects.iter().filter(|x| x.class == o.class).count() != 1 {
+                continue;
+            }
+            let c = Vec2::new(o.pose.position[0], o.pose.position[2]);
+            let Some(b) = nav.nearest_free(c, 2.0) else { continue };
+            let a = free[rng.random_range(0..free.len())];
+            let Ok(Some(path)) = shortest_path(nav, a, b) else { continue };
+            if !(4.0..=14.0).contains(&path.length) {
+                continue;
+            }
+            let yaw = rng.random_range(-std::f32::consts::PI..std::f32::consts::PI);
+            let start = Pose::from_yaw(Vec3::new(a.x, y, a.y), yaw);
+            let id = episodes.len() as u64 + 1;
+            episodes.push(Episode {
+                episode_id: id,
+                trajectory_id: id,
+                scene_id: bundle.scene.id.clone(),
+                start_position: start.position,
+                start_rotation: start.rotation,
+                goals: vec![Goal { position: [b.x, y, b.y], radius: 3.0, object_id: Some(o.id) }],
+                instruction: Instruction {
+                    instruction_text: format!("Go to the {}.", o.class.words()),
+                    ..Default::default()
+                },
+                reference_path: path.points.iter().map(|p| [p.x, y, p.y]).collect(),
+                info: EpisodeInfo { geodesic_distance: path.length, ..Default::default() },
+                task: Task::Coarse,
+                target_object_id: Some(o.id),
+                reference_image: None,
+                sub_goals: vec![],
+                oracle_budget: None,
+            });
+            made += 1;
+        }
+    }
+    dataset::write_split(dir, Task::Coarse, Split::Test, &episodes).unwrap();
+    episodes
+}
+
+/// A small, fast RGB-D rig on the ray caster (for tests that need pixels).
+pub fn small_rig(dir: &Path) -> String {
+    let path = dir.join("small_rig.toml");
+    std::fs::write(
+        &path,
+        "backend = \"raycast\"\nseed = 0\n\n[[sensors]]\ntype = \"rgb\"\nwidth = 32\nheight = 24\nhfov_deg = 90.0\n\n[[sensors]]\ntype = \"depth\"\nwidth = 32\nheight = 24\nhfov_deg = 90.0\n",
+    )
+    .unwrap();
+    path.display().to_string()
+}

@@ -45,8 +45,13 @@ impl<F: Fn() -> Box<dyn Agent> + Sync> AgentFactory for FnFactory<F> {
     }
 }
 
-/// The factory of a built-in agent; `command` is the shell command of `external`.
-pub fn builtin(name: &str, command: Option<&str>) -> Result<Box<dyn AgentFactory>> {
+/// The factory of a built-in agent; `command` is the shell command of `external`, which gets
+/// its observations as `cfg.external_observations` says.
+pub fn builtin(
+    name: &str,
+    command: Option<&str>,
+    cfg: &crate::eval::EvalConfig,
+) -> Result<Box<dyn AgentFactory>> {
     Ok(match name {
         "oracle" => Box::new(FnFactory::new("oracle", true, || {
             Box::new(oracle::OracleAgent::default())
@@ -69,7 +74,7 @@ pub fn builtin(name: &str, command: Option<&str>) -> Result<Box<dyn AgentFactory
                     "the external agent needs a command (--agent-cmd \"python3 examples/python/random_agent.py\")",
                 ));
             };
-            Box::new(external::ExternalFactory::new(cmd))
+            Box::new(external::ExternalFactory::new(cmd).with_encoding(cfg.external_observations))
         }
         _ => {
             return Err(TaskError::invalid(

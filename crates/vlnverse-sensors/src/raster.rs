@@ -1,0 +1,731 @@
+//! The CPU rasteriser backend: a plain software rasteriser for the few thousand triangles of a
+//! home, several times faster than both the ray caster and wgpu on a software Vulkan driver.
+//!
+//! Per view: objects outside the frustum are skipped (bounding boxes); the rest of the triangles
+//! go to camera space, are clipped against the near plane (and a wide guard band), projected
+//! with vertices snapped to 1/256 pixel, and filled with exact integer edge functions sampled at
+//! pixel centres `(x + 0.5, y + 0.5)` under the top-left rule, so neighbouring triangles neither
+//! leave cracks nor overlap. Depth is `1 / z` from the triangle's plane (linear in screen space)
+//! and is kept in the depth buffer; a resolve pass turns it into metres along the optical axis
+//! and the winning triangle into colour, class and object ids. Colours are flat: the same
+//! Lambert model and per-triangle normal as the other backends ([`crate::shading`]).
+//!
+//! Back faces are culled only where that cannot change the image: for objects whose triangles
+//! form closed, outward-oriented surfaces, seen from outside their box (with room for the near
+//! plane). Everything else is drawn two-sided, as the ray caster sees it.
+//!
+//! Views of a batch render in parallel (rayon); a batch smaller than twice the thread count
+//! splits each view into bands of rows as well.
+
+use crate::camera::Camera;
+use crate::error::{Result, SensorError};
+use crate::frame::{Frame, View};
+use crate::renderer::Renderer;
+use crate::scene_mesh::SceneMesh;
+use crate::shading;
+use glam::{DVec3, Mat3, Vec3};
+use rayon::prelude::*;
+use std::collections::HashMap;
+use std::sync::Arc;
+use vlnverse_env::Aabb;
+
+/// Sub-pixel steps per pixel of snapped vertex coordinates.
+const SUB: f64 = 256.0;
+/// Projected vertices stay within this many pixels of the image (else they are clipped), which
+/// bounds the fixed-point edge functions well inside the exact range of `f64`.
+const GUARD: f32 = 16384.0;
+/// Fewest rows per band when a view is split between threads.
+const MIN_BAND_ROWS: usize = 16;
+
+/// What the resolve pass needs of a triangle.
+#[derive(Clone, Copy, Debug)]
+struct TriInfo {
+    /// sRGB colour lit from the front (winding normal) and from the back.
+    rgb: [[u8; 3]; 2],
+    /// Semantic class id.
+    class: u16,
+    /// Object id.
+    object: u32,
+}
+
+/// An object's triangle range and whether its back faces may be culled.
+#[derive(Clone, Copy, Debug)]
+struct ObjInfo {
+    first: usize,
+    count: usize,
+    bbox: Aabb,
+    /// Closed, outward-oriented surfaces only.
+    closed: bool,
+}
+
+/// A scene prepared for the rasteriser (built once per [`Renderer::set_scene`]).
+#[derive(Debug)]
+pub struct RasterScene {
+    mesh: Arc<SceneMesh>,
+    info: Vec<TriInfo>,
+    /// Unit geometric normal per triangle (as [`SceneMesh::normal`]).
+    normal: Vec<Vec3>,
+    objects: Vec<ObjInfo>,
+}
+
+/// One edge function `e(x, y) = a x + b y + c` over pixel indices; a pixel is inside when
+/// `e >= 0`. Values are integers in sub-pixel units, exact in `f64`.
+#[derive(Clone, Copy, Debug)]
+struct Edge {
+    a: f64,
+    b: f64,
+    c: f64,
+}
+
+/// A projected triangle ready to fill.
+#[derive(Clone, Copy, Debug)]
+struct ScreenTri {
+    edges: [Edge; 3],
+    /// Inclusive pixel bounds (clamped to the image).
+    x0: i32,
+    x1: i32,
+    y0: i32,
+    y1: i32,
+    /// `1 / depth` at the centre of pixel `(x, y)` is `za x + zb y + zc`, clamped to
+    /// `[zlo, zhi]` (the range over the corners) against snapping error.
+    za: f32,
+    zb: f32,
+    zc: f32,
+    zlo: f32,
+    zhi: f32,
+    /// `2 * triangle + back + 1` (0 is nothing).
+    tag: u32,
+}
+
+/// Per-view constants.
+struct ViewParams {
+    w: usize,
+    h: usize,
+    fx: f32,
+    fy: f32,
+    cx: f32,
+    cy: f32,
+    near: f32,
+    far: f32,
+    /// World to camera rotation and the camera position.
+    rot: Mat3,
+    pos: Vec3,
+}
+
+impl ViewParams {
+    fn new(c: &Camera) -> Self {
+        ViewParams {
+            w: c.width as usize,
+            h: c.height as usize,
+            fx: c.fx(),
+            fy: c.fy(),
+            cx: c.cx(),
+            cy: c.cy(),
+            near: c.near,
+            far: c.far,
+            rot: Mat3::from_quat(c.rotation.normalize()).transpose(),
+            pos: c.position,
+        }
+    }
+
+    #[inline]
+    fn to_camera(&self, p: Vec3) -> Vec3 {
+        self.rot * (p - self.pos)
+    }
+
+    /// Pixel coordinates (continuous) of a camera-space point in front of the camera.
+    #[inline]
+    fn project(&self, p: Vec3) -> (f32, f32, f32) {
+        let iz = 1.0 / -p.z;
+        (self.cx + self.fx * p.x * iz, self.cy - self.fy * p.y * iz, iz)
+    }
+
+    /// Clip planes `f(p) >= 0` inside, in camera space: near, then the guard band.
+    fn plane(&self, k: usize, p: Vec3) -> f32 {
+        let (x, y, z) = (p.x, p.y, p.z);
+        match k {
+            0 => -z - self.near,
+            1 => self.fx * x - (GUARD + self.cx) * z,
+            2 => (GUARD - self.cx) * -z - self.fx * x,
+            3 => (GUARD + self.cy) * -z - self.fy * y,
+            _ => self.fy * y + (self.cy - GUARD) * z,
+        }
+    }
+}
+
+/// A convex polygon being clipped (a triangle cut by up to five planes).
+#[derive(Clone, Copy)]
+struct Poly {
+    v: [Vec3; 9],
+    n: usize,
+}
+
+impl RasterScene {
+    /// Prepare a mesh: per-triangle lit colours for both sides, ids, and which objects are
+    /// closed surfaces.
+    pub fn new(mesh: Arc<SceneMesh>) -> Self {
+        let light = shading::light_dir();
+        let n_tri = mesh.triangle_count();
+        let mut info = Vec::with_capacity(n_tri);
+        let mut normal = Vec::with_capacity(n_tri);
+        for t in 0..n_tri {
+            let n = mesh.normal(t);
+            // The same arithmetic as the ray caster (8-bit base colour, as the GPU's vertices).
+            let base = mesh.color[t].map(|c| (c.clamp(0.0, 1.0) * 255.0).round() / 255.0);
+            let lit = |n: Vec3| {
+                let k = shading::AMBIENT + shading::DIFFUSE * n.dot(light).max(0.0);
+                base.map(|c| shading::encode(c * k))
+            };
+            let object = mesh.object[t];
+            info.push(TriInfo {
+                rgb: [lit(n), lit(-n)],
+                class: mesh.class(object),
+                object,
+            });
+            normal.push(n);
+        }
+        let objects = mesh
+            .objects
+            .iter()
+            .map(|o| {
+                let (first, count) = (o.first as usize, o.count as usize);
+                ObjInfo {
+                    first,
+                    count,
+                    bbox: o.bbox,
+                    closed: closed_outward(&mesh.positions[3 * first..3 * (first + count)]),
+                }
+            })
+            .collect();
+        RasterScene {
+            mesh,
+            info,
+            normal,
+            objects,
+        }
+    }
+
+    /// The triangles drawn.
+    pub fn mesh(&self) -> &Arc<SceneMesh> {
+        &self.mesh
+    }
+
+    /// Number of objects whose back faces may be culled (closed, outward-oriented surfaces).
+    pub fn closed_objects(&self) -> usize {
+        self.objects.iter().filter(|o| o.closed).count()
+    }
+
+    /// Render one view on the calling thread's rayon pool, split into `bands` bands of rows
+    /// (1 = no split).
+    pub fn render_view(&self, view: &View, bands: usize) -> Frame {
+        let c = &view.camera;
+        let p = ViewParams::new(c);
+        let (w, h) = (p.w, p.h);
+        let n = w * h;
+        let ch = view.channels;
+        let ids_needed = ch.rgb || ch.ids();
+        let tris = self.setup(c, &p);
+        let inv_far = 1.0 / p.far;
+        let mut zbuf = vec![inv_far; n];
+        let mut ids = if ids_needed { vec![0u32; n] } else { Vec::new() };
+        let mut rgb = if ch.rgb { vec![0u8; 3 * n] } else { Vec::new() };
+        let mut sem = if ch.semantic { vec![0u16; n] } else { Vec::new() };
+        let rows = h.div_ceil(bands.clamp(1, h.div_ceil(MIN_BAND_ROWS).max(1)));
+        let mut work: Vec<Band<'_>> = Vec::with_capacity(h.div_ceil(rows));
+        {
+            let mut z = zbuf.chunks_mut(rows * w);
+            let mut i = ids.chunks_mut(rows * w);
+            let mut r = rgb.chunks_mut(3 * rows * w);
+            let mut s = sem.chunks_mut(rows * w);
+            for y0 in (0..h).step_by(rows) {
+                work.push(Band {
+                    y0,
+                    y1: (y0 + rows).min(h),
+                    zbuf: z.next().unwrap_or_default(),
+                    ids: i.next(),
+                    rgb: r.next(),
+                    semantic: s.next(),
+                });
+            }
+        }
+        let run = |b: Band<'_>| self.fill_band(&p, &tris, b, ch.depth, ch.instance);
+        if work.len() == 1 {
+            work.into_iter().for_each(run);
+        } else {
+            work.into_par_iter().for_each(run);
+        }
+        Frame {
+            width: c.width,
+            height: c.height,
+            rgb,
+            depth: if ch.depth { zbuf } else { Vec::new() },
+            semantic: sem,
+            instance: if ch.instance { ids } else { Vec::new() },
+        }
+    }
+
+    /// Cull, clip and project every triangle that may be seen.
+    fn setup(&self, c: &Camera, p: &ViewParams) -> Vec<ScreenTri> {
+        let frustum = c.frustum();
+        // Distance from the eye to the near plane's corners: a back face may be culled only
+        // when no part of the near plane can be inside the object.
+        let reach = p.near
+            * (1.0 + (p.cx / p.fx).powi(2) + (p.cy / p.fy).powi(2)).sqrt()
+            * 1.001
+            + 1e-4;
+        let mut out = Vec::with_capacity(self.mesh.triangle_count() / 2);
+        for o in &self.objects {
+            if o.count == 0 || !frustum.intersects_aabb(&o.bbox) {
+                continue;
+            }
+            let cull = o.closed && {
+                let (lo, hi) = (o.bbox.min_v() - reach, o.bbox.max_v() + reach);
+                !(p.pos.cmpge(lo).all() && p.pos.cmple(hi).all())
+            };
+            for t in o.first..o.first + o.count {
+                let wp = &self.mesh.positions[3 * t..3 * t + 3];
+                let back = self.normal[t].dot(wp[0] - p.pos) > 0.0;
+                if back && cull {
+                    continue;
+                }
+                let v = [
+                    p.to_camera(wp[0]),
+                    p.to_camera(wp[1]),
+                    p.to_camera(wp[2]),
+                ];
+                let tag = 2 * t as u32 + back as u32 + 1;
+                self.setup_triangle(p, v, tag, &mut out);
+            }
+        }
+        out
+    }
+
+    fn setup_triangle(&self, p: &ViewParams, v: [Vec3; 3], tag: u32, out: &mut Vec<ScreenTri>) {
+        let nz = -p.near;
+        if v.iter().all(|q| q.z > nz) || v.iter().all(|q| q.z < -p.far) {
+            return;
+        }
+        // Entirely to one side of the view (all vertices in front of the eye plane here).
+        if v.iter().all(|q| q.z < 0.0) {
+            let side = |f: &dyn Fn(Vec3) -> bool| v.iter().all(|q| f(*q));
+            if side(&|q| p.fx * q.x < -p.cx * -q.z)
+                || side(&|q| p.fx * q.x > (p.w as f32 - p.cx) * -q.z)
+                || side(&|q| p.fy * q.y > p.cy * -q.z)
+                || side(&|q| p.fy * q.y < -(p.h as f32 - p.cy) * -q.z)
+            {
+                return;
+            }
+        }
+        // The plane of the whole triangle gives 1/depth at every pixel (exact under clipping).
+        let [a, b, c] = v.map(|q| q.as_dvec3());
+        let nrm: DVec3 = (b - a).cross(c - a);
+        let d = nrm.dot(a);
+        if d.abs() <= 1e-7 * nrm.length() {
+            return; // Edge-on: the plane passes through the eye.
+        }
+        let (fx, fy, cx, cy) = (p.fx as f64, p.fy as f64, p.cx as f64, p.cy as f64);
+        let za = nrm.x / (fx * d);
+        let zb = -nrm.y / (fy * d);
+        let zc = (-nrm.x * cx / fx + nrm.y * cy / fy - nrm.z) / d + 0.5 * (za + zb);
+        let plane = [za as f32, zb as f32, zc as f32];
+
+        let in_guard = |q: &Vec3| {
+            let (sx, sy, _) = p.project(*q);
+            sx.abs() < GUARD && sy.abs() < GUARD
+        };
+        if v.iter().all(|q| q.z <= nz) && v.iter().all(in_guard) {
+            emit(p, [v[0], v[1], v[2]], plane, tag, out);
+            return;
+        }
+        let mut poly = Poly {
+            v: [Vec3::ZERO; 9],
+            n: 3,
+        };
+        poly.v[..3].copy_from_slice(&v);
+        poly = clip(p, &poly, 0);
+        if poly.n < 3 {
+            return;
+        }
+        if !poly.v[..poly.n].iter().all(in_guard) {
+            for k in 1..5 {
+                poly = clip(p, &poly, k);
+                if poly.n < 3 {
+                    return;
+                }
+            }
+        }
+        for i in 1..poly.n - 1 {
+            emit(p, [poly.v[0], poly.v[i], poly.v[i + 1]], plane, tag, out);
+        }
+    }
+
+    /// Fill one band of rows with every triangle, then resolve it into the outputs.
+    fn fill_band(
+        &self,
+        p: &ViewParams,
+        tris: &[ScreenTri],
+        b: Band<'_>,
+        want_depth: bool,
+        want_instance: bool,
+    ) {
+        let Band {
+            y0,
+            y1,
+            zbuf,
+            mut ids,
+            mut rgb,
+            mut semantic,
+        } = b;
+        match ids.as_deref_mut() {
+            Some(ids) => raster::<true>(p.w, y0, y1, tris, zbuf, ids),
+            None => raster::<false>(p.w, y0, y1, tris, zbuf, &mut []),
+        }
+        // Resolve: 1/depth to metres, tags to colour, class and object.
+        let (inv_far, far) = (1.0 / p.far, p.far);
+        if want_depth {
+            for z in zbuf.iter_mut() {
+                *z = if *z > inv_far { (1.0 / *z).min(far) } else { far };
+            }
+        }
+        let Some(ids) = ids else { return };
+        for (i, id) in ids.iter_mut().enumerate() {
+            let info = match *id {
+                0 => None,
+                tag => Some((self.info[(tag as usize - 1) >> 1], (tag - 1) & 1)),
+            };
+            if let Some(rgb) = rgb.as_deref_mut() {
+                let px = info.map_or([0; 3], |(t, back)| t.rgb[back as usize]);
+                rgb[3 * i..3 * i + 3].copy_from_slice(&px);
+            }
+            if let Some(s) = semantic.as_deref_mut() {
+                s[i] = info.map_or(0, |(t, _)| t.class);
+            }
+            if want_instance {
+                *id = info.map_or(0, |(t, _)| t.object);
+            }
+        }
+    }
+}
+
+/// A band of rows of one view's buffers.
+struct Band<'a> {
+    y0: usize,
+    y1: usize,
+    zbuf: &'a mut [f32],
+    ids: Option<&'a mut [u32]>,
+    rgb: Option<&'a mut [u8]>,
+    semantic: Option<&'a mut [u16]>,
+}
+
+/// Clip a polygon against plane `k` of [`ViewParams::plane`] (Sutherland-Hodgman). New points
+/// are always interpolated from the inside vertex, so an edge shared by two triangles is cut at
+/// bit-identical points and the fill stays watertight.
+fn clip(p: &ViewParams, poly: &Poly, k: usize) -> Poly {
+    let mut out = Poly {
+        v: [Vec3::ZERO; 9],
+        n: 0,
+    };
+    for i in 0..poly.n {
+        let (a, b) = (poly.v[i], poly.v[(i + 1) % poly.n]);
+        let (fa, fb) = (p.plane(k, a), p.plane(k, b));
+        if fa >= 0.0 {
+            out.v[out.n] = a;
+            out.n += 1;
+        }
+        if (fa >= 0.0) != (fb >= 0.0) && out.n < out.v.len() {
+            let (i_in, f_in, o, f_o) = if fa >= 0.0 {
+                (a, fa, b, fb)
+            } else {
+                (b, fb, a, fa)
+            };
+            let mut q = i_in + (o - i_in) * (f_in / (f_in - f_o));
+            if k == 0 {
+                q.z = q.z.min(-p.near); // Exactly on or in front of the near plane.
+            }
+            out.v[out.n] = q;
+            out.n += 1;
+        }
+    }
+    out
+}
+
+/// Project, snap and set up one triangle in front of the near plane.
+fn emit(p: &ViewParams, v: [Vec3; 3], plane: [f32; 3], tag: u32, out: &mut Vec<ScreenTri>) {
+    let mut s = [(0.0f64, 0.0f64); 3];
+    let (mut zlo, mut zhi) = (f32::INFINITY, 0.0f32);
+    for (k, q) in v.iter().enumerate() {
+        let (sx, sy, iz) = p.project(*q);
+        s[k] = ((sx as f64 * SUB).round(), (sy as f64 * SUB).round());
+        zlo = zlo.min(iz);
+        zhi = zhi.max(iz);
+    }
+    let area = (s[1].0 - s[0].0) * (s[2].1 - s[0].1) - (s[1].1 - s[0].1) * (s[2].0 - s[0].0);
+    if area == 0.0 {
+        return;
+    }
+    if area < 0.0 {
+        s.swap(1, 2);
+    }
+    let half = SUB * 0.5;
+    let (xmin, xmax) = (s[0].0.min(s[1].0).min(s[2].0), s[0].0.max(s[1].0).max(s[2].0));
+    let (ymin, ymax) = (s[0].1.min(s[1].1).min(s[2].1), s[0].1.max(s[1].1).max(s[2].1));
+    // Pixels whose centres can be inside.
+    let x0 = ((xmin - half) / SUB).ceil().max(0.0);
+    let x1 = ((xmax - half) / SUB).floor().min(p.w as f64 - 1.0);
+    let y0 = ((ymin - half) / SUB).ceil().max(0.0);
+    let y1 = ((ymax - half) / SUB).floor().min(p.h as f64 - 1.0);
+    if x0 > x1 || y0 > y1 {
+        return;
+    }
+    let edge = |i: usize, j: usize| {
+        let (dx, dy) = (s[j].0 - s[i].0, s[j].1 - s[i].1);
+        // Top-left rule (y down, inside on the right of i -> j): left edges go up, top edges
+        // run right; pixels exactly on other edges belong to the neighbour.
+        let top_left = dy < 0.0 || (dy == 0.0 && dx > 0.0);
+        Edge {
+            a: -SUB * dy,
+            b: SUB * dx,
+            c: dx * (half - s[i].1) - dy * (half - s[i].0) - if top_left { 0.0 } else { 1.0 },
+        }
+    };
+    out.push(ScreenTri {
+        edges: [edge(0, 1), edge(1, 2), edge(2, 0)],
+        x0: x0 as i32,
+        x1: x1 as i32,
+        y0: y0 as i32,
+        y1: y1 as i32,
+        za: plane[0],
+        zb: plane[1],
+        zc: plane[2],
+        zlo,
+        zhi,
+        tag,
+    });
+}
+
+/// Fill rows `y0..y1` (the buffers hold exactly those rows) with the nearest triangle per pixel.
+fn raster<const IDS: bool>(
+    w: usize,
+    y0: usize,
+    y1: usize,
+    tris: &[ScreenTri],
+    zbuf: &mut [f32],
+    ids: &mut [u32],
+) {
+    let (by0, by1) = (y0 as i32, y1 as i32 - 1);
+    for t in tris {
+        let (ya, yb) = (t.y0.max(by0), t.y1.min(by1));
+        if ya > yb {
+            continue;
+        }
+        for y in ya..=yb {
+            let yf = y as f64;
+            let (mut lo, mut hi) = (t.x0 as f64, t.x1 as f64);
+            let mut empty = false;
+            for e in &t.edges {
+                let er = e.b * yf + e.c;
+                if e.a > 0.0 {
+                    lo = lo.max((-er / e.a).ceil());
+                } else if e.a < 0.0 {
+                    hi = hi.min((er / -e.a).floor());
+                } else if er < 0.0 {
+                    empty = true;
+                }
+            }
+            if empty || lo > hi {
+                continue;
+            }
+            let (lo, hi) = (lo as usize, hi as usize);
+            let row = (y as usize - y0) * w;
+            let zr = t.zb * y as f32 + t.zc;
+            let zs = &mut zbuf[row + lo..=row + hi];
+            if IDS {
+                let is = &mut ids[row + lo..=row + hi];
+                for (k, (z, id)) in zs.iter_mut().zip(is.iter_mut()).enumerate() {
+                    let v = (zr + t.za * (lo + k) as f32).max(t.zlo).min(t.zhi);
+                    if v > *z {
+                        *z = v;
+                        *id = t.tag;
+                    }
+                }
+            } else {
+                for (k, z) in zs.iter_mut().enumerate() {
+                    let v = (zr + t.za * (lo + k) as f32).max(t.zlo).min(t.zhi);
+                    if v > *z {
+                        *z = v;
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Whether triangles (corner triples) form closed surfaces with outward winding: every
+/// directed edge is matched by its reverse, and each connected piece encloses positive volume.
+/// Corners are compared bit for bit (the shared triangulation repeats them exactly).
+fn closed_outward(pos: &[Vec3]) -> bool {
+    if pos.is_empty() {
+        return false;
+    }
+    let mut index: HashMap<[u32; 3], usize> = HashMap::new();
+    let vid: Vec<usize> = pos
+        .iter()
+        .map(|p| {
+            let key = p.to_array().map(|c| (c + 0.0).to_bits());
+            let next = index.len();
+            *index.entry(key).or_insert(next)
+        })
+        .collect();
+    // Balance of directed edges: +1 for (a, b) with a < b, -1 for (b, a).
+    let mut balance: HashMap<(usize, usize), i64> = HashMap::new();
+    for t in vid.chunks_exact(3) {
+        for (i, j) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
+            if i == j {
+                return false;
+            }
+            let (k, s) = if i < j { ((i, j), 1) } else { ((j, i), -1) };
+            *balance.entry(k).or_insert(0) += s;
+        }
+    }
+    if balance.values().any(|b| *b != 0) {
+        return false;
+    }
+    // Connected pieces (union-find over shared corners) and their signed volumes.
+    let mut parent: Vec<usize> = (0..index.len()).collect();
+    fn find(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    for t in vid.chunks_exact(3) {
+        for k in 1..3 {
+            let (a, b) = (find(&mut parent, t[0]), find(&mut parent, t[k]));
+            parent[a] = b;
+        }
+    }
+    let mut volume = vec![0.0f64; index.len()];
+    let origin = pos[0].as_dvec3();
+    for (t, c) in vid.chunks_exact(3).zip(pos.chunks_exact(3)) {
+        let [a, b, cc] = [0, 1, 2].map(|k| c[k].as_dvec3() - origin);
+        volume[find(&mut parent, t[0])] += a.dot(b.cross(cc));
+    }
+    (0..index.len())
+        .filter(|&i| find(&mut parent, i) == i)
+        .all(|r| volume[r] > 0.0)
+}
+
+/// The CPU rasteriser backend of [`Renderer`] (see the [module docs](self)): exact against the
+/// ray caster up to silhouette pixels, and the fastest backend on machines without a GPU.
+#[derive(Default)]
+pub struct RasterRenderer {
+    scene: Option<Arc<RasterScene>>,
+}
+
+impl RasterRenderer {
+    /// A renderer with no scene yet.
+    pub fn new() -> Self {
+        RasterRenderer::default()
+    }
+
+    /// The prepared scene, once set.
+    pub fn scene(&self) -> Option<&Arc<RasterScene>> {
+        self.scene.as_ref()
+    }
+}
+
+impl Renderer for RasterRenderer {
+    fn name(&self) -> &'static str {
+        "raster"
+    }
+
+    fn set_scene(&mut self, mesh: Arc<SceneMesh>) -> Result<()> {
+        self.scene = Some(Arc::new(RasterScene::new(mesh)));
+        Ok(())
+    }
+
+    fn render(&mut self, views: &[View]) -> Result<Vec<Frame>> {
+        let scene = self.scene.as_ref().ok_or(SensorError::NoScene)?;
+        // Enough pieces of work to keep every thread busy: whole views for big batches, bands
+        // of rows for small ones.
+        let threads = rayon::current_num_threads();
+        let bands = (2 * threads).div_ceil(views.len().max(1)).max(1);
+        if views.len() == 1 {
+            return Ok(vec![scene.render_view(&views[0], bands)]);
+        }
+        Ok(views
+            .par_iter()
+            .map(|v| scene.render_view(v, bands))
+            .collect())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cube() -> Vec<Vec3> {
+        let s = vlnverse_env::Shape::Cuboid {
+            half_extents: [0.5, 1.0, 0.25],
+        };
+        let m = vlnverse_env::geometry::triangulate(&s);
+        m.indices
+            .iter()
+            .flat_map(|t| t.map(|i| Vec3::from_array(m.positions[i as usize])))
+            .collect()
+    }
+
+    #[test]
+    fn closed_outward_accepts_boxes_and_rejects_open_or_inverted_ones() {
+        let c = cube();
+        assert!(closed_outward(&c));
+        // Two boxes side by side (two pieces) are still closed.
+        let two: Vec<Vec3> = c
+            .iter()
+            .copied()
+            .chain(c.iter().map(|p| *p + Vec3::X * 3.0))
+            .collect();
+        assert!(closed_outward(&two));
+        // A missing triangle opens it; flipped winding turns it inside out.
+        assert!(!closed_outward(&c[3..]));
+        let flipped: Vec<Vec3> = c.chunks(3).flat_map(|t| [t[0], t[2], t[1]]).collect();
+        assert!(!closed_outward(&flipped));
+    }
+
+    #[test]
+    fn adjacent_triangles_cover_each_pixel_exactly_once() {
+        // A fan of triangles around a centre that falls on pixel centres and edges: with the
+        // top-left rule every covered pixel is written by exactly one triangle.
+        let cam = Camera::new(&vlnverse_env::Pose::IDENTITY, 32, 32, 1.2, 0.05, 10.0);
+        let p = ViewParams::new(&cam);
+        let ring: Vec<Vec3> = (0..7)
+            .map(|i| {
+                let a = i as f32 * std::f32::consts::TAU / 7.0;
+                Vec3::new(a.cos() * 2.0, a.sin() * 2.0, -3.0)
+            })
+            .collect();
+        let centre = Vec3::new(0.0, 0.0, -3.0);
+        let mut tris = Vec::new();
+        for i in 0..7 {
+            let tri = [centre, ring[i], ring[(i + 1) % 7]];
+            emit(&p, tri, [0.0, 0.0, 0.5], i as u32 + 1, &mut tris);
+        }
+        let mut count = vec![0u32; 32 * 32];
+        for t in &tris {
+            let mut z = vec![0.0f32; 32 * 32];
+            let mut ids = vec![0u32; 32 * 32];
+            raster::<true>(32, 0, 32, std::slice::from_ref(t), &mut z, &mut ids);
+            for (c, id) in count.iter_mut().zip(&ids) {
+                *c += (*id != 0) as u32;
+            }
+        }
+        assert!(count.iter().all(|c| *c <= 1), "a pixel was filled twice");
+        // The heptagon covers the whole centre of the image.
+        for v in 8..24 {
+            for u in 8..24 {
+                assert_eq!(count[v * 32 + u], 1, "pixel ({u}, {v})");
+            }
+        }
+    }
+}
