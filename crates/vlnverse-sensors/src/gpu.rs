@@ -835,10 +835,10 @@ mod tests {
         let s = shader_source(1 << DEPTH | 1 << ID);
         assert!(s.contains("@location(0) depth: u32"));
         assert!(s.contains("@location(1) id: u32"));
-        assert!(!s.contains("o.color ="));
+        assert!(!s.contains("o.color = i.color"));
         let s = shader_source(1 << COLOR);
         assert!(s.contains("@location(0) color: vec4<f32>"));
-        assert!(!s.contains("o.depth =") && !s.contains("o.id ="));
+        assert!(!s.contains("o.depth = bitcast") && !s.contains("o.id = i.id"));
     }
 
     /// Views that ask for different channels (so land in different passes and atlas tiles)
@@ -925,7 +925,8 @@ mod tests {
                     f.depth
                         .iter()
                         .zip(&one.depth)
-                        .filter(|(a, b)| a == b)
+                        // Interpolation may round differently per tile: a few ulps.
+                        .filter(|(a, b)| (*a - *b).abs() <= 1e-5 * b.max(1.0))
                         .count(),
                     "depth",
                 );

@@ -78,13 +78,3 @@ fn generated_home_builds_a_physics_world() {
         assert_eq!(o.physics.motion, vlnverse_env::Motion::Dynamic);
     }
 }
-
-#[test]
-fn dbg_forward_casts() {
-    let scene = home();
-    let cfg = SimConfig { setting: CollisionSetting::Lenient, ..Default::default() };
-    let mut sim = RapierSimulator::new(cfg.clone()).unwrap();
-    let start = free_start(&scene, &mut sim, 1);
-    sim.reset(&scene, start).unwrap();
-    for _ in 0..30 { sim.step(Action::forward(&cfg.agent)).unwrap(); }
-}

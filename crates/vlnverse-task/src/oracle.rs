@@ -384,9 +384,7 @@ impl ShortestPathOracle {
             .objects
             .iter()
             .filter(|o| !o.is_structure() && self.graph.object(o.id).is_some())
-            .filter(|o| {
-                normalize(&o.name) == q || o.class.words() == q || object_words(o) == q
-            })
+            .filter(|o| normalize(&o.name) == q || o.class.words() == q || object_words(o) == q)
             .collect()
     }
 

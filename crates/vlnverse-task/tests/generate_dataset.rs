@@ -202,8 +202,31 @@ fn grounded_objects_exist_with_their_class() {
                 path: &ep.reference_path,
                 start_yaw: start_yaw(ep.start_rotation),
             };
-            let problems = check_grounding(&ctx, &ep.instruction, 2.5);
-            assert!(problems.is_empty(), "{task} {}: {problems:?}", ep.episode_id);
+            if task != Task::LongHorizon {
+                let problems = check_grounding(&ctx, &ep.instruction, 2.5);
+                assert!(problems.is_empty(), "{task} {}: {problems:?}", ep.episode_id);
+                continue;
+            }
+            // Long-horizon: each mention is checked on its own leg, which ends at a sub-goal.
+            let ends: Vec<usize> = ep
+                .sub_goals
+                .iter()
+                .map(|g| ep.reference_path.iter().position(|p| *p == g.position).unwrap())
+                .collect();
+            for g in &ep.instruction.grounding {
+                let i = g.path_index.unwrap_or(0) as usize;
+                let end = *ends.iter().find(|&&e| e >= i).unwrap();
+                let leg = PathContext {
+                    path: &ep.reference_path[..=end],
+                    ..ctx
+                };
+                let one = vlnverse_task::Instruction {
+                    grounding: vec![g.clone()],
+                    ..Default::default()
+                };
+                let problems = check_grounding(&leg, &one, 2.5);
+                assert!(problems.is_empty(), "{task} {}: {problems:?}", ep.episode_id);
+            }
         }
     }
 }

@@ -20,7 +20,10 @@ fn oracle(w: &World, goal: Vec2, budget: u32) -> ShortestPathOracle {
         Arc::new(w.maps.navigable.clone()),
         [goal.x, 0.0, goal.y],
         None,
-        OracleConfig { budget, ..Default::default() },
+        OracleConfig {
+            budget,
+            ..Default::default()
+        },
     )
     .unwrap()
 }
@@ -32,7 +35,11 @@ fn p3(p: Vec2) -> [f32; 3] {
 /// The first waypoint of the true path at least 0.3 m from the start.
 fn next_waypoint(w: &World, a: Vec2, b: Vec2) -> (Vec2, f32) {
     let path = shortest_path(&w.maps.navigable, a, b).unwrap().unwrap();
-    let wp = *path.points.iter().find(|q| q.distance(a) >= 0.3).unwrap_or(&b);
+    let wp = *path
+        .points
+        .iter()
+        .find(|q| q.distance(a) >= 0.3)
+        .unwrap_or(&b);
     (wp, path.length)
 }
 
@@ -95,14 +102,20 @@ fn am_i_close_follows_the_geodesic_distance() {
         // Points along the path: start, middle of each segment, the goal.
         let mut probes = vec![b];
         for seg in s.path.windows(2) {
-            let (p, q) = (Vec2::new(seg[0][0], seg[0][2]), Vec2::new(seg[1][0], seg[1][2]));
+            let (p, q) = (
+                Vec2::new(seg[0][0], seg[0][2]),
+                Vec2::new(seg[1][0], seg[1][2]),
+            );
             probes.push(p);
             probes.push(p.lerp(q, 0.5));
         }
         for p in probes {
             let mut o = oracle(w, b, 5);
             let ans = o.ask(&OracleQuery::AmIClose, p3(p), 0.0).unwrap();
-            let d = shortest_path(&w.maps.navigable, p, b).unwrap().unwrap().length;
+            let d = shortest_path(&w.maps.navigable, p, b)
+                .unwrap()
+                .unwrap()
+                .length;
             assert!((ans.distance_m.unwrap() - d).abs() < 1e-3);
             let t = ans.text.to_lowercase();
             let bucket = if d <= 0.5 {
@@ -123,7 +136,10 @@ fn am_i_close_follows_the_geodesic_distance() {
             };
             seen[bucket] = true;
             if bucket >= 2 {
-                assert!(t.contains(&format!("{} metres", d.round() as u32)), "{d}: {t}");
+                assert!(
+                    t.contains(&format!("{} metres", d.round() as u32)),
+                    "{d}: {t}"
+                );
             }
         }
     }
@@ -141,14 +157,21 @@ fn where_is_names_the_object_its_place_and_side() {
             let mut orc = oracle(w, b, 100);
             let yaw = 0.7 * asked as f32;
             let ans = orc
-                .ask(&OracleQuery::WhereIs(format!("the {}", o.class.words())), p3(a), yaw)
+                .ask(
+                    &OracleQuery::WhereIs(format!("the {}", o.class.words())),
+                    p3(a),
+                    yaw,
+                )
                 .unwrap();
             assert!(ans.answered, "{}", ans.text);
             let id = ans.object_id.unwrap();
             let found = w.scene.object(id).unwrap();
             assert_eq!(found.class, o.class);
             let c = found.bbox.center();
-            assert_eq!(ans.side, Some(env_side(side_of(a, yaw, Vec2::new(c.x, c.z)))));
+            assert_eq!(
+                ans.side,
+                Some(env_side(side_of(a, yaw, Vec2::new(c.x, c.z))))
+            );
             assert!(ans.text.contains(&found.class.words()), "{}", ans.text);
             let side_words = match ans.side.unwrap() {
                 Side::Ahead => "ahead",
@@ -160,7 +183,11 @@ fn where_is_names_the_object_its_place_and_side() {
             if let Some(r) = w.graph.room_of(id) {
                 let here = w.scene.room_at(a.x, a.y).map(|r| r.id);
                 if here != Some(r) {
-                    assert!(ans.text.contains(&w.scene.room(r).unwrap().kind.words()), "{}", ans.text);
+                    assert!(
+                        ans.text.contains(&w.scene.room(r).unwrap().kind.words()),
+                        "{}",
+                        ans.text
+                    );
                 }
             }
             // Of several objects with that class, the nearest one is described.
@@ -180,11 +207,23 @@ fn where_is_names_the_object_its_place_and_side() {
         }
         // Unknown things and rooms.
         let mut orc = oracle(w, b, 100);
-        let ans = orc.ask(&OracleQuery::WhereIs("spaceship".into()), p3(a), 0.0).unwrap();
-        assert!(!ans.answered && ans.text.contains("spaceship"), "{}", ans.text);
+        let ans = orc
+            .ask(&OracleQuery::WhereIs("spaceship".into()), p3(a), 0.0)
+            .unwrap();
+        assert!(
+            !ans.answered && ans.text.contains("spaceship"),
+            "{}",
+            ans.text
+        );
         let room = &w.scene.rooms[0];
-        let ans = orc.ask(&OracleQuery::WhereIs(room.kind.words()), p3(a), 0.0).unwrap();
-        assert!(ans.answered && ans.text.contains(&room.kind.words()), "{}", ans.text);
+        let ans = orc
+            .ask(&OracleQuery::WhereIs(room.kind.words()), p3(a), 0.0)
+            .unwrap();
+        assert!(
+            ans.answered && ans.text.contains(&room.kind.words()),
+            "{}",
+            ans.text
+        );
     }
     assert!(asked >= 50, "{asked}");
 }
@@ -194,10 +233,18 @@ fn where_is_prefers_the_episode_target() {
     let w = &worlds(1)[0];
     // A class with at least two objects: the target is described even when farther away.
     let mut classes = std::collections::BTreeMap::new();
-    for o in w.scene.objects.iter().filter(|o| !o.is_structure() && w.graph.object(o.id).is_some()) {
+    for o in w
+        .scene
+        .objects
+        .iter()
+        .filter(|o| !o.is_structure() && w.graph.object(o.id).is_some())
+    {
         classes.entry(o.class).or_insert_with(Vec::new).push(o.id);
     }
-    let (class, ids) = classes.iter().find(|(_, v)| v.len() >= 2).expect("a repeated class");
+    let (class, ids) = classes
+        .iter()
+        .find(|(_, v)| v.len() >= 2)
+        .expect("a repeated class");
     let s = &paths(w, 1, 5)[0];
     let a = Vec2::new(s.path[0][0], s.path[0][2]);
     for &target in ids {
@@ -210,7 +257,9 @@ fn where_is_prefers_the_episode_target() {
             OracleConfig::default(),
         )
         .unwrap();
-        let ans = o.ask(&OracleQuery::WhereIs(class.words()), p3(a), 0.0).unwrap();
+        let ans = o
+            .ask(&OracleQuery::WhereIs(class.words()), p3(a), 0.0)
+            .unwrap();
         assert_eq!(ans.object_id, Some(target));
     }
 }
@@ -226,7 +275,15 @@ fn budget_is_enforced_and_reveals_nothing_after() {
     let queries = [
         OracleQuery::WhichWay,
         OracleQuery::AmIClose,
-        OracleQuery::WhereIs(w.scene.objects.iter().find(|o| !o.is_structure()).unwrap().class.words()),
+        OracleQuery::WhereIs(
+            w.scene
+                .objects
+                .iter()
+                .find(|o| !o.is_structure())
+                .unwrap()
+                .class
+                .words(),
+        ),
     ];
     for (k, q) in queries.iter().enumerate() {
         let ans = o.ask(q, p3(a), 0.0).unwrap();
@@ -238,7 +295,12 @@ fn budget_is_enforced_and_reveals_nothing_after() {
         let ans = o.ask(q, p3(a), 0.0).unwrap();
         assert!(!ans.answered);
         assert_eq!(ans.remaining, 0);
-        assert!(ans.turn.is_none() && ans.distance_m.is_none() && ans.object_id.is_none() && ans.side.is_none());
+        assert!(
+            ans.turn.is_none()
+                && ans.distance_m.is_none()
+                && ans.object_id.is_none()
+                && ans.side.is_none()
+        );
         assert!(ans.text.contains("all 3"), "{}", ans.text);
         // No number (a distance) leaks into the text besides the budget.
         assert!(!ans.text.contains("metre"));
@@ -265,7 +327,9 @@ fn budget_is_enforced_and_reveals_nothing_after() {
     )
     .unwrap();
     assert_eq!(e.remaining(), 2);
-    let first = e.ask(&OracleQuery::AmIClose, ep.start_position, 0.0).unwrap();
+    let first = e
+        .ask(&OracleQuery::AmIClose, ep.start_position, 0.0)
+        .unwrap();
     assert!(first.answered);
 }
 
@@ -288,9 +352,15 @@ fn answers_are_deterministic_and_the_oracle_moves_across_threads() {
 fn bad_input_is_an_error_that_names_the_field() {
     let w = &worlds(1)[0];
     let mut o = oracle(w, Vec2::ZERO, 5);
-    let e = o.ask(&OracleQuery::AmIClose, [f32::NAN, 0.0, 0.0], 0.0).unwrap_err().to_string();
+    let e = o
+        .ask(&OracleQuery::AmIClose, [f32::NAN, 0.0, 0.0], 0.0)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("position"), "{e}");
-    let e = o.ask(&OracleQuery::AmIClose, [0.0, 0.0, 0.0], f32::INFINITY).unwrap_err().to_string();
+    let e = o
+        .ask(&OracleQuery::AmIClose, [0.0, 0.0, 0.0], f32::INFINITY)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("yaw"), "{e}");
     assert_eq!(o.remaining(), 5, "invalid questions use no budget");
     let e = ShortestPathOracle::new(
@@ -299,7 +369,10 @@ fn bad_input_is_an_error_that_names_the_field() {
         Arc::new(w.maps.navigable.clone()),
         [0.0, 0.0, 0.0],
         None,
-        OracleConfig { buckets_m: [3.0, 1.0, 6.0], ..Default::default() },
+        OracleConfig {
+            buckets_m: [3.0, 1.0, 6.0],
+            ..Default::default()
+        },
     )
     .unwrap_err()
     .to_string();

@@ -453,12 +453,19 @@ impl<G: InstructionGenerator> LlmGenerator<G> {
         Ok(parse_verdict(&reply))
     }
 
-    fn refine(&self, base: Instruction, system: &str, user: String, seed: u64) -> Result<Instruction> {
+    fn refine(
+        &self,
+        base: Instruction,
+        system: &str,
+        user: String,
+        seed: u64,
+    ) -> Result<Instruction> {
         let policy = self.client.config.on_reject;
         let attempt = (|| -> Result<std::result::Result<String, String>> {
-            let candidate = self
-                .client
-                .chat(&[ChatMessage::system(system), ChatMessage::user(user)], seed)?;
+            let candidate = self.client.chat(
+                &[ChatMessage::system(system), ChatMessage::user(user)],
+                seed,
+            )?;
             if self.client.config.verify {
                 let v = self.verify(&base, &candidate, seed)?;
                 if !v.accepted {
