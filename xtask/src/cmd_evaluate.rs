@@ -63,7 +63,10 @@ fn config(args: &Args) -> anyhow::Result<EvalConfig> {
             "--setting {} disagrees with `setting = \"{}\"` in {}",
             args.setting,
             cfg.setting,
-            args.config.as_ref().map(|p| p.display().to_string()).unwrap_or_default()
+            args.config
+                .as_ref()
+                .map(|p| p.display().to_string())
+                .unwrap_or_default()
         );
     }
     cfg.setting = args.setting;

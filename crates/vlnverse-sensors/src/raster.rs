@@ -3,7 +3,7 @@
 //!
 //! Per view: objects outside the frustum are skipped (bounding boxes); the rest of the triangles
 //! go to camera space, are clipped against the near plane (and a wide guard band), projected
-//! with vertices snapped to 1/256 pixel, and filled with exact integer edge functions sampled at
+//! with vertices snapped to 1/4096 pixel, and filled with exact integer edge functions sampled at
 //! pixel centres `(x + 0.5, y + 0.5)` under the top-left rule, so neighbouring triangles neither
 //! leave cracks nor overlap. Depth is `1 / z` from the triangle's plane (linear in screen space)
 //! and is kept in the depth buffer; a resolve pass turns it into metres along the optical axis
@@ -26,14 +26,15 @@ use crate::shading;
 use glam::{DVec3, Mat3, Vec3};
 use rayon::prelude::*;
 use std::collections::HashMap;
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 use vlnverse_env::Aabb;
 
-/// Sub-pixel steps per pixel of snapped vertex coordinates.
-const SUB: f64 = 256.0;
-/// Projected vertices stay within this many pixels of the image (else they are clipped), which
-/// bounds the fixed-point edge functions well inside the exact range of `f64`.
-const GUARD: f32 = 16384.0;
+/// Projected vertices stay within `[-guard, guard]` pixels (else they are clipped); `guard` is at
+/// least this and twice the image size.
+const MIN_GUARD: f32 = 8192.0;
+/// Snapped coordinates `guard * sub` stay below `2^25` so that every edge function value is an
+/// integer below `2^53`, exact in `f64`.
+const MAX_FIXED: f64 = (1u64 << 25) as f64;
 /// Fewest rows per band when a view is split between threads.
 const MIN_BAND_ROWS: usize = 16;
 
@@ -66,6 +67,26 @@ pub struct RasterScene {
     /// Unit geometric normal per triangle (as [`SceneMesh::normal`]).
     normal: Vec<Vec3>,
     objects: Vec<ObjInfo>,
+    /// Reused depth and id buffers of views that do not return them (saves page faults).
+    spare_z: Mutex<Vec<Vec<f32>>>,
+    spare_ids: Mutex<Vec<Vec<u32>>>,
+}
+
+/// Take a buffer from a pool (or a new one) holding `n` copies of `v`.
+fn take<T: Copy>(pool: &Mutex<Vec<Vec<T>>>, n: usize, v: T) -> Vec<T> {
+    let mut b = pool.lock().ok().and_then(|mut p| p.pop()).unwrap_or_default();
+    b.clear();
+    b.resize(n, v);
+    b
+}
+
+/// Return a buffer to a pool (a few per thread are plenty).
+fn give<T>(pool: &Mutex<Vec<Vec<T>>>, b: Vec<T>) {
+    if let Ok(mut p) = pool.lock() {
+        if p.len() < 16 {
+            p.push(b);
+        }
+    }
 }
 
 /// One edge function `e(x, y) = a x + b y + c` over pixel indices; a pixel is inside when
@@ -107,6 +128,9 @@ struct ViewParams {
     cy: f32,
     near: f32,
     far: f32,
+    /// Guard band half-width in pixels and sub-pixel steps per pixel (a power of two).
+    guard: f32,
+    sub: f64,
     /// World to camera rotation and the camera position.
     rot: Mat3,
     pos: Vec3,
@@ -114,6 +138,7 @@ struct ViewParams {
 
 impl ViewParams {
     fn new(c: &Camera) -> Self {
+        let guard = MIN_GUARD.max(2.0 * c.width.max(c.height) as f32);
         ViewParams {
             w: c.width as usize,
             h: c.height as usize,
@@ -123,6 +148,8 @@ impl ViewParams {
             cy: c.cy(),
             near: c.near,
             far: c.far,
+            guard,
+            sub: (MAX_FIXED / guard as f64).log2().floor().exp2(),
             rot: Mat3::from_quat(c.rotation.normalize()).transpose(),
             pos: c.position,
         }
@@ -145,10 +172,10 @@ impl ViewParams {
         let (x, y, z) = (p.x, p.y, p.z);
         match k {
             0 => -z - self.near,
-            1 => self.fx * x - (GUARD + self.cx) * z,
-            2 => (GUARD - self.cx) * -z - self.fx * x,
-            3 => (GUARD + self.cy) * -z - self.fy * y,
-            _ => self.fy * y + (self.cy - GUARD) * z,
+            1 => self.fx * x - (self.guard + self.cx) * z,
+            2 => (self.guard - self.cx) * -z - self.fx * x,
+            3 => (self.guard + self.cy) * -z - self.fy * y,
+            _ => self.fy * y + (self.cy - self.guard) * z,
         }
     }
 }
@@ -202,6 +229,8 @@ impl RasterScene {
             info,
             normal,
             objects,
+            spare_z: Mutex::new(Vec::new()),
+            spare_ids: Mutex::new(Vec::new()),
         }
     }
 
@@ -226,8 +255,16 @@ impl RasterScene {
         let ids_needed = ch.rgb || ch.ids();
         let tris = self.setup(c, &p);
         let inv_far = 1.0 / p.far;
-        let mut zbuf = vec![inv_far; n];
-        let mut ids = if ids_needed { vec![0u32; n] } else { Vec::new() };
+        let mut zbuf = if ch.depth {
+            vec![inv_far; n]
+        } else {
+            take(&self.spare_z, n, inv_far)
+        };
+        let mut ids = match (ids_needed, ch.instance) {
+            (false, _) => Vec::new(),
+            (true, true) => vec![0u32; n],
+            (true, false) => take(&self.spare_ids, n, 0),
+        };
         let mut rgb = if ch.rgb { vec![0u8; 3 * n] } else { Vec::new() };
         let mut sem = if ch.semantic { vec![0u16; n] } else { Vec::new() };
         let rows = h.div_ceil(bands.clamp(1, h.div_ceil(MIN_BAND_ROWS).max(1)));
@@ -254,13 +291,27 @@ impl RasterScene {
         } else {
             work.into_par_iter().for_each(run);
         }
+        let depth = if ch.depth {
+            zbuf
+        } else {
+            give(&self.spare_z, zbuf);
+            Vec::new()
+        };
+        let instance = if ch.instance {
+            ids
+        } else {
+            if ids_needed {
+                give(&self.spare_ids, ids);
+            }
+            Vec::new()
+        };
         Frame {
             width: c.width,
             height: c.height,
             rgb,
-            depth: if ch.depth { zbuf } else { Vec::new() },
+            depth,
             semantic: sem,
-            instance: if ch.instance { ids } else { Vec::new() },
+            instance,
         }
     }
 
@@ -331,7 +382,7 @@ impl RasterScene {
 
         let in_guard = |q: &Vec3| {
             let (sx, sy, _) = p.project(*q);
-            sx.abs() < GUARD && sy.abs() < GUARD
+            sx.abs() < p.guard && sy.abs() < p.guard
         };
         if v.iter().all(|q| q.z <= nz) && v.iter().all(in_guard) {
             emit(p, [v[0], v[1], v[2]], plane, tag, out);
@@ -384,24 +435,33 @@ impl RasterScene {
         let (inv_far, far) = (1.0 / p.far, p.far);
         if want_depth {
             for z in zbuf.iter_mut() {
-                *z = if *z > inv_far { (1.0 / *z).min(far) } else { far };
+                let d = (1.0 / *z).min(far);
+                *z = if *z > inv_far { d } else { far };
             }
         }
         let Some(ids) = ids else { return };
-        for (i, id) in ids.iter_mut().enumerate() {
-            let info = match *id {
-                0 => None,
-                tag => Some((self.info[(tag as usize - 1) >> 1], (tag - 1) & 1)),
-            };
-            if let Some(rgb) = rgb.as_deref_mut() {
-                let px = info.map_or([0; 3], |(t, back)| t.rgb[back as usize]);
-                rgb[3 * i..3 * i + 3].copy_from_slice(&px);
+        if let Some(rgb) = rgb.as_deref_mut() {
+            for (px, id) in rgb.chunks_exact_mut(3).zip(ids.iter()) {
+                let c = match *id {
+                    0 => [0; 3],
+                    tag => self.info[(tag as usize - 1) >> 1].rgb[((tag - 1) & 1) as usize],
+                };
+                px.copy_from_slice(&c);
             }
-            if let Some(s) = semantic.as_deref_mut() {
-                s[i] = info.map_or(0, |(t, _)| t.class);
+        }
+        if let Some(sem) = semantic.as_deref_mut() {
+            for (s, id) in sem.iter_mut().zip(ids.iter()) {
+                *s = match *id {
+                    0 => 0,
+                    tag => self.info[(tag as usize - 1) >> 1].class,
+                };
             }
-            if want_instance {
-                *id = info.map_or(0, |(t, _)| t.object);
+        }
+        if want_instance {
+            for id in ids.iter_mut() {
+                if *id != 0 {
+                    *id = self.info[(*id as usize - 1) >> 1].object;
+                }
             }
         }
     }
@@ -451,13 +511,16 @@ fn clip(p: &ViewParams, poly: &Poly, k: usize) -> Poly {
 
 /// Project, snap and set up one triangle in front of the near plane.
 fn emit(p: &ViewParams, v: [Vec3; 3], plane: [f32; 3], tag: u32, out: &mut Vec<ScreenTri>) {
+    let sub = p.sub;
     let mut s = [(0.0f64, 0.0f64); 3];
     let (mut zlo, mut zhi) = (f32::INFINITY, 0.0f32);
     for (k, q) in v.iter().enumerate() {
-        let (sx, sy, iz) = p.project(*q);
-        s[k] = ((sx as f64 * SUB).round(), (sy as f64 * SUB).round());
-        zlo = zlo.min(iz);
-        zhi = zhi.max(iz);
+        let iz = 1.0 / -(q.z as f64);
+        let sx = p.cx as f64 + p.fx as f64 * q.x as f64 * iz;
+        let sy = p.cy as f64 - p.fy as f64 * q.y as f64 * iz;
+        s[k] = ((sx * sub).round(), (sy * sub).round());
+        zlo = zlo.min(iz as f32);
+        zhi = zhi.max(iz as f32);
     }
     let area = (s[1].0 - s[0].0) * (s[2].1 - s[0].1) - (s[1].1 - s[0].1) * (s[2].0 - s[0].0);
     if area == 0.0 {
@@ -466,14 +529,14 @@ fn emit(p: &ViewParams, v: [Vec3; 3], plane: [f32; 3], tag: u32, out: &mut Vec<S
     if area < 0.0 {
         s.swap(1, 2);
     }
-    let half = SUB * 0.5;
+    let half = sub * 0.5;
     let (xmin, xmax) = (s[0].0.min(s[1].0).min(s[2].0), s[0].0.max(s[1].0).max(s[2].0));
     let (ymin, ymax) = (s[0].1.min(s[1].1).min(s[2].1), s[0].1.max(s[1].1).max(s[2].1));
     // Pixels whose centres can be inside.
-    let x0 = ((xmin - half) / SUB).ceil().max(0.0);
-    let x1 = ((xmax - half) / SUB).floor().min(p.w as f64 - 1.0);
-    let y0 = ((ymin - half) / SUB).ceil().max(0.0);
-    let y1 = ((ymax - half) / SUB).floor().min(p.h as f64 - 1.0);
+    let x0 = ((xmin - half) / sub).ceil().max(0.0);
+    let x1 = ((xmax - half) / sub).floor().min(p.w as f64 - 1.0);
+    let y0 = ((ymin - half) / sub).ceil().max(0.0);
+    let y1 = ((ymax - half) / sub).floor().min(p.h as f64 - 1.0);
     if x0 > x1 || y0 > y1 {
         return;
     }
@@ -483,8 +546,8 @@ fn emit(p: &ViewParams, v: [Vec3; 3], plane: [f32; 3], tag: u32, out: &mut Vec<S
         // run right; pixels exactly on other edges belong to the neighbour.
         let top_left = dy < 0.0 || (dy == 0.0 && dx > 0.0);
         Edge {
-            a: -SUB * dy,
-            b: SUB * dx,
+            a: -sub * dy,
+            b: sub * dx,
             c: dx * (half - s[i].1) - dy * (half - s[i].0) - if top_left { 0.0 } else { 1.0 },
         }
     };
@@ -525,9 +588,9 @@ fn raster<const IDS: bool>(
             for e in &t.edges {
                 let er = e.b * yf + e.c;
                 if e.a > 0.0 {
-                    lo = lo.max((-er / e.a).ceil());
+                    lo = lo.max(fast_ceil(-er / e.a));
                 } else if e.a < 0.0 {
-                    hi = hi.min((er / -e.a).floor());
+                    hi = hi.min(fast_floor(er / -e.a));
                 } else if er < 0.0 {
                     empty = true;
                 }
@@ -537,26 +600,45 @@ fn raster<const IDS: bool>(
             }
             let (lo, hi) = (lo as usize, hi as usize);
             let row = (y as usize - y0) * w;
-            let zr = t.zb * y as f32 + t.zc;
+            let z0 = t.zb * y as f32 + t.zc + t.za * lo as f32;
             let zs = &mut zbuf[row + lo..=row + hi];
+            // Branch-free selects so that the compiler vectorises the span.
             if IDS {
                 let is = &mut ids[row + lo..=row + hi];
                 for (k, (z, id)) in zs.iter_mut().zip(is.iter_mut()).enumerate() {
-                    let v = (zr + t.za * (lo + k) as f32).max(t.zlo).min(t.zhi);
-                    if v > *z {
-                        *z = v;
-                        *id = t.tag;
-                    }
+                    let v = (z0 + t.za * k as i32 as f32).max(t.zlo).min(t.zhi);
+                    let m = v > *z;
+                    *id = if m { t.tag } else { *id };
+                    *z = if m { v } else { *z };
                 }
             } else {
                 for (k, z) in zs.iter_mut().enumerate() {
-                    let v = (zr + t.za * (lo + k) as f32).max(t.zlo).min(t.zhi);
-                    if v > *z {
-                        *z = v;
-                    }
+                    let v = (z0 + t.za * k as i32 as f32).max(t.zlo).min(t.zhi);
+                    *z = if v > *z { v } else { *z };
                 }
             }
         }
+    }
+}
+
+/// `ceil` and `floor` of span bounds (|v| < 2^53) without a libm call on baseline x86-64.
+#[inline]
+fn fast_ceil(v: f64) -> f64 {
+    let t = v as i64 as f64;
+    if t < v {
+        t + 1.0
+    } else {
+        t
+    }
+}
+
+#[inline]
+fn fast_floor(v: f64) -> f64 {
+    let t = v as i64 as f64;
+    if t > v {
+        t - 1.0
+    } else {
+        t
     }
 }
 

@@ -65,6 +65,7 @@ fn raster_and_raycast_agree_per_pixel_on_generated_homes() {
     let mut raster = RasterRenderer::new();
     let mut cpu = RaycastRenderer::new();
     let (mut depth_bad, mut id_bad, mut rgb_bad, mut pixels) = (0usize, 0usize, 0usize, 0usize);
+    let mut seen = 0usize;
     let mut worst: f64 = 0.0;
     for (seed, scene) in test_scenes().iter().enumerate() {
         let mesh = Arc::new(SceneMesh::new(scene).unwrap());
@@ -83,7 +84,7 @@ fn raster_and_raycast_agree_per_pixel_on_generated_homes() {
         let r = raster.render(&views).unwrap();
         let c = cpu.render(&views).unwrap();
         for (a, b) in r.iter().zip(&c) {
-            assert!(a.depth.iter().any(|d| *d < 9.0), "a trivial image");
+            seen += a.instance.iter().filter(|i| **i != 0).count();
             let (d, i, g) = compare(a, b);
             worst = worst.max(d as f64 / a.pixels() as f64);
             depth_bad += d;
@@ -106,6 +107,8 @@ fn raster_and_raycast_agree_per_pixel_on_generated_homes() {
         f(id_bad),
         f(rgb_bad)
     );
+    // The images are not trivial: most pixels see something (homes may have no ceiling).
+    assert!(f(seen) > 0.5, "only {seen} of {pixels} pixels see geometry");
     // Only silhouette pixels may differ (the two sample the same pixel centres).
     assert!(f(depth_bad) < 1e-3, "depth off on {depth_bad} of {pixels}");
     assert!(worst < 5e-3, "worst view has {worst} of its pixels off");
@@ -145,6 +148,7 @@ fn near_plane_clipping_and_culling_match_the_ray_caster_close_to_walls() {
 #[test]
 fn centre_pixel_sees_the_object_the_centre_ray_hits() {
     let mut raster = RasterRenderer::new();
+    let mut hits = 0;
     for (seed, scene) in test_scenes().iter().enumerate() {
         let mesh = Arc::new(SceneMesh::new(scene).unwrap());
         let rc = SceneRaycaster::new(mesh.clone()).unwrap();
@@ -157,15 +161,20 @@ fn centre_pixel_sees_the_object_the_centre_ray_hits() {
             .collect();
         for (v, f) in views.iter().zip(raster.render(&views).unwrap()) {
             let c = &v.camera;
-            let hit = rc
-                .cast(c.position, c.forward(), c.far)
-                .expect("a closed home");
             let i = f.index(32, 32);
-            assert_eq!(f.instance[i], hit.object);
-            assert_eq!(f.semantic[i], mesh.class(hit.object));
-            assert!((f.depth[i] - hit.distance).abs() < 0.01);
+            // Generated homes may be open to the sky: a miss is nothing at the far plane.
+            match rc.cast(c.position, c.forward(), c.far) {
+                Some(hit) => {
+                    assert_eq!(f.instance[i], hit.object);
+                    assert_eq!(f.semantic[i], mesh.class(hit.object));
+                    assert!((f.depth[i] - hit.distance).abs() < 0.01);
+                    hits += 1;
+                }
+                None => assert_eq!((f.instance[i], f.depth[i]), (0, c.far)),
+            }
         }
     }
+    assert!(hits > 60, "only {hits} centre rays hit");
 }
 
 #[test]

@@ -96,7 +96,7 @@ impl PhysicsScene {
             let pose = to_iso(&o.pose);
             let user = o.id as u128;
             // Floors and anything the agent drives over never block a horizontal move; keeping
-            // them out of the agent's queries saves most of the controller's contact work.
+            // them out of the agent's queries keeps every shape cast and overlap test short.
             let ground = o.class == SemanticClass::Floor
                 || o.bbox.max[1] < scene.floor_height + agent.ground_clearance;
             let groups = if ground { GROUND } else { SOLID };

@@ -3,6 +3,8 @@
 //! [`ShortestPathOracle`] (the default) answers deterministically from the true remaining path
 //! (the geodesic shortest path from the agent to the goal on the navigable map), the scene graph
 //! and distance buckets. Once the budget is spent every answer says so and reveals nothing.
+//! [`LlmOracle`] (optional) rephrases another oracle's answers through an OpenAI-compatible chat
+//! endpoint ([`crate::instructions::llm::ChatClient`]).
 //!
 //! ```no_run
 //! # use std::sync::Arc;
@@ -520,5 +522,82 @@ impl Oracle for ShortestPathOracle {
 
     fn remaining(&self) -> u32 {
         self.config.budget.saturating_sub(self.asked)
+    }
+}
+
+/// System prompt of the [`LlmOracle`].
+pub const ORACLE_PROMPT: &str = "You are the guide of a robot that navigates a home and may \
+ask you a few questions. You get the robot's question and the true answer, computed from the \
+map. Reply to the robot as a helpful person would, in one or two short sentences, keeping every \
+direction (left, right, ahead, behind, turn around), every distance, every object, colour and \
+room of the true answer. Add nothing that is not in the true answer and never mention maps, \
+coordinates or ids.";
+
+/// An oracle that rephrases the answers of another one (usually the [`ShortestPathOracle`])
+/// with an LLM. The inner oracle keeps the budget; answers without information (budget spent,
+/// unknown object) are passed on as they are, so nothing is revealed once the budget is spent. A
+/// failed call keeps the inner answer ([`crate::instructions::llm::OnReject::Fallback`]) or is
+/// an error ([`crate::instructions::llm::OnReject::Error`]).
+#[derive(Debug)]
+pub struct LlmOracle<O> {
+    inner: O,
+    client: crate::instructions::llm::ChatClient,
+    seed: u64,
+}
+
+impl<O: Oracle> LlmOracle<O> {
+    /// Wrap `inner`; `seed` is sent with every request.
+    pub fn new(inner: O, config: crate::instructions::llm::LlmConfig, seed: u64) -> Result<Self> {
+        Ok(LlmOracle {
+            inner,
+            client: crate::instructions::llm::ChatClient::new(config)?,
+            seed,
+        })
+    }
+
+    /// The wrapped oracle.
+    pub fn inner(&self) -> &O {
+        &self.inner
+    }
+}
+
+fn query_words(q: &OracleQuery) -> String {
+    match q {
+        OracleQuery::WhichWay => "Which way should I go?".into(),
+        OracleQuery::WhereIs(x) => format!("Where is the {}?", normalize(x)),
+        OracleQuery::AmIClose => "Am I close?".into(),
+    }
+}
+
+impl<O: Oracle> Oracle for LlmOracle<O> {
+    fn ask(&mut self, query: &OracleQuery, position: [f32; 3], yaw: f32) -> Result<OracleAnswer> {
+        use crate::instructions::llm::{ChatMessage, OnReject};
+        let ans = self.inner.ask(query, position, yaw)?;
+        if !ans.answered {
+            return Ok(ans);
+        }
+        let reply = self.client.chat(
+            &[
+                ChatMessage::system(ORACLE_PROMPT),
+                ChatMessage::user(format!(
+                    "Question: {}\nTrue answer: {}\nYour reply:",
+                    query_words(query),
+                    ans.text
+                )),
+            ],
+            self.seed,
+        );
+        match (reply, self.client.config().on_reject) {
+            (Ok(text), _) => Ok(OracleAnswer { text, ..ans }),
+            (Err(e), OnReject::Fallback) => {
+                tracing::warn!(error = %e, "LLM oracle call failed; keeping the plain answer");
+                Ok(ans)
+            }
+            (Err(e), OnReject::Error) => Err(e),
+        }
+    }
+
+    fn remaining(&self) -> u32 {
+        self.inner.remaining()
     }
 }

@@ -38,18 +38,46 @@ fn oracle_succeeds_in_telhop_and_strict_is_reported() {
         (Setting::Telhop, ActionSpace::Waypoint),
         (Setting::Telhop, ActionSpace::Discrete),
     ] {
-        let out = evaluate(&request(dir.path(), &format!("{setting}_{}", space.name()), setting, space), &*oracle, &|| {})
-            .unwrap();
+        let out = evaluate(
+            &request(
+                dir.path(),
+                &format!("{setting}_{}", space.name()),
+                setting,
+                space,
+            ),
+            &*oracle,
+            &|| {},
+        )
+        .unwrap();
         let s = &out.summary.summary;
-        eprintln!("oracle {setting} {}: SR {:.3} SPL {:.3} nDTW {:.3} steps {:.1}", space.name(), s.sr, s.spl, s.ndtw, s.steps);
+        eprintln!(
+            "oracle {setting} {}: SR {:.3} SPL {:.3} nDTW {:.3} steps {:.1}",
+            space.name(),
+            s.sr,
+            s.spl,
+            s.ndtw,
+            s.steps
+        );
         assert_eq!(s.episodes, eps.len());
-        assert!(s.sr >= 0.99, "oracle SR {} in {setting}/{}", s.sr, space.name());
+        assert!(
+            s.sr >= 0.99,
+            "oracle SR {} in {setting}/{}",
+            s.sr,
+            space.name()
+        );
         assert!(s.spl > 0.8, "oracle SPL {}", s.spl);
     }
-    let out = evaluate(&request(dir.path(), "strict", Setting::Strict, ActionSpace::Discrete), &*oracle, &|| {})
-        .unwrap();
+    let out = evaluate(
+        &request(dir.path(), "strict", Setting::Strict, ActionSpace::Discrete),
+        &*oracle,
+        &|| {},
+    )
+    .unwrap();
     let s = &out.summary.summary;
-    eprintln!("oracle strict discrete: SR {:.3} SPL {:.3} CR {:.4} collisions {:.2}", s.sr, s.spl, s.cr, s.collisions);
+    eprintln!(
+        "oracle strict discrete: SR {:.3} SPL {:.3} CR {:.4} collisions {:.2}",
+        s.sr, s.spl, s.cr, s.collisions
+    );
     assert!(s.sr > 0.5, "oracle SR in Strict {}", s.sr);
 }
 
@@ -61,9 +89,17 @@ fn baselines_fail_and_summary_is_the_mean_of_episodes() {
     let mut srs = Vec::new();
     for name in ["random", "stop", "forward"] {
         let f = builtin(name, None, &cfg).unwrap();
-        let out = evaluate(&request(dir.path(), name, Setting::Lenient, ActionSpace::Discrete), &*f, &|| {}).unwrap();
+        let out = evaluate(
+            &request(dir.path(), name, Setting::Lenient, ActionSpace::Discrete),
+            &*f,
+            &|| {},
+        )
+        .unwrap();
         let s = &out.summary.summary;
-        eprintln!("{name} lenient: SR {:.3} SPL {:.3} NE {:?} CR {:.3}", s.sr, s.spl, s.ne, s.cr);
+        eprintln!(
+            "{name} lenient: SR {:.3} SPL {:.3} NE {:?} CR {:.3}",
+            s.sr, s.spl, s.ne, s.cr
+        );
         assert_eq!(s.episodes, eps.len());
         srs.push(s.sr);
         // summary.json holds plain means of the per-episode rows.
@@ -89,10 +125,19 @@ fn baselines_fail_and_summary_is_the_mean_of_episodes() {
         }
         let csv = std::fs::read_to_string(dir.path().join(name).join("episodes.csv")).unwrap();
         assert_eq!(csv.lines().count(), eps.len() + 1);
-        let trajs = std::fs::read_to_string(dir.path().join(name).join("trajectories.jsonl")).unwrap();
+        let trajs =
+            std::fs::read_to_string(dir.path().join(name).join("trajectories.jsonl")).unwrap();
         assert_eq!(trajs.lines().count(), eps.len());
         assert!(dir.path().join(name).join("report.md").is_file());
-        assert!(dir.path().join(name).join("plots").read_dir().unwrap().count() >= 1);
+        assert!(
+            dir.path()
+                .join(name)
+                .join("plots")
+                .read_dir()
+                .unwrap()
+                .count()
+                >= 1
+        );
     }
     // Random walks and walking straight rarely end within 3 m of a goal 4-14 m away.
     assert!(srs[0] <= 0.35, "random SR {}", srs[0]);
@@ -143,8 +188,16 @@ fn semantic_agent_finds_named_objects_without_the_goal() {
         };
         let out = evaluate(&req, &*builtin(name, None, &cfg).unwrap(), &|| {}).unwrap();
         let s = &out.summary.summary;
-        eprintln!("{name} coarse lenient: {} episodes SR {:.3} OSR {:.3} NE {:?} steps {:.1}", s.episodes, s.sr, s.osr, s.ne, s.steps);
+        eprintln!(
+            "{name} coarse lenient: {} episodes SR {:.3} OSR {:.3} NE {:?} steps {:.1}",
+            s.episodes, s.sr, s.osr, s.ne, s.steps
+        );
         sr.push(s.sr);
     }
-    assert!(sr[0] > sr[1], "semantic SR {} should beat random {}", sr[0], sr[1]);
+    assert!(
+        sr[0] > sr[1],
+        "semantic SR {} should beat random {}",
+        sr[0],
+        sr[1]
+    );
 }

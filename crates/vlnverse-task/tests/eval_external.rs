@@ -56,7 +56,11 @@ fn python_random_agent_drives_episodes_through_the_protocol() {
             // The Python policy's actions reached the simulator.
             let acts = t.actions.as_ref().unwrap();
             assert!(acts.iter().any(|a| a != "stop"), "{acts:?}");
-            assert!(acts.iter().all(|a| ["stop", "move_forward", "turn_left", "turn_right"].contains(&a.as_str())));
+            assert!(
+                acts.iter()
+                    .all(|a| ["stop", "move_forward", "turn_left", "turn_right"]
+                        .contains(&a.as_str()))
+            );
         }
         results.push(std::fs::read(out_dir.join("trajectories.jsonl")).unwrap());
     }
@@ -64,7 +68,11 @@ fn python_random_agent_drives_episodes_through_the_protocol() {
     assert_eq!(results[0], results[1]);
 
     // A broken agent gives an error naming the command and episode.
-    let cfg = EvalConfig { plots: 0, render: false, ..Default::default() };
+    let cfg = EvalConfig {
+        plots: 0,
+        render: false,
+        ..Default::default()
+    };
     let req = EvalRequest {
         dataset: dir.path().to_path_buf(),
         task: Task::Fine,
@@ -76,5 +84,8 @@ fn python_random_agent_drives_episodes_through_the_protocol() {
     };
     let f = builtin("external", Some("echo not-json"), &cfg).unwrap();
     let err = evaluate(&req, &*f, &|| {}).unwrap_err().to_string();
-    assert!(err.contains("echo not-json") && err.contains("episode"), "{err}");
+    assert!(
+        err.contains("echo not-json") && err.contains("episode"),
+        "{err}"
+    );
 }

@@ -48,7 +48,11 @@ fn a_truncated_run_resumes_and_keeps_finished_episodes() {
     assert_eq!(resumed.resumed, 5);
     assert_eq!(resumed.records.len(), eps.len());
     let log = std::fs::read_to_string(partial.join("progress.jsonl")).unwrap();
-    assert_eq!(log.lines().count(), eps.len(), "the half line was cut, the rest appended");
+    assert_eq!(
+        log.lines().count(),
+        eps.len(),
+        "the half line was cut, the rest appended"
+    );
     for file in ["summary.json", "episodes.csv", "trajectories.jsonl"] {
         assert_eq!(
             std::fs::read(dir.path().join("full").join(file)).unwrap(),
@@ -62,14 +66,20 @@ fn a_truncated_run_resumes_and_keeps_finished_episodes() {
 
     // Another agent in the same folder is refused.
     let stop = builtin("stop", None, &cfg).unwrap();
-    let err = evaluate(&req("partial", None), &*stop, &|| {}).unwrap_err().to_string();
+    let err = evaluate(&req("partial", None), &*stop, &|| {})
+        .unwrap_err()
+        .to_string();
     assert!(err.contains("run.json") && err.contains("agent"), "{err}");
 }
 
 #[test]
 fn protocol_files_load_and_bad_values_are_named() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../configs/eval");
-    for (name, setting) in [("strict", Setting::Strict), ("telhop", Setting::Telhop), ("lenient", Setting::Lenient)] {
+    for (name, setting) in [
+        ("strict", Setting::Strict),
+        ("telhop", Setting::Telhop),
+        ("lenient", Setting::Lenient),
+    ] {
         let cfg = EvalConfig::load(root.join(format!("{name}.toml"))).unwrap();
         assert_eq!(cfg.setting, setting);
         assert_eq!((cfg.max_steps, cfg.success_distance), (200, 3.0));
@@ -81,8 +91,14 @@ fn protocol_files_load_and_bad_values_are_named() {
     let bad = dir.path().join("bad.toml");
     std::fs::write(&bad, "setting = \"strict\"\nmax_steps = 0\n").unwrap();
     let err = EvalConfig::load(&bad).unwrap_err().to_string();
-    assert!(err.contains("bad.toml") && err.contains("max_steps") && err.contains('0'), "{err}");
+    assert!(
+        err.contains("bad.toml") && err.contains("max_steps") && err.contains('0'),
+        "{err}"
+    );
     std::fs::write(&bad, "setting = \"fast\"\n").unwrap();
     let err = EvalConfig::load(&bad).unwrap_err().to_string();
-    assert!(err.contains("bad.toml") && err.contains("line 1") && err.contains("fast"), "{err}");
+    assert!(
+        err.contains("bad.toml") && err.contains("line 1") && err.contains("fast"),
+        "{err}"
+    );
 }

@@ -31,9 +31,8 @@ pub fn plot_episode(
         max_size: 1200,
         labels: false,
         title: format!(
-            "episode {} ({}) {} NE {}",
+            "ep {} {} NE {}",
             ep.episode_id,
-            ep.scene_id,
             if m.success { "success" } else { "failure" },
             m.ne.map_or_else(|| "-".into(), |v| format!("{v:.2} m"))
         ),
@@ -49,9 +48,21 @@ pub fn plot_episode(
         [220, 40, 40]
     };
     draw_path(&mut td.image, &td.frame, &path, color, 2.5);
-    draw_marker(&mut td.image, &td.frame, floor(&ep.start_position), [255, 255, 255], 5.0);
+    draw_marker(
+        &mut td.image,
+        &td.frame,
+        floor(&ep.start_position),
+        [255, 255, 255],
+        5.0,
+    );
     for g in ep.goal_sequence() {
-        draw_marker(&mut td.image, &td.frame, floor(&g.position), [40, 170, 60], 5.0);
+        draw_marker(
+            &mut td.image,
+            &td.frame,
+            floor(&g.position),
+            [40, 170, 60],
+            5.0,
+        );
     }
     if let Some(last) = traj.positions.last() {
         draw_marker(&mut td.image, &td.frame, floor(last), color, 4.0);

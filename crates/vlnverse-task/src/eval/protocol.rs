@@ -24,7 +24,9 @@ use vlnverse_sim::{Action, AgentConfig, CollisionSetting};
 use crate::error::{Result, TaskError};
 
 /// How collisions are handled (the paper's settings, plus VLN-CE's lenient one).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default, Serialize, Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default, Serialize, Deserialize,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum Setting {
     /// Full physics; a noticeable collision ends the episode as a failure.

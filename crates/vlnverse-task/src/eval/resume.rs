@@ -49,7 +49,10 @@ pub fn load_progress(path: &Path) -> Result<Vec<EpisodeRecord>> {
     let mut line_no = 0usize;
     while pos < text.len() {
         line_no += 1;
-        let end = text[pos..].iter().position(|&b| b == b'\n').map(|i| pos + i);
+        let end = text[pos..]
+            .iter()
+            .position(|&b| b == b'\n')
+            .map(|i| pos + i);
         let (line, next) = match end {
             Some(e) => (&text[pos..e], e + 1),
             None => (&text[pos..], text.len()),

@@ -214,7 +214,10 @@ impl Shared<'_> {
                 .pool
                 .lock()
                 .unwrap_or_else(std::sync::PoisonError::into_inner);
-            if let Some(i) = pool.iter().position(|w| w.rig_scene.as_deref() == Some(scene)) {
+            if let Some(i) = pool
+                .iter()
+                .position(|w| w.rig_scene.as_deref() == Some(scene))
+            {
                 return Ok(pool.swap_remove(i));
             }
             if let Some(w) = pool.pop() {

@@ -9,6 +9,34 @@
 //!   sub-instructions.
 //! - [`check_grounding`]: mechanical check of an instruction's grounding metadata.
 //! - [`llm`]: the optional LLM stage ([`llm::LlmGenerator`]).
+//!
+//! ```
+//! use glam::Vec2;
+//! use vlnverse_env::occupancy::{build_maps, OccupancyConfig};
+//! use vlnverse_env::scene_graph::SceneGraph;
+//! use vlnverse_env::{geodesic::shortest_path, SceneSource};
+//! use vlnverse_procgen::{HomeGenerator, Preset};
+//! use vlnverse_task::instructions::{check_grounding, InstructionGenerator, PathContext, TemplateGenerator};
+//! use vlnverse_task::Style;
+//!
+//! let scene = HomeGenerator::from_preset(Preset::Tiny)?.scene(0)?;
+//! let maps = build_maps(&scene, &OccupancyConfig::default())?;
+//! let graph = SceneGraph::build(&scene);
+//! // A path between two navigable points, and a target with a unique description.
+//! let free: Vec<Vec2> = maps.navigable.free_cells().map(|(c, r)| maps.navigable.cell_center(c, r)).collect();
+//! let p = shortest_path(&maps.navigable, free[0], free[free.len() - 1])?.expect("one island");
+//! let path: Vec<[f32; 3]> = p.points.iter().map(|q| [q.x, 0.0, q.y]).collect();
+//! let ctx = PathContext { scene: &scene, graph: &graph, navigable: &maps.navigable, path: &path, start_yaw: 0.0 };
+//!
+//! let g = TemplateGenerator::default();
+//! let fine = g.fine(&ctx, 7)?;
+//! assert_eq!(fine, g.fine(&ctx, 7)?); // deterministic from the seed
+//! assert!(check_grounding(&ctx, &fine, 3.0).is_empty());
+//! let target = scene.objects.iter().find(|o| graph.referring_expression(&scene, o.id).is_some()).unwrap();
+//! let coarse = g.coarse(&ctx, target.id, Style::Natural, 7)?;
+//! assert!(coarse.instruction_text.contains(&target.class.words()));
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 pub mod llm;
 mod path;

@@ -16,7 +16,13 @@ use vlnverse_procgen::{HomeGenerator, Preset};
 use vlnverse_task::{dataset, Episode, EpisodeInfo, Goal, Instruction, Split, Task};
 
 /// Write `scenes` tiny homes and `per_scene` episodes each (test split of `task`) under `dir`.
-pub fn make_dataset(dir: &Path, task: Task, scenes: usize, per_scene: usize, seed: u64) -> Vec<Episode> {
+pub fn make_dataset(
+    dir: &Path,
+    task: Task,
+    scenes: usize,
+    per_scene: usize,
+    seed: u64,
+) -> Vec<Episode> {
     let gen = HomeGenerator::from_preset(Preset::Tiny).unwrap();
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut episodes = Vec::new();
@@ -26,7 +32,10 @@ pub fn make_dataset(dir: &Path, task: Task, scenes: usize, per_scene: usize, see
         let (bundle, _) =
             write_scene_bundle(dir.join("scenes"), scene, &OccupancyConfig::default()).unwrap();
         let nav = &bundle.maps.navigable;
-        let free: Vec<Vec2> = nav.free_cells().map(|(c, r)| nav.cell_center(c, r)).collect();
+        let free: Vec<Vec2> = nav
+            .free_cells()
+            .map(|(c, r)| nav.cell_center(c, r))
+            .collect();
         let y = bundle.scene.floor_height;
         let mut made = 0;
         let mut tries = 0;
@@ -34,7 +43,9 @@ pub fn make_dataset(dir: &Path, task: Task, scenes: usize, per_scene: usize, see
             tries += 1;
             let a = free[rng.random_range(0..free.len())];
             let b = free[rng.random_range(0..free.len())];
-            let Ok(Some(path)) = shortest_path(nav, a, b) else { continue };
+            let Ok(Some(path)) = shortest_path(nav, a, b) else {
+                continue;
+            };
             if !(4.0..=14.0).contains(&path.length) {
                 continue;
             }
@@ -87,13 +98,19 @@ pub fn make_object_dataset(dir: &Path, scenes: usize, per_scene: usize, seed: u6
         let (bundle, _) =
             write_scene_bundle(dir.join("scenes"), scene, &OccupancyConfig::default()).unwrap();
         let nav = &bundle.maps.navigable;
-        let free: Vec<Vec2> = nav.free_cells().map(|(c, r)| nav.cell_center(c, r)).collect();
+        let free: Vec<Vec2> = nav
+            .free_cells()
+            .map(|(c, r)| nav.cell_center(c, r))
+            .collect();
         let y = bundle.scene.floor_height;
         let objects: Vec<_> = bundle
             .scene
             .objects
             .iter()
-            .filter(|o| o.class.kind() == ClassKind::Furniture && o.class != vlnverse_env::SemanticClass::Rug)
+            .filter(|o| {
+                o.class.kind() == ClassKind::Furniture
+                    && o.class != vlnverse_env::SemanticClass::Rug
+            })
             .collect();
         let mut made = 0;
         let mut tries = 0;
@@ -105,9 +122,13 @@ pub fn make_object_dataset(dir: &Path, scenes: usize, per_scene: usize, seed: u6
                 continue;
             }
             let c = Vec2::new(o.pose.position[0], o.pose.position[2]);
-            let Some(b) = nav.nearest_free(c, 2.0) else { continue };
+            let Some(b) = nav.nearest_free(c, 2.0) else {
+                continue;
+            };
             let a = free[rng.random_range(0..free.len())];
-            let Ok(Some(path)) = shortest_path(nav, a, b) else { continue };
+            let Ok(Some(path)) = shortest_path(nav, a, b) else {
+                continue;
+            };
             if !(4.0..=14.0).contains(&path.length) {
                 continue;
             }
@@ -120,13 +141,20 @@ pub fn make_object_dataset(dir: &Path, scenes: usize, per_scene: usize, seed: u6
                 scene_id: bundle.scene.id.clone(),
                 start_position: start.position,
                 start_rotation: start.rotation,
-                goals: vec![Goal { position: [b.x, y, b.y], radius: 3.0, object_id: Some(o.id) }],
+                goals: vec![Goal {
+                    position: [b.x, y, b.y],
+                    radius: 3.0,
+                    object_id: Some(o.id),
+                }],
                 instruction: Instruction {
                     instruction_text: format!("Go to the {}.", o.class.words()),
                     ..Default::default()
                 },
                 reference_path: path.points.iter().map(|p| [p.x, y, p.y]).collect(),
-                info: EpisodeInfo { geodesic_distance: path.length, ..Default::default() },
+                info: EpisodeInfo {
+                    geodesic_distance: path.length,
+                    ..Default::default()
+                },
                 task: Task::Coarse,
                 target_object_id: Some(o.id),
                 reference_image: None,

@@ -4,6 +4,9 @@
 #![allow(dead_code)]
 
 use glam::Vec2;
+use std::io::{BufRead, BufReader, Read, Write};
+use std::net::TcpListener;
+use std::sync::{Arc, Mutex};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use vlnverse_env::geodesic::shortest_path;
@@ -92,3 +95,73 @@ pub fn paths(w: &World, count: usize, seed: u64) -> Vec<Sample> {
 pub fn yaw_along(a: Vec2, b: Vec2) -> f32 {
     yaw_from_direction(b - a)
 }
+
+/// A local stub of an OpenAI-compatible chat endpoint: one connection per reply, in order,
+/// `(status, assistant content)`; returns the base URL and the requests received.
+/// A request the stub received.
+#[derive(Clone, Debug)]
+pub struct Seen {
+    pub request_line: String,
+    pub authorization: Option<String>,
+    pub body: serde_json::Value,
+}
+
+pub fn stub(replies: Vec<(u16, String)>) -> (String, Arc<Mutex<Vec<Seen>>>) {
+    let listener = TcpListener::bind("127.0.0.1:0").unwrap();
+    let url = format!("http://{}/v1", listener.local_addr().unwrap());
+    let seen = Arc::new(Mutex::new(Vec::new()));
+    let log = seen.clone();
+    std::thread::spawn(move || {
+        for (status, content) in replies {
+            let Ok((stream, _)) = listener.accept() else {
+                return;
+            };
+            let mut reader = BufReader::new(stream.try_clone().unwrap());
+            let mut request_line = String::new();
+            reader.read_line(&mut request_line).unwrap();
+            let (mut len, mut auth) = (0usize, None);
+            loop {
+                let mut line = String::new();
+                reader.read_line(&mut line).unwrap();
+                let line = line.trim_end();
+                if line.is_empty() {
+                    break;
+                }
+                let lower = line.to_ascii_lowercase();
+                if let Some(v) = lower.strip_prefix("content-length:") {
+                    len = v.trim().parse().unwrap();
+                }
+                if lower.starts_with("authorization:") {
+                    auth = Some(line["authorization:".len()..].trim().to_string());
+                }
+            }
+            let mut body = vec![0u8; len];
+            reader.read_exact(&mut body).unwrap();
+            log.lock().unwrap().push(Seen {
+                request_line: request_line.trim_end().to_string(),
+                authorization: auth,
+                body: serde_json::from_slice(&body).unwrap(),
+            });
+            let payload = if status == 200 {
+                serde_json::json!({
+                    "id": "stub", "object": "chat.completion",
+                    "choices": [{"index": 0, "finish_reason": "stop",
+                                 "message": {"role": "assistant", "content": content}}]
+                })
+                .to_string()
+            } else {
+                format!("{{\"error\": \"{content}\"}}")
+            };
+            let mut out = stream;
+            write!(
+                out,
+                "HTTP/1.1 {status} X\r\nContent-Type: application/json\r\nContent-Length: {}\r\nConnection: close\r\n\r\n{payload}",
+                payload.len()
+            )
+            .unwrap();
+            out.flush().unwrap();
+        }
+    });
+    (url, seen)
+}
+

@@ -185,10 +185,7 @@ impl ExternalAgent {
                     let mut out = Vec::new();
                     image::RgbImage::from_raw(f.width, f.height, bytes)
                         .ok_or_else(|| self.err("rgb frame of the wrong size"))?
-                        .write_to(
-                            &mut std::io::Cursor::new(&mut out),
-                            image::ImageFormat::Png,
-                        )
+                        .write_to(&mut std::io::Cursor::new(&mut out), image::ImageFormat::Png)
                         .map_err(|e| self.err(e.to_string()))?;
                     out
                 } else {
@@ -261,12 +258,8 @@ impl ExternalAgent {
         Ok(match name {
             "stop" => Action::Stop,
             "move_forward" => Action::MoveForward(num("distance").unwrap_or(self.step_size)),
-            "turn_left" => {
-                Action::TurnLeft(num("degrees").unwrap_or(self.turn_deg).to_radians())
-            }
-            "turn_right" => {
-                Action::TurnRight(num("degrees").unwrap_or(self.turn_deg).to_radians())
-            }
+            "turn_left" => Action::TurnLeft(num("degrees").unwrap_or(self.turn_deg).to_radians()),
+            "turn_right" => Action::TurnRight(num("degrees").unwrap_or(self.turn_deg).to_radians()),
             "look_up" => Action::LookUp,
             "look_down" => Action::LookDown,
             "velocity" => Action::Velocity {
@@ -385,8 +378,7 @@ pub fn npy(dtype: &str, shape: &[usize], data: &[u8]) -> Vec<u8> {
     } else {
         format!("({})", dims.join(", "))
     };
-    let mut header =
-        format!("{{'descr': '{dtype}', 'fortran_order': False, 'shape': {shape}, }}");
+    let mut header = format!("{{'descr': '{dtype}', 'fortran_order': False, 'shape': {shape}, }}");
     let total = 10 + header.len() + 1;
     header.push_str(&" ".repeat((64 - total % 64) % 64));
     header.push('\n');

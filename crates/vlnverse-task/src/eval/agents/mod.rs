@@ -13,7 +13,9 @@ use crate::error::{Result, TaskError};
 use crate::eval::agent::{Agent, AgentFactory};
 
 /// Names of the built-in agents.
-pub const BUILTIN: [&str; 6] = ["oracle", "random", "forward", "stop", "semantic", "external"];
+pub const BUILTIN: [&str; 6] = [
+    "oracle", "random", "forward", "stop", "semantic", "external",
+];
 
 /// A factory from a closure (for agents with no shared state).
 pub struct FnFactory<F> {

@@ -141,7 +141,9 @@ impl SemanticAgent {
                 for dy in -r..=r {
                     for dx in -r..=r {
                         let (x, y) = (c.0 + dx, c.1 + dy);
-                        if dx * dx + dy * dy <= r * r && (0..SIZE).contains(&x) && (0..SIZE).contains(&y)
+                        if dx * dx + dy * dy <= r * r
+                            && (0..SIZE).contains(&x)
+                            && (0..SIZE).contains(&y)
                         {
                             self.blocked[Self::idx((x, y))] = true;
                         }
@@ -154,7 +156,14 @@ impl SemanticAgent {
     }
 
     /// Fold one depth (+ semantic) frame taken at `pos`, `yaw` into the map.
-    fn integrate(&mut self, depth: &Frame, semantic: Option<&Frame>, pos: Vec2, yaw: f32, far: f32) {
+    fn integrate(
+        &mut self,
+        depth: &Frame,
+        semantic: Option<&Frame>,
+        pos: Vec2,
+        yaw: f32,
+        far: f32,
+    ) {
         let (w, h) = (depth.width as usize, depth.height as usize);
         let f = w as f32 / 2.0; // HFOV 90: fx = w / 2 / tan(45 deg)
         let (cx, cy) = (w as f32 / 2.0, h as f32 / 2.0);
@@ -231,7 +240,10 @@ impl SemanticAgent {
                 }
                 let i = Self::idx((x, y));
                 // The start cell may be inside the inflation (we are standing there).
-                if parent[i] != u32::MAX || self.grid[i] == OCCUPIED || (self.blocked[i] && c != start && !self.blocked[Self::idx(c)]) {
+                if parent[i] != u32::MAX
+                    || self.grid[i] == OCCUPIED
+                    || (self.blocked[i] && c != start && !self.blocked[Self::idx(c)])
+                {
                     continue;
                 }
                 parent[i] = Self::idx(c) as u32;
@@ -304,7 +316,9 @@ impl Agent for SemanticAgent {
             let cmd = Vec2::from_array(last.commanded).length();
             let got = Vec2::from_array(last.achieved).length();
             if cmd > 0.0 && got < 0.5 * cmd {
-                let ahead = pos + Vec2::new(-yaw.sin(), -yaw.cos()) * (self.agent.shape.bounding_radius() + 0.1);
+                let ahead = pos
+                    + Vec2::new(-yaw.sin(), -yaw.cos())
+                        * (self.agent.shape.bounding_radius() + 0.1);
                 self.mark(ahead, OCCUPIED);
             }
         }
@@ -363,8 +377,14 @@ mod tests {
             parse_target_class("go to the Coffee Table in the living room"),
             Some(SemanticClass::CoffeeTable)
         );
-        assert_eq!(parse_target_class("walk to the couches"), Some(SemanticClass::Sofa));
-        assert_eq!(parse_target_class("the office chair by the desk"), Some(SemanticClass::OfficeChair));
+        assert_eq!(
+            parse_target_class("walk to the couches"),
+            Some(SemanticClass::Sofa)
+        );
+        assert_eq!(
+            parse_target_class("the office chair by the desk"),
+            Some(SemanticClass::OfficeChair)
+        );
         assert_eq!(parse_target_class("walk past the wall"), None);
     }
 }
