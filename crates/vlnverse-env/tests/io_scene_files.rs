@@ -198,7 +198,21 @@ fn bad_json_is_reported_with_file_line_and_field() {
     );
     std::fs::write(&p, good.replace("\"dining_table\"", "\"spaceship\"")).unwrap();
     let e = err_text(io::load_scene(&out).unwrap_err());
-    assert!(e.contains("spaceship"), "{e}");
+    assert!(
+        e.contains("scene.json") && e.contains("\"class\"") && e.contains("spaceship"),
+        "{e}"
+    );
+    // A wrongly typed value: the message quotes the line, so field and value are both named.
+    std::fs::write(
+        &p,
+        good.replacen("\"mass\": ", "\"mass\": \"heavy\", \"m\": ", 1),
+    )
+    .unwrap();
+    let e = err_text(io::load_scene(&out).unwrap_err());
+    assert!(
+        e.contains("scene.json") && e.contains("\"mass\"") && e.contains("heavy"),
+        "{e}"
+    );
     std::fs::write(
         &p,
         good.replace("\"format_version\": 1", "\"format_version\": 99"),

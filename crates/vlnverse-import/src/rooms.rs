@@ -200,6 +200,18 @@ impl Labels {
 
     /// The cell with label `l` nearest to `p` within `max` metres.
     fn label_cell_near(&self, p: Vec2, max: f32, l: u32) -> Option<usize> {
+        self.cell_near(p, max, |i| self.label[i] == l)
+    }
+
+    /// Label of the cell at `p`, or of the nearest labelled cell within `max` metres.
+    fn label_near(&self, p: Vec2, max: f32) -> Option<u32> {
+        self.cell_near(p, max, |i| self.label[i] != 0)
+            .map(|i| self.label[i])
+    }
+
+    /// The cell accepted by `keep` nearest to `p` within `max` metres (at least one cell);
+    /// ties go to the first in row-major order of the search window.
+    fn cell_near(&self, p: Vec2, max: f32, keep: impl Fn(usize) -> bool) -> Option<usize> {
         let u = (p - self.origin) / self.res;
         let reach = (max / self.res).ceil() as i64;
         let (c0, r0) = (u.x.floor() as i64, u.y.floor() as i64);
@@ -211,7 +223,7 @@ impl Labels {
                     continue;
                 }
                 let i = r as usize * self.w + c as usize;
-                if self.label[i] != l {
+                if !keep(i) {
                     continue;
                 }
                 let d = self.center(i).distance(p);
@@ -221,32 +233,6 @@ impl Labels {
             }
         }
         best.map(|(_, i)| i)
-    }
-
-    /// Label of the cell at `p`, or of the nearest labelled cell within `max` metres.
-    fn label_near(&self, p: Vec2, max: f32) -> Option<u32> {
-        let u = (p - self.origin) / self.res;
-        let reach = (max / self.res).ceil() as i64;
-        let (c0, r0) = (u.x.floor() as i64, u.y.floor() as i64);
-        let mut best: Option<(f32, u32)> = None;
-        for dr in -reach..=reach {
-            for dc in -reach..=reach {
-                let (c, r) = (c0 + dc, r0 + dr);
-                if c < 0 || r < 0 || c >= self.w as i64 || r >= self.h as i64 {
-                    continue;
-                }
-                let i = r as usize * self.w + c as usize;
-                let l = self.label[i];
-                if l == 0 {
-                    continue;
-                }
-                let d = self.center(i).distance(p);
-                if d <= max.max(self.res) && best.is_none_or(|(bd, _)| d < bd) {
-                    best = Some((d, l));
-                }
-            }
-        }
-        best.map(|(_, l)| l)
     }
 }
 

@@ -5,7 +5,7 @@ use crate::config::ProcgenConfig;
 use crate::floorplan::{self, Opening, Plan};
 use crate::furnish;
 use crate::models::Model;
-use crate::palette::{self, Finish};
+use crate::palette::{self, f, Finish};
 use crate::rect::Rect;
 use glam::Vec3;
 use rand_chacha::ChaCha8Rng;
@@ -100,38 +100,14 @@ fn box_part(center: Vec3, size: Vec3, rgb: [f32; 3]) -> Part {
 fn floor_finish(kind: RoomType, rng: &mut ChaCha8Rng) -> Finish {
     use rand::seq::IndexedRandom;
     const WOOD: &[Finish] = &[
-        Finish {
-            color: "wooden",
-            material: "wood",
-            rgb: [0.5, 0.33, 0.18],
-        },
-        Finish {
-            color: "brown",
-            material: "wood",
-            rgb: [0.32, 0.2, 0.1],
-        },
-        Finish {
-            color: "beige",
-            material: "wood",
-            rgb: [0.72, 0.6, 0.42],
-        },
+        f("wooden", "wood", [0.5, 0.33, 0.18]),
+        f("brown", "wood", [0.32, 0.2, 0.1]),
+        f("beige", "wood", [0.72, 0.6, 0.42]),
     ];
     const TILE: &[Finish] = &[
-        Finish {
-            color: "white",
-            material: "tile",
-            rgb: [0.85, 0.85, 0.83],
-        },
-        Finish {
-            color: "grey",
-            material: "tile",
-            rgb: [0.5, 0.5, 0.52],
-        },
-        Finish {
-            color: "beige",
-            material: "tile",
-            rgb: [0.75, 0.7, 0.6],
-        },
+        f("white", "tile", [0.85, 0.85, 0.83]),
+        f("grey", "tile", [0.5, 0.5, 0.52]),
+        f("beige", "tile", [0.75, 0.7, 0.6]),
     ];
     let list = match kind {
         RoomType::Kitchen | RoomType::Bathroom | RoomType::LaundryRoom => TILE,
@@ -143,31 +119,11 @@ fn floor_finish(kind: RoomType, rng: &mut ChaCha8Rng) -> Finish {
 fn wall_finish(rng: &mut ChaCha8Rng) -> Finish {
     use rand::seq::IndexedRandom;
     const WALLS: &[Finish] = &[
-        Finish {
-            color: "white",
-            material: "plaster",
-            rgb: [0.88, 0.87, 0.84],
-        },
-        Finish {
-            color: "beige",
-            material: "plaster",
-            rgb: [0.8, 0.74, 0.62],
-        },
-        Finish {
-            color: "grey",
-            material: "plaster",
-            rgb: [0.62, 0.63, 0.65],
-        },
-        Finish {
-            color: "blue",
-            material: "plaster",
-            rgb: [0.55, 0.65, 0.78],
-        },
-        Finish {
-            color: "green",
-            material: "plaster",
-            rgb: [0.6, 0.72, 0.58],
-        },
+        f("white", "plaster", [0.88, 0.87, 0.84]),
+        f("beige", "plaster", [0.8, 0.74, 0.62]),
+        f("grey", "plaster", [0.62, 0.63, 0.65]),
+        f("blue", "plaster", [0.55, 0.65, 0.78]),
+        f("green", "plaster", [0.6, 0.72, 0.58]),
     ];
     *WALLS.choose(rng).unwrap_or(&WALLS[0])
 }

@@ -65,6 +65,12 @@ fn cube(p: &mut Vec<Part>, x: f32, y0: f32, z: f32, size: [f32; 3], rgb: [f32; 3
     });
 }
 
+/// Thin panel on the front face (z = -d/2) of a body of depth `d`: door, drawer front, handle.
+/// `at` is (x, bottom y, z offset from the front face).
+fn front(p: &mut Vec<Part>, d: f32, at: [f32; 3], size: [f32; 3], rgb: [f32; 3]) {
+    cube(p, at[0], at[1], -d * 0.5 + at[2], size, rgb);
+}
+
 /// Upright cylinder with its bottom centre at `(x, y0, z)`.
 fn cyl(p: &mut Vec<Part>, x: f32, y0: f32, z: f32, r: f32, h: f32, rgb: [f32; 3]) {
     p.push(Part {
@@ -182,19 +188,17 @@ pub(crate) fn nightstand(rng: &mut ChaCha8Rng) -> Model {
     let (w, h, d) = (r(rng, 0.4, 0.5), r(rng, 0.5, 0.6), r(rng, 0.35, 0.42));
     let mut p = Vec::new();
     cube(&mut p, 0.0, 0.0, 0.0, [w, h, d], fin.rgb);
-    cube(
+    front(
         &mut p,
-        0.0,
-        h * 0.55,
-        -d * 0.5 - 0.005,
+        d,
+        [0.0, h * 0.55, -0.005],
         [w - 0.06, h * 0.3, 0.01],
         shade(fin.rgb, 0.8),
     );
-    cube(
+    front(
         &mut p,
-        0.0,
-        h * 0.68,
-        -d * 0.5 - 0.02,
+        d,
+        [0.0, h * 0.68, -0.02],
         [0.08, 0.02, 0.02],
         tone::METAL,
     );
@@ -208,19 +212,17 @@ pub(crate) fn wardrobe(rng: &mut ChaCha8Rng) -> Model {
     let mut p = Vec::new();
     cube(&mut p, 0.0, 0.0, 0.01, [w, h, d - 0.02], fin.rgb);
     for s in [-1.0, 1.0] {
-        cube(
+        front(
             &mut p,
-            s * w * 0.25,
-            0.05,
-            -d * 0.5 + 0.01,
+            d,
+            [s * w * 0.25, 0.05, 0.01],
             [w * 0.5 - 0.02, h - 0.1, 0.02],
             shade(fin.rgb, 0.9),
         );
-        cube(
+        front(
             &mut p,
-            s * 0.05,
-            h * 0.5,
-            -d * 0.5 - 0.005,
+            d,
+            [s * 0.05, h * 0.5, -0.005],
             [0.02, 0.2, 0.01],
             tone::METAL,
         );
@@ -236,11 +238,10 @@ pub(crate) fn dresser(rng: &mut ChaCha8Rng) -> Model {
     cube(&mut p, 0.0, 0.0, 0.01, [w, h, d - 0.02], fin.rgb);
     for i in 0..3 {
         let y = 0.06 + i as f32 * (h - 0.1) / 3.0;
-        cube(
+        front(
             &mut p,
-            0.0,
-            y,
-            -d * 0.5 + 0.005,
+            d,
+            [0.0, y, 0.005],
             [w - 0.08, (h - 0.1) / 3.0 - 0.03, 0.01],
             shade(fin.rgb, 0.85),
         );
@@ -381,35 +382,31 @@ pub(crate) fn fridge(rng: &mut ChaCha8Rng) -> Model {
     let (w, h, d) = (r(rng, 0.6, 0.8), r(rng, 1.7, 1.95), 0.68);
     let mut p = Vec::new();
     cube(&mut p, 0.0, 0.0, 0.02, [w, h, d - 0.04], fin.rgb);
-    cube(
+    front(
         &mut p,
-        0.0,
-        0.02,
-        -d * 0.5 + 0.01,
+        d,
+        [0.0, 0.02, 0.01],
         [w - 0.02, h * 0.62, 0.02],
         shade(fin.rgb, 0.93),
     );
-    cube(
+    front(
         &mut p,
-        0.0,
-        h * 0.64 + 0.02,
-        -d * 0.5 + 0.01,
+        d,
+        [0.0, h * 0.64 + 0.02, 0.01],
         [w - 0.02, h * 0.36 - 0.04, 0.02],
         shade(fin.rgb, 0.93),
     );
-    cube(
+    front(
         &mut p,
-        w * 0.4,
-        h * 0.35,
-        -d * 0.5 - 0.01,
+        d,
+        [w * 0.4, h * 0.35, -0.01],
         [0.025, 0.35, 0.02],
         tone::METAL,
     );
-    cube(
+    front(
         &mut p,
-        w * 0.4,
-        h * 0.7,
-        -d * 0.5 - 0.01,
+        d,
+        [w * 0.4, h * 0.7, -0.01],
         [0.025, 0.2, 0.02],
         tone::METAL,
     );
@@ -427,19 +424,17 @@ pub(crate) fn counter(rng: &mut ChaCha8Rng, w: f32) -> Model {
     for i in 0..doors {
         let dw = w / doors as f32;
         let x = -w * 0.5 + dw * (i as f32 + 0.5);
-        cube(
+        front(
             &mut p,
-            x,
-            0.13,
-            -d * 0.5 + 0.02,
+            d,
+            [x, 0.13, 0.02],
             [dw - 0.02, h - 0.2, 0.01],
             shade(fin.rgb, 0.9),
         );
-        cube(
+        front(
             &mut p,
-            x,
-            h - 0.14,
-            -d * 0.5 + 0.005,
+            d,
+            [x, h - 0.14, 0.005],
             [0.12, 0.015, 0.015],
             tone::STEEL,
         );
@@ -454,19 +449,17 @@ pub(crate) fn stove(rng: &mut ChaCha8Rng) -> Model {
     let (w, h, d) = (0.6, 0.9, 0.62);
     let mut p = Vec::new();
     cube(&mut p, 0.0, 0.0, 0.0, [w, h - 0.02, d], fin.rgb);
-    cube(
+    front(
         &mut p,
-        0.0,
-        0.15,
-        -d * 0.5 - 0.005,
+        d,
+        [0.0, 0.15, -0.005],
         [w - 0.06, 0.45, 0.01],
         tone::SCREEN,
     );
-    cube(
+    front(
         &mut p,
-        0.0,
-        0.7,
-        -d * 0.5 - 0.015,
+        d,
+        [0.0, 0.7, -0.015],
         [w - 0.1, 0.02, 0.02],
         tone::STEEL,
     );
@@ -485,19 +478,17 @@ pub(crate) fn dishwasher(rng: &mut ChaCha8Rng) -> Model {
     let (w, h, d) = (0.6, 0.88, 0.62);
     let mut p = Vec::new();
     cube(&mut p, 0.0, 0.0, 0.0, [w, h, d], fin.rgb);
-    cube(
+    front(
         &mut p,
-        0.0,
-        0.1,
-        -d * 0.5 - 0.005,
+        d,
+        [0.0, 0.1, -0.005],
         [w - 0.02, h - 0.15, 0.01],
         shade(fin.rgb, 0.9),
     );
-    cube(
+    front(
         &mut p,
-        0.0,
-        h - 0.1,
-        -d * 0.5 - 0.02,
+        d,
+        [0.0, h - 0.1, -0.02],
         [w - 0.15, 0.02, 0.02],
         tone::STEEL,
     );
@@ -510,27 +501,24 @@ pub(crate) fn kitchen_cabinet(rng: &mut ChaCha8Rng) -> Model {
     let (w, h, d) = (r(rng, 0.5, 0.8), r(rng, 1.9, 2.1), 0.6);
     let mut p = Vec::new();
     cube(&mut p, 0.0, 0.0, 0.01, [w, h, d - 0.02], fin.rgb);
-    cube(
+    front(
         &mut p,
-        0.0,
-        0.05,
-        -d * 0.5 + 0.005,
+        d,
+        [0.0, 0.05, 0.005],
         [w - 0.03, h * 0.6, 0.01],
         shade(fin.rgb, 0.9),
     );
-    cube(
+    front(
         &mut p,
-        0.0,
-        h * 0.62 + 0.05,
-        -d * 0.5 + 0.005,
+        d,
+        [0.0, h * 0.62 + 0.05, 0.005],
         [w - 0.03, h * 0.36, 0.01],
         shade(fin.rgb, 0.9),
     );
-    cube(
+    front(
         &mut p,
-        w * 0.35,
-        h * 0.5,
-        -d * 0.5 - 0.01,
+        d,
+        [w * 0.35, h * 0.5, -0.01],
         [0.02, 0.15, 0.02],
         tone::STEEL,
     );
@@ -648,11 +636,10 @@ pub(crate) fn tv_stand(rng: &mut ChaCha8Rng) -> Model {
     legs(&mut p, w - 0.05, d - 0.05, 0.08, 0.04, tone::METAL);
     cube(&mut p, 0.0, 0.08, 0.0, [w, h - 0.08, d], fin.rgb);
     for s in [-1.0, 1.0] {
-        cube(
+        front(
             &mut p,
-            s * w * 0.25,
-            0.12,
-            -d * 0.5 - 0.005,
+            d,
+            [s * w * 0.25, 0.12, -0.005],
             [w * 0.5 - 0.06, h - 0.16, 0.01],
             shade(fin.rgb, 0.75),
         );
@@ -909,19 +896,17 @@ pub(crate) fn cabinet(rng: &mut ChaCha8Rng) -> Model {
     let mut p = Vec::new();
     cube(&mut p, 0.0, 0.0, 0.01, [w, h, d - 0.02], fin.rgb);
     for s in [-1.0, 1.0] {
-        cube(
+        front(
             &mut p,
-            s * w * 0.25,
-            0.04,
-            -d * 0.5 + 0.005,
+            d,
+            [s * w * 0.25, 0.04, 0.005],
             [w * 0.5 - 0.03, h - 0.08, 0.01],
             shade(fin.rgb, 0.85),
         );
-        cube(
+        front(
             &mut p,
-            s * 0.04,
-            h * 0.6,
-            -d * 0.5 - 0.005,
+            d,
+            [s * 0.04, h * 0.6, -0.005],
             [0.015, 0.1, 0.01],
             tone::STEEL,
         );
@@ -1017,11 +1002,10 @@ pub(crate) fn washing_machine(rng: &mut ChaCha8Rng) -> Model {
         0.01,
         tone::GLASS,
     );
-    cube(
+    front(
         &mut p,
-        0.0,
-        h - 0.12,
-        -d * 0.5 - 0.005,
+        d,
+        [0.0, h - 0.12, -0.005],
         [w - 0.04, 0.1, 0.01],
         shade(fin.rgb, 0.8),
     );

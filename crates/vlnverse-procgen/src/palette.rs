@@ -13,7 +13,8 @@ pub(crate) struct Finish {
     pub rgb: [f32; 3],
 }
 
-const fn f(color: &'static str, material: &'static str, rgb: [f32; 3]) -> Finish {
+/// A finish from its colour word, material word and linear RGB.
+pub(crate) const fn f(color: &'static str, material: &'static str, rgb: [f32; 3]) -> Finish {
     Finish {
         color,
         material,

@@ -391,15 +391,24 @@ fn bad_configs_name_file_field_and_value() {
     }
     // Unknown fields and unknown room kinds are parse errors naming the file.
     let dir = tempfile::tempdir().unwrap();
-    for body in [
-        "[rooms]\ncount_mni = 3\n",
-        "[[rooms.kinds]]\nkind = \"ballroom\"\ncount_max = 1\narea_min = 9.0\narea_max = 10.0\n",
+    for (body, field, value) in [
+        ("[rooms]\ncount_mni = 3\n", "count_mni", "3"),
+        (
+            "[[rooms.kinds]]\nkind = \"ballroom\"\ncount_max = 1\narea_min = 9.0\narea_max = 10.0\n",
+            "kind",
+            "ballroom",
+        ),
+        ("[walls]\nthickness = \"thick\"\n", "thickness", "thick"),
     ] {
         let path = dir.path().join("typo.toml");
         std::fs::write(&path, body).unwrap();
         match ProcgenConfig::from_toml_file(&path) {
             Err(e @ EnvError::Parse { .. }) => {
-                assert!(e.to_string().contains("typo.toml"), "{e}");
+                let e = e.to_string();
+                assert!(
+                    e.contains("typo.toml") && e.contains(field) && e.contains(value),
+                    "{e}"
+                );
             }
             other => panic!("expected a parse error, got {other:?}"),
         }

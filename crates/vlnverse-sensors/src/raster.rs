@@ -446,7 +446,10 @@ impl RasterScene {
                     0 => [0; 3],
                     tag => self.info[(tag as usize - 1) >> 1].rgb[((tag - 1) & 1) as usize],
                 };
-                px.copy_from_slice(&c);
+                // Byte stores: `copy_from_slice` of 3 bytes becomes a memmove call.
+                px[0] = c[0];
+                px[1] = c[1];
+                px[2] = c[2];
             }
         }
         if let Some(sem) = semantic.as_deref_mut() {
@@ -518,7 +521,7 @@ fn emit(p: &ViewParams, v: [Vec3; 3], plane: [f32; 3], tag: u32, out: &mut Vec<S
         let iz = 1.0 / -(q.z as f64);
         let sx = p.cx as f64 + p.fx as f64 * q.x as f64 * iz;
         let sy = p.cy as f64 - p.fy as f64 * q.y as f64 * iz;
-        s[k] = ((sx * sub).round(), (sy * sub).round());
+        s[k] = (fast_floor(sx * sub + 0.5), fast_floor(sy * sub + 0.5));
         zlo = zlo.min(iz as f32);
         zhi = zhi.max(iz as f32);
     }
@@ -601,22 +604,103 @@ fn raster<const IDS: bool>(
             let (lo, hi) = (lo as usize, hi as usize);
             let row = (y as usize - y0) * w;
             let z0 = t.zb * y as f32 + t.zc + t.za * lo as f32;
-            let zs = &mut zbuf[row + lo..=row + hi];
-            // Branch-free selects so that the compiler vectorises the span.
+            let n = hi + 1 - lo;
+            let zs = &mut zbuf[row + lo..row + lo + n];
             if IDS {
-                let is = &mut ids[row + lo..=row + hi];
-                for (k, (z, id)) in zs.iter_mut().zip(is.iter_mut()).enumerate() {
-                    let v = (z0 + t.za * k as i32 as f32).max(t.zlo).min(t.zhi);
-                    let m = v > *z;
-                    *id = if m { t.tag } else { *id };
-                    *z = if m { v } else { *z };
-                }
+                span_ids(zs, &mut ids[row + lo..row + lo + n], z0, t);
             } else {
-                for (k, z) in zs.iter_mut().enumerate() {
-                    let v = (z0 + t.za * k as i32 as f32).max(t.zlo).min(t.zhi);
-                    *z = if v > *z { v } else { *z };
-                }
+                span_depth(zs, z0, t);
             }
+        }
+    }
+}
+
+/// Lane offsets of an 8-pixel block.
+const LANES: [f32; 8] = [0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0];
+
+/// Depth-test a span and write depth and tag: blocks of 8 pixels with branch-free selects (no
+/// NaN-aware `max`) that the compiler turns into SIMD, then the rest one by one.
+#[inline]
+fn span_ids(zs: &mut [f32], ids: &mut [u32], z0: f32, t: &ScreenTri) {
+    let (za, lo, hi, tag) = (t.za, t.zlo, t.zhi, t.tag);
+    let ids = &mut ids[..zs.len()];
+    let mut zc = zs.chunks_exact_mut(8);
+    let mut ic = ids.chunks_exact_mut(8);
+    let mut base = z0;
+    for (zb, ib) in (&mut zc).zip(&mut ic) {
+        // Work on array copies: the SLP vectoriser handles these, not the slices.
+        let (Ok(zb), Ok(ib)) = (<&mut [f32; 8]>::try_from(zb), <&mut [u32; 8]>::try_from(ib))
+        else {
+            continue;
+        };
+        let (mut z, mut id) = (*zb, *ib);
+        for j in 0..8 {
+            let v = base + za * LANES[j];
+            let v = if v < lo { lo } else { v };
+            let v = if v > hi { hi } else { v };
+            let m = v > z[j];
+            id[j] = if m { tag } else { id[j] };
+            z[j] = if m { v } else { z[j] };
+        }
+        *zb = z;
+        *ib = id;
+        base += 8.0 * za;
+    }
+    for (k, (z, id)) in zc
+        .into_remainder()
+        .iter_mut()
+        .zip(ic.into_remainder())
+        .enumerate()
+    {
+        let v = (base + za * k as f32).clamp_range(lo, hi);
+        if v > *z {
+            *z = v;
+            *id = tag;
+        }
+    }
+}
+
+/// [`span_ids`] without ids.
+#[inline]
+fn span_depth(zs: &mut [f32], z0: f32, t: &ScreenTri) {
+    let (za, lo, hi) = (t.za, t.zlo, t.zhi);
+    let mut zc = zs.chunks_exact_mut(8);
+    let mut base = z0;
+    for zb in &mut zc {
+        let Ok(zb) = <&mut [f32; 8]>::try_from(zb) else {
+            continue;
+        };
+        let mut z = *zb;
+        for j in 0..8 {
+            let v = base + za * LANES[j];
+            let v = if v < lo { lo } else { v };
+            let v = if v > hi { hi } else { v };
+            z[j] = if v > z[j] { v } else { z[j] };
+        }
+        *zb = z;
+        base += 8.0 * za;
+    }
+    for (k, z) in zc.into_remainder().iter_mut().enumerate() {
+        let v = (base + za * k as f32).clamp_range(lo, hi);
+        if v > *z {
+            *z = v;
+        }
+    }
+}
+
+/// Clamp without `f32::clamp`'s panic on an empty range.
+trait ClampRange {
+    fn clamp_range(self, lo: Self, hi: Self) -> Self;
+}
+
+impl ClampRange for f32 {
+    #[inline]
+    fn clamp_range(self, lo: f32, hi: f32) -> f32 {
+        let v = if self < lo { lo } else { self };
+        if v > hi {
+            hi
+        } else {
+            v
         }
     }
 }

@@ -4,6 +4,7 @@
 use crate::error::{Result, SimError};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
+use vlnverse_env::EnvError;
 
 /// Collision footprint of the agent. The shape stands on the floor (raised by
 /// [`AgentConfig::ground_clearance`]) with its axis along +Y.
@@ -201,10 +202,8 @@ impl AgentConfig {
 
     /// Parse and validate TOML text; `origin` names the source in errors.
     pub fn from_toml_str(text: &str, origin: &Path) -> Result<AgentConfig> {
-        let cfg: AgentConfig = toml::from_str(text).map_err(|e| SimError::Parse {
-            path: origin.to_path_buf(),
-            message: e.to_string(),
-        })?;
+        let cfg: AgentConfig =
+            toml::from_str(text).map_err(|e| EnvError::parse(origin, e.to_string()))?;
         cfg.validate().map_err(|e| e.in_file(origin))?;
         Ok(cfg)
     }
@@ -212,10 +211,7 @@ impl AgentConfig {
     /// Read, parse and validate a TOML file.
     pub fn from_toml_file(path: impl AsRef<Path>) -> Result<AgentConfig> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|source| SimError::Io {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let text = std::fs::read_to_string(path).map_err(|e| EnvError::io(path, e))?;
         Self::from_toml_str(&text, path)
     }
 
@@ -415,7 +411,20 @@ mod tests {
         let e = AgentConfig::from_toml_str("step_size = nan\n", Path::new("nan.toml"))
             .unwrap_err()
             .to_string();
-        assert!(e.contains("nan.toml") && e.contains("step_size"), "{e}");
+        assert!(
+            e.contains("nan.toml") && e.contains("step_size") && e.contains("NaN"),
+            "{e}"
+        );
+
+        // Malformed values are parse errors that quote the field and the value.
+        let e = AgentConfig::from_toml_str("step_size = \"long\"\n", Path::new("str.toml"))
+            .unwrap_err();
+        assert!(matches!(e, SimError::Env(EnvError::Parse { .. })), "{e:?}");
+        let e = e.to_string();
+        assert!(
+            e.contains("str.toml") && e.contains("step_size") && e.contains("long"),
+            "{e}"
+        );
 
         let e = AgentConfig::from_toml_str("stepsize = 0.3\n", Path::new("typo.toml"))
             .unwrap_err()

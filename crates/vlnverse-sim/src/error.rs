@@ -2,6 +2,7 @@
 //! and the offending value.
 
 use std::path::PathBuf;
+use vlnverse_env::EnvError;
 
 /// Result alias of the simulator layer.
 pub type Result<T, E = SimError> = std::result::Result<T, E>;
@@ -9,35 +10,11 @@ pub type Result<T, E = SimError> = std::result::Result<T, E>;
 /// What went wrong while configuring or driving a simulator.
 #[derive(Debug, thiserror::Error)]
 pub enum SimError {
-    /// A config file could not be read.
-    #[error("{path}: {source}")]
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// The OS error.
-        #[source]
-        source: std::io::Error,
-    },
-    /// A config file is not valid TOML or has unknown/missing fields.
-    #[error("{path}: {message}")]
-    Parse {
-        /// The file (or `profile:<name>` for an embedded profile).
-        path: PathBuf,
-        /// What is wrong, naming the field when known.
-        message: String,
-    },
-    /// A configuration value is out of range.
-    #[error("{}invalid `{field}` = {value}: {reason}", .path.as_ref().map(|p| format!("{}: ", p.display())).unwrap_or_default())]
-    InvalidConfig {
-        /// The config file, when the value came from one.
-        path: Option<PathBuf>,
-        /// Dotted field name, e.g. `shape.radius`.
-        field: String,
-        /// The offending value.
-        value: String,
-        /// What is allowed.
-        reason: String,
-    },
+    /// A config file could not be read or parsed, or a value is out of range: the same
+    /// file/field/value error as the environment layer ([`EnvError::Io`], [`EnvError::Parse`],
+    /// [`EnvError::InvalidConfig`]).
+    #[error(transparent)]
+    Env(#[from] EnvError),
     /// An action is NaN, infinite, negative or absurdly large, or points outside the scene.
     #[error("invalid action `{field}` = {value}: {reason}")]
     InvalidAction {
@@ -73,18 +50,13 @@ pub enum SimError {
 }
 
 impl SimError {
-    /// Shorthand for [`SimError::InvalidConfig`] without a file.
+    /// Shorthand for [`EnvError::InvalidConfig`] without a file.
     pub fn invalid(
         field: impl Into<String>,
         value: impl ToString,
         reason: impl Into<String>,
     ) -> Self {
-        SimError::InvalidConfig {
-            path: None,
-            field: field.into(),
-            value: value.to_string(),
-            reason: reason.into(),
-        }
+        EnvError::invalid(field, value, reason).into()
     }
 
     /// Shorthand for [`SimError::InvalidAction`].
@@ -100,20 +72,10 @@ impl SimError {
         }
     }
 
-    /// Attach a file path to an [`SimError::InvalidConfig`] that has none.
+    /// Attach a file path to an [`EnvError::InvalidConfig`] that has none.
     pub fn in_file(self, file: impl Into<PathBuf>) -> Self {
         match self {
-            SimError::InvalidConfig {
-                path: None,
-                field,
-                value,
-                reason,
-            } => SimError::InvalidConfig {
-                path: Some(file.into()),
-                field,
-                value,
-                reason,
-            },
+            SimError::Env(e) => e.in_file(file).into(),
             other => other,
         }
     }

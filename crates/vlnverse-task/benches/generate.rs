@@ -26,9 +26,9 @@ fn bench(c: &mut Criterion) {
     let maps = build_maps(&scene, &OccupancyConfig::default()).unwrap();
     let graph = SceneGraph::build(&scene);
     c.bench_function("sampler_new (targets, goal points)", |b| {
-        b.iter(|| black_box(SceneSampler::new(&scene, &maps, &graph, &cfg.sampling)))
+        b.iter(|| black_box(SceneSampler::new(&scene, &maps, &graph, &cfg.sampling, 1)))
     });
-    let sampler = SceneSampler::new(&scene, &maps, &graph, &cfg.sampling);
+    let sampler = SceneSampler::new(&scene, &maps, &graph, &cfg.sampling, 1);
     let spot = sampler.targets()[0];
     c.bench_function("distance_field (one target)", |b| {
         b.iter(|| {

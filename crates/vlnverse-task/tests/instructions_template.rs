@@ -460,25 +460,3 @@ fn path_context_is_copy_for_callers() {
     let copy = ctx;
     assert_eq!(gen().fine(&ctx, 1).unwrap(), gen().fine(&copy, 1).unwrap());
 }
-
-#[test]
-#[ignore]
-fn print_samples() {
-    let g = gen();
-    for w in worlds(2).iter() {
-        for (k, s) in paths(w, 6, 77).iter().enumerate() {
-            let ins = g.fine(&w.ctx(s), k as u64).unwrap();
-            println!("FINE {}\n  {:?}\n", ins.instruction_text, ins.grounding);
-        }
-        for (target, s) in coarse_cases(w, 1).iter().take(8) {
-            for style in Style::ALL {
-                println!(
-                    "{style}: {}",
-                    g.coarse(&w.ctx(s), *target, style, 3)
-                        .unwrap()
-                        .instruction_text
-                );
-            }
-        }
-    }
-}

@@ -2,7 +2,6 @@
 
 mod instructions_fixture;
 
-use glam::Vec2;
 use instructions_fixture::{paths, stub, worlds};
 use std::sync::Arc;
 use vlnverse_task::instructions::llm::{LlmConfig, OnReject};
@@ -23,7 +22,10 @@ fn llm_oracle_rephrases_answers_and_keeps_the_budget() {
             Arc::new(w.maps.navigable.clone()),
             b,
             None,
-            OracleConfig { budget: 1, ..Default::default() },
+            OracleConfig {
+                budget: 1,
+                ..Default::default()
+            },
         )
         .unwrap()
     };
@@ -49,12 +51,14 @@ fn llm_oracle_rephrases_answers_and_keeps_the_budget() {
         assert_eq!(seen[0].body["model"], "stub-oracle");
         assert_eq!(msgs[0]["content"], ORACLE_PROMPT);
         let user = msgs[1]["content"].as_str().unwrap();
-        assert!(user.contains("Which way") && user.contains(&plain.text), "{user}");
+        assert!(
+            user.contains("Which way") && user.contains(&plain.text),
+            "{user}"
+        );
     }
     // Budget spent: answered locally, no request (the stub would refuse a second connection).
     let spent = o.ask(&OracleQuery::AmIClose, a, 0.0).unwrap();
     assert!(!spent.answered && spent.distance_m.is_none());
     assert_eq!(o.remaining(), 0);
     assert_eq!(seen.lock().unwrap().len(), 1);
-    let _ = Vec2::ZERO;
 }

@@ -18,7 +18,7 @@ pub fn scene_from_json(bytes: &[u8], path: &Path) -> Result<Scene> {
     struct Version {
         format_version: Option<serde_json::Value>,
     }
-    let v: Version = serde_json::from_slice(bytes).map_err(|e| json_error(path, &e))?;
+    let v: Version = serde_json::from_slice(bytes).map_err(|e| json_error(path, bytes, &e))?;
     match v.format_version {
         None => {
             return Err(EnvError::parse(path, "missing field `format_version`"));
@@ -33,16 +33,25 @@ pub fn scene_from_json(bytes: &[u8], path: &Path) -> Result<Scene> {
             ));
         }
     }
-    serde_json::from_slice(bytes).map_err(|e| json_error(path, &e))
+    serde_json::from_slice(bytes).map_err(|e| json_error(path, bytes, &e))
 }
 
-fn json_error(path: &Path, e: &serde_json::Error) -> EnvError {
+fn json_error(path: &Path, bytes: &[u8], e: &serde_json::Error) -> EnvError {
     let what = match e.classify() {
         serde_json::error::Category::Io => "cannot read JSON",
         serde_json::error::Category::Syntax => "invalid JSON",
         serde_json::error::Category::Data => "invalid scene",
         serde_json::error::Category::Eof => "truncated JSON",
     };
-    // serde's message already says "at line L column C".
-    EnvError::parse(path, format!("{what}: {e}"))
+    // serde's message already says "at line L column C" but not which field; the pretty-printed
+    // file has one field per line, so quoting that line names the field and its value.
+    let line = (e.line() > 0)
+        .then(|| bytes.split(|&b| b == b'\n').nth(e.line() - 1))
+        .flatten()
+        .map(|l| String::from_utf8_lossy(l).trim().to_string())
+        .filter(|l| l.contains(':') && matches!(e.classify(), serde_json::error::Category::Data));
+    match line {
+        Some(l) if l.chars().count() <= 160 => EnvError::parse(path, format!("{what}: {e}: `{l}`")),
+        _ => EnvError::parse(path, format!("{what}: {e}")),
+    }
 }

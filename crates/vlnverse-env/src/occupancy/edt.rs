@@ -84,6 +84,18 @@ fn dt_1d(f: &[f64], d: &mut [f64], v: &mut [usize], z: &mut [f64]) {
     }
 }
 
+/// One row of a vertical distance pass: 0 on occupied cells, else one more than the row before
+/// (capped).
+fn column_step(last: &mut [u16], row: &[CellState], cap: u16) {
+    for (l, &c) in last.iter_mut().zip(row) {
+        *l = if c == CellState::Occupied {
+            0
+        } else {
+            (*l + 1).min(cap)
+        };
+    }
+}
+
 /// Free cells of `map` whose centre is at least `radius + resolution/2` from the centre of every
 /// occupied cell stay free; other free cells become occupied; unknown cells stay unknown.
 /// (Measured to occupied cells only: the edge of the known floor does not push the agent away.)
@@ -115,29 +127,16 @@ pub fn dilate(map: &GridMap, radius: f32) -> GridMap {
     let cells = map.cells();
     let mut gv = vec![cap; w * h];
     let mut last = vec![cap; w];
+    // Down, then up: each pass carries the distance to the last occupied cell in each column.
     for y in 0..h {
-        let row = &cells[y * w..(y + 1) * w];
-        let out = &mut gv[y * w..(y + 1) * w];
-        for x in 0..w {
-            last[x] = if row[x] == CellState::Occupied {
-                0
-            } else {
-                (last[x] + 1).min(cap)
-            };
-            out[x] = last[x];
-        }
+        column_step(&mut last, &cells[y * w..(y + 1) * w], cap);
+        gv[y * w..(y + 1) * w].copy_from_slice(&last);
     }
     last.fill(cap);
     for y in (0..h).rev() {
-        let row = &cells[y * w..(y + 1) * w];
-        let out = &mut gv[y * w..(y + 1) * w];
-        for x in 0..w {
-            last[x] = if row[x] == CellState::Occupied {
-                0
-            } else {
-                (last[x] + 1).min(cap)
-            };
-            out[x] = out[x].min(last[x]);
+        column_step(&mut last, &cells[y * w..(y + 1) * w], cap);
+        for (o, &l) in gv[y * w..(y + 1) * w].iter_mut().zip(&last) {
+            *o = (*o).min(l);
         }
     }
     let mut out = map.clone();

@@ -27,6 +27,7 @@ use vlnverse_env::{Scene, SceneSource};
 use super::episodes::{ScenePart, SceneTaskContext, Stage, StageTimes};
 use super::presets::GenerateConfig;
 use super::sampler::{Reject, SceneSampler};
+use super::seed::derive_seed;
 use super::splits::{plan, Plan};
 use crate::dataset::{write_atomic, write_split};
 use crate::episode::{Episode, Split, Task};
@@ -223,7 +224,13 @@ fn generate_parts(
         return Ok(());
     }
     let sampler = times.time(Stage::Sampling, || {
-        SceneSampler::new(scene, maps, graph, &cfg.sampling)
+        SceneSampler::new(
+            scene,
+            maps,
+            graph,
+            &cfg.sampling,
+            derive_seed(cfg.seed, &[index as u64, 0x7A59_E7]),
+        )
     });
     let ctx = SceneTaskContext {
         sampler: &sampler,

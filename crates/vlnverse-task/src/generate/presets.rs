@@ -142,6 +142,10 @@ pub struct SamplingConfig {
     /// Closest a goal point may be to its target object's footprint (m), so that the agent
     /// does not stand inside the object's margin.
     pub goal_min_distance: f32,
+    /// Most target objects per scene (a seeded choice among the usable ones; 0 = all). Each
+    /// target costs one distance field (about ten A* queries), so this bounds sampling time.
+    #[serde(default)]
+    pub max_targets: usize,
 }
 
 /// Settings of one task.

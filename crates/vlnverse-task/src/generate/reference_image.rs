@@ -15,8 +15,8 @@ use crate::error::{Result, TaskError};
 
 /// Near clipping distance of the reference camera (m).
 const NEAR: f32 = 0.05;
-/// Far clipping distance of the reference camera (m).
-const FAR: f32 = 20.0;
+/// Far clipping distance of the reference camera (m), the paper's depth range.
+const FAR: f32 = 10.0;
 /// Steepest camera pitch towards a target (radians, 50 degrees).
 pub const MAX_PITCH: f32 = 0.87;
 

@@ -17,7 +17,8 @@ use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use glam::Vec2;
-use rand::Rng;
+use rand::seq::SliceRandom;
+use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 use vlnverse_env::geodesic::{polyline_length, shortest_path, DistanceField, GeodesicPath};
@@ -110,12 +111,14 @@ fn footprint(o: &SceneObject) -> (Vec2, Vec2) {
 }
 
 impl<'a> SceneSampler<'a> {
-    /// Prepare the free points and the targets of a scene.
+    /// Prepare the free points and the targets of a scene (`seed` picks the targets when
+    /// there are more than `cfg.max_targets`).
     pub fn new(
         scene: &'a Scene,
         maps: &'a OccupancyMaps,
         graph: &'a SceneGraph,
         cfg: &SamplingConfig,
+        seed: u64,
     ) -> Self {
         let nav = &maps.navigable;
         let free: Vec<Vec2> = nav.free_cells().map(|(c, r)| nav.cell_center(c, r)).collect();
@@ -133,6 +136,11 @@ impl<'a> SceneSampler<'a> {
                 Some(spot) => targets.push(spot),
                 None => *rejections.entry(Reject::NoGoalPoint).or_default() += 1,
             }
+        }
+        if cfg.max_targets > 0 && targets.len() > cfg.max_targets {
+            targets.shuffle(&mut ChaCha8Rng::seed_from_u64(seed));
+            targets.truncate(cfg.max_targets);
+            targets.sort_by_key(|t| t.object);
         }
         SceneSampler {
             scene,

@@ -4,11 +4,11 @@
 #![allow(dead_code)]
 
 use glam::Vec2;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpListener;
 use std::sync::{Arc, Mutex};
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
 use vlnverse_env::geodesic::shortest_path;
 use vlnverse_env::occupancy::{build_maps, GridMap, OccupancyConfig, OccupancyMaps};
 use vlnverse_env::scene_graph::{yaw_from_direction, SceneGraph};
@@ -164,4 +164,3 @@ pub fn stub(replies: Vec<(u16, String)>) -> (String, Arc<Mutex<Vec<Seen>>>) {
     });
     (url, seen)
 }
-
