@@ -1,31 +1,21 @@
 //! Hand-made scene fixture shared by the io tests (included with `mod`).
 
+#[path = "../common/mod.rs"]
+mod common;
+
 use glam::Vec3;
 use vlnverse_env::*;
 
 fn obj(id: u32, class: SemanticClass, pose: Pose, parts: Vec<Part>, motion: Motion) -> SceneObject {
-    let mut o = SceneObject {
-        id,
-        name: format!("{}_{id}", class.name()),
-        class,
-        room: if class.is_structure() { None } else { Some(1) },
-        pose,
-        bbox: Aabb::EMPTY,
-        color: "red".into(),
-        material: if id % 2 == 0 {
-            "metal".into()
-        } else {
-            "wood".into()
-        },
-        physics: Physics {
-            mass: 1.5 * id as f32,
-            friction: 0.6,
-            motion,
-        },
-        supported_by: None,
-        parts,
+    let mut o = common::object(id, class, pose, parts);
+    o.room = if class.is_structure() { None } else { Some(1) };
+    o.color = "red".into();
+    o.material = if id % 2 == 0 { "metal" } else { "wood" }.into();
+    o.physics = Physics {
+        mass: 1.5 * id as f32,
+        friction: 0.6,
+        motion,
     };
-    o.bbox = o.compute_bbox();
     o
 }
 

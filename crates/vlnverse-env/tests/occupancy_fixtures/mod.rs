@@ -1,6 +1,9 @@
 //! Hand-made scenes for the occupancy and geodesic tests (shared by `tests/occupancy_*.rs`).
 #![allow(dead_code)]
 
+#[path = "../common/mod.rs"]
+mod common;
+
 use glam::{Vec2, Vec3};
 use vlnverse_env::{
     Aabb, MeshData, Motion, Part, Physics, Pose, Scene, SceneObject, SemanticClass, Shape,
@@ -13,29 +16,12 @@ pub const WALL_H: f32 = 2.5;
 pub const WALL_T: f32 = 0.1;
 
 pub fn object(id: u32, class: SemanticClass, pose: Pose, shape: Shape) -> SceneObject {
-    let mut o = SceneObject {
-        id,
-        name: format!("{}_{id}", class.name()),
-        class,
-        room: None,
-        pose,
-        bbox: Aabb::EMPTY,
-        color: "white".into(),
-        material: "plaster".into(),
-        physics: Physics {
-            mass: 10.0,
-            friction: 0.5,
-            motion: Motion::Static,
-        },
-        supported_by: None,
-        parts: vec![Part {
-            shape,
-            transform: Pose::IDENTITY,
-            color: [0.8, 0.8, 0.8],
-        }],
+    let part = Part {
+        shape,
+        transform: Pose::IDENTITY,
+        color: [0.8, 0.8, 0.8],
     };
-    o.bbox = o.compute_bbox();
-    o
+    common::object(id, class, pose, vec![part])
 }
 
 /// Axis-aligned box between two corners.
@@ -80,18 +66,8 @@ pub fn walls_rect(first_id: u32, x0: f32, z0: f32, x1: f32, z1: f32) -> Vec<Scen
     ]
 }
 
-pub fn scene(id: &str, mut objects: Vec<SceneObject>) -> Scene {
-    objects.sort_by_key(|o| o.id);
-    Scene {
-        format_version: SCENE_FORMAT_VERSION,
-        id: id.into(),
-        source: "test".into(),
-        seed: None,
-        floor_height: 0.0,
-        rooms: Vec::new(),
-        doors: Vec::new(),
-        objects,
-    }
+pub fn scene(id: &str, objects: Vec<SceneObject>) -> Scene {
+    common::scene(id, Vec::new(), Vec::new(), objects)
 }
 
 /// Room A `[0,4]x[0,4]` and room B `[4,7]x[0,4]` joined by a gap of `door` metres centred at

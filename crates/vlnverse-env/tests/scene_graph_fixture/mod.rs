@@ -2,6 +2,9 @@
 //! can be read off the numbers.
 #![allow(dead_code)]
 
+#[path = "../common/mod.rs"]
+mod common;
+
 use glam::Vec3;
 use vlnverse_env::{
     Aabb, Door, Motion, ObjectId, Part, Physics, Pose, Room, RoomId, RoomType, Scene, SceneObject,
@@ -59,48 +62,24 @@ pub fn obj(
     supported_by: Option<ObjectId>,
 ) -> SceneObject {
     let (lo, hi) = (Vec3::from_array(min), Vec3::from_array(max));
-    let center = (lo + hi) * 0.5;
-    SceneObject {
-        id,
-        name: format!("{}_{id}", class.name()),
-        class,
-        room,
-        pose: Pose::from_yaw(center, 0.0),
-        bbox: Aabb::new(lo, hi),
-        color: color.into(),
-        material: "wood".into(),
-        physics: Physics {
-            mass: 10.0,
-            friction: 0.5,
-            motion: Motion::Static,
+    let part = Part {
+        shape: Shape::Cuboid {
+            half_extents: ((hi - lo) * 0.5).to_array(),
         },
-        supported_by,
-        parts: vec![Part {
-            shape: Shape::Cuboid {
-                half_extents: ((hi - lo) * 0.5).to_array(),
-            },
-            transform: Pose::IDENTITY,
-            color: [0.5, 0.5, 0.5],
-        }],
-    }
+        transform: Pose::IDENTITY,
+        color: [0.5, 0.5, 0.5],
+    };
+    let mut o = common::object(id, class, Pose::from_yaw((lo + hi) * 0.5, 0.0), vec![part]);
+    o.room = room;
+    o.bbox = Aabb::new(lo, hi);
+    o.color = color.into();
+    o.material = "wood".into();
+    o.supported_by = supported_by;
+    o
 }
 
-pub fn scene(id: &str, rooms: Vec<Room>, doors: Vec<Door>, mut objects: Vec<SceneObject>) -> Scene {
-    objects.sort_by_key(|o| o.id);
-    Scene {
-        format_version: SCENE_FORMAT_VERSION,
-        id: id.into(),
-        source: "test".into(),
-        seed: None,
-        floor_height: 0.0,
-        rooms,
-        doors,
-        objects,
-    }
-}
+pub use common::scene;
 
-/// Three rooms, two doors, and furniture chosen so each relation and each kind of referring
-/// expression occurs (see the constants).
 pub fn home() -> Scene {
     use SemanticClass as C;
     let (l, b, k) = (Some(LIVING), Some(BEDROOM), Some(KITCHEN));
