@@ -120,3 +120,42 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     );
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn args(config: Option<PathBuf>, setting: Setting) -> Args {
+        Args {
+            dataset: PathBuf::from("unused"),
+            task: Task::Fine,
+            split: Split::Test,
+            agent: "oracle".into(),
+            setting,
+            config,
+            episodes: None,
+            threads: None,
+            agent_cmd: None,
+            backend: Some("raster".into()),
+            no_render: true,
+            out: PathBuf::from("unused"),
+        }
+    }
+
+    #[test]
+    fn protocol_file_and_flags_combine() {
+        let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../configs/eval");
+        let cfg = config(&args(Some(root.join("telhop.toml")), Setting::Telhop)).unwrap();
+        assert_eq!(cfg.setting, Setting::Telhop);
+        assert_eq!(cfg.backend, Some(Backend::Raster));
+        assert!(!cfg.render);
+        let err = config(&args(Some(root.join("telhop.toml")), Setting::Strict)).unwrap_err();
+        assert!(err.to_string().contains("telhop.toml"), "{err}");
+        let err = run(Args {
+            agent: "nope".into(),
+            ..args(None, Setting::Lenient)
+        })
+        .unwrap_err();
+        assert!(format!("{err:#}").contains("nope"), "{err:#}");
+    }
+}

@@ -52,8 +52,14 @@ pub fn parse_shard(s: &str) -> anyhow::Result<(usize, usize)> {
     let (k, n) = s
         .split_once('/')
         .with_context(|| format!("--shard `{s}`: expected K/N, e.g. 0/4"))?;
-    let k: usize = k.trim().parse().with_context(|| format!("--shard `{s}`: K is not a number"))?;
-    let n: usize = n.trim().parse().with_context(|| format!("--shard `{s}`: N is not a number"))?;
+    let k: usize = k
+        .trim()
+        .parse()
+        .with_context(|| format!("--shard `{s}`: K is not a number"))?;
+    let n: usize = n
+        .trim()
+        .parse()
+        .with_context(|| format!("--shard `{s}`: N is not a number"))?;
     anyhow::ensure!(n > 0 && k < n, "--shard `{s}`: need 0 <= K < N");
     Ok((k, n))
 }
@@ -71,7 +77,8 @@ pub fn setup(args: &Args) -> anyhow::Result<(GenerateConfig, Box<dyn SceneSource
         Some(dir) => {
             let s = FolderSource::new(dir)?;
             cfg = cfg.rescaled(s.len());
-            cfg.validate().context("the config rescaled to the scene folder")?;
+            cfg.validate()
+                .context("the config rescaled to the scene folder")?;
             Box::new(s)
         }
         None => {
@@ -117,7 +124,9 @@ pub fn generate(args: &Args, show_progress: bool) -> anyhow::Result<(RunSummary,
         pb.set_draw_target(indicatif::ProgressDrawTarget::hidden());
     }
     let summary = pool.install(|| {
-        run_pipeline(source.as_ref(), &cfg, &opts, &instructions, &times, &|_| pb.inc(1))
+        run_pipeline(source.as_ref(), &cfg, &opts, &instructions, &times, &|_| {
+            pb.inc(1)
+        })
     });
     pb.finish_and_clear();
     Ok((summary?, times, start.elapsed().as_secs_f64()))

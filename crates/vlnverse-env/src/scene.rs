@@ -252,6 +252,49 @@ pub struct SceneObject {
 }
 
 impl SceneObject {
+    /// A static object named `<class>_<id>`, in no room, with its bounding box computed from
+    /// `parts`; words `white` / `plaster`, 10 kg, friction 0.5. Hand-made scenes and fixtures
+    /// set the fields they care about afterwards.
+    pub fn from_parts(id: ObjectId, class: SemanticClass, pose: Pose, parts: Vec<Part>) -> Self {
+        let mut o = SceneObject {
+            id,
+            name: format!("{}_{id}", class.name()),
+            class,
+            room: None,
+            pose,
+            bbox: Aabb::EMPTY,
+            color: "white".into(),
+            material: "plaster".into(),
+            physics: Physics {
+                mass: 10.0,
+                friction: 0.5,
+                motion: Motion::Static,
+            },
+            supported_by: None,
+            parts,
+        };
+        o.bbox = o.compute_bbox();
+        o
+    }
+
+    /// An axis-aligned box between the world corners `min` and `max` (one light grey cuboid
+    /// part, the pose at its centre), otherwise as [`SceneObject::from_parts`].
+    pub fn cuboid(id: ObjectId, class: SemanticClass, min: Vec3, max: Vec3) -> Self {
+        let part = Part {
+            shape: Shape::Cuboid {
+                half_extents: ((max - min) * 0.5).to_array(),
+            },
+            transform: Pose::IDENTITY,
+            color: [0.8, 0.8, 0.8],
+        };
+        Self::from_parts(
+            id,
+            class,
+            Pose::from_yaw((min + max) * 0.5, 0.0),
+            vec![part],
+        )
+    }
+
     /// Whether the object is building structure.
     pub fn is_structure(&self) -> bool {
         self.class.is_structure()

@@ -73,40 +73,24 @@ fn largest_island_drops_the_closed_room() {
 fn only_geometry_in_the_height_band_counts() {
     let mut s = open_room(6.0);
     let id = 100;
-    // Above the agent (1.5 m): ignored.
-    s.objects.push(boxed(
-        id,
-        SemanticClass::Bookshelf,
-        [1.0, 1.6, 1.0],
-        [1.6, 1.7, 1.6],
-    ));
-    // A rug below the floor clearance: ignored.
-    s.objects.push(boxed(
-        id + 1,
-        SemanticClass::Rug,
-        [3.0, 0.0, 1.0],
-        [4.0, 0.01, 2.0],
-    ));
-    // A floating table top inside the band: an obstacle.
-    s.objects.push(boxed(
-        id + 2,
-        SemanticClass::DiningTable,
-        [1.0, 0.70, 3.5],
-        [2.0, 0.75, 4.5],
-    ));
-    // Ceiling and floor classes are never obstacles, whatever their height.
-    s.objects.push(boxed(
-        id + 3,
-        SemanticClass::Ceiling,
-        [3.5, 0.9, 3.5],
-        [4.5, 1.0, 4.5],
-    ));
-    s.objects.push(boxed(
-        id + 4,
-        SemanticClass::Floor,
-        [4.5, 0.5, 1.0],
-        [5.0, 1.0, 1.5],
-    ));
+    let boxes = [
+        // Above the agent (1.5 m): ignored.
+        (SemanticClass::Bookshelf, [1.0, 1.6, 1.0], [1.6, 1.7, 1.6]),
+        // A rug below the floor clearance: ignored.
+        (SemanticClass::Rug, [3.0, 0.0, 1.0], [4.0, 0.01, 2.0]),
+        // A floating table top inside the band: an obstacle.
+        (
+            SemanticClass::DiningTable,
+            [1.0, 0.70, 3.5],
+            [2.0, 0.75, 4.5],
+        ),
+        // Ceiling and floor classes are never obstacles, whatever their height.
+        (SemanticClass::Ceiling, [3.5, 0.9, 3.5], [4.5, 1.0, 4.5]),
+        (SemanticClass::Floor, [4.5, 0.5, 1.0], [5.0, 1.0, 1.5]),
+    ];
+    for (k, (class, min, max)) in boxes.into_iter().enumerate() {
+        s.objects.push(boxed(id + k as u32, class, min, max));
+    }
     let m = maps(&s);
     let occ = |x: f32, z: f32| state_at(&m.occupancy, Vec2::new(x, z));
     assert_eq!(occ(1.3, 1.3), CellState::Free);

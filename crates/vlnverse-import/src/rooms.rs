@@ -186,16 +186,7 @@ impl Labels {
     }
 
     fn neighbours(&self, i: usize) -> impl Iterator<Item = usize> {
-        let (w, h) = (self.w, self.h);
-        let (c, r) = (i % w, i / w);
-        [
-            (c > 0).then(|| i - 1),
-            (c + 1 < w).then(|| i + 1),
-            (r > 0).then(|| i - w),
-            (r + 1 < h).then(|| i + w),
-        ]
-        .into_iter()
-        .flatten()
+        grid_neighbours(i, self.w, self.h)
     }
 
     /// The cell with label `l` nearest to `p` within `max` metres.
@@ -236,6 +227,19 @@ impl Labels {
     }
 }
 
+/// The 4-neighbours of cell `i` of a row-major `w` x `h` grid.
+fn grid_neighbours(i: usize, w: usize, h: usize) -> impl Iterator<Item = usize> {
+    let (c, r) = (i % w, i / w);
+    [
+        (c > 0).then(|| i - 1),
+        (c + 1 < w).then(|| i + 1),
+        (r > 0).then(|| i - w),
+        (r + 1 < h).then(|| i + w),
+    ]
+    .into_iter()
+    .flatten()
+}
+
 /// Free cells of the structure-only map and their distance to walls / outside.
 fn structure_grid(scene: &Scene, occ: &OccupancyConfig) -> Result<Labels> {
     let mut s = scene.clone();
@@ -271,16 +275,7 @@ fn structure_grid(scene: &Scene, occ: &OccupancyConfig) -> Result<Labels> {
             outside[i] = true;
         }
         while let Some(i) = stack.pop() {
-            let (c, r) = (i % w, i / w);
-            for j in [
-                (c > 0).then(|| i - 1),
-                (c + 1 < w).then(|| i + 1),
-                (r > 0).then(|| i - w),
-                (r + 1 < h).then(|| i + w),
-            ]
-            .into_iter()
-            .flatten()
-            {
+            for j in grid_neighbours(i, w, h) {
                 if free[j] && !outside[j] {
                     outside[j] = true;
                     stack.push(j);

@@ -32,7 +32,10 @@ fn poses(scene: &Scene, n: usize, seed: u64) -> Vec<Pose> {
             !(cam.cmpge(lo).all() && cam.cmple(hi).all())
         });
         if clear && scene.room_at(p.x, p.z).is_some() {
-            out.push(Pose::from_yaw(p, rng.random_range(0.0..std::f32::consts::TAU)));
+            out.push(Pose::from_yaw(
+                p,
+                rng.random_range(0.0..std::f32::consts::TAU),
+            ));
         }
     }
     out

@@ -680,28 +680,18 @@ impl GpuRenderer {
 /// Draw the objects whose boxes meet the camera's frustum, merging contiguous ranges.
 fn draw_visible(pass: &mut wgpu::RenderPass<'_>, mesh: &SceneMesh, camera: &Camera) {
     let frustum = camera.frustum();
-    let mut vis: Vec<(f32, u32, u32)> = mesh
-        .objects
-        .iter()
-        .filter(|o| frustum.intersects_aabb(&o.bbox))
-        .map(|o| {
-            let p = camera.position.clamp(o.bbox.min_v(), o.bbox.max_v());
-            (p.distance_squared(camera.position), o.first, o.count)
-        })
-        .collect();
-    if std::env::var_os("XSORT").is_some() {
-        vis.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-    }
     let mut run: Option<(u32, u32)> = None;
-    for &(_, first, count) in &vis {
-        run = match run {
-            Some((s, e)) if e == first => Some((s, first + count)),
-            Some((s, e)) => {
-                pass.draw(s * 3..e * 3, 0..1);
-                Some((first, first + count))
-            }
-            None => Some((first, first + count)),
-        };
+    for o in &mesh.objects {
+        if frustum.intersects_aabb(&o.bbox) {
+            run = match run {
+                Some((s, e)) if e == o.first => Some((s, o.first + o.count)),
+                Some((s, e)) => {
+                    pass.draw(s * 3..e * 3, 0..1);
+                    Some((o.first, o.first + o.count))
+                }
+                None => Some((o.first, o.first + o.count)),
+            };
+        }
     }
     if let Some((s, e)) = run {
         pass.draw(s * 3..e * 3, 0..1);

@@ -64,6 +64,8 @@ struct ObjInfo {
 pub struct RasterScene {
     mesh: Arc<SceneMesh>,
     info: Vec<TriInfo>,
+    /// Colour of each tag (`2 * triangle + back + 1`; tag 0 is black), for the resolve pass.
+    tag_rgb: Vec<[u8; 3]>,
     /// Unit geometric normal per triangle (as [`SceneMesh::normal`]).
     normal: Vec<Vec3>,
     objects: Vec<ObjInfo>,
@@ -74,7 +76,11 @@ pub struct RasterScene {
 
 /// Take a buffer from a pool (or a new one) holding `n` copies of `v`.
 fn take<T: Copy>(pool: &Mutex<Vec<Vec<T>>>, n: usize, v: T) -> Vec<T> {
-    let mut b = pool.lock().ok().and_then(|mut p| p.pop()).unwrap_or_default();
+    let mut b = pool
+        .lock()
+        .ok()
+        .and_then(|mut p| p.pop())
+        .unwrap_or_default();
     b.clear();
     b.resize(n, v);
     b
@@ -164,7 +170,11 @@ impl ViewParams {
     #[inline]
     fn project(&self, p: Vec3) -> (f32, f32, f32) {
         let iz = 1.0 / -p.z;
-        (self.cx + self.fx * p.x * iz, self.cy - self.fy * p.y * iz, iz)
+        (
+            self.cx + self.fx * p.x * iz,
+            self.cy - self.fy * p.y * iz,
+            iz,
+        )
     }
 
     /// Clip planes `f(p) >= 0` inside, in camera space: near, then the guard band.
@@ -226,6 +236,9 @@ impl RasterScene {
             .collect();
         RasterScene {
             mesh,
+            tag_rgb: std::iter::once([0; 3])
+                .chain(info.iter().flat_map(|t| t.rgb))
+                .collect(),
             info,
             normal,
             objects,
@@ -266,7 +279,11 @@ impl RasterScene {
             (true, false) => take(&self.spare_ids, n, 0),
         };
         let mut rgb = if ch.rgb { vec![0u8; 3 * n] } else { Vec::new() };
-        let mut sem = if ch.semantic { vec![0u16; n] } else { Vec::new() };
+        let mut sem = if ch.semantic {
+            vec![0u16; n]
+        } else {
+            Vec::new()
+        };
         let rows = h.div_ceil(bands.clamp(1, h.div_ceil(MIN_BAND_ROWS).max(1)));
         let mut work: Vec<Band<'_>> = Vec::with_capacity(h.div_ceil(rows));
         {
@@ -320,10 +337,8 @@ impl RasterScene {
         let frustum = c.frustum();
         // Distance from the eye to the near plane's corners: a back face may be culled only
         // when no part of the near plane can be inside the object.
-        let reach = p.near
-            * (1.0 + (p.cx / p.fx).powi(2) + (p.cy / p.fy).powi(2)).sqrt()
-            * 1.001
-            + 1e-4;
+        let reach =
+            p.near * (1.0 + (p.cx / p.fx).powi(2) + (p.cy / p.fy).powi(2)).sqrt() * 1.001 + 1e-4;
         let mut out = Vec::with_capacity(self.mesh.triangle_count() / 2);
         for o in &self.objects {
             if o.count == 0 || !frustum.intersects_aabb(&o.bbox) {
@@ -339,11 +354,7 @@ impl RasterScene {
                 if back && cull {
                     continue;
                 }
-                let v = [
-                    p.to_camera(wp[0]),
-                    p.to_camera(wp[1]),
-                    p.to_camera(wp[2]),
-                ];
+                let v = [p.to_camera(wp[0]), p.to_camera(wp[1]), p.to_camera(wp[2])];
                 let tag = 2 * t as u32 + back as u32 + 1;
                 self.setup_triangle(p, v, tag, &mut out);
             }
@@ -424,8 +435,8 @@ impl RasterScene {
             y1,
             zbuf,
             mut ids,
-            mut rgb,
-            mut semantic,
+            rgb,
+            semantic,
         } = b;
         match ids.as_deref_mut() {
             Some(ids) => raster::<true>(p.w, y0, y1, tris, zbuf, ids),
@@ -440,19 +451,16 @@ impl RasterScene {
             }
         }
         let Some(ids) = ids else { return };
-        if let Some(rgb) = rgb.as_deref_mut() {
+        if let Some(rgb) = rgb {
             for (px, id) in rgb.chunks_exact_mut(3).zip(ids.iter()) {
-                let c = match *id {
-                    0 => [0; 3],
-                    tag => self.info[(tag as usize - 1) >> 1].rgb[((tag - 1) & 1) as usize],
-                };
+                let c = self.tag_rgb[*id as usize];
                 // Byte stores: `copy_from_slice` of 3 bytes becomes a memmove call.
                 px[0] = c[0];
                 px[1] = c[1];
                 px[2] = c[2];
             }
         }
-        if let Some(sem) = semantic.as_deref_mut() {
+        if let Some(sem) = semantic {
             for (s, id) in sem.iter_mut().zip(ids.iter()) {
                 *s = match *id {
                     0 => 0,
@@ -533,8 +541,14 @@ fn emit(p: &ViewParams, v: [Vec3; 3], plane: [f32; 3], tag: u32, out: &mut Vec<S
         s.swap(1, 2);
     }
     let half = sub * 0.5;
-    let (xmin, xmax) = (s[0].0.min(s[1].0).min(s[2].0), s[0].0.max(s[1].0).max(s[2].0));
-    let (ymin, ymax) = (s[0].1.min(s[1].1).min(s[2].1), s[0].1.max(s[1].1).max(s[2].1));
+    let (xmin, xmax) = (
+        s[0].0.min(s[1].0).min(s[2].0),
+        s[0].0.max(s[1].0).max(s[2].0),
+    );
+    let (ymin, ymax) = (
+        s[0].1.min(s[1].1).min(s[2].1),
+        s[0].1.max(s[1].1).max(s[2].1),
+    );
     // Pixels whose centres can be inside.
     let x0 = ((xmin - half) / sub).ceil().max(0.0);
     let x1 = ((xmax - half) / sub).floor().min(p.w as f64 - 1.0);

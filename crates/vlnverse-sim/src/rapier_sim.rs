@@ -229,10 +229,7 @@ impl RapierSimulator {
         let (Some(s), Some(w)) = (self.scene.as_ref(), self.world.as_ref()) else {
             return vec![];
         };
-        let qp = w.broad_phase.as_query_pipeline(
-            w.narrow_phase.query_dispatcher(),
-            &w.bodies,
-            &w.colliders,
+        let qp = w.query(
             QueryFilter::default()
                 .exclude_rigid_body(s.agent_body)
                 .groups(AGENT_QUERY),
@@ -253,12 +250,7 @@ impl RapierSimulator {
         if !s.has_floor {
             return true;
         }
-        let qp = w.broad_phase.as_query_pipeline(
-            w.narrow_phase.query_dispatcher(),
-            &w.bodies,
-            &w.colliders,
-            QueryFilter::default().exclude_rigid_body(s.agent_body),
-        );
+        let qp = w.query(QueryFilter::default().exclude_rigid_body(s.agent_body));
         let top = self.cfg.agent.ground_clearance + 0.01;
         let ray = Ray::new(p + Vec3::new(0.0, top, 0.0), Vec3::NEG_Y);
         qp.cast_ray(&ray, top + 0.1, true).is_some()
@@ -303,10 +295,7 @@ impl RapierSimulator {
         let (Some(s), Some(w)) = (self.scene.as_ref(), self.world.as_ref()) else {
             return (Vec3::ZERO, vec![]);
         };
-        let qp = w.broad_phase.as_query_pipeline(
-            w.narrow_phase.query_dispatcher(),
-            &w.bodies,
-            &w.colliders,
+        let qp = w.query(
             QueryFilter::default()
                 .exclude_rigid_body(s.agent_body)
                 .groups(AGENT_QUERY),

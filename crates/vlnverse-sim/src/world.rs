@@ -34,6 +34,17 @@ pub(crate) struct World {
 }
 
 impl World {
+    /// A query view of this world with `filter` (the pipeline is a borrowed view, not `Sync`:
+    /// build one per query).
+    pub(crate) fn query<'a>(&'a self, filter: QueryFilter<'a>) -> QueryPipeline<'a> {
+        self.broad_phase.as_query_pipeline(
+            self.narrow_phase.query_dispatcher(),
+            &self.bodies,
+            &self.colliders,
+            filter,
+        )
+    }
+
     fn new() -> Self {
         World {
             bodies: RigidBodySet::new(),
@@ -120,16 +131,8 @@ impl PhysicsScene {
                     1 => convex.pop(),
                     _ => Some((Pose::IDENTITY, SharedShape::compound(convex))),
                 };
-                if let Some((local, s)) = single {
-                    w.colliders.insert(
-                        ColliderBuilder::new(s)
-                            .position(pose * local)
-                            .friction(friction)
-                            .collision_groups(groups)
-                            .user_data(user),
-                    );
-                }
-                insert_meshes(&mut w, meshes, pose, friction, groups, user);
+                let shapes = single.into_iter().chain(meshes);
+                insert_shapes(&mut w, shapes, pose, friction, groups, user);
             }
         }
 
@@ -212,15 +215,16 @@ impl PhysicsScene {
     }
 }
 
-fn insert_meshes(
+/// One static collider per shape, at `pose * local`, tagged with the object's `user` data.
+fn insert_shapes(
     w: &mut World,
-    meshes: Vec<(Pose, SharedShape)>,
+    shapes: impl IntoIterator<Item = (Pose, SharedShape)>,
     pose: Pose,
     friction: f32,
     groups: InteractionGroups,
     user: u128,
 ) {
-    for (local, s) in meshes {
+    for (local, s) in shapes {
         w.colliders.insert(
             ColliderBuilder::new(s)
                 .position(pose * local)

@@ -32,7 +32,9 @@ fn bench(c: &mut Criterion) {
     let spot = sampler.targets()[0];
     c.bench_function("distance_field (one target)", |b| {
         b.iter(|| {
-            black_box(vlnverse_env::geodesic::DistanceField::new(&maps.navigable, spot.goal).unwrap())
+            black_box(
+                vlnverse_env::geodesic::DistanceField::new(&maps.navigable, spot.goal).unwrap(),
+            )
         })
     });
     let mut rng = ChaCha8Rng::seed_from_u64(1);
@@ -57,8 +59,15 @@ fn bench(c: &mut Criterion) {
                 shard: (0, 1),
                 occupancy: OccupancyConfig::default(),
             };
-            run(&source, &tiny, &opts, &TemplateGenerator::default(), &StageTimes::default(), &|_| {})
-                .unwrap()
+            run(
+                &source,
+                &tiny,
+                &opts,
+                &TemplateGenerator::default(),
+                &StageTimes::default(),
+                &|_| {},
+            )
+            .unwrap()
         })
     });
     g.finish();

@@ -13,7 +13,10 @@ use vlnverse_task::{Split, Task};
 /// Table 2 of the paper (DESIGN.md): (episodes, scenes) per task and split.
 const TABLE2: [(Task, [(usize, usize); 4]); 5] = [
     (Task::Fine, [(3963, 177), (423, 157), (825, 33), (1325, 53)]),
-    (Task::Coarse, [(11895, 177), (1269, 162), (2505, 33), (3975, 53)]),
+    (
+        Task::Coarse,
+        [(11895, 177), (1269, 162), (2505, 33), (3975, 53)],
+    ),
     (
         Task::VisualReference,
         [(11895, 177), (1269, 162), (2505, 33), (3975, 53)],
@@ -22,7 +25,10 @@ const TABLE2: [(Task, [(usize, usize); 4]); 5] = [
         Task::LongHorizon,
         [(11946, 177), (1329, 177), (2475, 33), (3975, 53)],
     ),
-    (Task::Dialogue, [(11895, 177), (1269, 162), (2505, 33), (3975, 53)]),
+    (
+        Task::Dialogue,
+        [(11895, 177), (1269, 162), (2505, 33), (3975, 53)],
+    ),
 ];
 
 #[test]
@@ -45,7 +51,11 @@ fn vlnverse_splits_are_scene_disjoint_and_val_seen_uses_train_scenes() {
     let splits = assign_scene_splits(&cfg);
     let count = |s: Split| splits.iter().filter(|&&x| x == s).count();
     assert_eq!(
-        (count(Split::Train), count(Split::ValUnseen), count(Split::Test)),
+        (
+            count(Split::Train),
+            count(Split::ValUnseen),
+            count(Split::Test)
+        ),
         (177, 33, 53)
     );
     let p = plan(&cfg, &Task::ALL);
@@ -69,7 +79,11 @@ fn episode_ids_are_contiguous_in_scene_order() {
         for split in Split::ALL {
             let mut next = 0;
             for sp in &p.scenes {
-                for s in sp.shares.iter().filter(|s| s.task == task && s.split == split) {
+                for s in sp
+                    .shares
+                    .iter()
+                    .filter(|s| s.task == task && s.split == split)
+                {
                     assert_eq!(s.first_episode_id, next);
                     assert_eq!(s.episodes(), s.trajectories * episodes_per_trajectory(task));
                     next += s.episodes() as u64;
@@ -141,19 +155,36 @@ fn edit(from: &str, to: &str) -> String {
 #[test]
 fn bad_configs_name_file_field_and_value() {
     let e = err_of(&edit("min_length = 5.0", "min_length = -2.0"));
-    assert!(e.contains("bad.toml") && e.contains("tasks.fine.min_length") && e.contains("-2"), "{e}");
+    assert!(
+        e.contains("bad.toml") && e.contains("tasks.fine.min_length") && e.contains("-2"),
+        "{e}"
+    );
 
-    let e = err_of(&edit("train = 11895, val_seen = 1269", "train = 11896, val_seen = 1269"));
-    assert!(e.contains("tasks.coarse.episodes.train") && e.contains("11896") && e.contains("multiple of 3"), "{e}");
+    let e = err_of(&edit(
+        "train = 11895, val_seen = 1269",
+        "train = 11896, val_seen = 1269",
+    ));
+    assert!(
+        e.contains("tasks.coarse.episodes.train")
+            && e.contains("11896")
+            && e.contains("multiple of 3"),
+        "{e}"
+    );
 
     let e = err_of(&edit(
         "scenes = { train = 177, val_seen = 157",
         "scenes = { train = 177, val_seen = 190",
     ));
-    assert!(e.contains("tasks.fine.scenes.val_seen") && e.contains("190"), "{e}");
+    assert!(
+        e.contains("tasks.fine.scenes.val_seen") && e.contains("190"),
+        "{e}"
+    );
 
     let e = err_of(&edit("max_length = 20.0", "max_length = 4.0"));
-    assert!(e.contains("tasks.fine.max_length") && e.contains('4'), "{e}");
+    assert!(
+        e.contains("tasks.fine.max_length") && e.contains('4'),
+        "{e}"
+    );
 
     let e = err_of(&edit("hfov_deg = 90.0", "hfov_deg = 190.0"));
     assert!(e.contains("image.hfov_deg") && e.contains("190"), "{e}");
@@ -163,16 +194,25 @@ fn bad_configs_name_file_field_and_value() {
 
     // Unknown and missing fields: the parser names them and the line.
     let e = err_of(&edit("seed = 2026", "seed = 2026\nsed = 3"));
-    assert!(e.contains("bad.toml") && e.contains("sed") && e.contains("line"), "{e}");
+    assert!(
+        e.contains("bad.toml") && e.contains("sed") && e.contains("line"),
+        "{e}"
+    );
     let e = err_of(&edit("seed = 2026", ""));
     assert!(e.contains("seed"), "{e}");
     let e = err_of(&edit("seed = 2026", "seed = \"many\""));
-    assert!(e.contains("bad.toml") && e.contains("line 8") && e.contains("seed"), "{e}");
+    assert!(
+        e.contains("bad.toml") && e.contains("line 8") && e.contains("seed"),
+        "{e}"
+    );
 }
 
 #[test]
 fn presets_parse_by_name() {
-    assert_eq!("tiny".parse::<GeneratePreset>().unwrap(), GeneratePreset::Tiny);
+    assert_eq!(
+        "tiny".parse::<GeneratePreset>().unwrap(),
+        GeneratePreset::Tiny
+    );
     let e = "huge".parse::<GeneratePreset>().unwrap_err().to_string();
     assert!(e.contains("huge") && e.contains("tiny"), "{e}");
 }

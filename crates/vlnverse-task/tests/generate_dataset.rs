@@ -104,7 +104,11 @@ fn counts_match_the_tiny_config() {
     for task in Task::ALL {
         for split in Split::ALL {
             let eps = read_split(tiny(), task, split).unwrap();
-            assert_eq!(eps.len(), cfg.tasks.get(task).episodes.get(split), "{task} {split}");
+            assert_eq!(
+                eps.len(),
+                cfg.tasks.get(task).episodes.get(split),
+                "{task} {split}"
+            );
             let ids: Vec<u64> = eps.iter().map(|e| e.episode_id).collect();
             assert_eq!(ids, (1..=eps.len() as u64).collect::<Vec<_>>());
             assert!(eps.iter().all(|e| e.task == task));
@@ -124,7 +128,11 @@ fn starts_and_goals_are_navigable_and_connected() {
                 let goal = xz(g.position);
                 assert!(nav.is_free_at(goal), "{task} {}: goal", ep.episode_id);
                 let field = DistanceField::new(nav, goal).unwrap();
-                assert!(field.distance(start).is_reachable(), "{task} {}", ep.episode_id);
+                assert!(
+                    field.distance(start).is_reachable(),
+                    "{task} {}",
+                    ep.episode_id
+                );
             }
         }
     }
@@ -149,7 +157,11 @@ fn reference_paths_are_free_for_the_agent_and_end_at_the_goal() {
                 );
             }
             let len: f32 = path.windows(2).map(|w| xz(w[0]).distance(xz(w[1]))).sum();
-            assert!((len - ep.info.geodesic_distance).abs() < 1e-3, "{task} {}", ep.episode_id);
+            assert!(
+                (len - ep.info.geodesic_distance).abs() < 1e-3,
+                "{task} {}",
+                ep.episode_id
+            );
         }
     }
 }
@@ -165,7 +177,10 @@ fn geodesic_distances_match_an_independent_astar() {
             let mut total = 0.0;
             for g in ep.goal_sequence() {
                 let leg = shortest_path(nav, at, xz(g.position)).unwrap().unwrap();
-                assert!(leg.length >= limits.min_length * 0.97 && leg.length <= limits.max_length * 1.03);
+                assert!(
+                    leg.length >= limits.min_length * 0.97
+                        && leg.length <= limits.max_length * 1.03
+                );
                 total += leg.length;
                 at = xz(g.position);
             }
@@ -204,14 +219,23 @@ fn grounded_objects_exist_with_their_class() {
             };
             if task != Task::LongHorizon {
                 let problems = check_grounding(&ctx, &ep.instruction, 2.5);
-                assert!(problems.is_empty(), "{task} {}: {problems:?}", ep.episode_id);
+                assert!(
+                    problems.is_empty(),
+                    "{task} {}: {problems:?}",
+                    ep.episode_id
+                );
                 continue;
             }
             // Long-horizon: each mention is checked on its own leg, which ends at a sub-goal.
             let ends: Vec<usize> = ep
                 .sub_goals
                 .iter()
-                .map(|g| ep.reference_path.iter().position(|p| *p == g.position).unwrap())
+                .map(|g| {
+                    ep.reference_path
+                        .iter()
+                        .position(|p| *p == g.position)
+                        .unwrap()
+                })
                 .collect();
             for g in &ep.instruction.grounding {
                 let i = g.path_index.unwrap_or(0) as usize;
@@ -225,7 +249,11 @@ fn grounded_objects_exist_with_their_class() {
                     ..Default::default()
                 };
                 let problems = check_grounding(&leg, &one, 2.5);
-                assert!(problems.is_empty(), "{task} {}: {problems:?}", ep.episode_id);
+                assert!(
+                    problems.is_empty(),
+                    "{task} {}: {problems:?}",
+                    ep.episode_id
+                );
             }
         }
     }
@@ -233,7 +261,12 @@ fn grounded_objects_exist_with_their_class() {
 
 #[test]
 fn coarse_targets_are_described_uniquely() {
-    for task in [Task::Coarse, Task::VisualReference, Task::Dialogue, Task::LongHorizon] {
+    for task in [
+        Task::Coarse,
+        Task::VisualReference,
+        Task::Dialogue,
+        Task::LongHorizon,
+    ] {
         for (_, ep) in all_episodes(task) {
             let sc = &scenes()[&ep.scene_id];
             for goal in ep.goal_sequence() {
@@ -271,7 +304,9 @@ fn coarse_trajectories_have_three_styles() {
             assert_eq!(eps.len(), 3);
             let styles: Vec<_> = eps.iter().map(|e| e.style().unwrap()).collect();
             assert_eq!(styles, vlnverse_task::Style::ALL.to_vec());
-            assert!(eps.iter().all(|e| e.reference_path == eps[0].reference_path));
+            assert!(eps
+                .iter()
+                .all(|e| e.reference_path == eps[0].reference_path));
         }
     }
 }
@@ -321,7 +356,10 @@ fn tree(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
             if p.is_dir() {
                 walk(root, &p, out);
             } else {
-                out.insert(p.strip_prefix(root).unwrap().to_path_buf(), std::fs::read(&p).unwrap());
+                out.insert(
+                    p.strip_prefix(root).unwrap().to_path_buf(),
+                    std::fs::read(&p).unwrap(),
+                );
             }
         }
     }
@@ -380,6 +418,8 @@ fn merge_refuses_parts_of_another_config() {
     let (a, b) = (d.path().join("a"), d.path().join("b"));
     generate(&a, 1, (0, 2), &[Task::Fine]);
     generate(&b, 1, (1, 2), &[Task::Coarse]);
-    let e = merge(&d.path().join("m"), &[a, b.clone()]).unwrap_err().to_string();
+    let e = merge(&d.path().join("m"), &[a, b.clone()])
+        .unwrap_err()
+        .to_string();
     assert!(e.contains(&b.display().to_string()), "{e}");
 }

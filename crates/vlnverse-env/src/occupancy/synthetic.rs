@@ -1,9 +1,7 @@
 //! A deterministic synthetic home (a grid of rooms joined by doors, with furniture), for
 //! benchmarks and tests that need a realistic map before any generator exists.
 
-use crate::scene::{
-    Aabb, Motion, Part, Physics, Pose, Scene, SceneObject, Shape, SCENE_FORMAT_VERSION,
-};
+use crate::scene::{Part, Pose, Scene, SceneObject, Shape, SCENE_FORMAT_VERSION};
 use crate::vocab::SemanticClass;
 use glam::Vec3;
 
@@ -19,41 +17,28 @@ impl SplitMix {
     }
 }
 
-fn object(id: u32, class: SemanticClass, pose: Pose, shape: Shape) -> SceneObject {
-    let mut o = SceneObject {
-        id,
-        name: format!("{}_{id}", class.name()),
-        class,
-        room: None,
-        pose,
-        bbox: Aabb::EMPTY,
-        color: "white".into(),
-        material: "wood".into(),
-        physics: Physics {
-            mass: 20.0,
-            friction: 0.6,
-            motion: Motion::Static,
-        },
-        supported_by: None,
-        parts: vec![Part {
-            shape,
-            transform: Pose::IDENTITY,
-            color: [0.7, 0.6, 0.5],
-        }],
-    };
-    o.bbox = o.compute_bbox();
+/// Wooden, 20 kg, friction 0.6, brown parts (what the benchmarks have always measured).
+fn wooden(mut o: SceneObject) -> SceneObject {
+    for p in &mut o.parts {
+        p.color = [0.7, 0.6, 0.5];
+    }
+    o.material = "wood".into();
+    o.physics.mass = 20.0;
+    o.physics.friction = 0.6;
     o
 }
 
+fn object(id: u32, class: SemanticClass, pose: Pose, shape: Shape) -> SceneObject {
+    let part = Part {
+        shape,
+        transform: Pose::IDENTITY,
+        color: [0.7, 0.6, 0.5],
+    };
+    wooden(SceneObject::from_parts(id, class, pose, vec![part]))
+}
+
 fn block(id: u32, class: SemanticClass, min: Vec3, max: Vec3) -> SceneObject {
-    object(
-        id,
-        class,
-        Pose::from_yaw((min + max) * 0.5, 0.0),
-        Shape::Cuboid {
-            half_extents: ((max - min) * 0.5).to_array(),
-        },
-    )
+    wooden(SceneObject::cuboid(id, class, min, max))
 }
 
 /// A home of `rooms_x` x `rooms_z` square rooms of side `room_size` metres (walls 0.1 m thick,

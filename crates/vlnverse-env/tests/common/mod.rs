@@ -3,32 +3,12 @@
 #![allow(dead_code)]
 
 use vlnverse_env::{
-    Aabb, Door, Motion, Part, Physics, Pose, Room, Scene, SceneObject, SemanticClass,
-    SCENE_FORMAT_VERSION,
+    Door, Part, Pose, Room, Scene, SceneObject, SemanticClass, SCENE_FORMAT_VERSION,
 };
 
-/// A static object named `<class>_<id>`, white plaster, 10 kg, friction 0.5, in no room, with
-/// its bounding box computed from `parts`.
+/// [`SceneObject::from_parts`]: white plaster, 10 kg, friction 0.5, static, in no room.
 pub fn object(id: u32, class: SemanticClass, pose: Pose, parts: Vec<Part>) -> SceneObject {
-    let mut o = SceneObject {
-        id,
-        name: format!("{}_{id}", class.name()),
-        class,
-        room: None,
-        pose,
-        bbox: Aabb::EMPTY,
-        color: "white".into(),
-        material: "plaster".into(),
-        physics: Physics {
-            mass: 10.0,
-            friction: 0.5,
-            motion: Motion::Static,
-        },
-        supported_by: None,
-        parts,
-    };
-    o.bbox = o.compute_bbox();
-    o
+    SceneObject::from_parts(id, class, pose, parts)
 }
 
 /// A test scene (source `test`, no seed, floor at 0) with its objects sorted by id.

@@ -5,10 +5,7 @@
 mod common;
 
 use glam::{Vec2, Vec3};
-use vlnverse_env::{
-    Aabb, MeshData, Motion, Part, Physics, Pose, Scene, SceneObject, SemanticClass, Shape,
-    SCENE_FORMAT_VERSION,
-};
+use vlnverse_env::{MeshData, Part, Pose, Scene, SceneObject, SemanticClass, Shape};
 
 /// Wall height used by the fixtures.
 pub const WALL_H: f32 = 2.5;
@@ -26,15 +23,7 @@ pub fn object(id: u32, class: SemanticClass, pose: Pose, shape: Shape) -> SceneO
 
 /// Axis-aligned box between two corners.
 pub fn boxed(id: u32, class: SemanticClass, min: [f32; 3], max: [f32; 3]) -> SceneObject {
-    let (min, max) = (Vec3::from_array(min), Vec3::from_array(max));
-    object(
-        id,
-        class,
-        Pose::from_yaw((min + max) * 0.5, 0.0),
-        Shape::Cuboid {
-            half_extents: ((max - min) * 0.5).to_array(),
-        },
-    )
+    SceneObject::cuboid(id, class, Vec3::from_array(min), Vec3::from_array(max))
 }
 
 /// A wall of thickness [`WALL_T`] centred on the axis-aligned segment `a`-`b` (x, z).

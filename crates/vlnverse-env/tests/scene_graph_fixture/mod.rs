@@ -7,8 +7,8 @@ mod common;
 
 use glam::Vec3;
 use vlnverse_env::{
-    Aabb, Door, Motion, ObjectId, Part, Physics, Pose, Room, RoomId, RoomType, Scene, SceneObject,
-    SemanticClass, Shape, SCENE_FORMAT_VERSION,
+    Aabb, Door, ObjectId, Part, Pose, Room, RoomId, RoomType, Scene, SceneObject, SemanticClass,
+    Shape,
 };
 
 /// Living room (x 0..5, z 0..4).

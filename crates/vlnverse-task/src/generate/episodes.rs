@@ -89,7 +89,12 @@ impl StageTimes {
     pub fn seconds(&self) -> Vec<(Stage, f64)> {
         Stage::ALL
             .iter()
-            .map(|&s| (s, self.nanos[s as usize].load(Ordering::Relaxed) as f64 * 1e-9))
+            .map(|&s| {
+                (
+                    s,
+                    self.nanos[s as usize].load(Ordering::Relaxed) as f64 * 1e-9,
+                )
+            })
             .collect()
     }
 }
@@ -172,7 +177,10 @@ impl SceneTaskContext<'_> {
     }
 
     fn fail(&self, share: &CellShare, k: usize, rej: &Rejections) -> TaskError {
-        let reasons: Vec<String> = rej.iter().map(|(r, n)| format!("{} {n}", r.name())).collect();
+        let reasons: Vec<String> = rej
+            .iter()
+            .map(|(r, n)| format!("{} {n}", r.name()))
+            .collect();
         TaskError::invalid(
             format!("scene `{}`", self.sampler.scene.id),
             format!("{} {} trajectory {k}", share.task, share.split),
@@ -209,7 +217,8 @@ impl SceneTaskContext<'_> {
                 ],
             );
             let traj_id = share.first_trajectory_id + k as u64 + 1;
-            let first_id = share.first_episode_id + (k * episodes_per_trajectory(share.task)) as u64 + 1;
+            let first_id =
+                share.first_episode_id + (k * episodes_per_trajectory(share.task)) as u64 + 1;
             let mut rng = ChaCha8Rng::seed_from_u64(seed);
             let mut done = false;
             for _ in 0..self.config.sampling.max_attempts {
@@ -290,7 +299,11 @@ impl SceneTaskContext<'_> {
         };
         let goal = self.goal(*path.points.last().unwrap_or(&Vec2::ZERO), None);
         Ok(Ok(vec![self.base_episode(
-            Task::Fine, &path, start_yaw, goal, ins,
+            Task::Fine,
+            &path,
+            start_yaw,
+            goal,
+            ins,
         )]))
     }
 

@@ -88,7 +88,8 @@ pub fn part_path(out: &Path, scene_id: &str, task: Task) -> PathBuf {
 
 fn read_json<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T> {
     let raw = std::fs::read(path).map_err(|e| TaskError::io(path, e))?;
-    serde_json::from_slice(&raw).map_err(|e| TaskError::parse(path, format!("line {}", e.line()), e))
+    serde_json::from_slice(&raw)
+        .map_err(|e| TaskError::parse(path, format!("line {}", e.line()), e))
 }
 
 fn to_json<T: Serialize>(v: &T, what: &str) -> Result<Vec<u8>> {
@@ -125,7 +126,10 @@ pub fn run(
         return Err(TaskError::invalid(
             "splits",
             cfg.splits.total(),
-            format!("the config's splits need that many scenes but the source has {}", source.len()),
+            format!(
+                "the config's splits need that many scenes but the source has {}",
+                source.len()
+            ),
         ));
     }
     let mut tasks = opts.tasks.clone();
@@ -193,19 +197,40 @@ fn generate_scene(
 ) -> Result<()> {
     let scene: Scene = times.time(Stage::Scenes, || source.scene(index))?;
     let (maps, graph) = times.time(Stage::Maps, || -> Result<_> {
-        Ok((build_maps(&scene, &opts.occupancy)?, SceneGraph::build(&scene)))
+        Ok((
+            build_maps(&scene, &opts.occupancy)?,
+            SceneGraph::build(&scene),
+        ))
     })?;
     let scenes_dir = opts.out.join("scenes");
     if !is_complete_scene_dir(scenes_dir.join(&scene.id)) {
-        let bundle = vlnverse_env::io::SceneBundle {
-            scene,
-            maps,
-            graph,
-        };
+        let bundle = vlnverse_env::io::SceneBundle { scene, maps, graph };
         times.time(Stage::Writing, || bundle.write(&scenes_dir))?;
-        return generate_parts(&bundle.scene, &bundle.maps, &bundle.graph, index, cfg, plan, todo, opts, instructions, times);
+        return generate_parts(
+            &bundle.scene,
+            &bundle.maps,
+            &bundle.graph,
+            index,
+            cfg,
+            plan,
+            todo,
+            opts,
+            instructions,
+            times,
+        );
     }
-    generate_parts(&scene, &maps, &graph, index, cfg, plan, todo, opts, instructions, times)
+    generate_parts(
+        &scene,
+        &maps,
+        &graph,
+        index,
+        cfg,
+        plan,
+        todo,
+        opts,
+        instructions,
+        times,
+    )
 }
 
 fn generate_parts(
@@ -229,7 +254,7 @@ fn generate_parts(
             maps,
             graph,
             &cfg.sampling,
-            derive_seed(cfg.seed, &[index as u64, 0x7A59_E7]),
+            derive_seed(cfg.seed, &[index as u64, 0x007A_59E7]),
         )
     });
     let ctx = SceneTaskContext {
@@ -255,7 +280,10 @@ fn generate_parts(
             part.episodes.insert(share.split, eps);
         }
         times.time(Stage::Writing, || -> Result<()> {
-            write_atomic(&part_path(&opts.out, &scene.id, task), &to_json(&part, "part")?)
+            write_atomic(
+                &part_path(&opts.out, &scene.id, task),
+                &to_json(&part, "part")?,
+            )
         })?;
     }
     Ok(())
@@ -306,7 +334,11 @@ pub fn assemble(out: &Path, manifest: &Manifest) -> Result<usize> {
             }
             let part: ScenePart = read_json(&path)?;
             if part.scene_id != *id || part.task != task {
-                return Err(TaskError::parse(&path, "scene_id/task", "part of another scene or task"));
+                return Err(TaskError::parse(
+                    &path,
+                    "scene_id/task",
+                    "part of another scene or task",
+                ));
             }
             for (r, c) in part.rejections {
                 *tr.rejections.entry(r).or_default() += c;
@@ -336,10 +368,7 @@ pub fn assemble(out: &Path, manifest: &Manifest) -> Result<usize> {
 fn copy_tree(from: &Path, to: &Path) -> Result<()> {
     let entries = std::fs::read_dir(from).map_err(|e| TaskError::io(from, e))?;
     std::fs::create_dir_all(to).map_err(|e| TaskError::io(to, e))?;
-    let mut names: Vec<_> = entries
-        .filter_map(|e| e.ok())
-        .map(|e| e.path())
-        .collect();
+    let mut names: Vec<_> = entries.filter_map(|e| e.ok()).map(|e| e.path()).collect();
     names.sort();
     for p in names {
         let Some(name) = p.file_name() else { continue };
@@ -358,7 +387,11 @@ fn copy_tree(from: &Path, to: &Path) -> Result<()> {
 /// the same config, tasks and scenes. Returns the number of episodes.
 pub fn merge(out: &Path, parts: &[PathBuf]) -> Result<usize> {
     let Some(first) = parts.first() else {
-        return Err(TaskError::invalid("parts", "none", "give at least one part folder"));
+        return Err(TaskError::invalid(
+            "parts",
+            "none",
+            "give at least one part folder",
+        ));
     };
     let manifest = read_manifest(first)?;
     for p in parts {
@@ -367,7 +400,10 @@ pub fn merge(out: &Path, parts: &[PathBuf]) -> Result<usize> {
             return Err(TaskError::invalid(
                 "parts",
                 p.display(),
-                format!("generated with another config, task list or scene set than {}", first.display()),
+                format!(
+                    "generated with another config, task list or scene set than {}",
+                    first.display()
+                ),
             ));
         }
     }
@@ -386,11 +422,16 @@ pub fn merge(out: &Path, parts: &[PathBuf]) -> Result<usize> {
             }
         }
         for split in Split::ALL {
-            let imgs = p.join(Task::VisualReference.name()).join(split.name()).join("images");
+            let imgs = p
+                .join(Task::VisualReference.name())
+                .join(split.name())
+                .join("images");
             if imgs.is_dir() {
                 copy_tree(
                     &imgs,
-                    &out.join(Task::VisualReference.name()).join(split.name()).join("images"),
+                    &out.join(Task::VisualReference.name())
+                        .join(split.name())
+                        .join("images"),
                 )?;
             }
         }

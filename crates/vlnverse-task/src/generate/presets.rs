@@ -300,7 +300,11 @@ impl GenerateConfig {
     /// Check every field; errors name `path`.
     pub fn validate_in(&self, path: &Path) -> Result<()> {
         let bad = |field: String, value: String, reason: &str| -> TaskError {
-            TaskError::parse(PathBuf::from(path), field, format!("value {value}: {reason}"))
+            TaskError::parse(
+                PathBuf::from(path),
+                field,
+                format!("value {value}: {reason}"),
+            )
         };
         if self.splits.total() == 0 {
             return Err(bad(
@@ -453,14 +457,17 @@ impl GenerateConfig {
                 let n = if n_old == 0 || pool == 0 {
                     0
                 } else {
-                    ((n_old * pool) as f64 / old_pool as f64).round().clamp(1.0, pool as f64)
-                        as usize
+                    ((n_old * pool) as f64 / old_pool as f64)
+                        .round()
+                        .clamp(1.0, pool as f64) as usize
                 };
                 let traj_old = before.episodes.get(split) / per;
                 let traj = if n == 0 {
                     0
                 } else {
-                    ((traj_old as f64 / n_old as f64) * n as f64).round().max(n as f64) as usize
+                    ((traj_old as f64 / n_old as f64) * n as f64)
+                        .round()
+                        .max(n as f64) as usize
                 };
                 t.scenes.set(split, n);
                 t.episodes.set(split, traj * per);

@@ -85,7 +85,9 @@ impl ReferenceRenderer {
             0.0
         };
         let dy = target.y - (self.floor + self.cfg.camera_height);
-        let pitch = dy.atan2(flat.length().max(0.05)).clamp(-MAX_PITCH, MAX_PITCH);
+        let pitch = dy
+            .atan2(flat.length().max(0.05))
+            .clamp(-MAX_PITCH, MAX_PITCH);
         (yaw, pitch)
     }
 }

@@ -121,7 +121,10 @@ impl<'a> SceneSampler<'a> {
         seed: u64,
     ) -> Self {
         let nav = &maps.navigable;
-        let free: Vec<Vec2> = nav.free_cells().map(|(c, r)| nav.cell_center(c, r)).collect();
+        let free: Vec<Vec2> = nav
+            .free_cells()
+            .map(|(c, r)| nav.cell_center(c, r))
+            .collect();
         let mut rejections = Rejections::new();
         let mut targets = Vec::new();
         for o in scene.items() {

@@ -144,7 +144,11 @@ pub fn histogram(values: &[f64], bins: usize) -> (Vec<String>, Vec<f64>) {
         return (Vec::new(), Vec::new());
     }
     let lo = values.iter().copied().fold(f64::INFINITY, f64::min).floor();
-    let hi = values.iter().copied().fold(f64::NEG_INFINITY, f64::max).ceil();
+    let hi = values
+        .iter()
+        .copied()
+        .fold(f64::NEG_INFINITY, f64::max)
+        .ceil();
     let width = ((hi - lo) / bins as f64).max(1e-9);
     let mut counts = vec![0.0; bins];
     for &v in values {
@@ -190,7 +194,15 @@ pub fn bar_chart(title: &str, x_label: &str, labels: &[String], values: &[f64]) 
         }
         if bar_w >= 24 || i % every == 0 {
             let t: String = label.chars().take((bar_w / 8).max(5) as usize).collect();
-            draw_text(&mut img, x0 as i64, (top + plot_h + 6) as i64, &t, 1, ink, false);
+            draw_text(
+                &mut img,
+                x0 as i64,
+                (top + plot_h + 6) as i64,
+                &t,
+                1,
+                ink,
+                false,
+            );
         }
         if bar_w >= 32 {
             let vt = fmt_value(v);
@@ -231,10 +243,8 @@ pub fn write_stats(dir: &Path) -> Result<String> {
     for &r in st.rooms.values() {
         *room_counts.entry(r).or_default() += 1.0;
     }
-    let (l, c): (Vec<String>, Vec<f64>) = room_counts
-        .iter()
-        .map(|(k, v)| (k.to_string(), *v))
-        .unzip();
+    let (l, c): (Vec<String>, Vec<f64>) =
+        room_counts.iter().map(|(k, v)| (k.to_string(), *v)).unzip();
     save_png(
         &bar_chart("Rooms per scene", "rooms", &l, &c),
         &out.join("rooms.png"),
@@ -280,7 +290,11 @@ pub fn write_stats(dir: &Path) -> Result<String> {
             s.n, s.mean, s.min, s.median, s.max
         ));
     };
-    row(&mut md, "navigable area per scene (m^2)", Summary::of(&areas));
+    row(
+        &mut md,
+        "navigable area per scene (m^2)",
+        Summary::of(&areas),
+    );
     let rooms: Vec<f64> = st.rooms.values().map(|&r| r as f64).collect();
     row(&mut md, "rooms per scene", Summary::of(&rooms));
     for (task, v) in &st.path_length {

@@ -119,6 +119,8 @@ mod tests {
         assert!(yaw_towards(Vec2::new(0.0, -1.0)).abs() < 1e-6);
         let left = yaw_towards(Vec2::new(-1.0, 0.0));
         assert!((left - std::f32::consts::FRAC_PI_2).abs() < 1e-6);
-        assert!((wrap_angle(3.0 * std::f32::consts::PI) - std::f32::consts::PI).abs() < 1e-5);
+        assert!((wrap_angle(3.0 * std::f32::consts::PI).abs() - std::f32::consts::PI).abs() < 1e-5);
+        assert!((wrap_angle(0.5 + std::f32::consts::TAU) - 0.5).abs() < 1e-5);
+        assert!((wrap_angle(-0.5 - std::f32::consts::TAU) + 0.5).abs() < 1e-5);
     }
 }
