@@ -262,11 +262,17 @@ pub fn write_stats(dir: &Path) -> Result<String> {
             if style == "all" && per.len() > 1 {
                 continue;
             }
-            let short: String = task.chars().take(6).collect();
+            let short = match task.as_str() {
+                "coarse" => "co",
+                "visual_reference" => "vr",
+                "long_horizon" => "lh",
+                "dialogue" => "dia",
+                other => other,
+            };
             let label = if style == "all" {
-                short
+                short.to_string()
             } else {
-                format!("{short}/{}", &style[..3.min(style.len())])
+                format!("{short}/{}", &style[..1.min(style.len())])
             };
             il_labels.push(label);
             il_values.push(Summary::of(v).mean);
@@ -275,7 +281,7 @@ pub fn write_stats(dir: &Path) -> Result<String> {
     save_png(
         &bar_chart(
             "Mean instruction length (words)",
-            "task / style",
+            "co coarse, vr visual ref., lh long horizon, dia dialogue; /f /n /c formal natural casual",
             &il_labels,
             &il_values,
         ),
