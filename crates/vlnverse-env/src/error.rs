@@ -74,7 +74,11 @@ impl EnvError {
     }
 
     /// Shorthand for [`EnvError::InvalidConfig`] without a file.
-    pub fn invalid(field: impl Into<String>, value: impl ToString, reason: impl Into<String>) -> Self {
+    pub fn invalid(
+        field: impl Into<String>,
+        value: impl ToString,
+        reason: impl Into<String>,
+    ) -> Self {
         EnvError::InvalidConfig {
             path: None,
             field: field.into(),

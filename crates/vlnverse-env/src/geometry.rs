@@ -209,7 +209,11 @@ fn sphere(r: f32) -> TriMesh {
         let theta = std::f32::consts::PI * i as f32 / lat as f32;
         for j in 0..=lon {
             let phi = std::f32::consts::TAU * j as f32 / lon as f32;
-            let d = Vec3::new(theta.sin() * phi.cos(), theta.cos(), -theta.sin() * phi.sin());
+            let d = Vec3::new(
+                theta.sin() * phi.cos(),
+                theta.cos(),
+                -theta.sin() * phi.sin(),
+            );
             m.positions.push((d * r).to_array());
             m.normals.push(d.to_array());
         }

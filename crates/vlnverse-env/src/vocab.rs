@@ -226,7 +226,10 @@ mod tests {
             .iter()
             .filter(|c| matches!(c.kind(), ClassKind::Furniture | ClassKind::Small))
             .count();
-        assert!(objects >= 40, "vocabulary has only {objects} object classes");
+        assert!(
+            objects >= 40,
+            "vocabulary has only {objects} object classes"
+        );
     }
 
     #[test]

@@ -298,6 +298,11 @@ fn from_json_rejects_corrupt_input_with_clear_errors() {
     assert!(msg.contains("under"), "{msg}");
     let msg = edit(&|v| v["nodes"][5]["class"] = "spaceship".into());
     assert!(msg.contains("spaceship"), "{msg}");
+    // As written to disk (pretty-printed): a wrongly typed value is quoted with its field.
+    let mut v = good.clone();
+    v["format_version"] = "one".into();
+    let msg = parse_error(&serde_json::to_string_pretty(&v).unwrap());
+    assert!(msg.contains("\"format_version\": \"one\""), "{msg}");
     let msg = edit(&|v| v["nodes"][5]["room"] = 77.into());
     assert!(msg.contains("nodes[5].room") && msg.contains("77"), "{msg}");
     let msg = edit(&|v| {

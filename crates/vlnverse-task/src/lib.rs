@@ -2,9 +2,9 @@
 
 pub mod dataset;
 pub mod episode;
-pub mod generate;
 pub mod error;
 pub mod eval;
+pub mod generate;
 pub mod instructions;
 pub mod metrics;
 pub mod oracle;

@@ -47,6 +47,39 @@ pub enum OracleQuery {
     AmIClose,
 }
 
+impl OracleQuery {
+    /// Read a free-text question: "am I close?" / "how far ..." -> [`OracleQuery::AmIClose`];
+    /// "where is the red mug?" / "find the sofa" -> [`OracleQuery::WhereIs`]; anything else
+    /// ("which way?") -> [`OracleQuery::WhichWay`].
+    pub fn parse(question: &str) -> OracleQuery {
+        let q = question
+            .trim()
+            .trim_end_matches(['?', '.', '!'])
+            .to_lowercase();
+        let words: Vec<&str> = q.split_whitespace().collect();
+        if words
+            .iter()
+            .any(|w| matches!(*w, "close" | "near" | "far" | "arrived"))
+        {
+            return OracleQuery::AmIClose;
+        }
+        let object = ["where is ", "where's ", "where are ", "find "]
+            .iter()
+            .find_map(|p| q.strip_prefix(p));
+        match object {
+            Some(rest) => {
+                let rest = rest.trim();
+                let rest = ["the ", "a ", "an ", "my "]
+                    .iter()
+                    .find_map(|a| rest.strip_prefix(a))
+                    .unwrap_or(rest);
+                OracleQuery::WhereIs(rest.trim().to_string())
+            }
+            None => OracleQuery::WhichWay,
+        }
+    }
+}
+
 /// The oracle's reply.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct OracleAnswer {
@@ -599,5 +632,29 @@ impl<O: Oracle> Oracle for LlmOracle<O> {
 
     fn remaining(&self) -> u32 {
         self.inner.remaining()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::OracleQuery;
+
+    #[test]
+    fn free_text_questions_map_to_queries() {
+        assert_eq!(OracleQuery::parse("Which way?"), OracleQuery::WhichWay);
+        assert_eq!(
+            OracleQuery::parse("where should I go now"),
+            OracleQuery::WhichWay
+        );
+        assert_eq!(OracleQuery::parse("Am I close?"), OracleQuery::AmIClose);
+        assert_eq!(OracleQuery::parse("how far is it"), OracleQuery::AmIClose);
+        assert_eq!(
+            OracleQuery::parse("Where is the red mug?"),
+            OracleQuery::WhereIs("red mug".into())
+        );
+        assert_eq!(
+            OracleQuery::parse("find a coffee table"),
+            OracleQuery::WhereIs("coffee table".into())
+        );
     }
 }

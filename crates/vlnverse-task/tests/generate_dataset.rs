@@ -423,3 +423,24 @@ fn merge_refuses_parts_of_another_config() {
         .to_string();
     assert!(e.contains(&b.display().to_string()), "{e}");
 }
+
+#[test]
+fn stats_write_plots_and_a_summary_with_the_counts() {
+    let d = tempfile::tempdir().unwrap();
+    generate(d.path(), 2, (0, 1), &[Task::Fine, Task::Coarse]);
+    let md = vlnverse_task::generate::stats::write_stats(d.path()).unwrap();
+    for f in [
+        "navigable_area.png",
+        "rooms.png",
+        "path_length.png",
+        "instruction_length.png",
+    ] {
+        let img = image::open(d.path().join("stats").join(f)).unwrap();
+        assert!(img.width() >= 400, "{f}");
+    }
+    let st = vlnverse_task::generate::stats::collect(d.path()).unwrap();
+    assert_eq!(st.rooms.len(), 5);
+    assert_eq!(st.path_length["fine"].len(), 46);
+    assert_eq!(st.instruction_words["coarse"]["formal"].len(), 23);
+    assert!(md.contains("| fine | 24 | 6 | 8 | 8 |"), "{md}");
+}

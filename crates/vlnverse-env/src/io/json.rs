@@ -43,15 +43,20 @@ fn json_error(path: &Path, bytes: &[u8], e: &serde_json::Error) -> EnvError {
         serde_json::error::Category::Data => "invalid scene",
         serde_json::error::Category::Eof => "truncated JSON",
     };
-    // serde's message already says "at line L column C" but not which field; the pretty-printed
-    // file has one field per line, so quoting that line names the field and its value.
-    let line = (e.line() > 0)
-        .then(|| bytes.split(|&b| b == b'\n').nth(e.line() - 1))
-        .flatten()
-        .map(|l| String::from_utf8_lossy(l).trim().to_string())
-        .filter(|l| l.contains(':') && matches!(e.classify(), serde_json::error::Category::Data));
-    match line {
-        Some(l) if l.chars().count() <= 160 => EnvError::parse(path, format!("{what}: {e}: `{l}`")),
-        _ => EnvError::parse(path, format!("{what}: {e}")),
+    match offending_line(bytes, e) {
+        Some(l) => EnvError::parse(path, format!("{what}: {e}: `{l}`")),
+        None => EnvError::parse(path, format!("{what}: {e}")),
     }
+}
+
+/// The line a serde data error points at, trimmed, when it holds a `"field": value` pair.
+/// serde says "at line L column C" but not which field; our JSON files are pretty-printed with
+/// one field per line, so quoting that line names the field and its value.
+pub(crate) fn offending_line(bytes: &[u8], e: &serde_json::Error) -> Option<String> {
+    if e.classify() != serde_json::error::Category::Data || e.line() == 0 {
+        return None;
+    }
+    let line = bytes.split(|&b| b == b'\n').nth(e.line() - 1)?;
+    let line = String::from_utf8_lossy(line).trim().to_string();
+    (line.contains(':') && line.chars().count() <= 160).then_some(line)
 }

@@ -72,8 +72,12 @@ impl SceneGraph {
 
     /// Parse `scene_graph.json` text. Errors name the offending field and value.
     pub fn from_json(text: &str) -> Result<SceneGraph> {
-        let file: FileGraph =
-            serde_json::from_str(text).map_err(|e| err(format!("invalid scene graph: {e}")))?;
+        let file: FileGraph = serde_json::from_str(text).map_err(|e| {
+            match crate::io::json::offending_line(text.as_bytes(), &e) {
+                Some(l) => err(format!("invalid scene graph: {e}: `{l}`")),
+                None => err(format!("invalid scene graph: {e}")),
+            }
+        })?;
         if file.format_version != SCENE_GRAPH_FORMAT_VERSION {
             return Err(err(format!(
                 "format_version = {}: expected {SCENE_GRAPH_FORMAT_VERSION}",

@@ -6,12 +6,13 @@
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, OnceLock};
 
 use glam::Vec2;
 use rayon::prelude::*;
 use vlnverse_env::geodesic::DistanceField;
 use vlnverse_env::occupancy::GridMap;
+use vlnverse_env::scene_graph::SceneGraph;
 use vlnverse_env::{Pose, Scene};
 use vlnverse_sensors::{AgentState, CollisionInfo, Observations, RigConfig, SensorRig};
 use vlnverse_sim::{Action, PhysicsScene, RapierSimulator, SimConfig, Simulator, StepOutcome};
@@ -22,11 +23,11 @@ use crate::error::{Result, TaskError};
 use crate::eval::agent::{
     Agent, AgentFactory, EpisodeInputs, OracleHandle, Privileged, StepInput, SubGoalProgress,
 };
-use crate::eval::agents::{floor_point, wrap_angle, yaw_towards};
 use crate::eval::plots;
 use crate::eval::protocol::{EvalConfig, Setting};
 use crate::eval::resume::{self, EpisodeRecord, ProgressLog, PROGRESS_FILE};
 use crate::metrics::{score_episode, GoalDistance, GoalDistances, MetricsConfig, Nearest};
+use crate::oracle::{Oracle, OracleConfig, OracleQuery, ShortestPathOracle};
 use crate::report::{write_run, RunSummary};
 use crate::score::navigable_map_path;
 use crate::trajectory::{write_jsonl, Trajectory};
@@ -82,6 +83,7 @@ pub struct SceneContext {
     /// Its navigable (agent-dilated) map.
     pub navigable: Arc<GridMap>,
     physics: Arc<PhysicsScene>,
+    graph: OnceLock<Arc<SceneGraph>>,
     fields: Mutex<BTreeMap<(u32, u32), Arc<DistanceField>>>,
 }
 
@@ -89,6 +91,13 @@ pub struct SceneContext {
 const FIELD_CACHE: usize = 48;
 
 impl SceneContext {
+    /// The scene graph, built on first use (only dialogue episodes need it).
+    pub fn graph(&self) -> Arc<SceneGraph> {
+        self.graph
+            .get_or_init(|| Arc::new(SceneGraph::build(&self.scene)))
+            .clone()
+    }
+
     /// Load `dataset/scenes/<id>/` (scene and navigable map) and build its physics world.
     pub fn load(dataset: &Path, scene_id: &str, cfg: &SimConfig) -> Result<Self> {
         let dir = dataset.join("scenes").join(scene_id);
@@ -100,6 +109,7 @@ impl SceneContext {
             scene: Arc::new(scene),
             navigable: Arc::new(navigable),
             physics: Arc::new(physics),
+            graph: OnceLock::new(),
             fields: Mutex::new(BTreeMap::new()),
         })
     }
@@ -137,43 +147,26 @@ struct Worker {
     agent: Box<dyn Agent>,
 }
 
-/// A dialogue oracle answering from the true remaining path: direction of the next turn and
-/// distance left. Stands in until the task layer's generated-dialogue oracle is wired in.
-pub struct PathOracle<'a> {
-    field: &'a DistanceField,
+/// The dialogue oracle as the agent sees it: free-text questions go to the episode's
+/// [`ShortestPathOracle`] (true remaining path + scene graph, with the episode's budget).
+pub struct DialogueHandle<'a> {
+    oracle: &'a mut ShortestPathOracle,
     pose: Pose,
-    left: &'a mut u32,
 }
 
-impl OracleHandle for PathOracle<'_> {
-    fn ask(&mut self, _question: &str) -> Option<String> {
-        if *self.left == 0 {
+impl OracleHandle for DialogueHandle<'_> {
+    fn ask(&mut self, question: &str) -> Option<String> {
+        if self.oracle.remaining() == 0 {
             return None;
         }
-        *self.left -= 1;
-        let p = floor_point(&self.pose);
-        let (Some(d), Some(w)) = (self.field.distance(p).meters(), self.field.next_waypoint(p))
-        else {
-            return Some("I cannot tell you how to get there from here.".into());
-        };
-        let diff = wrap_angle(yaw_towards(w - p) - self.pose.yaw()).to_degrees();
-        let dir = if diff.abs() < 30.0 {
-            "keep going straight"
-        } else if diff.abs() > 150.0 {
-            "turn around"
-        } else if diff > 0.0 {
-            "turn left"
-        } else {
-            "turn right"
-        };
-        Some(format!(
-            "{dir}, then walk about {:.0} m; the goal is {:.1} m away along the way.",
-            w.distance(p).max(0.5),
-            d
-        ))
+        let query = OracleQuery::parse(question);
+        match self.oracle.ask(&query, self.pose.position, self.pose.yaw()) {
+            Ok(answer) => Some(answer.text),
+            Err(e) => Some(format!("I could not answer that: {e}")),
+        }
     }
     fn remaining(&self) -> u32 {
-        *self.left
+        self.oracle.remaining()
     }
 }
 
@@ -328,7 +321,16 @@ impl Shared<'_> {
         w.agent.reset(&inputs)?;
         let total = goal_fields.len() as u32;
         let mut progress = SubGoalProgress { current: 0, total };
-        let mut oracle_left = ep.oracle_budget.unwrap_or(0);
+        let mut dialogue = match ep.oracle_budget {
+            Some(_) => Some(ShortestPathOracle::for_episode(
+                ctx.scene.clone(),
+                ctx.graph(),
+                ctx.navigable.clone(),
+                ep,
+                OracleConfig::default(),
+            )?),
+            None => None,
+        };
         let mut positions = vec![pose.position];
         let mut headings = vec![pose.yaw()];
         let mut actions: Vec<String> = Vec::new();
@@ -356,23 +358,16 @@ impl Shared<'_> {
                     .map_err(|e| sim_err("rig", &ep.scene_id, e))?,
                 None => empty.clone(),
             };
-            let field = &goal_fields[(progress.current as usize).min(goal_fields.len() - 1)];
-            let mut oracle = PathOracle {
-                field,
-                pose,
-                left: &mut oracle_left,
-            };
+            let mut handle = dialogue
+                .as_mut()
+                .map(|oracle| DialogueHandle { oracle, pose });
             let action = w.agent.act(&mut StepInput {
                 step: steps,
                 observations: &obs,
                 pose,
                 last: last.as_ref(),
                 sub_goal: progress,
-                oracle: if ep.oracle_budget.is_some() {
-                    Some(&mut oracle)
-                } else {
-                    None
-                },
+                oracle: handle.as_mut().map(|h| h as &mut dyn OracleHandle),
             })?;
             if !cfg.action_space.allows(&action) {
                 return Err(TaskError::invalid(

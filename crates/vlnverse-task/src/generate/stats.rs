@@ -281,7 +281,7 @@ pub fn write_stats(dir: &Path) -> Result<String> {
     save_png(
         &bar_chart(
             "Mean instruction length (words)",
-            "co coarse, vr visual ref., lh long horizon, dia dialogue; /f /n /c formal natural casual",
+            "task (co/vr/lh/dia) / style (f/n/c)",
             &il_labels,
             &il_values,
         ),
