@@ -37,6 +37,8 @@ const MIN_GUARD: f32 = 8192.0;
 const MAX_FIXED: f64 = (1u64 << 25) as f64;
 /// Fewest rows per band when a view is split between threads.
 const MIN_BAND_ROWS: usize = 16;
+/// Side in pixels of the square tiles of the coarse depth buffer used for occlusion culling.
+const TILE: usize = 8;
 
 /// What the resolve pass needs of a triangle.
 #[derive(Clone, Copy, Debug)]
@@ -63,9 +65,11 @@ struct ObjInfo {
 #[derive(Debug)]
 pub struct RasterScene {
     mesh: Arc<SceneMesh>,
-    info: Vec<TriInfo>,
     /// Colour of each tag (`2 * triangle + back + 1`; tag 0 is black), for the resolve pass.
     tag_rgb: Vec<[u8; 3]>,
+    /// Class and object id of each tag (0 for tag 0).
+    tag_class: Vec<u16>,
+    tag_object: Vec<u32>,
     /// Unit geometric normal per triangle (as [`SceneMesh::normal`]).
     normal: Vec<Vec3>,
     objects: Vec<ObjInfo>,
@@ -122,6 +126,25 @@ struct ScreenTri {
     zhi: f32,
     /// `2 * triangle + back + 1` (0 is nothing).
     tag: u32,
+}
+
+/// The screen triangles of one object: a range of the setup list, their inclusive pixel bounds
+/// and the largest `1 / depth` any of them can write (each clamps to its `zhi`).
+#[derive(Clone, Copy, Debug)]
+struct Group {
+    first: usize,
+    end: usize,
+    x0: i32,
+    x1: i32,
+    y0: i32,
+    y1: i32,
+    zmax: f32,
+}
+
+/// Triangles set up for one view, grouped by object, nearest objects first.
+struct Setup {
+    tris: Vec<ScreenTri>,
+    groups: Vec<Group>,
 }
 
 /// Per-view constants.
@@ -239,7 +262,12 @@ impl RasterScene {
             tag_rgb: std::iter::once([0; 3])
                 .chain(info.iter().flat_map(|t| t.rgb))
                 .collect(),
-            info,
+            tag_class: std::iter::once(0)
+                .chain(info.iter().flat_map(|t| [t.class; 2]))
+                .collect(),
+            tag_object: std::iter::once(0)
+                .chain(info.iter().flat_map(|t| [t.object; 2]))
+                .collect(),
             normal,
             objects,
             spare_z: Mutex::new(Vec::new()),
@@ -332,18 +360,32 @@ impl RasterScene {
         }
     }
 
-    /// Cull, clip and project every triangle that may be seen.
-    fn setup(&self, c: &Camera, p: &ViewParams) -> Vec<ScreenTri> {
+    /// Cull, clip and project every triangle that may be seen, object by object, nearest
+    /// objects (by distance from the eye to their box) first so that occlusion culling in
+    /// [`Self::fill_band`] skips many of the far ones.
+    fn setup(&self, c: &Camera, p: &ViewParams) -> Setup {
         let frustum = c.frustum();
         // Distance from the eye to the near plane's corners: a back face may be culled only
         // when no part of the near plane can be inside the object.
         let reach =
             p.near * (1.0 + (p.cx / p.fx).powi(2) + (p.cy / p.fy).powi(2)).sqrt() * 1.001 + 1e-4;
+        let mut order: Vec<(f32, usize)> = self
+            .objects
+            .iter()
+            .enumerate()
+            .filter(|(_, o)| o.count > 0 && frustum.intersects_aabb(&o.bbox))
+            .map(|(i, o)| {
+                let q = p.pos.clamp(o.bbox.min_v(), o.bbox.max_v());
+                (q.distance_squared(p.pos), i)
+            })
+            .collect();
+        // Ties (and NaN-free keys) broken by object index: the order is deterministic.
+        order.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         let mut out = Vec::with_capacity(self.mesh.triangle_count() / 2);
-        for o in &self.objects {
-            if o.count == 0 || !frustum.intersects_aabb(&o.bbox) {
-                continue;
-            }
+        let mut groups = Vec::with_capacity(order.len());
+        for &(_, oi) in &order {
+            let o = &self.objects[oi];
+            let first = out.len();
             let cull = o.closed && {
                 let (lo, hi) = (o.bbox.min_v() - reach, o.bbox.max_v() + reach);
                 !(p.pos.cmpge(lo).all() && p.pos.cmple(hi).all())
@@ -358,8 +400,27 @@ impl RasterScene {
                 let tag = 2 * t as u32 + back as u32 + 1;
                 self.setup_triangle(p, v, tag, &mut out);
             }
+            if out.len() > first {
+                let mut g = Group {
+                    first,
+                    end: out.len(),
+                    x0: i32::MAX,
+                    x1: i32::MIN,
+                    y0: i32::MAX,
+                    y1: i32::MIN,
+                    zmax: 0.0,
+                };
+                for t in &out[first..] {
+                    g.x0 = g.x0.min(t.x0);
+                    g.x1 = g.x1.max(t.x1);
+                    g.y0 = g.y0.min(t.y0);
+                    g.y1 = g.y1.max(t.y1);
+                    g.zmax = g.zmax.max(t.zhi);
+                }
+                groups.push(g);
+            }
         }
-        out
+        Setup { tris: out, groups }
     }
 
     fn setup_triangle(&self, p: &ViewParams, v: [Vec3; 3], tag: u32, out: &mut Vec<ScreenTri>) {
@@ -425,7 +486,7 @@ impl RasterScene {
     fn fill_band(
         &self,
         p: &ViewParams,
-        tris: &[ScreenTri],
+        setup: &Setup,
         b: Band<'_>,
         want_depth: bool,
         want_instance: bool,
@@ -438,9 +499,45 @@ impl RasterScene {
             rgb,
             semantic,
         } = b;
-        match ids.as_deref_mut() {
-            Some(ids) => raster::<true>(p.w, y0, y1, tris, zbuf, ids),
-            None => raster::<false>(p.w, y0, y1, tris, zbuf, &mut []),
+        // Coarse depth buffer: the smallest `1 / depth` of each tile of the band. An object
+        // none of whose triangles can write more than that over its screen box is hidden.
+        let w = p.w;
+        let (tw, th) = (w.div_ceil(TILE), (y1 - y0).div_ceil(TILE));
+        let mut hiz = vec![1.0 / p.far; tw * th];
+        let (by0, by1) = (y0 as i32, y1 as i32 - 1);
+        for g in &setup.groups {
+            let (ya, yb) = (g.y0.max(by0), g.y1.min(by1));
+            if ya > yb {
+                continue;
+            }
+            let (ty0, ty1) = ((ya as usize - y0) / TILE, (yb as usize - y0) / TILE);
+            let (tx0, tx1) = (g.x0 as usize / TILE, g.x1 as usize / TILE);
+            let hidden = (ty0..=ty1).all(|ty| {
+                hiz[ty * tw + tx0..=ty * tw + tx1]
+                    .iter()
+                    .all(|m| g.zmax <= *m)
+            });
+            if hidden {
+                continue;
+            }
+            let tris = &setup.tris[g.first..g.end];
+            match ids.as_deref_mut() {
+                Some(ids) => raster::<true>(w, y0, y1, tris, zbuf, ids),
+                None => raster::<false>(w, y0, y1, tris, zbuf, &mut []),
+            }
+            for ty in ty0..=ty1 {
+                let (r0, r1) = (ty * TILE, ((ty + 1) * TILE).min(y1 - y0));
+                for tx in tx0..=tx1 {
+                    let (c0, c1) = (tx * TILE, ((tx + 1) * TILE).min(w));
+                    let mut m = f32::INFINITY;
+                    for r in r0..r1 {
+                        for z in &zbuf[r * w + c0..r * w + c1] {
+                            m = m.min(*z);
+                        }
+                    }
+                    hiz[ty * tw + tx] = m;
+                }
+            }
         }
         // Resolve: 1/depth to metres, tags to colour, class and object.
         let (inv_far, far) = (1.0 / p.far, p.far);
@@ -462,17 +559,12 @@ impl RasterScene {
         }
         if let Some(sem) = semantic {
             for (s, id) in sem.iter_mut().zip(ids.iter()) {
-                *s = match *id {
-                    0 => 0,
-                    tag => self.info[(tag as usize - 1) >> 1].class,
-                };
+                *s = self.tag_class[*id as usize];
             }
         }
         if want_instance {
             for id in ids.iter_mut() {
-                if *id != 0 {
-                    *id = self.info[(*id as usize - 1) >> 1].object;
-                }
+                *id = self.tag_object[*id as usize];
             }
         }
     }
