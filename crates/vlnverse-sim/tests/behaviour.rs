@@ -528,6 +528,15 @@ fn bad_actions_give_clear_errors_and_change_nothing() {
         let e = s.step(a).unwrap_err().to_string();
         assert!(e.contains(needle), "{a:?}: {e}");
     }
+    // The message names the value too.
+    let e = s
+        .step(Action::MoveForward(f32::NAN))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("MoveForward.distance") && e.contains("NaN"),
+        "{e}"
+    );
     assert_eq!(s.pose(), before);
     assert!(s.step(Action::Stop).unwrap().failure.is_none());
     assert!(matches!(
