@@ -528,14 +528,7 @@ impl RasterScene {
             for ty in ty0..=ty1 {
                 let (r0, r1) = (ty * TILE, ((ty + 1) * TILE).min(y1 - y0));
                 for tx in tx0..=tx1 {
-                    let (c0, c1) = (tx * TILE, ((tx + 1) * TILE).min(w));
-                    let mut m = f32::INFINITY;
-                    for r in r0..r1 {
-                        for z in &zbuf[r * w + c0..r * w + c1] {
-                            m = m.min(*z);
-                        }
-                    }
-                    hiz[ty * tw + tx] = m;
+                    hiz[ty * tw + tx] = tile_min(zbuf, w, r0, r1, tx * TILE);
                 }
             }
         }
@@ -719,6 +712,30 @@ fn raster<const IDS: bool>(
             }
         }
     }
+}
+
+/// The smallest value of rows `r0..r1`, columns `c0..c0 + TILE` (clipped to the row) of a
+/// buffer `w` wide: eight independent lanes with branch-free selects, which vectorise.
+#[inline]
+fn tile_min(z: &[f32], w: usize, r0: usize, r1: usize, c0: usize) -> f32 {
+    let mut m = [f32::INFINITY; TILE];
+    if c0 + TILE <= w {
+        for r in r0..r1 {
+            let Ok(row) = <&[f32; TILE]>::try_from(&z[r * w + c0..r * w + c0 + TILE]) else {
+                continue;
+            };
+            for j in 0..TILE {
+                m[j] = if row[j] < m[j] { row[j] } else { m[j] };
+            }
+        }
+    } else {
+        for r in r0..r1 {
+            for (j, v) in z[r * w + c0..(r + 1) * w].iter().enumerate() {
+                m[j] = if *v < m[j] { *v } else { m[j] };
+            }
+        }
+    }
+    m.iter().fold(f32::INFINITY, |a, b| if *b < a { *b } else { a })
 }
 
 /// Lane offsets of an 8-pixel block.

@@ -1,6 +1,6 @@
 //! Reference images of the visual-reference task: an RGB view from the goal point facing the
-//! target, rendered with the sensors crate's CPU ray caster (runs anywhere, deterministic) and
-//! encoded as PNG.
+//! target, rendered with the sensors crate's CPU rasteriser (runs anywhere, deterministic; it
+//! agrees per pixel with the ray caster and is ~50x faster) and encoded as PNG.
 
 use std::sync::Arc;
 
@@ -8,7 +8,7 @@ use glam::{Quat, Vec2, Vec3};
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 use image::{ExtendedColorType, ImageEncoder};
 use vlnverse_env::{Pose, Scene};
-use vlnverse_sensors::{Camera, Channels, SceneMesh, SceneRaycaster, View};
+use vlnverse_sensors::{Camera, Channels, RasterScene, SceneMesh, View};
 
 use super::presets::ImageConfig;
 use crate::error::{Result, TaskError};
@@ -22,21 +22,21 @@ pub const MAX_PITCH: f32 = 0.87;
 
 /// Renders reference images in one scene.
 pub struct ReferenceRenderer {
-    raycaster: SceneRaycaster,
+    raster: RasterScene,
     floor: f32,
     cfg: ImageConfig,
 }
 
 impl ReferenceRenderer {
-    /// Build the ray-cast BVH of a scene.
+    /// Prepare a scene for rendering.
     pub fn new(scene: &Scene, cfg: &ImageConfig) -> Result<Self> {
         let err = |e: vlnverse_sensors::SensorError| {
             TaskError::invalid("scene", &scene.id, format!("cannot render: {e}"))
         };
         let mesh = SceneMesh::new(scene).map_err(err)?;
-        let raycaster = SceneRaycaster::new(Arc::new(mesh)).map_err(err)?;
+        let raster = RasterScene::new(Arc::new(mesh));
         Ok(ReferenceRenderer {
-            raycaster,
+            raster,
             floor: scene.floor_height,
             cfg: *cfg,
         })
@@ -59,11 +59,15 @@ impl ReferenceRenderer {
             NEAR,
             FAR,
         );
-        self.raycaster
-            .render_view(&View {
-                camera,
-                channels: Channels::RGB,
-            })
+        // One band: generation already runs scenes in parallel.
+        self.raster
+            .render_view(
+                &View {
+                    camera,
+                    channels: Channels::RGB,
+                },
+                1,
+            )
             .rgb
     }
 
