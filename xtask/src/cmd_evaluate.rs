@@ -5,23 +5,17 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
+use crate::split_args::SplitArgs;
 use vlnverse_sensors::Backend;
 use vlnverse_task::eval::agents::builtin;
 use vlnverse_task::eval::{evaluate, EvalConfig, EvalRequest, Setting};
-use vlnverse_task::{Split, Task};
 
 /// Arguments of `cargo xtask evaluate`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
-    /// Dataset folder (holds `<task>/<split>/<split>.json.gz` and `scenes/<scene_id>/`).
-    #[arg(long)]
-    pub dataset: PathBuf,
-    /// Task: fine, coarse, visual_reference, long_horizon or dialogue.
-    #[arg(long)]
-    pub task: Task,
-    /// Split: train, val_seen, val_unseen or test.
-    #[arg(long)]
-    pub split: Split,
+    /// Dataset, task and split.
+    #[command(flatten)]
+    pub data: SplitArgs,
     /// Agent: oracle, random, forward, stop, semantic or external.
     #[arg(long)]
     pub agent: String,
@@ -40,7 +34,7 @@ pub struct Args {
     /// Shell command of the external agent.
     #[arg(long)]
     pub agent_cmd: Option<String>,
-    /// Renderer backend override: auto, wgpu or raycast.
+    /// Renderer backend override: auto, wgpu, raster or raycast.
     #[arg(long)]
     pub backend: Option<String>,
     /// Do not render observations (agents that do not look, e.g. timing the oracle).
@@ -83,12 +77,14 @@ fn config(args: &Args) -> anyhow::Result<EvalConfig> {
 pub fn run(args: Args) -> anyhow::Result<()> {
     let cfg = config(&args)?;
     let factory = builtin(&args.agent, args.agent_cmd.as_deref(), &cfg)?;
-    let n = vlnverse_task::dataset::read_split(&args.dataset, args.task, args.split)?.len();
+    let n =
+        vlnverse_task::dataset::read_split(&args.data.dataset, args.data.task, args.data.split)?
+            .len();
     let n = args.episodes.map_or(n, |k| k.min(n));
     let req = EvalRequest {
-        dataset: args.dataset.clone(),
-        task: args.task,
-        split: args.split,
+        dataset: args.data.dataset.clone(),
+        task: args.data.task,
+        split: args.data.split,
         episodes: args.episodes,
         threads: args.threads,
         out: args.out.clone(),
@@ -103,8 +99,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     println!(
         "{} on {}/{} ({}): {} episodes ({} resumed), SR {:.2}%  SPL {:.2}%  NE {}  nDTW {:.2}%  CR {:.4}; {} steps in {:.1} s ({:.0} steps/s) -> {}",
         out.summary.method,
-        args.task,
-        args.split,
+        args.data.task,
+        args.data.split,
         args.setting,
         s.episodes,
         out.resumed,
@@ -124,12 +120,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use vlnverse_task::{Split, Task};
 
     fn args(config: Option<PathBuf>, setting: Setting) -> Args {
         Args {
-            dataset: PathBuf::from("unused"),
-            task: Task::Fine,
-            split: Split::Test,
+            data: SplitArgs {
+                dataset: PathBuf::from("unused"),
+                task: Task::Fine,
+                split: Split::Test,
+            },
             agent: "oracle".into(),
             setting,
             config,

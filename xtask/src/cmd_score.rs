@@ -4,23 +4,18 @@
 
 use std::path::PathBuf;
 
+use crate::split_args::SplitArgs;
 use anyhow::Context as _;
 use vlnverse_task::metrics::{match_trajectories, score_all, GoalDistances, MetricsConfig};
 use vlnverse_task::report::{write_run, RunSummary};
-use vlnverse_task::{dataset, score, trajectory, Split, Task};
+use vlnverse_task::{dataset, score, trajectory};
 
 /// Arguments of `cargo xtask score`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
-    /// Dataset folder (holds `<task>/<split>/<split>.json.gz` and `scenes/<scene_id>/`).
-    #[arg(long)]
-    pub dataset: PathBuf,
-    /// Task: fine, coarse, visual_reference, long_horizon or dialogue.
-    #[arg(long)]
-    pub task: Task,
-    /// Split: train, val_seen, val_unseen or test.
-    #[arg(long)]
-    pub split: Split,
+    /// Dataset, task and split.
+    #[command(flatten)]
+    pub data: SplitArgs,
     /// Trajectory file: JSON lines, or the VLN-CE inference format.
     #[arg(long)]
     pub trajectories: PathBuf,
@@ -55,28 +50,28 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         ..Default::default()
     };
     cfg.validate()?;
-    let episodes = dataset::read_split(&args.dataset, args.task, args.split)?;
+    let episodes = dataset::read_split(&args.data.dataset, args.data.task, args.data.split)?;
     let trajectories = trajectory::read_trajectories(&args.trajectories)?;
     let trajectories = match_trajectories(&episodes, trajectories, args.allow_missing)
         .with_context(|| format!("matching {} to the episodes", args.trajectories.display()))?;
     tracing::info!(
         "scoring {} episodes of {}/{}",
         episodes.len(),
-        args.task,
-        args.split
+        args.data.task,
+        args.data.split
     );
     let mut metrics = if args.euclidean {
         score_all(&episodes, &trajectories, &GoalDistances::euclidean, &cfg)
     } else {
         let pb = crate::progress::bar(episodes.len() as u64, "scoring");
-        let m = score::score_on_maps(&args.dataset, &episodes, &trajectories, &cfg, &|n| {
+        let m = score::score_on_maps(&args.data.dataset, &episodes, &trajectories, &cfg, &|n| {
             pb.inc(n as u64)
         })?;
         pb.finish_and_clear();
         m
     };
     for m in &mut metrics {
-        m.split = Some(args.split);
+        m.split = Some(args.data.split);
     }
     let method = args.method.clone().unwrap_or_else(|| {
         args.trajectories
@@ -87,8 +82,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let run = RunSummary::new(
         &method,
         args.setting.as_deref(),
-        args.task,
-        args.split,
+        args.data.task,
+        args.data.split,
         &metrics,
     );
     write_run(&args.out, &run, &metrics)?;
@@ -109,7 +104,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use vlnverse_task::{Episode, EpisodeInfo, Goal, Instruction};
+    use vlnverse_task::{Episode, EpisodeInfo, Goal, Instruction, Split, Task};
 
     #[test]
     fn score_writes_the_run_files_and_names_bad_input() {
@@ -145,9 +140,11 @@ mod tests {
         )
         .unwrap();
         let args = |trajectories: PathBuf, out: PathBuf| Args {
-            dataset: dir.path().to_path_buf(),
-            task: Task::Fine,
-            split: Split::Test,
+            data: SplitArgs {
+                dataset: dir.path().to_path_buf(),
+                task: Task::Fine,
+                split: Split::Test,
+            },
             trajectories,
             out,
             method: None,

@@ -15,6 +15,7 @@ mod cmd_score;
 mod cmd_stats;
 mod cmd_topdown;
 mod progress;
+mod split_args;
 
 /// VLNVerse-rs: scenes, datasets and evaluation for vision-language navigation.
 #[derive(Parser)]

@@ -141,7 +141,7 @@ pub(crate) fn resolve(map: &GridMap, p: Vec2, ok: impl Fn(usize) -> bool) -> Opt
 
 /// Greedy string pulling: from each kept point, jump to the farthest later point in sight
 /// (scanning forward, so it is linear in the number of points).
-fn string_pull(map: &GridMap, pts: &[Vec2]) -> Vec<Vec2> {
+pub fn string_pull(map: &GridMap, pts: &[Vec2]) -> Vec<Vec2> {
     if pts.len() <= 2 {
         return pts.to_vec();
     }

@@ -47,8 +47,9 @@ pub fn is_landmark(o: &SceneObject) -> bool {
     }
 }
 
-/// Unit heading of each segment; zero-length segments borrow a neighbour's heading.
-fn segment_headings(pts: &[Vec2]) -> Vec<Vec2> {
+/// Unit heading of each segment `pts[i] -> pts[i + 1]`; zero-length segments borrow a
+/// neighbour's heading (-Z when every segment is degenerate).
+pub fn segment_headings(pts: &[Vec2]) -> Vec<Vec2> {
     let mut h: Vec<Option<Vec2>> = pts
         .windows(2)
         .map(|w| (w[1] - w[0]).try_normalize())

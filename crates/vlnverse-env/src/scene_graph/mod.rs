@@ -31,9 +31,11 @@ mod landmarks;
 mod refer;
 mod spatial;
 
-pub use landmarks::{is_landmark, rooms_along_path, Landmark};
-pub use refer::{Mention, ReferringExpression, RoomMention};
-pub use spatial::{footprint_distance, side_of, side_of_heading, yaw_from_direction, Side};
+pub use landmarks::{is_landmark, rooms_along_path, segment_headings, Landmark};
+pub use refer::{unique_mention, Mention, ReferringExpression, RoomMention};
+pub use spatial::{
+    footprint_distance, segment_enters_rect, side_of, side_of_heading, yaw_from_direction, Side,
+};
 
 use crate::scene::{Aabb, ObjectId, RoomId};
 use crate::vocab::{RoomType, SemanticClass};

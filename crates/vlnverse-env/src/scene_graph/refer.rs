@@ -151,7 +151,7 @@ impl ReferringExpression {
 
 /// A unique short description of `o` on its own (class, else colour + class), for use as a
 /// reference object.
-fn unique_mention(scene: &Scene, graph: &SceneGraph, o: &SceneObject) -> Option<Mention> {
+pub fn unique_mention(scene: &Scene, graph: &SceneGraph, o: &SceneObject) -> Option<Mention> {
     let mut m = Mention {
         object: o.id,
         class: o.class,

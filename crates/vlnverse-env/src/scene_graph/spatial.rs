@@ -142,8 +142,9 @@ pub(crate) fn segment_rect_closest(a: Vec2, b: Vec2, lo: Vec2, hi: Vec2) -> (f32
     best
 }
 
-/// Parameter where the segment first touches the rectangle (slab test), if it does.
-fn segment_enters_rect(a: Vec2, b: Vec2, lo: Vec2, hi: Vec2) -> Option<f32> {
+/// Parameter in `[0, 1]` where the floor segment `a..b` first touches the rectangle `[lo, hi]`
+/// (slab test), if it does.
+pub fn segment_enters_rect(a: Vec2, b: Vec2, lo: Vec2, hi: Vec2) -> Option<f32> {
     let d = b - a;
     let (mut t0, mut t1) = (0.0f32, 1.0f32);
     for (o, v, l, h) in [(a.x, d.x, lo.x, hi.x), (a.y, d.y, lo.y, hi.y)] {

@@ -248,19 +248,7 @@ fn to_sampled(p: GeodesicPath) -> SampledPath {
 /// later points that stay in sight (linear in the number of points). Consecutive output points
 /// always see each other when consecutive input points do.
 pub fn string_pull(map: &GridMap, pts: &[Vec2]) -> Vec<Vec2> {
-    let mut out: Vec<Vec2> = Vec::with_capacity(pts.len());
-    let mut i = 0;
-    if let Some(&p) = pts.first() {
-        out.push(p);
-    }
-    while i + 1 < pts.len() {
-        let mut k = i + 1;
-        while k + 1 < pts.len() && map.line_of_sight(pts[i], pts[k + 1]) {
-            k += 1;
-        }
-        out.push(pts[k]);
-        i = k;
-    }
+    let mut out = vlnverse_env::geodesic::string_pull(map, pts);
     out.dedup();
     out
 }

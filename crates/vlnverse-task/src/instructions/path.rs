@@ -18,31 +18,7 @@ pub fn direction_of_yaw(yaw: f32) -> Vec2 {
     Vec2::new(-yaw.sin(), -yaw.cos())
 }
 
-/// Unit heading of each segment `pts[i] -> pts[i + 1]`; zero-length segments borrow a
-/// neighbour's heading (-Z when every segment is degenerate).
-pub fn segment_headings(pts: &[Vec2]) -> Vec<Vec2> {
-    let mut h: Vec<Option<Vec2>> = pts
-        .windows(2)
-        .map(|w| (w[1] - w[0]).try_normalize())
-        .collect();
-    let mut last = None;
-    for x in h.iter_mut() {
-        if x.is_none() {
-            *x = last;
-        }
-        last = *x;
-    }
-    let mut next = None;
-    for x in h.iter_mut().rev() {
-        if x.is_none() {
-            *x = next;
-        }
-        next = *x;
-    }
-    h.into_iter()
-        .map(|x| x.unwrap_or(Vec2::new(0.0, -1.0)))
-        .collect()
-}
+pub use vlnverse_env::scene_graph::segment_headings;
 
 /// Signed turn angle in degrees from heading `from` to heading `to`: positive to the right,
 /// negative to the left, in `[-180, 180]`.
@@ -127,26 +103,7 @@ pub fn side_word(s: Side) -> &'static str {
 
 /// Whether the segment `a..b` crosses the rectangle `[lo, hi]` (slab test).
 pub(crate) fn segment_hits_rect(a: Vec2, b: Vec2, lo: Vec2, hi: Vec2) -> bool {
-    let d = b - a;
-    let (mut t0, mut t1) = (0.0f32, 1.0f32);
-    for (o, v, l, h) in [(a.x, d.x, lo.x, hi.x), (a.y, d.y, lo.y, hi.y)] {
-        if v.abs() < 1e-9 {
-            if o < l || o > h {
-                return false;
-            }
-        } else {
-            let (mut ta, mut tb) = ((l - o) / v, (h - o) / v);
-            if ta > tb {
-                std::mem::swap(&mut ta, &mut tb);
-            }
-            t0 = t0.max(ta);
-            t1 = t1.min(tb);
-            if t0 > t1 {
-                return false;
-            }
-        }
-    }
-    true
+    vlnverse_env::scene_graph::segment_enters_rect(a, b, lo, hi).is_some()
 }
 
 /// Footprints `(min, max)` of the scene's walls.

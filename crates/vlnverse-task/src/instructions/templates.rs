@@ -571,27 +571,7 @@ fn capitalize_sentence(s: &str, style: Style) -> String {
 /// A short description of `o` alone in the scene: its class, else colour + class; `None` when
 /// neither is unique.
 fn unique_mention(ctx: &PathContext<'_>, o: &SceneObject) -> Option<Mention> {
-    let count = |m: &Mention| {
-        ctx.graph
-            .objects_of_class(m.class)
-            .iter()
-            .filter_map(|&id| ctx.scene.object(id))
-            .filter(|x| m.fits(x))
-            .count()
-    };
-    let mut m = Mention {
-        object: o.id,
-        class: o.class,
-        color: None,
-    };
-    if count(&m) == 1 {
-        return Some(m);
-    }
-    if o.color.is_empty() {
-        return None;
-    }
-    m.color = Some(o.color.clone());
-    (count(&m) == 1).then_some(m)
+    vlnverse_env::scene_graph::unique_mention(ctx.scene, ctx.graph, o)
 }
 
 /// The description a coarse instruction of `target` renders, unique within the scene: the scene
