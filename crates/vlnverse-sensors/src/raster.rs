@@ -14,6 +14,11 @@
 //! form closed, outward-oriented surfaces, seen from outside their box (with room for the near
 //! plane). Everything else is drawn two-sided, as the ray caster sees it.
 //!
+//! Objects are drawn nearest first (by distance from the eye to their box), and each band of
+//! rows keeps a coarse depth buffer (8x8 tiles, the farthest depth of each) that skips an object
+//! none of whose triangles can come nearer over its screen box: that never changes the image.
+//! Span ends are walked down the rows with exact integer steps (no division per row).
+//!
 //! Views of a batch render in parallel (rayon); a batch smaller than twice the thread count
 //! splits each view into bands of rows as well.
 
@@ -51,6 +56,13 @@ struct TriInfo {
     object: u32,
 }
 
+/// Colour and class of a tag.
+#[derive(Clone, Copy, Debug)]
+struct TagPx {
+    rgb: [u8; 3],
+    class: u16,
+}
+
 /// An object's triangle range and whether its back faces may be culled.
 #[derive(Clone, Copy, Debug)]
 struct ObjInfo {
@@ -69,6 +81,8 @@ pub struct RasterScene {
     tag_rgb: Vec<[u8; 3]>,
     /// Class and object id of each tag (0 for tag 0).
     tag_class: Vec<u16>,
+    /// Colour and class of each tag together, for views that want both.
+    tag_px: Vec<TagPx>,
     tag_object: Vec<u32>,
     /// Unit geometric normal per triangle (as [`SceneMesh::normal`]).
     normal: Vec<Vec3>,
@@ -100,12 +114,70 @@ fn give<T>(pool: &Mutex<Vec<Vec<T>>>, b: Vec<T>) {
 }
 
 /// One edge function `e(x, y) = a x + b y + c` over pixel indices; a pixel is inside when
-/// `e >= 0`. Values are integers in sub-pixel units, exact in `f64`.
+/// `e >= 0`. Values are integers in sub-pixel units (below `2^53`).
 #[derive(Clone, Copy, Debug)]
 struct Edge {
-    a: f64,
-    b: f64,
-    c: f64,
+    a: i64,
+    b: i64,
+    c: i64,
+}
+
+/// An edge's bound on the span of each row, walked down the rows with exact integer steps
+/// instead of a division per row: `x` is the first (`dir = -1`, `a > 0`) or last (`dir = 1`,
+/// `a < 0`) inside pixel of the current row, and `r = e(x, y)`, in `[0, |a|)`; for a
+/// horizontal edge (`dir = 0`) `r = e(0, y)` and the row is empty when `r < 0`.
+#[derive(Clone, Copy, Debug)]
+struct Walk {
+    x: i64,
+    r: i64,
+    /// `|a|`, `b mod |a|` and `dir * floor(b / |a|)` (for `dir = 0`: `r` steps by `b`).
+    a: i64,
+    br: i64,
+    dq: i64,
+    dir: i64,
+}
+
+impl Walk {
+    /// Start at row `y`.
+    #[inline]
+    fn new(e: &Edge, y: i64) -> Walk {
+        let er = e.b * y + e.c;
+        if e.a == 0 {
+            return Walk {
+                x: 0,
+                r: er,
+                a: 0,
+                br: e.b,
+                dq: 0,
+                dir: 0,
+            };
+        }
+        let (a, dir) = if e.a > 0 { (e.a, -1) } else { (-e.a, 1) };
+        // a > 0: first x with a x + er >= 0 is ceil(-er / a) = -floor(er / a);
+        // a < 0: last x with er - |a| x >= 0 is floor(er / |a|). Either way r = er mod |a|.
+        let f = er.div_euclid(a);
+        Walk {
+            x: dir * f,
+            r: er.rem_euclid(a),
+            a,
+            br: e.b.rem_euclid(a),
+            dq: dir * e.b.div_euclid(a),
+            dir,
+        }
+    }
+
+    /// Move to the next row.
+    #[inline]
+    fn step(&mut self) {
+        self.r += self.br;
+        if self.dir != 0 {
+            self.x += self.dq;
+            if self.r >= self.a {
+                self.x += self.dir;
+                self.r -= self.a;
+            }
+        }
+    }
 }
 
 /// A projected triangle ready to fill.
@@ -265,6 +337,17 @@ impl RasterScene {
             tag_class: std::iter::once(0)
                 .chain(info.iter().flat_map(|t| [t.class; 2]))
                 .collect(),
+            tag_px: std::iter::once(TagPx {
+                rgb: [0; 3],
+                class: 0,
+            })
+            .chain(info.iter().flat_map(|t| {
+                t.rgb.map(|rgb| TagPx {
+                    rgb,
+                    class: t.class,
+                })
+            }))
+            .collect(),
             tag_object: std::iter::once(0)
                 .chain(info.iter().flat_map(|t| [t.object; 2]))
                 .collect(),
@@ -499,6 +582,7 @@ impl RasterScene {
             rgb,
             semantic,
         } = b;
+        let (mut rgb, mut semantic) = (rgb, semantic);
         // Coarse depth buffer: the smallest `1 / depth` of each tile of the band. An object
         // none of whose triangles can write more than that over its screen box is hidden.
         let w = p.w;
@@ -541,7 +625,16 @@ impl RasterScene {
             }
         }
         let Some(ids) = ids else { return };
-        if let Some(rgb) = rgb {
+        if let (Some(rgb), Some(sem)) = (rgb.as_deref_mut(), semantic.as_deref_mut()) {
+            // One pass and one table load per pixel for both.
+            for ((px, s), id) in rgb.chunks_exact_mut(3).zip(sem.iter_mut()).zip(ids.iter()) {
+                let t = self.tag_px[*id as usize];
+                px[0] = t.rgb[0];
+                px[1] = t.rgb[1];
+                px[2] = t.rgb[2];
+                *s = t.class;
+            }
+        } else if let Some(rgb) = rgb {
             for (px, id) in rgb.chunks_exact_mut(3).zip(ids.iter()) {
                 let c = self.tag_rgb[*id as usize];
                 // Byte stores: `copy_from_slice` of 3 bytes becomes a memmove call.
@@ -635,10 +728,10 @@ fn emit(p: &ViewParams, v: [Vec3; 3], plane: [f32; 3], tag: u32, out: &mut Vec<S
         s[0].1.max(s[1].1).max(s[2].1),
     );
     // Pixels whose centres can be inside.
-    let x0 = ((xmin - half) / sub).ceil().max(0.0);
-    let x1 = ((xmax - half) / sub).floor().min(p.w as f64 - 1.0);
-    let y0 = ((ymin - half) / sub).ceil().max(0.0);
-    let y1 = ((ymax - half) / sub).floor().min(p.h as f64 - 1.0);
+    let x0 = fast_ceil((xmin - half) / sub).max(0.0);
+    let x1 = fast_floor((xmax - half) / sub).min(p.w as f64 - 1.0);
+    let y0 = fast_ceil((ymin - half) / sub).max(0.0);
+    let y1 = fast_floor((ymax - half) / sub).min(p.h as f64 - 1.0);
     if x0 > x1 || y0 > y1 {
         return;
     }
@@ -647,10 +740,12 @@ fn emit(p: &ViewParams, v: [Vec3; 3], plane: [f32; 3], tag: u32, out: &mut Vec<S
         // Top-left rule (y down, inside on the right of i -> j): left edges go up, top edges
         // run right; pixels exactly on other edges belong to the neighbour.
         let top_left = dy < 0.0 || (dy == 0.0 && dx > 0.0);
+        // Integers below 2^53, exact in f64 and so in i64.
         Edge {
-            a: -sub * dy,
-            b: sub * dx,
-            c: dx * (half - s[i].1) - dy * (half - s[i].0) - if top_left { 0.0 } else { 1.0 },
+            a: (-sub * dy) as i64,
+            b: (sub * dx) as i64,
+            c: (dx * (half - s[i].1) - dy * (half - s[i].0) - if top_left { 0.0 } else { 1.0 })
+                as i64,
         }
     };
     out.push(ScreenTri {
@@ -683,19 +778,17 @@ fn raster<const IDS: bool>(
         if ya > yb {
             continue;
         }
+        let mut walks = t.edges.map(|e| Walk::new(&e, ya as i64));
         for y in ya..=yb {
-            let yf = y as f64;
-            let (mut lo, mut hi) = (t.x0 as f64, t.x1 as f64);
+            let (mut lo, mut hi) = (t.x0 as i64, t.x1 as i64);
             let mut empty = false;
-            for e in &t.edges {
-                let er = e.b * yf + e.c;
-                if e.a > 0.0 {
-                    lo = lo.max(fast_ceil(-er / e.a));
-                } else if e.a < 0.0 {
-                    hi = hi.min(fast_floor(er / -e.a));
-                } else if er < 0.0 {
-                    empty = true;
+            for k in &mut walks {
+                match k.dir {
+                    -1 => lo = lo.max(k.x),
+                    1 => hi = hi.min(k.x),
+                    _ => empty |= k.r < 0,
                 }
+                k.step();
             }
             if empty || lo > hi {
                 continue;
@@ -735,7 +828,8 @@ fn tile_min(z: &[f32], w: usize, r0: usize, r1: usize, c0: usize) -> f32 {
             }
         }
     }
-    m.iter().fold(f32::INFINITY, |a, b| if *b < a { *b } else { a })
+    m.iter()
+        .fold(f32::INFINITY, |a, b| if *b < a { *b } else { a })
 }
 
 /// Lane offsets of an 8-pixel block.
@@ -828,7 +922,7 @@ impl ClampRange for f32 {
     }
 }
 
-/// `ceil` and `floor` of span bounds (|v| < 2^53) without a libm call on baseline x86-64.
+/// `ceil` and `floor` of snapped coordinates (|v| < 2^53) without a libm call on baseline x86-64.
 #[inline]
 fn fast_ceil(v: f64) -> f64 {
     let t = v as i64 as f64;
