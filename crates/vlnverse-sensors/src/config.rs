@@ -6,6 +6,7 @@ use crate::camera::{Camera, Mount};
 use crate::error::{Result, SensorError};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
+use vlnverse_env::EnvError;
 use vlnverse_env::Pose;
 
 /// Which renderer makes the images.
@@ -543,10 +544,8 @@ impl Default for RigConfig {
 impl RigConfig {
     /// Parse TOML and validate.
     pub fn from_toml_str(text: &str) -> Result<Self> {
-        let c: RigConfig = toml::from_str(text).map_err(|e| SensorError::Parse {
-            path: "<string>".into(),
-            message: e.to_string(),
-        })?;
+        let c: RigConfig =
+            toml::from_str(text).map_err(|e| EnvError::parse("<string>", e.to_string()))?;
         c.validate()?;
         Ok(c)
     }
@@ -554,14 +553,9 @@ impl RigConfig {
     /// Read, parse and validate a TOML file.
     pub fn load(path: impl AsRef<Path>) -> Result<Self> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|source| SensorError::Io {
-            path: path.to_path_buf(),
-            source,
-        })?;
-        let c: RigConfig = toml::from_str(&text).map_err(|e| SensorError::Parse {
-            path: path.to_path_buf(),
-            message: e.to_string(),
-        })?;
+        let text = std::fs::read_to_string(path).map_err(|source| EnvError::io(path, source))?;
+        let c: RigConfig =
+            toml::from_str(&text).map_err(|e| EnvError::parse(path, e.to_string()))?;
         c.validate().map_err(|e| e.in_file(path))?;
         Ok(c)
     }
