@@ -5,7 +5,7 @@
 //!
 //! `cargo bench -p vlnverse-task --bench evaluate -- --warm-up-time 1 --measurement-time 3`
 
-#[path = "../tests/eval_support/mod.rs"]
+#[path = "../tests/integration/eval_support.rs"]
 mod eval_support;
 
 use std::sync::atomic::{AtomicU64, Ordering};

@@ -1,0 +1,14 @@
+//! Integration tests of `vlnverse-env`, linked into one test binary (one link, shared fixtures).
+
+mod common;
+mod io_common;
+mod occupancy_fixtures;
+mod scene_graph_fixture;
+
+mod io_scene_files;
+mod occupancy_geodesic;
+mod occupancy_maps;
+mod scene_graph_properties;
+mod scene_graph_queries;
+mod scene_graph_relations;
+mod topdown_render;

@@ -1,0 +1,4 @@
+//! Integration tests of `vlnverse-import`, linked into one test binary (one link, shared fixtures).
+
+mod fixtures;
+mod real_scenes;

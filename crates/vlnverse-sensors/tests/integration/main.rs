@@ -1,0 +1,7 @@
+//! Integration tests of `vlnverse-sensors`, linked into one test binary (one link, shared fixtures).
+
+mod common;
+
+mod backends;
+mod raster_backends;
+mod rig;

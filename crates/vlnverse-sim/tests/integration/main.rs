@@ -1,0 +1,6 @@
+//! Integration tests of `vlnverse-sim`, linked into one test binary (one link, shared fixtures).
+
+mod common;
+
+mod behaviour;
+mod generated_home;

@@ -1,0 +1,97 @@
+//! Dialogue episodes: the agent's oracle handle is the task layer's shortest-path oracle, with
+//! the episode's question budget.
+
+use crate::eval_support;
+
+use std::sync::{Arc, Mutex};
+use vlnverse_sensors::Backend;
+use vlnverse_sim::Action;
+use vlnverse_task::dataset;
+use vlnverse_task::eval::{
+    evaluate, Agent, AgentFactory, EpisodeInputs, EvalConfig, EvalRequest, StepInput,
+};
+use vlnverse_task::{Split, Task};
+
+/// Asks "which way?" three times, then stops; records (answer, questions left).
+struct Asker {
+    log: Arc<Mutex<Vec<(Option<String>, u32)>>>,
+}
+
+impl Agent for Asker {
+    fn reset(&mut self, _inputs: &EpisodeInputs) -> vlnverse_task::Result<()> {
+        Ok(())
+    }
+    fn act(&mut self, step: &mut StepInput) -> vlnverse_task::Result<Action> {
+        if step.step >= 3 {
+            return Ok(Action::Stop);
+        }
+        let oracle = step
+            .oracle
+            .as_mut()
+            .expect("dialogue episodes carry an oracle");
+        let answer = oracle.ask("Which way should I go?");
+        self.log.lock().unwrap().push((answer, oracle.remaining()));
+        Ok(Action::TurnLeft(0.2))
+    }
+}
+
+struct AskerFactory(Arc<Mutex<Vec<(Option<String>, u32)>>>);
+
+impl AgentFactory for AskerFactory {
+    fn name(&self) -> String {
+        "asker".into()
+    }
+    fn make(&self) -> vlnverse_task::Result<Box<dyn Agent>> {
+        Ok(Box::new(Asker {
+            log: self.0.clone(),
+        }))
+    }
+}
+
+#[test]
+fn dialogue_agents_ask_the_shortest_path_oracle_within_the_budget() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut eps = eval_support::make_object_dataset(dir.path(), 1, 2, 11);
+    assert!(!eps.is_empty());
+    for e in &mut eps {
+        e.task = Task::Dialogue;
+        e.oracle_budget = Some(2);
+    }
+    dataset::write_split(dir.path(), Task::Dialogue, Split::Test, &eps).unwrap();
+    let log = Arc::new(Mutex::new(Vec::new()));
+    let req = EvalRequest {
+        dataset: dir.path().to_path_buf(),
+        task: Task::Dialogue,
+        split: Split::Test,
+        episodes: None,
+        threads: Some(1),
+        out: dir.path().join("run"),
+        config: EvalConfig {
+            backend: Some(Backend::Raycast),
+            render: false,
+            plots: 0,
+            ..Default::default()
+        },
+    };
+    evaluate(&req, &AskerFactory(log.clone()), &|| {}).unwrap();
+    let log = log.lock().unwrap();
+    assert_eq!(log.len(), 3 * eps.len());
+    for chunk in log.chunks(3) {
+        // Two answers carrying words, then the budget is spent.
+        let (a0, left0) = &chunk[0];
+        let (a1, left1) = &chunk[1];
+        let (a2, left2) = &chunk[2];
+        assert!(a0.as_ref().is_some_and(|t| !t.is_empty()), "{a0:?}");
+        assert!(a1.as_ref().is_some_and(|t| !t.is_empty()), "{a1:?}");
+        assert_eq!((*left0, *left1, *left2), (1, 0, 0));
+        assert!(a2.is_none(), "answered beyond the budget: {a2:?}");
+        // "Which way" answers speak of turning or going straight, with a distance.
+        let t = a0.as_ref().unwrap().to_lowercase();
+        assert!(
+            ["left", "right", "straight", "ahead", "around", "arrived", "here"]
+                .iter()
+                .any(|w| t.contains(w)),
+            "{t}"
+        );
+    }
+}

@@ -1,0 +1,4 @@
+//! Integration tests of `xtask`, linked into one test binary (one link, shared fixtures).
+
+mod real_scene_e2e;
+mod scenes_cli;
