@@ -3,27 +3,17 @@
 //! the occupancy maps and the scene graph (`vlnverse_env::io::scene_bundle`), i.e. everything
 //! `cargo xtask import` computes before writing files.
 
+mod support;
+
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
-use std::path::PathBuf;
+use support::aws_small_house;
 use vlnverse_env::io::scene_bundle;
-use vlnverse_import::{import_scene, ImportOptions};
+use vlnverse_import::import_scene;
 
 fn bench(c: &mut Criterion) {
-    let file = PathBuf::from(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../../shared/scenes/aws_small_house/aws_small_house_yup.glb"
-    ));
-    if !file.exists() {
-        eprintln!("skipped: {} is absent", file.display());
+    let Some((file, opts)) = aws_small_house() else {
         return;
-    }
-    let opts = ImportOptions {
-        mapping: Some(PathBuf::from(concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../../configs/import/aws_small_house.toml"
-        ))),
-        ..Default::default()
     };
     let mut g = c.benchmark_group("aws_small_house");
     g.sample_size(10);

@@ -5,20 +5,20 @@
 //!
 //! `cargo bench -p vlnverse-sensors --bench real_scene -- --warm-up-time 1 --measurement-time 3`
 
+mod support;
+
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use glam::{Vec2, Vec3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::collections::BTreeMap;
-use std::path::PathBuf;
 use std::sync::Arc;
+use support::{backends, import_support::aws_small_house, rgbd};
 use vlnverse_env::io::scene_bundle;
 use vlnverse_env::occupancy::GridMap;
 use vlnverse_env::{Pose, Scene};
-use vlnverse_import::{import_scene, ImportOptions};
-use vlnverse_sensors::{
-    CameraSpec, Channels, GpuRenderer, RasterRenderer, RaycastRenderer, Renderer, SceneMesh, View,
-};
+use vlnverse_import::import_scene;
+use vlnverse_sensors::SceneMesh;
 
 /// Up to `per_room` seeded navigable poses in every room, random headings.
 fn room_poses(scene: &Scene, nav: &GridMap, per_room: usize) -> Vec<Pose> {
@@ -54,53 +54,9 @@ fn room_poses(scene: &Scene, nav: &GridMap, per_room: usize) -> Vec<Pose> {
     out
 }
 
-/// RGB 224 (+ semantic) and depth 256 views of one frame.
-fn rgbd(base: &Pose) -> [View; 2] {
-    [
-        View {
-            camera: CameraSpec::default().camera(base),
-            channels: Channels {
-                rgb: true,
-                semantic: true,
-                ..Default::default()
-            },
-        },
-        View {
-            camera: CameraSpec::depth().camera(base),
-            channels: Channels::DEPTH,
-        },
-    ]
-}
-
-fn backends() -> Vec<Box<dyn Renderer>> {
-    let mut v: Vec<Box<dyn Renderer>> = Vec::new();
-    match GpuRenderer::new() {
-        Ok(g) => {
-            eprintln!("wgpu adapter: {}", g.context().adapter_description());
-            v.push(Box::new(g));
-        }
-        Err(e) => eprintln!("no wgpu bench: {e}"),
-    }
-    v.push(Box::new(RasterRenderer::new()));
-    v.push(Box::new(RaycastRenderer::new()));
-    v
-}
-
 fn bench(c: &mut Criterion) {
-    let file = PathBuf::from(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../../shared/scenes/aws_small_house/aws_small_house_yup.glb"
-    ));
-    if !file.exists() {
-        eprintln!("skipped: {} is absent", file.display());
+    let Some((file, opts)) = aws_small_house() else {
         return;
-    }
-    let opts = ImportOptions {
-        mapping: Some(PathBuf::from(concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../../configs/import/aws_small_house.toml"
-        ))),
-        ..Default::default()
     };
     let (scene, _) = import_scene(&file, &opts).expect("imports");
     let bundle = scene_bundle(scene, &opts.occupancy).expect("maps");

@@ -1,0 +1,431 @@
+//! The cases of `cargo xtask bench`: each builds its fixtures once (not timed) and returns a
+//! repetition that runs a fixed amount of work through the crates' public APIs, the same ones
+//! the criterion benches in `crates/*/benches/` use.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::Instant;
+
+use anyhow::Context;
+use glam::{Vec2, Vec3};
+use vlnverse_env::geodesic::bench::{benchmark, sample_free_points};
+use vlnverse_env::geodesic::DistanceField;
+use vlnverse_env::occupancy::{build_maps, GridMap, OccupancyConfig};
+use vlnverse_env::scene_graph::SceneGraph;
+use vlnverse_env::{Pose, Scene, SceneSource};
+use vlnverse_procgen::{HomeGenerator, Preset};
+use vlnverse_sensors::{
+    AgentState, Backend, CameraSpec, Channels, RigConfig, SceneMesh, SceneRaycaster, SensorRig,
+    View,
+};
+use vlnverse_sim::{Action, CollisionSetting, PhysicsScene, SimConfig, VecSimulator};
+use vlnverse_task::generate::{run as run_pipeline, GeneratePreset, RunOptions, StageTimes};
+use vlnverse_task::instructions::TemplateGenerator;
+use vlnverse_task::metrics::{score_all, GoalDistance, GoalDistances, MetricsConfig};
+use vlnverse_task::{Episode, Task, Trajectory};
+
+use super::{Case, Repetition, Sample, Scale};
+
+/// Every case, in the order the table shows them.
+pub fn all() -> Vec<Case> {
+    vec![
+        Case {
+            name: "scene",
+            what: "procedural homes (vlnverse preset): generation, occupancy maps, scene graph",
+            max_reps: 100,
+            setup: scene,
+        },
+        Case {
+            name: "geodesic",
+            what:
+                "navigable map of a vlnverse home: cold A* queries, distance fields, cached queries",
+            max_reps: 100,
+            setup: geodesic,
+        },
+        Case {
+            name: "sim",
+            what: "VecSimulator discrete steps (lenient, collisions counted) in a tiny-preset home",
+            max_reps: 100,
+            setup: sim,
+        },
+        Case {
+            name: "raster",
+            what: "sensor rig on the CPU rasteriser (the default CPU backend): RGB 224 + depth 256",
+            max_reps: 100,
+            setup: raster,
+        },
+        Case {
+            name: "raycast",
+            what: "CPU ray caster: 256x256 depth views, rays per second",
+            max_reps: 100,
+            setup: raycast,
+        },
+        Case {
+            name: "metrics",
+            what: "score_all over synthetic trajectories: straight-line and distance-field goals",
+            max_reps: 100,
+            setup: metrics,
+        },
+        Case {
+            name: "generate",
+            what: "the tiny preset dataset end to end (all five tasks, files in a temp folder)",
+            max_reps: 3,
+            setup: generate,
+        },
+    ]
+}
+
+/// Seconds taken by `f`, and its result.
+fn timed<T>(f: impl FnOnce() -> T) -> (f64, T) {
+    let t = Instant::now();
+    let out = f();
+    (t.elapsed().as_secs_f64(), out)
+}
+
+/// splitmix64: deterministic pseudo-random bits for the fixtures (no RNG crate needed).
+fn mix(x: u64) -> u64 {
+    let mut z = x.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+/// A uniform number in [0, 1) from `mix(x)`.
+fn unit(x: u64) -> f32 {
+    (mix(x) >> 40) as f32 / (1u64 << 24) as f32
+}
+
+/// One home of a preset with its occupancy maps.
+fn home(preset: Preset, index: usize) -> anyhow::Result<(Scene, GridMap)> {
+    let scene = HomeGenerator::from_preset(preset)?.scene(index)?;
+    let maps = build_maps(&scene, &OccupancyConfig::default())?;
+    Ok((scene, maps.navigable))
+}
+
+/// `n` seeded agent poses on navigable cells (free for the agent's cylinder), varied headings.
+fn navigable_poses(scene: &Scene, nav: &GridMap, n: usize) -> anyhow::Result<Vec<Pose>> {
+    let pts = sample_free_points(nav, n, 7);
+    anyhow::ensure!(pts.len() == n, "scene {} has no navigable cell", scene.id);
+    Ok(pts
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let yaw = std::f32::consts::TAU * unit(i as u64);
+            Pose::from_yaw(Vec3::new(p.x, scene.floor_height, p.y), yaw)
+        })
+        .collect())
+}
+
+fn scene(scale: Scale) -> anyhow::Result<Repetition> {
+    let homes = HomeGenerator::from_preset(Preset::Vlnverse)?;
+    let n = scale.pick(32, 4).min(homes.len());
+    let occ = OccupancyConfig::default();
+    let detail = format!("{n} vlnverse homes, 1 thread");
+    Ok(Box::new(move || {
+        let (gen_s, scenes) = timed(|| {
+            (0..n)
+                .map(|i| homes.scene(i))
+                .collect::<Result<Vec<_>, _>>()
+        });
+        let scenes = scenes?;
+        let (maps_s, maps) = timed(|| {
+            scenes
+                .iter()
+                .map(|s| build_maps(s, &occ))
+                .collect::<Result<Vec<_>, _>>()
+        });
+        maps?;
+        let (graph_s, graphs) = timed(|| scenes.iter().map(SceneGraph::build).collect::<Vec<_>>());
+        std::hint::black_box(graphs);
+        Ok(vec![
+            Sample::time("scene/generate_home", gen_s, n, "home", detail.clone()),
+            Sample::time("scene/occupancy_maps", maps_s, n, "home", detail.clone()),
+            Sample::time("scene/scene_graph", graph_s, n, "home", detail.clone()),
+        ])
+    }))
+}
+
+fn geodesic(scale: Scale) -> anyhow::Result<Repetition> {
+    let (_, nav) = home(Preset::Vlnverse, 0)?;
+    let (cold, goals, cached) = (
+        scale.pick(400, 50),
+        scale.pick(16, 4),
+        scale.pick(500_000, 50_000),
+    );
+    let detail = |what: String| format!("{what}; {} free 5 cm cells, 1 thread", nav.free_count());
+    let d_cold = detail(format!("{cold} random pairs"));
+    let d_field = detail(format!("{goals} goals"));
+    let d_cached = detail(format!("{cached} queries to {goals} goals"));
+    let mut seed = 0;
+    Ok(Box::new(move || {
+        seed += 1;
+        let r = benchmark(&nav, cold, goals, cached, seed);
+        Ok(vec![
+            Sample::rate(
+                "geodesic/cold_astar",
+                r.cold_qps,
+                1.0,
+                "queries",
+                d_cold.clone(),
+            ),
+            Sample::time(
+                "geodesic/field_build",
+                r.field_build_ms * 1e-3,
+                1,
+                "field",
+                d_field.clone(),
+            ),
+            Sample::rate(
+                "geodesic/cached_query",
+                r.cached_qps,
+                1.0,
+                "queries",
+                d_cached.clone(),
+            ),
+        ])
+    }))
+}
+
+fn sim(scale: Scale) -> anyhow::Result<Repetition> {
+    let (scene, nav) = home(Preset::Tiny, 0)?;
+    let cfg = SimConfig {
+        setting: CollisionSetting::Lenient,
+        ..Default::default()
+    };
+    let (envs, rounds) = (64, scale.pick(200, 25));
+    let starts = navigable_poses(&scene, &nav, envs)?;
+    let physics = Arc::new(PhysicsScene::build(&scene, &cfg.agent)?);
+    let mut vec = VecSimulator::new(envs, cfg.clone(), None)?;
+    // Half forward moves, a quarter left turns, a quarter right turns.
+    let actions: Vec<Vec<Action>> = (0..rounds)
+        .map(|r| {
+            (0..envs)
+                .map(|e| match mix((r * envs + e) as u64) % 4 {
+                    0 | 1 => Action::forward(&cfg.agent),
+                    2 => Action::left(&cfg.agent),
+                    _ => Action::right(&cfg.agent),
+                })
+                .collect()
+        })
+        .collect();
+    Ok(Box::new(move || {
+        for (e, p) in vec.envs_mut().iter_mut().zip(&starts) {
+            e.reset_in(Arc::clone(&physics), *p)?;
+        }
+        let t = Instant::now();
+        let mut noticeable = 0usize;
+        for acts in &actions {
+            for outcome in vec.step(acts)? {
+                noticeable += usize::from(outcome?.noticeable);
+            }
+        }
+        let s = t.elapsed().as_secs_f64();
+        let steps = envs * rounds;
+        let detail = format!(
+            "{envs} envs x {rounds} actions, all threads; {:.1}% with a noticeable collision",
+            100.0 * noticeable as f64 / steps as f64
+        );
+        Ok(vec![Sample::rate(
+            "sim/discrete_step",
+            steps as f64,
+            s,
+            "steps",
+            detail,
+        )])
+    }))
+}
+
+/// A tiny-preset home and `n` navigable poses in it.
+fn render_fixture(n: usize) -> anyhow::Result<(Scene, Vec<Pose>)> {
+    let (scene, nav) = home(Preset::Tiny, 0)?;
+    let poses = navigable_poses(&scene, &nav, n)?;
+    Ok((scene, poses))
+}
+
+fn raster(scale: Scale) -> anyhow::Result<Repetition> {
+    let frames = scale.pick(400, 50);
+    let (scene, poses) = render_fixture(frames)?;
+    // The paper's rig (RGB 224, depth 256) on the CPU rasteriser, which `backend = auto`
+    // picks on a machine without a hardware GPU.
+    let mut rig = SensorRig::new(RigConfig {
+        backend: Backend::Raster,
+        ..Default::default()
+    })?;
+    rig.set_scene(&scene)?;
+    let detail = format!("{frames} poses, tiny home, RGB 224 + depth 256, all threads");
+    Ok(Box::new(move || {
+        let (s, out) = timed(|| {
+            poses.iter().try_for_each(|p| {
+                let state = AgentState::at(Vec3::from_array(p.position), p.yaw());
+                rig.observe(&state).map(|o| drop(std::hint::black_box(o)))
+            })
+        });
+        out?;
+        Ok(vec![Sample::rate(
+            "raster/rgbd_observation",
+            frames as f64,
+            s,
+            "frames",
+            detail.clone(),
+        )])
+    }))
+}
+
+fn raycast(scale: Scale) -> anyhow::Result<Repetition> {
+    let views = scale.pick(24, 3);
+    let (scene, poses) = render_fixture(views)?;
+    let rc = SceneRaycaster::new(Arc::new(SceneMesh::new(&scene)?))?;
+    let views: Vec<View> = poses
+        .iter()
+        .map(|p| View {
+            camera: CameraSpec::depth().camera(p),
+            channels: Channels::DEPTH,
+        })
+        .collect();
+    let rays: u64 = views
+        .iter()
+        .map(|v| u64::from(v.camera.width * v.camera.height))
+        .sum();
+    let detail = format!(
+        "{} depth views of 256x256, tiny home, all threads",
+        views.len()
+    );
+    Ok(Box::new(move || {
+        let (s, frames) = timed(|| views.iter().map(|v| rc.render_view(v)).collect::<Vec<_>>());
+        std::hint::black_box(frames);
+        Ok(vec![Sample::rate(
+            "raycast/depth_rays",
+            rays as f64,
+            s,
+            "rays",
+            detail.clone(),
+        )])
+    }))
+}
+
+fn metrics(scale: Scale) -> anyhow::Result<Repetition> {
+    let n = scale.pick(50_000, 5_000);
+    let (_, nav) = home(Preset::Tiny, 0)?;
+    let goals = sample_free_points(&nav, 8, 3);
+    let starts = sample_free_points(&nav, 256, 4);
+    anyhow::ensure!(goals.len() == 8, "the tiny home has no navigable cell");
+    let fields: Vec<Arc<dyn GoalDistance>> = goals
+        .iter()
+        .map(|g| Ok(Arc::new(DistanceField::new(&nav, *g)?) as Arc<dyn GoalDistance>))
+        .collect::<anyhow::Result<_>>()?;
+    let (episodes, trajectories) = synthetic_runs(n, &starts, &goals)?;
+    let cfg = MetricsConfig::default();
+    let geodesic = move |ep: &Episode| GoalDistances {
+        goal: Arc::clone(&fields[ep.episode_id as usize % fields.len()]),
+        sub_goals: vec![],
+    };
+    let detail = format!("{n} trajectories of 50 points, all threads");
+    Ok(Box::new(move || {
+        let (euclid_s, m) =
+            timed(|| score_all(&episodes, &trajectories, &GoalDistances::euclidean, &cfg));
+        std::hint::black_box(m);
+        let (field_s, m) = timed(|| score_all(&episodes, &trajectories, &geodesic, &cfg));
+        std::hint::black_box(m);
+        Ok(vec![
+            Sample::rate(
+                "metrics/score_euclidean",
+                n as f64,
+                euclid_s,
+                "traj",
+                detail.clone(),
+            ),
+            Sample::rate(
+                "metrics/score_geodesic",
+                n as f64,
+                field_s,
+                "traj",
+                detail.clone(),
+            ),
+        ])
+    }))
+}
+
+/// `n` fine-task episodes from `starts` to `goals` (episode `i` to goal `i % goals.len()`),
+/// with 8-point straight reference paths, and wobbling 50-point trajectories that stop short
+/// of the goal or overshoot it.
+fn synthetic_runs(
+    n: usize,
+    starts: &[Vec2],
+    goals: &[Vec2],
+) -> anyhow::Result<(Vec<Episode>, Vec<Trajectory>)> {
+    let template: Episode = serde_json::from_str(
+        r#"{"episode_id": 0, "scene_id": "bench", "start_position": [0, 0, 0],
+            "start_rotation": [0, 0, 0, 1], "goals": [{"position": [0, 0, 0]}],
+            "instruction": {"instruction_text": "walk to the goal"}}"#,
+    )
+    .context("the bench episode template")?;
+    let at = |p: Vec2| [p.x, 0.0, p.y];
+    let mut episodes = Vec::with_capacity(n);
+    let mut trajectories = Vec::with_capacity(n);
+    for i in 0..n {
+        let (a, b) = (starts[i % starts.len()], goals[i % goals.len()]);
+        let mut ep = template.clone();
+        ep.episode_id = i as u64;
+        ep.trajectory_id = i as u64;
+        ep.task = Task::Fine;
+        ep.start_position = at(a);
+        ep.goals[0].position = at(b);
+        ep.reference_path = (0..8).map(|k| at(a.lerp(b, k as f32 / 7.0))).collect();
+        ep.info.geodesic_distance = a.distance(b);
+        let reach = 0.6 + 0.6 * unit(i as u64);
+        let positions = (0..50)
+            .map(|k| {
+                let t = reach * k as f32 / 49.0;
+                let w = 0.3 * (unit((i * 50 + k) as u64) - 0.5);
+                at(a.lerp(b, t) + Vec2::new(w, -w))
+            })
+            .collect();
+        episodes.push(ep);
+        trajectories.push(Trajectory::from_positions(i as u64, positions, true));
+    }
+    Ok((episodes, trajectories))
+}
+
+fn generate(_scale: Scale) -> anyhow::Result<Repetition> {
+    let cfg = GeneratePreset::Tiny.config()?;
+    let source = HomeGenerator::from_preset(Preset::Tiny)?;
+    let out: PathBuf =
+        std::env::temp_dir().join(format!("vlnverse-bench-generate-{}", std::process::id()));
+    let instructions = TemplateGenerator::default();
+    Ok(Box::new(move || {
+        // A fresh folder each time: the pipeline resumes (skips) scenes already written.
+        let _ = std::fs::remove_dir_all(&out);
+        let opts = RunOptions {
+            out: out.clone(),
+            tasks: Task::ALL.to_vec(),
+            shard: (0, 1),
+            occupancy: OccupancyConfig::default(),
+        };
+        let (s, summary) = timed(|| {
+            run_pipeline(
+                &source,
+                &cfg,
+                &opts,
+                &instructions,
+                &StageTimes::default(),
+                &|_| {},
+            )
+        });
+        let _ = std::fs::remove_dir_all(&out);
+        let summary = summary.with_context(|| format!("generating into {}", out.display()))?;
+        let detail = format!(
+            "{} scenes, {} episodes, all threads",
+            summary.scenes_done, summary.episodes
+        );
+        Ok(vec![
+            Sample::time("generate/tiny_preset", s, 1, "dataset", detail.clone()),
+            Sample::rate(
+                "generate/episodes",
+                summary.episodes as f64,
+                s,
+                "episodes",
+                detail,
+            ),
+        ])
+    }))
+}
