@@ -203,26 +203,14 @@ fn generate_scene(
         ))
     })?;
     let scenes_dir = opts.out.join("scenes");
-    if !is_complete_scene_dir(scenes_dir.join(&scene.id)) {
-        let bundle = vlnverse_env::io::SceneBundle { scene, maps, graph };
+    let bundle = vlnverse_env::io::SceneBundle { scene, maps, graph };
+    if !is_complete_scene_dir(scenes_dir.join(&bundle.scene.id)) {
         times.time(Stage::Writing, || bundle.write(&scenes_dir))?;
-        return generate_parts(
-            &bundle.scene,
-            &bundle.maps,
-            &bundle.graph,
-            index,
-            cfg,
-            plan,
-            todo,
-            opts,
-            instructions,
-            times,
-        );
     }
     generate_parts(
-        &scene,
-        &maps,
-        &graph,
+        &bundle.scene,
+        &bundle.maps,
+        &bundle.graph,
         index,
         cfg,
         plan,

@@ -49,35 +49,18 @@ pub fn make_dataset(
             if !(4.0..=14.0).contains(&path.length) {
                 continue;
             }
-            let yaw = rng.random_range(-std::f32::consts::PI..std::f32::consts::PI);
-            let start = Pose::from_yaw(Vec3::new(a.x, y, a.y), yaw);
             let id = episodes.len() as u64 + 1;
-            episodes.push(Episode {
-                episode_id: id,
-                trajectory_id: id,
-                scene_id: bundle.scene.id.clone(),
-                start_position: start.position,
-                start_rotation: start.rotation,
-                goals: vec![Goal {
-                    position: [b.x, y, b.y],
-                    radius: 3.0,
-                    object_id: None,
-                }],
-                instruction: Instruction {
-                    instruction_text: "Walk to the goal.".into(),
-                    ..Default::default()
-                },
-                reference_path: path.points.iter().map(|p| [p.x, y, p.y]).collect(),
-                info: EpisodeInfo {
-                    geodesic_distance: path.length,
-                    ..Default::default()
-                },
+            let text = "Walk to the goal.".to_string();
+            let start = random_start(&mut rng, a, y);
+            episodes.push(episode(
+                id,
+                &bundle.scene.id,
                 task,
-                target_object_id: None,
-                reference_image: None,
-                sub_goals: vec![],
-                oracle_budget: None,
-            });
+                start,
+                &path,
+                None,
+                text,
+            ));
             made += 1;
         }
     }
@@ -132,40 +115,70 @@ pub fn make_object_dataset(dir: &Path, scenes: usize, per_scene: usize, seed: u6
             if !(4.0..=14.0).contains(&path.length) {
                 continue;
             }
-            let yaw = rng.random_range(-std::f32::consts::PI..std::f32::consts::PI);
-            let start = Pose::from_yaw(Vec3::new(a.x, y, a.y), yaw);
             let id = episodes.len() as u64 + 1;
-            episodes.push(Episode {
-                episode_id: id,
-                trajectory_id: id,
-                scene_id: bundle.scene.id.clone(),
-                start_position: start.position,
-                start_rotation: start.rotation,
-                goals: vec![Goal {
-                    position: [b.x, y, b.y],
-                    radius: 3.0,
-                    object_id: Some(o.id),
-                }],
-                instruction: Instruction {
-                    instruction_text: format!("Go to the {}.", o.class.words()),
-                    ..Default::default()
-                },
-                reference_path: path.points.iter().map(|p| [p.x, y, p.y]).collect(),
-                info: EpisodeInfo {
-                    geodesic_distance: path.length,
-                    ..Default::default()
-                },
-                task: Task::Coarse,
-                target_object_id: Some(o.id),
-                reference_image: None,
-                sub_goals: vec![],
-                oracle_budget: None,
-            });
+            let text = format!("Go to the {}.", o.class.words());
+            let start = random_start(&mut rng, a, y);
+            let e = episode(
+                id,
+                &bundle.scene.id,
+                Task::Coarse,
+                start,
+                &path,
+                Some(o.id),
+                text,
+            );
+            episodes.push(e);
             made += 1;
         }
     }
     dataset::write_split(dir, Task::Coarse, Split::Test, &episodes).unwrap();
     episodes
+}
+
+/// A start pose at the floor point `a` with a random heading.
+fn random_start(rng: &mut ChaCha8Rng, a: Vec2, y: f32) -> Pose {
+    let yaw = rng.random_range(-std::f32::consts::PI..std::f32::consts::PI);
+    Pose::from_yaw(Vec3::new(a.x, y, a.y), yaw)
+}
+
+/// One episode whose goal is the end of `path` and whose reference path is `path`.
+fn episode(
+    id: u64,
+    scene_id: &str,
+    task: Task,
+    start: Pose,
+    path: &vlnverse_env::geodesic::GeodesicPath,
+    object_id: Option<vlnverse_env::ObjectId>,
+    text: String,
+) -> Episode {
+    let y = start.position[1];
+    let b = *path.points.last().expect("a path has an end");
+    Episode {
+        episode_id: id,
+        trajectory_id: id,
+        scene_id: scene_id.to_string(),
+        start_position: start.position,
+        start_rotation: start.rotation,
+        goals: vec![Goal {
+            position: [b.x, y, b.y],
+            radius: 3.0,
+            object_id,
+        }],
+        instruction: Instruction {
+            instruction_text: text,
+            ..Default::default()
+        },
+        reference_path: path.points.iter().map(|p| [p.x, y, p.y]).collect(),
+        info: EpisodeInfo {
+            geodesic_distance: path.length,
+            ..Default::default()
+        },
+        task,
+        target_object_id: object_id,
+        reference_image: None,
+        sub_goals: vec![],
+        oracle_budget: None,
+    }
 }
 
 /// A small, fast RGB-D rig on the ray caster (for tests that need pixels).
