@@ -104,7 +104,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use vlnverse_task::{Episode, EpisodeInfo, Goal, Instruction, Split, Task};
+    use vlnverse_task::{Episode, EpisodeInfo, Goal, Split, Task};
 
     #[test]
     fn score_writes_the_run_files_and_names_bad_input() {
@@ -114,23 +114,17 @@ mod tests {
             trajectory_id: 5,
             scene_id: "s".into(),
             start_position: [0.0, 0.0, 0.0],
-            start_rotation: [0.0, 0.0, 0.0, 1.0],
             goals: vec![Goal {
                 position: [2.0, 0.0, 0.0],
                 radius: 3.0,
                 object_id: None,
             }],
-            instruction: Instruction::default(),
             reference_path: vec![[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]],
             info: EpisodeInfo {
                 geodesic_distance: 2.0,
                 ..Default::default()
             },
-            task: Task::Fine,
-            target_object_id: None,
-            reference_image: None,
-            sub_goals: vec![],
-            oracle_budget: None,
+            ..Default::default()
         };
         dataset::write_split(dir.path(), Task::Fine, Split::Test, &[ep]).unwrap();
         let traj = dir.path().join("robot.jsonl");

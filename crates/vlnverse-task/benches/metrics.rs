@@ -12,7 +12,7 @@ use rand_chacha::ChaCha8Rng;
 use vlnverse_env::geodesic::DistanceField;
 use vlnverse_env::occupancy::{CellState, GridMap};
 use vlnverse_task::metrics::{score_all, GoalDistance, GoalDistances, MetricsConfig};
-use vlnverse_task::{Episode, EpisodeInfo, Goal, Instruction, Task, Trajectory};
+use vlnverse_task::{Episode, EpisodeInfo, Goal, Trajectory};
 
 const N: usize = 100_000;
 
@@ -48,23 +48,17 @@ fn fixtures() -> (Vec<Episode>, Vec<Trajectory>) {
             trajectory_id: i,
             scene_id: "bench".into(),
             start_position: start,
-            start_rotation: [0.0, 0.0, 0.0, 1.0],
             goals: vec![Goal {
                 position: goal,
                 radius: 3.0,
                 object_id: None,
             }],
-            instruction: Instruction::default(),
             reference_path: reference,
             info: EpisodeInfo {
                 geodesic_distance: 8.5,
                 ..Default::default()
             },
-            task: Task::Fine,
-            target_object_id: None,
-            reference_image: None,
-            sub_goals: vec![],
-            oracle_budget: None,
+            ..Default::default()
         });
         let mut t = Trajectory::from_positions(i, positions, rng.random_bool(0.8));
         t.headings = headings;

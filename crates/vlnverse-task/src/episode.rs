@@ -285,6 +285,29 @@ pub struct Episode {
     pub oracle_budget: Option<u32>,
 }
 
+impl Default for Episode {
+    /// An empty fine-grained episode facing -Z (identity rotation): a base for struct-update
+    /// syntax in converters, tests and benches.
+    fn default() -> Self {
+        Episode {
+            episode_id: 0,
+            trajectory_id: 0,
+            scene_id: String::new(),
+            start_position: [0.0; 3],
+            start_rotation: [0.0, 0.0, 0.0, 1.0],
+            goals: Vec::new(),
+            instruction: Instruction::default(),
+            reference_path: Vec::new(),
+            info: EpisodeInfo::default(),
+            task: Task::default(),
+            target_object_id: None,
+            reference_image: None,
+            sub_goals: Vec::new(),
+            oracle_budget: None,
+        }
+    }
+}
+
 impl Episode {
     /// The goals the agent must reach in order: `sub_goals` for long-horizon episodes, else the
     /// first of `goals` (empty only for a malformed episode).

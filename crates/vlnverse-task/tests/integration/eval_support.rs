@@ -175,9 +175,7 @@ fn episode(
         },
         task,
         target_object_id: object_id,
-        reference_image: None,
-        sub_goals: vec![],
-        oracle_budget: None,
+        ..Default::default()
     }
 }
 

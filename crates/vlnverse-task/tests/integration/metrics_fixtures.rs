@@ -6,7 +6,7 @@ use vlnverse_task::metrics::{
     aggregate, dtw, is_stuck, ndtw, path_length, resample, score_episode, spl, GoalDistance,
     GoalDistances, MetricsConfig,
 };
-use vlnverse_task::{Episode, EpisodeInfo, Goal, Instruction, Task, Trajectory};
+use vlnverse_task::{Episode, EpisodeInfo, Goal, Task, Trajectory};
 
 fn episode(start: [f32; 3], goal: [f32; 3], geodesic: f32) -> Episode {
     Episode {
@@ -14,23 +14,17 @@ fn episode(start: [f32; 3], goal: [f32; 3], geodesic: f32) -> Episode {
         trajectory_id: 1,
         scene_id: "s".into(),
         start_position: start,
-        start_rotation: [0.0, 0.0, 0.0, 1.0],
         goals: vec![Goal {
             position: goal,
             radius: 3.0,
             object_id: None,
         }],
-        instruction: Instruction::default(),
         reference_path: vec![start, goal],
         info: EpisodeInfo {
             geodesic_distance: geodesic,
             ..Default::default()
         },
-        task: Task::Fine,
-        target_object_id: None,
-        reference_image: None,
-        sub_goals: Vec::new(),
-        oracle_budget: None,
+        ..Default::default()
     }
 }
 

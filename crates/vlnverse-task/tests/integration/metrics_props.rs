@@ -4,7 +4,7 @@ use proptest::prelude::*;
 use vlnverse_task::metrics::{
     aggregate, ndtw, resample, score_episode, GoalDistances, MetricsConfig,
 };
-use vlnverse_task::{Episode, EpisodeInfo, Goal, Instruction, Task, Trajectory};
+use vlnverse_task::{Episode, EpisodeInfo, Goal, Trajectory};
 
 fn point() -> impl Strategy<Value = [f32; 3]> {
     (-3.0f32..3.0, -0.1f32..0.1, -3.0f32..3.0).prop_map(|(x, y, z)| [x, y, z])
@@ -20,23 +20,17 @@ fn episode(reference: Vec<[f32; 3]>, geodesic: f32) -> Episode {
         trajectory_id: 0,
         scene_id: "p".into(),
         start_position: reference[0],
-        start_rotation: [0.0, 0.0, 0.0, 1.0],
         goals: vec![Goal {
             position: *reference.last().unwrap(),
             radius: 3.0,
             object_id: None,
         }],
-        instruction: Instruction::default(),
         reference_path: reference,
         info: EpisodeInfo {
             geodesic_distance: geodesic,
             ..Default::default()
         },
-        task: Task::Fine,
-        target_object_id: None,
-        reference_image: None,
-        sub_goals: vec![],
-        oracle_budget: None,
+        ..Default::default()
     }
 }
 
