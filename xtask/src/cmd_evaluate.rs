@@ -8,7 +8,7 @@ use std::time::Instant;
 use crate::split_args::SplitArgs;
 use vlnverse_sensors::Backend;
 use vlnverse_task::eval::agents::builtin;
-use vlnverse_task::eval::{evaluate, EvalConfig, EvalRequest, Setting};
+use vlnverse_task::eval::{evaluate, ActionSpace, EvalConfig, EvalRequest, Setting};
 
 /// Arguments of `cargo xtask evaluate`.
 #[derive(clap::Args, Debug)]
@@ -34,6 +34,9 @@ pub struct Args {
     /// Shell command of the external agent.
     #[arg(long)]
     pub agent_cmd: Option<String>,
+    /// Action space override: discrete, continuous (velocity commands) or waypoint.
+    #[arg(long)]
+    pub action_space: Option<ActionSpace>,
     /// Renderer backend override: auto, wgpu, raster or raycast.
     #[arg(long)]
     pub backend: Option<String>,
@@ -64,6 +67,9 @@ fn config(args: &Args) -> anyhow::Result<EvalConfig> {
         );
     }
     cfg.setting = args.setting;
+    if let Some(a) = args.action_space {
+        cfg.action_space = a;
+    }
     if let Some(b) = &args.backend {
         cfg.backend = Some(b.parse::<Backend>()?);
     }
@@ -135,6 +141,7 @@ mod tests {
             episodes: None,
             threads: None,
             agent_cmd: None,
+            action_space: Some(ActionSpace::Continuous),
             backend: Some("raster".into()),
             no_render: true,
             out: PathBuf::from("unused"),
@@ -147,6 +154,7 @@ mod tests {
         let cfg = config(&args(Some(root.join("telhop.toml")), Setting::Telhop)).unwrap();
         assert_eq!(cfg.setting, Setting::Telhop);
         assert_eq!(cfg.backend, Some(Backend::Raster));
+        assert_eq!(cfg.action_space, ActionSpace::Continuous);
         assert!(!cfg.render);
         let err = config(&args(Some(root.join("telhop.toml")), Setting::Strict)).unwrap_err();
         assert!(err.to_string().contains("telhop.toml"), "{err}");

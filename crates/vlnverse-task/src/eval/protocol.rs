@@ -14,6 +14,7 @@
 //! external_observations = "files"   # files | base64 (external agents)
 //! ```
 
+use std::fmt;
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
@@ -125,6 +126,28 @@ impl ActionSpace {
                 Action::Stop | Action::LookUp | Action::LookDown | Action::Velocity { .. }
             ),
             ActionSpace::Waypoint => discrete || matches!(action, Action::Waypoint { .. }),
+        }
+    }
+}
+
+impl fmt::Display for ActionSpace {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for ActionSpace {
+    type Err = TaskError;
+    fn from_str(s: &str) -> Result<Self> {
+        match s {
+            "discrete" => Ok(ActionSpace::Discrete),
+            "continuous" => Ok(ActionSpace::Continuous),
+            "waypoint" => Ok(ActionSpace::Waypoint),
+            _ => Err(TaskError::invalid(
+                "action_space",
+                s,
+                "expected one of discrete, continuous, waypoint",
+            )),
         }
     }
 }

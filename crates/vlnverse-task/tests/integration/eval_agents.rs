@@ -201,3 +201,39 @@ fn semantic_agent_finds_named_objects_without_the_goal() {
         sr[1]
     );
 }
+
+#[test]
+fn continuous_space_oracle_succeeds_with_velocity_commands_and_baselines_stay_legal() {
+    let dir = tempfile::tempdir().unwrap();
+    let eps = eval_support::make_dataset(dir.path(), Task::Fine, 2, 6, 13);
+    let cfg = EvalConfig::default();
+    for (name, setting) in [
+        ("oracle", Setting::Lenient),
+        ("oracle", Setting::Strict),
+        ("random", Setting::Lenient),
+        ("forward", Setting::Lenient),
+    ] {
+        let f = builtin(name, None, &cfg).unwrap();
+        let run = format!("{name}_{setting}_continuous");
+        let req = request(dir.path(), &run, setting, ActionSpace::Continuous);
+        // An action outside the space would stop the run with an error.
+        let out = evaluate(&req, &*f, &|| {}).unwrap();
+        let s = &out.summary.summary;
+        eprintln!(
+            "{name} {setting} continuous: SR {:.3} SPL {:.3} CR {:.4} steps {:.1}",
+            s.sr, s.spl, s.cr, s.steps
+        );
+        assert_eq!(s.episodes, eps.len());
+        for r in &out.records {
+            let actions = r.trajectory.actions.as_ref().unwrap();
+            assert!(
+                actions.iter().all(|a| a == "velocity" || a == "stop"),
+                "{name}: {actions:?}"
+            );
+        }
+        if name == "oracle" {
+            assert!(s.sr >= 0.99, "oracle SR {} in {setting}/continuous", s.sr);
+            assert!(s.spl > 0.8, "oracle SPL {}", s.spl);
+        }
+    }
+}

@@ -1,5 +1,7 @@
 //! Built-in agents: `oracle`, `random`, `forward`, `stop`, `semantic` and `external`.
 
+pub mod control;
+pub mod cues;
 pub mod external;
 pub mod forward;
 pub mod oracle;
@@ -107,6 +109,64 @@ pub fn wrap_angle(a: f32) -> f32 {
 /// Floor point `(x, z)` of a pose.
 pub fn floor_point(p: &vlnverse_env::Pose) -> Vec2 {
     Vec2::new(p.position[0], p.position[2])
+}
+
+/// Inputs for the agents' unit tests.
+#[cfg(test)]
+pub(crate) mod test_support {
+    use crate::episode::Task;
+    use crate::eval::agent::{EpisodeInputs, StepInput, SubGoalProgress};
+    use crate::eval::protocol::{ActionSpace, Setting};
+    use vlnverse_env::Pose;
+    use vlnverse_sensors::Observations;
+    use vlnverse_sim::{AgentConfig, StepOutcome};
+
+    /// A coarse episode at the origin facing -Z.
+    pub fn inputs(space: ActionSpace) -> EpisodeInputs {
+        EpisodeInputs {
+            episode_id: 1,
+            scene_id: "test".into(),
+            task: Task::Coarse,
+            instruction: "Find the sofa.".into(),
+            sub_instructions: Vec::new(),
+            reference_image: None,
+            start: pose(),
+            agent: AgentConfig::default(),
+            action_space: space,
+            setting: Setting::Lenient,
+            success_distance: 3.0,
+            max_steps: 200,
+            oracle_budget: None,
+            seed: 7,
+        }
+    }
+
+    /// The origin, facing -Z.
+    pub fn pose() -> Pose {
+        Pose {
+            position: [0.0; 3],
+            rotation: [0.0, 0.0, 0.0, 1.0],
+        }
+    }
+
+    /// Step `k` at the origin with no oracle.
+    pub fn step_input<'a>(
+        k: u32,
+        obs: &'a Observations,
+        last: Option<&'a StepOutcome>,
+    ) -> StepInput<'a> {
+        StepInput {
+            step: k,
+            observations: obs,
+            pose: pose(),
+            last,
+            sub_goal: SubGoalProgress {
+                current: 0,
+                total: 1,
+            },
+            oracle: None,
+        }
+    }
 }
 
 #[cfg(test)]
