@@ -12,10 +12,10 @@ use vlnverse_env::{Motion, ObjectId, Scene, SceneObject, SemanticClass, Shape};
 /// Collision group of floors and objects lower than the agent's ground clearance.
 const GROUND: InteractionGroups =
     InteractionGroups::new(Group::GROUP_2, Group::ALL, InteractionTestMode::And);
-/// Collision group of everything else (the agent included).
+/// Collision group of everything else.
 const SOLID: InteractionGroups =
     InteractionGroups::new(Group::GROUP_1, Group::ALL, InteractionTestMode::And);
-/// Query groups of the agent's moves and overlap tests: everything but the ground.
+/// Groups of the agent's collider, moves and overlap tests: everything but the ground.
 pub(crate) const AGENT_QUERY: InteractionGroups =
     InteractionGroups::new(Group::GROUP_1, Group::GROUP_1, InteractionTestMode::And);
 
@@ -152,7 +152,9 @@ impl PhysicsScene {
                 .mass(agent.mass)
                 .friction(if agent.allow_sliding { 0.0 } else { 1.0 })
                 .friction_combine_rule(CoefficientCombineRule::Min)
-                .collision_groups(SOLID)
+                // The agent's height is locked, so it never rests on the ground; contacts with
+                // the floor or a rug under its clearance would only stall it at their edges.
+                .collision_groups(AGENT_QUERY)
                 .user_data(0),
             agent_body,
             &mut w.bodies,

@@ -678,3 +678,58 @@ fn box_agent_cannot_turn_into_a_wall() {
     assert!(out.collided && out.hit.contains(&5), "{out:?}");
     assert!(s.pose().yaw().abs() < 1e-6);
 }
+
+#[test]
+fn every_profile_drives_over_a_rug_lower_than_its_ground_clearance() {
+    // A 12 mm rug (as procgen makes them) across the path, static and light dynamic versions.
+    for motion in [Motion::Static, Motion::Dynamic] {
+        let rug = boxed(
+            6,
+            SemanticClass::Rug,
+            Vec3::new(0.0, 0.006, -1.5),
+            Vec3::new(1.5, 0.006, 1.0),
+            motion,
+            3.0,
+            0.8,
+        );
+        let scene = room_with(vec![rug]);
+        for profile in ["vlnverse", "vlnce", "rxr", "locobot"] {
+            let agent = AgentConfig::profile(profile).unwrap();
+            assert!(agent.ground_clearance > 0.012, "{profile}");
+            let mut s = RapierSimulator::new(SimConfig {
+                agent: agent.clone(),
+                setting: CollisionSetting::Strict,
+                ..Default::default()
+            })
+            .unwrap();
+            // Velocity control: 4 m straight ahead (-Z) across the rug.
+            s.reset(&scene, at(0.0, 1.0, 0.0)).unwrap();
+            let v = 0.5 * agent.max_linear_speed;
+            let mut hit = Vec::new();
+            while s.pose().position[2] > -3.0 {
+                let out = s
+                    .step(Action::Velocity {
+                        v,
+                        omega: 0.0,
+                        duration: 0.5,
+                    })
+                    .unwrap();
+                assert!(!out.done, "{profile} {motion:?}: stopped: {out:?}");
+                hit.extend(out.hit);
+            }
+            assert!(
+                hit.is_empty(),
+                "{profile} {motion:?} velocity: touched {hit:?}"
+            );
+            // Discrete moves over the same rug.
+            s.reset(&scene, at(0.0, 1.0, 0.0)).unwrap();
+            for _ in 0..16 {
+                let out = s.step(Action::MoveForward(0.25)).unwrap();
+                assert!(
+                    !out.noticeable && out.hit.is_empty(),
+                    "{profile} {motion:?}: {out:?}"
+                );
+            }
+        }
+    }
+}
