@@ -15,7 +15,7 @@ mod cases;
 /// Arguments of `cargo xtask bench`.
 #[derive(clap::Args, Clone, Debug, Default)]
 pub struct Args {
-    /// Smaller workloads and 3 repetitions (a few seconds instead of about half a minute).
+    /// Smaller workloads and 3 repetitions (a second or two instead of five to ten).
     #[arg(long)]
     pub quick: bool,
     /// Run only the cases whose name contains one of these words (comma-separated), e.g.
