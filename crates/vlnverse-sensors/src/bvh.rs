@@ -4,14 +4,15 @@
 //! flat node array, a slab test with a precomputed inverse direction and near-child-first
 //! traversal are several times faster. Both see the same triangles; the tests compare them.
 
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 
 const LEAF_SIZE: usize = 4;
 
 #[derive(Clone, Copy, Debug)]
 struct Node {
-    min: Vec3,
-    max: Vec3,
+    // 16-byte SIMD vectors: the slab test is the inner loop.
+    min: Vec3A,
+    max: Vec3A,
     /// Leaf: first triangle slot; inner: index of the left child (the right one follows it).
     start: u32,
     /// Triangles in a leaf; 0 for an inner node.
@@ -25,9 +26,9 @@ pub struct TriBvh {
     /// Original triangle index of each slot.
     ids: Vec<u32>,
     /// Per slot: corner `a` and the edges `b - a`, `c - a`.
-    v0: Vec<Vec3>,
-    e1: Vec<Vec3>,
-    e2: Vec<Vec3>,
+    v0: Vec<Vec3A>,
+    e1: Vec<Vec3A>,
+    e2: Vec<Vec3A>,
 }
 
 impl TriBvh {
@@ -41,8 +42,8 @@ impl TriBvh {
         let mut bvh = TriBvh::default();
         if n > 0 {
             bvh.nodes.push(Node {
-                min: Vec3::ZERO,
-                max: Vec3::ZERO,
+                min: Vec3A::ZERO,
+                max: Vec3A::ZERO,
                 start: 0,
                 count: 0,
             });
@@ -51,9 +52,9 @@ impl TriBvh {
         for &t in &ids {
             let t = t as usize;
             let a = positions[3 * t];
-            bvh.v0.push(a);
-            bvh.e1.push(positions[3 * t + 1] - a);
-            bvh.e2.push(positions[3 * t + 2] - a);
+            bvh.v0.push(a.into());
+            bvh.e1.push((positions[3 * t + 1] - a).into());
+            bvh.e2.push((positions[3 * t + 2] - a).into());
         }
         bvh.ids = ids;
         bvh
@@ -71,8 +72,8 @@ impl TriBvh {
             clo = clo.min(cen[t]);
             chi = chi.max(cen[t]);
         }
-        self.nodes[node].min = lo;
-        self.nodes[node].max = hi;
+        self.nodes[node].min = lo.into();
+        self.nodes[node].max = hi.into();
         let ext = chi - clo;
         if ids.len() <= LEAF_SIZE || ext.max_element() <= 0.0 {
             self.nodes[node].start = offset as u32;
@@ -173,8 +174,8 @@ impl TriBvh {
         };
         let left = self.nodes.len();
         let empty = Node {
-            min: Vec3::ZERO,
-            max: Vec3::ZERO,
+            min: Vec3A::ZERO,
+            max: Vec3A::ZERO,
             start: 0,
             count: 0,
         };
@@ -192,6 +193,7 @@ impl TriBvh {
         if self.nodes.is_empty() {
             return None;
         }
+        let (origin, dir) = (Vec3A::from(origin), Vec3A::from(dir));
         // Avoid 0 * inf = NaN in the slab test for axis-parallel rays.
         let safe = |x: f32| {
             if x.abs() < 1e-20 {
@@ -200,7 +202,7 @@ impl TriBvh {
                 x
             }
         };
-        let inv = Vec3::new(1.0 / safe(dir.x), 1.0 / safe(dir.y), 1.0 / safe(dir.z));
+        let inv = Vec3A::new(1.0 / safe(dir.x), 1.0 / safe(dir.y), 1.0 / safe(dir.z));
         let mut best_t = t_max;
         let mut best = None;
         let mut stack = [0u32; 64];
@@ -260,7 +262,7 @@ impl TriBvh {
     }
 
     #[inline]
-    fn enter(&self, node: usize, o: Vec3, inv: Vec3, t_max: f32) -> Option<f32> {
+    fn enter(&self, node: usize, o: Vec3A, inv: Vec3A, t_max: f32) -> Option<f32> {
         let n = &self.nodes[node];
         let t1 = (n.min - o) * inv;
         let t2 = (n.max - o) * inv;
@@ -270,7 +272,7 @@ impl TriBvh {
     }
 
     #[inline]
-    fn hit(&self, i: usize, o: Vec3, d: Vec3, t_max: f32) -> Option<f32> {
+    fn hit(&self, i: usize, o: Vec3A, d: Vec3A, t_max: f32) -> Option<f32> {
         let (e1, e2) = (self.e1[i], self.e2[i]);
         let p = d.cross(e2);
         let det = e1.dot(p);
@@ -317,15 +319,19 @@ mod tests {
         let bvh = TriBvh::new(&pos);
         let all = TriBvh {
             nodes: vec![Node {
-                min: Vec3::splat(-10.0),
-                max: Vec3::splat(10.0),
+                min: Vec3A::splat(-10.0),
+                max: Vec3A::splat(10.0),
                 start: 0,
                 count: 500,
             }],
             ids: (0..500).collect(),
-            v0: (0..500).map(|t| pos[3 * t]).collect(),
-            e1: (0..500).map(|t| pos[3 * t + 1] - pos[3 * t]).collect(),
-            e2: (0..500).map(|t| pos[3 * t + 2] - pos[3 * t]).collect(),
+            v0: (0..500).map(|t| pos[3 * t].into()).collect(),
+            e1: (0..500)
+                .map(|t| (pos[3 * t + 1] - pos[3 * t]).into())
+                .collect(),
+            e2: (0..500)
+                .map(|t| (pos[3 * t + 2] - pos[3 * t]).into())
+                .collect(),
         };
         let mut hits = 0;
         for _ in 0..2000 {
