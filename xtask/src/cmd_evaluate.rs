@@ -25,8 +25,8 @@ pub struct Args {
     /// Protocol file (overrides the setting's default file; its `setting` must agree).
     #[arg(long)]
     pub config: Option<PathBuf>,
-    /// Only the first N episodes of the split.
-    #[arg(long)]
+    /// Only the first N episodes of the split (at least 1).
+    #[arg(long, value_parser = at_least_one)]
     pub episodes: Option<usize>,
     /// Worker threads (default: one per core).
     #[arg(long)]
@@ -46,6 +46,15 @@ pub struct Args {
     /// Output folder of the run.
     #[arg(long)]
     pub out: PathBuf,
+}
+
+/// `--episodes`: a positive count.
+fn at_least_one(s: &str) -> Result<usize, String> {
+    match s.parse::<usize>() {
+        Ok(0) => Err("must be at least 1 (leave --episodes out to run the whole split)".into()),
+        Ok(n) => Ok(n),
+        Err(e) => Err(format!("expected a positive number of episodes: {e}")),
+    }
 }
 
 fn config(args: &Args) -> anyhow::Result<EvalConfig> {
@@ -103,7 +112,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let secs = t0.elapsed().as_secs_f64();
     let s = &out.summary.summary;
     println!(
-        "{} on {}/{} ({}): {} episodes ({} resumed), SR {:.2}%  SPL {:.2}%  NE {}  nDTW {:.2}%  CR {:.4}; {} steps in {:.1} s ({:.0} steps/s) -> {}",
+        "{} on {}/{} ({}): {} episodes ({} resumed), SR {:.2}%  SPL {:.2}%  NE {}  nDTW {:.2}%  CR {:.2}%; {} steps in {:.1} s ({:.0} steps/s) -> {}",
         out.summary.method,
         args.data.task,
         args.data.split,
@@ -114,7 +123,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         100.0 * s.spl,
         s.ne.map_or_else(|| "-".into(), |v| format!("{v:.2} m")),
         100.0 * s.ndtw,
-        s.cr,
+        100.0 * s.cr,
         out.steps_run,
         secs,
         out.steps_run as f64 / secs.max(1e-9),
@@ -146,6 +155,14 @@ mod tests {
             no_render: true,
             out: PathBuf::from("unused"),
         }
+    }
+
+    #[test]
+    fn zero_episodes_is_refused_by_the_flag_parser() {
+        let err = at_least_one("0").unwrap_err();
+        assert!(err.contains("at least 1"), "{err}");
+        assert_eq!(at_least_one("3"), Ok(3));
+        assert!(at_least_one("-1").is_err());
     }
 
     #[test]

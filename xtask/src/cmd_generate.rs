@@ -35,7 +35,8 @@ pub struct Args {
     /// Comma-separated tasks (fine,coarse,visual_reference,long_horizon,dialogue); default all.
     #[arg(long, value_delimiter = ',')]
     pub tasks: Vec<String>,
-    /// Handle only the scenes with index % N == K (`K/N`); join shards with `merge`.
+    /// Handle only the scenes with index % N == K (`K/N`); K counts from 0 (Slurm array
+    /// style), so two shards are `0/2` and `1/2`. Join the shard folders with `merge`.
     #[arg(long)]
     pub shard: Option<String>,
     /// Worker threads (default: all cores). Output does not depend on it.
@@ -60,15 +61,28 @@ pub fn parse_shard(s: &str) -> anyhow::Result<(usize, usize)> {
         .trim()
         .parse()
         .with_context(|| format!("--shard `{s}`: N is not a number"))?;
-    anyhow::ensure!(n > 0 && k < n, "--shard `{s}`: need 0 <= K < N");
+    anyhow::ensure!(
+        n > 0,
+        "--shard {s}: N (the number of shards) must be at least 1"
+    );
+    anyhow::ensure!(
+        k < n,
+        "--shard {s}: K counts from 0, so use {}",
+        vlnverse_task::generate::pipeline::shard_list(n)
+    );
     Ok((k, n))
 }
 
 /// The config, the scene source and the tasks of a run.
 pub fn setup(args: &Args) -> anyhow::Result<(GenerateConfig, Box<dyn SceneSource>, Vec<Task>)> {
-    let mut cfg = match &args.config {
-        Some(p) => GenerateConfig::from_toml_file(p)?,
-        None => GeneratePreset::from_str(&args.preset)?.config()?,
+    // Where the config came from, named in its errors.
+    let (mut cfg, origin) = match &args.config {
+        Some(p) => (GenerateConfig::from_toml_file(p)?, p.clone()),
+        None => {
+            let preset = GeneratePreset::from_str(&args.preset)?;
+            let origin = PathBuf::from(format!("configs/generate/{}.toml", preset.name()));
+            (preset.config()?, origin)
+        }
     };
     if let Some(seed) = args.seed {
         cfg.seed = seed;
@@ -77,14 +91,35 @@ pub fn setup(args: &Args) -> anyhow::Result<(GenerateConfig, Box<dyn SceneSource
         Some(dir) => {
             let s = FolderSource::new(dir)?;
             cfg = cfg.rescaled(s.len());
-            cfg.validate()
-                .context("the config rescaled to the scene folder")?;
+            cfg.validate_in(&origin).with_context(|| {
+                format!(
+                    "the config rescaled to the {} scenes of {}",
+                    s.len(),
+                    dir.display()
+                )
+            })?;
             Box::new(s)
         }
         None => {
-            let preset = Preset::from_str(&cfg.scene_preset)
-                .with_context(|| format!("config field `scene_preset` = `{}`", cfg.scene_preset))?;
-            Box::new(HomeGenerator::from_preset(preset)?)
+            let preset = Preset::from_str(&cfg.scene_preset).with_context(|| {
+                format!(
+                    "{}: field `scene_preset` = `{}`",
+                    origin.display(),
+                    cfg.scene_preset
+                )
+            })?;
+            let source = HomeGenerator::from_preset(preset)?;
+            anyhow::ensure!(
+                source.len() == cfg.splits.total(),
+                "{}: field `splits` = {} scenes, but scene preset `{}` makes {}; make \
+                 [splits] add up to {} or use --scenes-from",
+                origin.display(),
+                cfg.splits.total(),
+                cfg.scene_preset,
+                source.len(),
+                source.len()
+            );
+            Box::new(source)
         }
     };
     let tasks = if args.tasks.is_empty() {
@@ -147,24 +182,40 @@ pub fn print_breakdown(times: &StageTimes, wall: f64) {
     }
 }
 
+/// `, N scene/task pairs skipped (see warnings)` when scenes were skipped for a task.
+fn skipped_note(s: &RunSummary) -> String {
+    match s.skipped.len() {
+        0 => String::new(),
+        n => format!(
+            ", {n} scene/task pair{} skipped (see warnings above)",
+            if n == 1 { "" } else { "s" }
+        ),
+    }
+}
+
 /// Run the command.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let (s, times, wall) = generate(&args, true)?;
+    for skip in &s.skipped {
+        eprintln!("warning: {skip}");
+    }
     let threads = args.threads.unwrap_or_else(rayon::current_num_threads);
     if s.assembled {
         println!(
-            "generate: {} scenes ({} already complete), {} episodes -> {} ({wall:.2} s, {threads} threads)",
+            "generate: {} scenes ({} already complete), {} episodes{} -> {} ({wall:.2} s, {threads} threads)",
             s.scenes_done,
             s.scenes_skipped,
             s.episodes,
+            skipped_note(&s),
             args.out.display()
         );
     } else {
         println!(
-            "generate: shard {} done: {} scenes ({} already complete) -> {} ({wall:.2} s); join the shards with `cargo xtask merge`",
+            "generate: shard {} done: {} scenes ({} already complete){} -> {} ({wall:.2} s); join the shards with `cargo xtask merge`",
             args.shard.as_deref().unwrap_or("0/1"),
             s.scenes_done,
             s.scenes_skipped,
+            skipped_note(&s),
             args.out.display()
         );
     }

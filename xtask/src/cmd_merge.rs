@@ -1,5 +1,6 @@
 //! `cargo xtask merge`: join dataset folders generated with `--shard K/N` into one dataset,
-//! byte-identical to a single run.
+//! byte-identical to a single run. The inputs are checked first (every shard of N given once,
+//! complete, of one config and seed); a failed merge writes nothing into `--out`.
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -19,6 +20,16 @@ pub struct Args {
 pub fn run(args: Args) -> anyhow::Result<()> {
     let t = Instant::now();
     let n = vlnverse_task::generate::merge(&args.out, &args.parts)?;
+    let report = args
+        .out
+        .join(vlnverse_task::generate::pipeline::REPORT_FILE);
+    if let Ok(raw) = std::fs::read(&report) {
+        if let Ok(r) = serde_json::from_slice::<vlnverse_task::generate::GenerationReport>(&raw) {
+            for skip in &r.skipped {
+                eprintln!("warning: {skip}");
+            }
+        }
+    }
     println!(
         "merge: {} part folders -> {} ({n} episodes, {:.2} s)",
         args.parts.len(),

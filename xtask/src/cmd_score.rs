@@ -6,7 +6,10 @@ use std::path::PathBuf;
 
 use crate::split_args::SplitArgs;
 use anyhow::Context as _;
-use vlnverse_task::metrics::{match_trajectories, score_all, GoalDistances, MetricsConfig};
+use vlnverse_task::metrics::{
+    check_starts, match_trajectories, score_all, GoalDistances, MetricsConfig,
+    DEFAULT_START_TOLERANCE,
+};
 use vlnverse_task::report::{write_run, RunSummary};
 use vlnverse_task::{dataset, score, trajectory};
 
@@ -40,6 +43,10 @@ pub struct Args {
     /// Straight-line instead of geodesic distances (no navigable maps needed).
     #[arg(long)]
     pub euclidean: bool,
+    /// How far (m, horizontally) a trajectory's first position may lie from the episode's
+    /// start position; raise it for real robots whose start pose is only roughly the episode's.
+    #[arg(long, default_value_t = DEFAULT_START_TOLERANCE)]
+    pub start_tolerance: f32,
 }
 
 /// Run the command.
@@ -54,6 +61,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let trajectories = trajectory::read_trajectories(&args.trajectories)?;
     let trajectories = match_trajectories(&episodes, trajectories, args.allow_missing)
         .with_context(|| format!("matching {} to the episodes", args.trajectories.display()))?;
+    check_starts(&episodes, &trajectories, args.start_tolerance)
+        .with_context(|| format!("checking the starts of {}", args.trajectories.display()))?;
     tracing::info!(
         "scoring {} episodes of {}/{}",
         episodes.len(),
@@ -147,6 +156,7 @@ mod tests {
             fail_on_collision: false,
             success_distance: 3.0,
             euclidean: true,
+            start_tolerance: DEFAULT_START_TOLERANCE,
         };
         let out = dir.path().join("run");
         run(args(traj, out.clone())).unwrap();
@@ -174,7 +184,79 @@ mod tests {
             "{\"episode_id\": 9, \"positions\": [], \"stopped\": true}\n",
         )
         .unwrap();
-        let err = format!("{:#}", run(args(unknown, out)).unwrap_err());
+        let err = format!("{:#}", run(args(unknown, out.clone())).unwrap_err());
         assert!(err.contains("9") && err.contains("no episode"), "{err}");
+
+        // A missing trajectory names the flag that allows it.
+        let empty = dir.path().join("empty.jsonl");
+        std::fs::write(&empty, "").unwrap();
+        let err = format!("{:#}", run(args(empty, out.clone())).unwrap_err());
+        assert!(err.contains("--allow-missing"), "{err}");
+    }
+
+    #[test]
+    fn score_refuses_trajectories_away_from_the_start_or_absurdly_far() {
+        let dir = tempfile::tempdir().unwrap();
+        let ep = Episode {
+            episode_id: 1,
+            trajectory_id: 1,
+            scene_id: "s".into(),
+            start_position: [0.0, 0.0, 0.0],
+            goals: vec![Goal {
+                position: [5.0, 0.0, 0.0],
+                radius: 3.0,
+                object_id: None,
+            }],
+            reference_path: vec![[0.0, 0.0, 0.0], [5.0, 0.0, 0.0]],
+            info: EpisodeInfo {
+                geodesic_distance: 5.0,
+                ..Default::default()
+            },
+            ..Default::default()
+        };
+        dataset::write_split(dir.path(), Task::Fine, Split::Test, &[ep]).unwrap();
+        let out = dir.path().join("run");
+        let args = |name: &str, line: &str, tol: f32| {
+            let traj = dir.path().join(name);
+            std::fs::write(&traj, line).unwrap();
+            Args {
+                data: SplitArgs {
+                    dataset: dir.path().to_path_buf(),
+                    task: Task::Fine,
+                    split: Split::Test,
+                },
+                trajectories: traj,
+                out: out.clone(),
+                method: None,
+                setting: None,
+                allow_missing: false,
+                fail_on_collision: false,
+                success_distance: 3.0,
+                euclidean: true,
+                start_tolerance: tol,
+            }
+        };
+        // Regression: a position 1e9 m away made nDTW resampling loop forever.
+        let far = "{\"episode_id\":1,\"positions\":[[0,0,0],[1e9,0,0]],\"stopped\":true}\n";
+        let err = format!("{:#}", run(args("far.jsonl", far, 0.5)).unwrap_err());
+        assert!(
+            err.contains("episode 1") && err.contains("positions[1]") && err.contains("far.jsonl"),
+            "{err}"
+        );
+        // Regression: a trajectory of just the goal scored SR 100 / SPL 100.
+        let teleport = "{\"episode_id\":1,\"positions\":[[5,0,0]],\"stopped\":true}\n";
+        let err = format!("{:#}", run(args("tp.jsonl", teleport, 0.5)).unwrap_err());
+        assert!(
+            err.contains("episode 1")
+                && err.contains("[5.0, 0.0, 0.0]")
+                && err.contains("[0.0, 0.0, 0.0]")
+                && err.contains("--start-tolerance"),
+            "{err}"
+        );
+        // A robot that started 0.4 m off (height ignored) is fine; a relaxed tolerance lets a
+        // farther start through.
+        let off = "{\"episode_id\":1,\"positions\":[[0.4,1.0,0],[5,0,0]],\"stopped\":true}\n";
+        run(args("off.jsonl", off, 0.5)).unwrap();
+        run(args("tp2.jsonl", teleport, 6.0)).unwrap();
     }
 }

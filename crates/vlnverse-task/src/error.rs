@@ -9,14 +9,15 @@ pub type Result<T, E = TaskError> = std::result::Result<T, E>;
 /// What went wrong while reading, writing or scoring task data.
 #[derive(Debug, thiserror::Error)]
 pub enum TaskError {
-    /// A file could not be read or written.
-    #[error("{path}: {source}")]
+    /// A file could not be read or written. The message already carries the OS error, so it is
+    /// deliberately not also the error's `source()`: chain printers (anyhow's `{:#}`) would
+    /// print it twice.
+    #[error("{path}: {error}")]
     Io {
         /// The file.
         path: PathBuf,
         /// The OS error.
-        #[source]
-        source: std::io::Error,
+        error: std::io::Error,
     },
     /// A file exists but its content is not what the format says.
     #[error("{path}: {location}: {message}")]
@@ -48,7 +49,7 @@ impl TaskError {
     pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
         TaskError::Io {
             path: path.into(),
-            source,
+            error: source,
         }
     }
 

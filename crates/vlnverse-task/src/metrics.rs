@@ -286,29 +286,48 @@ pub fn ndtw(reference: &[[f32; 3]], query: &[[f32; 3]], success_distance: f32) -
     (-d / (reference.len() as f64 * f64::from(success_distance))).exp() as f32
 }
 
+/// Most points [`resample`] returns; a longer polyline is sampled more coarsely, so memory and
+/// DTW time stay bounded whatever the input.
+pub const MAX_RESAMPLED_POINTS: usize = 100_000;
+
 /// Points every `spacing` metres of arc length along the polyline, both ends included;
 /// repeated points (turns in place) vanish. A polyline of length 0 gives its first point.
+/// Arc length is accumulated in `f64`, and a polyline longer than
+/// `spacing * MAX_RESAMPLED_POINTS` is sampled at `length / MAX_RESAMPLED_POINTS` instead, so the
+/// output never has more than about [`MAX_RESAMPLED_POINTS`] points. Non-finite input gives the
+/// points as they are.
 pub fn resample(points: &[[f32; 3]], spacing: f32) -> Vec<[f32; 3]> {
     let Some(&first) = points.first() else {
         return Vec::new();
     };
-    let total = path_length(points);
+    let seg_len = |a: [f32; 3], b: [f32; 3]| -> f64 {
+        let d = |i: usize| f64::from(b[i]) - f64::from(a[i]);
+        (d(0) * d(0) + d(1) * d(1) + d(2) * d(2)).sqrt()
+    };
+    let total: f64 = points.windows(2).map(|w| seg_len(w[0], w[1])).sum();
+    if !total.is_finite() || !spacing.is_finite() {
+        return points.to_vec();
+    }
     let mut out = vec![first];
     if total <= 0.0 || spacing <= 0.0 {
         return out;
     }
-    let mut next = spacing; // arc length of the next sample
-    let mut walked = 0.0f32; // arc length at the start of the current segment
+    let spacing = f64::from(spacing).max(total / MAX_RESAMPLED_POINTS as f64);
+    let mut k = 1u64; // index of the next sample, at arc length k * spacing
+    let mut walked = 0.0f64; // arc length at the start of the current segment
     for w in points.windows(2) {
-        let seg = dist(w[0], w[1]);
-        while seg > 0.0 && next <= walked + seg && next < total - 1e-4 {
+        let seg = seg_len(w[0], w[1]);
+        loop {
+            let next = k as f64 * spacing;
+            if !(seg > 0.0 && next <= walked + seg && next < total - 1e-4) {
+                break;
+            }
             let t = (next - walked) / seg;
-            out.push([
-                w[0][0] + (w[1][0] - w[0][0]) * t,
-                w[0][1] + (w[1][1] - w[0][1]) * t,
-                w[0][2] + (w[1][2] - w[0][2]) * t,
-            ]);
-            next += spacing;
+            let lerp = |i: usize| {
+                (f64::from(w[0][i]) + (f64::from(w[1][i]) - f64::from(w[0][i])) * t) as f32
+            };
+            out.push([lerp(0), lerp(1), lerp(2)]);
+            k += 1;
         }
         walked += seg;
     }
@@ -316,6 +335,56 @@ pub fn resample(points: &[[f32; 3]], spacing: f32) -> Vec<[f32; 3]> {
         out.push(last);
     }
     out
+}
+
+/// Horizontal (floor-plane `x`, `z`) distance of two points.
+pub fn horizontal_dist(a: [f32; 3], b: [f32; 3]) -> f32 {
+    let (dx, dz) = (
+        f64::from(a[0]) - f64::from(b[0]),
+        f64::from(a[2]) - f64::from(b[2]),
+    );
+    (dx * dx + dz * dz).sqrt() as f32
+}
+
+/// Default of [`check_starts`]' tolerance (m): a trajectory must begin this close to the
+/// episode's start position.
+pub const DEFAULT_START_TOLERANCE: f32 = 0.5;
+
+/// Check that every non-empty trajectory begins at its episode's start: the horizontal distance
+/// from its first position to `start_position` must be at most `tolerance` metres.
+/// `trajectories[i]` belongs to `episodes[i]` (see [`match_trajectories`]). The error names the
+/// episode, the first position and the start.
+pub fn check_starts(
+    episodes: &[Episode],
+    trajectories: &[Trajectory],
+    tolerance: f32,
+) -> Result<()> {
+    if !(tolerance.is_finite() && tolerance >= 0.0) {
+        return Err(TaskError::invalid(
+            "start_tolerance",
+            tolerance,
+            "must be a non-negative number of metres",
+        ));
+    }
+    for (ep, t) in episodes.iter().zip(trajectories) {
+        let Some(&p) = t.positions.first() else {
+            continue;
+        };
+        let d = horizontal_dist(p, ep.start_position);
+        if d.is_nan() || d > tolerance {
+            return Err(TaskError::invalid(
+                format!("episode {}: positions[0]", ep.episode_id),
+                format!("{p:?}"),
+                format!(
+                    "the trajectory must begin at the episode's start_position {:?}, but its \
+                     first position is {d:.2} m away (horizontally; tolerance {tolerance} m, \
+                     --start-tolerance to relax it)",
+                    ep.start_position
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Whether the agent got stuck: over some window of `window` steps it moved less than
@@ -505,7 +574,7 @@ pub fn match_trajectories(
             "episode_id",
             shown.join(", "),
             format!(
-                "{} episode(s) of the split have no trajectory (allow missing ones to score them as failures)",
+                "{} episode(s) of the split have no trajectory (pass --allow-missing to score them as failures)",
                 missing.len()
             ),
         ));

@@ -121,10 +121,12 @@ pub fn episodes_csv(ms: &[EpisodeMetrics]) -> String {
 }
 
 /// A markdown table laid out like the paper's: rows = method / setting, columns TL NE SR OSR SPL
-/// nDTW CR (and SR1 SR2 SR3 SR-All when a row has long-horizon numbers); rates in percent.
+/// nDTW CR (and SR1 SR2 SR3 SR-All when a row has long-horizon numbers); rates, CR included, in
+/// percent (the header says `CR (%)`).
 pub fn markdown_table(rows: &[ReportRow]) -> String {
     let lh = rows.iter().any(|r| r.summary.sr_1.is_some());
-    let mut s = String::from("| Method | Setting | TL | NE↓ | SR↑ | OSR↑ | SPL↑ | nDTW↑ | CR↓ |");
+    let mut s =
+        String::from("| Method | Setting | TL | NE↓ | SR↑ | OSR↑ | SPL↑ | nDTW↑ | CR (%)↓ |");
     let mut rule = String::from("|---|---|---:|---:|---:|---:|---:|---:|---:|");
     if lh {
         s.push_str(" SR1↑ | SR2↑ | SR3↑ | SR-All↑ |");
@@ -192,7 +194,9 @@ pub fn markdown_report(run: &RunSummary) -> String {
         s,
         "\n{} episodes; {} with the goal unreachable from the final position (left out of NE); \
          mean steps {:.1}; SDTW {:.2}%; oracle NE {}.\n\
-         Rates in percent; TL and NE in metres; CR = noticeable collisions per action.\n",
+         SR, OSR, SPL, nDTW, SDTW and CR in percent (summary.json and episodes.csv hold \
+         fractions); TL and NE in metres; CR (%) = noticeable collisions per 100 actions, the \
+         mean over episodes.\n",
         m.episodes,
         m.unreachable,
         m.steps,

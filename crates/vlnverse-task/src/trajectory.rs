@@ -19,6 +19,10 @@ use serde_json::{Map, Value};
 use crate::dataset::write_atomic;
 use crate::error::{Result, TaskError};
 
+/// Largest absolute coordinate (m) a trajectory position may have; anything farther is a unit
+/// or export error (millimetres, an uninitialised value), rejected when reading.
+pub const MAX_COORDINATE: f32 = 1e5;
+
 /// What an agent did in one episode.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct Trajectory {
@@ -71,7 +75,8 @@ impl Trajectory {
         out
     }
 
-    /// Check internal consistency (stop indices and headings match the positions).
+    /// Check internal consistency (stop indices and headings match the positions; positions
+    /// are finite and within [`MAX_COORDINATE`] of the origin).
     pub fn validate(&self) -> std::result::Result<(), String> {
         if let Some(h) = &self.headings {
             if h.len() != self.positions.len() {
@@ -95,12 +100,21 @@ impl Trajectory {
         if self.stops.windows(2).any(|w| w[0] > w[1]) {
             return Err("field `stops`: indices must not decrease".into());
         }
-        if let Some(p) = self
+        if let Some((i, p)) = self
             .positions
             .iter()
-            .find(|p| p.iter().any(|c| !c.is_finite()))
+            .enumerate()
+            .find(|(_, p)| p.iter().any(|c| !c.is_finite() || c.abs() > MAX_COORDINATE))
         {
-            return Err(format!("field `positions`: non-finite point {p:?}"));
+            let what = if p.iter().all(|c| c.is_finite()) {
+                format!("a coordinate is farther than {MAX_COORDINATE} m from the origin")
+            } else {
+                "a coordinate is not a finite number".to_string()
+            };
+            return Err(format!(
+                "episode {}: field `positions[{i}]` = {p:?}: {what}",
+                self.episode_id
+            ));
         }
         Ok(())
     }

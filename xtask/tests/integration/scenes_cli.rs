@@ -175,3 +175,133 @@ fn bad_input_fails_with_a_message_naming_the_file() {
     ]);
     assert!(!ok && stderr.contains("bad.toml"), "{stderr}");
 }
+
+/// The imported Godot living room (one piece of furniture) among the tiny homes: it is skipped
+/// for long-horizon episodes with one warning, the run succeeds, and the report records it.
+#[test]
+fn generate_skips_a_scene_that_cannot_provide_a_task_and_says_why() {
+    let glb = Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../shared/scenes/godot_living_room/living_room.glb"
+    ));
+    if !glb.is_file() {
+        eprintln!("skipped: {} is absent", glb.display());
+        return;
+    }
+    let tmp = tempfile::tempdir().unwrap();
+    let scenes = tmp.path().join("scenes");
+    let s = scenes.to_str().unwrap();
+    let (ok, _, stderr) = xtask(&["scenes", "--preset", "tiny", "--out", s]);
+    assert!(ok, "{stderr}");
+    let (ok, _, stderr) = xtask(&["import", "--input", glb.to_str().unwrap(), "--out", s]);
+    assert!(ok, "{stderr}");
+    let ds = tmp.path().join("ds");
+    let (ok, stdout, stderr) = xtask(&[
+        "generate",
+        "--scenes-from",
+        s,
+        "--out",
+        ds.to_str().unwrap(),
+    ]);
+    assert!(ok, "{stderr}");
+    let warnings: Vec<&str> = stderr.lines().filter(|l| l.contains("warning")).collect();
+    assert_eq!(warnings.len(), 1, "{stderr}");
+    assert!(
+        warnings[0].contains("living_room: long_horizon needs 2 distinct targets, found 1"),
+        "{stderr}"
+    );
+    assert!(stdout.contains("1 scene/task pair skipped"), "{stdout}");
+    let report: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(ds.join("generation_report.json")).unwrap()).unwrap();
+    assert_eq!(report["skipped"][0]["scene_id"], "living_room");
+    assert_eq!(report["skipped"][0]["task"], "long_horizon");
+    let (ok, stdout, stderr) = xtask(&["stats", ds.to_str().unwrap()]);
+    assert!(ok && stdout.contains("| long_horizon |"), "{stderr}");
+}
+
+#[test]
+fn shard_counts_from_zero_and_help_says_so() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (ok, _, stderr) = xtask(&[
+        "generate",
+        "--shard",
+        "2/2",
+        "--out",
+        tmp.path().join("o").to_str().unwrap(),
+    ]);
+    assert!(!ok, "{stderr}");
+    assert!(
+        stderr.contains("--shard 2/2: K counts from 0, so use 0/2 and 1/2"),
+        "{stderr}"
+    );
+    assert!(!tmp.path().join("o").exists());
+    let (ok, stdout, _) = xtask(&["generate", "--help"]);
+    assert!(ok && stdout.contains("K counts from 0"), "{stdout}");
+}
+
+#[test]
+fn merge_with_a_missing_or_repeated_shard_names_it_and_writes_nothing() {
+    let tmp = tempfile::tempdir().unwrap();
+    let p0 = tmp.path().join("p0");
+    let (ok, _, stderr) = xtask(&[
+        "generate",
+        "--preset",
+        "tiny",
+        "--tasks",
+        "fine",
+        "--shard",
+        "0/2",
+        "--out",
+        p0.to_str().unwrap(),
+    ]);
+    assert!(ok, "{stderr}");
+    let m2 = tmp.path().join("m2");
+    let (ok, _, stderr) = xtask(&["merge", "--out", m2.to_str().unwrap(), p0.to_str().unwrap()]);
+    assert!(!ok, "{stderr}");
+    assert!(
+        stderr.contains("shard 1/2 is missing (parts for scenes tiny_0001, tiny_0003"),
+        "{stderr}"
+    );
+    assert!(!m2.exists(), "a failed merge left {}", m2.display());
+    let p = p0.to_str().unwrap();
+    let (ok, _, stderr) = xtask(&["merge", "--out", m2.to_str().unwrap(), p, p]);
+    assert!(
+        !ok && stderr.contains("shard 0/2 is given twice"),
+        "{stderr}"
+    );
+    assert!(!m2.exists());
+    // A shard alone is not a dataset: stats says there are no episodes.
+    let (ok, _, stderr) = xtask(&["stats", p]);
+    assert!(!ok && stderr.contains("holds no episodes"), "{stderr}");
+    assert!(stderr.contains("merge"), "{stderr}");
+}
+
+#[test]
+fn generate_config_errors_name_the_config_file() {
+    let tmp = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../configs/generate/tiny.toml"
+    ))
+    .unwrap();
+    // 13 scenes in the splits, but the tiny scene preset makes 5.
+    let cfg = tmp.path().join("my_gen.toml");
+    std::fs::write(&cfg, text.replace("train = 3\n", "train = 11\n")).unwrap();
+    let (ok, _, stderr) = xtask(&[
+        "generate",
+        "--config",
+        cfg.to_str().unwrap(),
+        "--out",
+        tmp.path().join("o").to_str().unwrap(),
+    ]);
+    assert!(!ok, "{stderr}");
+    assert!(
+        stderr.contains("my_gen.toml") && stderr.contains("splits") && stderr.contains("13"),
+        "{stderr}"
+    );
+    // An empty folder has no episodes either.
+    let empty = tmp.path().join("empty");
+    std::fs::create_dir_all(&empty).unwrap();
+    let (ok, _, stderr) = xtask(&["stats", empty.to_str().unwrap()]);
+    assert!(!ok && stderr.contains("holds no episodes"), "{stderr}");
+}

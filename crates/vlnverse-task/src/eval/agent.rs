@@ -75,7 +75,9 @@ pub struct SubGoalProgress {
 
 /// The dialogue oracle as an agent sees it: ask a question, get an answer (within a budget).
 pub trait OracleHandle {
-    /// Answer `question`; `None` when the budget is spent.
+    /// Answer `question`; `None` when the budget is spent. An empty question (blank or only
+    /// punctuation) gets a short "I did not understand; ask ..." text and costs no budget; any
+    /// other text the oracle cannot classify is taken as "which way?".
     fn ask(&mut self, question: &str) -> Option<String>;
     /// Questions left.
     fn remaining(&self) -> u32;
@@ -136,5 +138,11 @@ pub trait AgentFactory: Sync {
     /// Whether its agents may see the ground truth ([`Agent::set_truth`]); false by default.
     fn privileged(&self) -> bool {
         false
+    }
+    /// The command behind the agent, when it is another program (the `external` agent's shell
+    /// command); part of the run's identity in `run.json`, so a resume with another command is
+    /// refused.
+    fn command(&self) -> Option<String> {
+        None
     }
 }

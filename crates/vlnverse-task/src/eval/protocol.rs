@@ -152,6 +152,21 @@ impl FromStr for ActionSpace {
     }
 }
 
+/// `line N, field `key`` of a byte offset in a TOML text: the key is what precedes `=` on
+/// that line (an error on a value points into the value).
+fn toml_location(text: &str, offset: usize) -> String {
+    let offset = offset.min(text.len());
+    let start = text[..offset].rfind('\n').map_or(0, |i| i + 1);
+    let line_no = text[..start].matches('\n').count() + 1;
+    let line = text[start..].lines().next().unwrap_or("");
+    match line.split_once('=') {
+        Some((key, _)) if start + key.len() < offset && !key.trim().is_empty() => {
+            format!("line {line_no}, field `{}`", key.trim())
+        }
+        _ => format!("line {line_no}"),
+    }
+}
+
 /// One evaluation protocol.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -204,10 +219,17 @@ impl Default for EvalConfig {
 }
 
 impl EvalConfig {
-    /// The default protocol of a setting.
+    /// The default protocol of a setting, as shipped in `configs/eval/<setting>.toml`: Tel-Hop
+    /// agents answer with waypoints (plus every discrete action), the others with discrete
+    /// actions.
     pub fn for_setting(setting: Setting) -> Self {
+        let action_space = match setting {
+            Setting::Telhop => ActionSpace::Waypoint,
+            Setting::Strict | Setting::Lenient => ActionSpace::Discrete,
+        };
         EvalConfig {
             setting,
+            action_space,
             ..Default::default()
         }
     }
@@ -217,7 +239,7 @@ impl EvalConfig {
         let mut cfg: EvalConfig = toml::from_str(text).map_err(|e| {
             let loc = e
                 .span()
-                .map(|s| format!("line {}", text[..s.start].lines().count().max(1)))
+                .map(|s| toml_location(text, s.start))
                 .unwrap_or_else(|| "top level".into());
             TaskError::parse(origin, loc, e.message())
         })?;
@@ -263,7 +285,8 @@ impl EvalConfig {
         Ok(())
     }
 
-    fn resolve(&self, p: &str) -> PathBuf {
+    /// A path of the config resolved against its folder.
+    pub fn resolve(&self, p: &str) -> PathBuf {
         let path = PathBuf::from(p);
         match &self.base_dir {
             Some(b) if path.is_relative() => b.join(path),
@@ -295,5 +318,34 @@ impl EvalConfig {
             AgentConfig::profile(p)
         };
         res.map_err(|e| TaskError::invalid("agent_profile", p, e.to_string()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn built_in_defaults_equal_the_shipped_protocol_files() {
+        // Run outside the repository, `evaluate` falls back to `for_setting`: it must not
+        // change the protocol silently.
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../configs/eval");
+        for setting in [Setting::Strict, Setting::Telhop, Setting::Lenient] {
+            let file = EvalConfig::load(dir.join(format!("{setting}.toml"))).unwrap();
+            let built = EvalConfig::for_setting(setting);
+            let key = |c: &EvalConfig| {
+                (
+                    c.setting,
+                    c.max_steps,
+                    c.success_distance,
+                    c.agent_profile.clone(),
+                    c.action_space,
+                    c.render,
+                    c.seed,
+                    c.plots,
+                )
+            };
+            assert_eq!(key(&file), key(&built), "{setting}");
+        }
     }
 }

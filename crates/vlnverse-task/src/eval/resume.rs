@@ -125,33 +125,51 @@ impl ProgressLog {
     }
 }
 
-/// Write `run.json`, or check that the existing one describes the same run.
-pub fn check_or_write_identity(dir: &Path, identity: &serde_json::Value) -> Result<()> {
+/// Write `run.json`, or check that the existing one describes the same run. `identity` lists
+/// the keys in the order they are compared; the error names the first key that differs, with
+/// the value now and the value in the file.
+pub fn check_or_write_identity(dir: &Path, identity: &[(&str, serde_json::Value)]) -> Result<()> {
     let path = dir.join(RUN_FILE);
     match std::fs::read(&path) {
         Ok(bytes) => {
             let old: serde_json::Value = serde_json::from_slice(&bytes)
                 .map_err(|e| TaskError::parse(&path, format!("line {}", e.line()), e))?;
-            if &old != identity {
-                let field = identity
-                    .as_object()
-                    .and_then(|o| o.iter().find(|(k, v)| old.get(k.as_str()) != Some(*v)))
-                    .map(|(k, v)| (k.clone(), v.to_string()))
-                    .unwrap_or_else(|| ("run".into(), identity.to_string()));
+            let differing = identity
+                .iter()
+                .find(|(k, v)| old.get(*k) != Some(v))
+                .map(|(k, v)| {
+                    (
+                        k.to_string(),
+                        v.to_string(),
+                        old.get(*k).map(|o| o.to_string()),
+                    )
+                })
+                .or_else(|| {
+                    // A key of the file that this run does not have.
+                    old.as_object()?
+                        .iter()
+                        .find(|(k, _)| !identity.iter().any(|(n, _)| n == k))
+                        .map(|(k, v)| (k.clone(), "<none>".into(), Some(v.to_string())))
+                });
+            if let Some((key, now, before)) = differing {
                 return Err(TaskError::parse(
                     &path,
-                    format!("field `{}`", field.0),
+                    format!("field `{key}`"),
                     format!(
-                        "this folder holds another run (now {}, before {}); choose another --out or delete the folder",
-                        field.1,
-                        old.get(&field.0).map(|v| v.to_string()).unwrap_or_default()
+                        "this folder holds another run: `{key}` is {now} now but {} in the \
+                         folder's run; choose another --out or delete the folder",
+                        before.unwrap_or_else(|| "<missing>".into())
                     ),
                 ));
             }
             Ok(())
         }
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
-            let mut s = serde_json::to_string_pretty(identity)
+            let map: serde_json::Map<String, serde_json::Value> = identity
+                .iter()
+                .map(|(k, v)| (k.to_string(), v.clone()))
+                .collect();
+            let mut s = serde_json::to_string_pretty(&map)
                 .map_err(|e| TaskError::invalid("run", "identity", e.to_string()))?;
             s.push('\n');
             crate::dataset::write_atomic(&path, s.as_bytes())

@@ -154,8 +154,20 @@ pub struct DialogueHandle<'a> {
     pose: Pose,
 }
 
+/// The dialogue oracle's reply to an empty question (costs no budget).
+pub const NOT_UNDERSTOOD: &str = "I did not understand the question; ask \"which way?\", \
+                                  \"where is the <object>?\" or \"am I close?\".";
+
 impl OracleHandle for DialogueHandle<'_> {
     fn ask(&mut self, question: &str) -> Option<String> {
+        if question
+            .trim()
+            .trim_matches(['?', '.', '!'])
+            .trim()
+            .is_empty()
+        {
+            return Some(NOT_UNDERSTOOD.to_string());
+        }
         if self.oracle.remaining() == 0 {
             return None;
         }
@@ -217,7 +229,12 @@ impl Shared<'_> {
                 return Ok(w);
             }
         }
-        let agent = self.factory.make()?;
+        self.new_worker(self.factory.make()?)
+    }
+
+    /// A worker around `agent`: its simulator and, when rendering, its rig with the agent's
+    /// required sensors attached.
+    fn new_worker(&self, agent: Box<dyn Agent>) -> Result<Worker> {
         let sim = RapierSimulator::new(self.sim_cfg.clone())
             .map_err(|e| sim_err("agent_profile", &self.req.config.agent_profile, e))?;
         let rig = if self.req.config.render {
@@ -503,23 +520,19 @@ pub fn evaluate(
     on_episode: &(dyn Fn() + Sync),
 ) -> Result<EvalOutcome> {
     req.config.validate()?;
+    if req.episodes == Some(0) {
+        return Err(TaskError::invalid(
+            "episodes",
+            0,
+            "must be at least 1 (leave it out to run the whole split)",
+        ));
+    }
     let mut episodes = dataset::read_split(&req.dataset, req.task, req.split)?;
     if let Some(n) = req.episodes {
         episodes.truncate(n);
     }
     std::fs::create_dir_all(&req.out).map_err(|e| TaskError::io(&req.out, e))?;
-    let identity = serde_json::json!({
-        "agent": factory.name(),
-        "setting": req.config.setting.name(),
-        "task": req.task.name(),
-        "split": req.split.name(),
-        "dataset": req.dataset.display().to_string(),
-        "max_steps": req.config.max_steps,
-        "success_distance": req.config.success_distance,
-        "action_space": req.config.action_space.name(),
-        "agent_profile": req.config.agent_profile,
-        "seed": req.config.seed,
-    });
+    let identity = run_identity(req, factory)?;
     resume::check_or_write_identity(&req.out, &identity)?;
     let progress_path = req.out.join(PROGRESS_FILE);
     let mut done: BTreeMap<u64, EpisodeRecord> = resume::load_progress(&progress_path)?
@@ -550,6 +563,30 @@ pub fn evaluate(
         pool: Mutex::new(Vec::new()),
         log: ProgressLog::open(&progress_path)?,
     };
+    if !req.config.render && !todo.is_empty() {
+        // An agent that looks would run blind: refuse before any episode runs. The probe
+        // agent becomes the first worker, so nothing is made twice.
+        let agent = factory.make()?;
+        let needs: Vec<String> = agent
+            .required_sensors()
+            .iter()
+            .map(|s| s.name().to_string())
+            .collect();
+        if !needs.is_empty() {
+            return Err(TaskError::invalid(
+                "render",
+                false,
+                format!(
+                    "agent `{}` looks at its sensors ({}) and would run blind without \
+                     rendering; drop --no-render / set `render = true`",
+                    factory.name(),
+                    needs.join(", ")
+                ),
+            ));
+        }
+        let w = shared.new_worker(agent)?;
+        shared.give_back(w);
+    }
     let run = || -> Vec<Result<(EpisodeRecord, u64)>> {
         todo.par_iter()
             .with_max_len(4)
@@ -596,6 +633,53 @@ pub fn evaluate(
         resumed,
         steps_run,
     })
+}
+
+/// What makes a run's results what they are, in the order a mismatch is reported (the first
+/// differing key is named): `run.json` of the run folder. Besides the protocol's names and
+/// paths it records their contents (`agent_config`, `rig_config`), so an edited file is noticed. Thread count and episode count are
+/// left out (a resume may use other values).
+pub fn run_identity(
+    req: &EvalRequest,
+    factory: &dyn AgentFactory,
+) -> Result<Vec<(&'static str, serde_json::Value)>> {
+    use serde_json::{json, to_value};
+    let cfg = &req.config;
+    let value = |what: &str, v: std::result::Result<serde_json::Value, serde_json::Error>| {
+        v.map_err(|e| TaskError::invalid(what, "<config>", e.to_string()))
+    };
+    let rig_path = if cfg.rig.trim().is_empty() {
+        String::new()
+    } else {
+        cfg.resolve(&cfg.rig).display().to_string()
+    };
+    Ok(vec![
+        ("setting", json!(cfg.setting.name())),
+        ("task", json!(req.task.name())),
+        ("split", json!(req.split.name())),
+        ("dataset", json!(req.dataset.display().to_string())),
+        ("agent", json!(factory.name())),
+        ("agent_cmd", json!(factory.command())),
+        ("action_space", json!(cfg.action_space.name())),
+        ("max_steps", json!(cfg.max_steps)),
+        ("success_distance", json!(cfg.success_distance)),
+        ("agent_profile", json!(cfg.agent_profile)),
+        ("rig", json!(rig_path)),
+        ("backend", value("backend", to_value(cfg.backend))?),
+        ("render", json!(cfg.render)),
+        (
+            "external_observations",
+            value("external_observations", to_value(cfg.external_observations))?,
+        ),
+        ("seed", json!(cfg.seed)),
+        // What the names and paths above resolve to, last: a profile or rig file edited
+        // between the runs.
+        (
+            "agent_config",
+            value("agent_profile", to_value(cfg.agent_config()?))?,
+        ),
+        ("rig_config", value("rig", to_value(cfg.rig_config()?))?),
+    ])
 }
 
 fn write_plots(

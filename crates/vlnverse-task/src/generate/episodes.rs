@@ -18,7 +18,7 @@ use super::seed::derive_seed;
 use super::splits::CellShare;
 use crate::dataset::write_atomic;
 use crate::episode::{Episode, EpisodeInfo, Goal, Instruction, Split, Style, Task};
-use crate::error::{Result, TaskError};
+use crate::error::Result;
 use crate::instructions::{offset_grounding, InstructionGenerator, PathContext};
 
 /// Success radius written into goals (the paper's 3 m).
@@ -110,6 +110,19 @@ pub struct ScenePart {
     pub episodes: BTreeMap<Split, Vec<Episode>>,
     /// Rejected samples by reason.
     pub rejections: Rejections,
+    /// Why the scene provides no episodes of this task (then `episodes` is empty); absent for
+    /// a part that has its planned episodes.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub skipped: Option<String>,
+}
+
+/// Why a scene cannot provide the episodes of a task (the scene is skipped for that task).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Unfit {
+    /// One line, e.g. `long_horizon needs 2 distinct targets, found 1`.
+    pub reason: String,
+    /// Rejected samples up to the failure.
+    pub rejections: Rejections,
 }
 
 /// Everything needed to generate episodes in one scene.
@@ -176,27 +189,56 @@ impl SceneTaskContext<'_> {
         }
     }
 
-    fn fail(&self, share: &CellShare, k: usize, rej: &Rejections) -> TaskError {
+    fn fail(&self, share: &CellShare, k: usize, rej: &Rejections) -> Unfit {
         let reasons: Vec<String> = rej
             .iter()
             .map(|(r, n)| format!("{} {n}", r.name()))
             .collect();
-        TaskError::invalid(
-            format!("scene `{}`", self.sampler.scene.id),
-            format!("{} {} trajectory {k}", share.task, share.split),
-            format!(
-                "no valid sample in {} attempts ({} targets usable; rejected: {}); \
-                 loosen tasks.{}.min_length/max_length or raise sampling.max_attempts",
+        Unfit {
+            reason: format!(
+                "{} {} trajectory {k}: no valid sample in {} attempts ({} targets usable; \
+                 rejected: {}); loosen tasks.{}.min_length/max_length or raise \
+                 sampling.max_attempts",
+                share.task,
+                share.split,
                 self.config.sampling.max_attempts,
                 self.sampler.targets().len(),
                 reasons.join(", "),
                 share.task
             ),
-        )
+            rejections: rej.clone(),
+        }
     }
 
-    /// Generate the episodes of one share (one task and split in this scene).
-    pub fn generate_share(&self, share: &CellShare) -> Result<(Vec<Episode>, Rejections)> {
+    /// What the scene lacks for `task`, before any sampling: navigable space for fine paths,
+    /// one target object for the coarse-based tasks, `sub_tasks_min` distinct targets for
+    /// long-horizon episodes. `None` when sampling may proceed.
+    pub fn lacks(&self, task: Task) -> Option<String> {
+        let targets = self.sampler.targets().len();
+        let need = match task {
+            Task::Fine => {
+                let free = self.sampler.free_points();
+                return (free < 2)
+                    .then(|| format!("{task} needs 2 navigable cells for a path, found {free}"));
+            }
+            Task::LongHorizon => self.config.tasks.long_horizon.sub_tasks_min,
+            Task::Coarse | Task::VisualReference | Task::Dialogue => 1,
+        };
+        (targets < need).then(|| {
+            format!(
+                "{task} needs {need} distinct target{}, found {targets} (targets: objects \
+                 described uniquely, with a reachable goal point)",
+                if need == 1 { "" } else { "s" }
+            )
+        })
+    }
+
+    /// Generate the episodes of one share (one task and split in this scene); `Ok(Err(_))`
+    /// when a trajectory finds no valid sample (the scene cannot provide this task).
+    pub fn generate_share(
+        &self,
+        share: &CellShare,
+    ) -> Result<std::result::Result<(Vec<Episode>, Rejections), Unfit>> {
         let mut rejections = Rejections::new();
         let mut episodes = Vec::with_capacity(share.episodes());
         let renderer = if share.task == Task::VisualReference && share.trajectories > 0 {
@@ -241,10 +283,10 @@ impl SceneTaskContext<'_> {
                 }
             }
             if !done {
-                return Err(self.fail(share, k, &rejections));
+                return Ok(Err(self.fail(share, k, &rejections)));
             }
         }
-        Ok((episodes, rejections))
+        Ok(Ok((episodes, rejections)))
     }
 
     fn base_episode(

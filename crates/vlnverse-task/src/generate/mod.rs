@@ -24,8 +24,10 @@ pub mod seed;
 pub mod splits;
 pub mod stats;
 
-pub use episodes::{ScenePart, Stage, StageTimes};
-pub use pipeline::{assemble, merge, run, FolderSource, Manifest, RunOptions, RunSummary};
+pub use episodes::{ScenePart, Stage, StageTimes, Unfit};
+pub use pipeline::{
+    assemble, merge, run, FolderSource, GenerationReport, Manifest, RunOptions, RunSummary, Skip,
+};
 pub use presets::{GenerateConfig, GeneratePreset};
 pub use sampler::{Reject, SceneSampler};
 pub use splits::{plan, Plan};

@@ -230,8 +230,37 @@ fn save_png(img: &RgbImage, path: &Path) -> Result<()> {
 
 /// Write `DIR/stats/`: `navigable_area.png`, `rooms.png`, `path_length.png`,
 /// `instruction_length.png`, `stats.json` and `stats.md`; returns the markdown.
+/// A folder without episodes (no split files, or only empty ones) is an error saying so.
 pub fn write_stats(dir: &Path) -> Result<String> {
     let st = collect(dir)?;
+    let episodes: usize = st.episodes.values().flat_map(|m| m.values()).sum();
+    if episodes == 0 {
+        let hint = if dir
+            .join(super::pipeline::PARTS_DIR)
+            .join(super::pipeline::SHARD_FILE)
+            .exists()
+        {
+            "it is one shard of a dataset: join the shards with `cargo xtask merge` first"
+        } else if dir.join(super::pipeline::PARTS_DIR).is_dir() {
+            "its generation failed or did not finish (see its error; rerunning the same \
+             `cargo xtask generate` resumes it)"
+        } else {
+            "generate one with `cargo xtask generate --out DIR`"
+        };
+        let found = if st.episodes.is_empty() {
+            "no split files (<task>/<split>/<split>.json.gz)"
+        } else {
+            "only empty split files"
+        };
+        return Err(TaskError::invalid(
+            "dataset",
+            dir.display(),
+            format!(
+                "holds no episodes ({found}, {} scene folders); {hint}",
+                st.rooms.len()
+            ),
+        ));
+    }
     let out = dir.join("stats");
     let areas: Vec<f64> = st.navigable_m2.values().copied().collect();
     let (l, c) = histogram(&areas, 12);

@@ -7,12 +7,13 @@ use std::sync::{Arc, Mutex};
 use vlnverse_sensors::Backend;
 use vlnverse_sim::Action;
 use vlnverse_task::dataset;
+use vlnverse_task::eval::runner::NOT_UNDERSTOOD;
 use vlnverse_task::eval::{
     evaluate, Agent, AgentFactory, EpisodeInputs, EvalConfig, EvalRequest, StepInput,
 };
 use vlnverse_task::{Split, Task};
 
-/// Asks "which way?" three times, then stops; records (answer, questions left).
+/// Asks an empty question, then "which way?" three times, then stops; records (answer, questions left).
 struct Asker {
     log: Arc<Mutex<Vec<(Option<String>, u32)>>>,
 }
@@ -29,6 +30,11 @@ impl Agent for Asker {
             .oracle
             .as_mut()
             .expect("dialogue episodes carry an oracle");
+        if step.step == 0 {
+            // An empty question is answered with a hint, at no cost.
+            let answer = oracle.ask(" ? ");
+            self.log.lock().unwrap().push((answer, oracle.remaining()));
+        }
         let answer = oracle.ask("Which way should I go?");
         self.log.lock().unwrap().push((answer, oracle.remaining()));
         Ok(Action::TurnLeft(0.2))
@@ -75,12 +81,18 @@ fn dialogue_agents_ask_the_shortest_path_oracle_within_the_budget() {
     };
     evaluate(&req, &AskerFactory(log.clone()), &|| {}).unwrap();
     let log = log.lock().unwrap();
-    assert_eq!(log.len(), 3 * eps.len());
-    for chunk in log.chunks(3) {
+    assert_eq!(log.len(), 4 * eps.len());
+    for chunk in log.chunks(4) {
+        let (empty, left) = &chunk[0];
+        assert_eq!(
+            (empty.as_deref(), *left),
+            (Some(NOT_UNDERSTOOD), 2),
+            "an empty question costs nothing"
+        );
         // Two answers carrying words, then the budget is spent.
-        let (a0, left0) = &chunk[0];
-        let (a1, left1) = &chunk[1];
-        let (a2, left2) = &chunk[2];
+        let (a0, left0) = &chunk[1];
+        let (a1, left1) = &chunk[2];
+        let (a2, left2) = &chunk[3];
         assert!(a0.as_ref().is_some_and(|t| !t.is_empty()), "{a0:?}");
         assert!(a1.as_ref().is_some_and(|t| !t.is_empty()), "{a1:?}");
         assert_eq!((*left0, *left1, *left2), (1, 0, 0));

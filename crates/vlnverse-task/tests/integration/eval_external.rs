@@ -89,3 +89,34 @@ fn python_random_agent_drives_episodes_through_the_protocol() {
         "{err}"
     );
 }
+
+#[test]
+fn an_agent_that_exits_early_reports_its_status_and_stderr() {
+    // Regression: only "Broken pipe" was shown.
+    let dir = tempfile::tempdir().unwrap();
+    eval_support::make_dataset(dir.path(), Task::Fine, 1, 1, 21);
+    let cfg = EvalConfig {
+        plots: 0,
+        render: false,
+        ..Default::default()
+    };
+    let req = EvalRequest {
+        dataset: dir.path().to_path_buf(),
+        task: Task::Fine,
+        split: Split::Test,
+        episodes: None,
+        threads: Some(1),
+        out: dir.path().join("dead"),
+        config: cfg.clone(),
+    };
+    let cmd = "echo 'loading weights' >&2; echo 'CUDA out of memory' >&2; exit 3";
+    let f = builtin("external", Some(cmd), &cfg).unwrap();
+    let err = evaluate(&req, &*f, &|| {}).unwrap_err().to_string();
+    assert!(
+        err.contains("episode")
+            && err.contains("exit status: 3")
+            && err.contains("loading weights")
+            && err.contains("CUDA out of memory"),
+        "{err}"
+    );
+}

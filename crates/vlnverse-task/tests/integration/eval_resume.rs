@@ -102,3 +102,177 @@ fn protocol_files_load_and_bad_values_are_named() {
         "{err}"
     );
 }
+
+#[test]
+fn a_resume_with_another_identity_is_refused_naming_the_key_and_both_values() {
+    let dir = tempfile::tempdir().unwrap();
+    eval_support::make_dataset(dir.path(), Task::Fine, 1, 2, 5);
+    let strict = EvalConfig {
+        setting: Setting::Strict,
+        render: false,
+        plots: 0,
+        max_steps: 5,
+        ..Default::default()
+    };
+    let req = |cfg: &EvalConfig, n: Option<usize>| EvalRequest {
+        dataset: dir.path().to_path_buf(),
+        task: Task::Fine,
+        split: Split::Test,
+        episodes: n,
+        threads: Some(1),
+        out: dir.path().join("run"),
+        config: cfg.clone(),
+    };
+    let random = builtin("random", None, &strict).unwrap();
+    evaluate(&req(&strict, Some(1)), &*random, &|| {}).unwrap();
+    // More episodes with the same identity is a resume, not another run.
+    evaluate(&req(&strict, None), &*random, &|| {}).unwrap();
+
+    let refused = |cfg: &EvalConfig, f: &dyn vlnverse_task::eval::AgentFactory| {
+        evaluate(&req(cfg, None), f, &|| {})
+            .unwrap_err()
+            .to_string()
+    };
+    // Regression: a strict run resumed as telhop (whose file also changes the action space)
+    // is refused on `setting`, the first key that differs.
+    let telhop = EvalConfig {
+        setting: Setting::Telhop,
+        action_space: vlnverse_task::eval::ActionSpace::Waypoint,
+        ..strict.clone()
+    };
+    let err = refused(&telhop, &*random);
+    assert!(
+        err.contains("run.json")
+            && err.contains("`setting`")
+            && err.contains("\"telhop\"")
+            && err.contains("\"strict\"")
+            && !err.contains("action_space"),
+        "{err}"
+    );
+    // Keys that were missing from run.json before: render, backend, rig, observations.
+    let rendered = EvalConfig {
+        render: true,
+        ..strict.clone()
+    };
+    let err = refused(&rendered, &*random);
+    assert!(
+        err.contains("`render`") && err.contains("true") && err.contains("false"),
+        "{err}"
+    );
+    let raster = EvalConfig {
+        backend: Some(vlnverse_sensors::Backend::Raster),
+        ..strict.clone()
+    };
+    let err = refused(&raster, &*random);
+    assert!(err.contains("`backend`") && err.contains("raster"), "{err}");
+    let rig = EvalConfig {
+        rig: eval_support::small_rig(dir.path()),
+        ..strict.clone()
+    };
+    let err = refused(&rig, &*random);
+    assert!(err.contains("`rig`"), "{err}");
+    let b64 = EvalConfig {
+        external_observations: vlnverse_task::eval::agents::external::ObsEncoding::Base64,
+        ..strict.clone()
+    };
+    let err = refused(&b64, &*random);
+    assert!(
+        err.contains("`external_observations`") && err.contains("base64"),
+        "{err}"
+    );
+}
+
+#[test]
+fn external_runs_with_another_command_are_different_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    eval_support::make_dataset(dir.path(), Task::Fine, 1, 1, 5);
+    let cfg = EvalConfig {
+        render: false,
+        plots: 0,
+        max_steps: 3,
+        ..Default::default()
+    };
+    let req = EvalRequest {
+        dataset: dir.path().to_path_buf(),
+        task: Task::Fine,
+        split: Split::Test,
+        episodes: None,
+        threads: Some(1),
+        out: dir.path().join("run"),
+        config: cfg.clone(),
+    };
+    // A shell agent that answers every step with STOP.
+    let stop_cmd =
+        "while read l; do case \"$l\" in *'\"step\"'*) echo '{\"action\":\"stop\"}';; esac; done";
+    let a = builtin("external", Some(stop_cmd), &cfg).unwrap();
+    let out = evaluate(&req, &*a, &|| {}).unwrap();
+    assert_eq!(out.records.len(), 1);
+    let other = format!("{stop_cmd} # v2");
+    let b = builtin("external", Some(&other), &cfg).unwrap();
+    let err = evaluate(&req, &*b, &|| {}).unwrap_err().to_string();
+    assert!(err.contains("`agent_cmd`") && err.contains("v2"), "{err}");
+}
+
+#[test]
+fn zero_episodes_and_blind_looking_agents_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    eval_support::make_dataset(dir.path(), Task::Fine, 1, 1, 5);
+    let cfg = EvalConfig {
+        render: false,
+        plots: 0,
+        ..Default::default()
+    };
+    let req = |n: Option<usize>, out: &str| EvalRequest {
+        dataset: dir.path().to_path_buf(),
+        task: Task::Fine,
+        split: Split::Test,
+        episodes: n,
+        threads: Some(1),
+        out: dir.path().join(out),
+        config: cfg.clone(),
+    };
+    let random = builtin("random", None, &cfg).unwrap();
+    let err = evaluate(&req(Some(0), "zero"), &*random, &|| {})
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("episodes") && err.contains("at least 1"),
+        "{err}"
+    );
+    // Regression: `--agent semantic --no-render` ran blind (SR 0) without a word.
+    let semantic = builtin("semantic", None, &cfg).unwrap();
+    let err = evaluate(&req(None, "blind"), &*semantic, &|| {})
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("render") && err.contains("semantic") && err.contains("blind"),
+        "{err}"
+    );
+    assert!(
+        !dir.path().join("blind/progress.jsonl").exists() || {
+            std::fs::read_to_string(dir.path().join("blind/progress.jsonl"))
+                .unwrap()
+                .is_empty()
+        }
+    );
+    // Blind agents still run without rendering.
+    evaluate(&req(None, "random"), &*random, &|| {}).unwrap();
+}
+
+#[test]
+fn config_parse_errors_name_the_file_and_the_field() {
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("neg.toml");
+    std::fs::write(&bad, "setting = \"strict\"\nseed = 1\nmax_steps = -5\n").unwrap();
+    let err = EvalConfig::load(&bad).unwrap_err().to_string();
+    assert!(
+        err.contains("neg.toml") && err.contains("line 3") && err.contains("`max_steps`"),
+        "{err}"
+    );
+    std::fs::write(&bad, "max_stepz = 5\n").unwrap();
+    let err = EvalConfig::load(&bad).unwrap_err().to_string();
+    assert!(
+        err.contains("neg.toml") && err.contains("max_stepz"),
+        "{err}"
+    );
+}

@@ -10,7 +10,7 @@ use vlnverse_task::generate::splits::{assign_scene_splits, plan, spread};
 use vlnverse_task::generate::{GenerateConfig, GeneratePreset};
 use vlnverse_task::{Split, Task};
 
-/// Table 2 of the paper (DESIGN.md): (episodes, scenes) per task and split.
+/// Table 2 of the VLNVerse paper: (episodes, scenes) per task and split.
 const TABLE2: [(Task, [(usize, usize); 4]); 5] = [
     (Task::Fine, [(3963, 177), (423, 157), (825, 33), (1325, 53)]),
     (

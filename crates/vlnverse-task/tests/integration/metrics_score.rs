@@ -165,7 +165,7 @@ fn score_on_the_navigable_map_end_to_end() {
     assert!(rows[3].contains(",,"), "{}", rows[3]);
 
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
-    assert!(md.contains("| Method | Setting | TL | NE↓ | SR↑ | OSR↑ | SPL↑ | nDTW↑ | CR↓ |"));
+    assert!(md.contains("| Method | Setting | TL | NE↓ | SR↑ | OSR↑ | SPL↑ | nDTW↑ | CR (%)↓ |"));
     assert!(md.contains("| robot | telhop |"), "{md}");
     assert!(md.contains("33.33"), "SR in percent: {md}");
 }

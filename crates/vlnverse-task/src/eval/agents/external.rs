@@ -3,10 +3,13 @@
 //! across episodes. Observations go as files in a private temporary folder (PNG for RGB, `.npy`
 //! for depth, semantic and instance images; overwritten every step) or inline as base64.
 
+use std::collections::VecDeque;
 use std::io::{BufRead, BufReader, Write};
 use std::path::PathBuf;
 use std::process::{Child, ChildStdin, ChildStdout, Command, Stdio};
 use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, Mutex};
+use std::thread::JoinHandle;
 
 use serde::{Deserialize, Serialize};
 use serde_json::{json, Map, Value};
@@ -56,6 +59,9 @@ impl AgentFactory for ExternalFactory {
     fn make(&self) -> Result<Box<dyn Agent>> {
         Ok(Box::new(ExternalAgent::spawn(&self.cmd, self.encoding)?))
     }
+    fn command(&self) -> Option<String> {
+        Some(self.cmd.clone())
+    }
 }
 
 /// A running external agent.
@@ -66,6 +72,8 @@ pub struct ExternalAgent {
     stdout: BufReader<ChildStdout>,
     tmp: PathBuf,
     encoding: ObsEncoding,
+    stderr_tail: Arc<Mutex<VecDeque<String>>>,
+    stderr_thread: Option<JoinHandle<()>>,
     episode_id: u64,
     step_size: f32,
     turn_deg: f32,
@@ -73,17 +81,40 @@ pub struct ExternalAgent {
 
 static COUNTER: AtomicU64 = AtomicU64::new(0);
 
+/// Lines of the agent's stderr kept for error messages.
+pub const STDERR_TAIL_LINES: usize = 10;
+
 impl ExternalAgent {
-    /// Start `sh -c cmd` with piped stdin/stdout (stderr is inherited).
+    /// Start `sh -c cmd` with piped stdin/stdout; its stderr is passed through to ours, and
+    /// the last [`STDERR_TAIL_LINES`] lines are kept for the error when the agent dies.
     pub fn spawn(cmd: &str, encoding: ObsEncoding) -> Result<Self> {
         let mut child = Command::new("sh")
             .arg("-c")
             .arg(cmd)
             .stdin(Stdio::piped())
             .stdout(Stdio::piped())
-            .stderr(Stdio::inherit())
+            .stderr(Stdio::piped())
             .spawn()
             .map_err(|e| TaskError::invalid("agent_cmd", cmd, e.to_string()))?;
+        let stderr_tail = Arc::new(Mutex::new(VecDeque::new()));
+        let stderr_thread = child.stderr.take().map(|err| {
+            let tail = stderr_tail.clone();
+            std::thread::spawn(move || {
+                for line in BufReader::new(err)
+                    .lines()
+                    .map_while(std::result::Result::ok)
+                {
+                    eprintln!("{line}");
+                    let mut t = tail
+                        .lock()
+                        .unwrap_or_else(std::sync::PoisonError::into_inner);
+                    if t.len() == STDERR_TAIL_LINES {
+                        t.pop_front();
+                    }
+                    t.push_back(line);
+                }
+            })
+        });
         let stdin = child.stdin.take();
         let stdout = child
             .stdout
@@ -103,6 +134,8 @@ impl ExternalAgent {
             stdout,
             tmp,
             encoding,
+            stderr_tail,
+            stderr_thread,
             episode_id: 0,
             step_size: 0.25,
             turn_deg: 15.0,
@@ -117,6 +150,50 @@ impl ExternalAgent {
         )
     }
 
+    /// The error of an agent that stopped talking: its exit status (waiting up to a second for
+    /// it) and the last lines of its stderr.
+    fn dead(&mut self, what: String) -> TaskError {
+        let mut status = None;
+        for _ in 0..50 {
+            if let Ok(Some(s)) = self.child.try_wait() {
+                status = Some(s);
+                break;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        }
+        // Once the process is gone its stderr ends; let the reader catch the last lines.
+        if let Some(t) = self.stderr_thread.take() {
+            for _ in 0..50 {
+                if t.is_finished() {
+                    break;
+                }
+                std::thread::sleep(std::time::Duration::from_millis(20));
+            }
+            if t.is_finished() {
+                let _ = t.join();
+            } else {
+                self.stderr_thread = Some(t);
+            }
+        }
+        let status = status.map_or_else(
+            || "it is still running".to_string(),
+            |s| format!("it exited with {s}"),
+        );
+        let tail: Vec<String> = self
+            .stderr_tail
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .iter()
+            .cloned()
+            .collect();
+        let stderr = if tail.is_empty() {
+            "; its stderr was empty".to_string()
+        } else {
+            format!("; last lines of its stderr:\n    {}", tail.join("\n    "))
+        };
+        self.err(format!("{what}: {status}{stderr}"))
+    }
+
     fn send(&mut self, v: &Value) -> Result<()> {
         let mut line = v.to_string();
         line.push('\n');
@@ -124,23 +201,19 @@ impl ExternalAgent {
             Some(s) => s.write_all(line.as_bytes()).and_then(|_| s.flush()),
             None => Err(std::io::Error::other("stdin closed")),
         };
-        res.map_err(|e| self.err(format!("cannot write to the agent: {e}")))
+        res.map_err(|e| self.dead(format!("cannot write to the agent ({e})")))
     }
 
     fn receive(&mut self) -> Result<Value> {
         let mut line = String::new();
         loop {
             line.clear();
-            let n = self
-                .stdout
-                .read_line(&mut line)
-                .map_err(|e| self.err(format!("cannot read from the agent: {e}")))?;
+            let n = match self.stdout.read_line(&mut line) {
+                Ok(n) => n,
+                Err(e) => return Err(self.dead(format!("cannot read from the agent ({e})"))),
+            };
             if n == 0 {
-                let status = self.child.try_wait().ok().flatten();
-                return Err(self.err(format!(
-                    "the agent closed its output (exit status {})",
-                    status.map_or_else(|| "unknown".into(), |s| s.to_string())
-                )));
+                return Err(self.dead("the agent closed its output".into()));
             }
             if !line.trim().is_empty() {
                 break;
@@ -347,6 +420,11 @@ impl Drop for ExternalAgent {
         if matches!(self.child.try_wait(), Ok(None)) {
             let _ = self.child.kill();
             let _ = self.child.wait();
+        }
+        if let Some(t) = self.stderr_thread.take() {
+            if t.is_finished() {
+                let _ = t.join();
+            }
         }
         let _ = std::fs::remove_dir_all(&self.tmp);
     }
