@@ -1,19 +1,32 @@
-//! `cargo xtask render`: render the cameras of an agent standing in a scene to PNG files.
+//! `cargo xtask render`: read every sensor of a rig on an agent standing in a scene, once, and
+//! write one file per reading, named after the sensor (see docs/formats.md):
 //!
-//! Writes `rgb.png`, `depth.png` (16-bit, millimetres along the optical axis; pixels that see
-//! nothing within `far` hold `far`), `semantic.png` and `instance.png` (ids colourised with a fixed
-//! palette) and `camera.json` (intrinsics and world pose of each camera; camera looks along -Z,
-//! Y up, quaternions `[x, y, z, w]`).
+//! - RGB camera `NAME`: `NAME.png` (8-bit sRGB, noise applied as configured);
+//! - depth camera: `NAME.png` (16-bit, millimetres along the optical axis; pixels that see
+//!   nothing within `far` hold `far`; a `normalize`d depth sensor is written in metres too);
+//! - semantic / instance camera: `NAME.png` (ids colourised with a fixed palette);
+//! - panorama: `NAME_K_rgb.png`, `NAME_K_depth.png`, `NAME_K_semantic.png` for view `K` (yaw
+//!   order, `K` from 0), the channels the panorama has;
+//! - LiDAR: `NAME.npy` (little-endian float32, shape `[channels, beams]`, metres; `inf` = no
+//!   return, `NaN` = dropped return) and `NAME.png` (the scan seen from above in the sensor frame,
+//!   forward up, all rings, scaled to the farthest return);
+//! - `camera.json` (when the rig has cameras): intrinsics and world pose of each camera (camera
+//!   looks along -Z, Y up, quaternions `[x, y, z, w]`); panorama views are listed as `NAME_K`;
+//! - `sensors.json`: agent pose, backend, and the readings of pose, compass, GPS and collision
+//!   sensors, plus each LiDAR's beam layout.
+//!
+//! Without `--sensors` the rig is the paper's RGB and depth cameras plus semantic and instance
+//! cameras matching the RGB one (`rgb.png`, `depth.png`, `semantic.png`, `instance.png`).
 
 use anyhow::Context;
 use glam::Vec3;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
-use vlnverse_env::Pose;
+use vlnverse_env::{Pose, Scene};
 use vlnverse_sensors::frame::colorize_ids;
+use vlnverse_sensors::lidar::{beam_azimuth, ring_elevation};
 use vlnverse_sensors::{
-    create_renderer, Backend, Camera, CameraSpec, Channels, Intrinsics, RigConfig, SceneMesh,
-    SensorSpec, View,
+    AgentState, Backend, Camera, CameraSpec, Frame, Intrinsics, LidarScan, LidarSpec, Observation,
+    RigConfig, SensorRig, SensorSpec,
 };
 
 /// Arguments of `cargo xtask render`.
@@ -28,7 +41,8 @@ pub struct Args {
     /// Agent yaw in degrees (counter-clockwise from above; 0 looks along -Z).
     #[arg(long, allow_hyphen_values = true, default_value_t = 0.0)]
     yaw: f32,
-    /// Sensor rig config (TOML); default: the paper's RGB 224x224 + depth 256x256.
+    /// Sensor rig config (TOML); default: the paper's RGB 224x224 + depth 256x256, plus
+    /// semantic and instance cameras like the RGB one.
     #[arg(long)]
     sensors: Option<PathBuf>,
     /// Rendering backend, overriding the config's.
@@ -64,15 +78,24 @@ fn camera_json(name: &str, c: &Camera) -> serde_json::Value {
     })
 }
 
-fn save(path: &Path, r: image::ImageResult<()>) -> anyhow::Result<()> {
-    r.with_context(|| format!("writing {}", path.display()))
+/// The rig of `render` without `--sensors`: the paper's RGB and depth cameras, and semantic and
+/// instance cameras identical to the RGB one.
+pub fn default_render_rig() -> RigConfig {
+    let mut config = RigConfig::default();
+    config
+        .sensors
+        .push(SensorSpec::Semantic(CameraSpec::default()));
+    config
+        .sensors
+        .push(SensorSpec::Instance(CameraSpec::default()));
+    config
 }
 
 /// Run the command.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let mut config = match &args.sensors {
         Some(p) => RigConfig::load(p)?,
-        None => RigConfig::default(),
+        None => default_render_rig(),
     };
     if let Some(b) = &args.backend {
         config.backend = b.parse::<Backend>()?;
@@ -81,102 +104,426 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     anyhow::ensure!(args.yaw.is_finite(), "--yaw {}: not a number", args.yaw);
     let scene = vlnverse_env::io::load_scene(&args.scene)
         .with_context(|| format!("loading scene {}", args.scene.display()))?;
-    let base = Pose::from_yaw(position, args.yaw.to_radians());
-
-    let find = |kind: &str| {
-        config.sensors.iter().find_map(|s| match s {
-            SensorSpec::Rgb(c) if kind == "rgb" => Some(c.clone()),
-            SensorSpec::Depth(c) if kind == "depth" => Some(c.clone()),
-            SensorSpec::Semantic(c) if kind == "semantic" => Some(c.clone()),
-            SensorSpec::Instance(c) if kind == "instance" => Some(c.clone()),
-            _ => None,
-        })
+    let written = render_rig(&scene, config, position, args.yaw, &args.out)?;
+    let names = if written.len() <= 8 {
+        written.join(", ")
+    } else {
+        format!("{}, ... ({} files)", written[..6].join(", "), written.len())
     };
-    let rgb = find("rgb").unwrap_or_default();
-    let depth = find("depth").unwrap_or_else(CameraSpec::depth);
-    let sem = find("semantic").unwrap_or_else(|| rgb.clone());
-    let inst = find("instance").unwrap_or_else(|| sem.clone());
-    let cams = [
-        ("rgb", rgb.camera(&base), Channels::RGB),
-        ("depth", depth.camera(&base), Channels::DEPTH),
-        (
-            "semantic",
-            sem.camera(&base),
-            Channels {
-                semantic: true,
-                ..Default::default()
-            },
-        ),
-        (
-            "instance",
-            inst.camera(&base),
-            Channels {
-                instance: true,
-                ..Default::default()
-            },
-        ),
-    ];
-    let views: Vec<View> = cams
-        .iter()
-        .map(|(_, c, ch)| View {
-            camera: *c,
-            channels: *ch,
-        })
-        .collect();
-
-    let mut renderer = create_renderer(config.backend)?;
-    renderer.set_scene(Arc::new(SceneMesh::new(&scene)?))?;
-    let frames = renderer.render(&views)?;
-
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("creating {}", args.out.display()))?;
-    let out = |f: &str| args.out.join(f);
-    let f = &frames[0];
-    let p = out("rgb.png");
-    save(
-        &p,
-        image::save_buffer(&p, &f.rgb, f.width, f.height, image::ColorType::Rgb8),
-    )?;
-    let f = &frames[1];
-    let mm: Vec<u16> = f
-        .depth
-        .iter()
-        .map(|d| (d * 1000.0).round().clamp(0.0, 65535.0) as u16)
-        .collect();
-    let img = image::ImageBuffer::<image::Luma<u16>, _>::from_raw(f.width, f.height, mm)
-        .context("depth image size")?;
-    let p = out("depth.png");
-    save(&p, img.save(&p))?;
-    let f = &frames[2];
-    let p = out("semantic.png");
-    let c = colorize_ids(f.semantic.iter().map(|&c| c as u32));
-    save(
-        &p,
-        image::save_buffer(&p, &c, f.width, f.height, image::ColorType::Rgb8),
-    )?;
-    let f = &frames[3];
-    let p = out("instance.png");
-    let c = colorize_ids(f.instance.iter().copied());
-    save(
-        &p,
-        image::save_buffer(&p, &c, f.width, f.height, image::ColorType::Rgb8),
-    )?;
-
-    let rgb_cam = &cams[0].1;
-    let mut json = camera_json("rgb", rgb_cam);
-    json["convention"] = serde_json::json!("camera looks along -Z, +Y up, +X right; rotation is the camera-to-world quaternion [x, y, z, w]; pixel (u, v) centre at (u + 0.5, v + 0.5), v = 0 top row");
-    json["depth_png"] =
-        serde_json::json!("uint16 millimetres along the optical axis, clipped at far");
-    json["agent_position"] = serde_json::json!(position.to_array());
-    json["agent_yaw_deg"] = serde_json::json!(args.yaw);
-    json["backend"] = serde_json::json!(renderer.name());
-    json["cameras"] = cams.iter().map(|(n, c, _)| camera_json(n, c)).collect();
-    let p = out("camera.json");
-    std::fs::write(&p, serde_json::to_string_pretty(&json)? + "\n")
-        .with_context(|| format!("writing {}", p.display()))?;
-    tracing::info!(
-        "wrote rgb.png, depth.png, semantic.png, instance.png, camera.json to {}",
-        args.out.display()
-    );
+    tracing::info!("wrote {names} to {}", args.out.display());
     Ok(())
+}
+
+/// Read every sensor of `config` once, for an agent at `position` looking `yaw_deg` degrees
+/// (counter-clockwise from -Z), and write the files to `out`. Returns the file names written.
+pub fn render_rig(
+    scene: &Scene,
+    config: RigConfig,
+    position: Vec3,
+    yaw_deg: f32,
+    out: &Path,
+) -> anyhow::Result<Vec<String>> {
+    let base = Pose::from_yaw(position, yaw_deg.to_radians());
+    let mut rig = SensorRig::new(config)?;
+    rig.set_scene(scene)?;
+    rig.reset(base);
+    let observations = rig.observe(&AgentState::at(position, yaw_deg.to_radians()))?;
+    let config = rig.config().clone();
+
+    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    let mut w = Writer {
+        out,
+        written: Vec::new(),
+    };
+    let mut cameras: Vec<serde_json::Value> = Vec::new();
+    let mut first_camera: Option<(String, Camera)> = None;
+    let mut readings = serde_json::Map::new();
+    for spec in &config.sensors {
+        let name = spec.name();
+        let Some(obs) = observations.get(name) else {
+            continue;
+        };
+        let mut note_camera = |n: &str, c: Camera| {
+            cameras.push(camera_json(n, &c));
+            if first_camera.is_none() {
+                first_camera = Some((n.to_string(), c));
+            }
+        };
+        match (spec, obs) {
+            (SensorSpec::Rgb(c), Observation::Rgb(f)) => {
+                note_camera(name, c.camera(&base));
+                w.rgb(&format!("{name}.png"), f)?;
+            }
+            (SensorSpec::Depth(c), Observation::Depth(f)) => {
+                note_camera(name, c.camera(&base));
+                let scale = if c.normalize { c.far } else { 1.0 };
+                w.depth(&format!("{name}.png"), f, scale)?;
+            }
+            (SensorSpec::Semantic(c), Observation::Semantic(f)) => {
+                note_camera(name, c.camera(&base));
+                let ids: Vec<u32> = f.semantic.iter().map(|&c| c as u32).collect();
+                w.ids(&format!("{name}.png"), f, ids)?;
+            }
+            (SensorSpec::Instance(c), Observation::Instance(f)) => {
+                note_camera(name, c.camera(&base));
+                w.ids(&format!("{name}.png"), f, f.instance.clone())?;
+            }
+            (SensorSpec::Panorama(p), Observation::Panorama(frames)) => {
+                let cam = p.camera.camera(&base);
+                for (k, f) in frames.iter().enumerate() {
+                    let view = format!("{name}_{k}");
+                    note_camera(&view, cam.yawed((k as f32 * p.step_deg).to_radians()));
+                    if !f.rgb.is_empty() {
+                        w.rgb(&format!("{view}_rgb.png"), f)?;
+                    }
+                    if !f.depth.is_empty() {
+                        w.depth(&format!("{view}_depth.png"), f, 1.0)?;
+                    }
+                    if !f.semantic.is_empty() {
+                        let ids: Vec<u32> = f.semantic.iter().map(|&c| c as u32).collect();
+                        w.ids(&format!("{view}_semantic.png"), f, ids)?;
+                    }
+                }
+            }
+            (SensorSpec::Lidar(l), Observation::Lidar(scan)) => {
+                w.npy(
+                    &format!("{name}.npy"),
+                    &[scan.channels as usize, scan.beams as usize],
+                    &scan.ranges,
+                )?;
+                w.lidar_png(&format!("{name}.png"), l, scan)?;
+                readings.insert(name.to_string(), lidar_json(name, l, scan));
+            }
+            (_, Observation::Pose(p)) => {
+                readings.insert(
+                    name.to_string(),
+                    serde_json::json!({
+                        "position": p.translation().to_array(),
+                        "rotation": p.quat().to_array(),
+                        "yaw_deg": p.yaw().to_degrees(),
+                    }),
+                );
+            }
+            (_, Observation::Compass(h)) => {
+                readings.insert(name.to_string(), serde_json::json!({ "heading_rad": h }));
+            }
+            (_, Observation::Gps(g)) => {
+                readings.insert(name.to_string(), serde_json::json!({ "position": g }));
+            }
+            (_, Observation::Collision(c)) => {
+                readings.insert(name.to_string(), serde_json::to_value(c)?);
+            }
+            (spec, _) => anyhow::bail!(
+                "sensor `{name}` ({}): unexpected observation kind",
+                spec.kind()
+            ),
+        }
+    }
+
+    if let Some((name, cam)) = &first_camera {
+        let mut json = camera_json(name, cam);
+        json["convention"] = serde_json::json!("camera looks along -Z, +Y up, +X right; rotation is the camera-to-world quaternion [x, y, z, w]; pixel (u, v) centre at (u + 0.5, v + 0.5), v = 0 top row");
+        json["depth_png"] =
+            serde_json::json!("uint16 millimetres along the optical axis, clipped at far");
+        json["agent_position"] = serde_json::json!(position.to_array());
+        json["agent_yaw_deg"] = serde_json::json!(yaw_deg);
+        json["backend"] = serde_json::json!(rig.backend_name());
+        json["cameras"] = cameras.into();
+        w.json("camera.json", &json)?;
+    }
+    let sensors = serde_json::json!({
+        "agent_position": position.to_array(),
+        "agent_yaw_deg": yaw_deg,
+        "backend": rig.backend_name(),
+        "seed": config.seed,
+        "sensors": config.sensors.iter().map(|s| serde_json::json!({"name": s.name(), "type": s.kind()})).collect::<Vec<_>>(),
+        "readings": readings,
+    });
+    w.json("sensors.json", &sensors)?;
+    Ok(w.written)
+}
+
+fn lidar_json(name: &str, l: &LidarSpec, scan: &LidarScan) -> serde_json::Value {
+    let finite = scan.ranges.iter().filter(|r| r.is_finite()).count();
+    serde_json::json!({
+        "file": format!("{name}.npy"),
+        "shape": [scan.channels, scan.beams],
+        "layout": "ranges[ring][beam] in metres, ring 0 highest; inf = no return within range_max, NaN = dropped return",
+        "azimuth_deg": (0..scan.beams).map(|i| beam_azimuth(l, i).to_degrees()).collect::<Vec<_>>(),
+        "elevation_deg": (0..scan.channels).map(|k| ring_elevation(l, k).to_degrees()).collect::<Vec<_>>(),
+        "range_min": l.range_min,
+        "range_max": l.range_max,
+        "returns": finite,
+        "sensor_position": scan.sensor_pose.translation().to_array(),
+        "sensor_rotation": scan.sensor_pose.quat().to_array(),
+    })
+}
+
+/// Writes files into the output folder and remembers their names.
+struct Writer<'a> {
+    out: &'a Path,
+    written: Vec<String>,
+}
+
+impl Writer<'_> {
+    fn path(&mut self, name: &str) -> PathBuf {
+        self.written.push(name.to_string());
+        self.out.join(name)
+    }
+
+    fn image(
+        &mut self,
+        name: &str,
+        r: impl FnOnce(&Path) -> image::ImageResult<()>,
+    ) -> anyhow::Result<()> {
+        let p = self.path(name);
+        r(&p).with_context(|| format!("writing {}", p.display()))
+    }
+
+    fn rgb(&mut self, name: &str, f: &Frame) -> anyhow::Result<()> {
+        self.image(name, |p| {
+            image::save_buffer(p, &f.rgb, f.width, f.height, image::ColorType::Rgb8)
+        })
+    }
+
+    /// 16-bit millimetres of `depth * scale` metres.
+    fn depth(&mut self, name: &str, f: &Frame, scale: f32) -> anyhow::Result<()> {
+        let mm: Vec<u16> = f
+            .depth
+            .iter()
+            .map(|d| (d * scale * 1000.0).round().clamp(0.0, 65535.0) as u16)
+            .collect();
+        let img = image::ImageBuffer::<image::Luma<u16>, _>::from_raw(f.width, f.height, mm)
+            .context("depth image size")?;
+        self.image(name, |p| img.save(p))
+    }
+
+    fn ids(&mut self, name: &str, f: &Frame, ids: Vec<u32>) -> anyhow::Result<()> {
+        let c = colorize_ids(ids);
+        self.image(name, |p| {
+            image::save_buffer(p, &c, f.width, f.height, image::ColorType::Rgb8)
+        })
+    }
+
+    /// A NumPy `.npy` (format 1.0) of little-endian float32.
+    fn npy(&mut self, name: &str, shape: &[usize], data: &[f32]) -> anyhow::Result<()> {
+        let dims: Vec<String> = shape.iter().map(|d| d.to_string()).collect();
+        let mut header = format!(
+            "{{'descr': '<f4', 'fortran_order': False, 'shape': ({},), }}",
+            dims.join(", ")
+        );
+        // Magic (6) + version (2) + length (2) + header + '\n', padded to a multiple of 64.
+        while (10 + header.len() + 1) % 64 != 0 {
+            header.push(' ');
+        }
+        header.push('\n');
+        let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
+        bytes.extend_from_slice(&(header.len() as u16).to_le_bytes());
+        bytes.extend_from_slice(header.as_bytes());
+        for v in data {
+            bytes.extend_from_slice(&v.to_le_bytes());
+        }
+        let p = self.path(name);
+        std::fs::write(&p, bytes).with_context(|| format!("writing {}", p.display()))
+    }
+
+    /// The scan from above in the sensor frame (forward up, left to the left), 256 x 256 pixels
+    /// spanning the farthest return around the sensor: returns in black, the sensor as a red
+    /// dot.
+    fn lidar_png(&mut self, name: &str, l: &LidarSpec, scan: &LidarScan) -> anyhow::Result<()> {
+        const SIZE: u32 = 256;
+        let mut img = image::RgbImage::from_pixel(SIZE, SIZE, image::Rgb([255, 255, 255]));
+        let half = SIZE as f32 / 2.0;
+        let mut points = Vec::with_capacity(scan.ranges.len());
+        for k in 0..scan.channels {
+            let elevation = ring_elevation(l, k);
+            for i in 0..scan.beams {
+                let r = scan.ranges[(k * scan.beams + i) as usize];
+                if r.is_finite() {
+                    // Azimuth counter-clockwise from forward (-Z): left is -X.
+                    let (a, horiz) = (beam_azimuth(l, i), r * elevation.cos());
+                    points.push((-a.sin() * horiz, -a.cos() * horiz));
+                }
+            }
+        }
+        let reach = points
+            .iter()
+            .map(|(x, z)| x.abs().max(z.abs()))
+            .fold(1.0f32, f32::max);
+        let scale = (half - 2.0) / reach;
+        for (x, z) in points {
+            let (px, py) = (half + x * scale, half + z * scale);
+            if px >= 0.0 && py >= 0.0 && px < SIZE as f32 && py < SIZE as f32 {
+                img.put_pixel(px as u32, py as u32, image::Rgb([0, 0, 0]));
+            }
+        }
+        for dy in -2i32..=2 {
+            for dx in -2i32..=2 {
+                if dx * dx + dy * dy <= 4 {
+                    let (x, y) = ((half as i32 + dx) as u32, (half as i32 + dy) as u32);
+                    img.put_pixel(x, y, image::Rgb([220, 30, 30]));
+                }
+            }
+        }
+        self.image(name, |p| img.save(p))
+    }
+
+    fn json(&mut self, name: &str, v: &serde_json::Value) -> anyhow::Result<()> {
+        let p = self.path(name);
+        std::fs::write(&p, serde_json::to_string_pretty(v)? + "\n")
+            .with_context(|| format!("writing {}", p.display()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn demo() -> (Scene, Vec3) {
+        let scene = vlnverse_sensors::demo::demo_scene(1);
+        let c = scene.bounds().center();
+        let at = Vec3::new(c.x, scene.floor_height, c.z);
+        (scene, at)
+    }
+
+    fn config(file: &str, backend: Backend) -> RigConfig {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../configs/sensors/");
+        let mut c = RigConfig::load(format!("{path}{file}")).unwrap();
+        c.backend = backend;
+        c
+    }
+
+    fn sorted(mut v: Vec<String>) -> Vec<String> {
+        v.sort();
+        v
+    }
+
+    #[test]
+    fn default_rig_writes_the_four_camera_images() {
+        let (scene, at) = demo();
+        let dir = tempfile::tempdir().unwrap();
+        let mut c = default_render_rig();
+        c.backend = Backend::Raster;
+        let files = render_rig(&scene, c, at, 30.0, dir.path()).unwrap();
+        assert_eq!(
+            sorted(files),
+            [
+                "camera.json",
+                "depth.png",
+                "instance.png",
+                "rgb.png",
+                "semantic.png",
+                "sensors.json"
+            ]
+        );
+        let depth = image::open(dir.path().join("depth.png")).unwrap();
+        assert_eq!((depth.width(), depth.height()), (256, 256));
+        assert!(matches!(depth, image::DynamicImage::ImageLuma16(_)));
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.path().join("camera.json")).unwrap())
+                .unwrap();
+        assert_eq!(json["sensor"], "rgb");
+        assert_eq!(json["width"], 224);
+        let names: Vec<&str> = json["cameras"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|c| c["sensor"].as_str().unwrap())
+            .collect();
+        assert_eq!(names, ["rgb", "depth", "semantic", "instance"]);
+    }
+
+    /// The LiDAR-only rig renders no camera image and writes each scan.
+    #[test]
+    fn lidar_rig_writes_scans_and_no_images() {
+        let (scene, at) = demo();
+        let dir = tempfile::tempdir().unwrap();
+        let files = render_rig(
+            &scene,
+            config("lidar.toml", Backend::Raycast),
+            at,
+            0.0,
+            dir.path(),
+        )
+        .unwrap();
+        assert_eq!(
+            sorted(files),
+            [
+                "lidar2d.npy",
+                "lidar2d.png",
+                "lidar3d.npy",
+                "lidar3d.png",
+                "sensors.json"
+            ]
+        );
+        let npy = std::fs::read(dir.path().join("lidar2d.npy")).unwrap();
+        assert_eq!(&npy[..6], b"\x93NUMPY");
+        let header_len = u16::from_le_bytes([npy[8], npy[9]]) as usize;
+        assert_eq!((10 + header_len) % 64, 0);
+        let header = std::str::from_utf8(&npy[10..10 + header_len]).unwrap();
+        assert!(header.contains("'shape': (1, 720,)"), "{header}");
+        assert_eq!(npy.len(), 10 + header_len + 4 * 720);
+        let json: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(dir.path().join("sensors.json")).unwrap(),
+        )
+        .unwrap();
+        // Inside a closed home every level beam hits a wall.
+        assert!(json["readings"]["lidar2d"]["returns"].as_u64().unwrap() > 600);
+        assert_eq!(json["readings"]["lidar3d"]["shape"][0], 16);
+    }
+
+    /// Every sensor of the full rig gets its files: panorama views, scans and state readings.
+    #[test]
+    fn full_rig_writes_one_file_per_reading() {
+        let (scene, at) = demo();
+        let dir = tempfile::tempdir().unwrap();
+        let files = render_rig(
+            &scene,
+            config("full.toml", Backend::Raster),
+            at,
+            0.0,
+            dir.path(),
+        )
+        .unwrap();
+        for f in [
+            "rgb.png",
+            "depth.png",
+            "semantic.png",
+            "instance.png",
+            "panorama_0_rgb.png",
+            "panorama_11_depth.png",
+            "panorama_11_semantic.png",
+            "lidar2d.npy",
+            "lidar3d.npy",
+            "camera.json",
+            "sensors.json",
+        ] {
+            assert!(files.iter().any(|x| x == f), "{f} missing from {files:?}");
+            assert!(dir.path().join(f).exists());
+        }
+        assert!(!files.iter().any(|x| x == "panorama_12_rgb.png"));
+        let json: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(dir.path().join("sensors.json")).unwrap(),
+        )
+        .unwrap();
+        let r = &json["readings"];
+        assert_eq!(r["compass"]["heading_rad"], 0.0);
+        assert_eq!(r["gps"]["position"], serde_json::json!([0.0, 0.0, 0.0]));
+        assert_eq!(r["collision"]["collided"], false);
+        let cams: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.path().join("camera.json")).unwrap())
+                .unwrap();
+        assert_eq!(cams["cameras"].as_array().unwrap().len(), 4 + 12);
+        // The RGB noise of the config is applied: the image differs from a noiseless render.
+        let mut quiet = config("full.toml", Backend::Raster);
+        quiet.sensors.retain(|s| s.kind() == "rgb");
+        if let SensorSpec::Rgb(c) = &mut quiet.sensors[0] {
+            c.noise = vlnverse_sensors::Noise::None;
+        }
+        let dir2 = tempfile::tempdir().unwrap();
+        render_rig(&scene, quiet, at, 0.0, dir2.path()).unwrap();
+        let a = std::fs::read(dir.path().join("rgb.png")).unwrap();
+        let b = std::fs::read(dir2.path().join("rgb.png")).unwrap();
+        assert_ne!(a, b);
+    }
 }

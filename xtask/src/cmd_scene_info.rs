@@ -1,5 +1,7 @@
 //! `cargo xtask scene-info`: statistics of one scene folder or a folder of scenes (navigable
-//! area, rooms by type, objects by class, triangle counts).
+//! area, rooms by type, objects by class, triangle counts). `objects` counts every object,
+//! structure included (as the importer's report); `items` the non-structure objects, and
+//! `outside` those of them that lie in no room.
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -33,19 +35,19 @@ pub fn scene_dirs(dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
     Ok(v)
 }
 
-/// The statistics report as text.
+/// The statistics report as text. Columns: `objects` counts every object (structure included,
+/// as the importer's report does), `items` the non-structure ones (furniture, small objects,
+/// unknown), `outside` the items that lie in no room.
 pub fn report(dir: &Path) -> anyhow::Result<String> {
     let dirs = scene_dirs(dir)?;
     let mut out = String::new();
     let mut by_room: BTreeMap<String, usize> = BTreeMap::new();
     let mut by_class: BTreeMap<String, usize> = BTreeMap::new();
-    let (mut tot_nav, mut tot_tris, mut tot_objs, mut tot_rooms) = (0.0f64, 0usize, 0usize, 0usize);
+    let (mut tot_nav, mut tot_tris, mut tot_items, mut tot_rooms) =
+        (0.0f64, 0usize, 0usize, 0usize);
+    let (mut tot_objs, mut tot_outside) = (0usize, 0usize);
     let mut navs = Vec::new();
-    writeln!(
-        out,
-        "{:<24} {:>5} {:>7} {:>9} {:>11} {:>11}",
-        "scene", "rooms", "objects", "triangles", "floor m2", "navigable m2"
-    )?;
+    let mut rows: Vec<[String; 8]> = Vec::new();
     for d in &dirs {
         let scene = vlnverse_env::io::load_scene(d)?;
         let nav_yaml = d.join("navigable.yaml");
@@ -56,6 +58,7 @@ pub fn report(dir: &Path) -> anyhow::Result<String> {
         };
         let floor: f32 = scene.rooms.iter().map(|r| r.area()).sum();
         let items = scene.items().count();
+        let outside = scene.items().filter(|o| o.room.is_none()).count();
         let tris = scene.triangle_count();
         for r in &scene.rooms {
             *by_room.entry(r.kind.name().to_string()).or_default() += 1;
@@ -63,29 +66,63 @@ pub fn report(dir: &Path) -> anyhow::Result<String> {
         for o in scene.items() {
             *by_class.entry(o.class.name().to_string()).or_default() += 1;
         }
-        writeln!(
-            out,
-            "{:<24} {:>5} {:>7} {:>9} {:>11.1} {:>11}",
-            scene.id,
-            scene.rooms.len(),
-            items,
-            tris,
-            floor,
-            nav.map_or("-".to_string(), |a| format!("{a:.1}"))
-        )?;
+        rows.push([
+            scene.id.clone(),
+            scene.rooms.len().to_string(),
+            scene.objects.len().to_string(),
+            items.to_string(),
+            outside.to_string(),
+            tris.to_string(),
+            format!("{floor:.1}"),
+            nav.map_or("-".to_string(), |a| format!("{a:.1}")),
+        ]);
         tot_rooms += scene.rooms.len();
-        tot_objs += items;
+        tot_objs += scene.objects.len();
+        tot_items += items;
+        tot_outside += outside;
         tot_tris += tris;
         if let Some(a) = nav {
             tot_nav += a;
             navs.push(a);
         }
     }
+    let header = [
+        "scene",
+        "rooms",
+        "objects",
+        "items",
+        "outside",
+        "triangles",
+        "floor m2",
+        "navigable m2",
+    ];
+    // Each column as wide as its widest cell, so long scene names keep the table aligned.
+    let widths: Vec<usize> = (0..header.len())
+        .map(|c| {
+            rows.iter()
+                .map(|r| r[c].len())
+                .chain([header[c].len()])
+                .max()
+                .unwrap_or(0)
+        })
+        .collect();
+    let line = |cells: [&str; 8]| -> String {
+        let mut l = format!("{:<w$}", cells[0], w = widths[0]);
+        for (c, w) in cells.iter().zip(&widths).skip(1) {
+            l += &format!(" {:>w$}", c, w = *w);
+        }
+        l
+    };
+    writeln!(out, "{}", line(header))?;
+    for r in &rows {
+        writeln!(out, "{}", line(r.each_ref().map(|s| s.as_str())))?;
+    }
     let n = dirs.len();
     writeln!(out)?;
     write!(
         out,
-        "{n} scenes, {tot_rooms} rooms, {tot_objs} objects, {tot_tris} triangles"
+        "{n} scenes, {tot_rooms} rooms, {tot_objs} objects ({tot_items} non-structure, \
+         {tot_outside} of them outside rooms), {tot_tris} triangles"
     )?;
     if !navs.is_empty() {
         let lo = navs.iter().cloned().fold(f64::INFINITY, f64::min);
@@ -116,4 +153,48 @@ pub fn report(dir: &Path) -> anyhow::Result<String> {
 pub fn run(args: Args) -> anyhow::Result<()> {
     print!("{}", report(&args.dir)?);
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Long scene names keep the table aligned; `objects` counts structure too, and items
+    /// outside every room are counted.
+    #[test]
+    fn counts_every_object_and_keeps_columns_aligned() {
+        let dir = tempfile::tempdir().unwrap();
+        let in_rooms = |seed: u64, id: &str| {
+            let mut s = vlnverse_sensors::demo::demo_scene(seed);
+            s.id = id.into();
+            let room = s.rooms[0].id;
+            for o in s.objects.iter_mut().filter(|o| !o.is_structure()) {
+                o.room = Some(room);
+            }
+            s
+        };
+        let mut a = in_rooms(1, "a_scene_with_a_name_much_longer_than_twenty_four");
+        let first_item = a.objects.iter().position(|o| !o.is_structure()).unwrap();
+        a.objects[first_item].room = None;
+        let b = in_rooms(2, "b");
+        for s in [&a, &b] {
+            vlnverse_env::io::write_scene_dir(dir.path(), s, &[]).unwrap();
+        }
+        let text = report(dir.path()).unwrap();
+        let lines: Vec<&str> = text.lines().take(3).collect();
+        // Right-aligned columns end at the same character in every row.
+        assert!(lines.iter().all(|l| l.len() == lines[0].len()), "{text}");
+        let cells: Vec<Vec<&str>> = lines
+            .iter()
+            .map(|l| l.split_whitespace().collect())
+            .collect();
+        assert_eq!(cells[0][2..5], ["objects", "items", "outside"]);
+        let row = &cells[1];
+        assert_eq!(row[0], a.id);
+        assert_eq!(row[2], a.objects.len().to_string());
+        assert_eq!(row[3], a.items().count().to_string());
+        assert_eq!(row[4], "1");
+        assert!(a.objects.len() > a.items().count());
+        assert_eq!(cells[2][4], "0");
+    }
 }

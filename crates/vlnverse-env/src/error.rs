@@ -9,14 +9,15 @@ pub type Result<T, E = EnvError> = std::result::Result<T, E>;
 /// What went wrong while building, reading or writing a scene.
 #[derive(Debug, thiserror::Error)]
 pub enum EnvError {
-    /// A file could not be read or written.
-    #[error("{path}: {source}")]
+    /// A file could not be read or written. The message holds the path and the OS error; the
+    /// OS error is deliberately not also the error's `source()`, so that `{:#}` (anyhow) prints
+    /// it once.
+    #[error("{}: {error}", path.display())]
     Io {
         /// The file.
         path: PathBuf,
         /// The OS error.
-        #[source]
-        source: std::io::Error,
+        error: std::io::Error,
     },
     /// A file exists but its content is not what the format says.
     #[error("{path}: {message}")]
@@ -61,7 +62,7 @@ impl EnvError {
     pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
         EnvError::Io {
             path: path.into(),
-            source,
+            error: source,
         }
     }
 

@@ -1,6 +1,6 @@
 //! The plain-data scene model shared by every layer.
 //!
-//! Conventions (DESIGN.md): metres, right-handed, **Y up**, the floor at `y = 0` for generated
+//! Conventions (docs/formats.md): metres, right-handed, **Y up**, the floor at `y = 0` for generated
 //! homes; quaternions `[x, y, z, w]`. Everything in a home is a [`SceneObject`], walls and floor
 //! included (their class says they are structure), so physics, rendering and occupancy walk one
 //! list.

@@ -3,12 +3,19 @@
 //! names and a scale bar. [`Topdown::frame`] maps world points to pixels so other layers can
 //! draw trajectories on top ([`draw_path`], [`draw_marker`]).
 //!
+//! Primitive parts (procedural homes) are drawn as their footprints. Mesh parts (imported homes)
+//! are drawn by their triangles cut to the height band the occupancy map sees (floor clearance
+//! to agent height, [`crate::occupancy::OccupancyConfig`]), so a whole-house wall mesh shows as
+//! lines and the rooms stay visible; structure keeps only its upright faces, and an object with
+//! nothing in the band (a chandelier) is drawn whole and faint.
+//!
 //! Image axes: pixel x grows with world x, pixel y grows with world z (so the picture is the
 //! scene seen from above with -Z, the agent's yaw-0 heading, pointing up).
 
 use crate::geometry::shape_corners;
 use crate::occupancy::GridMap;
-use crate::scene::{Pose, Scene, SceneObject, Shape};
+use crate::occupancy::OccupancyConfig;
+use crate::scene::{MeshData, Pose, Scene, SceneObject, Shape};
 use crate::vocab::{ClassKind, RoomType, SemanticClass};
 use glam::{Vec2, Vec3};
 use image::{Rgb, RgbImage};
@@ -378,9 +385,55 @@ fn draw_object(
     o: &SceneObject,
     fill: [u8; 3],
     alpha: f32,
+    band: [f32; 2],
 ) {
     let edge = darker(fill, 0.55);
+    // Mesh parts (imported scenes) are drawn by their triangles cut to the agent's height band;
+    // an object with no geometry in the band (a chandelier) is drawn whole but faint, so that it
+    // does not vanish. Structure (walls, frames) shows only its upright faces: a floor or
+    // platform that shares the walls' mesh or material must not paint the room dark.
+    let mesh_parts: Vec<(&MeshData, Pose)> = o
+        .parts
+        .iter()
+        .filter_map(|part| match &part.shape {
+            Shape::Mesh(m) => Some((m, o.pose.mul(&part.transform))),
+            _ => None,
+        })
+        .collect();
+    if !mesh_parts.is_empty() {
+        let structure = o.class.kind() == ClassKind::Structure;
+        let mut pieces: Vec<Vec<Vec2>> = Vec::new();
+        for (m, pose) in &mesh_parts {
+            mesh_footprint(m, pose, band, structure, &mut pieces);
+        }
+        let mut alpha = alpha;
+        if pieces.is_empty() && !structure {
+            alpha *= 0.35;
+            for (m, pose) in &mesh_parts {
+                let all = [f32::NEG_INFINITY, f32::INFINITY];
+                mesh_footprint(m, pose, all, false, &mut pieces);
+            }
+        }
+        for poly in &pieces {
+            let px: Vec<Vec2> = poly.iter().map(|p| frame.to_pixel(*p)).collect();
+            fill_polygon(img, &px, fill, alpha);
+            // Upright triangles (walls) project to slivers that cover no pixel centre: draw
+            // their edges as thin lines.
+            let area = polygon_area(&px);
+            let perimeter: f32 = (0..px.len())
+                .map(|i| (px[(i + 1) % px.len()] - px[i]).length())
+                .sum();
+            if area < perimeter {
+                for i in 0..px.len() {
+                    thin_line(img, px[i], px[(i + 1) % px.len()], fill, alpha);
+                }
+            }
+        }
+    }
     for part in &o.parts {
+        if matches!(part.shape, Shape::Mesh(_)) {
+            continue;
+        }
         let pose = o.pose.mul(&part.transform);
         match part_footprint(&part.shape, &pose) {
             Footprint::Disc(c, r) => {
@@ -393,6 +446,103 @@ fn draw_object(
                 fill_polygon(img, &px, fill, alpha);
                 outline(img, &px, edge);
             }
+        }
+    }
+}
+
+/// Absolute area of a polygon (shoelace).
+fn polygon_area(pts: &[Vec2]) -> f32 {
+    let mut a = 0.0;
+    for i in 0..pts.len() {
+        a += pts[i].perp_dot(pts[(i + 1) % pts.len()]);
+    }
+    (a * 0.5).abs()
+}
+
+/// A line about 1.5 pixels wide (a square brush stepped along the segment).
+fn thin_line(img: &mut RgbImage, a: Vec2, b: Vec2, color: [u8; 3], alpha: f32) {
+    let n = ((b - a).length().ceil() as usize).max(1);
+    let mut last = (i64::MIN, i64::MIN);
+    for k in 0..=n {
+        let p = a + (b - a) * (k as f32 / n as f32);
+        let (x, y) = ((p.x - 0.25).floor() as i64, (p.y - 0.25).floor() as i64);
+        if (x, y) == last {
+            continue;
+        }
+        last = (x, y);
+        for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+            blend(img, x + dx, y + dy, color, alpha);
+        }
+    }
+}
+
+/// The floor-plan pieces of a mesh: each triangle (in world space) clipped to the height band
+/// `[lo, hi]` and projected to `(x, z)`; with `upright_only`, nearly horizontal triangles are
+/// left out. Pieces with fewer than two points are dropped.
+fn mesh_footprint(
+    m: &MeshData,
+    pose: &Pose,
+    band: [f32; 2],
+    upright_only: bool,
+    out: &mut Vec<Vec<Vec2>>,
+) {
+    let world: Vec<Vec3> = m
+        .positions
+        .iter()
+        .map(|p| pose.transform_point(Vec3::from_array(*p)))
+        .collect();
+    let mut poly: Vec<Vec3> = Vec::with_capacity(6);
+    let mut tmp: Vec<Vec3> = Vec::with_capacity(6);
+    for tri in &m.indices {
+        let Some(v) = tri
+            .map(|i| world.get(i as usize).copied())
+            .into_iter()
+            .collect::<Option<Vec<_>>>()
+        else {
+            continue;
+        };
+        let (y0, y1) = (
+            v.iter().map(|p| p.y).fold(f32::INFINITY, f32::min),
+            v.iter().map(|p| p.y).fold(f32::NEG_INFINITY, f32::max),
+        );
+        if y1 < band[0] || y0 > band[1] {
+            continue;
+        }
+        if upright_only {
+            let n = (v[1] - v[0]).cross(v[2] - v[0]);
+            if n.y.abs() > 0.9 * n.length() {
+                continue;
+            }
+        }
+        poly.clear();
+        poly.extend_from_slice(&v);
+        if y0 < band[0] {
+            clip_y(&poly, band[0], true, &mut tmp);
+            std::mem::swap(&mut poly, &mut tmp);
+        }
+        if y1 > band[1] {
+            clip_y(&poly, band[1], false, &mut tmp);
+            std::mem::swap(&mut poly, &mut tmp);
+        }
+        if poly.len() >= 2 {
+            out.push(poly.iter().map(|p| Vec2::new(p.x, p.z)).collect());
+        }
+    }
+}
+
+/// Sutherland-Hodgman against the plane `y = h`, keeping `y >= h` (`above`) or `y <= h`.
+fn clip_y(poly: &[Vec3], h: f32, above: bool, out: &mut Vec<Vec3>) {
+    out.clear();
+    let inside = |p: &Vec3| if above { p.y >= h } else { p.y <= h };
+    for i in 0..poly.len() {
+        let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+        let (ia, ib) = (inside(&a), inside(&b));
+        if ia {
+            out.push(a);
+        }
+        if ia != ib {
+            let t = (h - a.y) / (b.y - a.y);
+            out.push(a + (b - a) * t);
         }
     }
 }
@@ -547,13 +697,19 @@ pub fn render_topdown(
         .filter(|o| !matches!(o.class, SemanticClass::Floor | SemanticClass::Ceiling))
         .collect();
     objs.sort_by_key(|o| (draw_order(o), o.id));
+    // Mesh geometry is cut to the band the occupancy map looks at (rugs: from the floor).
+    let occ = OccupancyConfig::default();
+    let band = [
+        scene.floor_height + occ.floor_clearance,
+        scene.floor_height + occ.agent_height,
+    ];
     for o in &objs {
-        let alpha = if o.class == SemanticClass::Rug {
-            0.45
+        let (alpha, band) = if o.class == SemanticClass::Rug {
+            (0.45, [scene.floor_height - 0.05, band[1]])
         } else {
-            1.0
+            (1.0, band)
         };
-        draw_object(&mut img, &frame, o, class_color(o.class), alpha);
+        draw_object(&mut img, &frame, o, class_color(o.class), alpha, band);
     }
     // Doors: a coloured bar across the opening (dashed for open-plan connections).
     for d in &scene.doors {

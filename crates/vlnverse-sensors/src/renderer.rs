@@ -49,22 +49,38 @@ pub trait Renderer: Send {
     fn render(&mut self, views: &[View]) -> Result<Vec<Frame>>;
 }
 
+/// Log which backend renders and why: at `info` the first time in a process, at `debug` after
+/// (evaluation makes one renderer per worker thread).
+macro_rules! announce {
+    ($($arg:tt)*) => {
+        if ANNOUNCED.swap(true, std::sync::atomic::Ordering::Relaxed) {
+            tracing::debug!($($arg)*)
+        } else {
+            tracing::info!($($arg)*)
+        }
+    };
+}
+
+static ANNOUNCED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
 /// Make the renderer a config asks for. `Auto` takes wgpu on a hardware GPU and the CPU
 /// rasteriser otherwise (it beats wgpu on lavapipe, and needs no graphics stack); either way
-/// one `info` line says which backend renders and why.
+/// one `info` line per process says which backend renders and why. On Linux, `Auto` does not
+/// even ask the graphics stack when no GPU device node exists (`/dev/dri/renderD*`,
+/// `/dev/nvidia*`), so machines without a GPU see no driver messages.
 pub fn create_renderer(backend: Backend) -> Result<Box<dyn Renderer>> {
     match backend {
         Backend::Raycast => {
-            tracing::info!("rendering with the CPU ray-cast backend (configured)");
+            announce!("rendering with the CPU ray-cast backend (configured)");
             Ok(Box::new(crate::RaycastRenderer::new()))
         }
         Backend::Raster => {
-            tracing::info!("rendering with the CPU rasteriser (configured)");
+            announce!("rendering with the CPU rasteriser (configured)");
             Ok(Box::new(crate::RasterRenderer::new()))
         }
         Backend::Wgpu => {
             let r = crate::GpuRenderer::new()?;
-            tracing::info!(
+            announce!(
                 "rendering with wgpu on {} (configured)",
                 r.context().adapter_description()
             );
@@ -73,19 +89,19 @@ pub fn create_renderer(backend: Backend) -> Result<Box<dyn Renderer>> {
         Backend::Auto => match hardware_gpu() {
             Some(name) => match crate::GpuRenderer::new() {
                 Ok(r) => {
-                    tracing::info!(
+                    announce!(
                         "rendering with wgpu on {} (backend = auto, GPU {name} found)",
                         r.context().adapter_description()
                     );
                     Ok(Box::new(r))
                 }
                 Err(e) => {
-                    tracing::info!("rendering with the CPU rasteriser (backend = auto): {e}");
+                    announce!("rendering with the CPU rasteriser (backend = auto): {e}");
                     Ok(Box::new(crate::RasterRenderer::new()))
                 }
             },
             None => {
-                tracing::info!(
+                announce!(
                     "rendering with the CPU rasteriser (backend = auto: no hardware GPU adapter; \
                      set backend = \"wgpu\" to use a software Vulkan driver instead)"
                 );
@@ -95,9 +111,29 @@ pub fn create_renderer(backend: Backend) -> Result<Box<dyn Renderer>> {
     }
 }
 
+/// Whether a GPU device node exists. Only Linux is checked (elsewhere: `true`); `WGPU_BACKEND`
+/// set means the user asked for a probe, so it is `true` too.
+fn gpu_device_node_exists() -> bool {
+    if !cfg!(target_os = "linux") || std::env::var_os("WGPU_BACKEND").is_some() {
+        return true;
+    }
+    let has = |dir: &str, prefix: &str| {
+        std::fs::read_dir(dir).is_ok_and(|d| {
+            d.flatten()
+                .any(|e| e.file_name().to_string_lossy().starts_with(prefix))
+        })
+    };
+    has("/dev/dri", "renderD") || has("/dev", "nvidia")
+}
+
 /// Name of a hardware (or virtualised) GPU adapter, if any, without creating a device. Looks at
-/// the backends `WGPU_BACKEND` names, else the native ones (Vulkan, Metal, DX12).
+/// the backends `WGPU_BACKEND` names, else the native ones (Vulkan, Metal, DX12). Without a GPU
+/// device node (see [`gpu_device_node_exists`]) it does not create a wgpu instance at all:
+/// Mesa's Vulkan WSI layers print errors (`XDG_RUNTIME_DIR is invalid`) when probed headless.
 fn hardware_gpu() -> Option<String> {
+    if !gpu_device_node_exists() {
+        return None;
+    }
     let backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::PRIMARY);
     let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
         backends,

@@ -33,7 +33,30 @@ pub fn scene_from_json(bytes: &[u8], path: &Path) -> Result<Scene> {
             ));
         }
     }
-    serde_json::from_slice(bytes).map_err(|e| json_error(path, bytes, &e))
+    let scene: Scene = serde_json::from_slice(bytes).map_err(|e| json_error(path, bytes, &e))?;
+    check_values(&scene, path)?;
+    Ok(scene)
+}
+
+/// Values serde accepts but a scene cannot hold: negative or non-finite physics.
+fn check_values(scene: &Scene, path: &Path) -> Result<()> {
+    for o in &scene.objects {
+        for (field, v) in [
+            ("physics.mass", o.physics.mass),
+            ("physics.friction", o.physics.friction),
+        ] {
+            if !(v.is_finite() && v >= 0.0) {
+                return Err(EnvError::parse(
+                    path,
+                    format!(
+                        "object {} (`{}`): field `{field}` = {v}: must be finite and >= 0",
+                        o.id, o.name
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 fn json_error(path: &Path, bytes: &[u8], e: &serde_json::Error) -> EnvError {

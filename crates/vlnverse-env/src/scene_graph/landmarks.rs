@@ -34,8 +34,8 @@ pub struct Landmark {
 }
 
 /// Whether an object is worth naming along a path: furniture (not rugs: the agent walks over
-/// them) at least [`LANDMARK_MIN_FURNITURE_SIZE`] across, or a small object at least
-/// [`LANDMARK_MIN_SMALL_SIZE`]; never structure or unknown.
+/// them) at least 0.3 m across (`LANDMARK_MIN_FURNITURE_SIZE`), or a small object at least
+/// 0.5 m (`LANDMARK_MIN_SMALL_SIZE`); never structure or unknown.
 pub fn is_landmark(o: &SceneObject) -> bool {
     let size = o.bbox.size().max_element();
     match o.class.kind() {
@@ -81,8 +81,8 @@ impl SceneGraph {
     /// Landmarks along `path` (3-D points, only x and z are used): every object passing
     /// [`is_landmark`] whose footprint comes within `max_distance` of the path and that
     /// `visible(path_point, object_point)` accepts (pass the occupancy map's line of sight;
-    /// the object point is the footprint's nearest point moved [`SIGHT_MARGIN`] towards the
-    /// path). Each object is reported once, at its closest path point; sorted by path index,
+    /// the object point is the footprint's nearest point moved 0.15 m (`SIGHT_MARGIN`) towards
+    /// the path). Each object is reported once, at its closest path point; sorted by path index,
     /// then distance, then id. A path of fewer than two points has no heading and no landmarks.
     pub fn landmarks_along_path(
         &self,

@@ -36,7 +36,7 @@ pub fn direction_of_yaw(yaw: f32) -> Vec2 {
     Vec2::new(-yaw.sin(), -yaw.cos())
 }
 
-/// Yaw that looks along the floor direction `dir = (x, z)` (inverse of [`direction_of_yaw`]).
+/// Yaw that looks along the floor direction `dir = (x, z)` (inverse of `direction_of_yaw`).
 pub fn yaw_from_direction(dir: Vec2) -> f32 {
     (-dir.x).atan2(-dir.y)
 }

@@ -362,3 +362,53 @@ fn source_bundles_write_every_file_then_resume_and_force() {
     let forced = io::write_source_bundles(&src, &[1], dir.path(), &occ, true, &tick).unwrap();
     assert!(matches!(forced[0], BundleOutcome::Written { .. }));
 }
+
+/// The whole error chain, as `anyhow`'s `{:#}` prints it.
+fn chain_text(e: &dyn std::error::Error) -> String {
+    let mut s = e.to_string();
+    let mut next = e.source();
+    while let Some(c) = next {
+        s += &format!(": {c}");
+        next = c.source();
+    }
+    s
+}
+
+/// Regression: `topdown` on a missing folder printed the OS error twice.
+#[test]
+fn missing_file_error_chain_names_the_os_error_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let e = io::load_scene(dir.path().join("nope")).unwrap_err();
+    let EnvError::Io { error, path } = &e else {
+        panic!("{e:?}")
+    };
+    assert!(path.ends_with("scene.json"));
+    let text = chain_text(&e);
+    assert_eq!(text.matches(&error.to_string()).count(), 1, "{text}");
+    assert!(text.contains("scene.json"), "{text}");
+}
+
+#[test]
+fn negative_mass_and_friction_are_rejected_naming_the_object() {
+    for (from, to, field) in [
+        ("\"mass\": 1.5,", "\"mass\": -1.5,", "`physics.mass` = -1.5"),
+        (
+            "\"friction\": 0.6,",
+            "\"friction\": -0.6,",
+            "`physics.friction` = -0.6",
+        ),
+    ] {
+        let (_d, out) = written();
+        let json_path = out.join("scene.json");
+        let json = std::fs::read_to_string(&json_path).unwrap();
+        assert!(
+            json.contains(from),
+            "fixture changed: {from} not in scene.json"
+        );
+        std::fs::write(&json_path, json.replacen(from, to, 1)).unwrap();
+        let e = err_text(io::load_scene(&out).unwrap_err());
+        assert!(e.contains("scene.json"), "{e}");
+        assert!(e.contains("object 1 (`"), "{e}");
+        assert!(e.contains(field), "{e}");
+    }
+}

@@ -104,3 +104,93 @@ fn same_scene_gives_same_pixels() {
     let b = render_topdown(&scene, None, &TopdownOptions::default());
     assert_eq!(a.image, b.image);
 }
+
+/// A mesh part from quads `[x0, z0, x1, z1, y0, y1]` (vertical when x or z is constant,
+/// horizontal when `y0 == y1`).
+fn quads(qs: &[[f32; 6]]) -> vlnverse_env::Part {
+    let mut positions = Vec::new();
+    let mut indices = Vec::new();
+    for &[x0, z0, x1, z1, y0, y1] in qs {
+        let b = positions.len() as u32;
+        if y0 == y1 {
+            positions.extend([[x0, y0, z0], [x1, y0, z0], [x1, y0, z1], [x0, y0, z1]]);
+        } else {
+            positions.extend([[x0, y0, z0], [x1, y0, z1], [x1, y1, z1], [x0, y1, z0]]);
+        }
+        indices.extend([[b, b + 1, b + 2], [b, b + 2, b + 3]]);
+    }
+    vlnverse_env::Part {
+        shape: vlnverse_env::Shape::Mesh(vlnverse_env::MeshData {
+            positions,
+            indices,
+            glb_mesh: None,
+        }),
+        transform: vlnverse_env::Pose::IDENTITY,
+        color: [0.5, 0.5, 0.5],
+    }
+}
+
+/// Imported meshes are drawn by their triangles within the agent's height band, not by the
+/// hull of their bounding box: one mesh holding the walls of a whole house leaves the rooms
+/// visible, and a box-shaped mesh is filled.
+#[test]
+fn mesh_walls_are_lines_and_mesh_furniture_is_filled() {
+    use vlnverse_env::{Pose, SceneObject};
+    let mut scene = fixture_scene();
+    scene.objects.retain(|o| o.class != SemanticClass::Wall);
+    let next = scene.objects.iter().map(|o| o.id).max().unwrap() + 1;
+    // Three walls of a 4 x 4 m room in one mesh, 2.5 m high, and a ceiling slab in the same
+    // mesh (above the band: not drawn).
+    let walls = quads(&[
+        [-2.0, -2.0, 2.0, -2.0, 0.0, 2.5],
+        [-2.0, -2.0, -2.0, 2.0, 0.0, 2.5],
+        [-2.0, 2.0, 2.0, 2.0, 0.0, 2.5],
+        [-2.0, -2.0, 2.0, 2.0, 2.5, 2.5],
+    ]);
+    let mut w = SceneObject::from_parts(next, SemanticClass::Wall, Pose::IDENTITY, vec![walls]);
+    w.bbox = w.compute_bbox();
+    // A 0.6 m cube of furniture at (-1.2, 1.2).
+    let (x0, x1, z0, z1) = (-1.5, -0.9, 0.9, 1.5);
+    let cube = quads(&[
+        [x0, z0, x1, z0, 0.0, 0.6],
+        [x1, z0, x1, z1, 0.0, 0.6],
+        [x1, z1, x0, z1, 0.0, 0.6],
+        [x0, z1, x0, z0, 0.0, 0.6],
+        [x0, z0, x1, z1, 0.6, 0.6],
+    ]);
+    let mut c =
+        SceneObject::from_parts(next + 1, SemanticClass::Cabinet, Pose::IDENTITY, vec![cube]);
+    c.bbox = c.compute_bbox();
+    scene.objects.extend([w, c]);
+    let opts = TopdownOptions {
+        labels: false,
+        room_names: false,
+        ..Default::default()
+    };
+    let td = render_topdown(&scene, None, &opts);
+    let wall = class_color(SemanticClass::Wall);
+    // The walls are drawn where they stand...
+    assert_eq!(px(&td, Vec2::new(-2.0, 0.5)), wall);
+    assert_eq!(px(&td, Vec2::new(0.0, 2.0)), wall);
+    // ...the room inside the walls' bounding box is not painted (it was, as a filled hull).
+    assert_ne!(px(&td, Vec2::new(-1.0, -0.5)), wall);
+    assert_ne!(px(&td, Vec2::new(1.5, 1.5)), wall);
+    // The cube's inside is filled with its class colour.
+    assert_eq!(
+        px(&td, Vec2::new(-1.2, 1.2)),
+        class_color(SemanticClass::Cabinet)
+    );
+    // Walls are thin: few pixels of a row crossing the room are wall-coloured.
+    let y = td.frame.to_pixel(Vec2::new(0.0, 0.5)).y as u32;
+    let (xa, xb) = (
+        td.frame.to_pixel(Vec2::new(-2.3, 0.0)).x as u32,
+        td.frame.to_pixel(Vec2::new(1.9, 0.0)).x as u32,
+    );
+    let dark = (xa..xb)
+        .filter(|&x| td.image.get_pixel(x, y).0 == wall)
+        .count();
+    assert!(
+        (1..=4).contains(&dark),
+        "{dark} wall pixels across the room"
+    );
+}

@@ -347,3 +347,32 @@ fn imported_scene_round_trips_through_a_scene_folder() {
     }
     assert_eq!(back.rooms.len(), scene.rooms.len());
 }
+
+/// The ceiling of `_ceiling_yup` is named `RoomCeiling_01_001`: the mapping must make it a
+/// `ceiling` (structure), so that the scene graph relates no furniture to it.
+#[test]
+fn aws_house_ceiling_is_structure_with_no_neighbours() {
+    use vlnverse_env::scene_graph::{NodeRef, Relation, SceneGraph};
+    let Some(file) = shared("aws_small_house/aws_small_house_ceiling_yup.glb") else {
+        return;
+    };
+    let opts = ImportOptions {
+        mapping: Some(aws_mapping()),
+        ..Default::default()
+    };
+    let (scene, report) = import_scene(&file, &opts).expect("the AWS house imports");
+    let ceiling = object(&scene, "RoomCeiling_01_001");
+    assert_eq!(ceiling.class, SemanticClass::Ceiling, "{report}");
+    assert!(!report
+        .unmatched_names
+        .contains(&"RoomCeiling_01_001".to_string()));
+    let graph = SceneGraph::build(&scene);
+    for relation in [Relation::Near, Relation::NextTo] {
+        let related = graph.related(NodeRef::Object(ceiling.id), relation);
+        assert!(
+            related.is_empty(),
+            "ceiling is {relation:?} {} objects",
+            related.len()
+        );
+    }
+}

@@ -206,3 +206,28 @@ fn resolution_and_fov_changes_move_the_image_of_a_box_as_fx_says() {
         }
     }
 }
+
+/// Without a GPU device node, `auto` picks the CPU rasteriser without probing the graphics
+/// stack (a probe makes Mesa print `XDG_RUNTIME_DIR is invalid` on headless machines). Skipped
+/// where a GPU node exists or `WGPU_BACKEND` asks for a probe.
+#[test]
+fn auto_without_gpu_device_nodes_is_the_rasteriser() {
+    let has = |dir: &str, prefix: &str| {
+        std::fs::read_dir(dir).is_ok_and(|d| {
+            d.flatten()
+                .any(|e| e.file_name().to_string_lossy().starts_with(prefix))
+        })
+    };
+    if !cfg!(target_os = "linux")
+        || has("/dev/dri", "renderD")
+        || has("/dev", "nvidia")
+        || std::env::var_os("WGPU_BACKEND").is_some()
+    {
+        eprintln!("skipped: this machine has a GPU device node or WGPU_BACKEND is set");
+        return;
+    }
+    for _ in 0..2 {
+        let r = vlnverse_sensors::create_renderer(vlnverse_sensors::Backend::Auto).unwrap();
+        assert_eq!(r.name(), "raster");
+    }
+}

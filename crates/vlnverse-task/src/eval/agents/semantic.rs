@@ -7,7 +7,7 @@
 //! as the target class into sightings (one per object, roughly), walks to the chosen sighting
 //! and stops next to it.
 //!
-//! - Dialogue: it asks "where is the <target>?" once at the start and keeps the answer (side and
+//! - Dialogue: it asks "where is the TARGET?" once at the start and keeps the answer (side and
 //!   distance) as a hint that ranks frontiers and sightings; it asks "which way?" when the map
 //!   stops growing, when nothing is left to explore or when a sighting turned out wrong, walks
 //!   the legs of the answer and takes their end as the new hint; before stopping (and at the end
