@@ -408,8 +408,9 @@ fn group_nodes(
     groups
 }
 
-/// Floor height: the lowest height holding a large share of upward-facing triangle area
-/// (2 cm bins; "large" = at least 30 % of the fullest bin). Falls back to the lowest vertex.
+/// Floor height: the height holding the most upward-facing triangle area (2 cm bins), or the
+/// lowest one holding nearly as much (80 %: a floor split by thresholds); terraces, steps and
+/// ground around a house hold less than its floor. Falls back to the lowest vertex.
 pub fn detect_floor(triangles: impl Iterator<Item = [Vec3; 3]>) -> Option<f32> {
     const BIN: f32 = 0.02;
     let mut bins: BTreeMap<i64, (f64, f64)> = BTreeMap::new();
@@ -433,7 +434,7 @@ pub fn detect_floor(triangles: impl Iterator<Item = [Vec3; 3]>) -> Option<f32> {
     if max < 0.5 {
         return Some(lowest);
     }
-    let (&k, _) = bins.iter().find(|(_, v)| v.0 >= 0.3 * max)?;
+    let (&k, _) = bins.iter().find(|(_, v)| v.0 >= 0.8 * max)?;
     // Area-weighted mean height over the bin and its neighbours.
     let (a, ay) = (k - 1..=k + 1)
         .filter_map(|i| bins.get(&i))
@@ -755,8 +756,9 @@ mod tests {
     use super::*;
 
     #[test]
-    fn floor_is_the_lowest_large_upward_surface() {
-        // A 4x4 floor at y=0.3, a 1x1 box top at 1.0, and a stray tiny triangle at -2.
+    fn floor_is_the_largest_upward_surface() {
+        // A 4x4 floor at y=0.3, a 1x1 box top at 1.0, a stray tiny triangle at -2, and a
+        // 3x3 terrace at 0.1 outside (less area than the floor).
         let quad = |y: f32, s: f32| {
             let a = Vec3::new(0.0, y, 0.0);
             let b = Vec3::new(0.0, y, s);
@@ -767,6 +769,7 @@ mod tests {
         let mut t = quad(0.3, 4.0);
         t.extend(quad(1.0, 1.0));
         t.extend(quad(-2.0, 0.05));
+        t.extend(quad(0.1, 3.0));
         let f = detect_floor(t.into_iter()).unwrap();
         assert!((f - 0.3).abs() < 1e-4, "{f}");
     }

@@ -293,6 +293,24 @@ fn godot_living_room_splits_by_material_names() {
     );
     assert!(scene.objects.iter().any(|o| o.name == "Cube/ceiling"));
     assert!(!scene.rooms.is_empty());
+    // The floor is the room's (2.5 m under its ceiling, the table standing on it), not the
+    // lower terrace outside the window.
+    let ceiling = scene
+        .objects
+        .iter()
+        .find(|o| o.name == "Cube/ceiling")
+        .unwrap();
+    let height = ceiling.bbox.min[1] - scene.floor_height;
+    assert!(
+        (height - 2.5).abs() < 0.05,
+        "ceiling {height} m above the floor"
+    );
+    let table = scene.objects.iter().find(|o| o.name == "Cylinder").unwrap();
+    assert!(
+        (table.bbox.min[1] - scene.floor_height).abs() < 0.05,
+        "{:?}",
+        table.bbox
+    );
 }
 
 #[test]
