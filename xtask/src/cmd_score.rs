@@ -115,27 +115,33 @@ mod tests {
     use super::*;
     use vlnverse_task::{Episode, EpisodeInfo, Goal, Split, Task};
 
-    #[test]
-    fn score_writes_the_run_files_and_names_bad_input() {
-        let dir = tempfile::tempdir().unwrap();
+    /// A fine test split under `dir` with one episode `id`: from the origin `length` metres
+    /// along +X.
+    fn straight_episode(dir: &std::path::Path, id: u64, length: f32) {
+        let goal = [length, 0.0, 0.0];
         let ep = Episode {
-            episode_id: 5,
-            trajectory_id: 5,
+            episode_id: id,
+            trajectory_id: id,
             scene_id: "s".into(),
-            start_position: [0.0, 0.0, 0.0],
             goals: vec![Goal {
-                position: [2.0, 0.0, 0.0],
+                position: goal,
                 radius: 3.0,
                 object_id: None,
             }],
-            reference_path: vec![[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]],
+            reference_path: vec![[0.0, 0.0, 0.0], goal],
             info: EpisodeInfo {
-                geodesic_distance: 2.0,
+                geodesic_distance: length,
                 ..Default::default()
             },
             ..Default::default()
         };
-        dataset::write_split(dir.path(), Task::Fine, Split::Test, &[ep]).unwrap();
+        dataset::write_split(dir, Task::Fine, Split::Test, &[ep]).unwrap();
+    }
+
+    #[test]
+    fn score_writes_the_run_files_and_names_bad_input() {
+        let dir = tempfile::tempdir().unwrap();
+        straight_episode(dir.path(), 5, 2.0);
         let traj = dir.path().join("robot.jsonl");
         std::fs::write(
             &traj,
@@ -197,24 +203,7 @@ mod tests {
     #[test]
     fn score_refuses_trajectories_away_from_the_start_or_absurdly_far() {
         let dir = tempfile::tempdir().unwrap();
-        let ep = Episode {
-            episode_id: 1,
-            trajectory_id: 1,
-            scene_id: "s".into(),
-            start_position: [0.0, 0.0, 0.0],
-            goals: vec![Goal {
-                position: [5.0, 0.0, 0.0],
-                radius: 3.0,
-                object_id: None,
-            }],
-            reference_path: vec![[0.0, 0.0, 0.0], [5.0, 0.0, 0.0]],
-            info: EpisodeInfo {
-                geodesic_distance: 5.0,
-                ..Default::default()
-            },
-            ..Default::default()
-        };
-        dataset::write_split(dir.path(), Task::Fine, Split::Test, &[ep]).unwrap();
+        straight_episode(dir.path(), 1, 5.0);
         let out = dir.path().join("run");
         let args = |name: &str, line: &str, tol: f32| {
             let traj = dir.path().join(name);
