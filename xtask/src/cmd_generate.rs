@@ -202,12 +202,13 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let threads = args.threads.unwrap_or_else(rayon::current_num_threads);
     if s.assembled {
         println!(
-            "generate: {} scenes ({} already complete), {} episodes{} -> {} ({wall:.2} s, {threads} threads)",
+            "generate: {} scenes ({} already complete), {} episodes{} -> {} ({wall:.2} s, {})",
             s.scenes_done,
             s.scenes_skipped,
             s.episodes,
             skipped_note(&s),
-            args.out.display()
+            args.out.display(),
+            crate::progress::threads(threads)
         );
     } else {
         println!(

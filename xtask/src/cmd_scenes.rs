@@ -109,13 +109,17 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let s = generate(&args, true)?;
     let threads = args.threads.unwrap_or_else(rayon::current_num_threads);
     println!(
-        "scenes: {} written, {} complete skipped -> {} ({:.2} s, {} threads, mean navigable {:.1} m2)",
+        "scenes: {} written, {} complete skipped -> {} ({:.2} s, {}, mean navigable {:.1} m2)",
         s.written,
         s.skipped,
         args.out.display(),
         s.seconds,
-        threads,
-        if s.written > 0 { s.navigable_m2 / s.written as f64 } else { 0.0 }
+        crate::progress::threads(threads),
+        if s.written > 0 {
+            s.navigable_m2 / s.written as f64
+        } else {
+            0.0
+        }
     );
     Ok(())
 }
