@@ -172,6 +172,14 @@ pub fn dilate(map: &GridMap, radius: f32) -> GridMap {
 /// Union-find over horizontal runs of free cells, so the cost is one pass over the cells plus a
 /// little per run.
 pub fn keep_largest_island(map: &mut GridMap) -> usize {
+    keep_best_island(map, None)
+}
+
+/// Like [`keep_largest_island`], but when `covered` (one flag per cell, row-major) marks any
+/// cell of any island, keep the island with the most covered cells (ties: the larger, then the
+/// first): an imported house with a terrace or garden around it keeps its indoor floor, the
+/// one under its ceiling, even when the outdoor area is larger.
+pub fn keep_best_island(map: &mut GridMap, covered: Option<&[bool]>) -> usize {
     let (w, h) = (map.width as usize, map.height as usize);
     let cells = map.cells_mut();
     // Runs as (row start index, x0, x1 exclusive); row_start[y] = first run of row y.
@@ -229,19 +237,28 @@ pub fn keep_largest_island(map: &mut GridMap) -> usize {
         }
     }
     row_start[h] = runs.len();
+    let covered = covered.filter(|c| c.len() == cells.len());
     let mut size = vec![0usize; runs.len()];
+    let mut under = vec![0usize; runs.len()];
     let mut root = vec![0u32; runs.len()];
     for r in 0..runs.len() {
         let rt = find(&mut parent, r as u32);
         root[r] = rt;
-        size[rt as usize] += runs[r].1 - runs[r].0;
-    }
-    let mut best = (0usize, u32::MAX);
-    for (r, &s) in size.iter().enumerate() {
-        if s > best.0 {
-            best = (s, r as u32);
+        let (x0, x1) = runs[r];
+        size[rt as usize] += x1 - x0;
+        if let Some(c) = covered {
+            let base = run_row[r] * w;
+            under[rt as usize] += c[base + x0..base + x1].iter().filter(|&&f| f).count();
         }
     }
+    // (covered cells, size, root); the first root wins ties.
+    let mut best = (0usize, 0usize, u32::MAX);
+    for (r, (&s, &u)) in size.iter().zip(&under).enumerate() {
+        if (u, s) > (best.0, best.1) {
+            best = (u, s, r as u32);
+        }
+    }
+    let best = (best.1, best.2);
     for (r, &(x0, x1)) in runs.iter().enumerate() {
         if root[r] != best.1 {
             let base = run_row[r] * w;
@@ -312,6 +329,26 @@ mod tests {
                 assert_eq!(fast.cells()[i], expect, "seed {seed} cell {i}");
             }
         }
+    }
+
+    #[test]
+    fn covered_island_wins_over_a_larger_open_one() {
+        // Two islands split by a wall column: 6 columns on the left, 3 on the right (covered).
+        let mut m = GridMap::new(10, 4, 0.1, glam::Vec2::ZERO, CellState::Free).unwrap();
+        for y in 0..4 {
+            let i = m.index(6, y);
+            m.cells_mut()[i] = CellState::Occupied;
+        }
+        let covered: Vec<bool> = (0..40).map(|i| i % 10 >= 7).collect();
+        let mut a = m.clone();
+        assert_eq!(keep_best_island(&mut a, Some(&covered)), 12);
+        assert_eq!(a.cells()[a.index(8, 0)], CellState::Free);
+        assert_eq!(a.cells()[a.index(0, 0)], CellState::Occupied);
+        // Without coverage (or with none marked) the largest stays.
+        let mut b = m.clone();
+        assert_eq!(keep_best_island(&mut b, Some(&[false; 40])), 24);
+        assert_eq!(keep_largest_island(&mut m), 24);
+        assert_eq!(m.cells(), b.cells());
     }
 
     #[test]

@@ -25,9 +25,11 @@
 //!   floor (e.g. between two room slabs under a doorway) stay free. Without any floor object
 //!   every non-occupied cell is free.
 //! - Navigable: a free cell whose centre is at least `agent_radius + res/2` from the centre of the
-//!   nearest occupied cell (exact Euclidean distance transform), restricted to the largest
+//!   nearest occupied cell (exact Euclidean distance transform), restricted to one
 //!   **4-connected** island (4-connectivity matches the geodesic search, which never cuts a
-//!   corner between two blocked cells). Unknown cells stay unknown; everything else is occupied.
+//!   corner between two blocked cells): the largest, or, when the scene has ceilings, the one
+//!   with the most cells under a ceiling (the indoor floor of an imported house with a terrace
+//!   around it). Unknown cells stay unknown; everything else is occupied.
 
 mod edt;
 mod raster;
@@ -39,7 +41,7 @@ use crate::scene::Scene;
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
 
-pub use edt::{dilate, keep_largest_island, squared_distance_transform};
+pub use edt::{dilate, keep_best_island, keep_largest_island, squared_distance_transform};
 
 /// Largest grid accepted (cells), to fail clearly instead of allocating gigabytes.
 pub const MAX_CELLS: u64 = 400_000_000;
@@ -485,16 +487,17 @@ pub(crate) fn los_float(
 pub struct OccupancyMaps {
     /// Raw obstacles in the agent's height band (free / occupied / unknown outside the floor).
     pub occupancy: GridMap,
-    /// Free cells dilated by the agent radius, largest 4-connected island only.
+    /// Free cells dilated by the agent radius, one 4-connected island only: the largest, or
+    /// the one most under a ceiling when the scene has ceilings ([`keep_best_island`]).
     pub navigable: GridMap,
 }
 
 /// Build the raw occupancy map and the navigable map of a scene.
 pub fn build_maps(scene: &Scene, cfg: &OccupancyConfig) -> Result<OccupancyMaps> {
     cfg.validate()?;
-    let occupancy = raster::rasterize_scene(scene, cfg)?;
+    let (occupancy, covered) = raster::rasterize_scene(scene, cfg)?;
     let mut navigable = dilate(&occupancy, cfg.agent_radius);
-    let kept = keep_largest_island(&mut navigable);
+    let kept = keep_best_island(&mut navigable, covered.as_deref());
     tracing::debug!(
         scene = %scene.id,
         width = occupancy.width,

@@ -405,8 +405,12 @@ fn outside_floor(occupied: &[bool], floor: &[bool], w: usize, h: usize) -> Vec<b
     out
 }
 
-/// Raw occupancy map of a scene (see the module docs for the rules).
-pub(super) fn rasterize_scene(scene: &Scene, cfg: &OccupancyConfig) -> Result<GridMap> {
+/// Raw occupancy map of a scene (see the module docs for the rules), and which of its cells lie
+/// under a ceiling (None when the scene has no ceiling).
+pub(super) fn rasterize_scene(
+    scene: &Scene,
+    cfg: &OccupancyConfig,
+) -> Result<(GridMap, Option<Vec<bool>>)> {
     if !scene.floor_height.is_finite() {
         return Err(EnvError::InvalidScene {
             scene: scene.id.clone(),
@@ -419,9 +423,19 @@ pub(super) fn rasterize_scene(scene: &Scene, cfg: &OccupancyConfig) -> Result<Gr
     };
     let mut obstacles = Footprints::new();
     let mut floors = Footprints::new();
+    let mut ceilings = Footprints::new();
     for o in &scene.objects {
         match o.class {
-            SemanticClass::Ceiling => continue,
+            SemanticClass::Ceiling => {
+                for part in &o.parts {
+                    part_footprint(
+                        &part.shape,
+                        &o.pose.mul(&part.transform),
+                        None,
+                        &mut ceilings,
+                    )
+                }
+            }
             SemanticClass::Floor => {
                 for part in &o.parts {
                     part_footprint(&part.shape, &o.pose.mul(&part.transform), None, &mut floors)
@@ -488,6 +502,11 @@ pub(super) fn rasterize_scene(scene: &Scene, cfg: &OccupancyConfig) -> Result<Gr
         canvas.paint(&floors);
         outside_floor(&occupied, &canvas.cells, w as usize, h as usize)
     };
+    let covered = (!ceilings.is_empty()).then(|| {
+        canvas.cells = vec![false; w as usize * h as usize];
+        canvas.paint(&ceilings);
+        std::mem::take(&mut canvas.cells)
+    });
     let cells = occupied
         .iter()
         .enumerate()
@@ -501,7 +520,8 @@ pub(super) fn rasterize_scene(scene: &Scene, cfg: &OccupancyConfig) -> Result<Gr
             }
         })
         .collect();
-    GridMap::from_cells(w, h, cfg.resolution, Vec2::new(ox as f32, oz as f32), cells)
+    let map = GridMap::from_cells(w, h, cfg.resolution, Vec2::new(ox as f32, oz as f32), cells)?;
+    Ok((map, covered))
 }
 
 #[cfg(test)]

@@ -305,6 +305,20 @@ fn godot_living_room_splits_by_material_names() {
         (height - 2.5).abs() < 0.05,
         "ceiling {height} m above the floor"
     );
+    // The navigable island is the room under the ceiling, not the larger terrace outside.
+    let maps = build_maps(&scene, &OccupancyConfig::default()).unwrap();
+    let nav = &maps.navigable;
+    let (mut inside, mut all) = (0, 0);
+    for (c, r) in nav.free_cells() {
+        let p = nav.cell_center(c, r);
+        all += 1;
+        let (lo, hi) = (ceiling.bbox.min, ceiling.bbox.max);
+        inside += (p.x >= lo[0] && p.x <= hi[0] && p.y >= lo[2] && p.y <= hi[2]) as usize;
+    }
+    assert!(
+        all > 0 && inside == all,
+        "{inside} of {all} navigable cells under the ceiling"
+    );
     let table = scene.objects.iter().find(|o| o.name == "Cylinder").unwrap();
     assert!(
         (table.bbox.min[1] - scene.floor_height).abs() < 0.05,
