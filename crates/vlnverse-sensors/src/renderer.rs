@@ -123,7 +123,9 @@ fn gpu_device_node_exists() -> bool {
                 .any(|e| e.file_name().to_string_lossy().starts_with(prefix))
         })
     };
-    has("/dev/dri", "renderD") || has("/dev", "nvidia")
+    // renderD*: DRM render nodes (Mesa, AMD, Intel, nouveau); nvidia*: the proprietary driver;
+    // dxg: WSL2's GPU paravirtualisation.
+    has("/dev/dri", "renderD") || has("/dev", "nvidia") || has("/dev", "dxg")
 }
 
 /// Name of a hardware (or virtualised) GPU adapter, if any, without creating a device. Looks at

@@ -247,7 +247,9 @@ fn parse_vlnce(path: &Path, map: Map<String, Value>) -> Result<Vec<Trajectory>> 
             stopped,
             ..Default::default()
         };
-        t.validate().map_err(err)?;
+        // `validate` names the episode itself.
+        t.validate()
+            .map_err(|msg| TaskError::parse(path, "trajectory", msg))?;
         by_id.insert(id, t);
     }
     Ok(by_id.into_values().collect())

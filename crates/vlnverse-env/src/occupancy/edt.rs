@@ -237,6 +237,10 @@ pub fn keep_best_island(map: &mut GridMap, covered: Option<&[bool]>) -> usize {
         }
     }
     row_start[h] = runs.len();
+    debug_assert!(
+        covered.is_none_or(|c| c.len() == cells.len()),
+        "one flag per cell"
+    );
     let covered = covered.filter(|c| c.len() == cells.len());
     let mut size = vec![0usize; runs.len()];
     let mut under = vec![0usize; runs.len()];

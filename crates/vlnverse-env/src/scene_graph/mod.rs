@@ -34,7 +34,8 @@ mod spatial;
 pub use landmarks::{is_landmark, rooms_along_path, segment_headings, Landmark};
 pub use refer::{unique_mention, Mention, ReferringExpression, RoomMention};
 pub use spatial::{
-    footprint_distance, segment_enters_rect, side_of, side_of_heading, yaw_from_direction, Side,
+    direction_of_yaw, footprint_distance, segment_enters_rect, side_of, side_of_heading,
+    yaw_from_direction, Side,
 };
 
 use crate::scene::{Aabb, ObjectId, RoomId};

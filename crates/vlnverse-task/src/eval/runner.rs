@@ -531,6 +531,31 @@ pub fn evaluate(
     if let Some(n) = req.episodes {
         episodes.truncate(n);
     }
+    // An agent that looks would run blind: refuse before anything is written, so the same
+    // folder can be used again once rendering is on.
+    let probe = if req.config.render {
+        None
+    } else {
+        let agent = factory.make()?;
+        let needs: Vec<String> = agent
+            .required_sensors()
+            .iter()
+            .map(|s| s.name().to_string())
+            .collect();
+        if !needs.is_empty() {
+            return Err(TaskError::invalid(
+                "render",
+                false,
+                format!(
+                    "agent `{}` looks at its sensors ({}) and would run blind without \
+                     rendering; drop --no-render / set `render = true`",
+                    factory.name(),
+                    needs.join(", ")
+                ),
+            ));
+        }
+        Some(agent)
+    };
     std::fs::create_dir_all(&req.out).map_err(|e| TaskError::io(&req.out, e))?;
     let identity = run_identity(req, factory)?;
     resume::check_or_write_identity(&req.out, &identity)?;
@@ -563,27 +588,8 @@ pub fn evaluate(
         pool: Mutex::new(Vec::new()),
         log: ProgressLog::open(&progress_path)?,
     };
-    if !req.config.render && !todo.is_empty() {
-        // An agent that looks would run blind: refuse before any episode runs. The probe
-        // agent becomes the first worker, so nothing is made twice.
-        let agent = factory.make()?;
-        let needs: Vec<String> = agent
-            .required_sensors()
-            .iter()
-            .map(|s| s.name().to_string())
-            .collect();
-        if !needs.is_empty() {
-            return Err(TaskError::invalid(
-                "render",
-                false,
-                format!(
-                    "agent `{}` looks at its sensors ({}) and would run blind without \
-                     rendering; drop --no-render / set `render = true`",
-                    factory.name(),
-                    needs.join(", ")
-                ),
-            ));
-        }
+    if let Some(agent) = probe.filter(|_| !todo.is_empty()) {
+        // The probe agent becomes the first worker, so nothing is made twice.
         let w = shared.new_worker(agent)?;
         shared.give_back(w);
     }

@@ -13,10 +13,7 @@ pub fn floor_points(path: &[[f32; 3]]) -> Vec<Vec2> {
     path.iter().map(|p| Vec2::new(p[0], p[2])).collect()
 }
 
-/// Viewing direction `(x, z)` of a yaw (yaw 0 looks along -Z, counter-clockwise from above).
-pub fn direction_of_yaw(yaw: f32) -> Vec2 {
-    Vec2::new(-yaw.sin(), -yaw.cos())
-}
+pub use vlnverse_env::scene_graph::direction_of_yaw;
 
 pub use vlnverse_env::scene_graph::segment_headings;
 

@@ -248,13 +248,9 @@ fn zero_episodes_and_blind_looking_agents_are_refused() {
         err.contains("render") && err.contains("semantic") && err.contains("blind"),
         "{err}"
     );
-    assert!(
-        !dir.path().join("blind/progress.jsonl").exists() || {
-            std::fs::read_to_string(dir.path().join("blind/progress.jsonl"))
-                .unwrap()
-                .is_empty()
-        }
-    );
+    // Nothing is written, so the same folder takes the run once rendering is on.
+    assert!(!dir.path().join("blind/run.json").exists());
+    assert!(!dir.path().join("blind/progress.jsonl").exists());
     // Blind agents still run without rendering.
     evaluate(&req(None, "random"), &*random, &|| {}).unwrap();
 }
@@ -275,4 +271,34 @@ fn config_parse_errors_name_the_file_and_the_field() {
         err.contains("neg.toml") && err.contains("max_stepz"),
         "{err}"
     );
+}
+
+#[test]
+fn a_run_with_the_full_rig_resumes() {
+    // Regression: f32 rig values (e.g. `b = 0.0019`) stored in run.json as f64 read back one
+    // bit off without serde_json's float_roundtrip, so such runs could never be resumed.
+    let dir = tempfile::tempdir().unwrap();
+    eval_support::make_dataset(dir.path(), Task::Fine, 1, 2, 5);
+    let rig =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../configs/sensors/full.toml");
+    let cfg = EvalConfig {
+        rig: rig.display().to_string(),
+        render: false,
+        plots: 0,
+        max_steps: 5,
+        ..Default::default()
+    };
+    let req = |n: Option<usize>| EvalRequest {
+        dataset: dir.path().to_path_buf(),
+        task: Task::Fine,
+        split: Split::Test,
+        episodes: n,
+        threads: Some(1),
+        out: dir.path().join("run"),
+        config: cfg.clone(),
+    };
+    let random = builtin("random", None, &cfg).unwrap();
+    evaluate(&req(Some(1)), &*random, &|| {}).unwrap();
+    let out = evaluate(&req(None), &*random, &|| {}).unwrap();
+    assert_eq!(out.resumed, 1);
 }

@@ -14,9 +14,7 @@ use glam::Vec2;
 use crate::error::{Result, TaskError};
 
 /// Floor direction `(dx, dz)` of a yaw (yaw 0 looks along -Z, counter-clockwise).
-pub fn heading(yaw: f32) -> Vec2 {
-    Vec2::new(-yaw.sin(), -yaw.cos())
-}
+pub use vlnverse_env::scene_graph::direction_of_yaw as heading;
 
 /// The first distance in `text`: "about a metre" -> 1, "about 4 metres" -> 4.
 fn metres(text: &str) -> Option<f32> {

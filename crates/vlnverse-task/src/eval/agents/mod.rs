@@ -91,9 +91,7 @@ pub fn builtin(
 }
 
 /// Yaw that faces the floor direction `d = (dx, dz)` (yaw 0 looks along -Z, counter-clockwise).
-pub fn yaw_towards(d: Vec2) -> f32 {
-    (-d.x).atan2(-d.y)
-}
+pub use vlnverse_env::scene_graph::yaw_from_direction as yaw_towards;
 
 /// Angle wrapped into [-pi, pi].
 pub fn wrap_angle(a: f32) -> f32 {
