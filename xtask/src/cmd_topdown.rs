@@ -52,6 +52,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         anyhow::bail!("invalid `--px-per-m` = {}: must be > 0", args.px_per_m);
     }
     let png = render_png(&args.scene, args.px_per_m, !args.no_labels)?;
+    if let Some(dir) = args.out.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir)
+            .map_err(|e| anyhow::anyhow!("cannot create {}: {e}", dir.display()))?;
+    }
     vlnverse_env::io::write_atomic(&args.out, &png)?;
     println!("topdown: {}", args.out.display());
     Ok(())

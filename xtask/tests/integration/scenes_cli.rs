@@ -130,8 +130,8 @@ fn tiny_preset_end_to_end_same_bytes_on_1_and_2_threads_and_resumes() {
     let (ok, stdout, _) = xtask(&["scene-info", victim.to_str().unwrap()]);
     assert!(ok && stdout.contains("1 scenes"), "{stdout}");
 
-    // topdown writes a PNG.
-    let png = tmp.path().join("td.png");
+    // topdown writes a PNG, making its folder (as README's `--out runs/home.png` needs).
+    let png = tmp.path().join("pictures/td.png");
     let (ok, _, stderr) = xtask(&[
         "topdown",
         "--scene",
