@@ -73,15 +73,7 @@ fn python_random_agent_drives_episodes_through_the_protocol() {
         render: false,
         ..Default::default()
     };
-    let req = EvalRequest {
-        dataset: dir.path().to_path_buf(),
-        task: Task::Fine,
-        split: Split::Test,
-        episodes: Some(1),
-        threads: Some(1),
-        out: dir.path().join("broken"),
-        config: cfg.clone(),
-    };
+    let req = eval_support::fine_test(dir.path(), "broken", &cfg, Some(1), 1);
     let f = builtin("external", Some("echo not-json"), &cfg).unwrap();
     let err = evaluate(&req, &*f, &|| {}).unwrap_err().to_string();
     assert!(
@@ -100,15 +92,7 @@ fn an_agent_that_exits_early_reports_its_status_and_stderr() {
         render: false,
         ..Default::default()
     };
-    let req = EvalRequest {
-        dataset: dir.path().to_path_buf(),
-        task: Task::Fine,
-        split: Split::Test,
-        episodes: None,
-        threads: Some(1),
-        out: dir.path().join("dead"),
-        config: cfg.clone(),
-    };
+    let req = eval_support::fine_test(dir.path(), "dead", &cfg, None, 1);
     let cmd = "echo 'loading weights' >&2; echo 'CUDA out of memory' >&2; exit 3";
     let f = builtin("external", Some(cmd), &cfg).unwrap();
     let err = evaluate(&req, &*f, &|| {}).unwrap_err().to_string();

@@ -4,8 +4,8 @@
 use crate::eval_support;
 
 use vlnverse_task::eval::agents::builtin;
-use vlnverse_task::eval::{evaluate, EvalConfig, EvalRequest, Setting};
-use vlnverse_task::{Split, Task};
+use vlnverse_task::eval::{evaluate, EvalConfig, Setting};
+use vlnverse_task::Task;
 
 #[test]
 fn a_truncated_run_resumes_and_keeps_finished_episodes() {
@@ -17,15 +17,7 @@ fn a_truncated_run_resumes_and_keeps_finished_episodes() {
         plots: 0,
         ..Default::default()
     };
-    let req = |out: &str, n: Option<usize>| EvalRequest {
-        dataset: dir.path().to_path_buf(),
-        task: Task::Fine,
-        split: Split::Test,
-        episodes: n,
-        threads: Some(2),
-        out: dir.path().join(out),
-        config: cfg.clone(),
-    };
+    let req = |out: &str, n: Option<usize>| eval_support::fine_test(dir.path(), out, &cfg, n, 2);
     let f = builtin("random", None, &cfg).unwrap();
     let full = evaluate(&req("full", None), &*f, &|| {}).unwrap();
     assert_eq!(full.resumed, 0);
@@ -114,15 +106,8 @@ fn a_resume_with_another_identity_is_refused_naming_the_key_and_both_values() {
         max_steps: 5,
         ..Default::default()
     };
-    let req = |cfg: &EvalConfig, n: Option<usize>| EvalRequest {
-        dataset: dir.path().to_path_buf(),
-        task: Task::Fine,
-        split: Split::Test,
-        episodes: n,
-        threads: Some(1),
-        out: dir.path().join("run"),
-        config: cfg.clone(),
-    };
+    let req =
+        |cfg: &EvalConfig, n: Option<usize>| eval_support::fine_test(dir.path(), "run", cfg, n, 1);
     let random = builtin("random", None, &strict).unwrap();
     evaluate(&req(&strict, Some(1)), &*random, &|| {}).unwrap();
     // More episodes with the same identity is a resume, not another run.
@@ -192,15 +177,7 @@ fn external_runs_with_another_command_are_different_runs() {
         max_steps: 3,
         ..Default::default()
     };
-    let req = EvalRequest {
-        dataset: dir.path().to_path_buf(),
-        task: Task::Fine,
-        split: Split::Test,
-        episodes: None,
-        threads: Some(1),
-        out: dir.path().join("run"),
-        config: cfg.clone(),
-    };
+    let req = eval_support::fine_test(dir.path(), "run", &cfg, None, 1);
     // A shell agent that answers every step with STOP.
     let stop_cmd =
         "while read l; do case \"$l\" in *'\"step\"'*) echo '{\"action\":\"stop\"}';; esac; done";
@@ -222,15 +199,7 @@ fn zero_episodes_and_blind_looking_agents_are_refused() {
         plots: 0,
         ..Default::default()
     };
-    let req = |n: Option<usize>, out: &str| EvalRequest {
-        dataset: dir.path().to_path_buf(),
-        task: Task::Fine,
-        split: Split::Test,
-        episodes: n,
-        threads: Some(1),
-        out: dir.path().join(out),
-        config: cfg.clone(),
-    };
+    let req = |n: Option<usize>, out: &str| eval_support::fine_test(dir.path(), out, &cfg, n, 1);
     let random = builtin("random", None, &cfg).unwrap();
     let err = evaluate(&req(Some(0), "zero"), &*random, &|| {})
         .unwrap_err()
@@ -288,15 +257,7 @@ fn a_run_with_the_full_rig_resumes() {
         max_steps: 5,
         ..Default::default()
     };
-    let req = |n: Option<usize>| EvalRequest {
-        dataset: dir.path().to_path_buf(),
-        task: Task::Fine,
-        split: Split::Test,
-        episodes: n,
-        threads: Some(1),
-        out: dir.path().join("run"),
-        config: cfg.clone(),
-    };
+    let req = |n: Option<usize>| eval_support::fine_test(dir.path(), "run", &cfg, n, 1);
     let random = builtin("random", None, &cfg).unwrap();
     evaluate(&req(Some(1)), &*random, &|| {}).unwrap();
     let out = evaluate(&req(None), &*random, &|| {}).unwrap();

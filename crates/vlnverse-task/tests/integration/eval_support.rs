@@ -13,6 +13,7 @@ use vlnverse_env::io::write_scene_bundle;
 use vlnverse_env::occupancy::OccupancyConfig;
 use vlnverse_env::Pose;
 use vlnverse_procgen::{HomeGenerator, Preset};
+use vlnverse_task::eval::{EvalConfig, EvalRequest};
 use vlnverse_task::{dataset, Episode, EpisodeInfo, Goal, Instruction, Split, Task};
 
 /// Write `scenes` tiny homes and `per_scene` episodes each (test split of `task`) under `dir`.
@@ -176,6 +177,25 @@ fn episode(
         task,
         target_object_id: object_id,
         ..Default::default()
+    }
+}
+
+/// A request for the fine-grained test split of the dataset in `dir`, written to `dir/out`.
+pub fn fine_test(
+    dir: &Path,
+    out: &str,
+    cfg: &EvalConfig,
+    episodes: Option<usize>,
+    threads: usize,
+) -> EvalRequest {
+    EvalRequest {
+        dataset: dir.to_path_buf(),
+        task: Task::Fine,
+        split: Split::Test,
+        episodes,
+        threads: Some(threads),
+        out: dir.join(out),
+        config: cfg.clone(),
     }
 }
 
