@@ -312,32 +312,7 @@ fn generate_scene(
     if !is_complete_scene_dir(scenes_dir.join(&bundle.scene.id)) {
         times.time(Stage::Writing, || bundle.write(&scenes_dir))?;
     }
-    generate_parts(
-        &bundle.scene,
-        &bundle.maps,
-        &bundle.graph,
-        index,
-        cfg,
-        plan,
-        todo,
-        opts,
-        instructions,
-        times,
-    )
-}
-
-fn generate_parts(
-    scene: &Scene,
-    maps: &vlnverse_env::occupancy::OccupancyMaps,
-    graph: &SceneGraph,
-    index: usize,
-    cfg: &GenerateConfig,
-    plan: &Plan,
-    todo: &[Task],
-    opts: &RunOptions,
-    instructions: &dyn InstructionGenerator,
-    times: &StageTimes,
-) -> Result<Vec<Skip>> {
+    let (scene, maps, graph) = (&bundle.scene, &bundle.maps, &bundle.graph);
     if todo.is_empty() {
         return Ok(Vec::new());
     }
