@@ -277,15 +277,10 @@ impl SemanticAgent {
             if self.grid[i] != OCCUPIED {
                 self.grid[i] = OCCUPIED;
                 let r = (self.agent.shape.bounding_radius() / RES).ceil() as i32;
-                for dy in -r..=r {
-                    for dx in -r..=r {
-                        let (x, y) = (c.0 + dx, c.1 + dy);
-                        if dx * dx + dy * dy <= r * r
-                            && (0..SIZE).contains(&x)
-                            && (0..SIZE).contains(&y)
-                        {
-                            self.blocked[Self::idx((x, y))] = true;
-                        }
+                for (x, y) in square_around(c, r) {
+                    let (dx, dy) = (x - c.0, y - c.1);
+                    if dx * dx + dy * dy <= r * r {
+                        self.blocked[Self::idx((x, y))] = true;
                     }
                 }
             }
@@ -491,19 +486,13 @@ impl SemanticAgent {
         let c = self.cell(p)?;
         let r = (radius / RES).ceil() as i32;
         let mut best: Option<(u32, usize)> = None;
-        for dy in -r..=r {
-            for dx in -r..=r {
-                let (x, y) = (c.0 + dx, c.1 + dy);
-                if !(0..SIZE).contains(&x) || !(0..SIZE).contains(&y) {
-                    continue;
-                }
-                let i = Self::idx((x, y));
-                if flood.dist[i] != u32::MAX
-                    && self.center((x, y)).distance(p) <= radius
-                    && best.is_none_or(|b| flood.dist[i] < b.0)
-                {
-                    best = Some((flood.dist[i], i));
-                }
+        for (x, y) in square_around(c, r) {
+            let i = Self::idx((x, y));
+            if flood.dist[i] != u32::MAX
+                && self.center((x, y)).distance(p) <= radius
+                && best.is_none_or(|b| flood.dist[i] < b.0)
+            {
+                best = Some((flood.dist[i], i));
             }
         }
         best.map(|b| b.1)
@@ -515,21 +504,15 @@ impl SemanticAgent {
         let c = self.cell(p)?;
         let r = (APPROACH_RADIUS / RES).ceil() as i32;
         let mut best: Option<(f32, usize)> = None;
-        for dy in -r..=r {
-            for dx in -r..=r {
-                let (x, y) = (c.0 + dx, c.1 + dy);
-                if !(0..SIZE).contains(&x) || !(0..SIZE).contains(&y) {
-                    continue;
-                }
-                let i = Self::idx((x, y));
-                let d = self.center((x, y)).distance(p);
-                if !flood.reached(i) || (!flood.relaxed && self.blocked[i]) || d > APPROACH_RADIUS {
-                    continue;
-                }
-                let cost = d + 0.05 * RES * flood.dist[i] as f32;
-                if best.is_none_or(|b| cost < b.0) {
-                    best = Some((cost, i));
-                }
+        for (x, y) in square_around(c, r) {
+            let i = Self::idx((x, y));
+            let d = self.center((x, y)).distance(p);
+            if !flood.reached(i) || (!flood.relaxed && self.blocked[i]) || d > APPROACH_RADIUS {
+                continue;
+            }
+            let cost = d + 0.05 * RES * flood.dist[i] as f32;
+            if best.is_none_or(|b| cost < b.0) {
+                best = Some((cost, i));
             }
         }
         best.map(|b| b.1)
@@ -968,6 +951,12 @@ impl SemanticAgent {
         let path = Self::path_to(flood, goal);
         (!path.is_empty()).then(|| self.walk(pos, yaw, &path))
     }
+}
+
+/// Map cells of the square of half-width `r` around `c`, row by row, clipped to the map.
+fn square_around(c: (i32, i32), r: i32) -> impl Iterator<Item = (i32, i32)> {
+    let ys = (c.1 - r).max(0)..=(c.1 + r).min(SIZE - 1);
+    ys.flat_map(move |y| ((c.0 - r).max(0)..=(c.0 + r).min(SIZE - 1)).map(move |x| (x, y)))
 }
 
 #[cfg(test)]
