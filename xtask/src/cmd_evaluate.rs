@@ -103,6 +103,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         episodes: args.episodes,
         threads: args.threads,
         out: args.out.clone(),
+        fresh: false,
         config: cfg,
     };
     let pb = crate::progress::bar(n as u64, "evaluating");

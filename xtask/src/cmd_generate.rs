@@ -11,7 +11,7 @@ use vlnverse_env::occupancy::OccupancyConfig;
 use vlnverse_env::SceneSource;
 use vlnverse_procgen::{HomeGenerator, Preset};
 use vlnverse_task::generate::{
-    run as run_pipeline, FolderSource, GenerateConfig, GeneratePreset, RunOptions, RunSummary,
+    run as run_pipeline, FolderSource, GenerateConfig, GeneratePreset, GenerateSummary, RunOptions,
     StageTimes,
 };
 use vlnverse_task::instructions::TemplateGenerator;
@@ -134,7 +134,10 @@ pub fn setup(args: &Args) -> anyhow::Result<(GenerateConfig, Box<dyn SceneSource
 }
 
 /// Generate; returns the summary and the stage times (used by `run` and the tests).
-pub fn generate(args: &Args, show_progress: bool) -> anyhow::Result<(RunSummary, StageTimes, f64)> {
+pub fn generate(
+    args: &Args,
+    show_progress: bool,
+) -> anyhow::Result<(GenerateSummary, StageTimes, f64)> {
     let start = Instant::now();
     let (cfg, source, tasks) = setup(args)?;
     let shard = match &args.shard {
@@ -183,7 +186,7 @@ pub fn print_breakdown(times: &StageTimes, wall: f64) {
 }
 
 /// `, N scene/task pairs skipped (see warnings)` when scenes were skipped for a task.
-fn skipped_note(s: &RunSummary) -> String {
+fn skipped_note(s: &GenerateSummary) -> String {
     match s.skipped.len() {
         0 => String::new(),
         n => format!(

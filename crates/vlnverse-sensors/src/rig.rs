@@ -87,6 +87,7 @@ pub struct SensorRig {
     renderer: Box<dyn Renderer>,
     raycaster: Option<Arc<SceneRaycaster>>,
     mesh: Option<Arc<SceneMesh>>,
+    scene_id: Option<String>,
     start: Pose,
     last_sample: BTreeMap<String, f64>,
 }
@@ -106,6 +107,7 @@ impl SensorRig {
             renderer,
             raycaster: None,
             mesh: None,
+            scene_id: None,
             start: Pose::IDENTITY,
             last_sample: BTreeMap::new(),
         }
@@ -123,11 +125,20 @@ impl SensorRig {
 
     /// Load a scene into the renderer (and the ray caster, when a LiDAR needs it).
     pub fn set_scene(&mut self, scene: &Scene) -> Result<()> {
+        self.scene_id = None;
         let mesh = Arc::new(SceneMesh::new(scene)?);
         self.renderer.set_scene(mesh.clone())?;
         self.raycaster = None;
         self.mesh = Some(mesh);
-        self.ensure_raycaster()
+        self.ensure_raycaster()?;
+        self.scene_id = Some(scene.id.clone());
+        Ok(())
+    }
+
+    /// Id of the scene loaded by the last successful [`SensorRig::set_scene`] (callers skip
+    /// reloading the scene it already shows).
+    pub fn scene_id(&self) -> Option<&str> {
+        self.scene_id.as_deref()
     }
 
     fn ensure_raycaster(&mut self) -> Result<()> {

@@ -14,6 +14,6 @@ pub use config::{
 };
 pub use error::{Result, SimError};
 pub use rapier_sim::{RapierSimulator, RapierSnapshot};
-pub use simulator::{Failure, Hop, Simulator, StepOutcome};
+pub use simulator::{Failure, Hop, PreparedScene, Simulator, StepOutcome};
 pub use vec_sim::VecSimulator;
 pub use world::PhysicsScene;

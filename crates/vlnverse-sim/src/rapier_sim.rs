@@ -7,7 +7,7 @@
 
 use crate::config::{CollisionSetting, SimConfig};
 use crate::error::{Result, SimError};
-use crate::simulator::{Failure, Hop, Simulator, StepOutcome};
+use crate::simulator::{Failure, Hop, PreparedScene, Simulator, StepOutcome};
 use crate::world::{check_agent, fingerprint, PhysicsScene, World, AGENT_QUERY};
 use crate::{Action, WaypointMode};
 use glam::{Quat, Vec2, Vec3};
@@ -515,6 +515,22 @@ impl Simulator for RapierSimulator {
             _ => Arc::new(PhysicsScene::build(scene, &self.cfg.agent)?),
         };
         self.reset_in(physics, start)
+    }
+
+    fn prepare(&self, scene: Arc<vlnverse_env::Scene>) -> Result<PreparedScene> {
+        let physics = Arc::new(PhysicsScene::build(&scene, &self.cfg.agent)?);
+        Ok(PreparedScene::with_data(scene, physics))
+    }
+
+    fn reset_prepared(
+        &mut self,
+        prepared: &PreparedScene,
+        start: vlnverse_env::Pose,
+    ) -> Result<vlnverse_env::Pose> {
+        match prepared.data::<PhysicsScene>() {
+            Some(physics) => self.reset_in(physics, start),
+            None => self.reset(prepared.scene(), start),
+        }
     }
 
     fn step(&mut self, action: Action) -> Result<StepOutcome> {

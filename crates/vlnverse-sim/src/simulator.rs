@@ -3,7 +3,53 @@
 
 use crate::{Action, Result};
 use serde::{Deserialize, Serialize};
+use std::any::Any;
+use std::sync::Arc;
 use vlnverse_env::{ObjectId, Pose, Scene};
+
+/// A scene made ready for simulation once ([`Simulator::prepare`]) and shared by every
+/// simulator that runs episodes in it. It holds the scene and, optionally, whatever the
+/// backend builds from it (Rapier: the static colliders), so a batch of environments or a
+/// pool of evaluation workers pays for that build once per scene.
+#[derive(Clone)]
+pub struct PreparedScene {
+    scene: Arc<Scene>,
+    data: Option<Arc<dyn Any + Send + Sync>>,
+}
+
+impl std::fmt::Debug for PreparedScene {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("PreparedScene")
+            .field("scene", &self.scene.id)
+            .field("data", &self.data.is_some())
+            .finish()
+    }
+}
+
+impl PreparedScene {
+    /// A scene with nothing prepared beyond itself (the default of [`Simulator::prepare`]).
+    pub fn new(scene: Arc<Scene>) -> Self {
+        PreparedScene { scene, data: None }
+    }
+
+    /// A scene with backend data built from it.
+    pub fn with_data(scene: Arc<Scene>, data: Arc<dyn Any + Send + Sync>) -> Self {
+        PreparedScene {
+            scene,
+            data: Some(data),
+        }
+    }
+
+    /// The scene.
+    pub fn scene(&self) -> &Arc<Scene> {
+        &self.scene
+    }
+
+    /// The backend data, if it is a `T` (a backend reads back only what it stored).
+    pub fn data<T: Any + Send + Sync>(&self) -> Option<Arc<T>> {
+        self.data.clone()?.downcast::<T>().ok()
+    }
+}
 
 /// Why an episode ended failed.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -91,6 +137,19 @@ pub trait Simulator: Send {
 
     /// Apply one action. Invalid actions give an error and change nothing.
     fn step(&mut self, action: Action) -> Result<StepOutcome>;
+
+    /// Build what episodes in `scene` share (static colliders, acceleration structures) once;
+    /// pass the result to [`Simulator::reset_prepared`] of any simulator with the same settings.
+    /// The default prepares nothing.
+    fn prepare(&self, scene: Arc<Scene>) -> Result<PreparedScene> {
+        Ok(PreparedScene::new(scene))
+    }
+
+    /// [`Simulator::reset`] in a scene made by [`Simulator::prepare`]. The default resets from
+    /// the scene itself; backends that prepare something override it to skip the rebuild.
+    fn reset_prepared(&mut self, prepared: &PreparedScene, start: Pose) -> Result<Pose> {
+        self.reset(prepared.scene(), start)
+    }
 
     /// Current agent base pose.
     fn pose(&self) -> Pose;

@@ -2,21 +2,21 @@
 
 use crate::error::{Result, SimError};
 use crate::simulator::{Simulator, StepOutcome};
-use crate::world::PhysicsScene;
 use crate::{Action, RapierSimulator, SimConfig};
 use rayon::prelude::*;
 use std::sync::Arc;
 use vlnverse_env::{Pose, Scene};
 
-/// A batch of [`RapierSimulator`]s. Environments in the same scene share one
-/// [`PhysicsScene`] (static colliders are built once); each environment steps on its own, so
-/// results are the same whatever the number of threads.
-pub struct VecSimulator {
-    envs: Vec<RapierSimulator>,
+/// A batch of simulators of any [`Simulator`] type (default [`RapierSimulator`]). Environments
+/// reset in the same scene share one [`crate::PreparedScene`] (Rapier: static colliders are
+/// built once); each environment steps on its own, so results are the same whatever the number
+/// of threads.
+pub struct VecSimulator<S: Simulator = RapierSimulator> {
+    envs: Vec<S>,
     pool: Option<rayon::ThreadPool>,
 }
 
-impl std::fmt::Debug for VecSimulator {
+impl<S: Simulator> std::fmt::Debug for VecSimulator<S> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("VecSimulator")
             .field("envs", &self.envs.len())
@@ -24,13 +24,22 @@ impl std::fmt::Debug for VecSimulator {
     }
 }
 
-impl VecSimulator {
-    /// `n` environments with the same settings, stepped on `threads` threads (None: rayon's
-    /// global pool).
+impl VecSimulator<RapierSimulator> {
+    /// `n` Rapier environments with the same settings, stepped on `threads` threads (None:
+    /// rayon's global pool).
     pub fn new(n: usize, cfg: SimConfig, threads: Option<usize>) -> Result<Self> {
         let envs = (0..n)
             .map(|_| RapierSimulator::new(cfg.clone()))
             .collect::<Result<Vec<_>>>()?;
+        VecSimulator::from_envs(envs, threads)
+    }
+}
+
+impl<S: Simulator> VecSimulator<S> {
+    /// A batch of given environments (any backend; they should share their settings, since
+    /// [`Self::reset_all`] prepares the scene with the first), stepped on `threads` threads
+    /// (None: rayon's global pool).
+    pub fn from_envs(envs: Vec<S>, threads: Option<usize>) -> Result<Self> {
         let pool = match threads {
             Some(t) => Some(
                 rayon::ThreadPoolBuilder::new()
@@ -54,27 +63,27 @@ impl VecSimulator {
     }
 
     /// The environments.
-    pub fn envs(&self) -> &[RapierSimulator] {
+    pub fn envs(&self) -> &[S] {
         &self.envs
     }
 
     /// The environments, mutably (reset one, snapshot one...).
-    pub fn envs_mut(&mut self) -> &mut [RapierSimulator] {
+    pub fn envs_mut(&mut self) -> &mut [S] {
         &mut self.envs
     }
 
-    /// Reset every environment in `scene`, environment `i` at `starts[i]`; the physics world
-    /// is built once and shared.
+    /// Reset every environment in `scene`, environment `i` at `starts[i]`; the scene is
+    /// prepared once ([`Simulator::prepare`]) and shared.
     pub fn reset_all(&mut self, scene: &Scene, starts: &[Pose]) -> Result<Vec<Pose>> {
         self.check_len("starts", starts.len())?;
         let Some(first) = self.envs.first() else {
             return Ok(vec![]);
         };
-        let physics = Arc::new(PhysicsScene::build(scene, &first.config().agent)?);
+        let prepared = first.prepare(Arc::new(scene.clone()))?;
         self.envs
             .iter_mut()
             .zip(starts)
-            .map(|(e, s)| e.reset_in(Arc::clone(&physics), *s))
+            .map(|(e, s)| e.reset_prepared(&prepared, *s))
             .collect()
     }
 

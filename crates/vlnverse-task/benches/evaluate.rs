@@ -71,6 +71,7 @@ fn bench(c: &mut Criterion) {
             out: dir
                 .path()
                 .join(format!("run{}", run.fetch_add(1, Ordering::Relaxed))),
+            fresh: false,
             config: cfg.clone(),
         };
         let steps = evaluate(&req(&cfg), &*factory, &|| {}).unwrap().steps_run;

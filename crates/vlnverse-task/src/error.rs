@@ -42,6 +42,41 @@ pub enum TaskError {
     /// An error of the environment layer (scene, map, geodesic).
     #[error(transparent)]
     Env(#[from] vlnverse_env::EnvError),
+    /// An error of the simulator layer (physics, embodiment, actions).
+    #[error(transparent)]
+    Sim(#[from] vlnverse_sim::SimError),
+    /// An error of the sensor layer (rig config, renderer).
+    #[error(transparent)]
+    Sensor(#[from] vlnverse_sensors::SensorError),
+}
+
+/// Errors of the scoring crate keep their kind (and so their message).
+impl From<vlnverse_score::ScoreError> for TaskError {
+    fn from(e: vlnverse_score::ScoreError) -> Self {
+        use vlnverse_score::ScoreError as S;
+        match e {
+            S::Io { path, error } => TaskError::Io { path, error },
+            S::Parse {
+                path,
+                location,
+                message,
+            } => TaskError::Parse {
+                path,
+                location,
+                message,
+            },
+            S::Invalid {
+                field,
+                value,
+                reason,
+            } => TaskError::Invalid {
+                field,
+                value,
+                reason,
+            },
+            S::Env(e) => TaskError::Env(e),
+        }
+    }
 }
 
 impl TaskError {

@@ -145,4 +145,11 @@ pub trait AgentFactory: Sync {
     fn command(&self) -> Option<String> {
         None
     }
+    /// What the agent is, beyond its name: a version, a checkpoint hash, a hash of its
+    /// program's files. Recorded in `run.json`; resuming a run with another fingerprint is
+    /// refused, so results of two different agents are never mixed. `None` (the default for
+    /// agents that cannot tell) records nothing to compare beyond the name.
+    fn fingerprint(&self) -> Option<String> {
+        None
+    }
 }

@@ -4,14 +4,22 @@
 
 pub mod agent;
 pub mod agents;
+pub mod episode_loop;
 pub mod plots;
 pub mod protocol;
 pub mod resume;
 pub mod runner;
+pub mod scene_context;
 
 pub use agent::{
     Agent, AgentFactory, EpisodeInputs, OracleHandle, Privileged, StepInput, SubGoalProgress,
 };
+pub use agents::FnFactory;
+pub use episode_loop::{run_episode, EpisodeSettings};
 pub use protocol::{ActionSpace, EvalConfig, Setting};
 pub use resume::EpisodeRecord;
-pub use runner::{evaluate, EvalOutcome, EvalRequest};
+pub use runner::{
+    configured_renderer, evaluate, evaluate_with, rapier_simulator, EvalOutcome, EvalRequest,
+    RendererFactory, SimulatorFactory,
+};
+pub use scene_context::{SceneCache, SceneContext};

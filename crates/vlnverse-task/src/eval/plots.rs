@@ -89,5 +89,5 @@ pub fn save_png(path: &Path, img: &RgbImage) -> Result<()> {
         image::ImageFormat::Png,
     )
     .map_err(|e| TaskError::invalid("plot", path.display(), e.to_string()))?;
-    crate::dataset::write_atomic(path, &bytes)
+    Ok(crate::dataset::write_atomic(path, &bytes)?)
 }

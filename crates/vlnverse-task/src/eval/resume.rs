@@ -172,7 +172,7 @@ pub fn check_or_write_identity(dir: &Path, identity: &[(&str, serde_json::Value)
             let mut s = serde_json::to_string_pretty(&map)
                 .map_err(|e| TaskError::invalid("run", "identity", e.to_string()))?;
             s.push('\n');
-            crate::dataset::write_atomic(&path, s.as_bytes())
+            Ok(crate::dataset::write_atomic(&path, s.as_bytes())?)
         }
         Err(e) => Err(TaskError::io(&path, e)),
     }

@@ -26,7 +26,8 @@ pub mod stats;
 
 pub use episodes::{ScenePart, Stage, StageTimes, Unfit};
 pub use pipeline::{
-    assemble, merge, run, FolderSource, GenerationReport, Manifest, RunOptions, RunSummary, Skip,
+    assemble, merge, run, FolderSource, GenerateSummary, GenerationReport, Manifest, RunOptions,
+    Skip,
 };
 pub use presets::{GenerateConfig, GeneratePreset};
 pub use sampler::{Reject, SceneSampler};

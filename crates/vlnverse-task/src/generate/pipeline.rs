@@ -79,7 +79,7 @@ pub struct RunOptions {
 
 /// What a run did.
 #[derive(Clone, Debug, Default)]
-pub struct RunSummary {
+pub struct GenerateSummary {
     /// Scenes processed in this shard.
     pub scenes_done: usize,
     /// Scenes whose parts were all present already.
@@ -194,7 +194,7 @@ pub fn run(
     instructions: &dyn InstructionGenerator,
     times: &StageTimes,
     on_scene: &(dyn Fn(&str) + Sync),
-) -> Result<RunSummary> {
+) -> Result<GenerateSummary> {
     cfg.validate()?;
     let (k, n) = opts.shard;
     check_shard(k, n)?;
@@ -273,10 +273,10 @@ pub fn run(
             Ok((skip, skips))
         })
         .collect::<Result<Vec<_>>>()?;
-    let mut summary = RunSummary {
+    let mut summary = GenerateSummary {
         scenes_done: mine.len(),
         scenes_skipped: done.iter().filter(|d| d.0).count(),
-        ..RunSummary::default()
+        ..GenerateSummary::default()
     };
     if n == 1 {
         let report = times.time(Stage::Writing, || assemble_report(&opts.out, &manifest))?;
@@ -390,10 +390,10 @@ fn generate_scene(
             part.skipped = Some(u.reason);
         }
         times.time(Stage::Writing, || -> Result<()> {
-            write_atomic(
+            Ok(write_atomic(
                 &part_path(&opts.out, &scene.id, task),
                 &to_json(&part, "part")?,
-            )
+            )?)
         })?;
     }
     Ok(skips)

@@ -17,7 +17,7 @@ use crate::error::{Result, TaskError};
 
 /// Summary numbers of a list of values.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
-pub struct Summary {
+pub struct ValueStats {
     /// Count.
     pub n: usize,
     /// Mean.
@@ -30,15 +30,15 @@ pub struct Summary {
     pub max: f64,
 }
 
-impl Summary {
+impl ValueStats {
     /// Summary of `values` (all zero when empty).
-    pub fn of(values: &[f64]) -> Summary {
+    pub fn of(values: &[f64]) -> ValueStats {
         if values.is_empty() {
-            return Summary::default();
+            return ValueStats::default();
         }
         let mut v = values.to_vec();
         v.sort_by(f64::total_cmp);
-        Summary {
+        ValueStats {
             n: v.len(),
             mean: v.iter().sum::<f64>() / v.len() as f64,
             min: v[0],
@@ -225,7 +225,7 @@ fn fmt_value(v: f64) -> String {
 
 fn save_png(img: &RgbImage, path: &Path) -> Result<()> {
     let png = super::reference_image::encode_png(img.as_raw(), img.width(), img.height())?;
-    write_atomic(path, &png)
+    Ok(write_atomic(path, &png)?)
 }
 
 /// Write `DIR/stats/`: `navigable_area.png`, `rooms.png`, `path_length.png`,
@@ -304,7 +304,7 @@ pub fn write_stats(dir: &Path) -> Result<String> {
                 format!("{short}/{}", &style[..1.min(style.len())])
             };
             il_labels.push(label);
-            il_values.push(Summary::of(v).mean);
+            il_values.push(ValueStats::of(v).mean);
         }
     }
     save_png(
@@ -319,7 +319,7 @@ pub fn write_stats(dir: &Path) -> Result<String> {
     let mut md = String::from("# Dataset statistics\n\n");
     md.push_str(&format!("Dataset: `{}`\n\n", dir.display()));
     md.push_str("| quantity | n | mean | min | median | max |\n|---|---|---|---|---|---|\n");
-    let row = |md: &mut String, name: &str, s: Summary| {
+    let row = |md: &mut String, name: &str, s: ValueStats| {
         md.push_str(&format!(
             "| {name} | {} | {:.2} | {:.2} | {:.2} | {:.2} |\n",
             s.n, s.mean, s.min, s.median, s.max
@@ -328,19 +328,23 @@ pub fn write_stats(dir: &Path) -> Result<String> {
     row(
         &mut md,
         "navigable area per scene (m^2)",
-        Summary::of(&areas),
+        ValueStats::of(&areas),
     );
     let rooms: Vec<f64> = st.rooms.values().map(|&r| r as f64).collect();
-    row(&mut md, "rooms per scene", Summary::of(&rooms));
+    row(&mut md, "rooms per scene", ValueStats::of(&rooms));
     for (task, v) in &st.path_length {
-        row(&mut md, &format!("path length, {task} (m)"), Summary::of(v));
+        row(
+            &mut md,
+            &format!("path length, {task} (m)"),
+            ValueStats::of(v),
+        );
     }
     for (task, per) in &st.instruction_words {
         for (style, v) in per {
             row(
                 &mut md,
                 &format!("instruction words, {task}, {style}"),
-                Summary::of(v),
+                ValueStats::of(v),
             );
         }
     }

@@ -17,6 +17,7 @@ fn request(dir: &std::path::Path, out: &str, setting: Setting, space: ActionSpac
         episodes: None,
         threads: Some(2),
         out: dir.join(out),
+        fresh: false,
         config: EvalConfig {
             setting,
             action_space: space,
@@ -184,6 +185,7 @@ fn semantic_agent_finds_named_objects_without_the_goal() {
             episodes: None,
             threads: Some(2),
             out: dir.path().join(name),
+            fresh: false,
             config: cfg.clone(),
         };
         let out = evaluate(&req, &*builtin(name, None, &cfg).unwrap(), &|| {}).unwrap();

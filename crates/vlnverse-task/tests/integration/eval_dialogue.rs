@@ -72,6 +72,7 @@ fn dialogue_agents_ask_the_shortest_path_oracle_within_the_budget() {
         episodes: None,
         threads: Some(1),
         out: dir.path().join("run"),
+        fresh: false,
         config: EvalConfig {
             backend: Some(Backend::Raycast),
             render: false,

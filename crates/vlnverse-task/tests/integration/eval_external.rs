@@ -45,6 +45,7 @@ fn python_random_agent_drives_episodes_through_the_protocol() {
             episodes: None,
             threads: Some(2),
             out: out_dir.clone(),
+            fresh: false,
             config: cfg.clone(),
         };
         let f = builtin("external", Some(&cmd), &cfg).unwrap();

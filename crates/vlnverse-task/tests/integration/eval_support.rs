@@ -195,6 +195,7 @@ pub fn fine_test(
         episodes,
         threads: Some(threads),
         out: dir.join(out),
+        fresh: false,
         config: cfg.clone(),
     }
 }

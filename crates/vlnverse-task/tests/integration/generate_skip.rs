@@ -10,7 +10,7 @@ use vlnverse_env::occupancy::OccupancyConfig;
 use vlnverse_env::{Scene, SceneSource};
 use vlnverse_procgen::{HomeGenerator, Preset};
 use vlnverse_task::generate::pipeline::{
-    merge, run, GenerationReport, RunOptions, RunSummary, REPORT_FILE,
+    merge, run, GenerateSummary, GenerationReport, RunOptions, REPORT_FILE,
 };
 use vlnverse_task::generate::splits::{assign_scene_splits, plan};
 use vlnverse_task::generate::{GeneratePreset, StageTimes};
@@ -44,7 +44,7 @@ fn gen(
     bare: usize,
     threads: usize,
     shard: (usize, usize),
-) -> vlnverse_task::Result<RunSummary> {
+) -> vlnverse_task::Result<GenerateSummary> {
     let source = Stripped {
         inner: HomeGenerator::from_preset(Preset::Tiny).unwrap(),
         bare,

@@ -62,6 +62,39 @@ impl AgentFactory for ExternalFactory {
     fn command(&self) -> Option<String> {
         Some(self.cmd.clone())
     }
+    /// A hash of the files the command names (its script, its checkpoint), so an edited
+    /// program is a different agent; `None` when the command names no existing file.
+    fn fingerprint(&self) -> Option<String> {
+        command_files_hash(&self.cmd)
+    }
+}
+
+/// FNV-1a 64 over the names and contents of the existing files among the command's words
+/// (stable across platforms and Rust versions, unlike `DefaultHasher`).
+pub fn command_files_hash(cmd: &str) -> Option<String> {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    let mut eat = |bytes: &[u8]| {
+        for &b in bytes {
+            h ^= b as u64;
+            h = h.wrapping_mul(0x0100_0000_01b3);
+        }
+    };
+    let mut files = 0;
+    for word in cmd.split_whitespace() {
+        let word = word.trim_matches(['"', '\'']);
+        let path = std::path::Path::new(word);
+        if !path.is_file() {
+            continue;
+        }
+        let Ok(bytes) = std::fs::read(path) else {
+            continue;
+        };
+        eat(word.as_bytes());
+        eat(&(bytes.len() as u64).to_le_bytes());
+        eat(&bytes);
+        files += 1;
+    }
+    (files > 0).then(|| format!("files {h:016x}"))
 }
 
 /// A running external agent.

@@ -23,6 +23,7 @@ pub const BUILTIN: [&str; 6] = [
 pub struct FnFactory<F> {
     name: String,
     privileged: bool,
+    fingerprint: Option<String>,
     make: F,
 }
 
@@ -32,8 +33,53 @@ impl<F: Fn() -> Box<dyn Agent> + Sync> FnFactory<F> {
         FnFactory {
             name: name.to_string(),
             privileged,
+            fingerprint: None,
             make,
         }
+    }
+
+    /// Record what the agent is (a version, a checkpoint hash): see
+    /// [`AgentFactory::fingerprint`].
+    pub fn with_fingerprint(mut self, fingerprint: impl Into<String>) -> Self {
+        self.fingerprint = Some(fingerprint.into());
+        self
+    }
+}
+
+/// Any factory with a user-given version added to its fingerprint (`--agent-version`).
+pub struct Versioned {
+    inner: Box<dyn AgentFactory>,
+    version: String,
+}
+
+impl Versioned {
+    /// `inner`, fingerprinted with `version` as well.
+    pub fn new(inner: Box<dyn AgentFactory>, version: &str) -> Self {
+        Versioned {
+            inner,
+            version: version.to_string(),
+        }
+    }
+}
+
+impl AgentFactory for Versioned {
+    fn name(&self) -> String {
+        self.inner.name()
+    }
+    fn make(&self) -> Result<Box<dyn Agent>> {
+        self.inner.make()
+    }
+    fn privileged(&self) -> bool {
+        self.inner.privileged()
+    }
+    fn command(&self) -> Option<String> {
+        self.inner.command()
+    }
+    fn fingerprint(&self) -> Option<String> {
+        Some(match self.inner.fingerprint() {
+            Some(f) => format!("{f}; version {}", self.version),
+            None => format!("version {}", self.version),
+        })
     }
 }
 
@@ -47,6 +93,9 @@ impl<F: Fn() -> Box<dyn Agent> + Sync> AgentFactory for FnFactory<F> {
     fn privileged(&self) -> bool {
         self.privileged
     }
+    fn fingerprint(&self) -> Option<String> {
+        self.fingerprint.clone()
+    }
 }
 
 /// The factory of a built-in agent; `command` is the shell command of `external`, which gets
@@ -56,18 +105,28 @@ pub fn builtin(
     command: Option<&str>,
     cfg: &crate::eval::EvalConfig,
 ) -> Result<Box<dyn AgentFactory>> {
+    fn stamped<F: Fn() -> Box<dyn Agent> + Sync + 'static>(
+        f: FnFactory<F>,
+    ) -> Box<dyn AgentFactory> {
+        let fp = format!(
+            "built-in {} of vlnverse-task {}",
+            f.name,
+            env!("CARGO_PKG_VERSION")
+        );
+        Box::new(f.with_fingerprint(fp))
+    }
     Ok(match name {
-        "oracle" => Box::new(FnFactory::new("oracle", true, || {
+        "oracle" => stamped(FnFactory::new("oracle", true, || {
             Box::new(oracle::OracleAgent::default())
         })),
-        "random" => Box::new(FnFactory::new("random", false, || {
+        "random" => stamped(FnFactory::new("random", false, || {
             Box::new(random::RandomAgent::default())
         })),
-        "forward" => Box::new(FnFactory::new("forward", false, || {
+        "forward" => stamped(FnFactory::new("forward", false, || {
             Box::new(forward::ForwardAgent::default())
         })),
-        "stop" => Box::new(FnFactory::new("stop", false, || Box::new(stop::StopAgent))),
-        "semantic" => Box::new(FnFactory::new("semantic", false, || {
+        "stop" => stamped(FnFactory::new("stop", false, || Box::new(stop::StopAgent))),
+        "semantic" => stamped(FnFactory::new("semantic", false, || {
             Box::new(semantic::SemanticAgent::default())
         })),
         "external" => {

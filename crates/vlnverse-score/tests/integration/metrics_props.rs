@@ -1,10 +1,10 @@
 //! Property tests of the metrics.
 
 use proptest::prelude::*;
-use vlnverse_task::metrics::{
+use vlnverse_score::metrics::{
     aggregate, ndtw, resample, score_episode, GoalDistances, MetricsConfig,
 };
-use vlnverse_task::{Episode, EpisodeInfo, Goal, Trajectory};
+use vlnverse_score::{Episode, EpisodeInfo, Goal, Trajectory};
 
 fn point() -> impl Strategy<Value = [f32; 3]> {
     (-3.0f32..3.0, -0.1f32..0.1, -3.0f32..3.0).prop_map(|(x, y, z)| [x, y, z])

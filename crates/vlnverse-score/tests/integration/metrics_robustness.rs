@@ -3,13 +3,13 @@
 
 use std::path::Path;
 
-use vlnverse_task::dataset::read_split;
-use vlnverse_task::metrics::{
+use vlnverse_score::dataset::read_split;
+use vlnverse_score::metrics::{
     check_starts, resample, Summary, DEFAULT_START_TOLERANCE, MAX_RESAMPLED_POINTS,
 };
-use vlnverse_task::report::{markdown_report, RunSummary};
-use vlnverse_task::trajectory::parse_trajectories;
-use vlnverse_task::{Episode, Split, Task, Trajectory};
+use vlnverse_score::report::{markdown_report, RunSummary};
+use vlnverse_score::trajectory::parse_trajectories;
+use vlnverse_score::{Episode, Split, Task, Trajectory};
 
 #[test]
 fn resample_of_a_huge_polyline_is_bounded_and_exact_at_the_ends() {

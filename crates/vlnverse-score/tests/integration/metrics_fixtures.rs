@@ -2,11 +2,11 @@
 
 use std::sync::Arc;
 
-use vlnverse_task::metrics::{
+use vlnverse_score::metrics::{
     aggregate, dtw, is_stuck, ndtw, path_length, resample, score_episode, spl, GoalDistance,
     GoalDistances, MetricsConfig,
 };
-use vlnverse_task::{Episode, EpisodeInfo, Goal, Task, Trajectory};
+use vlnverse_score::{Episode, EpisodeInfo, Goal, Task, Trajectory};
 
 fn episode(start: [f32; 3], goal: [f32; 3], geodesic: f32) -> Episode {
     Episode {
@@ -33,7 +33,7 @@ fn walk(points: &[[f32; 3]], step: f32) -> Vec<[f32; 3]> {
     resample(points, step)
 }
 
-fn score(ep: &Episode, t: &Trajectory) -> vlnverse_task::EpisodeMetrics {
+fn score(ep: &Episode, t: &Trajectory) -> vlnverse_score::EpisodeMetrics {
     score_episode(
         ep,
         t,

@@ -4,14 +4,14 @@ use std::path::Path;
 
 use glam::Vec2;
 use vlnverse_env::occupancy::{CellState, GridMap};
-use vlnverse_task::dataset::{read_split, write_split};
-use vlnverse_task::metrics::{match_trajectories, score_all, GoalDistances, MetricsConfig};
-use vlnverse_task::report::{
+use vlnverse_score::dataset::{read_split, write_split};
+use vlnverse_score::metrics::{match_trajectories, score_all, GoalDistances, MetricsConfig};
+use vlnverse_score::report::{
     episodes_csv, markdown_table, write_run, ReportRow, RunSummary, CSV_HEADER,
 };
-use vlnverse_task::score::{navigable_map_path, score_on_maps};
-use vlnverse_task::trajectory::read_trajectories;
-use vlnverse_task::{Episode, EpisodeInfo, Goal, Instruction, Split, Style, Task};
+use vlnverse_score::score::{navigable_map_path, score_on_maps};
+use vlnverse_score::trajectory::read_trajectories;
+use vlnverse_score::{Episode, EpisodeInfo, Goal, Instruction, Split, Style, Task};
 
 /// A 10 m x 10 m room (0.1 m cells, origin at world (0, 0)) split by a wall at x = 5.0..5.2 m
 /// running from z = 0 to z = 8 m; the only way around is the gap at z = 8..10 m.
@@ -190,8 +190,8 @@ fn missing_map_and_missing_trajectories_are_errors() {
 fn csv_quotes_and_long_horizon_columns() {
     let mut ep = episode(4, [0.0; 3], [1.0, 0.0, 0.0], Style::Formal);
     ep.scene_id = "a,\"b\"".into();
-    let t = vlnverse_task::Trajectory::from_positions(4, vec![[0.0; 3]], true);
-    let m = vlnverse_task::score_episode(
+    let t = vlnverse_score::Trajectory::from_positions(4, vec![[0.0; 3]], true);
+    let m = vlnverse_score::score_episode(
         &ep,
         &t,
         &GoalDistances::euclidean(&ep),
@@ -206,7 +206,7 @@ fn csv_quotes_and_long_horizon_columns() {
         "{csv}"
     );
 
-    let mut lh = vlnverse_task::aggregate(&[m]);
+    let mut lh = vlnverse_score::aggregate(&[m]);
     lh.sr_1 = Some(0.5);
     lh.sr_2 = Some(0.25);
     lh.sr_all = Some(0.125);

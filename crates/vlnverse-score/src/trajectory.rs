@@ -17,7 +17,7 @@ use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value};
 
 use crate::dataset::write_atomic;
-use crate::error::{Result, TaskError};
+use crate::error::{Result, ScoreError};
 
 /// Largest absolute coordinate (m) a trajectory position may have; anything farther is a unit
 /// or export error (millimetres, an uninitialised value), rejected when reading.
@@ -78,6 +78,13 @@ impl Trajectory {
     /// Check internal consistency (stop indices and headings match the positions; positions
     /// are finite and within [`MAX_COORDINATE`] of the origin).
     pub fn validate(&self) -> std::result::Result<(), String> {
+        if self.positions.is_empty() {
+            return Err(format!(
+                "episode {}: field `positions` is empty; a trajectory starts with the start \
+                 position",
+                self.episode_id
+            ));
+        }
         if let Some(h) = &self.headings {
             if h.len() != self.positions.len() {
                 return Err(format!(
@@ -123,7 +130,7 @@ impl Trajectory {
 /// Read a trajectory file in either format (see the module doc). Errors name the file, the line
 /// (JSON lines) or episode key (VLN-CE), and the field.
 pub fn read_trajectories(path: &Path) -> Result<Vec<Trajectory>> {
-    let text = std::fs::read_to_string(path).map_err(|e| TaskError::io(path, e))?;
+    let text = std::fs::read_to_string(path).map_err(|e| ScoreError::io(path, e))?;
     parse_trajectories(path, &text)
 }
 
@@ -144,13 +151,21 @@ pub fn parse_trajectories(path: &Path, text: &str) -> Result<Vec<Trajectory>> {
             continue;
         }
         let lineno = i + 1;
-        let err = |msg: String| TaskError::parse(path, format!("line {lineno}"), msg);
+        let err = |msg: String| ScoreError::parse(path, format!("line {lineno}"), msg);
         let value: Value = serde_json::from_str(line).map_err(|e| err(e.to_string()))?;
         let Value::Object(obj) = value else {
             return Err(err("expected a JSON object".into()));
         };
         let t = trajectory_from_object(&obj).map_err(err)?;
         out.push(t);
+    }
+    if out.is_empty() {
+        return Err(ScoreError::parse(
+            path,
+            "top level",
+            "no trajectories in the file (expected JSON lines, one trajectory per line, or a \
+             VLN-CE object keyed by episode id)",
+        ));
     }
     Ok(out)
 }
@@ -230,7 +245,7 @@ fn parse_vlnce(path: &Path, map: Map<String, Value>) -> Result<Vec<Trajectory>> 
     // Sorted by id so output order does not depend on the file's key order.
     let mut by_id: BTreeMap<u64, Trajectory> = BTreeMap::new();
     for (key, value) in map {
-        let err = |msg: String| TaskError::parse(path, format!("episode `{key}`"), msg);
+        let err = |msg: String| ScoreError::parse(path, format!("episode `{key}`"), msg);
         let id = episode_id(&Value::String(key.clone())).map_err(err)?;
         let entries: Vec<Entry> = Vec::<Entry>::deserialize(&value).map_err(|e| {
             err(format!(
@@ -249,8 +264,15 @@ fn parse_vlnce(path: &Path, map: Map<String, Value>) -> Result<Vec<Trajectory>> 
         };
         // `validate` names the episode itself.
         t.validate()
-            .map_err(|msg| TaskError::parse(path, "trajectory", msg))?;
+            .map_err(|msg| ScoreError::parse(path, "trajectory", msg))?;
         by_id.insert(id, t);
+    }
+    if by_id.is_empty() {
+        return Err(ScoreError::parse(
+            path,
+            "top level",
+            "no trajectories in the file (an empty VLN-CE object)",
+        ));
     }
     Ok(by_id.into_values().collect())
 }

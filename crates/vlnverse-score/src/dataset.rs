@@ -12,7 +12,7 @@ use flate2::{read::GzDecoder, Compression, GzBuilder};
 use serde::Deserialize;
 
 use crate::episode::{Dataset, Episode, Split, Task};
-use crate::error::{Result, TaskError};
+use crate::error::{Result, ScoreError};
 
 /// Compression level of split files (fixed so bytes do not depend on flate2 defaults).
 pub const GZIP_LEVEL: u32 = 6;
@@ -31,7 +31,7 @@ pub fn to_gzip_bytes(episodes: &[Episode]) -> Result<Vec<u8>> {
         episodes: &'a [Episode],
     }
     let json = serde_json::to_vec(&Borrowed { episodes })
-        .map_err(|e| TaskError::invalid("episodes", "<episodes>", e.to_string()))?;
+        .map_err(|e| ScoreError::invalid("episodes", "<episodes>", e.to_string()))?;
     gzip(&json)
 }
 
@@ -43,22 +43,22 @@ pub fn gzip(data: &[u8]) -> Result<Vec<u8>> {
     );
     enc.write_all(data)
         .and_then(|_| enc.finish())
-        .map_err(|e| TaskError::io("<memory>", e))
+        .map_err(|e| ScoreError::io("<memory>", e))
 }
 
 /// Write `bytes` to `path` atomically: a temporary file next to it, then a rename.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     let dir = path.parent().unwrap_or(Path::new("."));
-    std::fs::create_dir_all(dir).map_err(|e| TaskError::io(dir, e))?;
+    std::fs::create_dir_all(dir).map_err(|e| ScoreError::io(dir, e))?;
     let name = path
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
     let tmp = dir.join(format!(".{name}.tmp{}", std::process::id()));
-    std::fs::write(&tmp, bytes).map_err(|e| TaskError::io(&tmp, e))?;
+    std::fs::write(&tmp, bytes).map_err(|e| ScoreError::io(&tmp, e))?;
     std::fs::rename(&tmp, path).map_err(|e| {
         let _ = std::fs::remove_file(&tmp);
-        TaskError::io(path, e)
+        ScoreError::io(path, e)
     })
 }
 
@@ -77,12 +77,12 @@ pub fn read_split(dir: &Path, task: Task, split: Split) -> Result<Vec<Episode>> 
 /// Read a split file (`.json.gz`, or plain `.json`), with errors naming the file, the episode
 /// index and the field.
 pub fn read_file(path: &Path) -> Result<Vec<Episode>> {
-    let raw = std::fs::read(path).map_err(|e| TaskError::io(path, e))?;
+    let raw = std::fs::read(path).map_err(|e| ScoreError::io(path, e))?;
     let json = if raw.starts_with(&[0x1f, 0x8b]) {
         let mut out = Vec::with_capacity(raw.len() * 6);
         GzDecoder::new(&raw[..])
             .read_to_end(&mut out)
-            .map_err(|e| TaskError::parse(path, "gzip stream", e))?;
+            .map_err(|e| ScoreError::parse(path, "gzip stream", e))?;
         out
     } else {
         raw
@@ -93,22 +93,73 @@ pub fn read_file(path: &Path) -> Result<Vec<Episode>> {
 /// Parse the JSON of a split file; `path` only names the source in errors.
 pub fn from_json_bytes(path: &Path, json: &[u8]) -> Result<Vec<Episode>> {
     match serde_json::from_slice::<Dataset>(json) {
-        Ok(d) => Ok(d.episodes),
+        Ok(d) => {
+            check_unique_ids(path, &d.episodes)?;
+            Ok(d.episodes)
+        }
         // Slow path only on failure: find which episode and field is wrong.
         Err(first) => Err(locate_error(path, json, first)),
     }
 }
 
-fn locate_error(path: &Path, json: &[u8], first: serde_json::Error) -> TaskError {
+/// Episode ids key results, resumes and scores: a repeated id would silently drop an episode.
+fn check_unique_ids(path: &Path, episodes: &[Episode]) -> Result<()> {
+    let mut seen = std::collections::HashMap::with_capacity(episodes.len());
+    for (i, e) in episodes.iter().enumerate() {
+        if let Some(first) = seen.insert(e.episode_id, i) {
+            return Err(ScoreError::parse(
+                path,
+                format!("episodes[{i}].episode_id"),
+                format!(
+                    "episode_id {} is used twice (also by episodes[{first}]); ids must be unique",
+                    e.episode_id
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// A hint for JSON that is not JSON: a split file that should have been gzip, or `NaN` /
+/// `Infinity`, which JSON has no spelling for.
+fn syntax_hint(path: &Path, json: &[u8], e: &serde_json::Error) -> String {
+    let name = path.to_string_lossy();
+    if name.ends_with(".gz") {
+        return format!(
+            "{e} (the file ends in .gz but is not gzip-compressed, and not valid JSON either)"
+        );
+    }
+    let line = json
+        .split(|&b| b == b'\n')
+        .nth(e.line().saturating_sub(1))
+        .unwrap_or_default();
+    let col = e.column().saturating_sub(1).min(line.len());
+    let near = String::from_utf8_lossy(&line[col.saturating_sub(40)..line.len().min(col + 20)]);
+    if ["NaN", "Infinity", "inf"].iter().any(|w| near.contains(w)) {
+        return format!(
+            "{e}: NaN and Infinity are not JSON numbers (near `{}`)",
+            near.trim()
+        );
+    }
+    e.to_string()
+}
+
+fn locate_error(path: &Path, json: &[u8], first: serde_json::Error) -> ScoreError {
     let value: serde_json::Value = match serde_json::from_slice(json) {
         Ok(v) => v,
-        Err(e) => return TaskError::parse(path, format!("line {}", e.line()), e),
+        Err(e) => {
+            return ScoreError::parse(
+                path,
+                format!("line {} column {}", e.line(), e.column()),
+                syntax_hint(path, json, &e),
+            )
+        }
     };
     let Some(episodes) = value.get("episodes") else {
-        return TaskError::parse(path, "top level", "missing field `episodes`");
+        return ScoreError::parse(path, "top level", "missing field `episodes`");
     };
     let Some(list) = episodes.as_array() else {
-        return TaskError::parse(path, "episodes", "expected a list of episodes");
+        return ScoreError::parse(path, "episodes", "expected a list of episodes");
     };
     for (i, ep) in list.iter().enumerate() {
         if let Err(e) = Episode::deserialize_value(ep) {
@@ -116,10 +167,10 @@ fn locate_error(path: &Path, json: &[u8], first: serde_json::Error) -> TaskError
                 .get("episode_id")
                 .map(|v| format!(" (episode_id {v})"))
                 .unwrap_or_default();
-            return TaskError::parse(path, format!("episodes[{i}]{id}"), e);
+            return ScoreError::parse(path, format!("episodes[{i}]{id}"), e);
         }
     }
-    TaskError::parse(path, format!("line {}", first.line()), first)
+    ScoreError::parse(path, format!("line {}", first.line()), first)
 }
 
 impl Episode {

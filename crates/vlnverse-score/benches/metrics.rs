@@ -11,8 +11,8 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use vlnverse_env::geodesic::DistanceField;
 use vlnverse_env::occupancy::{CellState, GridMap};
-use vlnverse_task::metrics::{score_all, GoalDistance, GoalDistances, MetricsConfig};
-use vlnverse_task::{Episode, EpisodeInfo, Goal, Trajectory};
+use vlnverse_score::metrics::{score_all, GoalDistance, GoalDistances, MetricsConfig};
+use vlnverse_score::{Episode, EpisodeInfo, Goal, Trajectory};
 
 const N: usize = 100_000;
 

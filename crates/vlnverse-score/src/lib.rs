@@ -1,0 +1,25 @@
+#![doc = include_str!("../README.md")]
+
+pub mod dataset;
+pub mod episode;
+pub mod error;
+pub mod lock;
+pub mod metrics;
+pub mod report;
+pub mod score;
+pub mod trajectory;
+
+pub use dataset::{read_split, split_path, write_split};
+pub use episode::{
+    Dataset, Episode, EpisodeInfo, Goal, GroundedObject, Instruction, Role, Side, Split, Style,
+    Task,
+};
+pub use error::{Result, ScoreError};
+pub use lock::OutputLock;
+pub use metrics::{
+    aggregate, score_all, score_episode, EpisodeMetrics, GoalDistance, GoalDistances,
+    MetricsConfig, Summary,
+};
+pub use report::{write_run, RunSummary};
+pub use score::score_on_maps;
+pub use trajectory::{read_trajectories, write_jsonl, Trajectory};

@@ -1,0 +1,74 @@
+//! One writer per output folder: [`OutputLock`] holds an advisory file lock (`flock`) on
+//! `DIR/.lock` for as long as a job writes into `DIR`. A second job on the same folder is
+//! refused with a message naming the first (its pid and command line); a killed job's lock is
+//! released by the operating system, so a resume never has to clean anything up.
+
+use std::fs::{File, OpenOptions, TryLockError};
+use std::io::{Read, Seek, SeekFrom, Write};
+use std::path::{Path, PathBuf};
+
+use crate::error::{Result, ScoreError};
+
+/// Name of the lock file inside an output folder (a dot-file: readers skip it).
+pub const LOCK_FILE: &str = ".lock";
+
+/// A held lock on an output folder; released on drop (or when the process dies).
+#[derive(Debug)]
+pub struct OutputLock {
+    path: PathBuf,
+    _file: File,
+}
+
+impl OutputLock {
+    /// Lock `dir` (created if missing) for `job` (e.g. `"evaluate"`), or fail naming the job
+    /// that holds it.
+    pub fn acquire(dir: &Path, job: &str) -> Result<Self> {
+        std::fs::create_dir_all(dir).map_err(|e| ScoreError::io(dir, e))?;
+        let path = dir.join(LOCK_FILE);
+        let mut file = OpenOptions::new()
+            .read(true)
+            .write(true)
+            .create(true)
+            .truncate(false)
+            .open(&path)
+            .map_err(|e| ScoreError::io(&path, e))?;
+        match file.try_lock() {
+            Ok(()) => {}
+            Err(TryLockError::WouldBlock) => {
+                let mut holder = String::new();
+                let _ = file.read_to_string(&mut holder);
+                let holder = holder.trim();
+                return Err(ScoreError::invalid(
+                    "out",
+                    dir.display(),
+                    format!(
+                        "another job is writing into this folder ({}); wait for it to finish or \
+                         choose another folder",
+                        if holder.is_empty() {
+                            "holder unknown"
+                        } else {
+                            holder
+                        }
+                    ),
+                ));
+            }
+            Err(TryLockError::Error(e)) => return Err(ScoreError::io(&path, e)),
+        }
+        let args: Vec<String> = std::env::args().collect();
+        let who = format!(
+            "{job}, pid {}: {}",
+            std::process::id(),
+            args.join(" ").chars().take(300).collect::<String>()
+        );
+        file.set_len(0)
+            .and_then(|_| file.seek(SeekFrom::Start(0)))
+            .and_then(|_| file.write_all(who.as_bytes()))
+            .map_err(|e| ScoreError::io(&path, e))?;
+        Ok(OutputLock { path, _file: file })
+    }
+
+    /// The lock file.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+}

@@ -1,0 +1,7 @@
+//! Integration tests of `vlnverse-score`, linked into one test binary.
+
+mod metrics_fixtures;
+mod metrics_formats;
+mod metrics_props;
+mod metrics_robustness;
+mod metrics_score;

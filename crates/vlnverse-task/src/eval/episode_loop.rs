@@ -1,0 +1,417 @@
+//! The one episode loop: [`run_episode`] drives any [`Simulator`], any [`SensorRig`] renderer
+//! and any [`Agent`] through one episode and scores it. Every rule that shapes the metrics
+//! lives here and only here:
+//!
+//! - STOP never reaches the simulator; in long-horizon episodes a STOP before the last
+//!   sub-goal marks that sub-goal reached and the episode goes on;
+//! - an action outside the protocol's action space is an error; an action the simulator
+//!   refuses changes nothing but still costs a step;
+//! - a noticeable collision (`StepOutcome::noticeable`) counts for the collision rate; a Strict
+//!   failure ends the episode;
+//! - the episode ends at STOP of the last sub-goal, at `max_steps`, or when the simulator says
+//!   it is over.
+//!
+//! The evaluation runner ([`crate::eval::evaluate_with`]), the Python environments and remote
+//! workers all call it, so they cannot drift apart.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use glam::Vec2;
+use vlnverse_env::geodesic::DistanceField;
+use vlnverse_env::Pose;
+use vlnverse_sensors::{AgentState, CollisionInfo, Observations, SensorRig};
+use vlnverse_sim::{Action, AgentConfig, Simulator, StepOutcome};
+
+use crate::episode::{Episode, Split};
+use crate::error::{Result, TaskError};
+use crate::eval::agent::{
+    Agent, EpisodeInputs, OracleHandle, Privileged, StepInput, SubGoalProgress,
+};
+use crate::eval::protocol::{EvalConfig, Setting};
+use crate::eval::resume::EpisodeRecord;
+use crate::eval::scene_context::SceneContext;
+use crate::metrics::{score_episode, GoalDistance, GoalDistances, MetricsConfig, Nearest};
+use crate::oracle::{Oracle, OracleConfig, OracleQuery, ShortestPathOracle};
+use crate::trajectory::Trajectory;
+
+/// A 64-bit mix (splitmix64), for per-episode seeds.
+pub fn episode_seed(seed: u64, episode_id: u64) -> u64 {
+    let mut z = seed ^ episode_id.wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+/// Short action name for trajectories.
+pub fn action_name(a: &Action) -> &'static str {
+    match a {
+        Action::Stop => "stop",
+        Action::MoveForward(_) => "move_forward",
+        Action::TurnLeft(_) => "turn_left",
+        Action::TurnRight(_) => "turn_right",
+        Action::LookUp => "look_up",
+        Action::LookDown => "look_down",
+        Action::Velocity { .. } => "velocity",
+        Action::Waypoint { .. } => "waypoint",
+    }
+}
+
+/// What every episode of an evaluation runs under, derived once from an [`EvalConfig`].
+#[derive(Debug, Clone)]
+pub struct EpisodeSettings {
+    /// The protocol (action space, setting, step limit, success distance, seed).
+    pub config: EvalConfig,
+    /// The embodiment, as the simulator uses it (told to the agent).
+    pub agent: AgentConfig,
+    /// How trajectories are scored.
+    pub metrics: MetricsConfig,
+    /// Whether the agent gets the ground truth ([`Agent::set_truth`]).
+    pub privileged: bool,
+    /// The split the episodes come from (recorded in the metrics).
+    pub split: Option<Split>,
+    /// Folder that relative reference-image paths are resolved against (the split's folder).
+    pub reference_dir: Option<PathBuf>,
+}
+
+impl EpisodeSettings {
+    /// Settings for `config` (its agent profile is loaded here); not privileged, no split.
+    pub fn new(config: &EvalConfig) -> Result<Self> {
+        Ok(EpisodeSettings {
+            agent: config.agent_config()?,
+            metrics: MetricsConfig {
+                success_distance: config.success_distance,
+                fail_on_collision: config.setting == Setting::Strict,
+                ..Default::default()
+            },
+            config: config.clone(),
+            privileged: false,
+            split: None,
+            reference_dir: None,
+        })
+    }
+}
+
+/// The dialogue oracle as the agent sees it: free-text questions go to the episode's
+/// [`ShortestPathOracle`] (true remaining path + scene graph, with the episode's budget).
+pub struct DialogueHandle<'a> {
+    oracle: &'a mut ShortestPathOracle,
+    pose: Pose,
+}
+
+/// The dialogue oracle's reply to an empty question (costs no budget).
+pub const NOT_UNDERSTOOD: &str = "I did not understand the question; ask \"which way?\", \
+                                  \"where is the <object>?\" or \"am I close?\".";
+
+impl OracleHandle for DialogueHandle<'_> {
+    fn ask(&mut self, question: &str) -> Option<String> {
+        if question
+            .trim()
+            .trim_matches(['?', '.', '!'])
+            .trim()
+            .is_empty()
+        {
+            return Some(NOT_UNDERSTOOD.to_string());
+        }
+        if self.oracle.remaining() == 0 {
+            return None;
+        }
+        let query = OracleQuery::parse(question);
+        match self.oracle.ask(&query, self.pose.position, self.pose.yaw()) {
+            Ok(answer) => Some(answer.text),
+            Err(e) => Some(format!("I could not answer that: {e}")),
+        }
+    }
+    fn remaining(&self) -> u32 {
+        self.oracle.remaining()
+    }
+}
+
+/// Why an episode cannot be run in its scene: `(field, value, reason)`. Checked before the
+/// episode runs, so an impossible episode is refused instead of being scored as a failure.
+pub fn check_episode(
+    ep: &Episode,
+    scene: &SceneContext,
+) -> std::result::Result<(), (String, String, String)> {
+    let p = ep.start_position;
+    let bad = |field: &str, value: String, why: &str| Err((field.into(), value, why.into()));
+    if !p.iter().all(|v| v.is_finite()) || !ep.start_rotation.iter().all(|v| v.is_finite()) {
+        return bad("start_position", format!("{p:?}"), "not finite");
+    }
+    let floor = scene.scene.floor_height;
+    if (p[1] - floor).abs() > 0.5 {
+        return bad(
+            "start_position",
+            format!("{p:?}"),
+            &format!(
+                "y is {:.2} m from the scene's floor ({floor})",
+                p[1] - floor
+            ),
+        );
+    }
+    let map = &scene.navigable;
+    if map.world_to_cell(Vec2::new(p[0], p[2])).is_none() {
+        return bad(
+            "start_position",
+            format!("{p:?}"),
+            "outside the scene's navigable map",
+        );
+    }
+    for (i, g) in ep.goal_sequence().iter().enumerate() {
+        let field_name = if ep.sub_goals.is_empty() {
+            "goals".to_string()
+        } else {
+            format!("sub_goals[{i}]")
+        };
+        let value = format!("{:?}", g.position);
+        if !g.position.iter().all(|v| v.is_finite()) {
+            return bad(&field_name, value, "not finite");
+        }
+        if map
+            .world_to_cell(Vec2::new(g.position[0], g.position[2]))
+            .is_none()
+        {
+            return bad(&field_name, value, "outside the scene's navigable map");
+        }
+        let field = scene
+            .field(g.position)
+            .map_err(|e| (field_name.clone(), value.clone(), e.to_string()))?;
+        if field.goal().is_none() {
+            return bad(&field_name, value, "not on or near a navigable cell");
+        }
+        if GoalDistance::distance(&*field, p).is_none() {
+            return bad(
+                &field_name,
+                value,
+                "unreachable from start_position on the navigable map",
+            );
+        }
+    }
+    Ok(())
+}
+
+fn sim_err(what: &str, value: impl ToString, e: impl ToString) -> TaskError {
+    TaskError::invalid(what, value, e.to_string())
+}
+
+/// Run one episode: reset `sim` (and `rig`, when rendering) at the episode's start in
+/// `scene`, then `observe -> agent.act -> sim.step` under the rules in this module's docs, and
+/// score the trajectory on the scene's navigable map. Deterministic for a deterministic
+/// simulator, renderer and agent.
+///
+/// The rig is given the scene only when it shows another one ([`SensorRig::scene_id`]).
+pub fn run_episode<S: Simulator>(
+    sim: &mut S,
+    mut rig: Option<&mut SensorRig>,
+    agent: &mut dyn Agent,
+    ep: &Episode,
+    scene: &SceneContext,
+    settings: &EpisodeSettings,
+) -> Result<EpisodeRecord> {
+    let cfg = &settings.config;
+    let goal_fields: Vec<Arc<DistanceField>> = ep
+        .goal_sequence()
+        .iter()
+        .map(|g| scene.field(g.position))
+        .collect::<Result<_>>()?;
+    if goal_fields.is_empty() {
+        return Err(TaskError::invalid(
+            format!("episode {}: goals", ep.episode_id),
+            "[]",
+            "an episode needs a goal",
+        ));
+    }
+    let start = Pose {
+        position: ep.start_position,
+        rotation: ep.start_rotation,
+    };
+    let prepared = scene.prepared(&*sim)?;
+    let mut pose = sim.reset_prepared(&prepared, start).map_err(|e| {
+        sim_err(
+            &format!("episode {}: start_position", ep.episode_id),
+            format!("{:?}", ep.start_position),
+            e,
+        )
+    })?;
+    if let Some(rig) = rig.as_deref_mut() {
+        if rig.scene_id() != Some(ep.scene_id.as_str()) {
+            rig.set_scene(&scene.scene)
+                .map_err(|e| sim_err("scene", &ep.scene_id, e))?;
+        }
+        rig.reset(pose);
+    }
+    let inputs = EpisodeInputs {
+        episode_id: ep.episode_id,
+        scene_id: ep.scene_id.clone(),
+        task: ep.task,
+        instruction: ep.instruction.instruction_text.clone(),
+        sub_instructions: ep.instruction.sub_instructions.clone(),
+        reference_image: ep
+            .reference_image
+            .as_ref()
+            .map(|r| match &settings.reference_dir {
+                Some(d) => d.join(r),
+                None => PathBuf::from(r),
+            }),
+        start: pose,
+        agent: settings.agent.clone(),
+        action_space: cfg.action_space,
+        setting: cfg.setting,
+        success_distance: cfg.success_distance,
+        max_steps: cfg.max_steps,
+        oracle_budget: ep.oracle_budget,
+        seed: episode_seed(cfg.seed, ep.episode_id),
+    };
+    if settings.privileged {
+        agent.set_truth(&Privileged {
+            episode: ep,
+            fields: &goal_fields,
+        });
+    }
+    agent.reset(&inputs)?;
+    let total = goal_fields.len() as u32;
+    let mut progress = SubGoalProgress { current: 0, total };
+    let mut dialogue = match ep.oracle_budget {
+        Some(_) => Some(ShortestPathOracle::for_episode(
+            scene.scene.clone(),
+            scene.graph(),
+            scene.navigable.clone(),
+            ep,
+            OracleConfig::default(),
+        )?),
+        None => None,
+    };
+    let mut positions = vec![pose.position];
+    let mut headings = vec![pose.yaw()];
+    let mut actions: Vec<String> = Vec::new();
+    let mut stops: Vec<u32> = Vec::new();
+    let (mut steps, mut collisions, mut stopped) = (0u32, 0u32, false);
+    let mut last: Option<StepOutcome> = None;
+    let mut failure = None;
+    let empty = Observations::new();
+    while steps < cfg.max_steps {
+        let obs = match rig.as_deref_mut() {
+            Some(rig) => rig
+                .observe(&AgentState {
+                    base: pose,
+                    step: steps as u64,
+                    time_s: 0.0,
+                    collision: CollisionInfo {
+                        collided: last.as_ref().is_some_and(|o| o.collided),
+                        displacement: last.as_ref().map_or(0.0, |o| {
+                            (Vec2::from_array(o.commanded) - Vec2::from_array(o.achieved)).length()
+                        }),
+                        count: collisions,
+                    },
+                })
+                .map_err(|e| sim_err("rig", &ep.scene_id, e))?,
+            None => empty.clone(),
+        };
+        let mut handle = dialogue
+            .as_mut()
+            .map(|oracle| DialogueHandle { oracle, pose });
+        let action = agent.act(&mut StepInput {
+            step: steps,
+            observations: &obs,
+            pose,
+            last: last.as_ref(),
+            sub_goal: progress,
+            oracle: handle.as_mut().map(|h| h as &mut dyn OracleHandle),
+        })?;
+        if !cfg.action_space.allows(&action) {
+            return Err(TaskError::invalid(
+                "action",
+                format!("{action:?}"),
+                format!(
+                    "episode {}: not in the {} action space",
+                    ep.episode_id,
+                    cfg.action_space.name()
+                ),
+            ));
+        }
+        steps += 1;
+        actions.push(action_name(&action).to_string());
+        if action == Action::Stop {
+            if progress.current + 1 < total {
+                // A long-horizon sub-goal declared reached; the episode goes on.
+                stops.push(positions.len() as u32 - 1);
+                progress.current += 1;
+                continue;
+            }
+            stopped = true;
+            break;
+        }
+        let out = match sim.step(action) {
+            Ok(o) => o,
+            Err(e) => {
+                // An invalid action changes nothing; it still costs a step.
+                tracing::warn!(episode = ep.episode_id, "action refused: {e}");
+                last = None;
+                positions.push(pose.position);
+                headings.push(pose.yaw());
+                continue;
+            }
+        };
+        pose = out.pose;
+        positions.push(pose.position);
+        headings.push(pose.yaw());
+        if out.noticeable {
+            collisions += 1;
+        }
+        let done = out.done;
+        if let Some(f) = &out.failure {
+            failure = Some(serde_json::to_string(f).unwrap_or_else(|_| format!("{f:?}")));
+        }
+        last = Some(out);
+        if done {
+            break;
+        }
+    }
+    agent.end_episode()?;
+    let traj = Trajectory {
+        episode_id: ep.episode_id,
+        positions,
+        headings: Some(headings),
+        stopped,
+        collisions,
+        steps,
+        stops,
+        actions: Some(actions),
+    };
+    let distances = goal_distances(scene, ep, &goal_fields)?;
+    let mut metrics = score_episode(ep, &traj, &distances, &settings.metrics);
+    metrics.split = settings.split;
+    Ok(EpisodeRecord {
+        episode_id: ep.episode_id,
+        trajectory: traj,
+        metrics,
+        failure,
+    })
+}
+
+/// Distances to the goal (the nearest of several goals) and, for long-horizon episodes, to
+/// each sub-goal in order.
+fn goal_distances(
+    scene: &SceneContext,
+    ep: &Episode,
+    seq: &[Arc<DistanceField>],
+) -> Result<GoalDistances> {
+    let goals: Vec<Arc<dyn GoalDistance>> = ep
+        .goals
+        .iter()
+        .map(|g| scene.field(g.position).map(|f| f as Arc<dyn GoalDistance>))
+        .collect::<Result<_>>()?;
+    let goal: Arc<dyn GoalDistance> = match goals.len() {
+        0 => seq[seq.len() - 1].clone(),
+        1 => goals[0].clone(),
+        _ => Arc::new(Nearest(goals)),
+    };
+    let sub_goals = if ep.sub_goals.is_empty() {
+        Vec::new()
+    } else {
+        seq.iter()
+            .map(|f| f.clone() as Arc<dyn GoalDistance>)
+            .collect()
+    };
+    Ok(GoalDistances { goal, sub_goals })
+}
