@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use crate::split_args::SplitArgs;
 use vlnverse_sensors::Backend;
-use vlnverse_task::eval::agents::builtin;
+use vlnverse_task::eval::agents::{builtin, Versioned};
 use vlnverse_task::eval::{evaluate, ActionSpace, EvalConfig, EvalRequest, Setting};
 
 /// Arguments of `cargo xtask evaluate`.
@@ -43,6 +43,13 @@ pub struct Args {
     /// Do not render observations (agents that do not look, e.g. timing the oracle).
     #[arg(long)]
     pub no_render: bool,
+    /// What the agent is beyond its name (a version, a checkpoint hash), recorded in
+    /// `run.json`: resuming the run with another value is refused.
+    #[arg(long)]
+    pub agent_version: Option<String>,
+    /// Start over: delete an earlier run's results in --out instead of resuming it.
+    #[arg(long)]
+    pub fresh: bool,
     /// Output folder of the run.
     #[arg(long)]
     pub out: PathBuf,
@@ -91,7 +98,10 @@ fn config(args: &Args) -> anyhow::Result<EvalConfig> {
 /// Run the command.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let cfg = config(&args)?;
-    let factory = builtin(&args.agent, args.agent_cmd.as_deref(), &cfg)?;
+    let mut factory = builtin(&args.agent, args.agent_cmd.as_deref(), &cfg)?;
+    if let Some(v) = &args.agent_version {
+        factory = Box::new(Versioned::new(factory, v));
+    }
     let n =
         vlnverse_task::dataset::read_split(&args.data.dataset, args.data.task, args.data.split)?
             .len();
@@ -103,7 +113,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         episodes: args.episodes,
         threads: args.threads,
         out: args.out.clone(),
-        fresh: false,
+        fresh: args.fresh,
         config: cfg,
     };
     let pb = crate::progress::bar(n as u64, "evaluating");
@@ -154,6 +164,8 @@ mod tests {
             action_space: Some(ActionSpace::Continuous),
             backend: Some("raster".into()),
             no_render: true,
+            agent_version: None,
+            fresh: false,
             out: PathBuf::from("unused"),
         }
     }

@@ -43,8 +43,8 @@ impl Preset {
     /// The TOML text of the preset.
     pub fn toml(self) -> &'static str {
         match self {
-            Preset::Tiny => include_str!("../../../configs/scenes/tiny.toml"),
-            Preset::Vlnverse => include_str!("../../../configs/scenes/vlnverse.toml"),
+            Preset::Tiny => include_str!("../configs/scenes/tiny.toml"),
+            Preset::Vlnverse => include_str!("../configs/scenes/vlnverse.toml"),
         }
     }
 

@@ -170,16 +170,10 @@ impl Default for AgentConfig {
 
 /// The shipped profiles, embedded from `configs/agent/*.toml`.
 pub const PROFILES: &[(&str, &str)] = &[
-    (
-        "vlnverse",
-        include_str!("../../../configs/agent/vlnverse.toml"),
-    ),
-    ("vlnce", include_str!("../../../configs/agent/vlnce.toml")),
-    ("rxr", include_str!("../../../configs/agent/rxr.toml")),
-    (
-        "locobot",
-        include_str!("../../../configs/agent/locobot.toml"),
-    ),
+    ("vlnverse", include_str!("../configs/agent/vlnverse.toml")),
+    ("vlnce", include_str!("../configs/agent/vlnce.toml")),
+    ("rxr", include_str!("../configs/agent/rxr.toml")),
+    ("locobot", include_str!("../configs/agent/locobot.toml")),
 ];
 
 impl AgentConfig {

@@ -34,8 +34,8 @@ impl GeneratePreset {
     /// The embedded TOML text.
     pub fn toml(self) -> &'static str {
         match self {
-            GeneratePreset::Tiny => include_str!("../../../../configs/generate/tiny.toml"),
-            GeneratePreset::Vlnverse => include_str!("../../../../configs/generate/vlnverse.toml"),
+            GeneratePreset::Tiny => include_str!("../../configs/generate/tiny.toml"),
+            GeneratePreset::Vlnverse => include_str!("../../configs/generate/vlnverse.toml"),
         }
     }
 
