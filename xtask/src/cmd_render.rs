@@ -19,8 +19,9 @@
 //! cameras matching the RGB one (`rgb.png`, `depth.png`, `semantic.png`, `instance.png`).
 
 use anyhow::Context;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use std::path::{Path, PathBuf};
+use vlnverse_env::occupancy::{build_maps, CellState, GridMap, OccupancyConfig};
 use vlnverse_env::{Pose, Scene};
 use vlnverse_sensors::frame::colorize_ids;
 use vlnverse_sensors::lidar::{beam_azimuth, ring_elevation};
@@ -104,6 +105,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     anyhow::ensure!(args.yaw.is_finite(), "--yaw {}: not a number", args.yaw);
     let scene = vlnverse_env::io::load_scene(&args.scene)
         .with_context(|| format!("loading scene {}", args.scene.display()))?;
+    if let Some(w) = check_position(&args.scene, &scene, position) {
+        tracing::warn!("{}: {w}", args.scene.display());
+    }
     let written = render_rig(&scene, config, position, args.yaw, &args.out)?;
     let names = if written.len() <= 8 {
         written.join(", ")
@@ -112,6 +116,68 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     };
     tracing::info!("wrote {names} to {}", args.out.display());
     Ok(())
+}
+
+/// The scene's maps: `occupancy.yaml` and `navigable.yaml` of its folder, else built from the
+/// scene.
+fn scene_maps(dir: &Path, scene: &Scene) -> Option<(GridMap, Option<GridMap>)> {
+    let occ = dir.join("occupancy.yaml");
+    if occ.is_file() {
+        let occupancy = GridMap::load_ros(&occ).ok()?;
+        let nav = dir.join("navigable.yaml");
+        let navigable = nav
+            .is_file()
+            .then(|| GridMap::load_ros(&nav).ok())
+            .flatten();
+        return Some((occupancy, navigable));
+    }
+    let maps = build_maps(scene, &OccupancyConfig::default()).ok()?;
+    Some((maps.occupancy, Some(maps.navigable)))
+}
+
+/// Why an agent at `position` would see something other than the inside of the home: off the
+/// map, outside the floor, inside a wall or object, or where the agent cannot stand. `None` for a
+/// navigable position (or when the scene has no maps to check against).
+pub fn check_position(dir: &Path, scene: &Scene, position: Vec3) -> Option<String> {
+    let (occupancy, navigable) = scene_maps(dir, scene)?;
+    position_warning(&occupancy, navigable.as_ref(), position)
+}
+
+/// [`check_position`] against given maps.
+pub fn position_warning(
+    occupancy: &GridMap,
+    navigable: Option<&GridMap>,
+    position: Vec3,
+) -> Option<String> {
+    let p = Vec2::new(position.x, position.z);
+    let at = format!("--position {},{},{}", position.x, position.y, position.z);
+    let (lo, hi) = occupancy.bounds();
+    let Some((c, r)) = occupancy.world_to_cell(p) else {
+        return Some(format!(
+            "{at} is off the map (it covers x {:.2} to {:.2}, z {:.2} to {:.2}); the \
+             renders show the home from outside",
+            lo.x, hi.x, lo.y, hi.y
+        ));
+    };
+    match occupancy.state(c, r) {
+        CellState::Occupied => {
+            return Some(format!(
+                "{at} is inside a wall or object; the renders show its inside"
+            ))
+        }
+        CellState::Unknown => {
+            return Some(format!(
+                "{at} is outside the floor of the home (unknown on the occupancy map)"
+            ))
+        }
+        CellState::Free => {}
+    }
+    if navigable.is_some_and(|n| !n.is_free_at(p)) {
+        return Some(format!(
+            "{at} is not navigable: too close to a wall or object for the agent to stand there"
+        ));
+    }
+    None
 }
 
 /// Read every sensor of `config` once, for an agent at `position` looking `yaw_deg` degrees
@@ -378,6 +444,35 @@ impl Writer<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Off the map, in a wall and beside a wall are each named with the position; the centre
+    /// of the home is not.
+    #[test]
+    fn an_off_map_or_in_wall_position_is_warned_about() {
+        let (scene, at) = demo();
+        let dir = tempfile::tempdir().unwrap();
+        let maps = build_maps(&scene, &OccupancyConfig::default()).unwrap();
+        assert_eq!(
+            position_warning(&maps.occupancy, Some(&maps.navigable), at),
+            None
+        );
+        let off = Vec3::new(1000.0, 0.0, 0.0);
+        let w = check_position(dir.path(), &scene, off).unwrap();
+        assert!(w.contains("1000,0,0") && w.contains("off the map"), "{w}");
+        let (c, r) = (0..maps.occupancy.cells().len())
+            .map(|i| maps.occupancy.cell_of_index(i))
+            .find(|&(c, r)| maps.occupancy.state(c, r) == CellState::Occupied)
+            .unwrap();
+        let wall = maps.occupancy.cell_center(c, r);
+        let w = position_warning(
+            &maps.occupancy,
+            Some(&maps.navigable),
+            Vec3::new(wall.x, 0.0, wall.y),
+        )
+        .unwrap();
+        assert!(w.contains("inside a wall"), "{w}");
+        assert!(w.contains(&format!("{},0,{}", wall.x, wall.y)), "{w}");
+    }
 
     fn demo() -> (Scene, Vec3) {
         let scene = vlnverse_sensors::demo::demo_scene(1);

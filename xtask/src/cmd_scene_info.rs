@@ -15,17 +15,13 @@ pub struct Args {
     pub dir: PathBuf,
 }
 
-/// The scene folders under `dir` (itself if it holds a `scene.json`), sorted by name.
+/// The scene folders under `dir` (itself if it holds a `scene.json`), sorted by name; entries
+/// whose name starts with `.` (an interrupted writer's temporary folders) are not scenes.
 pub fn scene_dirs(dir: &Path) -> anyhow::Result<Vec<PathBuf>> {
     if dir.join("scene.json").is_file() {
         return Ok(vec![dir.to_path_buf()]);
     }
-    let rd = std::fs::read_dir(dir).map_err(|e| anyhow::anyhow!("{}: {e}", dir.display()))?;
-    let mut v: Vec<PathBuf> = rd
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.join("scene.json").is_file())
-        .collect();
-    v.sort();
+    let v = vlnverse_env::io::list_scene_dirs(dir)?;
     if v.is_empty() {
         anyhow::bail!(
             "{}: no scene folder (nothing with a scene.json)",

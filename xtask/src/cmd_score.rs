@@ -187,17 +187,28 @@ mod tests {
         let unknown = dir.path().join("unknown.jsonl");
         std::fs::write(
             &unknown,
-            "{\"episode_id\": 9, \"positions\": [], \"stopped\": true}\n",
+            "{\"episode_id\": 9, \"positions\": [[0, 0, 0]], \"stopped\": true}\n",
         )
         .unwrap();
         let err = format!("{:#}", run(args(unknown, out.clone())).unwrap_err());
         assert!(err.contains("9") && err.contains("no episode"), "{err}");
 
-        // A missing trajectory names the flag that allows it.
+        // An empty file, and a trajectory without positions, are refused.
         let empty = dir.path().join("empty.jsonl");
         std::fs::write(&empty, "").unwrap();
         let err = format!("{:#}", run(args(empty, out.clone())).unwrap_err());
-        assert!(err.contains("--allow-missing"), "{err}");
+        assert!(
+            err.contains("empty.jsonl") && err.contains("no trajectories"),
+            "{err}"
+        );
+        let no_positions = dir.path().join("no_positions.jsonl");
+        std::fs::write(
+            &no_positions,
+            "{\"episode_id\": 1, \"positions\": [], \"stopped\": true}\n",
+        )
+        .unwrap();
+        let err = format!("{:#}", run(args(no_positions, out.clone())).unwrap_err());
+        assert!(err.contains("`positions` is empty"), "{err}");
     }
 
     #[test]

@@ -601,6 +601,15 @@ fn draw_order(o: &SceneObject) -> u8 {
     }
 }
 
+/// The pixels per metre [`render_topdown`] draws a scene of `extent` (metres, x and z) with:
+/// `requested`, lowered so the map area stays within `max_size` pixels, and at least 1. The
+/// value used is in [`Topdown::frame`]; callers compare it with what they asked for.
+pub fn clamped_px_per_m(requested: f32, max_size: u32, extent: Vec2) -> f32 {
+    requested
+        .min(max_size as f32 / extent.max_element().max(1e-6))
+        .max(1.0)
+}
+
 /// Render a top-down picture of `scene`; `navigable` (the agent-dilated map) shades the area an
 /// agent can reach.
 pub fn render_topdown(
@@ -630,10 +639,7 @@ pub fn render_topdown(
         hi = Vec2::ONE;
     }
     let extent = (hi - lo).max(Vec2::splat(0.5));
-    let ppm = opts
-        .px_per_m
-        .min(opts.max_size as f32 / extent.max_element())
-        .max(1.0);
+    let ppm = clamped_px_per_m(opts.px_per_m, opts.max_size, extent);
     let margin = opts.margin_px as f32;
     let title_h = if opts.title.is_empty() { 0.0 } else { 22.0 };
     let map_w = (extent.x * ppm).ceil() as u32 + 2 * opts.margin_px;

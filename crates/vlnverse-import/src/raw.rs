@@ -238,16 +238,45 @@ pub fn load_gltf(path: &Path, opts: &ImportOptions) -> Result<Vec<RawNode>> {
                     continue;
                 }
                 let reader = prim.reader(|b| buffers.get(b.index()).map(|d| &d.0[..]));
+                let data_len = |a: &gltf::Accessor<'_>| {
+                    a.view()
+                        .and_then(|v| buffers.get(v.buffer().index()))
+                        .map(|d| d.0.len())
+                };
+                let here = format!(
+                    "meshes[{}].primitives[{}] (node `{name}`)",
+                    mesh.index(),
+                    prim.index()
+                );
                 let Some(pos) = reader.read_positions() else {
+                    if let Some(a) = prim.get(&gltf::Semantic::Positions) {
+                        return Err(EnvError::parse(
+                            path,
+                            format!(
+                                "{here}.attributes.POSITION: {}",
+                                vlnverse_env::io::glb::accessor_problem(&a, data_len(&a))
+                            ),
+                        ));
+                    }
+                    tracing::debug!(node = %name, "skipping a primitive without POSITION");
                     continue;
                 };
                 let positions: Vec<Vec3> = pos
                     .map(|p| world.transform_point3(Vec3::from_array(p)))
                     .collect();
                 let n = positions.len() as u32;
-                let flat: Vec<u32> = match reader.read_indices() {
-                    Some(ix) => ix.into_u32().collect(),
-                    None => (0..n).collect(),
+                let flat: Vec<u32> = match (reader.read_indices(), prim.indices()) {
+                    (Some(ix), _) => ix.into_u32().collect(),
+                    (None, Some(a)) => {
+                        return Err(EnvError::parse(
+                            path,
+                            format!(
+                                "{here}.indices: {}",
+                                vlnverse_env::io::glb::accessor_problem(&a, data_len(&a))
+                            ),
+                        ))
+                    }
+                    (None, None) => (0..n).collect(),
                 };
                 let mut indices = Vec::with_capacity(flat.len() / 3);
                 for t in flat.chunks_exact(3) {
@@ -405,4 +434,50 @@ pub fn load_obj(path: &Path, opts: &ImportOptions) -> Result<Vec<RawNode>> {
         }
     }
     Ok(by_name)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A GLB with one triangle mesh whose POSITION accessor claims 30 vertices of a 36-byte
+    /// buffer (3 vertices).
+    fn glb_out_of_range() -> Vec<u8> {
+        let json = r#"{"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0,"name":"sofa"}],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],"buffers":[{"byteLength":36}],"bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36}],"accessors":[{"bufferView":0,"componentType":5126,"count":30,"type":"VEC3","min":[0,0,0],"max":[1,1,1]}]}"#;
+        let mut j = json.as_bytes().to_vec();
+        while !j.len().is_multiple_of(4) {
+            j.push(b' ');
+        }
+        let bin = [0u8; 36];
+        let total = 12 + 8 + j.len() + 8 + bin.len();
+        let mut out = Vec::new();
+        out.extend_from_slice(b"glTF");
+        out.extend_from_slice(&2u32.to_le_bytes());
+        out.extend_from_slice(&(total as u32).to_le_bytes());
+        out.extend_from_slice(&(j.len() as u32).to_le_bytes());
+        out.extend_from_slice(&0x4E4F_534Au32.to_le_bytes());
+        out.extend_from_slice(&j);
+        out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
+        out.extend_from_slice(&0x004E_4942u32.to_le_bytes());
+        out.extend_from_slice(&bin);
+        out
+    }
+
+    #[test]
+    fn an_out_of_range_accessor_names_mesh_primitive_and_accessor() {
+        let d = tempfile::tempdir().unwrap();
+        let path = d.path().join("house.glb");
+        std::fs::write(&path, glb_out_of_range()).unwrap();
+        let e = load_gltf(&path, &ImportOptions::default())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("house.glb")
+                && e.contains("meshes[0].primitives[0]")
+                && e.contains("POSITION")
+                && e.contains("accessor 0 is out of range"),
+            "{e}"
+        );
+        assert!(!e.contains("no triangle geometry"), "{e}");
+    }
 }

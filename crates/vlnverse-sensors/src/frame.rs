@@ -137,8 +137,12 @@ pub fn palette_color(id: u32) -> [u8; 3] {
     }
     // Golden-ratio hue steps with alternating value/saturation keep neighbours distinct.
     let h = (id as f32 * 0.618_034).fract();
-    let s = if id % 2 == 0 { 0.65 } else { 0.9 };
-    let v = if (id / 2) % 2 == 0 { 0.95 } else { 0.75 };
+    let s = if id.is_multiple_of(2) { 0.65 } else { 0.9 };
+    let v = if (id / 2).is_multiple_of(2) {
+        0.95
+    } else {
+        0.75
+    };
     let i = (h * 6.0).floor();
     let f = h * 6.0 - i;
     let (p, q, t) = (v * (1.0 - s), v * (1.0 - f * s), v * (1.0 - (1.0 - f) * s));

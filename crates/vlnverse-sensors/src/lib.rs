@@ -6,6 +6,7 @@ pub mod config;
 pub mod demo;
 pub mod error;
 pub mod frame;
+#[cfg(feature = "wgpu")]
 pub mod gpu;
 pub mod lidar;
 pub mod noise;
@@ -22,6 +23,7 @@ pub use config::{
 };
 pub use error::{Result, SensorError};
 pub use frame::{Channels, Frame, Intrinsics, View};
+#[cfg(feature = "wgpu")]
 pub use gpu::{shared_context, GpuContext, GpuRenderer};
 pub use lidar::LidarScan;
 pub use raster::{RasterRenderer, RasterScene};

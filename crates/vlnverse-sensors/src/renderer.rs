@@ -78,6 +78,18 @@ pub fn create_renderer(backend: Backend) -> Result<Box<dyn Renderer>> {
             announce!("rendering with the CPU rasteriser (configured)");
             Ok(Box::new(crate::RasterRenderer::new()))
         }
+        #[cfg(not(feature = "wgpu"))]
+        Backend::Wgpu => Err(crate::SensorError::NoAdapter(
+            "this build has no wgpu backend (the `wgpu` cargo feature of vlnverse-sensors is \
+             off); use backend = \"raster\" or \"raycast\", or build with the feature"
+                .into(),
+        )),
+        #[cfg(not(feature = "wgpu"))]
+        Backend::Auto => {
+            announce!("rendering with the CPU rasteriser (backend = auto; built without wgpu)");
+            Ok(Box::new(crate::RasterRenderer::new()))
+        }
+        #[cfg(feature = "wgpu")]
         Backend::Wgpu => {
             let r = crate::GpuRenderer::new()?;
             announce!(
@@ -86,6 +98,7 @@ pub fn create_renderer(backend: Backend) -> Result<Box<dyn Renderer>> {
             );
             Ok(Box::new(r))
         }
+        #[cfg(feature = "wgpu")]
         Backend::Auto => match hardware_gpu() {
             Some(name) => match crate::GpuRenderer::new() {
                 Ok(r) => {
@@ -113,6 +126,7 @@ pub fn create_renderer(backend: Backend) -> Result<Box<dyn Renderer>> {
 
 /// Whether a GPU device node exists. Only Linux is checked (elsewhere: `true`); `WGPU_BACKEND`
 /// set means the user asked for a probe, so it is `true` too.
+#[cfg(feature = "wgpu")]
 fn gpu_device_node_exists() -> bool {
     if !cfg!(target_os = "linux") || std::env::var_os("WGPU_BACKEND").is_some() {
         return true;
@@ -132,6 +146,7 @@ fn gpu_device_node_exists() -> bool {
 /// the backends `WGPU_BACKEND` names, else the native ones (Vulkan, Metal, DX12). Without a GPU
 /// device node (see [`gpu_device_node_exists`]) it does not create a wgpu instance at all:
 /// Mesa's Vulkan WSI layers print errors (`XDG_RUNTIME_DIR is invalid`) when probed headless.
+#[cfg(feature = "wgpu")]
 fn hardware_gpu() -> Option<String> {
     if !gpu_device_node_exists() {
         return None;

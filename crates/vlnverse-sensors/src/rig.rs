@@ -197,7 +197,7 @@ impl SensorRig {
                 }
                 due
             }
-            None => state.step % rate.every_steps as u64 == 0,
+            None => state.step.is_multiple_of(rate.every_steps as u64),
         }
     }
 

@@ -558,7 +558,7 @@ impl Oracle for ShortestPathOracle {
     }
 }
 
-/// System prompt of the [`LlmOracle`].
+/// System prompt of the `LlmOracle` (feature `llm`).
 pub const ORACLE_PROMPT: &str = "You are the guide of a robot that navigates a home and may \
 ask you a few questions. You get the robot's question and the true answer, computed from the \
 map. Reply to the robot as a helpful person would, in one or two short sentences, keeping every \
@@ -571,6 +571,7 @@ coordinates or ids.";
 /// unknown object) are passed on as they are, so nothing is revealed once the budget is spent. A
 /// failed call keeps the inner answer ([`crate::instructions::llm::OnReject::Fallback`]) or is
 /// an error ([`crate::instructions::llm::OnReject::Error`]).
+#[cfg(feature = "llm")]
 #[derive(Debug)]
 pub struct LlmOracle<O> {
     inner: O,
@@ -578,6 +579,7 @@ pub struct LlmOracle<O> {
     seed: u64,
 }
 
+#[cfg(feature = "llm")]
 impl<O: Oracle> LlmOracle<O> {
     /// Wrap `inner`; `seed` is sent with every request.
     pub fn new(inner: O, config: crate::instructions::llm::LlmConfig, seed: u64) -> Result<Self> {
@@ -594,6 +596,7 @@ impl<O: Oracle> LlmOracle<O> {
     }
 }
 
+#[cfg(feature = "llm")]
 fn query_words(q: &OracleQuery) -> String {
     match q {
         OracleQuery::WhichWay => "Which way should I go?".into(),
@@ -602,6 +605,7 @@ fn query_words(q: &OracleQuery) -> String {
     }
 }
 
+#[cfg(feature = "llm")]
 impl<O: Oracle> Oracle for LlmOracle<O> {
     fn ask(&mut self, query: &OracleQuery, position: [f32; 3], yaw: f32) -> Result<OracleAnswer> {
         use crate::instructions::llm::{ChatMessage, OnReject};

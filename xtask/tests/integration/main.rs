@@ -1,4 +1,5 @@
 //! Integration tests of `xtask`, linked into one test binary (one link, shared fixtures).
 
+mod crate_layers;
 mod real_scene_e2e;
 mod scenes_cli;

@@ -370,6 +370,36 @@ pub struct GlbContents {
     pub meshes: Vec<GlbMesh>,
 }
 
+/// Why the data of accessor `acc` cannot be read, for errors: no bufferView, no buffer data
+/// (`data_len` is `None`: an external buffer that was not loaded), or its last element lying
+/// beyond its bufferView or buffer. `data_len` is the length of the loaded buffer data.
+pub fn accessor_problem(acc: &gltf::Accessor<'_>, data_len: Option<usize>) -> String {
+    let i = acc.index();
+    let Some(view) = acc.view() else {
+        return format!("accessor {i} has no bufferView (and no readable sparse data)");
+    };
+    let b = view.buffer().index();
+    let Some(len) = data_len else {
+        return format!(
+            "accessor {i}: bufferView {} refers to buffer {b}, whose data is not in the file",
+            view.index()
+        );
+    };
+    let size = acc.size();
+    let stride = view.stride().unwrap_or(size);
+    let in_view = acc.offset() + stride * acc.count().saturating_sub(1) + size;
+    format!(
+        "accessor {i} is out of range: {} elements of {size} bytes from byteOffset {} end at \
+         byte {in_view} of bufferView {} (byteLength {}), byte {} of buffer {b}, which holds \
+         {len} bytes",
+        acc.count(),
+        acc.offset(),
+        view.index(),
+        view.length(),
+        view.offset() + in_view
+    )
+}
+
 /// Read a `.glb` file (with the `gltf` crate).
 pub fn read_glb(path: impl AsRef<Path>) -> Result<GlbContents> {
     let path = path.as_ref();
@@ -426,15 +456,27 @@ pub fn read_glb_bytes(bytes: &[u8], path: &Path) -> Result<GlbContents> {
                 return Err(EnvError::parse(path, what("mode is not TRIANGLES")));
             }
             let r = p.reader(get);
+            let data_len =
+                |a: &gltf::Accessor<'_>| a.view().and_then(|v| get(v.buffer())).map(<[u8]>::len);
             let base = mesh.positions.len() as u32;
-            let pos: Vec<[f32; 3]> = r
-                .read_positions()
-                .ok_or_else(|| EnvError::parse(path, what("missing or unreadable POSITION")))?
-                .collect();
+            let pos: Vec<[f32; 3]> = match r.read_positions() {
+                Some(it) => it.collect(),
+                None => {
+                    let why = match p.get(&gltf::Semantic::Positions) {
+                        Some(a) => format!("POSITION: {}", accessor_problem(&a, data_len(&a))),
+                        None => "no POSITION attribute".to_string(),
+                    };
+                    return Err(EnvError::parse(path, what(&why)));
+                }
+            };
             let n = pos.len() as u32;
-            let idx: Vec<u32> = match r.read_indices() {
-                Some(i) => i.into_u32().collect(),
-                None => (0..n).collect(),
+            let idx: Vec<u32> = match (r.read_indices(), p.indices()) {
+                (Some(i), _) => i.into_u32().collect(),
+                (None, Some(a)) => {
+                    let why = format!("indices: {}", accessor_problem(&a, data_len(&a)));
+                    return Err(EnvError::parse(path, what(&why)));
+                }
+                (None, None) => (0..n).collect(),
             };
             if !idx.chunks_exact(3).remainder().is_empty() {
                 return Err(EnvError::parse(

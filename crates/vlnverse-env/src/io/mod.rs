@@ -11,8 +11,8 @@ pub use bundle::{
     scene_bundle, write_scene_bundle, write_source_bundles, BundleOutcome, SceneBundle,
 };
 pub use scene_dir::{
-    is_complete_scene_dir, is_complete_scene_dir_with, load_scene, write_scene_dir, BUNDLE_FILES,
-    SCENE_GLB, SCENE_JSON,
+    is_complete_scene_dir, is_complete_scene_dir_with, is_temp_leftover, list_scene_dirs,
+    load_scene, remove_temp_leftovers, write_scene_dir, BUNDLE_FILES, SCENE_GLB, SCENE_JSON,
 };
 
 use crate::error::{EnvError, Result};

@@ -186,3 +186,78 @@ pub fn is_complete_scene_dir_with(dir: impl AsRef<Path>, files: &[&str]) -> bool
             .ok()
             .is_some_and(|b| scene_from_json(&b, &json_path).is_ok())
 }
+
+/// Whether `name` is a temporary entry an interrupted writer of this workspace can leave behind:
+/// `.<name>.tmp-<pid>` (scene folders and [`super::write_atomic`]), `.<name>.tmp<pid>` (the
+/// task layer's atomic writes) and `[.]<name>.png.link<pid>` (hard-linked reference images).
+/// Other names, dot-files included (`.lock`, `.gitignore`), are never temporary.
+pub fn is_temp_leftover(name: &str) -> bool {
+    let stem = name.trim_end_matches(|c: char| c.is_ascii_digit());
+    if stem.len() == name.len() {
+        return false;
+    }
+    if let Some(base) = stem.strip_suffix(".png.link") {
+        return !base.trim_start_matches('.').is_empty();
+    }
+    let Some(stem) = stem.strip_prefix('.') else {
+        return false;
+    };
+    stem.strip_suffix(".tmp-")
+        .or_else(|| stem.strip_suffix(".tmp"))
+        .is_some_and(|base| !base.is_empty())
+}
+
+/// Remove the temporary leftovers ([`is_temp_leftover`]) directly inside `dir` (files and
+/// folders; a missing `dir` has none). Only call this while no other job writes into `dir`
+/// (under its output lock): a running writer's temporary entries look the same. Returns what
+/// was removed, sorted.
+pub fn remove_temp_leftovers(dir: impl AsRef<Path>) -> Result<Vec<PathBuf>> {
+    let dir = dir.as_ref();
+    let entries = match std::fs::read_dir(dir) {
+        Ok(e) => e,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
+        Err(e) => return Err(EnvError::io(dir, e)),
+    };
+    let mut removed = Vec::new();
+    for e in entries {
+        let e = e.map_err(|e| EnvError::io(dir, e))?;
+        if !is_temp_leftover(&e.file_name().to_string_lossy()) {
+            continue;
+        }
+        let p = e.path();
+        let is_dir = e.file_type().map_err(|err| EnvError::io(&p, err))?.is_dir();
+        let r = if is_dir {
+            std::fs::remove_dir_all(&p)
+        } else {
+            std::fs::remove_file(&p)
+        };
+        match r {
+            Ok(()) => removed.push(p),
+            Err(err) if err.kind() == std::io::ErrorKind::NotFound => {}
+            Err(err) => return Err(EnvError::io(&p, err)),
+        }
+    }
+    removed.sort();
+    Ok(removed)
+}
+
+/// The scene folders directly under `dir` (those holding a `scene.json`), sorted by name.
+/// Entries whose name starts with `.` are never scenes (temporary folders of an interrupted
+/// writer, lock files) and are left out; scene ids cannot start with `.` either.
+pub fn list_scene_dirs(dir: impl AsRef<Path>) -> Result<Vec<PathBuf>> {
+    let dir = dir.as_ref();
+    let entries = std::fs::read_dir(dir).map_err(|e| EnvError::io(dir, e))?;
+    let mut dirs = Vec::new();
+    for e in entries {
+        let e = e.map_err(|e| EnvError::io(dir, e))?;
+        if e.file_name().to_string_lossy().starts_with('.') {
+            continue;
+        }
+        let p = e.path();
+        if p.join(SCENE_JSON).is_file() {
+            dirs.push(p);
+        }
+    }
+    dirs.sort();
+    Ok(dirs)
+}

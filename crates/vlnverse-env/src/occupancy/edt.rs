@@ -361,7 +361,7 @@ mod tests {
             let mut m = pseudo_random_map(40, 30, seed);
             // Sparse free space so that there are many islands.
             for (i, c) in m.cells_mut().iter_mut().enumerate() {
-                if *c == CellState::Free && (i * 7 + seed as usize) % 3 == 0 {
+                if *c == CellState::Free && (i * 7 + seed as usize).is_multiple_of(3) {
                     *c = CellState::Occupied;
                 }
             }

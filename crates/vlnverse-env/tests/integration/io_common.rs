@@ -9,7 +9,12 @@ fn obj(id: u32, class: SemanticClass, pose: Pose, parts: Vec<Part>, motion: Moti
     let mut o = common::object(id, class, pose, parts);
     o.room = if class.is_structure() { None } else { Some(1) };
     o.color = "red".into();
-    o.material = if id % 2 == 0 { "metal" } else { "wood" }.into();
+    o.material = if id.is_multiple_of(2) {
+        "metal"
+    } else {
+        "wood"
+    }
+    .into();
     o.physics = Physics {
         mass: 1.5 * id as f32,
         friction: 0.6,

@@ -1,10 +1,12 @@
 //! Integration tests of `vlnverse-env`, linked into one test binary (one link, shared fixtures).
 
 mod common;
+mod example;
 mod io_common;
 mod occupancy_fixtures;
 mod scene_graph_fixture;
 
+mod io_leftovers;
 mod io_scene_files;
 mod occupancy_geodesic;
 mod occupancy_maps;

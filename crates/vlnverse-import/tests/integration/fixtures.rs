@@ -63,11 +63,11 @@ fn cube_buffer() -> (Vec<u8>, serde_json::Value, serde_json::Value) {
 fn glb_bytes(mut doc: serde_json::Value, bin: &[u8]) -> Vec<u8> {
     doc["buffers"] = json!([{"byteLength": bin.len()}]);
     let mut js = serde_json::to_vec(&doc).unwrap();
-    while js.len() % 4 != 0 {
+    while !js.len().is_multiple_of(4) {
         js.push(b' ');
     }
     let mut b = bin.to_vec();
-    while b.len() % 4 != 0 {
+    while !b.len().is_multiple_of(4) {
         b.push(0);
     }
     let total = 12 + 8 + js.len() + 8 + b.len();

@@ -1,4 +1,5 @@
 //! Integration tests of `vlnverse-import`, linked into one test binary (one link, shared fixtures).
 
+mod example;
 mod fixtures;
 mod real_scenes;

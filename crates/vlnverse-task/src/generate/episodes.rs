@@ -141,11 +141,24 @@ pub struct SceneTaskContext<'a> {
     pub times: &'a StageTimes,
 }
 
-/// Hard-link `src` to `dest` through a temporary name (atomic); false when links fail.
+/// Hard-link `src` to `dest` through a temporary name (atomic); false when links fail. The
+/// temporary name, `.<file>.link<pid>`, starts with a dot so readers skip it, and a resumed run
+/// removes it when a kill left it behind (see [`super::pipeline::remove_leftovers`]).
 fn link_atomic(src: &Path, dest: &Path) -> bool {
-    let tmp = dest.with_extension(format!("png.link{}", std::process::id()));
+    let name = dest
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let tmp = dest.with_file_name(format!(".{name}.link{}", std::process::id()));
     let _ = std::fs::remove_file(&tmp);
-    std::fs::hard_link(src, &tmp).is_ok() && std::fs::rename(&tmp, dest).is_ok()
+    if std::fs::hard_link(src, &tmp).is_err() {
+        return false;
+    }
+    let ok = std::fs::rename(&tmp, dest).is_ok();
+    if !ok {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    ok
 }
 
 fn yaw_quat(yaw: f32) -> [f32; 4] {

@@ -21,13 +21,14 @@
 //! Episode ids come from the plan, so a shard (`scene index % N == K`) writes exactly the parts
 //! a single run would, and [`merge`] joins shard folders into the bytes of a single run.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
-use vlnverse_env::io::{is_complete_scene_dir, load_scene};
+use vlnverse_env::io::{is_complete_scene_dir, list_scene_dirs, load_scene, remove_temp_leftovers};
 use vlnverse_env::occupancy::{build_maps, OccupancyConfig};
 use vlnverse_env::scene_graph::SceneGraph;
 use vlnverse_env::{Scene, SceneSource};
@@ -41,6 +42,7 @@ use crate::dataset::{write_atomic, write_split};
 use crate::episode::{Episode, Split, Task};
 use crate::error::{Result, TaskError};
 use crate::instructions::InstructionGenerator;
+use crate::OutputLock;
 
 /// Folder of the part files.
 pub const PARTS_DIR: &str = ".parts";
@@ -187,6 +189,13 @@ pub fn read_manifest(dir: &Path) -> Result<Manifest> {
 /// the source's; see [`GenerateConfig::rescaled`]). `on_scene` is called once per scene of the
 /// shard, from worker threads. Runs on the current rayon pool; output does not depend on its
 /// size.
+///
+/// The output folder is locked for the whole run ([`OutputLock`] on `out/.lock`): a second job
+/// on it is refused, naming the first, before anything is written. Under the lock, the
+/// temporary entries an interrupted run left behind are removed first (see
+/// [`remove_leftovers`]). A run that fails before writing any part leaves `out` as it was
+/// (what it created is removed, `out` itself too when it did not exist). The lock file is
+/// removed when the run ends, so the folder holds only the dataset.
 pub fn run(
     source: &dyn SceneSource,
     cfg: &GenerateConfig,
@@ -208,6 +217,119 @@ pub fn run(
             ),
         ));
     }
+    let created = !opts.out.exists();
+    let lock = OutputLock::acquire(&opts.out, "generate")?;
+    let parts_written = AtomicUsize::new(0);
+    let result = remove_leftovers(&opts.out).and_then(|()| {
+        let before = list_tree(&opts.out);
+        let r = run_locked(
+            source,
+            cfg,
+            opts,
+            instructions,
+            times,
+            on_scene,
+            &parts_written,
+        );
+        if r.is_err() && parts_written.load(Ordering::SeqCst) == 0 {
+            remove_new_entries(&opts.out, Path::new(""), &before);
+        }
+        r
+    });
+    let _ = std::fs::remove_file(lock.path());
+    drop(lock);
+    if created && result.is_err() && parts_written.load(Ordering::SeqCst) == 0 {
+        let _ = std::fs::remove_dir(&opts.out);
+    }
+    result
+}
+
+/// Every path under `dir` (relative, files and folders).
+fn list_tree(dir: &Path) -> BTreeSet<PathBuf> {
+    fn walk(root: &Path, dir: &Path, out: &mut BTreeSet<PathBuf>) {
+        let Ok(entries) = std::fs::read_dir(dir) else {
+            return;
+        };
+        for e in entries.filter_map(|e| e.ok()) {
+            let p = e.path();
+            if let Ok(rel) = p.strip_prefix(root) {
+                out.insert(rel.to_path_buf());
+            }
+            if e.file_type().is_ok_and(|t| t.is_dir()) {
+                walk(root, &p, out);
+            }
+        }
+    }
+    let mut out = BTreeSet::new();
+    walk(dir, dir, &mut out);
+    out
+}
+
+/// Remove what is under `root/rel` but not in `before` (best effort).
+fn remove_new_entries(root: &Path, rel: &Path, before: &BTreeSet<PathBuf>) {
+    let dir = root.join(rel);
+    let Ok(entries) = std::fs::read_dir(&dir) else {
+        return;
+    };
+    for e in entries.filter_map(|e| e.ok()) {
+        let r = rel.join(e.file_name());
+        let is_dir = e.file_type().is_ok_and(|t| t.is_dir());
+        if before.contains(&r) {
+            if is_dir {
+                remove_new_entries(root, &r, before);
+            }
+        } else if r != Path::new(vlnverse_score::lock::LOCK_FILE) {
+            let _ = if is_dir {
+                std::fs::remove_dir_all(e.path())
+            } else {
+                std::fs::remove_file(e.path())
+            };
+        }
+    }
+}
+
+/// Remove the temporary entries an interrupted generation leaves in the folders it writes
+/// (`.<id>.tmp-<pid>/` scene folders, `.<file>.tmp<pid>` atomic writes, `<id>.png.link<pid>`
+/// image links; see [`vlnverse_env::io::is_temp_leftover`]): `out`, `out/.parts` and its scene
+/// folders, `out/scenes`, the split folders and the reference image folders. Call it only
+/// under the folder's [`OutputLock`]; without another writer every such entry is a leftover.
+pub fn remove_leftovers(out: &Path) -> Result<()> {
+    let mut dirs = vec![out.to_path_buf(), out.join(PARTS_DIR), out.join("scenes")];
+    if let Ok(entries) = std::fs::read_dir(out.join(PARTS_DIR)) {
+        let mut subs: Vec<PathBuf> = entries
+            .filter_map(|e| e.ok())
+            .filter(|e| e.file_type().is_ok_and(|t| t.is_dir()))
+            .map(|e| e.path())
+            .collect();
+        subs.sort();
+        dirs.extend(subs);
+    }
+    for task in Task::ALL {
+        dirs.push(out.join(task.name()));
+        for split in Split::ALL {
+            let d = out.join(task.name()).join(split.name());
+            dirs.push(d.join("images"));
+            dirs.push(d);
+        }
+    }
+    for d in dirs {
+        for p in remove_temp_leftovers(&d)? {
+            tracing::info!("removed {} (left by an interrupted run)", p.display());
+        }
+    }
+    Ok(())
+}
+
+fn run_locked(
+    source: &dyn SceneSource,
+    cfg: &GenerateConfig,
+    opts: &RunOptions,
+    instructions: &dyn InstructionGenerator,
+    times: &StageTimes,
+    on_scene: &(dyn Fn(&str) + Sync),
+    parts_written: &AtomicUsize,
+) -> Result<GenerateSummary> {
+    let (k, n) = opts.shard;
     let mut tasks = opts.tasks.clone();
     tasks.sort_unstable();
     tasks.dedup();
@@ -219,6 +341,18 @@ pub fn run(
     let mpath = opts.out.join(PARTS_DIR).join(MANIFEST_FILE);
     if mpath.exists() {
         let old: Manifest = read_json(&mpath)?;
+        if old.config.seed != manifest.config.seed {
+            return Err(TaskError::invalid(
+                "out",
+                opts.out.display(),
+                format!(
+                    "holds parts generated with seed {} ({}), not seed {}; use a fresh folder",
+                    old.config.seed,
+                    mpath.display(),
+                    manifest.config.seed
+                ),
+            ));
+        }
         if old != manifest {
             return Err(TaskError::invalid(
                 "out",
@@ -267,7 +401,17 @@ pub fn run(
             let skip = todo.is_empty() && is_complete_scene_dir(opts.out.join("scenes").join(id));
             let mut skips = Vec::new();
             if !skip {
-                skips = generate_scene(source, i, cfg, &plan, &todo, opts, instructions, times)?;
+                skips = generate_scene(
+                    source,
+                    i,
+                    cfg,
+                    &plan,
+                    &todo,
+                    opts,
+                    instructions,
+                    times,
+                    parts_written,
+                )?;
             }
             on_scene(id);
             Ok((skip, skips))
@@ -299,6 +443,7 @@ fn generate_scene(
     opts: &RunOptions,
     instructions: &dyn InstructionGenerator,
     times: &StageTimes,
+    parts_written: &AtomicUsize,
 ) -> Result<Vec<Skip>> {
     let scene: Scene = times.time(Stage::Scenes, || source.scene(index))?;
     let (maps, graph) = times.time(Stage::Maps, || -> Result<_> {
@@ -395,6 +540,7 @@ fn generate_scene(
                 &to_json(&part, "part")?,
             )?)
         })?;
+        parts_written.fetch_add(1, Ordering::SeqCst);
     }
     Ok(skips)
 }
@@ -759,7 +905,64 @@ pub fn merge(out: &Path, parts: &[PathBuf]) -> Result<usize> {
     if r.is_err() {
         let _ = std::fs::remove_dir_all(&tmp);
     }
-    r
+    r.map_err(|e| name_inputs(e, &tmp, parts))
+}
+
+/// The input file a path inside the merge's temporary folder was copied from (the first part
+/// folder holding it, as [`copy_tree`] copies), else `path` itself.
+fn input_of(path: &Path, tmp: &Path, parts: &[PathBuf]) -> PathBuf {
+    let Ok(rel) = path.strip_prefix(tmp) else {
+        return path.to_path_buf();
+    };
+    parts
+        .iter()
+        .map(|p| p.join(rel))
+        .find(|p| p.exists())
+        .unwrap_or_else(|| path.to_path_buf())
+}
+
+/// An error of a merge names the user's files, not their copies in the temporary folder.
+fn name_inputs(e: TaskError, tmp: &Path, parts: &[PathBuf]) -> TaskError {
+    let fix = |text: String| -> String {
+        let t = tmp.display().to_string();
+        if !text.contains(&t) {
+            return text;
+        }
+        // Whole paths first (so each is replaced by its own input), then any remaining prefix.
+        let mut out = text.clone();
+        for word in text.split(|c: char| c.is_whitespace() || matches!(c, '`' | '(' | ')' | ',')) {
+            if word.starts_with(&t) {
+                let input = input_of(Path::new(word), tmp, parts);
+                out = out.replace(word, &input.display().to_string());
+            }
+        }
+        out
+    };
+    match e {
+        TaskError::Io { path, error } => TaskError::Io {
+            path: input_of(&path, tmp, parts),
+            error,
+        },
+        TaskError::Parse {
+            path,
+            location,
+            message,
+        } => TaskError::Parse {
+            path: input_of(&path, tmp, parts),
+            location,
+            message: fix(message),
+        },
+        TaskError::Invalid {
+            field,
+            value,
+            reason,
+        } => TaskError::Invalid {
+            field,
+            value: fix(value),
+            reason: fix(reason),
+        },
+        other => other,
+    }
 }
 
 fn merge_into(out: &Path, parts: &[PathBuf], manifest: &Manifest) -> Result<usize> {
@@ -798,15 +1001,11 @@ pub struct FolderSource {
 }
 
 impl FolderSource {
-    /// Every complete scene folder directly under `dir`, sorted by name.
+    /// Every scene folder directly under `dir` (with a `scene.json`; names starting with `.`
+    /// left out), sorted by name.
     pub fn new(dir: &Path) -> Result<Self> {
-        let entries = std::fs::read_dir(dir).map_err(|e| TaskError::io(dir, e))?;
-        let mut dirs: Vec<PathBuf> = entries
-            .filter_map(|e| e.ok())
-            .map(|e| e.path())
-            .filter(|p| p.join("scene.json").is_file())
-            .collect();
-        dirs.sort();
+        // Dot-entries (an interrupted writer's `.<id>.tmp-<pid>/`) are not scenes.
+        let dirs = list_scene_dirs(dir)?;
         if dirs.is_empty() {
             return Err(TaskError::invalid(
                 "scenes-from",

@@ -391,7 +391,7 @@ impl GenerateConfig {
                 let e = t.episodes.get(split);
                 let n = t.scenes.get(split);
                 let field = |what: &str| format!("tasks.{}.{what}.{}", task.name(), split.name());
-                if e % per != 0 {
+                if !e.is_multiple_of(per) {
                     return Err(bad(
                         field("episodes"),
                         e.to_string(),

@@ -3,7 +3,7 @@
 //! (drawn here with the env crate's 8x8 font, no plotting crate) and a markdown summary.
 
 use std::collections::{BTreeMap, BTreeSet};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use image::{Rgb, RgbImage};
 use serde::Serialize;
@@ -74,12 +74,8 @@ pub fn collect(dir: &Path) -> Result<DatasetStats> {
     let mut st = DatasetStats::default();
     let scenes = dir.join("scenes");
     if scenes.is_dir() {
-        let mut ids: Vec<PathBuf> = std::fs::read_dir(&scenes)
-            .map_err(|e| TaskError::io(&scenes, e))?
-            .filter_map(|e| e.ok().map(|e| e.path()))
-            .filter(|p| p.join("scene.json").is_file())
-            .collect();
-        ids.sort();
+        // Dot-entries (an interrupted writer's temporary folders) are not scenes.
+        let ids = vlnverse_env::io::list_scene_dirs(&scenes)?;
         for p in ids {
             let id = p
                 .file_name()

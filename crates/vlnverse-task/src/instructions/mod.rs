@@ -8,7 +8,7 @@
 //!   the scene graph's unique referring expression in three styles; [`chain_parts`] joins
 //!   sub-instructions.
 //! - [`check_grounding`]: mechanical check of an instruction's grounding metadata.
-//! - [`llm`]: the optional LLM stage ([`llm::LlmGenerator`]).
+//! - `llm` (feature `llm`, on by default): the optional LLM stage (`llm::LlmGenerator`).
 //!
 //! ```
 //! use glam::Vec2;
@@ -38,6 +38,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+#[cfg(feature = "llm")]
 pub mod llm;
 mod path;
 mod phrases;

@@ -244,3 +244,26 @@ fn fewer_episodes_on_a_finished_run_do_not_overwrite_its_summary() {
         summary
     );
 }
+
+#[test]
+fn the_scene_cache_stays_bounded_and_reloads_what_it_evicted() {
+    let dir = tempfile::tempdir().unwrap();
+    eval_support::make_dataset(dir.path(), Task::Fine, 3, 1, 8);
+    let cache = vlnverse_task::eval::SceneCache::new(dir.path(), 2);
+    let ids = ["tiny_000", "tiny_001", "tiny_002"];
+    let first = cache.get(ids[0]).unwrap();
+    for id in ids {
+        let ctx = cache.get(id).unwrap();
+        assert_eq!(ctx.scene.id, id);
+        assert!(cache.len() <= 2);
+    }
+    assert_eq!((cache.len(), cache.loads()), (2, 3), "tiny_000 was evicted");
+    // Still alive where it is used; loaded again when asked for.
+    assert_eq!(first.scene.id, "tiny_000");
+    cache.get(ids[0]).unwrap();
+    assert_eq!(cache.loads(), 4);
+    cache.get(ids[0]).unwrap();
+    assert_eq!(cache.loads(), 4, "a hit does not reload");
+    let err = cache.get("nowhere").err().unwrap().to_string();
+    assert!(err.contains("nowhere") && err.contains("scenes"), "{err}");
+}
