@@ -1,5 +1,6 @@
 //! Integration tests of `vlnverse-score`, linked into one test binary.
 
+mod dataset_errors;
 mod example;
 mod metrics_fixtures;
 mod metrics_formats;

@@ -157,7 +157,7 @@ pub fn check_or_write_identity(dir: &Path, identity: &[(&str, serde_json::Value)
                     format!("field `{key}`"),
                     format!(
                         "this folder holds another run: `{key}` is {now} now but {} in the \
-                         folder's run; choose another --out or delete the folder",
+                         folder's run; choose another --out, or --fresh to start over",
                         before.unwrap_or_else(|| "<missing>".into())
                     ),
                 ));
