@@ -8,6 +8,7 @@ pub mod metrics;
 pub mod report;
 pub mod score;
 pub mod trajectory;
+pub mod vocab;
 
 pub use dataset::{read_split, split_path, write_split};
 pub use episode::{
@@ -23,3 +24,4 @@ pub use metrics::{
 pub use report::{write_run, RunSummary};
 pub use score::score_on_maps;
 pub use trajectory::{read_trajectories, write_jsonl, Trajectory};
+pub use vocab::Vocab;

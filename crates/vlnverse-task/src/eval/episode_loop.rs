@@ -194,6 +194,358 @@ fn sim_err(what: &str, value: impl ToString, e: impl ToString) -> TaskError {
     TaskError::invalid(what, value, e.to_string())
 }
 
+/// One episode in progress, driven step by step from outside: [`run_episode`] drives it with
+/// an [`Agent`]; the Python environments drive it with actions that arrive one batch at a
+/// time. It holds no simulator or rig (they are passed to each call), so many of them can
+/// live in a vector environment. The rules of this module's docs are applied in
+/// [`EpisodeState::apply`].
+pub struct EpisodeState {
+    /// What the agent is told at the start.
+    pub inputs: EpisodeInputs,
+    goal_fields: Vec<Arc<DistanceField>>,
+    pose: Pose,
+    progress: SubGoalProgress,
+    dialogue: Option<ShortestPathOracle>,
+    positions: Vec<[f32; 3]>,
+    headings: Vec<f32>,
+    actions: Vec<String>,
+    stops: Vec<u32>,
+    steps: u32,
+    collisions: u32,
+    stopped: bool,
+    over: bool,
+    last: Option<StepOutcome>,
+    failure: Option<String>,
+}
+
+/// What [`EpisodeState::apply`] did with one action.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Applied {
+    /// STOP: the episode ended (or, long-horizon, a sub-goal was declared reached).
+    Stop {
+        /// A long-horizon sub-goal was declared reached and the episode goes on.
+        sub_goal: bool,
+    },
+    /// The simulator stepped.
+    Stepped(StepOutcome),
+    /// The simulator refused the action (nothing changed; the step still counts).
+    Refused(String),
+}
+
+impl EpisodeState {
+    /// Reset `sim` (and `rig`, when rendering) at the episode's start in `scene`.
+    ///
+    /// The rig is given the scene only when it shows another one ([`SensorRig::scene_id`]).
+    pub fn begin<S: Simulator>(
+        sim: &mut S,
+        rig: Option<&mut SensorRig>,
+        ep: &Episode,
+        scene: &SceneContext,
+        settings: &EpisodeSettings,
+    ) -> Result<Self> {
+        let cfg = &settings.config;
+        let goal_fields: Vec<Arc<DistanceField>> = ep
+            .goal_sequence()
+            .iter()
+            .map(|g| scene.field(g.position))
+            .collect::<Result<_>>()?;
+        if goal_fields.is_empty() {
+            return Err(TaskError::invalid(
+                format!("episode {}: goals", ep.episode_id),
+                "[]",
+                "an episode needs a goal",
+            ));
+        }
+        let start = Pose {
+            position: ep.start_position,
+            rotation: ep.start_rotation,
+        };
+        let prepared = scene.prepared(&*sim)?;
+        let pose = sim.reset_prepared(&prepared, start).map_err(|e| {
+            sim_err(
+                &format!("episode {}: start_position", ep.episode_id),
+                format!("{:?}", ep.start_position),
+                e,
+            )
+        })?;
+        if let Some(rig) = rig {
+            if rig.scene_id() != Some(ep.scene_id.as_str()) {
+                rig.set_scene(&scene.scene)
+                    .map_err(|e| sim_err("scene", &ep.scene_id, e))?;
+            }
+            rig.reset(pose);
+        }
+        let inputs = EpisodeInputs {
+            episode_id: ep.episode_id,
+            scene_id: ep.scene_id.clone(),
+            task: ep.task,
+            instruction: ep.instruction.instruction_text.clone(),
+            sub_instructions: ep.instruction.sub_instructions.clone(),
+            reference_image: ep
+                .reference_image
+                .as_ref()
+                .map(|r| match &settings.reference_dir {
+                    Some(d) => d.join(r),
+                    None => PathBuf::from(r),
+                }),
+            start: pose,
+            agent: settings.agent.clone(),
+            action_space: cfg.action_space,
+            setting: cfg.setting,
+            success_distance: cfg.success_distance,
+            max_steps: cfg.max_steps,
+            oracle_budget: ep.oracle_budget,
+            seed: episode_seed(cfg.seed, ep.episode_id),
+        };
+        let total = goal_fields.len() as u32;
+        let dialogue = match ep.oracle_budget {
+            Some(_) => Some(ShortestPathOracle::for_episode(
+                scene.scene.clone(),
+                scene.graph(),
+                scene.navigable.clone(),
+                ep,
+                OracleConfig::default(),
+            )?),
+            None => None,
+        };
+        Ok(EpisodeState {
+            inputs,
+            goal_fields,
+            pose,
+            progress: SubGoalProgress { current: 0, total },
+            dialogue,
+            positions: vec![pose.position],
+            headings: vec![pose.yaw()],
+            actions: Vec::new(),
+            stops: Vec::new(),
+            steps: 0,
+            collisions: 0,
+            stopped: false,
+            over: cfg.max_steps == 0,
+            last: None,
+            failure: None,
+        })
+    }
+
+    /// The ground truth of a privileged agent (the teacher).
+    pub fn privileged<'a>(&'a self, ep: &'a Episode) -> Privileged<'a> {
+        Privileged {
+            episode: ep,
+            fields: &self.goal_fields,
+        }
+    }
+
+    /// The agent's base pose now.
+    pub fn pose(&self) -> Pose {
+        self.pose
+    }
+
+    /// Actions taken so far (STOPs and refused actions included).
+    pub fn steps(&self) -> u32 {
+        self.steps
+    }
+
+    /// Noticeable collisions so far.
+    pub fn collisions(&self) -> u32 {
+        self.collisions
+    }
+
+    /// Long-horizon progress (sub-goals declared reached).
+    pub fn sub_goal(&self) -> SubGoalProgress {
+        self.progress
+    }
+
+    /// The outcome of the last simulator step (`None` at the start and after a refused action).
+    pub fn last(&self) -> Option<&StepOutcome> {
+        self.last.as_ref()
+    }
+
+    /// Whether the episode is over: STOP of the last sub-goal, a failure, or the step limit.
+    pub fn is_over(&self) -> bool {
+        self.over
+    }
+
+    /// Whether the agent called STOP for the last sub-goal.
+    pub fn stopped(&self) -> bool {
+        self.stopped
+    }
+
+    /// Geodesic distance (m) from the agent to the current sub-goal (the goal for the other
+    /// tasks); `None` when the agent stands off the navigable map.
+    pub fn distance_to_goal(&self) -> Option<f32> {
+        let k = (self.progress.current as usize).min(self.goal_fields.len() - 1);
+        GoalDistance::distance(&*self.goal_fields[k], self.pose.position)
+    }
+
+    /// What the rig is told about the agent at this step.
+    pub fn agent_state(&self) -> AgentState {
+        let last = self.last.as_ref();
+        AgentState {
+            base: self.pose,
+            step: self.steps as u64,
+            time_s: 0.0,
+            collision: CollisionInfo {
+                collided: last.is_some_and(|o| o.collided),
+                displacement: last.map_or(0.0, |o| {
+                    (Vec2::from_array(o.commanded) - Vec2::from_array(o.achieved)).length()
+                }),
+                count: self.collisions,
+            },
+        }
+    }
+
+    /// The rig's readings at this step.
+    pub fn observe(&self, rig: &mut SensorRig) -> Result<Observations> {
+        rig.observe(&self.agent_state())
+            .map_err(|e| sim_err("rig", &self.inputs.scene_id, e))
+    }
+
+    /// Dialogue episodes: ask the oracle (within the episode's budget; see [`OracleHandle`]).
+    /// `None` when the episode has no oracle or its budget is spent.
+    pub fn ask(&mut self, question: &str) -> Option<String> {
+        let pose = self.pose;
+        let oracle = self.dialogue.as_mut()?;
+        DialogueHandle { oracle, pose }.ask(question)
+    }
+
+    /// Questions left to ask the oracle (0 without one).
+    pub fn questions_left(&self) -> u32 {
+        self.dialogue.as_ref().map_or(0, |o| o.remaining())
+    }
+
+    /// Apply one action under the loop's rules. An action outside the protocol's action space
+    /// is an error (and changes nothing); so is any action once the episode is over.
+    pub fn apply<S: Simulator>(
+        &mut self,
+        sim: &mut S,
+        action: Action,
+        cfg: &EvalConfig,
+    ) -> Result<Applied> {
+        if self.over {
+            return Err(TaskError::invalid(
+                "action",
+                format!("{action:?}"),
+                format!(
+                    "episode {} is over; reset before stepping again",
+                    self.inputs.episode_id
+                ),
+            ));
+        }
+        if !cfg.action_space.allows(&action) {
+            return Err(TaskError::invalid(
+                "action",
+                format!("{action:?}"),
+                format!(
+                    "episode {}: not in the {} action space",
+                    self.inputs.episode_id,
+                    cfg.action_space.name()
+                ),
+            ));
+        }
+        self.steps += 1;
+        self.actions.push(action_name(&action).to_string());
+        let applied = if action == Action::Stop {
+            if self.progress.current + 1 < self.progress.total {
+                // A long-horizon sub-goal declared reached; the episode goes on.
+                self.stops.push(self.positions.len() as u32 - 1);
+                self.progress.current += 1;
+                Applied::Stop { sub_goal: true }
+            } else {
+                self.stopped = true;
+                self.over = true;
+                Applied::Stop { sub_goal: false }
+            }
+        } else {
+            match sim.step(action) {
+                Ok(out) => {
+                    self.pose = out.pose;
+                    self.positions.push(self.pose.position);
+                    self.headings.push(self.pose.yaw());
+                    if out.noticeable {
+                        self.collisions += 1;
+                    }
+                    if let Some(f) = &out.failure {
+                        self.failure =
+                            Some(serde_json::to_string(f).unwrap_or_else(|_| format!("{f:?}")));
+                    }
+                    self.over |= out.done;
+                    self.last = Some(out.clone());
+                    Applied::Stepped(out)
+                }
+                Err(e) => {
+                    // An invalid action changes nothing; it still costs a step.
+                    tracing::warn!(episode = self.inputs.episode_id, "action refused: {e}");
+                    self.last = None;
+                    self.positions.push(self.pose.position);
+                    self.headings.push(self.pose.yaw());
+                    Applied::Refused(e.to_string())
+                }
+            }
+        };
+        if self.steps >= cfg.max_steps {
+            self.over = true;
+        }
+        Ok(applied)
+    }
+
+    /// An action that cannot be carried out (named `name` in the trajectory, e.g. a question
+    /// with no budget left): nothing moves, the step counts.
+    pub fn refuse(&mut self, name: &str, why: &str, cfg: &EvalConfig) -> Result<Applied> {
+        if self.over {
+            return Err(TaskError::invalid(
+                "action",
+                name,
+                format!(
+                    "episode {} is over; reset before stepping again",
+                    self.inputs.episode_id
+                ),
+            ));
+        }
+        self.steps += 1;
+        self.actions.push(name.to_string());
+        self.last = None;
+        self.positions.push(self.pose.position);
+        self.headings.push(self.pose.yaw());
+        if self.steps >= cfg.max_steps {
+            self.over = true;
+        }
+        Ok(Applied::Refused(why.to_string()))
+    }
+
+    /// The trajectory so far.
+    pub fn trajectory(&self) -> Trajectory {
+        Trajectory {
+            episode_id: self.inputs.episode_id,
+            positions: self.positions.clone(),
+            headings: Some(self.headings.clone()),
+            stopped: self.stopped,
+            collisions: self.collisions,
+            steps: self.steps,
+            stops: self.stops.clone(),
+            actions: Some(self.actions.clone()),
+        }
+    }
+
+    /// Score the episode as it stands (normally once it is over).
+    pub fn finish(
+        &self,
+        ep: &Episode,
+        scene: &SceneContext,
+        settings: &EpisodeSettings,
+    ) -> Result<EpisodeRecord> {
+        let traj = self.trajectory();
+        let distances = goal_distances(scene, ep, &self.goal_fields)?;
+        let mut metrics = score_episode(ep, &traj, &distances, &settings.metrics);
+        metrics.split = settings.split;
+        Ok(EpisodeRecord {
+            episode_id: ep.episode_id,
+            trajectory: traj,
+            metrics,
+            failure: self.failure.clone(),
+        })
+    }
+}
+
 /// Run one episode: reset `sim` (and `rig`, when rendering) at the episode's start in
 /// `scene`, then `observe -> agent.act -> sim.step` under the rules in this module's docs, and
 /// score the trajectory on the scene's navigable map. Deterministic for a deterministic
@@ -208,185 +560,34 @@ pub fn run_episode<S: Simulator>(
     scene: &SceneContext,
     settings: &EpisodeSettings,
 ) -> Result<EpisodeRecord> {
-    let cfg = &settings.config;
-    let goal_fields: Vec<Arc<DistanceField>> = ep
-        .goal_sequence()
-        .iter()
-        .map(|g| scene.field(g.position))
-        .collect::<Result<_>>()?;
-    if goal_fields.is_empty() {
-        return Err(TaskError::invalid(
-            format!("episode {}: goals", ep.episode_id),
-            "[]",
-            "an episode needs a goal",
-        ));
-    }
-    let start = Pose {
-        position: ep.start_position,
-        rotation: ep.start_rotation,
-    };
-    let prepared = scene.prepared(&*sim)?;
-    let mut pose = sim.reset_prepared(&prepared, start).map_err(|e| {
-        sim_err(
-            &format!("episode {}: start_position", ep.episode_id),
-            format!("{:?}", ep.start_position),
-            e,
-        )
-    })?;
-    if let Some(rig) = rig.as_deref_mut() {
-        if rig.scene_id() != Some(ep.scene_id.as_str()) {
-            rig.set_scene(&scene.scene)
-                .map_err(|e| sim_err("scene", &ep.scene_id, e))?;
-        }
-        rig.reset(pose);
-    }
-    let inputs = EpisodeInputs {
-        episode_id: ep.episode_id,
-        scene_id: ep.scene_id.clone(),
-        task: ep.task,
-        instruction: ep.instruction.instruction_text.clone(),
-        sub_instructions: ep.instruction.sub_instructions.clone(),
-        reference_image: ep
-            .reference_image
-            .as_ref()
-            .map(|r| match &settings.reference_dir {
-                Some(d) => d.join(r),
-                None => PathBuf::from(r),
-            }),
-        start: pose,
-        agent: settings.agent.clone(),
-        action_space: cfg.action_space,
-        setting: cfg.setting,
-        success_distance: cfg.success_distance,
-        max_steps: cfg.max_steps,
-        oracle_budget: ep.oracle_budget,
-        seed: episode_seed(cfg.seed, ep.episode_id),
-    };
+    let mut st = EpisodeState::begin(sim, rig.as_deref_mut(), ep, scene, settings)?;
     if settings.privileged {
-        agent.set_truth(&Privileged {
-            episode: ep,
-            fields: &goal_fields,
-        });
+        agent.set_truth(&st.privileged(ep));
     }
-    agent.reset(&inputs)?;
-    let total = goal_fields.len() as u32;
-    let mut progress = SubGoalProgress { current: 0, total };
-    let mut dialogue = match ep.oracle_budget {
-        Some(_) => Some(ShortestPathOracle::for_episode(
-            scene.scene.clone(),
-            scene.graph(),
-            scene.navigable.clone(),
-            ep,
-            OracleConfig::default(),
-        )?),
-        None => None,
-    };
-    let mut positions = vec![pose.position];
-    let mut headings = vec![pose.yaw()];
-    let mut actions: Vec<String> = Vec::new();
-    let mut stops: Vec<u32> = Vec::new();
-    let (mut steps, mut collisions, mut stopped) = (0u32, 0u32, false);
-    let mut last: Option<StepOutcome> = None;
-    let mut failure = None;
+    agent.reset(&st.inputs)?;
     let empty = Observations::new();
-    while steps < cfg.max_steps {
+    while !st.over {
         let obs = match rig.as_deref_mut() {
-            Some(rig) => rig
-                .observe(&AgentState {
-                    base: pose,
-                    step: steps as u64,
-                    time_s: 0.0,
-                    collision: CollisionInfo {
-                        collided: last.as_ref().is_some_and(|o| o.collided),
-                        displacement: last.as_ref().map_or(0.0, |o| {
-                            (Vec2::from_array(o.commanded) - Vec2::from_array(o.achieved)).length()
-                        }),
-                        count: collisions,
-                    },
-                })
-                .map_err(|e| sim_err("rig", &ep.scene_id, e))?,
+            Some(rig) => st.observe(rig)?,
             None => empty.clone(),
         };
-        let mut handle = dialogue
+        let pose = st.pose;
+        let mut handle = st
+            .dialogue
             .as_mut()
             .map(|oracle| DialogueHandle { oracle, pose });
         let action = agent.act(&mut StepInput {
-            step: steps,
+            step: st.steps,
             observations: &obs,
             pose,
-            last: last.as_ref(),
-            sub_goal: progress,
+            last: st.last.as_ref(),
+            sub_goal: st.progress,
             oracle: handle.as_mut().map(|h| h as &mut dyn OracleHandle),
         })?;
-        if !cfg.action_space.allows(&action) {
-            return Err(TaskError::invalid(
-                "action",
-                format!("{action:?}"),
-                format!(
-                    "episode {}: not in the {} action space",
-                    ep.episode_id,
-                    cfg.action_space.name()
-                ),
-            ));
-        }
-        steps += 1;
-        actions.push(action_name(&action).to_string());
-        if action == Action::Stop {
-            if progress.current + 1 < total {
-                // A long-horizon sub-goal declared reached; the episode goes on.
-                stops.push(positions.len() as u32 - 1);
-                progress.current += 1;
-                continue;
-            }
-            stopped = true;
-            break;
-        }
-        let out = match sim.step(action) {
-            Ok(o) => o,
-            Err(e) => {
-                // An invalid action changes nothing; it still costs a step.
-                tracing::warn!(episode = ep.episode_id, "action refused: {e}");
-                last = None;
-                positions.push(pose.position);
-                headings.push(pose.yaw());
-                continue;
-            }
-        };
-        pose = out.pose;
-        positions.push(pose.position);
-        headings.push(pose.yaw());
-        if out.noticeable {
-            collisions += 1;
-        }
-        let done = out.done;
-        if let Some(f) = &out.failure {
-            failure = Some(serde_json::to_string(f).unwrap_or_else(|_| format!("{f:?}")));
-        }
-        last = Some(out);
-        if done {
-            break;
-        }
+        st.apply(sim, action, &settings.config)?;
     }
     agent.end_episode()?;
-    let traj = Trajectory {
-        episode_id: ep.episode_id,
-        positions,
-        headings: Some(headings),
-        stopped,
-        collisions,
-        steps,
-        stops,
-        actions: Some(actions),
-    };
-    let distances = goal_distances(scene, ep, &goal_fields)?;
-    let mut metrics = score_episode(ep, &traj, &distances, &settings.metrics);
-    metrics.split = settings.split;
-    Ok(EpisodeRecord {
-        episode_id: ep.episode_id,
-        trajectory: traj,
-        metrics,
-        failure,
-    })
+    st.finish(ep, scene, settings)
 }
 
 /// Distances to the goal (the nearest of several goals) and, for long-horizon episodes, to

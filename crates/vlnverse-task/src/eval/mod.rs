@@ -10,12 +10,13 @@ pub mod protocol;
 pub mod resume;
 pub mod runner;
 pub mod scene_context;
+pub mod vec_env;
 
 pub use agent::{
     Agent, AgentFactory, EpisodeInputs, OracleHandle, Privileged, StepInput, SubGoalProgress,
 };
 pub use agents::FnFactory;
-pub use episode_loop::{run_episode, EpisodeSettings};
+pub use episode_loop::{run_episode, Applied, EpisodeSettings, EpisodeState};
 pub use protocol::{ActionSpace, EvalConfig, Setting};
 pub use resume::EpisodeRecord;
 pub use runner::{
@@ -23,3 +24,6 @@ pub use runner::{
     RendererFactory, SimulatorFactory,
 };
 pub use scene_context::{SceneCache, SceneContext};
+pub use vec_env::{
+    EnvAction, EnvStep, EpisodeOrder, RapierVecEnv, RewardConfig, StepInfo, VecEnv, VecEnvConfig,
+};

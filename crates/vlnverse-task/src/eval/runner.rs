@@ -396,31 +396,8 @@ fn evaluate_locked<SF: SimulatorFactory, RF: RendererFactory>(
     total_in_split: usize,
     on_episode: &(dyn Fn() + Sync),
 ) -> Result<EvalOutcome> {
-    if req.fresh {
-        remove_run_files(&req.out)?;
-    }
-    resume::check_or_write_identity(&req.out, identity)?;
+    let mut done = open_run(req, identity, total_in_split)?;
     let progress_path = req.out.join(PROGRESS_FILE);
-    let mut done: BTreeMap<u64, EpisodeRecord> = resume::load_progress(&progress_path)?
-        .into_iter()
-        .map(|r| (r.episode_id, r))
-        .collect();
-    // A finished run's summary covers more episodes than asked for now: keep it.
-    if let Some(n) = req.episodes {
-        if n < total_in_split && done.len() > n && req.out.join("summary.json").exists() {
-            return Err(TaskError::invalid(
-                "episodes",
-                n,
-                format!(
-                    "{} already holds {} finished episodes; rewriting its summary with {n} \
-                     would lose them: leave --episodes out to rebuild the full summary, use \
-                     --fresh to start over, or choose another --out",
-                    req.out.display(),
-                    done.len()
-                ),
-            ));
-        }
-    }
     let todo: Vec<&Episode> = {
         let mut v: Vec<&Episode> = episodes
             .iter()
@@ -462,13 +439,68 @@ fn evaluate_locked<SF: SimulatorFactory, RF: RendererFactory>(
         steps_run += rec.trajectory.steps as u64;
         done.insert(rec.episode_id, rec);
     }
+    let (summary, records) = finish_run(req, &factory.name(), &shared.scenes, episodes, done)?;
+    Ok(EvalOutcome {
+        summary,
+        records,
+        resumed,
+        steps_run,
+    })
+}
+
+/// Make `req.out` ready for a run whose lock the caller holds: `--fresh` removes an earlier
+/// run's files, the run identity is checked against (or written to) `run.json`, and the
+/// episodes already finished there are returned (by id). A smaller `--episodes` than a
+/// finished run holds is refused rather than shrinking its summary.
+pub fn open_run(
+    req: &EvalRequest,
+    identity: &[(&str, serde_json::Value)],
+    total_in_split: usize,
+) -> Result<BTreeMap<u64, EpisodeRecord>> {
+    if req.fresh {
+        remove_run_files(&req.out)?;
+    }
+    resume::check_or_write_identity(&req.out, identity)?;
+    let progress_path = req.out.join(PROGRESS_FILE);
+    let done: BTreeMap<u64, EpisodeRecord> = resume::load_progress(&progress_path)?
+        .into_iter()
+        .map(|r| (r.episode_id, r))
+        .collect();
+    // A finished run's summary covers more episodes than asked for now: keep it.
+    if let Some(n) = req.episodes {
+        if n < total_in_split && done.len() > n && req.out.join("summary.json").exists() {
+            return Err(TaskError::invalid(
+                "episodes",
+                n,
+                format!(
+                    "{} already holds {} finished episodes; rewriting its summary with {n} \
+                     would lose them: leave --episodes out to rebuild the full summary, use \
+                     --fresh to start over, or choose another --out",
+                    req.out.display(),
+                    done.len()
+                ),
+            ));
+        }
+    }
+    Ok(done)
+}
+
+/// Write a run's results for `episodes` (in split order) from the finished records `done`:
+/// `summary.json`, `episodes.csv`, `report.md`, `trajectories.jsonl` and the plots.
+pub fn finish_run(
+    req: &EvalRequest,
+    agent_name: &str,
+    scenes: &SceneCache,
+    episodes: &[Episode],
+    mut done: BTreeMap<u64, EpisodeRecord>,
+) -> Result<(RunSummary, Vec<EpisodeRecord>)> {
     let records: Vec<EpisodeRecord> = episodes
         .iter()
         .filter_map(|e| done.remove(&e.episode_id))
         .collect();
     let metrics: Vec<_> = records.iter().map(|r| r.metrics.clone()).collect();
     let summary = RunSummary::new(
-        &factory.name(),
+        agent_name,
         Some(req.config.setting.name()),
         req.task,
         req.split,
@@ -477,13 +509,8 @@ fn evaluate_locked<SF: SimulatorFactory, RF: RendererFactory>(
     write_run(&req.out, &summary, &metrics)?;
     let trajs: Vec<Trajectory> = records.iter().map(|r| r.trajectory.clone()).collect();
     write_jsonl(&req.out.join("trajectories.jsonl"), &trajs)?;
-    write_plots(req, &shared.scenes, episodes, &records)?;
-    Ok(EvalOutcome {
-        summary,
-        records,
-        resumed,
-        steps_run,
-    })
+    write_plots(req, scenes, episodes, &records)?;
+    Ok((summary, records))
 }
 
 /// `--fresh`: delete an earlier run's files (and only those) from `out`.

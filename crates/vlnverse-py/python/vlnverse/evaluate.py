@@ -1,0 +1,148 @@
+"""``evaluate``, ``score`` and ``load_episodes``: the CLI's jobs from Python."""
+
+from __future__ import annotations
+
+import json
+import sys
+import time
+from typing import Any, Optional, Protocol
+
+import numpy as np
+
+from vlnverse import _errors as check
+from vlnverse._native import RunFolder, VLNVerseError
+from vlnverse._native import load_episodes as _load_episodes
+from vlnverse._native import score as _score
+from vlnverse.vector import PathLike, VectorEnv
+
+
+class Agent(Protocol):
+    """A batched policy: ``act`` answers every environment's observation at once."""
+
+    def reset(self) -> None:
+        """Called once before the first step."""
+
+    def act(self, observations: dict[str, Any], infos: dict[str, Any]) -> Any:
+        """Actions for all environments (shape ``(N,)`` or ``(N, 3)``)."""
+
+
+def evaluate(
+    agent: Agent,
+    *,
+    dataset: PathLike,
+    task: str = "fine",
+    split: str = "val_unseen",
+    setting: str = "telhop",
+    out: PathLike,
+    num_envs: int = 4,
+    action_space: str = "discrete",
+    sensors: Optional[PathLike] = None,
+    profile: str = "vlnverse",
+    seed: int = 0,
+    max_steps: Optional[int] = None,
+    success_distance: Optional[float] = None,
+    episodes: Optional[int] = None,
+    name: Optional[str] = None,
+    version: Optional[str] = None,
+    fresh: bool = False,
+    render: bool = True,
+    progress: bool = True,
+) -> dict[str, Any]:
+    """Evaluate a Python agent on a split and write the run folder ``xtask evaluate`` writes
+    (``summary.json``, ``episodes.csv``, ``trajectories.jsonl``, ``report.md``, ``run.json``,
+    ``progress.jsonl``). Resumable: episodes already in ``out`` are kept, a run with another
+    agent ``name`` / ``version`` or protocol is refused, ``fresh=True`` starts over.
+    Returns ``summary.json`` as a dict."""
+    agent_name = name or getattr(agent, "name", None) or type(agent).__name__
+    fingerprint = version if version is None else f"version {version}"
+    task = check.check_choice("task", task, check.TASKS)
+    split = check.check_choice("split", split, check.SPLITS)
+    setting = check.check_choice("setting", setting, check.SETTINGS)
+    action_space = check.check_choice("action_space", action_space, check.ACTION_SPACES)
+    folder = RunFolder(
+        check.check_path("out", out),
+        check.check_path("dataset", dataset),
+        task,
+        split,
+        agent=str(agent_name),
+        agent_fingerprint=fingerprint,
+        setting=setting,
+        action_space=action_space,
+        profile=profile,
+        sensors=None if sensors is None else check.check_path("sensors", sensors),
+        seed=seed,
+        max_steps=max_steps,
+        success_distance=success_distance,
+        episodes=episodes,
+        fresh=fresh,
+        render=render,
+    )
+    try:
+        todo = list(folder.todo())
+        if todo:
+            _run(agent, folder, todo, dataset, task, split, setting, action_space, sensors,
+                 profile, seed, max_steps, success_distance, render,
+                 check.check_int("num_envs", num_envs, 1, 4096), progress)
+        summary: dict[str, Any] = json.loads(folder.finish())
+    finally:
+        folder.close()
+    return summary
+
+
+def _run(agent: Agent, folder: RunFolder, todo: list[int], dataset: PathLike, task: str,
+         split: str, setting: str, action_space: str, sensors: Optional[PathLike],
+         profile: str, seed: int, max_steps: Optional[int], success_distance: Optional[float],
+         render: bool, num_envs: int, progress: bool) -> None:
+    envs = VectorEnv(
+        dataset, task, split, num_envs=min(num_envs, len(todo)), setting=setting,
+        action_space=action_space, sensors=sensors, profile=profile, mode="eval", seed=seed,
+        max_steps=max_steps, success_distance=success_distance, render=render,
+        episode_ids=todo, copy=False,
+    )
+    try:
+        obs, infos = envs.reset(seed=seed)
+        agent.reset()
+        left = set(todo)
+        started = time.monotonic()
+        last_report = started
+        while left:
+            obs, _, term, trunc, infos = envs.step(agent.act(obs, infos))
+            for i in np.flatnonzero(term | trunc):
+                eid = int(infos["episode_id"][i])
+                if int(infos["pass"][i]) == 0 and eid in left:
+                    folder.record(infos["record"][i])
+                    left.discard(eid)
+            now = time.monotonic()
+            if progress and (now - last_report > 2.0 or not left):
+                done = len(todo) - len(left)
+                print(f"evaluate: {done}/{len(todo)} episodes ({now - started:.1f} s)",
+                      file=sys.stderr, flush=True)
+                last_report = now
+    finally:
+        envs.close()
+
+
+def load_episodes(dataset: PathLike, task: str, split: str) -> list[dict[str, Any]]:
+    """The episodes of ``DIR/<task>/<split>/<split>.json.gz`` as dicts (the file's fields)."""
+    text = _load_episodes(check.check_path("dataset", dataset),
+                          check.check_choice("task", task, check.TASKS),
+                          check.check_choice("split", split, check.SPLITS))
+    out: list[dict[str, Any]] = json.loads(text)
+    return out
+
+
+def score(dataset: PathLike, task: str, split: str, trajectories: PathLike, out: PathLike, *,
+          success_distance: float = 3.0, fail_on_collision: bool = False,
+          method: Optional[str] = None) -> dict[str, Any]:
+    """Score a trajectory file like ``cargo xtask score``; returns ``summary.json``."""
+    text = _score(check.check_path("dataset", dataset),
+                  check.check_choice("task", task, check.TASKS),
+                  check.check_choice("split", split, check.SPLITS),
+                  check.check_path("trajectories", trajectories), check.check_path("out", out),
+                  success_distance=success_distance, fail_on_collision=fail_on_collision,
+                  method=method)
+    summary: dict[str, Any] = json.loads(text)
+    return summary
+
+
+__all__ = ["Agent", "VLNVerseError", "evaluate", "load_episodes", "score"]

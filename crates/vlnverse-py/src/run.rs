@@ -1,0 +1,299 @@
+//! Run folders, episodes and scoring from Python: what `vlnverse.evaluate`, `load_episodes`
+//! and `score` call. The files are the ones `cargo xtask evaluate` / `score` write.
+
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+use std::sync::Mutex;
+
+use pyo3::prelude::*;
+use vlnverse_task::dataset;
+use vlnverse_task::episode::{Episode, Split, Task};
+use vlnverse_task::eval::resume::{EpisodeRecord, ProgressLog, PROGRESS_FILE};
+use vlnverse_task::eval::runner::{finish_run, open_run, run_identity};
+use vlnverse_task::eval::{ActionSpace, EvalConfig, EvalRequest, FnFactory, SceneCache, Setting};
+use vlnverse_task::metrics::{check_starts, match_trajectories, MetricsConfig};
+use vlnverse_task::report::{write_run, RunSummary};
+use vlnverse_task::{score as scoring, trajectory, OutputLock};
+
+use crate::{guarded, py_err};
+
+fn parse<T: std::str::FromStr>(field: &str, v: &str) -> PyResult<T>
+where
+    T::Err: std::fmt::Display,
+{
+    v.parse::<T>()
+        .map_err(|e| py_err(format!("invalid {field} `{v}`: {e}")))
+}
+
+/// The episodes of a split, as JSON text (the split file's `episodes` array).
+#[pyfunction]
+pub fn load_episodes(dataset: PathBuf, task: &str, split: &str) -> PyResult<String> {
+    let (task, split): (Task, Split) = (parse("task", task)?, parse("split", split)?);
+    guarded("load_episodes", || {
+        let eps = dataset::read_split(&dataset, task, split).map_err(py_err)?;
+        serde_json::to_string(&eps).map_err(py_err)
+    })
+}
+
+/// Score a trajectory file (JSON lines or VLN-CE format) on a split; writes the run files
+/// under `out` and returns `summary.json`'s text.
+#[pyfunction]
+#[pyo3(signature = (dataset, task, split, trajectories, out, *, success_distance = 3.0,
+    fail_on_collision = false, method = None))]
+#[allow(clippy::too_many_arguments)]
+pub fn score(
+    py: Python<'_>,
+    dataset: PathBuf,
+    task: &str,
+    split: &str,
+    trajectories: PathBuf,
+    out: PathBuf,
+    success_distance: f32,
+    fail_on_collision: bool,
+    method: Option<String>,
+) -> PyResult<String> {
+    let (task, split): (Task, Split) = (parse("task", task)?, parse("split", split)?);
+    py.detach(|| {
+        guarded("score", || {
+            let cfg = MetricsConfig {
+                success_distance,
+                fail_on_collision,
+                ..Default::default()
+            };
+            cfg.validate().map_err(py_err)?;
+            let episodes = dataset::read_split(&dataset, task, split).map_err(py_err)?;
+            let trajs = trajectory::read_trajectories(&trajectories).map_err(py_err)?;
+            let trajs = match_trajectories(&episodes, trajs, false).map_err(py_err)?;
+            check_starts(
+                &episodes,
+                &trajs,
+                vlnverse_task::metrics::DEFAULT_START_TOLERANCE,
+            )
+            .map_err(py_err)?;
+            let mut metrics = scoring::score_on_maps(&dataset, &episodes, &trajs, &cfg, &|_| {})
+                .map_err(py_err)?;
+            for m in &mut metrics {
+                m.split = Some(split);
+            }
+            let name = method.unwrap_or_else(|| {
+                trajectories
+                    .file_stem()
+                    .map(|s| s.to_string_lossy().into_owned())
+                    .unwrap_or_else(|| "trajectories".into())
+            });
+            let run = RunSummary::new(&name, None, task, split, &metrics);
+            write_run(&out, &run, &metrics).map_err(py_err)?;
+            serde_json::to_string(&run).map_err(py_err)
+        })
+    })
+}
+
+struct Open {
+    req: EvalRequest,
+    agent: String,
+    episodes: Vec<Episode>,
+    done: BTreeMap<u64, EpisodeRecord>,
+    log: ProgressLog,
+    _lock: OutputLock,
+}
+
+/// An evaluation run folder opened for writing by a Python driver: locked, its identity
+/// (protocol, dataset, agent name and fingerprint) checked against an earlier run, finished
+/// episodes loaded so a run resumes. `record` appends one finished episode, `finish` writes
+/// the summary files.
+#[pyclass(module = "vlnverse._native")]
+pub struct RunFolder {
+    open: Mutex<Option<Open>>,
+}
+
+#[pymethods]
+impl RunFolder {
+    #[new]
+    #[pyo3(signature = (out, dataset, task, split, *, agent, agent_fingerprint = None,
+        setting = "telhop", action_space = "discrete", profile = "vlnverse", sensors = None,
+        seed = 0, max_steps = None, success_distance = None, episodes = None, fresh = false,
+        render = true, backend = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        out: PathBuf,
+        dataset: PathBuf,
+        task: &str,
+        split: &str,
+        agent: String,
+        agent_fingerprint: Option<String>,
+        setting: &str,
+        action_space: &str,
+        profile: &str,
+        sensors: Option<PathBuf>,
+        seed: u64,
+        max_steps: Option<u32>,
+        success_distance: Option<f32>,
+        episodes: Option<usize>,
+        fresh: bool,
+        render: bool,
+        backend: Option<&str>,
+    ) -> PyResult<Self> {
+        let (task, split): (Task, Split) = (parse("task", task)?, parse("split", split)?);
+        let setting: Setting = parse("setting", setting)?;
+        let mut config = EvalConfig::for_setting(setting);
+        config.action_space = match action_space {
+            "discrete" => ActionSpace::Discrete,
+            "continuous" | "velocity" => ActionSpace::Continuous,
+            "waypoint" => ActionSpace::Waypoint,
+            other => {
+                return Err(py_err(format!(
+                    "invalid action_space `{other}`: expected discrete, continuous or waypoint"
+                )))
+            }
+        };
+        config.agent_profile = profile.into();
+        config.seed = seed;
+        config.render = render;
+        if let Some(s) = sensors {
+            config.rig = s.display().to_string();
+        }
+        if let Some(b) = backend {
+            config.backend = Some(parse("backend", b)?);
+        }
+        if let Some(m) = max_steps {
+            config.max_steps = m;
+        }
+        if let Some(d) = success_distance {
+            config.success_distance = d;
+        }
+        if agent.trim().is_empty() {
+            return Err(py_err(
+                "invalid agent ``: name the agent (it goes into run.json)",
+            ));
+        }
+        guarded("RunFolder", || {
+            config.validate().map_err(py_err)?;
+            if episodes == Some(0) {
+                return Err(py_err(
+                    "invalid episodes 0: must be at least 1 (leave it out for the whole split)",
+                ));
+            }
+            let req = EvalRequest {
+                dataset: dataset.clone(),
+                task,
+                split,
+                episodes,
+                threads: None,
+                out: out.clone(),
+                fresh,
+                config,
+            };
+            let mut eps = dataset::read_split(&dataset, task, split).map_err(py_err)?;
+            if eps.is_empty() {
+                return Err(py_err(format!(
+                    "{}: the split has no episodes",
+                    dataset::split_path(&dataset, task, split).display()
+                )));
+            }
+            let total = eps.len();
+            if let Some(n) = episodes {
+                eps.truncate(n);
+            }
+            let mut factory = FnFactory::new(&agent, false, || -> Box<dyn vlnverse_task::Agent> {
+                unreachable!("a Python agent is never made in Rust")
+            });
+            if let Some(fp) = agent_fingerprint {
+                factory = factory.with_fingerprint(fp);
+            }
+            let identity = run_identity(&req, &factory).map_err(py_err)?;
+            let lock = OutputLock::acquire(&out, "evaluate").map_err(py_err)?;
+            let done = open_run(&req, &identity, total).map_err(py_err)?;
+            let log = ProgressLog::open(&out.join(PROGRESS_FILE)).map_err(py_err)?;
+            Ok(RunFolder {
+                open: Mutex::new(Some(Open {
+                    req,
+                    agent,
+                    episodes: eps,
+                    done,
+                    log,
+                    _lock: lock,
+                })),
+            })
+        })
+    }
+
+    /// Ids of the episodes still to run, in split order.
+    fn todo(&self) -> PyResult<Vec<u64>> {
+        self.with(|o| {
+            Ok(o.episodes
+                .iter()
+                .map(|e| e.episode_id)
+                .filter(|id| !o.done.contains_key(id))
+                .collect())
+        })
+    }
+
+    /// Episodes already finished (taken from an earlier run or recorded now).
+    fn finished(&self) -> PyResult<usize> {
+        self.with(|o| Ok(o.done.len()))
+    }
+
+    /// Append a finished episode (the JSON of an episode record, `info["record"]`).
+    fn record(&self, record: &str) -> PyResult<()> {
+        self.with(|o| {
+            let rec: EpisodeRecord = serde_json::from_str(record)
+                .map_err(|e| py_err(format!("record: not an episode record: {e}")))?;
+            if !o.episodes.iter().any(|e| e.episode_id == rec.episode_id) {
+                return Err(py_err(format!(
+                    "record: episode {} is not among this run's episodes",
+                    rec.episode_id
+                )));
+            }
+            if o.done.contains_key(&rec.episode_id) {
+                return Ok(());
+            }
+            o.log.append(&rec).map_err(py_err)?;
+            o.done.insert(rec.episode_id, rec);
+            Ok(())
+        })
+    }
+
+    /// Write summary.json, episodes.csv, report.md, trajectories.jsonl and plots; release
+    /// the folder. Returns summary.json's text.
+    fn finish(&self, py: Python<'_>) -> PyResult<String> {
+        let mut g = self.open.lock().unwrap_or_else(|p| p.into_inner());
+        let Some(o) = g.take() else {
+            return Err(py_err("the run folder is closed"));
+        };
+        let missing = o
+            .episodes
+            .iter()
+            .filter(|e| !o.done.contains_key(&e.episode_id))
+            .count();
+        if missing > 0 {
+            let n = o.episodes.len();
+            *g = Some(o);
+            return Err(py_err(format!(
+                "{missing} of {n} episodes have no record yet; run them before finishing"
+            )));
+        }
+        py.detach(|| {
+            guarded("finish", || {
+                let scenes = SceneCache::new(&o.req.dataset, 2);
+                let (summary, _) =
+                    finish_run(&o.req, &o.agent, &scenes, &o.episodes, o.done).map_err(py_err)?;
+                serde_json::to_string(&summary).map_err(py_err)
+            })
+        })
+    }
+
+    /// Release the folder without writing a summary (what was recorded stays for a resume).
+    fn close(&self) {
+        *self.open.lock().unwrap_or_else(|p| p.into_inner()) = None;
+    }
+}
+
+impl RunFolder {
+    fn with<T>(&self, f: impl FnOnce(&mut Open) -> PyResult<T>) -> PyResult<T> {
+        let mut g = self.open.lock().unwrap_or_else(|p| p.into_inner());
+        match g.as_mut() {
+            Some(o) => f(o),
+            None => Err(py_err("the run folder is closed")),
+        }
+    }
+}
