@@ -13,6 +13,7 @@ mod cmd_scene_info;
 mod cmd_scenes;
 mod cmd_score;
 mod cmd_stats;
+mod cmd_test;
 mod cmd_topdown;
 mod progress;
 mod split_args;
@@ -49,6 +50,8 @@ enum Command {
     Score(cmd_score::Args),
     /// Run the benchmarks that print figures (scenes, geodesic, physics, rendering, metrics).
     Bench(cmd_bench::Args),
+    /// Run every test: Rust (cargo test) and Python (the vlnverse package, pytest).
+    Test(cmd_test::Args),
 }
 
 fn main() {
@@ -74,6 +77,7 @@ fn main() {
         Command::Evaluate(a) => cmd_evaluate::run(a),
         Command::Score(a) => cmd_score::run(a),
         Command::Bench(a) => cmd_bench::run(a),
+        Command::Test(a) => cmd_test::run_tests(a),
     };
     if let Err(e) = result {
         eprintln!("error: {e:#}");

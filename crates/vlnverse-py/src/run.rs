@@ -39,7 +39,7 @@ pub fn load_episodes(dataset: PathBuf, task: &str, split: &str) -> PyResult<Stri
 /// under `out` and returns `summary.json`'s text.
 #[pyfunction]
 #[pyo3(signature = (dataset, task, split, trajectories, out, *, success_distance = 3.0,
-    fail_on_collision = false, method = None))]
+    fail_on_collision = false, allow_missing = false, method = None))]
 #[allow(clippy::too_many_arguments)]
 pub fn score(
     py: Python<'_>,
@@ -50,6 +50,7 @@ pub fn score(
     out: PathBuf,
     success_distance: f32,
     fail_on_collision: bool,
+    allow_missing: bool,
     method: Option<String>,
 ) -> PyResult<String> {
     let (task, split): (Task, Split) = (parse("task", task)?, parse("split", split)?);
@@ -63,7 +64,7 @@ pub fn score(
             cfg.validate().map_err(py_err)?;
             let episodes = dataset::read_split(&dataset, task, split).map_err(py_err)?;
             let trajs = trajectory::read_trajectories(&trajectories).map_err(py_err)?;
-            let trajs = match_trajectories(&episodes, trajs, false).map_err(py_err)?;
+            let trajs = match_trajectories(&episodes, trajs, allow_missing).map_err(py_err)?;
             check_starts(
                 &episodes,
                 &trajs,

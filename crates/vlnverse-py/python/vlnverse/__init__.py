@@ -16,8 +16,8 @@ from vlnverse.env import VLNEnv
 from vlnverse.evaluate import Agent, evaluate, load_episodes, score
 from vlnverse.vector import VectorEnv, make_vec
 
-#: The Gymnasium id: ``gymnasium.make("vlnverse/VLN-v0", dataset=..., task=..., split=...)``
-#: and ``gymnasium.make_vec("vlnverse/VLN-v0", num_envs=N, vectorization_mode="vector_entry_point", ...)``.
+#: The Gymnasium id: ``gymnasium.make(ENV_ID, dataset=..., task=..., split=...)`` and
+#: ``gymnasium.make_vec(ENV_ID, num_envs=N, vectorization_mode="vector_entry_point", ...)``.
 ENV_ID = "vlnverse/VLN-v0"
 
 if ENV_ID not in gymnasium.registry:

@@ -1,11 +1,11 @@
 """Type stubs of the native module (``crates/vlnverse-py/src``)."""
 
 from os import PathLike
-from typing import Any, Optional, Union
+from typing import Any
 
 import numpy as np
 
-_Path = Union[str, PathLike[str]]
+_Path = str | PathLike[str]
 
 __version__: str
 
@@ -26,22 +26,22 @@ class NativeVecEnv:
         setting: str = "telhop",
         action_space: str = "discrete",
         profile: str = "vlnverse",
-        sensors: Optional[_Path] = None,
+        sensors: _Path | None = None,
         mode: str = "eval",
         seed: int = 0,
-        max_steps: Optional[int] = None,
-        success_distance: Optional[float] = None,
+        max_steps: int | None = None,
+        success_distance: float | None = None,
         reward: str = "sparse",
-        episode_ids: Optional[list[int]] = None,
+        episode_ids: list[int] | None = None,
         render: bool = True,
         normalize_depth: bool = True,
         instruction_length: int = 200,
-        backend: Optional[str] = None,
+        backend: str | None = None,
     ) -> None: ...
     def spec(self) -> dict[str, Any]: ...
     def buffers(self) -> dict[str, np.ndarray]: ...
     def vocab(self) -> list[str]: ...
-    def reset(self, seed: Optional[int] = None) -> dict[str, Any]: ...
+    def reset(self, seed: int | None = None) -> dict[str, Any]: ...
     def step(self, actions: np.ndarray, reset_mask: list[bool]) -> dict[str, Any]: ...
     def close(self) -> None: ...
 
@@ -56,18 +56,18 @@ class RunFolder:
         split: str,
         *,
         agent: str,
-        agent_fingerprint: Optional[str] = None,
+        agent_fingerprint: str | None = None,
         setting: str = "telhop",
         action_space: str = "discrete",
         profile: str = "vlnverse",
-        sensors: Optional[_Path] = None,
+        sensors: _Path | None = None,
         seed: int = 0,
-        max_steps: Optional[int] = None,
-        success_distance: Optional[float] = None,
-        episodes: Optional[int] = None,
+        max_steps: int | None = None,
+        success_distance: float | None = None,
+        episodes: int | None = None,
         fresh: bool = False,
         render: bool = True,
-        backend: Optional[str] = None,
+        backend: str | None = None,
     ) -> None: ...
     def todo(self) -> list[int]: ...
     def finished(self) -> int: ...
@@ -85,5 +85,6 @@ def score(
     *,
     success_distance: float = 3.0,
     fail_on_collision: bool = False,
-    method: Optional[str] = None,
+    allow_missing: bool = False,
+    method: str | None = None,
 ) -> str: ...

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Any, Optional, SupportsFloat
+from typing import Any, SupportsFloat
 
 import gymnasium
 import numpy as np
@@ -11,7 +11,7 @@ from vlnverse._native import VLNVerseError
 from vlnverse.vector import PathLike, VectorEnv
 
 
-class VLNEnv(gymnasium.Env):  # type: ignore[misc]
+class VLNEnv(gymnasium.Env):
     """One environment over a dataset split (the single-environment view of ``VectorEnv``).
 
     Observations: the rig's images (``rgb`` uint8 HxWx3, ``depth`` float32 HxWx1 normalised
@@ -40,7 +40,7 @@ class VLNEnv(gymnasium.Env):  # type: ignore[misc]
         self._over = False
 
     def reset(
-        self, *, seed: Optional[int] = None, options: Optional[dict[str, Any]] = None
+        self, *, seed: int | None = None, options: dict[str, Any] | None = None
     ) -> tuple[dict[str, Any], dict[str, Any]]:
         """Start the next episode (``seed`` restarts the episode order / draws)."""
         super().reset(seed=seed)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 import sys
 import time
-from typing import Any, Optional, Protocol
+from typing import Any, Protocol
 
 import numpy as np
 
@@ -36,14 +36,14 @@ def evaluate(
     out: PathLike,
     num_envs: int = 4,
     action_space: str = "discrete",
-    sensors: Optional[PathLike] = None,
+    sensors: PathLike | None = None,
     profile: str = "vlnverse",
     seed: int = 0,
-    max_steps: Optional[int] = None,
-    success_distance: Optional[float] = None,
-    episodes: Optional[int] = None,
-    name: Optional[str] = None,
-    version: Optional[str] = None,
+    max_steps: int | None = None,
+    success_distance: float | None = None,
+    episodes: int | None = None,
+    name: str | None = None,
+    version: str | None = None,
     fresh: bool = False,
     render: bool = True,
     progress: bool = True,
@@ -90,8 +90,8 @@ def evaluate(
 
 
 def _run(agent: Agent, folder: RunFolder, todo: list[int], dataset: PathLike, task: str,
-         split: str, setting: str, action_space: str, sensors: Optional[PathLike],
-         profile: str, seed: int, max_steps: Optional[int], success_distance: Optional[float],
+         split: str, setting: str, action_space: str, sensors: PathLike | None,
+         profile: str, seed: int, max_steps: int | None, success_distance: float | None,
          render: bool, num_envs: int, progress: bool) -> None:
     envs = VectorEnv(
         dataset, task, split, num_envs=min(num_envs, len(todo)), setting=setting,
@@ -133,14 +133,14 @@ def load_episodes(dataset: PathLike, task: str, split: str) -> list[dict[str, An
 
 def score(dataset: PathLike, task: str, split: str, trajectories: PathLike, out: PathLike, *,
           success_distance: float = 3.0, fail_on_collision: bool = False,
-          method: Optional[str] = None) -> dict[str, Any]:
+          allow_missing: bool = False, method: str | None = None) -> dict[str, Any]:
     """Score a trajectory file like ``cargo xtask score``; returns ``summary.json``."""
     text = _score(check.check_path("dataset", dataset),
                   check.check_choice("task", task, check.TASKS),
                   check.check_choice("split", split, check.SPLITS),
                   check.check_path("trajectories", trajectories), check.check_path("out", out),
                   success_distance=success_distance, fail_on_collision=fail_on_collision,
-                  method=method)
+                  allow_missing=allow_missing, method=method)
     summary: dict[str, Any] = json.loads(text)
     return summary
 

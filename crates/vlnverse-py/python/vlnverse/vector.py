@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 import os
-from typing import Any, Optional, Union
+from typing import Any, Union
 
 import numpy as np
 from gymnasium.vector import AutoresetMode
@@ -12,8 +12,8 @@ from gymnasium.vector import VectorEnv as GymVectorEnv
 from gymnasium.vector.utils import batch_space
 
 from vlnverse import _errors as check
-from vlnverse._native import NativeVecEnv, VLNVerseError
 from vlnverse import _spaces
+from vlnverse._native import NativeVecEnv, VLNVerseError
 
 PathLike = Union[str, "os.PathLike[str]"]
 
@@ -34,7 +34,7 @@ INFO_KEYS = (
 )
 
 
-class VectorEnv(GymVectorEnv):  # type: ignore[misc]
+class VectorEnv(GymVectorEnv):
     """``num_envs`` environments over one dataset split, stepped together in Rust.
 
     One ``step`` runs every environment on a Rust thread pool with the GIL released and
@@ -67,21 +67,21 @@ class VectorEnv(GymVectorEnv):  # type: ignore[misc]
         num_envs: int = 1,
         setting: str = "telhop",
         action_space: str = "discrete",
-        sensors: Optional[PathLike] = None,
+        sensors: PathLike | None = None,
         profile: str = "vlnverse",
         mode: str = "eval",
         seed: int = 0,
-        max_steps: Optional[int] = None,
-        success_distance: Optional[float] = None,
+        max_steps: int | None = None,
+        success_distance: float | None = None,
         reward: str = "sparse",
         render: bool = True,
         normalize_depth: bool = True,
         instruction_length: int = 200,
-        episode_ids: Optional[list[int]] = None,
-        backend: Optional[str] = None,
+        episode_ids: list[int] | None = None,
+        backend: str | None = None,
         copy: bool = True,
     ) -> None:
-        self._native: Optional[NativeVecEnv] = None
+        self._native: NativeVecEnv | None = None
         native = NativeVecEnv(
             check.check_path("dataset", dataset),
             check.check_choice("task", task, check.TASKS),
@@ -121,8 +121,8 @@ class VectorEnv(GymVectorEnv):  # type: ignore[misc]
     def reset(
         self,
         *,
-        seed: Optional[Union[int, list[int]]] = None,
-        options: Optional[dict[str, Any]] = None,
+        seed: int | list[int] | None = None,
+        options: dict[str, Any] | None = None,
     ) -> tuple[dict[str, Any], dict[str, Any]]:
         """Reset every environment to its next episode; ``seed`` reseeds the episode draws
         (and restarts the eval order); a list gives the first element (environment ``i``
