@@ -75,3 +75,12 @@ def test_load_episodes_gives_the_split(dataset: Path) -> None:
     assert eps and all(e["sub_goals"] for e in eps)
     with pytest.raises(VLNVerseError, match="test.json.gz|no such|not found|No such"):
         vlnverse.load_episodes(dataset / "missing", "fine", "test")
+
+
+def test_the_example_runs(dataset: Path, tmp_path: Path) -> None:
+    import sys
+
+    out = subprocess.run([sys.executable, str(ROOT / "examples/python/evaluate_teacher.py"),
+                          str(dataset)], cwd=tmp_path, check=True, capture_output=True, text=True)
+    assert "teacher  SR 1.00" in out.stdout and "success: True" in out.stdout
+    assert (tmp_path / "runs/py-teacher/summary.json").is_file()
