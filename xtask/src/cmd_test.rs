@@ -1,7 +1,6 @@
 //! `cargo xtask test`: every test of the project, Rust and Python, in one command.
 //!
-//! 1. `cargo test --workspace --release` (release: the build `cargo xtask` itself needs, so a
-//!    fresh machine compiles the workspace once);
+//! 1. `cargo test --workspace` (the test profile: optimised dependencies, quick to build);
 //! 2. a virtual environment in `.venv/` with the Python test tools
 //!    (`crates/vlnverse-py/requirements-dev.txt`), the `vlnverse` package built into it by
 //!    maturin, and a `tiny` dataset under `target/py-test-data/`;
@@ -52,10 +51,10 @@ pub fn run_tests(args: Args) -> anyhow::Result<()> {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     if !args.python_only {
         run(
-            "cargo test --workspace --release",
+            "cargo test --workspace",
             Command::new(&cargo)
                 .current_dir(&root)
-                .args(["test", "--workspace", "--release"]),
+                .args(["test", "--workspace"]),
         )?;
     }
     if args.rust_only {

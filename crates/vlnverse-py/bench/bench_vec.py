@@ -11,6 +11,7 @@ Figures move with machine load: compare runs taken on the same idle machine.
 from __future__ import annotations
 
 import argparse
+import functools
 import subprocess
 import time
 from pathlib import Path
@@ -34,7 +35,8 @@ def rate(envs: Any, steps: int, n: int) -> float:
 
 
 def make_single(dataset: str) -> Any:
-    return lambda: vlnverse.VLNEnv(dataset, "fine", "train", mode="train")
+    # A partial (not a lambda), so spawned worker processes can unpickle it.
+    return functools.partial(vlnverse.VLNEnv, dataset, "fine", "train", mode="train")
 
 
 def main() -> None:
@@ -56,7 +58,8 @@ def main() -> None:
         sync.close()
         r_async = float("nan")
         if not a.skip_async:
-            asy = gymnasium.vector.AsyncVectorEnv([make_single(a.dataset)] * n)
+            # spawn: forking a process that runs native thread pools is unsafe.
+            asy = gymnasium.vector.AsyncVectorEnv([make_single(a.dataset)] * n, context="spawn")
             r_async = rate(asy, max(a.steps // 4, 20), n)
             asy.close()
         out = subprocess.run(
