@@ -11,14 +11,13 @@ use pyo3::types::{PyDict, PyList};
 use vlnverse_task::dataset;
 use vlnverse_task::episode::{Split, Task};
 use vlnverse_task::eval::{
-    ActionSpace, EnvAction, EnvStep, EpisodeOrder, EvalConfig, RapierVecEnv, RewardConfig, Setting,
-    VecEnvConfig,
+    ActionSpace, EnvAction, EnvStep, EpisodeOrder, RapierVecEnv, RewardConfig, VecEnvConfig,
 };
 use vlnverse_task::vocab::{Vocab, VOCAB_FILE};
 
 use crate::actions::{discrete_count, Codec, Encoded};
 use crate::layout::{self, DType, Field, Row};
-use crate::{guarded, py_err};
+use crate::{guarded, parse, py_err};
 
 struct Inner {
     env: RapierVecEnv,
@@ -34,14 +33,6 @@ struct Inner {
 #[pyclass(module = "vlnverse._native")]
 pub struct NativeVecEnv {
     inner: Mutex<Option<Inner>>,
-}
-
-fn parse<T: std::str::FromStr>(field: &str, v: &str) -> PyResult<T>
-where
-    T::Err: std::fmt::Display,
-{
-    v.parse::<T>()
-        .map_err(|e| py_err(format!("invalid {field} `{v}`: {e}")))
 }
 
 /// The vocabulary beside the dataset, or one built from the task's training split.
@@ -354,17 +345,18 @@ impl NativeVecEnv {
     ) -> PyResult<Self> {
         let task: Task = parse("task", task)?;
         let split: Split = parse("split", split)?;
-        let setting: Setting = parse("setting", setting)?;
-        let space = match action_space {
-            "discrete" => ActionSpace::Discrete,
-            "continuous" | "velocity" => ActionSpace::Continuous,
-            "waypoint" => ActionSpace::Waypoint,
-            other => {
-                return Err(py_err(format!(
-                    "invalid action_space `{other}`: expected discrete, continuous or waypoint"
-                )))
-            }
-        };
+        let protocol = crate::protocol(
+            setting,
+            action_space,
+            profile,
+            sensors,
+            seed,
+            render,
+            backend,
+            max_steps,
+            success_distance,
+        )?;
+        let (setting, space) = (protocol.setting, protocol.action_space);
         let order = match mode {
             "eval" => EpisodeOrder::Eval,
             "train" => EpisodeOrder::Train,
@@ -394,23 +386,6 @@ impl NativeVecEnv {
             return Err(py_err(format!(
                 "invalid instruction_length {instruction_length}: must be in [1, 4096]"
             )));
-        }
-        let mut protocol = EvalConfig::for_setting(setting);
-        protocol.action_space = space;
-        protocol.agent_profile = profile.to_string();
-        protocol.seed = seed;
-        protocol.render = render;
-        if let Some(s) = sensors {
-            protocol.rig = s.display().to_string();
-        }
-        if let Some(b) = backend {
-            protocol.backend = Some(parse("backend", b)?);
-        }
-        if let Some(m) = max_steps {
-            protocol.max_steps = m;
-        }
-        if let Some(d) = success_distance {
-            protocol.success_distance = d;
         }
         let cfg = VecEnvConfig {
             dataset: dataset.clone(),

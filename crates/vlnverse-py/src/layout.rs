@@ -3,6 +3,7 @@
 
 use glam::{Quat, Vec3};
 use vlnverse_sensors::{Frame, Observation, RigConfig, SensorSpec};
+use vlnverse_task::eval::agents::wrap_angle;
 use vlnverse_task::eval::EnvStep;
 
 /// Element type of a buffer.
@@ -225,16 +226,6 @@ fn copy_scaled(dst: &mut [f32], src: &[f32], scale: f32) {
     }
 }
 
-fn wrap(a: f32) -> f32 {
-    let t = std::f32::consts::TAU;
-    let r = a.rem_euclid(t);
-    if r > std::f32::consts::PI {
-        r - t
-    } else {
-        r
-    }
-}
-
 /// Copy one environment's value of `field` into `row`. A sensor not due at this step (its
 /// rate) leaves the row as it was; a size mismatch is an error naming the key.
 pub fn write(field: &Field, step: &EnvStep, tokens: &[u32], row: Row<'_>) -> Result<(), String> {
@@ -304,7 +295,7 @@ pub fn write(field: &Field, step: &EnvStep, tokens: &[u32], row: Row<'_>) -> Res
             let p = step.pose.position;
             d.copy_from_slice(&[p[0], p[1], p[2], step.pose.yaw()]);
         }
-        (Source::Compass, Row::F32(d)) => d[0] = wrap(step.pose.yaw() - step.start.yaw()),
+        (Source::Compass, Row::F32(d)) => d[0] = wrap_angle(step.pose.yaw() - step.start.yaw()),
         (Source::Gps, Row::F32(d)) => {
             let rel = Quat::from_array(step.start.rotation).inverse()
                 * (Vec3::from_array(step.pose.position) - Vec3::from_array(step.start.position));

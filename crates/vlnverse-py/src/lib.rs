@@ -49,6 +49,59 @@ pub(crate) fn guarded<T>(what: &str, f: impl FnOnce() -> PyResult<T>) -> PyResul
     }
 }
 
+/// Parse a named argument (`task`, `split`, `setting`, ...); the error names it and the value.
+pub(crate) fn parse<T: std::str::FromStr>(field: &str, v: &str) -> PyResult<T>
+where
+    T::Err: std::fmt::Display,
+{
+    v.parse::<T>()
+        .map_err(|e| py_err(format!("invalid {field} `{v}`: {e}")))
+}
+
+/// The protocol the Python arguments describe (the CLI's defaults for the setting otherwise).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn protocol(
+    setting: &str,
+    action_space: &str,
+    profile: &str,
+    sensors: Option<std::path::PathBuf>,
+    seed: u64,
+    render: bool,
+    backend: Option<&str>,
+    max_steps: Option<u32>,
+    success_distance: Option<f32>,
+) -> PyResult<vlnverse_task::eval::EvalConfig> {
+    use vlnverse_task::eval::{ActionSpace, EvalConfig, Setting};
+    let setting: Setting = parse("setting", setting)?;
+    let mut cfg = EvalConfig::for_setting(setting);
+    cfg.action_space = match action_space {
+        "discrete" => ActionSpace::Discrete,
+        "continuous" | "velocity" => ActionSpace::Continuous,
+        "waypoint" => ActionSpace::Waypoint,
+        other => {
+            return Err(py_err(format!(
+                "invalid action_space `{other}`: expected discrete, continuous or waypoint"
+            )))
+        }
+    };
+    cfg.agent_profile = profile.to_string();
+    cfg.seed = seed;
+    cfg.render = render;
+    if let Some(s) = sensors {
+        cfg.rig = s.display().to_string();
+    }
+    if let Some(b) = backend {
+        cfg.backend = Some(parse("backend", b)?);
+    }
+    if let Some(m) = max_steps {
+        cfg.max_steps = m;
+    }
+    if let Some(d) = success_distance {
+        cfg.success_distance = d;
+    }
+    Ok(cfg)
+}
+
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("VLNVerseError", m.py().get_type::<VLNVerseError>())?;

@@ -10,20 +10,12 @@ use vlnverse_task::dataset;
 use vlnverse_task::episode::{Episode, Split, Task};
 use vlnverse_task::eval::resume::{EpisodeRecord, ProgressLog, PROGRESS_FILE};
 use vlnverse_task::eval::runner::{finish_run, open_run, run_identity};
-use vlnverse_task::eval::{ActionSpace, EvalConfig, EvalRequest, FnFactory, SceneCache, Setting};
+use vlnverse_task::eval::{EvalRequest, FnFactory, SceneCache};
 use vlnverse_task::metrics::{check_starts, match_trajectories, MetricsConfig};
 use vlnverse_task::report::{write_run, RunSummary};
 use vlnverse_task::{score as scoring, trajectory, OutputLock};
 
-use crate::{guarded, py_err};
-
-fn parse<T: std::str::FromStr>(field: &str, v: &str) -> PyResult<T>
-where
-    T::Err: std::fmt::Display,
-{
-    v.parse::<T>()
-        .map_err(|e| py_err(format!("invalid {field} `{v}`: {e}")))
-}
+use crate::{guarded, parse, py_err};
 
 /// The episodes of a split, as JSON text (the split file's `episodes` array).
 #[pyfunction]
@@ -135,33 +127,17 @@ impl RunFolder {
         backend: Option<&str>,
     ) -> PyResult<Self> {
         let (task, split): (Task, Split) = (parse("task", task)?, parse("split", split)?);
-        let setting: Setting = parse("setting", setting)?;
-        let mut config = EvalConfig::for_setting(setting);
-        config.action_space = match action_space {
-            "discrete" => ActionSpace::Discrete,
-            "continuous" | "velocity" => ActionSpace::Continuous,
-            "waypoint" => ActionSpace::Waypoint,
-            other => {
-                return Err(py_err(format!(
-                    "invalid action_space `{other}`: expected discrete, continuous or waypoint"
-                )))
-            }
-        };
-        config.agent_profile = profile.into();
-        config.seed = seed;
-        config.render = render;
-        if let Some(s) = sensors {
-            config.rig = s.display().to_string();
-        }
-        if let Some(b) = backend {
-            config.backend = Some(parse("backend", b)?);
-        }
-        if let Some(m) = max_steps {
-            config.max_steps = m;
-        }
-        if let Some(d) = success_distance {
-            config.success_distance = d;
-        }
+        let config = crate::protocol(
+            setting,
+            action_space,
+            profile,
+            sensors,
+            seed,
+            render,
+            backend,
+            max_steps,
+            success_distance,
+        )?;
         if agent.trim().is_empty() {
             return Err(py_err(
                 "invalid agent ``: name the agent (it goes into run.json)",
