@@ -38,7 +38,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .iter()
             .map(|s| {
                 let over = s.info.terminated || s.info.truncated;
-                (!over).then(|| EnvAction::Act(s.info.expert_action))
+                (!over).then_some(EnvAction::Act(s.info.expert_action))
             })
             .collect();
         last = env.step(actions)?;
