@@ -173,9 +173,12 @@ impl Inner {
             guarded("step", || {
                 let steps = job(env).map_err(py_err)?;
                 for (i, s) in steps.iter().enumerate() {
-                    let tokens = vocab.encode(&s.episode.instruction.instruction_text, token_len);
+                    // The instruction changes only with the episode: encode it at the start.
+                    let tokens = (s.info.steps == 0)
+                        .then(|| vocab.encode(&s.episode.instruction.instruction_text, token_len));
                     for (f, w) in fields.iter().zip(wholes.iter_mut()) {
-                        layout::write(f, s, &tokens, w.row(i, f.len())).map_err(py_err)?;
+                        layout::write(f, s, tokens.as_deref(), w.row(i, f.len()))
+                            .map_err(py_err)?;
                     }
                 }
                 Ok(steps)

@@ -228,7 +228,12 @@ fn copy_scaled(dst: &mut [f32], src: &[f32], scale: f32) {
 
 /// Copy one environment's value of `field` into `row`. A sensor not due at this step (its
 /// rate) leaves the row as it was; a size mismatch is an error naming the key.
-pub fn write(field: &Field, step: &EnvStep, tokens: &[u32], row: Row<'_>) -> Result<(), String> {
+pub fn write(
+    field: &Field,
+    step: &EnvStep,
+    tokens: Option<&[u32]>,
+    row: Row<'_>,
+) -> Result<(), String> {
     let size = |n: usize| {
         if n == field.len() {
             Ok(())
@@ -274,20 +279,17 @@ pub fn write(field: &Field, step: &EnvStep, tokens: &[u32], row: Row<'_>) -> Res
         (Source::PanoRgb(n), Row::U8(d)) => {
             if let Some(Observation::Panorama(views)) = step.observations.get(n) {
                 size(views.iter().map(|v| v.rgb.len()).sum())?;
-                let mut at = 0;
-                for v in views {
-                    d[at..at + v.rgb.len()].copy_from_slice(&v.rgb);
-                    at += v.rgb.len();
+                // Views share one camera, so they are equal in size.
+                for (dst, v) in d.chunks_mut(d.len() / views.len()).zip(views) {
+                    dst.copy_from_slice(&v.rgb);
                 }
             }
         }
         (Source::PanoDepth(n, far), Row::F32(d)) => {
             if let Some(Observation::Panorama(views)) = step.observations.get(n) {
                 size(views.iter().map(|v| v.depth.len()).sum())?;
-                let mut at = 0;
-                for v in views {
-                    copy_scaled(&mut d[at..at + v.depth.len()], &v.depth, *far);
-                    at += v.depth.len();
+                for (dst, v) in d.chunks_mut(d.len() / views.len()).zip(views) {
+                    copy_scaled(dst, &v.depth, *far);
                 }
             }
         }
@@ -303,8 +305,10 @@ pub fn write(field: &Field, step: &EnvStep, tokens: &[u32], row: Row<'_>) -> Res
             d[1] = rel.x;
         }
         (Source::Tokens, Row::I64(d)) => {
-            for (o, t) in d.iter_mut().zip(tokens) {
-                *o = i64::from(*t);
+            if let Some(tokens) = tokens {
+                for (o, t) in d.iter_mut().zip(tokens) {
+                    *o = i64::from(*t);
+                }
             }
         }
         (Source::SubGoal, Row::I64(d)) => d[0] = i64::from(step.info.sub_goal),

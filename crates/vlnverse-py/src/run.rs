@@ -10,7 +10,7 @@ use vlnverse_task::dataset;
 use vlnverse_task::episode::{Episode, Split, Task};
 use vlnverse_task::eval::resume::{EpisodeRecord, ProgressLog, PROGRESS_FILE};
 use vlnverse_task::eval::runner::{finish_run, open_run, run_identity};
-use vlnverse_task::eval::{EvalRequest, FnFactory, SceneCache};
+use vlnverse_task::eval::{AgentFactory, EvalRequest, SceneCache};
 use vlnverse_task::metrics::{check_starts, match_trajectories, MetricsConfig};
 use vlnverse_task::report::{write_run, RunSummary};
 use vlnverse_task::{score as scoring, trajectory, OutputLock};
@@ -79,6 +79,28 @@ pub fn score(
             serde_json::to_string(&run).map_err(py_err)
         })
     })
+}
+
+/// The run identity of an agent that lives in Python: its name and fingerprint.
+struct PythonAgent {
+    name: String,
+    fingerprint: Option<String>,
+}
+
+impl AgentFactory for PythonAgent {
+    fn name(&self) -> String {
+        self.name.clone()
+    }
+    fn make(&self) -> vlnverse_task::Result<Box<dyn vlnverse_task::Agent>> {
+        Err(vlnverse_task::TaskError::invalid(
+            "agent",
+            &self.name,
+            "a Python agent acts from Python (vlnverse.evaluate), not from a Rust runner",
+        ))
+    }
+    fn fingerprint(&self) -> Option<String> {
+        self.fingerprint.clone()
+    }
 }
 
 struct Open {
@@ -171,12 +193,10 @@ impl RunFolder {
             if let Some(n) = episodes {
                 eps.truncate(n);
             }
-            let mut factory = FnFactory::new(&agent, false, || -> Box<dyn vlnverse_task::Agent> {
-                unreachable!("a Python agent is never made in Rust")
-            });
-            if let Some(fp) = agent_fingerprint {
-                factory = factory.with_fingerprint(fp);
-            }
+            let factory = PythonAgent {
+                name: agent.clone(),
+                fingerprint: agent_fingerprint,
+            };
             let identity = run_identity(&req, &factory).map_err(py_err)?;
             let lock = OutputLock::acquire(&out, "evaluate").map_err(py_err)?;
             let done = open_run(&req, &identity, total).map_err(py_err)?;

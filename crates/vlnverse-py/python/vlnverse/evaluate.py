@@ -59,13 +59,9 @@ def evaluate(
     split = check.check_choice("split", split, check.SPLITS)
     setting = check.check_choice("setting", setting, check.SETTINGS)
     action_space = check.check_choice("action_space", action_space, check.ACTION_SPACES)
-    folder = RunFolder(
-        check.check_path("out", out),
-        check.check_path("dataset", dataset),
-        task,
-        split,
-        agent=str(agent_name),
-        agent_fingerprint=fingerprint,
+    num_envs = check.check_int("num_envs", num_envs, 1, 4096)
+    # The protocol, the same for the run folder's identity and the environments.
+    protocol: dict[str, Any] = dict(
         setting=setting,
         action_space=action_space,
         profile=profile,
@@ -73,53 +69,56 @@ def evaluate(
         seed=seed,
         max_steps=max_steps,
         success_distance=success_distance,
+        render=render,
+    )
+    folder = RunFolder(
+        check.check_path("out", out),
+        check.check_path("dataset", dataset),
+        task,
+        split,
+        agent=str(agent_name),
+        agent_fingerprint=fingerprint,
         episodes=episodes,
         fresh=fresh,
-        render=render,
+        **protocol,
     )
     try:
         todo = list(folder.todo())
         if todo:
-            _run(agent, folder, todo, dataset, task, split, setting, action_space, sensors,
-                 profile, seed, max_steps, success_distance, render,
-                 check.check_int("num_envs", num_envs, 1, 4096), progress)
+            envs = VectorEnv(dataset, task, split, num_envs=min(num_envs, len(todo)),
+                             mode="eval", episode_ids=todo, copy=False, **protocol)
+            try:
+                _run(agent, folder, todo, envs, seed, progress)
+            finally:
+                envs.close()
         summary: dict[str, Any] = json.loads(folder.finish())
     finally:
         folder.close()
     return summary
 
 
-def _run(agent: Agent, folder: RunFolder, todo: list[int], dataset: PathLike, task: str,
-         split: str, setting: str, action_space: str, sensors: PathLike | None,
-         profile: str, seed: int, max_steps: int | None, success_distance: float | None,
-         render: bool, num_envs: int, progress: bool) -> None:
-    envs = VectorEnv(
-        dataset, task, split, num_envs=min(num_envs, len(todo)), setting=setting,
-        action_space=action_space, sensors=sensors, profile=profile, mode="eval", seed=seed,
-        max_steps=max_steps, success_distance=success_distance, render=render,
-        episode_ids=todo, copy=False,
-    )
-    try:
-        obs, infos = envs.reset(seed=seed)
-        agent.reset()
-        left = set(todo)
-        started = time.monotonic()
-        last_report = started
-        while left:
-            obs, _, term, trunc, infos = envs.step(agent.act(obs, infos))
-            for i in np.flatnonzero(term | trunc):
-                eid = int(infos["episode_id"][i])
-                if int(infos["pass"][i]) == 0 and eid in left:
-                    folder.record(infos["record"][i])
-                    left.discard(eid)
-            now = time.monotonic()
-            if progress and (now - last_report > 2.0 or not left):
-                done = len(todo) - len(left)
-                print(f"evaluate: {done}/{len(todo)} episodes ({now - started:.1f} s)",
-                      file=sys.stderr, flush=True)
-                last_report = now
-    finally:
-        envs.close()
+def _run(agent: Agent, folder: RunFolder, todo: list[int], envs: VectorEnv, seed: int,
+         progress: bool) -> None:
+    """Step ``envs`` with ``agent`` until every episode of ``todo`` is recorded in ``folder``
+    (first pass only: environments that wrap around are ignored)."""
+    obs, infos = envs.reset(seed=seed)
+    agent.reset()
+    left = set(todo)
+    started = time.monotonic()
+    last_report = started
+    while left:
+        obs, _, term, trunc, infos = envs.step(agent.act(obs, infos))
+        for i in np.flatnonzero(term | trunc):
+            eid = int(infos["episode_id"][i])
+            if int(infos["pass"][i]) == 0 and eid in left:
+                folder.record(infos["record"][i])
+                left.discard(eid)
+        now = time.monotonic()
+        if progress and (now - last_report > 2.0 or not left):
+            done = len(todo) - len(left)
+            print(f"evaluate: {done}/{len(todo)} episodes ({now - started:.1f} s)",
+                  file=sys.stderr, flush=True)
+            last_report = now
 
 
 def load_episodes(dataset: PathLike, task: str, split: str) -> list[dict[str, Any]]:

@@ -226,8 +226,8 @@ pub enum Applied {
         /// A long-horizon sub-goal was declared reached and the episode goes on.
         sub_goal: bool,
     },
-    /// The simulator stepped.
-    Stepped(StepOutcome),
+    /// The simulator stepped ([`EpisodeState::last`] holds its outcome).
+    Stepped,
     /// The simulator refused the action (nothing changed; the step still counts).
     Refused(String),
 }
@@ -421,16 +421,7 @@ impl EpisodeState {
         action: Action,
         cfg: &EvalConfig,
     ) -> Result<Applied> {
-        if self.over {
-            return Err(TaskError::invalid(
-                "action",
-                format!("{action:?}"),
-                format!(
-                    "episode {} is over; reset before stepping again",
-                    self.inputs.episode_id
-                ),
-            ));
-        }
+        self.check_live(&format!("{action:?}"))?;
         if !cfg.action_space.allows(&action) {
             return Err(TaskError::invalid(
                 "action",
@@ -469,47 +460,59 @@ impl EpisodeState {
                             Some(serde_json::to_string(f).unwrap_or_else(|_| format!("{f:?}")));
                     }
                     self.over |= out.done;
-                    self.last = Some(out.clone());
-                    Applied::Stepped(out)
+                    self.last = Some(out);
+                    Applied::Stepped
                 }
                 Err(e) => {
                     // An invalid action changes nothing; it still costs a step.
                     tracing::warn!(episode = self.inputs.episode_id, "action refused: {e}");
-                    self.last = None;
-                    self.positions.push(self.pose.position);
-                    self.headings.push(self.pose.yaw());
+                    self.stand_still();
                     Applied::Refused(e.to_string())
                 }
             }
         };
-        if self.steps >= cfg.max_steps {
-            self.over = true;
-        }
+        self.end_if_limit(cfg);
         Ok(applied)
     }
 
     /// An action that cannot be carried out (named `name` in the trajectory, e.g. a question
     /// with no budget left): nothing moves, the step counts.
     pub fn refuse(&mut self, name: &str, why: &str, cfg: &EvalConfig) -> Result<Applied> {
+        self.check_live(name)?;
+        self.steps += 1;
+        self.actions.push(name.to_string());
+        self.stand_still();
+        self.end_if_limit(cfg);
+        Ok(Applied::Refused(why.to_string()))
+    }
+
+    /// Acting on a finished episode is an error naming the action.
+    fn check_live(&self, action: &str) -> Result<()> {
         if self.over {
             return Err(TaskError::invalid(
                 "action",
-                name,
+                action,
                 format!(
                     "episode {} is over; reset before stepping again",
                     self.inputs.episode_id
                 ),
             ));
         }
-        self.steps += 1;
-        self.actions.push(name.to_string());
+        Ok(())
+    }
+
+    /// A counted step in which the agent did not move.
+    fn stand_still(&mut self) {
         self.last = None;
         self.positions.push(self.pose.position);
         self.headings.push(self.pose.yaw());
+    }
+
+    /// The step limit ends the episode.
+    fn end_if_limit(&mut self, cfg: &EvalConfig) {
         if self.steps >= cfg.max_steps {
             self.over = true;
         }
-        Ok(Applied::Refused(why.to_string()))
     }
 
     /// The trajectory so far.

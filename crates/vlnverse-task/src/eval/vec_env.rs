@@ -374,8 +374,9 @@ impl<S: Simulator> VecEnv<S> {
         Ok(())
     }
 
-    /// Assign episodes (serially, in environment order, so the order is deterministic), then
-    /// run the resets and steps in parallel.
+    /// Assign episodes (serially, in environment order, so the order is deterministic) and
+    /// load and check their scenes (errors name the episode), then run the resets and steps in
+    /// parallel.
     fn run_batch(&mut self, work: Vec<(usize, Option<EnvAction>)>) -> Result<Vec<EnvStep>> {
         let mut jobs: Vec<Option<Job>> = (0..self.slots.len()).map(|_| None).collect();
         for (i, a) in work {
@@ -383,19 +384,13 @@ impl<S: Simulator> VecEnv<S> {
                 Some(a) => Job::Step(a),
                 None => {
                     let (ep, pass) = self.next_episode(i);
-                    Job::Reset(ep, pass)
+                    let scene = self.load_checked(&ep)?;
+                    Job::Reset(ep, scene, pass)
                 }
             });
         }
-        // Load the scenes the resets need before going parallel (errors name the episode).
-        for j in jobs.iter().flatten() {
-            if let Job::Reset(ep, _) = j {
-                self.load_checked(ep)?;
-            }
-        }
         let ctx = Ctx {
             settings: &self.settings,
-            scenes: &self.scenes,
             reward: self.cfg.reward,
         };
         let results: Vec<Option<Result<EnvStep>>> = self
@@ -425,13 +420,12 @@ impl<S: Simulator> VecEnv<S> {
 }
 
 enum Job {
-    Reset(Arc<Episode>, u32),
+    Reset(Arc<Episode>, Arc<SceneContext>, u32),
     Step(EnvAction),
 }
 
 struct Ctx<'a> {
     settings: &'a EpisodeSettings,
-    scenes: &'a SceneCache,
     reward: RewardConfig,
 }
 
@@ -439,8 +433,7 @@ impl Ctx<'_> {
     fn run<S: Simulator>(&self, slot: &mut Slot<S>, job: Job) -> Result<EnvStep> {
         let mut info_extra = Extra::default();
         match job {
-            Job::Reset(ep, pass) => {
-                let scene = self.scenes.get(&ep.scene_id)?;
+            Job::Reset(ep, scene, pass) => {
                 let state = EpisodeState::begin(
                     &mut slot.sim,
                     slot.rig.as_mut(),
@@ -475,9 +468,10 @@ impl Ctx<'_> {
                     EnvAction::Act(a) => {
                         match run.state.apply(&mut slot.sim, a, &self.settings.config)? {
                             Applied::Refused(why) => info_extra.refused = Some(why),
-                            Applied::Stepped(out) => {
-                                info_extra.collided = out.collided;
-                                info_extra.noticeable = out.noticeable;
+                            Applied::Stepped => {
+                                let out = run.state.last();
+                                info_extra.collided = out.is_some_and(|o| o.collided);
+                                info_extra.noticeable = out.is_some_and(|o| o.noticeable);
                             }
                             Applied::Stop { .. } => {}
                         }
