@@ -10,15 +10,18 @@ and the PNG image) to evaluate it.
         --agent external --agent-cmd "python3 examples/python/random_agent.py" --out runs/ext
 """
 
+from __future__ import annotations
+
 import base64
 import json
 import os
 import random
 import struct
 import sys
+from typing import Any
 
 
-def read_npy_header(path):
+def read_npy_header(path: str) -> tuple[str, tuple[int, ...]]:
     """Return (dtype, shape) of a .npy file (enough to check what arrived)."""
     with open(path, "rb") as f:
         magic = f.read(6)
@@ -33,7 +36,7 @@ def read_npy_header(path):
     return descr, tuple(int(x) for x in shape.split(",") if x.strip())
 
 
-def check_observations(obs):
+def check_observations(obs: dict[str, Any]) -> None:
     """Make sure every image is readable: files exist, base64 payloads have the right size."""
     for name, o in obs.items():
         if o.get("encoding") == "file":
@@ -53,7 +56,8 @@ def check_observations(obs):
                 raise ValueError(f"observation {name}: {size} bytes, expected {expected}")
 
 
-def choose_action(rng, episode, step):
+def choose_action(rng: random.Random, episode: dict[str, Any] | None,
+                  step: dict[str, Any]) -> dict[str, str]:
     """The policy: forward 70 %, turns 28 %, stop 2 %."""
     r = rng.random()
     if r < 0.02:
@@ -65,9 +69,9 @@ def choose_action(rng, episode, step):
     return {"action": "turn_right"}
 
 
-def main():
+def main() -> None:
     rng = random.Random(0)
-    episode = None
+    episode: dict[str, Any] | None = None
     for line in sys.stdin:
         line = line.strip()
         if not line:

@@ -7,13 +7,7 @@ use std::str::FromStr;
 use std::time::Instant;
 
 use anyhow::Context;
-use vlnverse_env::occupancy::OccupancyConfig;
-use vlnverse_env::SceneSource;
-use vlnverse_procgen::{HomeGenerator, Preset};
-use vlnverse_task::generate::{
-    run as run_pipeline, FolderSource, GenerateConfig, GeneratePreset, GenerateSummary, RunOptions,
-    StageTimes,
-};
+use vlnverse_task::generate::{GenerateRequest, GenerateSummary, StageTimes};
 use vlnverse_task::instructions::TemplateGenerator;
 use vlnverse_task::Task;
 
@@ -73,64 +67,25 @@ pub fn parse_shard(s: &str) -> anyhow::Result<(usize, usize)> {
     Ok((k, n))
 }
 
-/// The config, the scene source and the tasks of a run.
-pub fn setup(args: &Args) -> anyhow::Result<(GenerateConfig, Box<dyn SceneSource>, Vec<Task>)> {
-    // Where the config came from, named in its errors.
-    let (mut cfg, origin) = match &args.config {
-        Some(p) => (GenerateConfig::from_toml_file(p)?, p.clone()),
-        None => {
-            let preset = GeneratePreset::from_str(&args.preset)?;
-            let origin = PathBuf::from(format!("configs/generate/{}.toml", preset.name()));
-            (preset.config()?, origin)
-        }
-    };
-    if let Some(seed) = args.seed {
-        cfg.seed = seed;
-    }
-    let source: Box<dyn SceneSource> = match &args.scenes_from {
-        Some(dir) => {
-            let s = FolderSource::new(dir)?;
-            cfg = cfg.rescaled(s.len());
-            cfg.validate_in(&origin).with_context(|| {
-                format!(
-                    "the config rescaled to the {} scenes of {}",
-                    s.len(),
-                    dir.display()
-                )
-            })?;
-            Box::new(s)
-        }
-        None => {
-            let preset = Preset::from_str(&cfg.scene_preset).with_context(|| {
-                format!(
-                    "{}: field `scene_preset` = `{}`",
-                    origin.display(),
-                    cfg.scene_preset
-                )
-            })?;
-            let source = HomeGenerator::from_preset(preset)?;
-            anyhow::ensure!(
-                source.len() == cfg.splits.total(),
-                "{}: field `splits` = {} scenes, but scene preset `{}` makes {}; make \
-                 [splits] add up to {} or use --scenes-from",
-                origin.display(),
-                cfg.splits.total(),
-                cfg.scene_preset,
-                source.len(),
-                source.len()
-            );
-            Box::new(source)
-        }
-    };
-    let tasks = if args.tasks.is_empty() {
-        Task::ALL.to_vec()
-    } else {
-        args.tasks
-            .iter()
-            .map(|t| Task::from_str(t.trim()))
-            .collect::<Result<Vec<_>, _>>()?
-    };
-    Ok((cfg, source, tasks))
+/// The run these arguments describe.
+pub fn request(args: &Args) -> anyhow::Result<GenerateRequest> {
+    let tasks = args
+        .tasks
+        .iter()
+        .map(|t| Task::from_str(t.trim()))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(GenerateRequest {
+        preset: args.preset.clone(),
+        config: args.config.clone(),
+        seed: args.seed,
+        out: args.out.clone(),
+        tasks,
+        shard: match &args.shard {
+            Some(s) => parse_shard(s)?,
+            None => (0, 1),
+        },
+        scenes_from: args.scenes_from.clone(),
+    })
 }
 
 /// Generate; returns the summary and the stage times (used by `run` and the tests).
@@ -139,33 +94,18 @@ pub fn generate(
     show_progress: bool,
 ) -> anyhow::Result<(GenerateSummary, StageTimes, f64)> {
     let start = Instant::now();
-    let (cfg, source, tasks) = setup(args)?;
-    let shard = match &args.shard {
-        Some(s) => parse_shard(s)?,
-        None => (0, 1),
-    };
-    let opts = RunOptions {
-        out: args.out.clone(),
-        tasks,
-        shard,
-        occupancy: OccupancyConfig::default(),
-    };
+    let run = request(args)?.prepare()?;
     let instructions = TemplateGenerator::default();
     let times = StageTimes::default();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads.unwrap_or(0))
         .build()
         .context("cannot start the worker threads")?;
-    let mine = (0..source.len()).filter(|i| i % shard.1 == shard.0).count();
-    let pb = crate::progress::bar(mine as u64, "scenes");
+    let pb = crate::progress::bar(run.scenes_in_shard() as u64, "scenes");
     if !show_progress {
         pb.set_draw_target(indicatif::ProgressDrawTarget::hidden());
     }
-    let summary = pool.install(|| {
-        run_pipeline(source.as_ref(), &cfg, &opts, &instructions, &times, &|_| {
-            pb.inc(1)
-        })
-    });
+    let summary = pool.install(|| run.run(&instructions, &times, &|_| pb.inc(1)));
     pb.finish_and_clear();
     Ok((summary?, times, start.elapsed().as_secs_f64()))
 }

@@ -99,7 +99,7 @@ pub fn run_tests(args: Args) -> anyhow::Result<()> {
         "ruff (python lint)",
         Command::new(venv.join("bin").join("ruff"))
             .current_dir(&pkg)
-            .args(["check", "python", "tests"]),
+            .args(["check", "python", "tests", "bench", "../../examples/python"]),
     )?;
     run(
         "mypy (python types)",

@@ -59,6 +59,22 @@ fn load_vocab(dir: &Path, task: Task, split: Split) -> PyResult<(Vocab, String)>
     ))
 }
 
+/// The folder and size of a visual-reference split's images (from its first episode's).
+fn reference_images(env: &RapierVecEnv) -> PyResult<Option<layout::ReferenceImages>> {
+    let Some(dir) = env.settings().reference_dir.clone() else {
+        return Ok(None);
+    };
+    let Some(first) = env
+        .episodes()
+        .iter()
+        .find_map(|e| e.reference_image.as_ref())
+    else {
+        return Ok(None);
+    };
+    let (width, height, _) = layout::read_reference(&dir.join(first)).map_err(py_err)?;
+    Ok(Some(layout::ReferenceImages { dir, width, height }))
+}
+
 fn zeros<'py>(py: Python<'py>, dtype: DType, shape: &[usize]) -> Py<PyAny> {
     match dtype {
         DType::U8 => PyArrayDyn::<u8>::zeros(py, shape, false)
@@ -89,17 +105,22 @@ enum Whole<'a> {
 }
 
 impl<'a> Whole<'a> {
-    /// Environment `i`'s row (`len` elements).
-    fn row(&mut self, i: usize, len: usize) -> Row<'_> {
-        let r = i * len..(i + 1) * len;
+    /// The buffer cut into per-environment rows of `len` elements.
+    fn rows(self, len: usize) -> Vec<Row<'a>> {
         match self {
-            Whole::U8(s) => Row::U8(&mut s[r]),
-            Whole::U16(s) => Row::U16(&mut s[r]),
-            Whole::U32(s) => Row::U32(&mut s[r]),
-            Whole::F32(s) => Row::F32(&mut s[r]),
-            Whole::I64(s) => Row::I64(&mut s[r]),
+            Whole::U8(s) => s.chunks_mut(len).map(Row::U8).collect(),
+            Whole::U16(s) => s.chunks_mut(len).map(Row::U16).collect(),
+            Whole::U32(s) => s.chunks_mut(len).map(Row::U32).collect(),
+            Whole::F32(s) => s.chunks_mut(len).map(Row::F32).collect(),
+            Whole::I64(s) => s.chunks_mut(len).map(Row::I64).collect(),
         }
     }
+}
+
+/// What one native call does to the batch.
+enum Batch {
+    Reset,
+    Step(Vec<Option<EnvAction>>),
 }
 
 /// Write guards of the buffers, one list per element type, in field order.
@@ -136,13 +157,9 @@ fn slices<'a, T: numpy::Element>(
 }
 
 impl Inner {
-    /// Write every environment's observations into the buffers; the heavy work happens with
-    /// the GIL released.
-    fn run<'py>(
-        &mut self,
-        py: Python<'py>,
-        job: impl FnOnce(&mut RapierVecEnv) -> vlnverse_task::Result<Vec<EnvStep>> + Send,
-    ) -> PyResult<Vec<EnvStep>> {
+    /// Run `batch`, each environment writing its observations into its rows of the buffers
+    /// on the thread that stepped it; the heavy work happens with the GIL released.
+    fn run(&mut self, py: Python<'_>, batch: Batch) -> PyResult<Vec<EnvStep>> {
         let mut g = Guards::default();
         for (f, buf) in self.fields.iter().zip(&self.buffers) {
             match f.dtype {
@@ -156,32 +173,48 @@ impl Inner {
         let (mut s8, mut s16, mut s32) =
             (slices(&mut g.u8)?, slices(&mut g.u16)?, slices(&mut g.u32)?);
         let (mut sf, mut si) = (slices(&mut g.f32)?, slices(&mut g.i64)?);
-        let mut wholes = Vec::with_capacity(self.fields.len());
+        let n = self.env.num_envs();
+        // rows[i][k]: environment i's row of field k.
+        let mut rows: Vec<Vec<Row<'_>>> = (0..n)
+            .map(|_| Vec::with_capacity(self.fields.len()))
+            .collect();
         for f in &self.fields {
             let missing = || py_err("observation buffers do not match the layout");
-            wholes.push(match f.dtype {
+            let whole = match f.dtype {
                 DType::U8 => Whole::U8(s8.pop_front().ok_or_else(missing)?),
                 DType::U16 => Whole::U16(s16.pop_front().ok_or_else(missing)?),
                 DType::U32 => Whole::U32(s32.pop_front().ok_or_else(missing)?),
                 DType::F32 => Whole::F32(sf.pop_front().ok_or_else(missing)?),
                 DType::I64 => Whole::I64(si.pop_front().ok_or_else(missing)?),
-            });
+            };
+            for (env_rows, row) in rows.iter_mut().zip(whole.rows(f.len().max(1))) {
+                env_rows.push(row);
+            }
         }
         let (env, fields, vocab, token_len) =
             (&mut self.env, &self.fields, &self.vocab, self.token_len);
+        let sink = |s: &EnvStep, mut env_rows: Vec<Row<'_>>| {
+            // The instruction changes only with the episode: encode it at the start.
+            let tokens = (s.info.steps == 0)
+                .then(|| vocab.encode(&s.episode.instruction.instruction_text, token_len));
+            for (f, row) in fields.iter().zip(env_rows.drain(..)) {
+                layout::write(f, s, tokens.as_deref(), row).map_err(|e| {
+                    vlnverse_task::TaskError::Invalid {
+                        field: format!("observations.{}", f.key),
+                        value: s.info.episode_id.to_string(),
+                        reason: e,
+                    }
+                })?;
+            }
+            Ok(())
+        };
         let res = py.detach(move || {
             guarded("step", || {
-                let steps = job(env).map_err(py_err)?;
-                for (i, s) in steps.iter().enumerate() {
-                    // The instruction changes only with the episode: encode it at the start.
-                    let tokens = (s.info.steps == 0)
-                        .then(|| vocab.encode(&s.episode.instruction.instruction_text, token_len));
-                    for (f, w) in fields.iter().zip(wholes.iter_mut()) {
-                        layout::write(f, s, tokens.as_deref(), w.row(i, f.len()))
-                            .map_err(py_err)?;
-                    }
+                match batch {
+                    Batch::Reset => env.reset_all_into(rows, sink),
+                    Batch::Step(actions) => env.step_into(actions, rows, sink),
                 }
-                Ok(steps)
+                .map_err(py_err)
             })
         });
         drop(g);
@@ -403,7 +436,16 @@ impl NativeVecEnv {
         let (vocab, vocab_source) = load_vocab(&dataset, task, split)?;
         let env = py.detach(|| guarded("VecEnv", || RapierVecEnv::new(cfg).map_err(py_err)))?;
         let rig = env.rig().map(|r| r.config().clone());
-        let fields = layout::fields(rig.as_ref(), normalize_depth, instruction_length);
+        let reference = match task {
+            Task::VisualReference => reference_images(&env)?,
+            _ => None,
+        };
+        let fields = layout::fields(
+            rig.as_ref(),
+            normalize_depth,
+            instruction_length,
+            reference.as_ref(),
+        );
         let buffers = fields
             .iter()
             .map(|f| {
@@ -497,7 +539,7 @@ impl NativeVecEnv {
             if let Some(s) = seed {
                 inner.env.seed(s);
             }
-            let steps = inner.run(py, |env| env.reset_all())?;
+            let steps = inner.run(py, Batch::Reset)?;
             let n = steps.len();
             inner.infos(py, &steps, &vec![true; n])
         })
@@ -561,7 +603,7 @@ impl NativeVecEnv {
                     batch.push(Some(p.map_err(py_err)?));
                 }
             }
-            let steps = inner.run(py, move |env| env.step(batch))?;
+            let steps = inner.run(py, Batch::Step(batch))?;
             inner.infos(py, &steps, &reset_mask)
         })
     }

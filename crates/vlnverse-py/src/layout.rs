@@ -1,6 +1,8 @@
 //! The observation layout: which arrays a rig gives (keys, dtypes, shapes) and how one
 //! environment's readings are copied into its row of the batched buffers.
 
+use std::path::{Path, PathBuf};
+
 use glam::{Quat, Vec3};
 use vlnverse_sensors::{Frame, Observation, RigConfig, SensorSpec};
 use vlnverse_task::eval::agents::wrap_angle;
@@ -56,6 +58,8 @@ pub enum Source {
     Tokens,
     /// Long-horizon: index of the sub-instruction being followed.
     SubGoal,
+    /// Visual reference: the episode's goal image (PNGs under this folder), read at reset.
+    Reference(PathBuf),
 }
 
 /// One observation array.
@@ -87,11 +91,28 @@ impl Field {
     }
 }
 
-/// The fields of a rig (when rendering) plus pose, compass, GPS, tokens and sub-goal.
+/// The reference images of a visual-reference split: their folder and size.
+#[derive(Debug, Clone)]
+pub struct ReferenceImages {
+    /// Folder the episodes' `reference_image` paths are relative to.
+    pub dir: PathBuf,
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+}
+
+/// The fields of a rig (when rendering) plus pose, compass, GPS, tokens, sub-goal and (for
+/// visual-reference episodes) the reference image.
 ///
 /// The first colour camera is `rgb` and the first depth camera `depth` (VLN-CE's keys);
 /// further cameras keep their configured names.
-pub fn fields(rig: Option<&RigConfig>, normalize_depth: bool, tokens: usize) -> Vec<Field> {
+pub fn fields(
+    rig: Option<&RigConfig>,
+    normalize_depth: bool,
+    tokens: usize,
+    reference: Option<&ReferenceImages>,
+) -> Vec<Field> {
     let mut out = Vec::new();
     let far = |f: f32, own: bool| if normalize_depth && !own { f } else { 1.0 };
     for spec in rig.map(|r| r.sensors.as_slice()).unwrap_or_default() {
@@ -193,7 +214,23 @@ pub fn fields(rig: Option<&RigConfig>, normalize_depth: bool, tokens: usize) -> 
         vec![1],
         Source::SubGoal,
     ));
+    if let Some(r) = reference {
+        out.push(Field::new(
+            "reference_image",
+            DType::U8,
+            vec![r.height as usize, r.width as usize, 3],
+            Source::Reference(r.dir.clone()),
+        ));
+    }
     out
+}
+
+/// Decode a reference PNG as RGB bytes with its size; errors name the file.
+pub fn read_reference(path: &Path) -> Result<(u32, u32, Vec<u8>), String> {
+    let img = image::open(path)
+        .map_err(|e| format!("reference image {}: {e}", path.display()))?
+        .to_rgb8();
+    Ok((img.width(), img.height(), img.into_raw()))
 }
 
 /// One environment's row of a buffer.
@@ -312,6 +349,27 @@ pub fn write(
             }
         }
         (Source::SubGoal, Row::I64(d)) => d[0] = i64::from(step.info.sub_goal),
+        (Source::Reference(dir), Row::U8(d)) => {
+            // The image belongs to the episode: read it when the episode starts.
+            if step.info.steps == 0 {
+                match &step.episode.reference_image {
+                    Some(r) => {
+                        let (w, h, rgb) = read_reference(&dir.join(r))?;
+                        if rgb.len() != d.len() {
+                            return Err(format!(
+                                "reference image {}: {w}x{h}, but the split's images are \
+                                 {}x{} (the size of its first episode's image)",
+                                dir.join(r).display(),
+                                field.shape[1],
+                                field.shape[0]
+                            ));
+                        }
+                        d.copy_from_slice(&rgb);
+                    }
+                    None => d.fill(0),
+                }
+            }
+        }
         _ => return Err(format!("observation `{}`: wrong buffer type", field.key)),
     }
     Ok(())

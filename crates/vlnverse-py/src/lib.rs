@@ -17,6 +17,7 @@ use pyo3::prelude::*;
 
 mod actions;
 mod env;
+mod generate;
 mod layout;
 mod run;
 
@@ -110,5 +111,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<run::RunFolder>()?;
     m.add_function(wrap_pyfunction!(run::load_episodes, m)?)?;
     m.add_function(wrap_pyfunction!(run::score, m)?)?;
+    m.add_function(wrap_pyfunction!(generate::generate, m)?)?;
     Ok(())
 }

@@ -258,11 +258,18 @@ impl SensorRig {
                 _ => {}
             }
         }
-        let frames = if views.is_empty() {
+        let mut frames = if views.is_empty() {
             Vec::new()
         } else {
             self.renderer.render(&views)?
         };
+        // How many sensors read each view: the last one takes the frame instead of a copy.
+        let mut uses = vec![0usize; frames.len()];
+        for v in slots.iter().flatten() {
+            if let Some(u) = uses.get_mut(*v) {
+                *u += 1;
+            }
+        }
         let mut out = Observations::new();
         for (si, s) in specs.iter().enumerate() {
             if !due[si] {
@@ -270,7 +277,7 @@ impl SensorRig {
             }
             let mut rng = ChaCha8Rng::seed_from_u64(self.config.seed);
             rng.set_stream(state.step.wrapping_mul(1024).wrapping_add(si as u64));
-            let frame = |k: usize| frames[slots[si][k]].clone();
+            let mut frame = |k: usize| take_frame(&mut frames, &mut uses, slots[si][k]);
             let obs = match s {
                 SensorSpec::Rgb(c) => {
                     let f = frame(0);
@@ -360,5 +367,15 @@ impl SensorRig {
             out.insert(s.name().to_string(), obs);
         }
         Ok(out)
+    }
+}
+
+/// View `v`'s frame for one reader: moved out by its last reader, copied for the others.
+fn take_frame(frames: &mut [Frame], uses: &mut [usize], v: usize) -> Frame {
+    uses[v] = uses[v].saturating_sub(1);
+    if uses[v] == 0 {
+        std::mem::take(&mut frames[v])
+    } else {
+        frames[v].clone()
     }
 }

@@ -1,7 +1,7 @@
 """Type stubs of the native module (``crates/vlnverse-py/src``)."""
 
 from os import PathLike
-from typing import Any
+from typing import Any, Callable
 
 import numpy as np
 
@@ -88,3 +88,15 @@ def score(
     allow_missing: bool = False,
     method: str | None = None,
 ) -> str: ...
+def generate(
+    out: _Path,
+    *,
+    preset: str = "tiny",
+    config: _Path | None = None,
+    seed: int | None = None,
+    tasks: list[str] | None = None,
+    shard: tuple[int, int] | None = None,
+    threads: int | None = None,
+    scenes_from: _Path | None = None,
+    on_scene: Callable[[int, int], None] | None = None,
+) -> dict[str, Any]: ...

@@ -340,19 +340,47 @@ impl<S: Simulator> VecEnv<S> {
 
     /// Reset every environment to its next episode.
     pub fn reset_all(&mut self) -> Result<Vec<EnvStep>> {
-        let which: Vec<usize> = (0..self.slots.len()).collect();
-        self.run_batch(which.iter().map(|&i| (i, None)).collect())
+        let n = self.slots.len();
+        self.reset_all_into(vec![(); n], |_, ()| Ok(()))
+    }
+
+    /// [`reset_all`](Self::reset_all), handing environment `i`'s result and `outs[i]` to
+    /// `sink` inside the parallel step (see [`step_into`](Self::step_into)).
+    pub fn reset_all_into<T: Send>(
+        &mut self,
+        outs: Vec<T>,
+        sink: impl Fn(&EnvStep, T) -> Result<()> + Sync,
+    ) -> Result<Vec<EnvStep>> {
+        let work = (0..self.slots.len()).map(|i| (i, None)).collect();
+        self.run_batch(work, outs, sink)
     }
 
     /// Reset one environment to its next episode.
     pub fn reset_env(&mut self, i: usize) -> Result<EnvStep> {
         self.check_index(i)?;
-        Ok(self.run_batch(vec![(i, None)])?.remove(0))
+        let outs = vec![(); self.slots.len()];
+        Ok(self
+            .run_batch(vec![(i, None)], outs, |_, ()| Ok(()))?
+            .remove(0))
     }
 
     /// Step every environment: `actions[i]` for environment `i`; `None` resets that
     /// environment instead (the next-step autoreset of a finished one).
     pub fn step(&mut self, actions: Vec<Option<EnvAction>>) -> Result<Vec<EnvStep>> {
+        let n = self.slots.len();
+        self.step_into(actions, vec![(); n], |_, ()| Ok(()))
+    }
+
+    /// [`step`](Self::step), handing environment `i`'s result and `outs[i]` to `sink` on the
+    /// thread that stepped it, so per-environment work after the step (copying observations
+    /// into a caller's batched buffers) runs in parallel too. `outs` has one entry per
+    /// environment.
+    pub fn step_into<T: Send>(
+        &mut self,
+        actions: Vec<Option<EnvAction>>,
+        outs: Vec<T>,
+        sink: impl Fn(&EnvStep, T) -> Result<()> + Sync,
+    ) -> Result<Vec<EnvStep>> {
         if actions.len() != self.slots.len() {
             return Err(invalid(
                 "actions",
@@ -360,7 +388,7 @@ impl<S: Simulator> VecEnv<S> {
                 format!("expected one action per environment ({})", self.slots.len()),
             ));
         }
-        self.run_batch(actions.into_iter().enumerate().collect())
+        self.run_batch(actions.into_iter().enumerate().collect(), outs, sink)
     }
 
     fn check_index(&self, i: usize) -> Result<()> {
@@ -377,7 +405,19 @@ impl<S: Simulator> VecEnv<S> {
     /// Assign episodes (serially, in environment order, so the order is deterministic) and
     /// load and check their scenes (errors name the episode), then run the resets and steps in
     /// parallel.
-    fn run_batch(&mut self, work: Vec<(usize, Option<EnvAction>)>) -> Result<Vec<EnvStep>> {
+    fn run_batch<T: Send>(
+        &mut self,
+        work: Vec<(usize, Option<EnvAction>)>,
+        outs: Vec<T>,
+        sink: impl Fn(&EnvStep, T) -> Result<()> + Sync,
+    ) -> Result<Vec<EnvStep>> {
+        if outs.len() != self.slots.len() {
+            return Err(invalid(
+                "outs",
+                outs.len(),
+                format!("expected one per environment ({})", self.slots.len()),
+            ));
+        }
         let mut jobs: Vec<Option<Job>> = (0..self.slots.len()).map(|_| None).collect();
         for (i, a) in work {
             jobs[i] = Some(match a {
@@ -396,9 +436,15 @@ impl<S: Simulator> VecEnv<S> {
         let results: Vec<Option<Result<EnvStep>>> = self
             .slots
             .par_iter_mut()
-            .zip(jobs.into_par_iter())
+            .zip(jobs.into_par_iter().zip(outs.into_par_iter()))
             .with_max_len(1)
-            .map(|(slot, job)| job.map(|j| ctx.run(slot, j)))
+            .map(|(slot, (job, out))| {
+                job.map(|j| {
+                    let step = ctx.run(slot, j)?;
+                    sink(&step, out)?;
+                    Ok(step)
+                })
+            })
             .collect();
         results.into_iter().flatten().collect()
     }

@@ -10,6 +10,8 @@
 //!   reference PNGs.
 //! - [`pipeline`]: [`run`] (parallel over scenes, one part file per scene and task),
 //!   [`assemble`], [`merge`], [`FolderSource`] (scenes from a folder).
+//! - [`request`]: a run as plain data ([`GenerateRequest`]: preset or config file, procedural
+//!   homes or a scene folder, tasks, shard), shared by the CLI and the Python package.
 //! - [`stats`]: dataset statistics, plots and a markdown summary.
 //!
 //! Every random choice is seeded from (global seed, scene index, task, split, trajectory), so
@@ -19,6 +21,7 @@ pub mod episodes;
 pub mod pipeline;
 pub mod presets;
 pub mod reference_image;
+pub mod request;
 pub mod sampler;
 pub mod seed;
 pub mod splits;
@@ -30,5 +33,6 @@ pub use pipeline::{
     Skip,
 };
 pub use presets::{GenerateConfig, GeneratePreset};
+pub use request::{GenerateRequest, PreparedRun};
 pub use sampler::{Reject, SceneSampler};
 pub use splits::{plan, Plan};

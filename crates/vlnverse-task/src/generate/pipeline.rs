@@ -42,6 +42,7 @@ use crate::dataset::{write_atomic, write_split};
 use crate::episode::{Episode, Split, Task};
 use crate::error::{Result, TaskError};
 use crate::instructions::InstructionGenerator;
+use crate::vocab::{Vocab, VOCAB_FILE};
 use crate::OutputLock;
 
 /// Folder of the part files.
@@ -608,6 +609,7 @@ fn remove_outputs(out: &Path, tasks: &[Task]) {
         let _ = std::fs::remove_dir(out.join(task.name()));
     }
     let _ = std::fs::remove_file(out.join(REPORT_FILE));
+    let _ = std::fs::remove_file(out.join(VOCAB_FILE));
 }
 
 /// Write the split files and `generation_report.json` from the parts and return the report.
@@ -629,6 +631,10 @@ fn assemble_inner(out: &Path, manifest: &Manifest) -> Result<GenerationReport> {
         tasks: BTreeMap::new(),
         skipped: Vec::new(),
     };
+    // The vocabulary comes from the training instructions of every task (all instructions
+    // when there is no training split).
+    let mut train: Vec<Episode> = Vec::new();
+    let mut others: Vec<Episode> = Vec::new();
     for &task in &manifest.tasks {
         let mut by_split: BTreeMap<Split, Vec<Episode>> = BTreeMap::new();
         let mut tr = TaskReport::default();
@@ -699,6 +705,11 @@ fn assemble_inner(out: &Path, manifest: &Manifest) -> Result<GenerationReport> {
             let eps = by_split.remove(&split).unwrap_or_default();
             tr.episodes.insert(split, eps.len());
             write_split(out, task, split, &eps)?;
+            if split == Split::Train {
+                train.extend(eps);
+            } else if train.is_empty() {
+                others.extend(eps);
+            }
         }
         report.tasks.insert(task, tr);
         report.skipped.extend(skipped.into_iter().map(|s| s.1));
@@ -712,6 +723,12 @@ fn assemble_inner(out: &Path, manifest: &Manifest) -> Result<GenerationReport> {
     let mut bytes = serde_json::to_vec_pretty(&report)
         .map_err(|e| TaskError::invalid("report", "<report>", e.to_string()))?;
     bytes.push(b'\n');
+    let vocab = if train.is_empty() {
+        Vocab::build(&others)
+    } else {
+        Vocab::build(&train)
+    };
+    write_atomic(&out.join(VOCAB_FILE), vocab.to_text().as_bytes())?;
     write_atomic(&out.join(REPORT_FILE), &bytes)?;
     Ok(report)
 }
