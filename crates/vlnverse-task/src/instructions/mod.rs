@@ -38,6 +38,9 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod describe;
+mod fine;
+pub mod lexicon;
 #[cfg(feature = "llm")]
 pub mod llm;
 mod path;
