@@ -1,6 +1,9 @@
 //! Dataset statistics as in the paper: navigable area and rooms per scene, path lengths per
-//! task, instruction lengths per task and style, landmark vocabulary. Written as PNG charts
-//! (drawn here with the env crate's 8x8 font, no plotting crate) and a markdown summary.
+//! task, instruction lengths per task and style, landmark vocabulary, and how varied the
+//! language is (distinct words; the largest share of a task's instructions that one sentence
+//! skeleton covers). Written as PNG charts (drawn here with the env crate's 8x8 font, no
+//! plotting crate) and a markdown summary; [`samples_markdown`] draws seeded random
+//! instructions per task and style for reading.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
@@ -28,6 +31,10 @@ pub struct ValueStats {
     pub median: f64,
     /// Maximum.
     pub max: f64,
+    /// 10th percentile.
+    pub p10: f64,
+    /// 90th percentile.
+    pub p90: f64,
 }
 
 impl ValueStats {
@@ -44,6 +51,8 @@ impl ValueStats {
             min: v[0],
             median: v[v.len() / 2],
             max: v[v.len() - 1],
+            p10: v[v.len() / 10],
+            p90: v[(v.len() * 9 / 10).min(v.len() - 1)],
         }
     }
 }
@@ -67,6 +76,81 @@ pub struct DatasetStats {
     pub grounded_classes: BTreeSet<String>,
     /// Distinct lower-case words over all instructions.
     pub word_vocabulary: usize,
+    /// Per task: the largest share (0..1) of its instructions that one sentence skeleton
+    /// covers (see [`skeleton`]), and that skeleton.
+    pub skeleton_share: BTreeMap<String, (f64, String)>,
+    /// Per task: distinct skeletons.
+    pub skeletons: BTreeMap<String, usize>,
+}
+
+/// Words that [`skeleton`] masks: object class and room names (every name the template
+/// generator uses), colour and shade words, and numbers written out.
+fn masked_words() -> BTreeSet<String> {
+    use crate::instructions::lexicon::{class_names, room_names};
+    use vlnverse_env::{RoomType, SemanticClass};
+    let mut m = BTreeSet::new();
+    let mut add = |phrase: &str| {
+        for w in phrase.split(|c: char| !c.is_alphanumeric() && c != '\'') {
+            if !w.is_empty() {
+                m.insert(w.to_lowercase());
+            }
+        }
+    };
+    // Function words inside multi-word names ("chest of drawers") stay visible.
+    let mut add = |phrase: &str| {
+        for w in phrase.split(' ').filter(|w| !matches!(*w, "of" | "set")) {
+            add(w);
+        }
+    };
+    for &c in SemanticClass::ALL {
+        add(&c.words());
+        for n in class_names(c) {
+            add(n);
+        }
+    }
+    for &r in RoomType::ALL {
+        add(&r.words());
+        for n in room_names(r) {
+            add(n);
+        }
+    }
+    for n in 0..100 {
+        add(&crate::instructions::lexicon::number_word(n));
+    }
+    for c in [
+        "red", "blue", "green", "yellow", "orange", "pink", "purple", "brown", "black", "white",
+        "grey", "gray", "silver", "gold", "beige", "wooden",
+    ] {
+        add(c);
+    }
+    m
+}
+
+/// The sentence skeleton of an instruction: lower-case words with object and room names,
+/// colours and numbers masked (`_`, runs of masks folded into one), punctuation kept as
+/// spaces.
+pub fn skeleton(text: &str) -> String {
+    thread_local! {
+        static MASK: BTreeSet<String> = masked_words();
+    }
+    MASK.with(|mask| {
+        let mut out: Vec<&str> = Vec::new();
+        let lower = text.to_lowercase();
+        for w in lower.split(|c: char| !c.is_alphanumeric() && c != '\'') {
+            if w.is_empty() {
+                continue;
+            }
+            let masked = mask.contains(w) || w.chars().all(|c| c.is_ascii_digit());
+            if masked {
+                if out.last() != Some(&"_") {
+                    out.push("_");
+                }
+            } else {
+                out.push(w);
+            }
+        }
+        out.join(" ")
+    })
 }
 
 /// Read a dataset folder: `DIR/scenes/*` and every split file present.
@@ -94,6 +178,8 @@ pub fn collect(dir: &Path) -> Result<DatasetStats> {
     }
     let mut words: BTreeSet<String> = BTreeSet::new();
     for task in Task::ALL {
+        let mut skel: BTreeMap<String, usize> = BTreeMap::new();
+        let mut count = 0usize;
         for split in Split::ALL {
             if !split_path(dir, task, split).is_file() {
                 continue;
@@ -109,6 +195,8 @@ pub fn collect(dir: &Path) -> Result<DatasetStats> {
                     .or_default()
                     .push(ep.info.geodesic_distance as f64);
                 let text = &ep.instruction.instruction_text;
+                *skel.entry(skeleton(text)).or_default() += 1;
+                count += 1;
                 let n = text.split_whitespace().count() as f64;
                 let per_style = st.instruction_words.entry(task.name().into()).or_default();
                 per_style.entry("all".into()).or_default().push(n);
@@ -127,6 +215,13 @@ pub fn collect(dir: &Path) -> Result<DatasetStats> {
                     }
                 }
             }
+        }
+        if let Some((k, c)) = skel.iter().max_by(|a, b| a.1.cmp(b.1).then(b.0.cmp(a.0))) {
+            st.skeleton_share.insert(
+                task.name().into(),
+                (*c as f64 / count.max(1) as f64, k.clone()),
+            );
+            st.skeletons.insert(task.name().into(), skel.len());
         }
     }
     st.word_vocabulary = words.len();
@@ -312,13 +407,31 @@ pub fn write_stats(dir: &Path) -> Result<String> {
         ),
         &out.join("instruction_length.png"),
     )?;
+    if let Some(fine) = st.instruction_words.get("fine").and_then(|m| m.get("all")) {
+        let (l, c) = histogram(fine, 20);
+        let vs = ValueStats::of(fine);
+        save_png(
+            &bar_chart(
+                &format!(
+                    "Fine-grained length: mean {:.0}, p10-p90 {:.0}-{:.0}",
+                    vs.mean, vs.p10, vs.p90
+                ),
+                "words (bin start); R2R mean ~29",
+                &l,
+                &c,
+            ),
+            &out.join("instruction_length_fine.png"),
+        )?;
+    }
     let mut md = String::from("# Dataset statistics\n\n");
     md.push_str(&format!("Dataset: `{}`\n\n", dir.display()));
-    md.push_str("| quantity | n | mean | min | median | max |\n|---|---|---|---|---|---|\n");
+    md.push_str(
+        "| quantity | n | mean | min | p10 | median | p90 | max |\n|---|---|---|---|---|---|---|---|\n",
+    );
     let row = |md: &mut String, name: &str, s: ValueStats| {
         md.push_str(&format!(
-            "| {name} | {} | {:.2} | {:.2} | {:.2} | {:.2} |\n",
-            s.n, s.mean, s.min, s.median, s.max
+            "| {name} | {} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |\n",
+            s.n, s.mean, s.min, s.p10, s.median, s.p90, s.max
         ));
     };
     row(
@@ -362,10 +475,75 @@ pub fn write_stats(dir: &Path) -> Result<String> {
         st.grounded_classes.len(),
         st.word_vocabulary
     ));
-    md.push_str("\nPlots: `navigable_area.png`, `rooms.png`, `path_length.png`, `instruction_length.png`.\n");
+    md.push_str(
+        "\n| task | distinct skeletons | largest skeleton share | that skeleton |\n|---|---|---|---|\n",
+    );
+    for (task, (share, sk)) in &st.skeleton_share {
+        let shown: String = sk.chars().take(80).collect();
+        md.push_str(&format!(
+            "| {task} | {} | {:.2}% | `{shown}` |\n",
+            st.skeletons.get(task).copied().unwrap_or(0),
+            share * 100.0
+        ));
+    }
+    md.push_str(
+        "\nA skeleton is the instruction with object and room names, colours and numbers masked.\n",
+    );
+    md.push_str("\nPlots: `navigable_area.png`, `rooms.png`, `path_length.png`, `instruction_length.png`, `instruction_length_fine.png`.\n");
     write_atomic(&out.join("stats.md"), md.as_bytes())?;
     let json = serde_json::to_vec_pretty(&st)
         .map_err(|e| TaskError::invalid("stats", "<stats>", e.to_string()))?;
     write_atomic(&out.join("stats.json"), &json)?;
+    Ok(md)
+}
+
+/// Markdown with `per_group` instructions drawn at random (seeded) from the dataset for each
+/// task and style (fine-grained: one group), over all splits present.
+pub fn samples_markdown(dir: &Path, per_group: usize, seed: u64) -> Result<String> {
+    use rand::seq::IndexedRandom;
+    use rand::SeedableRng;
+    let mut md = String::new();
+    for task in Task::ALL {
+        let mut groups: BTreeMap<String, Vec<(String, String)>> = BTreeMap::new();
+        for split in Split::ALL {
+            if !split_path(dir, task, split).is_file() {
+                continue;
+            }
+            for ep in read_split(dir, task, split)? {
+                let style = ep
+                    .instruction
+                    .style
+                    .map_or_else(|| "all".to_string(), |s| s.name().to_string());
+                groups
+                    .entry(style)
+                    .or_default()
+                    .push((ep.scene_id.clone(), ep.instruction.instruction_text.clone()));
+            }
+        }
+        for (style, eps) in &groups {
+            // Each group draws from its own stream (FNV-1a of its name), so adding a group
+            // leaves the others' samples unchanged.
+            let salt = format!("{}/{style}", task.name())
+                .bytes()
+                .fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
+                    (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+                });
+            let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed ^ salt);
+            let picked: Vec<&(String, String)> = eps.choose_multiple(&mut rng, per_group).collect();
+            if style == "all" {
+                md.push_str(&format!("### {}\n\n", task.name()));
+            } else {
+                md.push_str(&format!("### {}, {style}\n\n", task.name()));
+            }
+            for (i, (scene, text)) in picked.iter().enumerate() {
+                md.push_str(&format!(
+                    "{}. {} *({scene})*\n",
+                    i + 1,
+                    text.replace('\n', " ")
+                ));
+            }
+            md.push('\n');
+        }
+    }
     Ok(md)
 }

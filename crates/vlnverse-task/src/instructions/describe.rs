@@ -3,7 +3,9 @@
 //! object from the scene graph, and where the object stands in its room (corner, wall,
 //! middle, doorway). Every other object a description names is returned as grounding.
 
-use super::lexicon::{class_names, color_phrases, material_words, room_names, shape_words};
+use super::lexicon::{
+    class_names, class_uses, color_phrases, material_words, room_names, shape_words,
+};
 use super::path::{env_side, footprint, rect_distance};
 use super::phrases::{self as ph, pick};
 use super::PathContext;
@@ -166,6 +168,12 @@ pub(crate) fn object_np(
         if let Some(r) = relation_phrase(ctx, o, view, max_ref_distance, rng, &mut extra) {
             s.push(' ');
             s.push_str(&r);
+        }
+    } else if rng.random_bool(0.12) {
+        let uses = class_uses(o.class);
+        if !uses.is_empty() {
+            s.push(' ');
+            s.push_str(pick(rng, uses));
         }
     }
     (s, extra)

@@ -21,9 +21,9 @@ use vlnverse_env::scene_graph::{is_landmark, rooms_along_path, side_of_heading, 
 use vlnverse_env::{RoomId, RoomType, SceneObject};
 
 /// Waypoints closer than this to the simplified line are dropped (m).
-const SIMPLIFY_TOLERANCE: f32 = 0.3;
+const SIMPLIFY_TOLERANCE: f32 = 0.5;
 /// Legs shorter than this are folded into the next one (m).
-const MIN_LEG: f32 = 0.6;
+const MIN_LEG: f32 = 1.0;
 /// Objects a description names besides the landmark must be this close to the path (m).
 const MAX_REFERENCE_DISTANCE: f32 = 2.5;
 
@@ -643,11 +643,17 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
             }
         };
 
+        // A bare turn with nothing on the way is often all people say of a leg.
+        let bare = named.is_empty()
+            && changes.is_empty()
+            && turn.is_some()
+            && li + 1 < legs.len()
+            && rng.random_bool(0.5);
         // Sentence plans.
         let mut out: Vec<String> = Vec::new();
         let lateral_first = named.first().is_some_and(|m| m.side != Side::Ahead);
         let ahead_last = named.last().is_some_and(|m| m.side == Side::Ahead);
-        let plan = rng.random_range(0..6);
+        let plan = if bare { 0 } else { rng.random_range(0..6) };
         match plan {
             // "With the sofa on your left, turn right and walk on."
             1 if lateral_first => {
@@ -727,7 +733,9 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
                     let sep = if m.side == Side::Ahead { " " } else { ", " };
                     m2 = format!("{m2}{sep}{c}");
                 }
-                cl.push(m2);
+                if !bare {
+                    cl.push(m2);
+                }
                 for m in named.iter().skip(1) {
                     if rng.random_bool(0.5) {
                         cl.push(format!(

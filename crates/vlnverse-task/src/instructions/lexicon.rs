@@ -119,6 +119,60 @@ pub fn room_names(kind: RoomType) -> &'static [&'static str] {
     }
 }
 
+/// What objects of a class are for, as a phrase after the name ("the kettle for boiling
+/// water"): true of every object of the class, so it never claims more than the class does.
+pub fn class_uses(class: C) -> &'static [&'static str] {
+    match class {
+        C::Bed => &["where someone sleeps", "you would sleep in"],
+        C::Nightstand => &["beside the sleeping area", "for keeping things at night"],
+        C::Wardrobe => &["for hanging clothes", "where clothing is stored"],
+        C::Dresser => &["full of drawers", "for folded clothing"],
+        C::Toilet => &["you'd flush"],
+        C::Sink => &["for washing hands", "with the tap"],
+        C::Bathtub => &["for bathing", "you could soak in"],
+        C::Shower => &["for washing", "you'd rinse off in"],
+        C::Mirror => &["you can see yourself in", "showing your reflection"],
+        C::Fridge => &["where food is kept cold", "for chilled groceries"],
+        C::Counter => &["for preparing meals", "where food gets chopped"],
+        C::Stove => &["for cooking", "where meals are cooked"],
+        C::Dishwasher => &["for dirty dishes", "that cleans crockery"],
+        C::KitchenCabinet => &["for pots and pans", "where crockery lives"],
+        C::Sofa => &["for lounging", "people relax on"],
+        C::Armchair => &["for one person", "made for reading in"],
+        C::Tv => &["for watching shows", "for films and programmes"],
+        C::TvStand => &["that holds the screen", "under the screen"],
+        C::CoffeeTable => &["for drinks and magazines"],
+        C::DiningTable => &["where meals are eaten", "for family dinners"],
+        C::Chair => &["for sitting"],
+        C::Desk => &["where someone works", "for studying"],
+        C::OfficeChair => &["on wheels", "that swivels"],
+        C::Bookshelf => &["for books", "holding reading material"],
+        C::PottedPlant => &["with green leaves", "with foliage"],
+        C::FloorLamp => &["that lights the room", "giving off light"],
+        C::Cabinet => &["for storage", "with doors"],
+        C::SideTable => &["for setting things down"],
+        C::ShoeRack => &["for footwear", "where shoes go"],
+        C::CoatRack => &["for jackets", "where coats hang"],
+        C::WashingMachine => &["for laundry", "that washes clothes"],
+        C::Piano => &["with the keys", "for making music"],
+        C::Bench => &["for sitting on"],
+        C::Stool => &["without a back", "for perching on"],
+        C::TrashCan => &["for rubbish", "where waste goes"],
+        C::Cup | C::Mug => &["for hot drinks", "for tea or coffee"],
+        C::Laptop => &["for browsing", "for emails"],
+        C::Vase => &["for flowers", "for holding blooms"],
+        C::Clock => &["that tells the time", "showing the hour"],
+        C::TableLamp => &["for reading light"],
+        C::Monitor => &["for the computer"],
+        C::Toaster => &["for bread", "for toast"],
+        C::Kettle => &["for boiling water"],
+        C::Microwave => &["for reheating food", "for heating leftovers"],
+        C::Towel => &["for drying off"],
+        C::SoapDispenser => &["for soap"],
+        _ => &[],
+    }
+}
+
 /// The main colour of an object as linear RGB: the colour of its largest part.
 fn main_rgb(o: &SceneObject) -> Option<[f32; 3]> {
     o.parts
