@@ -9,6 +9,7 @@ use crate::split_args::SplitArgs;
 use vlnverse_sensors::Backend;
 use vlnverse_task::eval::agents::{builtin, Versioned};
 use vlnverse_task::eval::{evaluate, ActionSpace, EvalConfig, EvalRequest, Setting};
+use vlnverse_task::sample::Sample;
 
 /// Arguments of `cargo xtask evaluate`.
 #[derive(clap::Args, Debug)]
@@ -26,8 +27,16 @@ pub struct Args {
     #[arg(long)]
     pub config: Option<PathBuf>,
     /// Only the first N episodes of the split (at least 1).
-    #[arg(long, value_parser = at_least_one)]
+    #[arg(long, value_parser = at_least_one, conflicts_with = "sample")]
     pub episodes: Option<usize>,
+    /// A seeded random sample of N episodes spread over the split's scenes (the paper's
+    /// zero-shot protocol samples 200); the draw follows --seed.
+    #[arg(long, value_parser = at_least_one)]
+    pub sample: Option<usize>,
+    /// The run's seed (episode seeds, sensor noise, the --sample draw); default: the
+    /// protocol file's `seed`.
+    #[arg(long)]
+    pub seed: Option<u64>,
     /// Worker threads (default: one per core).
     #[arg(long)]
     pub threads: Option<usize>,
@@ -92,6 +101,9 @@ fn config(args: &Args) -> anyhow::Result<EvalConfig> {
     if args.no_render {
         cfg.render = false;
     }
+    if let Some(seed) = args.seed {
+        cfg.seed = seed;
+    }
     Ok(cfg)
 }
 
@@ -105,12 +117,17 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let n =
         vlnverse_task::dataset::read_split(&args.data.dataset, args.data.task, args.data.split)?
             .len();
-    let n = args.episodes.map_or(n, |k| k.min(n));
+    let n = args.episodes.or(args.sample).map_or(n, |k| k.min(n));
+    let sample = args.sample.map(|count| Sample {
+        count,
+        seed: cfg.seed,
+    });
     let req = EvalRequest {
         dataset: args.data.dataset.clone(),
         task: args.data.task,
         split: args.data.split,
         episodes: args.episodes,
+        sample,
         threads: args.threads,
         out: args.out.clone(),
         fresh: args.fresh,
@@ -159,6 +176,8 @@ mod tests {
             setting,
             config,
             episodes: None,
+            sample: None,
+            seed: None,
             threads: None,
             agent_cmd: None,
             action_space: Some(ActionSpace::Continuous),

@@ -44,6 +44,7 @@ def main() -> None:
     ap.add_argument("--envs", type=int, nargs="+", default=[1, 8, 32])
     ap.add_argument("--steps", type=int, default=200)
     ap.add_argument("--skip-async", action="store_true")
+    ap.add_argument("--rust-exe", help="a built vec_env_rate example (default: cargo run)")
     a = ap.parse_args()
     root = Path(__file__).resolve().parents[3]
     print(f"{'envs':>5} {'native':>9} {'sync':>9} {'async':>9} {'rust':>9}  (steps/s)")
@@ -61,10 +62,11 @@ def main() -> None:
             asy = gymnasium.vector.AsyncVectorEnv([make_single(a.dataset)] * n, context="spawn")
             r_async = rate(asy, max(a.steps // 4, 20), n)
             asy.close()
-        out = subprocess.run(
-            ["cargo", "run", "-q", "--release", "-p", "vlnverse-task", "--example",
-             "vec_env_rate", "--", a.dataset, str(n), str(a.steps)],
-            cwd=root, check=True, capture_output=True, text=True).stdout
+        cmd = [a.rust_exe] if a.rust_exe else [
+            "cargo", "run", "-q", "--release", "-p", "vlnverse-task", "--example",
+            "vec_env_rate", "--"]
+        out = subprocess.run([*cmd, a.dataset, str(n), str(a.steps)], cwd=root, check=True,
+                             capture_output=True, text=True).stdout
         r_rust = float(out.split(":")[1].split()[0])
         print(f"{n:>5} {r_native:>9.0f} {r_sync:>9.0f} {r_async:>9.0f} {r_rust:>9.0f}",
               flush=True)

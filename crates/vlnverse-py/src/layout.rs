@@ -36,7 +36,7 @@ impl DType {
 pub enum Source {
     /// Colour image of sensor `name`.
     Rgb(String),
-    /// Depth image of sensor `name` (divided by `far` when normalising).
+    /// Depth image of sensor `name`, times a factor (to or from `[0, 1]`).
     Depth(String, f32),
     /// Class-id image.
     Semantic(String),
@@ -46,7 +46,7 @@ pub enum Source {
     Lidar(String),
     /// Panorama colour views.
     PanoRgb(String),
-    /// Panorama depth views (divided by `far` when normalising).
+    /// Panorama depth views, times a factor (to or from `[0, 1]`).
     PanoDepth(String, f32),
     /// Base pose: x, y, z, yaw.
     Pose,
@@ -114,7 +114,13 @@ pub fn fields(
     reference: Option<&ReferenceImages>,
 ) -> Vec<Field> {
     let mut out = Vec::new();
-    let far = |f: f32, own: bool| if normalize_depth && !own { f } else { 1.0 };
+    // Factor from the rig's depth values to the layout's: metres or [0, 1] whatever the rig
+    // gives (a rig that normalises is scaled back to metres when asked for metres).
+    let far = |f: f32, own: bool| match (normalize_depth, own) {
+        (true, false) => 1.0 / f,
+        (false, true) => f,
+        _ => 1.0,
+    };
     for spec in rig.map(|r| r.sensors.as_slice()).unwrap_or_default() {
         let name = spec.name().to_string();
         let key = |default: &str, out: &[Field]| {
@@ -252,13 +258,12 @@ fn frame<'o>(step: &'o EnvStep, name: &str) -> Option<&'o Frame> {
     }
 }
 
-fn copy_scaled(dst: &mut [f32], src: &[f32], scale: f32) {
-    if scale == 1.0 {
+fn copy_scaled(dst: &mut [f32], src: &[f32], factor: f32) {
+    if factor == 1.0 {
         dst.copy_from_slice(src);
     } else {
-        let inv = 1.0 / scale;
         for (d, s) in dst.iter_mut().zip(src) {
-            *d = s * inv;
+            *d = s * factor;
         }
     }
 }

@@ -9,10 +9,11 @@ use pyo3::prelude::*;
 use vlnverse_task::dataset;
 use vlnverse_task::episode::{Episode, Split, Task};
 use vlnverse_task::eval::resume::{EpisodeRecord, ProgressLog, PROGRESS_FILE};
-use vlnverse_task::eval::runner::{finish_run, open_run, run_identity};
+use vlnverse_task::eval::runner::{finish_run, open_run, run_identity, select_episodes};
 use vlnverse_task::eval::{AgentFactory, EvalRequest, SceneCache};
 use vlnverse_task::metrics::{check_starts, match_trajectories, MetricsConfig};
 use vlnverse_task::report::{write_run, RunSummary};
+use vlnverse_task::sample::Sample;
 use vlnverse_task::{score as scoring, trajectory, OutputLock};
 
 use crate::{guarded, parse, py_err};
@@ -126,8 +127,8 @@ impl RunFolder {
     #[new]
     #[pyo3(signature = (out, dataset, task, split, *, agent, agent_fingerprint = None,
         setting = "telhop", action_space = "discrete", profile = "vlnverse", sensors = None,
-        seed = 0, max_steps = None, success_distance = None, episodes = None, fresh = false,
-        render = true, backend = None))]
+        seed = 0, max_steps = None, success_distance = None, episodes = None, sample = None,
+        fresh = false, render = true, backend = None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         out: PathBuf,
@@ -144,6 +145,7 @@ impl RunFolder {
         max_steps: Option<u32>,
         success_distance: Option<f32>,
         episodes: Option<usize>,
+        sample: Option<usize>,
         fresh: bool,
         render: bool,
         backend: Option<&str>,
@@ -177,12 +179,13 @@ impl RunFolder {
                 task,
                 split,
                 episodes,
+                sample: sample.map(|count| Sample { count, seed }),
                 threads: None,
                 out: out.clone(),
                 fresh,
                 config,
             };
-            let mut eps = dataset::read_split(&dataset, task, split).map_err(py_err)?;
+            let eps = dataset::read_split(&dataset, task, split).map_err(py_err)?;
             if eps.is_empty() {
                 return Err(py_err(format!(
                     "{}: the split has no episodes",
@@ -190,9 +193,7 @@ impl RunFolder {
                 )));
             }
             let total = eps.len();
-            if let Some(n) = episodes {
-                eps.truncate(n);
-            }
+            let eps = select_episodes(&req, eps).map_err(py_err)?;
             let factory = PythonAgent {
                 name: agent.clone(),
                 fingerprint: agent_fingerprint,

@@ -84,3 +84,18 @@ def test_the_example_runs(dataset: Path, tmp_path: Path) -> None:
                           str(dataset)], cwd=tmp_path, check=True, capture_output=True, text=True)
     assert "teacher  SR 1.00" in out.stdout and "success: True" in out.stdout
     assert (tmp_path / "runs/py-teacher/summary.json").is_file()
+
+
+def test_sampled_evaluation_equals_the_cli(dataset: Path, tmp_path: Path) -> None:
+    cli = tmp_path / "cli"
+    subprocess.run([*xtask(), "evaluate", "--dataset", str(dataset), "--task", "coarse",
+                    "--split", "val_unseen", "--agent", "oracle", "--setting", "telhop",
+                    "--action-space", "discrete", "--sample", "5", "--seed", "11",
+                    "--no-render", "--out", str(cli)], check=True, cwd=ROOT)
+    py = tmp_path / "py"
+    s = vlnverse.evaluate(vlnverse.TeacherAgent(), dataset=dataset, task="coarse",
+                          split="val_unseen", setting="telhop", out=py, num_envs=2, sample=5,
+                          seed=11, render=False, progress=False)
+    assert s["episodes"] == 5
+    for f in ("summary.json", "episodes.csv", "trajectories.jsonl"):
+        assert (py / f).read_bytes() == (cli / f).read_bytes(), f

@@ -6,6 +6,7 @@ pub mod error;
 pub mod lock;
 pub mod metrics;
 pub mod report;
+pub mod sample;
 pub mod score;
 pub mod trajectory;
 pub mod vocab;
@@ -22,6 +23,7 @@ pub use metrics::{
     MetricsConfig, Summary,
 };
 pub use report::{write_run, RunSummary};
+pub use sample::{sample_episodes, Sample};
 pub use score::score_on_maps;
 pub use trajectory::{read_trajectories, write_jsonl, Trajectory};
 pub use vocab::Vocab;

@@ -9,7 +9,8 @@
 //! - SPL: S * L / max(P, L), L = `info.geodesic_distance`, P = TL; 1 * S when both are 0.
 //! - nDTW: exp(-DTW(R, Q) / (|R| * 3 m)), exact DTW, Euclidean point distance, R the reference
 //!   path and Q the positions, both resampled every 0.25 m of arc length by default.
-//! - SDTW = S * nDTW; CR = collisions / steps; oracle NE = min distance to the goal over positions.
+//! - SDTW = S * nDTW; CR = collisions / steps (per episode; the run's CR pools all episodes);
+//!   oracle NE = min distance to the goal over positions.
 //! - Long-horizon: the k-th STOP is judged against the k-th goal; sub-goal k is reached when it and
 //!   all earlier ones are. SR_n = P(reached n | reached n-1), SR_all = all reached (= SR).
 //!
@@ -604,7 +605,8 @@ pub fn score_all(
         .collect()
 }
 
-/// Aggregated metrics: plain means over episodes, rates as fractions in [0, 1].
+/// Aggregated metrics: plain means over episodes (CR excepted: the paper's pooled ratio),
+/// rates as fractions in [0, 1].
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct Summary {
     /// Number of episodes.
@@ -624,8 +626,13 @@ pub struct Summary {
     pub ndtw: f64,
     /// Mean SDTW.
     pub sdtw: f64,
-    /// Mean collisions per action.
+    /// Collision rate as the paper defines it: all noticeable collisions over all actions of
+    /// the run (pooled over episodes).
     pub cr: f64,
+    /// The mean over episodes of each episode's collisions per action (weights short and long
+    /// episodes alike).
+    #[serde(default)]
+    pub cr_episode_mean: f64,
     /// Long-horizon: success rate of the first goal.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sr_1: Option<f64>,
@@ -644,8 +651,6 @@ pub struct Summary {
     pub steps: f64,
     /// Mean noticeable collisions per episode.
     pub collisions: f64,
-    /// All collisions divided by all actions (the pooled ratio).
-    pub cr_pooled: f64,
     /// Fraction of episodes with headings in which the agent got stuck.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stuck: Option<f64>,
@@ -699,7 +704,12 @@ pub fn aggregate(ms: &[EpisodeMetrics]) -> Summary {
         spl: zero(mean(ms.iter().map(|m| f(m.spl)))),
         ndtw: zero(mean(ms.iter().map(|m| f(m.ndtw)))),
         sdtw: zero(mean(ms.iter().map(|m| f(m.sdtw)))),
-        cr: zero(mean(ms.iter().map(|m| f(m.cr)))),
+        cr: if steps == 0 {
+            0.0
+        } else {
+            collisions as f64 / steps as f64
+        },
+        cr_episode_mean: zero(mean(ms.iter().map(|m| f(m.cr)))),
         sr_1: sr_n(&lh, 1),
         sr_2: sr_n(&lh, 2),
         sr_3: sr_n(&lh, 3),
@@ -707,11 +717,6 @@ pub fn aggregate(ms: &[EpisodeMetrics]) -> Summary {
         oracle_ne: mean(ms.iter().filter_map(|m| m.oracle_ne).map(f)),
         steps: zero(mean(ms.iter().map(|m| f64::from(m.steps)))),
         collisions: zero(mean(ms.iter().map(|m| f64::from(m.collisions)))),
-        cr_pooled: if steps == 0 {
-            0.0
-        } else {
-            collisions as f64 / steps as f64
-        },
         stuck: mean(ms.iter().filter_map(|m| m.stuck).map(b)),
         unreachable: ms.iter().filter(|m| m.unreachable).count(),
     }

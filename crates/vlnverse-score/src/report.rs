@@ -195,14 +195,15 @@ pub fn markdown_report(run: &RunSummary) -> String {
         "\n{} episodes; {} with the goal unreachable from the final position (left out of NE); \
          mean steps {:.1}; SDTW {:.2}%; oracle NE {}.\n\
          SR, OSR, SPL, nDTW, SDTW and CR in percent (summary.json and episodes.csv hold \
-         fractions); TL and NE in metres; CR (%) = noticeable collisions per 100 actions, the \
-         mean over episodes.\n",
+         fractions); TL and NE in metres; CR (%) = noticeable collisions per 100 actions over \
+         all episodes (the paper's definition); per-episode mean CR {:.2}%.\n",
         m.episodes,
         m.unreachable,
         m.steps,
         100.0 * m.sdtw,
         m.oracle_ne
             .map_or_else(|| "-".to_string(), |v| format!("{v:.2} m")),
+        100.0 * m.cr_episode_mean,
     );
     s
 }

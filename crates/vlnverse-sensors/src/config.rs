@@ -159,11 +159,13 @@ impl Default for CameraSpec {
 }
 
 impl CameraSpec {
-    /// The paper's depth camera: 256x256, HFOV 90, clipped at 10 m.
+    /// The paper's depth camera: 256x256, HFOV 90, clipped at 10 m and normalised to
+    /// `[0, 1]` (the paper's appendix and VLN-CE).
     pub fn depth() -> Self {
         CameraSpec {
             width: 256,
             height: 256,
+            normalize: true,
             ..CameraSpec::default()
         }
     }

@@ -67,6 +67,7 @@ fn bench(c: &mut Criterion) {
             task: Task::Fine,
             split: Split::Test,
             episodes: None,
+            sample: None,
             threads: None,
             out: dir
                 .path()

@@ -122,6 +122,7 @@ pub fn run(arg: Option<PathBuf>) -> Result<f64, Box<dyn std::error::Error>> {
         task: Task::Fine,
         split: Split::Test,
         episodes: Some(1),
+        sample: None,
         threads: Some(1),
         out: out.join("run"),
         fresh: true,

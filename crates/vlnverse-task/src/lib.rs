@@ -8,7 +8,7 @@ pub mod oracle;
 
 /// The benchmark's data and scoring live in `vlnverse-score` (no physics, no graphics); they
 /// are re-exported here under the same paths.
-pub use vlnverse_score::{dataset, episode, metrics, report, score, trajectory, vocab};
+pub use vlnverse_score::{dataset, episode, metrics, report, sample, score, trajectory, vocab};
 
 pub use episode::{
     Dataset, Episode, EpisodeInfo, Goal, GroundedObject, Instruction, Role, Side, Split, Style,

@@ -65,6 +65,7 @@ class RunFolder:
         max_steps: int | None = None,
         success_distance: float | None = None,
         episodes: int | None = None,
+        sample: int | None = None,
         fresh: bool = False,
         render: bool = True,
         backend: str | None = None,

@@ -42,6 +42,7 @@ def evaluate(
     max_steps: int | None = None,
     success_distance: float | None = None,
     episodes: int | None = None,
+    sample: int | None = None,
     name: str | None = None,
     version: str | None = None,
     fresh: bool = False,
@@ -50,8 +51,11 @@ def evaluate(
 ) -> dict[str, Any]:
     """Evaluate a Python agent on a split and write the run folder ``xtask evaluate`` writes
     (``summary.json``, ``episodes.csv``, ``trajectories.jsonl``, ``report.md``, ``run.json``,
-    ``progress.jsonl``). Resumable: episodes already in ``out`` are kept, a run with another
-    agent ``name`` / ``version`` or protocol is refused, ``fresh=True`` starts over.
+    ``progress.jsonl``). ``episodes=N`` runs the first N episodes, ``sample=N`` a random sample
+    of N spread over the split's scenes, drawn with ``seed`` (the zero-shot protocol; the
+    same episodes as ``xtask evaluate --sample N --seed S``). Resumable: episodes already in
+    ``out`` are kept, a run with another agent ``name`` / ``version`` or protocol is refused,
+    ``fresh=True`` starts over.
     Returns ``summary.json`` as a dict."""
     agent_name = name or getattr(agent, "name", None) or type(agent).__name__
     fingerprint = version if version is None else f"version {version}"
@@ -78,7 +82,8 @@ def evaluate(
         split,
         agent=str(agent_name),
         agent_fingerprint=fingerprint,
-        episodes=episodes,
+        episodes=None if episodes is None else check.check_int("episodes", episodes, 1),
+        sample=None if sample is None else check.check_int("sample", sample, 1),
         fresh=fresh,
         **protocol,
     )

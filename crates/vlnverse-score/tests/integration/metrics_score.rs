@@ -114,6 +114,16 @@ fn score_on_the_navigable_map_end_to_end() {
     let outside = &ms[2];
     assert!(outside.unreachable && outside.ne.is_none() && !outside.success);
 
+    // CR pools collisions over actions (the paper); the per-episode mean weighs a short
+    // episode with many collisions as much as a long clean one.
+    let mut short = ms[1].clone();
+    (short.collisions, short.steps, short.cr) = (1, 2, 0.5);
+    let mut long = ms[1].clone();
+    (long.collisions, long.steps, long.cr) = (0, 8, 0.0);
+    let s = vlnverse_score::metrics::aggregate(&[short, long]);
+    assert!((s.cr - 0.1).abs() < 1e-12, "pooled cr {}", s.cr);
+    assert!((s.cr_episode_mean - 0.25).abs() < 1e-12);
+
     let ms: Vec<_> = ms
         .into_iter()
         .map(|mut m| {

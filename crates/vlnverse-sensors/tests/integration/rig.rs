@@ -61,7 +61,9 @@ fn default_rig_gives_rgb_224_and_depth_256_clipped_at_10m() {
     match &obs["depth"] {
         Observation::Depth(f) => {
             assert_eq!((f.width, f.height, f.depth.len()), (256, 256, 256 * 256));
-            assert!(f.depth.iter().all(|d| (0.0..=10.0).contains(d)));
+            // Clipped at 10 m and normalised: 1.0 is "10 m or more".
+            assert!(f.depth.iter().all(|d| (0.0..=1.0).contains(d)));
+            assert!(f.depth.iter().any(|d| *d > 0.0 && *d < 1.0));
         }
         o => panic!("{o:?}"),
     }
@@ -69,7 +71,12 @@ fn default_rig_gives_rgb_224_and_depth_256_clipped_at_10m() {
 
 #[test]
 fn normalised_depth_is_depth_over_far() {
-    let plain = CameraSpec::depth();
+    // The default depth camera normalises (the paper); metres are one field away.
+    assert!(CameraSpec::depth().normalize);
+    let plain = CameraSpec {
+        normalize: false,
+        ..CameraSpec::depth()
+    };
     let norm = CameraSpec {
         name: "depth_n".into(),
         normalize: true,

@@ -29,6 +29,7 @@ use crate::eval::resume::{self, EpisodeRecord, ProgressLog, PROGRESS_FILE, RUN_F
 pub use crate::eval::scene_context::{SceneCache, SceneContext};
 use crate::report::{write_run, RunSummary};
 use crate::trajectory::{write_jsonl, Trajectory};
+use vlnverse_score::sample::{sample_episodes, Sample};
 use vlnverse_score::OutputLock;
 
 /// What to evaluate and where the results go.
@@ -42,6 +43,9 @@ pub struct EvalRequest {
     pub split: Split,
     /// Only the first N episodes of the split file.
     pub episodes: Option<usize>,
+    /// A seeded random sample of the split spread over its scenes (the zero-shot protocol);
+    /// excludes `episodes`.
+    pub sample: Option<Sample>,
     /// Worker threads (None: rayon's default, one per core).
     pub threads: Option<usize>,
     /// Run folder.
@@ -296,9 +300,7 @@ pub fn evaluate_with<SF: SimulatorFactory, RF: RendererFactory>(
         ));
     }
     let total_in_split = episodes.len();
-    if let Some(n) = req.episodes {
-        episodes.truncate(n);
-    }
+    episodes = select_episodes(req, episodes)?;
     let sim_cfg = sim_config(&req.config)?;
     let rig_cfg = req.config.rig_config()?;
     let mut settings = EpisodeSettings::new(&req.config)?;
@@ -369,6 +371,28 @@ pub fn evaluate_with<SF: SimulatorFactory, RF: RendererFactory>(
         let _ = std::fs::remove_dir(&req.out);
     }
     result
+}
+
+/// The episodes `req` asks for: the first `episodes`, a `sample`, or all.
+pub fn select_episodes(req: &EvalRequest, mut episodes: Vec<Episode>) -> Result<Vec<Episode>> {
+    match (req.episodes, req.sample) {
+        (Some(_), Some(_)) => Err(TaskError::invalid(
+            "sample",
+            "with episodes",
+            "choose one: the first N episodes (--episodes) or a seeded sample (--sample)",
+        )),
+        (_, Some(s)) if s.count == 0 => Err(TaskError::invalid(
+            "sample",
+            0,
+            "must be at least 1 (leave it out to run the whole split)",
+        )),
+        (Some(n), None) => {
+            episodes.truncate(n);
+            Ok(episodes)
+        }
+        (None, Some(s)) => Ok(sample_episodes(episodes, s)),
+        (None, None) => Ok(episodes),
+    }
 }
 
 /// After a failure: if no episode was recorded, remove what this call wrote (run.json and an
@@ -548,7 +572,7 @@ pub fn run_identity(
     } else {
         cfg.resolve(&cfg.rig).display().to_string()
     };
-    Ok(vec![
+    let mut identity = vec![
         ("setting", json!(cfg.setting.name())),
         ("task", json!(req.task.name())),
         ("split", json!(req.split.name())),
@@ -575,7 +599,12 @@ pub fn run_identity(
             value("agent_profile", to_value(cfg.agent_config()?))?,
         ),
         ("rig_config", value("rig", to_value(cfg.rig_config()?))?),
-    ])
+    ];
+    // Only when sampling, so runs made before sampling existed still resume.
+    if let Some(sample) = req.sample {
+        identity.push(("sample", json!(sample)));
+    }
+    Ok(identity)
 }
 
 fn write_plots(

@@ -262,11 +262,12 @@ impl SceneTaskContext<'_> {
             None
         };
         for k in 0..share.trajectories {
+            // Visual-reference and dialogue trajectories are the coarse ones (`sampled_as`).
             let seed = derive_seed(
                 self.config.seed,
                 &[
                     self.scene_index as u64,
-                    share.task as u64,
+                    self.config.tasks.sampled_as(share.task) as u64,
                     share.split as u64,
                     k as u64,
                 ],

@@ -206,6 +206,21 @@ impl TasksConfig {
         }
     }
 
+    /// The task whose trajectories and instructions `task` is drawn as. Visual-reference and
+    /// dialogue episodes reuse the coarse task's (the paper: "identical trajectories and
+    /// instructions as the coarse-grained dataset", so the three tasks compare episode by
+    /// episode) when their lengths and counts equal the coarse task's; otherwise, and for
+    /// every other task, `task` itself.
+    pub fn sampled_as(&self, task: Task) -> Task {
+        let (t, c) = (self.get(task), &self.coarse);
+        let same = (t.min_length, t.max_length, t.episodes, t.scenes)
+            == (c.min_length, c.max_length, c.episodes, c.scenes);
+        match task {
+            Task::VisualReference | Task::Dialogue if same => Task::Coarse,
+            _ => task,
+        }
+    }
+
     /// Mutable settings of `task`.
     pub fn get_mut(&mut self, task: Task) -> &mut TaskConfig {
         match task {

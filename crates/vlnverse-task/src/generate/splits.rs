@@ -138,7 +138,9 @@ pub fn plan(cfg: &GenerateConfig, tasks: &[Task]) -> Plan {
             };
             let mut pool: Vec<usize> = (0..n).filter(|&i| splits[i] == pool_split).collect();
             let want = t.scenes.get(split).min(pool.len());
-            let cell_seed = derive_seed(cfg.seed, &[0xCE11, task as u64, split as u64]);
+            // Tasks drawn as another share its allocation (and so its episode ids).
+            let drawn_as = cfg.tasks.sampled_as(task);
+            let cell_seed = derive_seed(cfg.seed, &[0xCE11, drawn_as as u64, split as u64]);
             if want < pool.len() {
                 pool.shuffle(&mut ChaCha8Rng::seed_from_u64(cell_seed));
                 pool.truncate(want);

@@ -15,6 +15,7 @@ fn request(dir: &std::path::Path, out: &str, setting: Setting, space: ActionSpac
         task: Task::Fine,
         split: Split::Test,
         episodes: None,
+        sample: None,
         threads: Some(2),
         out: dir.join(out),
         fresh: false,
@@ -118,12 +119,21 @@ fn baselines_fail_and_summary_is_the_mean_of_episodes() {
             ("spl", mean(&|m| m.spl as f64)),
             ("ndtw", mean(&|m| m.ndtw as f64)),
             ("tl", mean(&|m| m.tl as f64)),
-            ("cr", mean(&|m| m.cr as f64)),
+            ("cr_episode_mean", mean(&|m| m.cr as f64)),
         ] {
             let v = json[key].as_f64().unwrap();
             assert!((v - m).abs() < 1e-6, "{name}: {key} {v} vs mean {m}");
             assert!(key == "tl" || (0.0..=1.0).contains(&v), "{key} = {v}");
         }
+        // CR is the paper's pooled ratio: all collisions over all actions.
+        let (hits, actions) = out.records.iter().fold((0u64, 0u64), |(c, a), r| {
+            (c + r.metrics.collisions as u64, a + r.metrics.steps as u64)
+        });
+        let pooled = hits as f64 / actions.max(1) as f64;
+        assert!(
+            (json["cr"].as_f64().unwrap() - pooled).abs() < 1e-9,
+            "{name}: cr"
+        );
         let csv = std::fs::read_to_string(dir.path().join(name).join("episodes.csv")).unwrap();
         assert_eq!(csv.lines().count(), eps.len() + 1);
         let trajs =
@@ -183,6 +193,7 @@ fn semantic_agent_finds_named_objects_without_the_goal() {
             task: Task::Coarse,
             split: Split::Test,
             episodes: None,
+            sample: None,
             threads: Some(2),
             out: dir.path().join(name),
             fresh: false,

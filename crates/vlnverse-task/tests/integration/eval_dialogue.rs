@@ -70,6 +70,7 @@ fn dialogue_agents_ask_the_shortest_path_oracle_within_the_budget() {
         task: Task::Dialogue,
         split: Split::Test,
         episodes: None,
+        sample: None,
         threads: Some(1),
         out: dir.path().join("run"),
         fresh: false,

@@ -43,6 +43,7 @@ fn python_random_agent_drives_episodes_through_the_protocol() {
             task: Task::Fine,
             split: Split::Test,
             episodes: None,
+            sample: None,
             threads: Some(2),
             out: out_dir.clone(),
             fresh: false,

@@ -267,3 +267,46 @@ fn the_scene_cache_stays_bounded_and_reloads_what_it_evicted() {
     let err = cache.get("nowhere").err().unwrap().to_string();
     assert!(err.contains("nowhere") && err.contains("scenes"), "{err}");
 }
+
+#[test]
+fn a_seeded_sample_spreads_over_scenes_and_is_part_of_the_run() {
+    let dir = tempfile::tempdir().unwrap();
+    eval_support::make_dataset(dir.path(), Task::Fine, 3, 4, 9);
+    let cfg = blind_lenient();
+    let factory = FnFactory::new("fwd", false, || Box::new(Forward(1)) as Box<dyn Agent>);
+    let sampled = |out: &str, count: usize, seed: u64| vlnverse_task::EvalRequest {
+        sample: Some(vlnverse_task::sample::Sample { count, seed }),
+        ..eval_support::fine_test(dir.path(), out, &cfg, None, 1)
+    };
+    let a = evaluate(&sampled("a", 5, 7), &factory, &|| {}).unwrap();
+    assert_eq!(a.records.len(), 5);
+    let all = dataset::read_split(dir.path(), Task::Fine, Split::Test).unwrap();
+    let scene_of = |id: u64| &all.iter().find(|e| e.episode_id == id).unwrap().scene_id;
+    let mut scenes: Vec<&String> = a.records.iter().map(|r| scene_of(r.episode_id)).collect();
+    scenes.sort();
+    scenes.dedup();
+    assert_eq!(
+        scenes.len(),
+        3,
+        "five episodes over three scenes: every scene is in"
+    );
+    // The same seed draws the same episodes; another seed others.
+    let ids = |o: &vlnverse_task::eval::EvalOutcome| {
+        o.records.iter().map(|r| r.episode_id).collect::<Vec<_>>()
+    };
+    let again = evaluate(&sampled("b", 5, 7), &factory, &|| {}).unwrap();
+    assert_eq!(ids(&a), ids(&again));
+    let other = evaluate(&sampled("c", 5, 8), &factory, &|| {}).unwrap();
+    assert_ne!(ids(&a), ids(&other));
+    // The sample belongs to the run: resuming with another one is refused.
+    let err = evaluate(&sampled("a", 5, 8), &factory, &|| {}).unwrap_err();
+    assert!(err.to_string().contains("sample"), "{err}");
+    // With --episodes it is refused, naming both.
+    let both = vlnverse_task::EvalRequest {
+        episodes: Some(2),
+        ..sampled("d", 5, 7)
+    };
+    let err = evaluate(&both, &factory, &|| {}).unwrap_err();
+    assert!(err.to_string().contains("--sample"), "{err}");
+    assert!(!dir.path().join("d").exists());
+}

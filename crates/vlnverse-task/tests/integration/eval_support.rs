@@ -193,6 +193,7 @@ pub fn fine_test(
         task: Task::Fine,
         split: Split::Test,
         episodes,
+        sample: None,
         threads: Some(threads),
         out: dir.join(out),
         fresh: false,

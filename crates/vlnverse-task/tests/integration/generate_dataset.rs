@@ -348,6 +348,48 @@ fn visual_reference_images_and_dialogue_budgets_exist() {
     }
 }
 
+#[test]
+fn visual_reference_and_dialogue_reuse_the_coarse_episodes() {
+    // The paper: the same trajectories and instructions as the coarse-grained dataset, so the
+    // three tasks compare episode by episode.
+    let coarse = all_episodes(Task::Coarse);
+    assert!(!coarse.is_empty());
+    for task in [Task::VisualReference, Task::Dialogue] {
+        let other = all_episodes(task);
+        assert_eq!(other.len(), coarse.len(), "{task}");
+        for ((sa, a), (sb, b)) in coarse.iter().zip(&other) {
+            let what = format!("{task} {sb} episode {}", b.episode_id);
+            assert_eq!(sa, sb, "{what}");
+            assert_eq!(
+                (a.episode_id, a.trajectory_id, &a.scene_id),
+                (b.episode_id, b.trajectory_id, &b.scene_id),
+                "{what}"
+            );
+            assert_eq!(a.start_position, b.start_position, "{what}");
+            assert_eq!(a.start_rotation, b.start_rotation, "{what}");
+            assert_eq!(a.reference_path, b.reference_path, "{what}");
+            assert_eq!(a.goals, b.goals, "{what}");
+            assert_eq!(a.instruction, b.instruction, "{what}");
+            assert_eq!(a.target_object_id, b.target_object_id, "{what}");
+            assert_eq!(b.task, task);
+        }
+    }
+}
+
+#[test]
+fn a_task_config_unlike_coarse_draws_its_own_trajectories() {
+    let mut cfg = vlnverse_task::generate::GeneratePreset::Tiny
+        .config()
+        .unwrap();
+    assert_eq!(cfg.tasks.sampled_as(Task::VisualReference), Task::Coarse);
+    assert_eq!(cfg.tasks.sampled_as(Task::Dialogue), Task::Coarse);
+    assert_eq!(cfg.tasks.sampled_as(Task::Fine), Task::Fine);
+    assert_eq!(cfg.tasks.sampled_as(Task::LongHorizon), Task::LongHorizon);
+    cfg.tasks.dialogue.max_length -= 1.0;
+    assert_eq!(cfg.tasks.sampled_as(Task::Dialogue), Task::Dialogue);
+    assert_eq!(cfg.tasks.sampled_as(Task::VisualReference), Task::Coarse);
+}
+
 /// Every file under `dir` (relative path -> bytes).
 fn tree(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
     fn walk(root: &Path, dir: &Path, out: &mut BTreeMap<PathBuf, Vec<u8>>) {
