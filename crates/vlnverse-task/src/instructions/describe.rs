@@ -92,7 +92,7 @@ pub(crate) fn object_np(
         .into_iter()
         .filter(|a| !name.split(' ').any(|w| a.contains(w) || w.contains(a)))
         .collect();
-    if !shapes.is_empty() && rng.random_bool(0.35) {
+    if !shapes.is_empty() && rng.random_bool(0.25) {
         adj.push(pick(rng, &shapes).to_string());
     }
     // A plant's colour and material are its pot's.
@@ -122,7 +122,7 @@ pub(crate) fn object_np(
         return (s, extra);
     }
     let colors = color_phrases(o);
-    let color = !colors.is_empty() && (opts.force_color || ambiguous || rng.random_bool(0.45));
+    let color = !colors.is_empty() && (opts.force_color || ambiguous || rng.random_bool(0.35));
     if color {
         // The plain colour word half the time, a shade otherwise.
         let c = if colors.len() == 1 || rng.random_bool(0.5) {
@@ -134,7 +134,7 @@ pub(crate) fn object_np(
     }
     let mats = material_words(o);
     let mut material_after = None;
-    if !mats.is_empty() && rng.random_bool(0.25) {
+    if !mats.is_empty() && rng.random_bool(0.2) {
         let m = pick(rng, mats);
         if rng.random_bool(0.3) {
             material_after = Some(m);

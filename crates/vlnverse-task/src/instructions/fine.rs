@@ -62,9 +62,9 @@ impl Writer {
         NpOptions {
             synonym: if self == Writer::Precise { 0.2 } else { 0.45 },
             relation: match self {
-                Writer::Terse => 0.1,
-                Writer::Precise => 0.35,
-                _ => 0.25,
+                Writer::Terse => 0.05,
+                Writer::Precise => 0.25,
+                _ => 0.15,
             },
             force_color: false,
         }
@@ -520,11 +520,12 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
     // A landmark held back from the previous leg to open this leg's turn ("once you've
     // passed the sofa, turn left").
     let mut after: Option<String> = None;
-    let max_lm = if writer == Writer::Terse {
-        1
-    } else {
-        cfg.max_landmarks_per_leg
+    // People name a handful of landmarks per route, not every one they pass.
+    let max_lm = match writer {
+        Writer::Precise => cfg.max_landmarks_per_leg,
+        _ => cfg.max_landmarks_per_leg.min(1),
     };
+    let mut budget = if writer == Writer::Terse { 2 } else { 4 };
     for (li, leg) in legs.iter().enumerate() {
         // Landmarks of this leg: left / right / ahead, closest first, distinct classes.
         let mut mine: Vec<&Landmark> = landmarks
@@ -540,7 +541,7 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
         });
         let mut chosen: Vec<&Landmark> = Vec::new();
         for l in mine {
-            if chosen.len() >= max_lm {
+            if chosen.len() >= max_lm || budget == 0 {
                 break;
             }
             let Some(o) = ctx.scene.object(l.object) else {
@@ -558,6 +559,7 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
                 continue;
             }
             chosen.push(l);
+            budget -= 1;
         }
         chosen.sort_by_key(|l| (l.path_index, l.object));
         let mut named: Vec<Named> = Vec::new();

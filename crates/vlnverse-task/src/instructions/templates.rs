@@ -422,7 +422,13 @@ pub fn chain_parts(parts: &[Instruction], seed: u64) -> Result<Instruction> {
     } else {
         let mut pieces = Vec::new();
         for (i, t) in subs.iter().enumerate() {
-            let body = decapitalize(t.trim().trim_end_matches(['.', '!']));
+            let t = t.trim().trim_end_matches(['.', '!']);
+            // "I" stays a capital.
+            let body = if t.starts_with("I ") || t.starts_with("I'") {
+                t.to_string()
+            } else {
+                decapitalize(t)
+            };
             let opener = if i == 0 {
                 pick(&mut rng, ph::CHAIN_FIRST)
             } else if i + 1 == subs.len() {
