@@ -668,7 +668,9 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
                 let mut cl: Vec<String> = turn.into_iter().collect();
                 cl.push(mv);
                 for m in &named[1..] {
-                    cl.push(lm_clause(m, &mut rng));
+                    let c = lm_clause(m, &mut rng);
+                    let go = pick(&mut rng, &["continue", "keep going", "carry on", "go on"]);
+                    cl.push(format!("{go} {c}"));
                 }
                 cl.extend(changes);
                 out.push(format!("{head}, {}", join(&cl, &mut rng)));

@@ -4,8 +4,10 @@
 //! optional LLM-backed stage implements the same trait. See `docs/instructions.md`.
 //!
 //! - [`TemplateGenerator`] (`templates.rs`, phrase banks in `phrases.rs`): fine-grained
-//!   instructions follow the path's legs, turns, room changes and landmarks; coarse ones render
-//!   the scene graph's unique referring expression in three styles; [`chain_parts`] joins
+//!   instructions (`fine.rs`) follow the path's legs, turns, room changes and landmarks,
+//!   written by one of several writers with varied sentence plans; objects, rooms and openings
+//!   are described in `describe.rs` with the words of [`lexicon`]; coarse ones render the scene
+//!   graph's unique referring expression in three styles; [`chain_parts`] joins
 //!   sub-instructions.
 //! - [`check_grounding`]: mechanical check of an instruction's grounding metadata.
 //! - `llm` (feature `llm`, on by default): the optional LLM stage (`llm::LlmGenerator`).
