@@ -3,6 +3,8 @@
 //! An interrupted run resumes from `RUN/progress.jsonl`.
 
 use std::path::PathBuf;
+
+use anyhow::Context;
 use std::time::Instant;
 
 use crate::split_args::SplitArgs;
@@ -37,6 +39,14 @@ pub struct Args {
     /// protocol file's `seed`.
     #[arg(long)]
     pub seed: Option<u64>,
+    /// Dialogue oracle: `rule` (the shortest-path oracle's plain answers) or `llm` (rephrased
+    /// through the OpenAI-compatible endpoint of --oracle-config); default: the protocol's.
+    #[arg(long)]
+    pub oracle: Option<String>,
+    /// TOML file with the LLM endpoint of `--oracle llm` (the fields of `[instructions.llm]`:
+    /// base_url, model, api_key_env, ...).
+    #[arg(long)]
+    pub oracle_config: Option<PathBuf>,
     /// Worker threads (default: one per core).
     #[arg(long)]
     pub threads: Option<usize>,
@@ -103,6 +113,27 @@ fn config(args: &Args) -> anyhow::Result<EvalConfig> {
     }
     if let Some(seed) = args.seed {
         cfg.seed = seed;
+    }
+    match (args.oracle.as_deref(), &args.oracle_config) {
+        (Some("rule"), None) => cfg.oracle_llm = None,
+        (Some("llm") | None, Some(file)) => {
+            let text = std::fs::read_to_string(file)
+                .with_context(|| format!("--oracle-config {}", file.display()))?;
+            let llm: vlnverse_task::instructions::llm::LlmConfig = toml::from_str(&text)
+                .map_err(|e| anyhow::anyhow!("{}: {}", file.display(), e.message()))?;
+            llm.validate()
+                .with_context(|| format!("--oracle-config {}", file.display()))?;
+            cfg.oracle_llm = Some(llm);
+        }
+        (Some("llm"), None) if cfg.oracle_llm.is_some() => {}
+        (Some("llm"), None) => anyhow::bail!(
+            "--oracle llm needs an endpoint: --oracle-config FILE (base_url, model,              api_key_env) or `[oracle_llm]` in the protocol file"
+        ),
+        (Some("rule"), Some(_)) => {
+            anyhow::bail!("--oracle rule takes no --oracle-config (it is for --oracle llm)")
+        }
+        (Some(other), _) => anyhow::bail!("--oracle `{other}`: expected rule or llm"),
+        (None, None) => {}
     }
     Ok(cfg)
 }
@@ -178,6 +209,8 @@ mod tests {
             episodes: None,
             sample: None,
             seed: None,
+            oracle: None,
+            oracle_config: None,
             threads: None,
             agent_cmd: None,
             action_space: Some(ActionSpace::Continuous),
@@ -213,5 +246,27 @@ mod tests {
         })
         .unwrap_err();
         assert!(format!("{err:#}").contains("nope"), "{err:#}");
+        // The LLM oracle needs an endpoint; a file names itself in its errors.
+        let llm = |oracle: &str, file: Option<PathBuf>| Args {
+            oracle: Some(oracle.into()),
+            oracle_config: file,
+            ..args(None, Setting::Lenient)
+        };
+        let err = config(&llm("llm", None)).unwrap_err();
+        assert!(err.to_string().contains("--oracle-config"), "{err}");
+        let err = config(&llm("oracle", None)).unwrap_err();
+        assert!(err.to_string().contains("rule or llm"), "{err}");
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("llm.toml");
+        std::fs::write(
+            &file,
+            "base_url = \"http://127.0.0.1:9/v1\"\nmodel = \"m\"\n",
+        )
+        .unwrap();
+        let cfg = config(&llm("llm", Some(file.clone()))).unwrap();
+        assert_eq!(cfg.oracle_llm.unwrap().model, "m");
+        std::fs::write(&file, "base_url = \"http://x/v1\"\nmodl = \"m\"\n").unwrap();
+        let err = config(&llm("llm", Some(file))).unwrap_err();
+        assert!(format!("{err:#}").contains("llm.toml") && format!("{err:#}").contains("modl"));
     }
 }

@@ -8,7 +8,6 @@ use std::time::Instant;
 
 use anyhow::Context;
 use vlnverse_task::generate::{GenerateRequest, GenerateSummary, StageTimes};
-use vlnverse_task::instructions::TemplateGenerator;
 use vlnverse_task::Task;
 
 /// Arguments of `cargo xtask generate`.
@@ -95,7 +94,6 @@ pub fn generate(
 ) -> anyhow::Result<(GenerateSummary, StageTimes, f64)> {
     let start = Instant::now();
     let run = request(args)?.prepare()?;
-    let instructions = TemplateGenerator::default();
     let times = StageTimes::default();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads.unwrap_or(0))
@@ -105,7 +103,7 @@ pub fn generate(
     if !show_progress {
         pb.set_draw_target(indicatif::ProgressDrawTarget::hidden());
     }
-    let summary = pool.install(|| run.run(&instructions, &times, &|_| pb.inc(1)));
+    let summary = pool.install(|| run.run(&times, &|_| pb.inc(1)));
     pb.finish_and_clear();
     Ok((summary?, times, start.elapsed().as_secs_f64()))
 }

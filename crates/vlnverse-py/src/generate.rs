@@ -8,7 +8,6 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use vlnverse_task::episode::Task;
 use vlnverse_task::generate::{GenerateRequest, StageTimes};
-use vlnverse_task::instructions::TemplateGenerator;
 
 use crate::{guarded, parse, py_err};
 
@@ -69,8 +68,7 @@ pub fn generate<'py>(
                 }
             };
             let times = StageTimes::default();
-            pool.install(|| run.run(&TemplateGenerator::default(), &times, &report))
-                .map_err(py_err)
+            pool.install(|| run.run(&times, &report)).map_err(py_err)
         })
     })?;
     if let Some(e) = callback_error

@@ -92,10 +92,11 @@ impl EpisodeSettings {
     }
 }
 
-/// The dialogue oracle as the agent sees it: free-text questions go to the episode's
-/// [`ShortestPathOracle`] (true remaining path + scene graph, with the episode's budget).
+/// The dialogue oracle as the agent sees it: free-text questions go to the episode's oracle,
+/// the [`ShortestPathOracle`] (true remaining path + scene graph, with the episode's budget),
+/// its answers rephrased by an LLM when the protocol has `[oracle_llm]`.
 pub struct DialogueHandle<'a> {
-    oracle: &'a mut ShortestPathOracle,
+    oracle: &'a mut dyn Oracle,
     pose: Pose,
 }
 
@@ -124,6 +125,33 @@ impl OracleHandle for DialogueHandle<'_> {
     }
     fn remaining(&self) -> u32 {
         self.oracle.remaining()
+    }
+}
+
+/// The episode's oracle: the rule-based one, wrapped in the LLM oracle when the protocol has
+/// `[oracle_llm]` (seeded with the episode's seed, so answers repeat).
+fn dialogue_oracle(
+    rule: ShortestPathOracle,
+    cfg: &EvalConfig,
+    seed: u64,
+) -> Result<Box<dyn Oracle>> {
+    match &cfg.oracle_llm {
+        None => Ok(Box::new(rule)),
+        #[cfg(feature = "llm")]
+        Some(llm) => Ok(Box::new(crate::oracle::LlmOracle::new(
+            rule,
+            llm.clone(),
+            seed,
+        )?)),
+        #[cfg(not(feature = "llm"))]
+        Some(_) => {
+            let _ = seed;
+            Err(TaskError::invalid(
+                "oracle_llm",
+                "<section>",
+                "this build has no LLM client (vlnverse-task feature `llm`)",
+            ))
+        }
     }
 }
 
@@ -205,7 +233,7 @@ pub struct EpisodeState {
     goal_fields: Vec<Arc<DistanceField>>,
     pose: Pose,
     progress: SubGoalProgress,
-    dialogue: Option<ShortestPathOracle>,
+    dialogue: Option<Box<dyn Oracle>>,
     positions: Vec<[f32; 3]>,
     headings: Vec<f32>,
     actions: Vec<String>,
@@ -299,12 +327,16 @@ impl EpisodeState {
         };
         let total = goal_fields.len() as u32;
         let dialogue = match ep.oracle_budget {
-            Some(_) => Some(ShortestPathOracle::for_episode(
-                scene.scene.clone(),
-                scene.graph(),
-                scene.navigable.clone(),
-                ep,
-                OracleConfig::default(),
+            Some(_) => Some(dialogue_oracle(
+                ShortestPathOracle::for_episode(
+                    scene.scene.clone(),
+                    scene.graph(),
+                    scene.navigable.clone(),
+                    ep,
+                    OracleConfig::default(),
+                )?,
+                cfg,
+                inputs.seed,
             )?),
             None => None,
         };
@@ -404,7 +436,7 @@ impl EpisodeState {
     /// `None` when the episode has no oracle or its budget is spent.
     pub fn ask(&mut self, question: &str) -> Option<String> {
         let pose = self.pose;
-        let oracle = self.dialogue.as_mut()?;
+        let oracle = self.dialogue.as_deref_mut()?;
         DialogueHandle { oracle, pose }.ask(question)
     }
 
@@ -577,7 +609,7 @@ pub fn run_episode<S: Simulator>(
         let pose = st.pose;
         let mut handle = st
             .dialogue
-            .as_mut()
+            .as_deref_mut()
             .map(|oracle| DialogueHandle { oracle, pose });
         let action = agent.act(&mut StepInput {
             step: st.steps,

@@ -194,6 +194,11 @@ pub struct EvalConfig {
     pub plots: u32,
     /// How the `external` agent receives images: `files` or `base64`.
     pub external_observations: crate::eval::agents::external::ObsEncoding,
+    /// The dialogue oracle's answers rephrased by an LLM (`[oracle_llm]`: an OpenAI-compatible
+    /// endpoint, the fields of `[instructions.llm]`); none (the default): the rule-based
+    /// shortest-path oracle answers as it is.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub oracle_llm: Option<crate::generate::presets::LlmSection>,
     /// Folder the relative paths resolve against (set by [`EvalConfig::load`]).
     #[serde(skip)]
     pub base_dir: Option<PathBuf>,
@@ -213,6 +218,7 @@ impl Default for EvalConfig {
             seed: 0,
             plots: 6,
             external_observations: Default::default(),
+            oracle_llm: None,
             base_dir: None,
         }
     }
@@ -258,6 +264,20 @@ impl EvalConfig {
 
     /// Check ranges; errors name the field and value.
     pub fn validate(&self) -> Result<()> {
+        if let Some(llm) = &self.oracle_llm {
+            #[cfg(feature = "llm")]
+            llm.validate()
+                .map_err(|e| TaskError::invalid("oracle_llm", "<section>", e.to_string()))?;
+            #[cfg(not(feature = "llm"))]
+            {
+                let _ = llm;
+                return Err(TaskError::invalid(
+                    "oracle_llm",
+                    "<section>",
+                    "this build has no LLM client (vlnverse-task feature `llm`)",
+                ));
+            }
+        }
         if self.max_steps == 0 || self.max_steps > 100_000 {
             return Err(TaskError::invalid(
                 "max_steps",

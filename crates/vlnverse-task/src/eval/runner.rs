@@ -600,9 +600,12 @@ pub fn run_identity(
         ),
         ("rig_config", value("rig", to_value(cfg.rig_config()?))?),
     ];
-    // Only when sampling, so runs made before sampling existed still resume.
+    // Only when set, so runs made before these options existed still resume.
     if let Some(sample) = req.sample {
         identity.push(("sample", json!(sample)));
+    }
+    if let Some(llm) = &cfg.oracle_llm {
+        identity.push(("oracle_llm", value("oracle_llm", to_value(llm))?));
     }
     Ok(identity)
 }

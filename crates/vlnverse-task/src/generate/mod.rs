@@ -12,12 +12,16 @@
 //!   [`assemble`], [`merge`], [`FolderSource`] (scenes from a folder).
 //! - [`request`]: a run as plain data ([`GenerateRequest`]: preset or config file, procedural
 //!   homes or a scene folder, tasks, shard), shared by the CLI and the Python package.
+//! - `llm_stage` (feature `llm`): the LLM stage of `[instructions.llm]`, with views rendered
+//!   along the path for the describer.
 //! - [`stats`]: dataset statistics, plots and a markdown summary.
 //!
 //! Every random choice is seeded from (global seed, scene index, task, split, trajectory), so
 //! the output is byte-identical on any number of threads and when sharded and merged.
 
 pub mod episodes;
+#[cfg(feature = "llm")]
+pub mod llm_stage;
 pub mod pipeline;
 pub mod presets;
 pub mod reference_image;

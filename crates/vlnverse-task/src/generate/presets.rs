@@ -266,6 +266,33 @@ pub struct GenerateConfig {
     pub image: ImageConfig,
     /// Per task settings.
     pub tasks: TasksConfig,
+    /// The instruction stage: templates, plus the LLM stage when `[instructions.llm]` is set.
+    #[serde(default, skip_serializing_if = "InstructionsConfig::is_templates")]
+    pub instructions: InstructionsConfig,
+}
+
+/// The `[instructions.llm]` section: an OpenAI-compatible endpoint and how to use it.
+#[cfg(feature = "llm")]
+pub type LlmSection = crate::instructions::llm::LlmConfig;
+/// The `[instructions.llm]` section (this build has no LLM stage: feature `llm` is off).
+#[cfg(not(feature = "llm"))]
+pub type LlmSection = toml::Table;
+
+/// How instructions are written.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InstructionsConfig {
+    /// The paper's describe-verify-synthesize stage over the template instructions; none
+    /// (the default) keeps the templates.
+    #[serde(default)]
+    pub llm: Option<LlmSection>,
+}
+
+impl InstructionsConfig {
+    /// Templates only (nothing to write into a manifest).
+    pub fn is_templates(&self) -> bool {
+        self.llm.is_none()
+    }
 }
 
 /// Episodes sharing one sampled trajectory: three instruction styles for the coarse-based tasks.
@@ -321,6 +348,21 @@ impl GenerateConfig {
                 format!("value {value}: {reason}"),
             )
         };
+        if let Some(llm) = &self.instructions.llm {
+            #[cfg(feature = "llm")]
+            llm.validate().map_err(|e| {
+                TaskError::parse(PathBuf::from(path), "instructions.llm", e.to_string())
+            })?;
+            #[cfg(not(feature = "llm"))]
+            {
+                let _ = llm;
+                return Err(bad(
+                    "instructions.llm".into(),
+                    "a table".into(),
+                    "this build has no LLM stage (vlnverse-task feature `llm`)",
+                ));
+            }
+        }
         if self.splits.total() == 0 {
             return Err(bad(
                 "splits".into(),

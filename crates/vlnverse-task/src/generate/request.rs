@@ -15,7 +15,7 @@ use crate::error::{Result, TaskError};
 use crate::generate::episodes::StageTimes;
 use crate::generate::pipeline::{self, check_shard, GenerateSummary, RunOptions};
 use crate::generate::presets::{GenerateConfig, GeneratePreset};
-use crate::instructions::InstructionGenerator;
+use crate::instructions::{InstructionGenerator, TemplateGenerator};
 
 /// What to generate and where.
 #[derive(Clone, Debug)]
@@ -139,9 +139,30 @@ impl PreparedRun {
         (0..self.source.len()).filter(|i| i % n == k).count()
     }
 
-    /// Run the pipeline on the calling thread's rayon pool; `on_scene` is called after each
-    /// scene (from worker threads).
+    /// Run the pipeline on the calling thread's rayon pool with the config's instruction stage
+    /// (the templates, or the LLM stage of `[instructions.llm]`, whose report goes to
+    /// `llm_report.json`); `on_scene` is called after each scene (from worker threads).
     pub fn run(
+        &self,
+        times: &StageTimes,
+        on_scene: &(dyn Fn(&str) + Sync),
+    ) -> Result<GenerateSummary> {
+        #[cfg(feature = "llm")]
+        if let Some(llm) = &self.config.instructions.llm {
+            use crate::generate::llm_stage;
+            let g = llm_stage::llm_generator(llm, self.config.image, &self.options.out)?;
+            let summary = self.run_with(&g, times, on_scene);
+            let report = g.report();
+            if report.instructions > 0 {
+                llm_stage::write_report(&self.options.out, &report)?;
+            }
+            return summary;
+        }
+        self.run_with(&TemplateGenerator::default(), times, on_scene)
+    }
+
+    /// Run the pipeline with another instruction generator.
+    pub fn run_with(
         &self,
         instructions: &dyn InstructionGenerator,
         times: &StageTimes,

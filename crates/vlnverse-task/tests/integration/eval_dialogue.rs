@@ -109,3 +109,58 @@ fn dialogue_agents_ask_the_shortest_path_oracle_within_the_budget() {
         );
     }
 }
+
+#[test]
+fn the_llm_oracle_rephrases_answers_through_the_endpoint() {
+    use crate::instructions_fixture::stub;
+    use vlnverse_task::instructions::llm::LlmConfig;
+    use vlnverse_task::oracle::ORACLE_PROMPT;
+
+    let dir = tempfile::tempdir().unwrap();
+    let mut eps = eval_support::make_object_dataset(dir.path(), 1, 1, 12);
+    eps.truncate(1);
+    for e in &mut eps {
+        e.task = Task::Dialogue;
+        e.oracle_budget = Some(2);
+    }
+    dataset::write_split(dir.path(), Task::Dialogue, Split::Test, &eps).unwrap();
+    let said = "Head left past the table, then keep going.";
+    let (url, seen) = stub(vec![(200, said.into()), (200, said.into())]);
+    let log = Arc::new(Mutex::new(Vec::new()));
+    let req = EvalRequest {
+        dataset: dir.path().to_path_buf(),
+        task: Task::Dialogue,
+        split: Split::Test,
+        episodes: None,
+        sample: None,
+        threads: Some(1),
+        out: dir.path().join("run"),
+        fresh: false,
+        config: EvalConfig {
+            backend: Some(Backend::Raycast),
+            render: false,
+            plots: 0,
+            oracle_llm: Some(LlmConfig {
+                base_url: url,
+                model: "local".into(),
+                api_key_env: None,
+                retries: 0,
+                ..Default::default()
+            }),
+            ..Default::default()
+        },
+    };
+    evaluate(&req, &AskerFactory(log.clone()), &|| {}).unwrap();
+    let log = log.lock().unwrap();
+    // The empty question never reaches the endpoint; the two budgeted answers are the LLM's.
+    assert_eq!(log[0].0.as_deref(), Some(NOT_UNDERSTOOD));
+    assert_eq!(log[1].0.as_deref(), Some(said));
+    assert_eq!(log[2].0.as_deref(), Some(said));
+    assert!(log[3].0.is_none(), "budget spent");
+    let seen = seen.lock().unwrap();
+    assert_eq!(seen.len(), 2);
+    assert_eq!(seen[0].body["messages"][0]["content"], ORACLE_PROMPT);
+    // The oracle is part of the run: its endpoint is in run.json.
+    let run = std::fs::read_to_string(dir.path().join("run/run.json")).unwrap();
+    assert!(run.contains("oracle_llm"), "{run}");
+}

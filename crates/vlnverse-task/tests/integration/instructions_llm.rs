@@ -50,7 +50,17 @@ fn describer_and_verifier_rewrite_a_fine_instruction() {
         })
         .expect("a path with landmarks");
     let base = TemplateGenerator::default().fine(&w.ctx(&s), 1).unwrap();
-    let fluent = "Turn around and walk down past the bed, then stop by the wardrobe.";
+    // A rewrite that names only the grounded objects (the grounding check passes it).
+    let named: Vec<String> = base
+        .grounding
+        .iter()
+        .map(|g| g.class.replace('_', " "))
+        .collect();
+    let fluent = format!(
+        "Walk on past the {}, then stop there.",
+        named.join(" and the ")
+    );
+    let fluent = fluent.as_str();
     let (url, seen) = stub(vec![
         (200, fluent.to_string()),
         (200, "YES. Same objects and sides.".to_string()),

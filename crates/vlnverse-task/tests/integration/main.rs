@@ -12,6 +12,7 @@ mod eval_resume;
 mod eval_runs;
 mod generate_config;
 mod generate_dataset;
+mod generate_llm;
 mod generate_output;
 mod generate_skip;
 #[cfg(feature = "llm")]
