@@ -96,3 +96,19 @@ pub fn generate<'py>(
     d.set_item("skipped", skipped)?;
     Ok(d)
 }
+
+/// Join shard folders (each generated with `shard=(k, n)`) into `out`, byte-identical to a
+/// single run, like `cargo xtask merge`; returns the number of episodes. The inputs are
+/// checked first (every shard given once, complete, one config); a failed merge writes
+/// nothing into `out`.
+#[pyfunction]
+pub fn merge(py: Python<'_>, out: PathBuf, parts: Vec<PathBuf>) -> PyResult<usize> {
+    if parts.is_empty() {
+        return Err(py_err("merge: no shard folders given"));
+    }
+    py.detach(|| {
+        guarded("merge", || {
+            vlnverse_task::generate::merge(&out, &parts).map_err(py_err)
+        })
+    })
+}

@@ -112,5 +112,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run::load_episodes, m)?)?;
     m.add_function(wrap_pyfunction!(run::score, m)?)?;
     m.add_function(wrap_pyfunction!(generate::generate, m)?)?;
+    m.add_function(wrap_pyfunction!(generate::merge, m)?)?;
     Ok(())
 }

@@ -14,7 +14,7 @@ from vlnverse._native import VLNVerseError, __version__
 from vlnverse.agents import RandomAgent, TeacherAgent
 from vlnverse.env import VLNEnv
 from vlnverse.evaluate import Agent, evaluate, load_episodes, score
-from vlnverse.generate import generate
+from vlnverse.generate import generate, merge
 from vlnverse.vector import VectorEnv, make_vec
 
 #: The Gymnasium id: ``gymnasium.make(ENV_ID, dataset=..., task=..., split=...)`` and
@@ -42,5 +42,6 @@ __all__ = [
     "generate",
     "load_episodes",
     "make_vec",
+    "merge",
     "score",
 ]

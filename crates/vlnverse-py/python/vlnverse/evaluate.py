@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 import sys
 import time
-from typing import Any, Protocol
+from typing import Any, Callable, Protocol
 
 import numpy as np
 
@@ -58,35 +58,13 @@ def evaluate(
     ``fresh=True`` starts over.
     Returns ``summary.json`` as a dict."""
     agent_name = name or getattr(agent, "name", None) or type(agent).__name__
-    fingerprint = version if version is None else f"version {version}"
-    task = check.check_choice("task", task, check.TASKS)
-    split = check.check_choice("split", split, check.SPLITS)
-    setting = check.check_choice("setting", setting, check.SETTINGS)
-    action_space = check.check_choice("action_space", action_space, check.ACTION_SPACES)
     num_envs = check.check_int("num_envs", num_envs, 1, 4096)
-    # The protocol, the same for the run folder's identity and the environments.
-    protocol: dict[str, Any] = dict(
-        setting=setting,
-        action_space=action_space,
-        profile=profile,
-        sensors=None if sensors is None else check.check_path("sensors", sensors),
-        seed=seed,
-        max_steps=max_steps,
-        success_distance=success_distance,
-        render=render,
-    )
-    folder = RunFolder(
-        check.check_path("out", out),
-        check.check_path("dataset", dataset),
-        task,
-        split,
-        agent=str(agent_name),
-        agent_fingerprint=fingerprint,
-        episodes=None if episodes is None else check.check_int("episodes", episodes, 1),
-        sample=None if sample is None else check.check_int("sample", sample, 1),
-        fresh=fresh,
-        **protocol,
-    )
+    folder, protocol = open_run_folder(
+        str(agent_name), version, dataset=dataset, task=task, split=split, out=out,
+        episodes=episodes, sample=sample, fresh=fresh, setting=setting,
+        action_space=action_space, sensors=sensors, profile=profile, seed=seed,
+        max_steps=max_steps, success_distance=success_distance, render=render)
+    task, split = protocol.pop("task"), protocol.pop("split")
     try:
         todo = list(folder.todo())
         if todo:
@@ -102,28 +80,75 @@ def evaluate(
     return summary
 
 
+def open_run_folder(
+    agent_name: str, version: str | None, *, dataset: PathLike, task: str, split: str,
+    out: PathLike, episodes: int | None, sample: int | None, fresh: bool, setting: str,
+    action_space: str, sensors: PathLike | None, profile: str, seed: int,
+    max_steps: int | None, success_distance: float | None, render: bool,
+) -> tuple[RunFolder, dict[str, Any]]:
+    """Check the arguments and open (lock) the run folder; returns it and the protocol the
+    environments must use (plus the checked ``task`` and ``split``)."""
+    fingerprint = version if version is None else f"version {version}"
+    task = check.check_choice("task", task, check.TASKS)
+    split = check.check_choice("split", split, check.SPLITS)
+    # The protocol, the same for the run folder's identity and the environments.
+    protocol: dict[str, Any] = dict(
+        setting=check.check_choice("setting", setting, check.SETTINGS),
+        action_space=check.check_choice("action_space", action_space, check.ACTION_SPACES),
+        profile=profile,
+        sensors=None if sensors is None else check.check_path("sensors", sensors),
+        seed=seed,
+        max_steps=max_steps,
+        success_distance=success_distance,
+        render=render,
+    )
+    folder = RunFolder(
+        check.check_path("out", out),
+        check.check_path("dataset", dataset),
+        task,
+        split,
+        agent=agent_name,
+        agent_fingerprint=fingerprint,
+        episodes=None if episodes is None else check.check_int("episodes", episodes, 1),
+        sample=None if sample is None else check.check_int("sample", sample, 1),
+        fresh=fresh,
+        **protocol,
+    )
+    return folder, {**protocol, "task": task, "split": split}
+
+
 def _run(agent: Agent, folder: RunFolder, todo: list[int], envs: VectorEnv, seed: int,
          progress: bool) -> None:
-    """Step ``envs`` with ``agent`` until every episode of ``todo`` is recorded in ``folder``
+    """Step ``envs`` with ``agent`` until every episode of ``todo`` is recorded in ``folder``."""
+    started = time.monotonic()
+    last_report = [started]
+
+    def on_record(done: int, record: str) -> None:
+        folder.record(record)
+        now = time.monotonic()
+        if progress and (now - last_report[0] > 2.0 or done == len(todo)):
+            print(f"evaluate: {done}/{len(todo)} episodes ({now - started:.1f} s)",
+                  file=sys.stderr, flush=True)
+            last_report[0] = now
+
+    run_episodes(agent, envs, todo, seed, on_record)
+
+
+def run_episodes(agent: Agent, envs: VectorEnv, todo: list[int], seed: int,
+                 on_record: Callable[[int, str], None]) -> None:
+    """Step ``envs`` (an eval-mode vector env over ``todo``) with ``agent`` until each episode
+    of ``todo`` has finished once, calling ``on_record(finished_so_far, record_json)`` for each
     (first pass only: environments that wrap around are ignored)."""
     obs, infos = envs.reset(seed=seed)
     agent.reset()
     left = set(todo)
-    started = time.monotonic()
-    last_report = started
     while left:
         obs, _, term, trunc, infos = envs.step(agent.act(obs, infos))
         for i in np.flatnonzero(term | trunc):
             eid = int(infos["episode_id"][i])
             if int(infos["pass"][i]) == 0 and eid in left:
-                folder.record(infos["record"][i])
                 left.discard(eid)
-        now = time.monotonic()
-        if progress and (now - last_report > 2.0 or not left):
-            done = len(todo) - len(left)
-            print(f"evaluate: {done}/{len(todo)} episodes ({now - started:.1f} s)",
-                  file=sys.stderr, flush=True)
-            last_report = now
+                on_record(len(todo) - len(left), infos["record"][i])
 
 
 def load_episodes(dataset: PathLike, task: str, split: str) -> list[dict[str, Any]]:

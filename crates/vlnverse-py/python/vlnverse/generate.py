@@ -9,6 +9,7 @@ from typing import Any, Callable
 from vlnverse import _errors as check
 from vlnverse._native import VLNVerseError
 from vlnverse._native import generate as _generate
+from vlnverse._native import merge as _merge
 from vlnverse.vector import PathLike
 
 
@@ -65,6 +66,16 @@ def generate(
     return summary
 
 
+def merge(out: PathLike, parts: list[PathLike]) -> int:
+    """Join shard folders (``generate(..., shard=(k, n))`` for every ``k``) into ``out``, a new
+    folder, byte-identical to a single run (``cargo xtask merge``). Returns the episode count.
+    """
+    if isinstance(parts, (str, bytes)) or not isinstance(parts, (list, tuple)):
+        raise VLNVerseError(f"parts must be a list of folders; got {parts!r}")
+    return int(_merge(check.check_path("out", out),
+                      [check.check_path("parts", p) for p in parts]))
+
+
 class _Printer:
     """A progress line on stderr at most every 2 s (and at the end)."""
 
@@ -80,4 +91,4 @@ class _Printer:
             self.last = now
 
 
-__all__ = ["generate"]
+__all__ = ["generate", "merge"]
