@@ -54,6 +54,26 @@ impl AgentFactory for AskerFactory {
     }
 }
 
+/// The dialogue test split of `dir`, one thread, no rendering or plots, into `dir/run`.
+fn blind_request(dir: &std::path::Path, config: EvalConfig) -> EvalRequest {
+    EvalRequest {
+        dataset: dir.to_path_buf(),
+        task: Task::Dialogue,
+        split: Split::Test,
+        episodes: None,
+        sample: None,
+        threads: Some(1),
+        out: dir.join("run"),
+        fresh: false,
+        config: EvalConfig {
+            backend: Some(Backend::Raycast),
+            render: false,
+            plots: 0,
+            ..config
+        },
+    }
+}
+
 #[test]
 fn dialogue_agents_ask_the_shortest_path_oracle_within_the_budget() {
     let dir = tempfile::tempdir().unwrap();
@@ -65,22 +85,7 @@ fn dialogue_agents_ask_the_shortest_path_oracle_within_the_budget() {
     }
     dataset::write_split(dir.path(), Task::Dialogue, Split::Test, &eps).unwrap();
     let log = Arc::new(Mutex::new(Vec::new()));
-    let req = EvalRequest {
-        dataset: dir.path().to_path_buf(),
-        task: Task::Dialogue,
-        split: Split::Test,
-        episodes: None,
-        sample: None,
-        threads: Some(1),
-        out: dir.path().join("run"),
-        fresh: false,
-        config: EvalConfig {
-            backend: Some(Backend::Raycast),
-            render: false,
-            plots: 0,
-            ..Default::default()
-        },
-    };
+    let req = blind_request(dir.path(), EvalConfig::default());
     evaluate(&req, &AskerFactory(log.clone()), &|| {}).unwrap();
     let log = log.lock().unwrap();
     assert_eq!(log.len(), 4 * eps.len());
@@ -127,19 +132,9 @@ fn the_llm_oracle_rephrases_answers_through_the_endpoint() {
     let said = "Head left past the table, then keep going.";
     let (url, seen) = stub(vec![(200, said.into()), (200, said.into())]);
     let log = Arc::new(Mutex::new(Vec::new()));
-    let req = EvalRequest {
-        dataset: dir.path().to_path_buf(),
-        task: Task::Dialogue,
-        split: Split::Test,
-        episodes: None,
-        sample: None,
-        threads: Some(1),
-        out: dir.path().join("run"),
-        fresh: false,
-        config: EvalConfig {
-            backend: Some(Backend::Raycast),
-            render: false,
-            plots: 0,
+    let req = blind_request(
+        dir.path(),
+        EvalConfig {
             oracle_llm: Some(LlmConfig {
                 base_url: url,
                 model: "local".into(),
@@ -149,7 +144,7 @@ fn the_llm_oracle_rephrases_answers_through_the_endpoint() {
             }),
             ..Default::default()
         },
-    };
+    );
     evaluate(&req, &AskerFactory(log.clone()), &|| {}).unwrap();
     let log = log.lock().unwrap();
     // The empty question never reaches the endpoint; the two budgeted answers are the LLM's.
