@@ -4,7 +4,7 @@
 //! middle, doorway). Every other object a description names is returned as grounding.
 
 use super::lexicon::{
-    class_names, class_uses, color_phrases, material_words, room_names, shape_words,
+    class_names, class_uses, color_phrases, material_noun, material_words, room_names, shape_words,
 };
 use super::path::{env_side, footprint, rect_distance};
 use super::phrases::{self as ph, pick};
@@ -154,14 +154,7 @@ pub(crate) fn object_np(
             1 => " in ",
             _ => " of ",
         });
-        s.push_str(match m {
-            "wooden" | "timber" => "wood",
-            "upholstered" | "cloth-covered" | "cloth" => "fabric",
-            "leather-covered" => "leather",
-            "metallic" | "steel" => "metal",
-            "china" | "porcelain" => "ceramic",
-            other => other,
-        });
+        s.push_str(material_noun(m));
     }
     let mut extra = Vec::new();
     if rng.random_bool(opts.relation) {
@@ -243,6 +236,11 @@ fn relation_phrase(
                     "sitting on {x}",
                     "on top of {x}",
                     "standing on {x}",
+                    "perched on {x}",
+                    "resting on {x}",
+                    "set on {x}",
+                    "placed on {x}",
+                    "atop {x}",
                 ],
             ),
             &xn,
@@ -255,6 +253,11 @@ fn relation_phrase(
                     "with {x} on top",
                     "that has {x} on it",
                     "holding {x}",
+                    "topped by {x}",
+                    "with {x} sitting on it",
+                    "bearing {x}",
+                    "carrying {x}",
+                    "supporting {x}",
                 ],
             ),
             &xn,
@@ -268,6 +271,11 @@ fn relation_phrase(
                     "by {x}",
                     "just by {x}",
                     "alongside {x}",
+                    "immediately beside {x}",
+                    "neighbouring {x}",
+                    "at the side of {x}",
+                    "sitting by {x}",
+                    "flanking {x}",
                 ],
             ),
             &xn,
@@ -280,6 +288,11 @@ fn relation_phrase(
                     "close to {x}",
                     "not far from {x}",
                     "a little way from {x}",
+                    "a few steps from {x}",
+                    "in the vicinity of {x}",
+                    "not too far from {x}",
+                    "a short way from {x}",
+                    "within a few paces of {x}",
                 ],
             ),
             &xn,
@@ -360,11 +373,21 @@ pub(crate) fn room_np(scene: &Scene, room: RoomId, synonym: f64, rng: &mut ChaCh
     };
     let area = r.area();
     let adj: &[&str] = if r.kind == RoomType::Hallway && area > 6.0 {
-        &["long", "narrow"]
+        &["long", "narrow", "lengthy", "elongated"]
     } else if area > 24.0 {
-        &["large", "big", "spacious", "roomy"]
+        &[
+            "large",
+            "big",
+            "spacious",
+            "roomy",
+            "airy",
+            "good-sized",
+            "generous",
+        ]
     } else if area < 8.0 {
-        &["small", "little", "compact", "tiny", "cramped"]
+        &[
+            "small", "little", "compact", "tiny", "cramped", "snug", "poky", "modest",
+        ]
     } else {
         &[]
     };
@@ -401,14 +424,27 @@ pub(crate) fn door_np(
             "the archway",
             "the gap in the wall",
             "the big opening",
+            "the wide arch",
+            "the broad opening",
+            "the open gap between the rooms",
         ]
     } else if door.width < 0.85 {
-        &["the narrow doorway", "the narrow door", "the slim doorway"]
+        &[
+            "the narrow doorway",
+            "the narrow door",
+            "the slim doorway",
+            "the tight doorway",
+            "the small doorway",
+            "the skinny doorway",
+        ]
     } else if door.width > 1.1 {
         &[
             "the wide doorway",
             "the broad doorway",
             "the double doorway",
+            "the large doorway",
+            "the generous doorway",
+            "the extra-wide doorway",
         ]
     } else {
         &[
@@ -418,6 +454,10 @@ pub(crate) fn door_np(
             "the door opening",
             "the open doorway",
             "the gap",
+            "the opening",
+            "the way through",
+            "the door gap",
+            "the entryway",
         ]
     };
     Some(pick(rng, bank).to_string())

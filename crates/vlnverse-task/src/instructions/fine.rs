@@ -4,7 +4,7 @@
 //! the way people do. Every object named is grounded.
 
 use super::describe::{door_np, end_place, object_np, room_np, NpOptions, Viewpoint};
-use super::lexicon::number_word;
+use super::lexicon::{number_word, ordinal_word};
 use super::path::{
     classify_turn, direction_of_yaw, env_side, floor_points, footprint, rect_distance,
     segment_headings, side_word, signed_turn_deg, visible, wall_rects, Turn,
@@ -172,7 +172,7 @@ fn distance_phrase(d: f32, w: Writer, rng: &mut ChaCha8Rng) -> String {
     let form = if w == Writer::Precise {
         rng.random_range(0..4)
     } else {
-        rng.random_range(0..10)
+        rng.random_range(0..13)
     };
     match form {
         0 | 1 => format!(
@@ -231,6 +231,31 @@ fn distance_phrase(d: f32, w: Writer, rng: &mut ChaCha8Rng) -> String {
             .into(),
         },
         7 => format!("a good {} metres", number_word(n)),
+        10 => format!(
+            "{about} {} yards",
+            number_word((d / 0.914).round().max(1.0) as u32)
+        ),
+        11 => {
+            let strides = (d / 0.8).round().max(1.0) as u32;
+            match (strides, rng.random_range(0..3)) {
+                (5..=7, 0) => "half a dozen strides".into(),
+                (11..=13, 0) => "a dozen or so strides".into(),
+                (_, 1) => format!("{} long strides", number_word(strides)),
+                _ => format!("{about} {strides} strides"),
+            }
+        }
+        12 => format!(
+            "{n} metres{}",
+            pick(
+                rng,
+                &[
+                    ", give or take",
+                    " or thereabouts",
+                    " at a guess",
+                    " or near enough",
+                ]
+            )
+        ),
         _ => format!("{about} {n} metres"),
     }
 }
@@ -286,6 +311,9 @@ fn turn_clause(
 
 /// "walk forward about 3 metres", "stroll on slowly".
 fn move_clause(len: f32, w: Writer, rng: &mut ChaCha8Rng) -> String {
+    if rng.random_bool(0.12) {
+        return pick(rng, ph::MOVE_WHOLE).to_string();
+    }
     let verb = pick(rng, ph::MOVE_VERB);
     let dir = if verb.contains("path") {
         ""
@@ -442,6 +470,32 @@ fn room_change(
     }
 }
 
+/// The room that walking on past the goal, straight ahead and in sight, leads into within 3 m
+/// ("the kitchen"), when it is another room of another type than the goal's.
+fn room_beyond(
+    ctx: &PathContext<'_>,
+    end: Vec2,
+    heading: Vec2,
+    walls: &[(Vec2, Vec2)],
+    slack: f32,
+) -> Option<String> {
+    let here = ctx.scene.room_at(end.x, end.y)?;
+    for k in 1..=4 {
+        let q = end + heading * (0.75 * k as f32);
+        let Some(r) = ctx.scene.room_at(q.x, q.y) else {
+            return None;
+        };
+        if r.id == here.id {
+            continue;
+        }
+        if r.kind == here.kind || !visible(ctx.navigable, walls, end, q, slack.min(0.2)) {
+            return None;
+        }
+        return Some(format!("the {}", r.kind.words()));
+    }
+    None
+}
+
 /// Join clauses with varied connectors.
 fn join(clauses: &[String], rng: &mut ChaCha8Rng) -> String {
     let mut s = String::new();
@@ -504,13 +558,19 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
         sentences.push(pick(&mut rng, ph::OPEN).to_string());
     }
     let mut prefix = String::new();
+    // Some writers number their steps ("First, ...", "Step two: ...").
+    let numbered = matches!(writer, Writer::Plain | Writer::Precise) && rng.random_bool(0.12);
+    let number_form = pick(&mut rng, ph::NUMBERED);
+    let mut step_no = 0u32;
     let start_p = if writer == Writer::Terse { 0.15 } else { 0.6 };
     if let Some(&(_, r0)) = rooms.first() {
         if rng.random_bool(start_p) {
             let room = room_np(ctx.scene, r0, room_syn, &mut rng);
             let s = fill(pick(&mut rng, ph::START_ROOM), &[("room", &room)]);
             if s.ends_with(',') {
-                prefix = format!("{s} ");
+                if !numbered {
+                    prefix = format!("{s} ");
+                }
             } else if !s.is_empty() {
                 sentences.push(s);
             }
@@ -539,6 +599,17 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
                 .total_cmp(&b.distance)
                 .then(a.object.cmp(&b.object))
         });
+        // A slight bend with nothing on it and no room change is often not mentioned at all.
+        let has_change = (1..rooms.len()).any(|k| leg_of(rooms[k].0) == li);
+        if mine.is_empty()
+            && !has_change
+            && matches!(leg.turn, Turn::Slight(_))
+            && li > 0
+            && li + 1 < legs.len()
+            && rng.random_bool(0.6)
+        {
+            continue;
+        }
         let mut chosen: Vec<&Landmark> = Vec::new();
         for l in mine {
             if chosen.len() >= max_lm || budget == 0 {
@@ -650,7 +721,7 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
             && changes.is_empty()
             && turn.is_some()
             && li + 1 < legs.len()
-            && rng.random_bool(0.5);
+            && rng.random_bool(0.7);
         // Sentence plans.
         let mut out: Vec<String> = Vec::new();
         let lateral_first = named.first().is_some_and(|m| m.side != Side::Ahead);
@@ -756,9 +827,41 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
                 out.push(join(&cl, &mut rng));
             }
         }
+        // Now and then a word on the size of the room just entered.
+        if let Some(r) = entered.and_then(|r| ctx.scene.room(r)) {
+            if writer != Writer::Terse && rng.random_bool(0.15) {
+                let area = r.area();
+                let bank = if r.kind == RoomType::Hallway {
+                    (area > 6.0).then_some(ph::HALL_LONG)
+                } else if area < 8.0 {
+                    Some(ph::ROOM_SMALL)
+                } else if area > 24.0 {
+                    Some(ph::ROOM_BIG)
+                } else {
+                    None
+                };
+                if let Some(b) = bank {
+                    out.push(pick(&mut rng, b).to_string());
+                }
+            }
+        }
         for (k, s) in out.into_iter().enumerate() {
             let mut s = s;
-            if k == 0 && li > 0 {
+            let ord = if numbered && k == 0 {
+                step_no += 1;
+                ordinal_word(step_no).filter(|_| step_no <= 10)
+            } else {
+                None
+            };
+            if let Some(o) = ord {
+                let form = if number_form.contains("ly") && step_no > 4 {
+                    "{ord}, "
+                } else {
+                    number_form
+                };
+                let head = fill(form, &[("ord", o), ("num", &number_word(step_no))]);
+                s = format!("{head}{s}");
+            } else if k == 0 && li > 0 {
                 s = format!("{}{s}", pick(&mut rng, ph::NEXT));
             }
             if k == 0 && !prefix.is_empty() {
@@ -814,6 +917,26 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
         stop = format!("{prefix}{stop}");
     }
     sentences.push(sentence(&stop));
+    // Reassurances people add, only where they hold: a big end object, the only one of its
+    // class in the home, or the room that walking on past the goal would lead into.
+    if let Some(o) = end_obj {
+        let (lo, hi) = footprint(o);
+        let size = hi - lo;
+        let big = size.x * size.y > 1.0 || o.bbox.size().y > 1.6;
+        let only = ctx.graph.objects_of_class(o.class).len() == 1;
+        let p = if chatty { 0.4 } else { 0.15 };
+        if big && rng.random_bool(p) {
+            sentences.push(pick(&mut rng, ph::CANT_MISS).to_string());
+        } else if only && rng.random_bool(p) {
+            let name = o.class.words();
+            sentences.push(fill(pick(&mut rng, ph::ONLY_ONE), &[("name", &name)]));
+        }
+    }
+    if writer != Writer::Terse && rng.random_bool(0.3) {
+        if let Some(room) = room_beyond(ctx, end, end_heading, &walls, cfg.sight_slack) {
+            sentences.push(fill(pick(&mut rng, ph::OVERSHOOT), &[("room", &room)]));
+        }
+    }
     if rng.random_bool(if chatty { 0.5 } else { 0.04 }) {
         sentences.push(pick(&mut rng, ph::CLOSE).to_string());
     }

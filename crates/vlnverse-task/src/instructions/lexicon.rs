@@ -105,17 +105,43 @@ pub fn class_of_name(name: &str) -> Vec<C> {
 /// Names of a room type, the vocabulary name first.
 pub fn room_names(kind: RoomType) -> &'static [&'static str] {
     match kind {
-        RoomType::LivingRoom => &["living room", "lounge", "sitting room", "family room"],
-        RoomType::Kitchen => &["kitchen"],
-        RoomType::DiningRoom => &["dining room", "dining area"],
-        RoomType::Bedroom => &["bedroom", "sleeping room"],
+        RoomType::LivingRoom => &[
+            "living room",
+            "lounge",
+            "sitting room",
+            "family room",
+            "front room",
+            "living area",
+            "den",
+        ],
+        RoomType::Kitchen => &["kitchen", "kitchen area"],
+        RoomType::DiningRoom => &["dining room", "dining area", "dining space"],
+        RoomType::Bedroom => &["bedroom", "sleeping room", "sleeping quarters"],
         RoomType::Bathroom => &["bathroom", "washroom", "restroom"],
-        RoomType::Hallway => &["hallway", "hall", "corridor", "passage"],
-        RoomType::Office => &["office", "study", "home office", "workroom"],
-        RoomType::LaundryRoom => &["laundry room", "utility room", "laundry"],
-        RoomType::Closet => &["closet", "storage room", "box room"],
-        RoomType::Gym => &["gym", "home gym", "workout room", "exercise room"],
-        RoomType::Room => &["room", "spare room", "empty room"],
+        RoomType::Hallway => &["hallway", "hall", "corridor", "passage", "passageway"],
+        RoomType::Office => &["office", "study", "home office", "workroom", "office space"],
+        RoomType::LaundryRoom => &["laundry room", "utility room", "laundry", "laundry area"],
+        RoomType::Closet => &[
+            "closet",
+            "storage room",
+            "box room",
+            "storeroom",
+            "walk-in closet",
+        ],
+        RoomType::Gym => &[
+            "gym",
+            "home gym",
+            "workout room",
+            "exercise room",
+            "fitness room",
+        ],
+        RoomType::Room => &[
+            "room",
+            "spare room",
+            "empty room",
+            "extra room",
+            "unused room",
+        ],
     }
 }
 
@@ -123,52 +149,255 @@ pub fn room_names(kind: RoomType) -> &'static [&'static str] {
 /// water"): true of every object of the class, so it never claims more than the class does.
 pub fn class_uses(class: C) -> &'static [&'static str] {
     match class {
-        C::Bed => &["where someone sleeps", "you would sleep in"],
-        C::Nightstand => &["beside the sleeping area", "for keeping things at night"],
-        C::Wardrobe => &["for hanging clothes", "where clothing is stored"],
-        C::Dresser => &["full of drawers", "for folded clothing"],
-        C::Toilet => &["you'd flush"],
-        C::Sink => &["for washing hands", "with the tap"],
-        C::Bathtub => &["for bathing", "you could soak in"],
-        C::Shower => &["for washing", "you'd rinse off in"],
-        C::Mirror => &["you can see yourself in", "showing your reflection"],
-        C::Fridge => &["where food is kept cold", "for chilled groceries"],
-        C::Counter => &["for preparing meals", "where food gets chopped"],
-        C::Stove => &["for cooking", "where meals are cooked"],
-        C::Dishwasher => &["for dirty dishes", "that cleans crockery"],
-        C::KitchenCabinet => &["for pots and pans", "where crockery lives"],
-        C::Sofa => &["for lounging", "people relax on"],
-        C::Armchair => &["for one person", "made for reading in"],
-        C::Tv => &["for watching shows", "for films and programmes"],
-        C::TvStand => &["that holds the screen", "under the screen"],
-        C::CoffeeTable => &["for drinks and magazines"],
-        C::DiningTable => &["where meals are eaten", "for family dinners"],
-        C::Chair => &["for sitting"],
-        C::Desk => &["where someone works", "for studying"],
-        C::OfficeChair => &["on wheels", "that swivels"],
-        C::Bookshelf => &["for books", "holding reading material"],
-        C::PottedPlant => &["with green leaves", "with foliage"],
-        C::FloorLamp => &["that lights the room", "giving off light"],
-        C::Cabinet => &["for storage", "with doors"],
-        C::SideTable => &["for setting things down"],
-        C::ShoeRack => &["for footwear", "where shoes go"],
-        C::CoatRack => &["for jackets", "where coats hang"],
-        C::WashingMachine => &["for laundry", "that washes clothes"],
-        C::Piano => &["with the keys", "for making music"],
-        C::Bench => &["for sitting on"],
-        C::Stool => &["without a back", "for perching on"],
-        C::TrashCan => &["for rubbish", "where waste goes"],
-        C::Cup | C::Mug => &["for hot drinks", "for tea or coffee"],
-        C::Laptop => &["for browsing", "for emails"],
-        C::Vase => &["for flowers", "for holding blooms"],
-        C::Clock => &["that tells the time", "showing the hour"],
-        C::TableLamp => &["for reading light"],
-        C::Monitor => &["for the computer"],
-        C::Toaster => &["for bread", "for toast"],
-        C::Kettle => &["for boiling water"],
-        C::Microwave => &["for reheating food", "for heating leftovers"],
-        C::Towel => &["for drying off"],
-        C::SoapDispenser => &["for soap"],
+        C::Bed => &[
+            "where someone sleeps",
+            "you would sleep in",
+            "made up for the night",
+            "where you'd have a nap",
+            "someone sleeps in",
+        ],
+        C::Nightstand => &[
+            "beside the sleeping area",
+            "for keeping things at night",
+            "handy at bedtime",
+            "for an alarm and reading glasses",
+        ],
+        C::Wardrobe => &[
+            "for hanging clothes",
+            "where clothing is stored",
+            "full of hangers",
+            "where outfits are kept",
+            "for coats and dresses",
+        ],
+        C::Dresser => &[
+            "full of drawers",
+            "for folded clothing",
+            "where socks and jumpers go",
+            "for storing garments",
+        ],
+        C::Toilet => &["you'd flush", "with the lid and seat", "with a lid"],
+        C::Sink => &[
+            "for washing hands",
+            "with the tap",
+            "with a faucet",
+            "where you'd rinse your hands",
+            "for brushing teeth",
+        ],
+        C::Bathtub => &[
+            "for bathing",
+            "you could soak in",
+            "for a long soak",
+            "you'd fill for a bath",
+        ],
+        C::Shower => &[
+            "for washing",
+            "you'd rinse off in",
+            "with the showerhead",
+            "for a quick wash",
+        ],
+        C::Mirror => &[
+            "you can see yourself in",
+            "showing your reflection",
+            "that reflects the room",
+            "for checking your appearance",
+        ],
+        C::Fridge => &[
+            "where food is kept cold",
+            "for chilled groceries",
+            "that keeps the milk cool",
+            "for fresh produce",
+        ],
+        C::Counter => &[
+            "for preparing meals",
+            "where food gets chopped",
+            "for kneading dough",
+            "where ingredients are laid out",
+        ],
+        C::Stove => &[
+            "for cooking",
+            "where meals are cooked",
+            "for boiling and frying",
+            "for frying and simmering",
+        ],
+        C::Dishwasher => &[
+            "for dirty dishes",
+            "that cleans crockery",
+            "for cutlery and glasses",
+            "that washes up",
+        ],
+        C::KitchenCabinet => &[
+            "for pots and pans",
+            "where crockery lives",
+            "for tins and jars",
+            "for kitchen supplies",
+        ],
+        C::Sofa => &[
+            "for lounging",
+            "people relax on",
+            "for curling up on",
+            "where guests sit",
+            "for lazy evenings",
+        ],
+        C::Armchair => &[
+            "for one person",
+            "made for reading in",
+            "for putting your feet up",
+            "for a quiet sit-down",
+        ],
+        C::Tv => &[
+            "for watching shows",
+            "for films and programmes",
+            "for the news and sport",
+            "for streaming series",
+        ],
+        C::TvStand => &[
+            "that holds the screen",
+            "under the screen",
+            "supporting the set",
+            "where the set sits",
+        ],
+        C::CoffeeTable => &["for drinks and magazines", "for snacks and board games"],
+        C::DiningTable => &[
+            "where meals are eaten",
+            "for family dinners",
+            "for breakfast and supper",
+            "where people gather to eat",
+        ],
+        C::Chair => &["for sitting", "to sit down on", "with a backrest"],
+        C::Desk => &[
+            "where someone works",
+            "for studying",
+            "for paperwork",
+            "where homework gets done",
+            "for writing letters",
+        ],
+        C::OfficeChair => &[
+            "on wheels",
+            "that swivels",
+            "on castors",
+            "with adjustable height",
+        ],
+        C::Bookshelf => &[
+            "for books",
+            "holding reading material",
+            "for novels",
+            "for paperbacks",
+            "for a reading collection",
+        ],
+        C::PottedPlant => &[
+            "with green leaves",
+            "with foliage",
+            "that needs watering",
+            "with leafy fronds",
+        ],
+        C::FloorLamp => &[
+            "that lights the room",
+            "giving off light",
+            "for evening light",
+            "casting a warm glow",
+        ],
+        C::Rug => &[
+            "underfoot",
+            "covering part of the floor",
+            "softening the floor",
+        ],
+        C::Cabinet => &[
+            "for storage",
+            "with doors",
+            "for odds and ends",
+            "where things are tidied away",
+        ],
+        C::SideTable => &[
+            "for setting things down",
+            "handy for a drink",
+            "for resting a glass on",
+        ],
+        C::ShoeRack => &[
+            "for footwear",
+            "where shoes go",
+            "for boots and trainers",
+            "where slippers are lined up",
+        ],
+        C::CoatRack => &[
+            "for jackets",
+            "where coats hang",
+            "with hooks for scarves",
+            "for hats and umbrellas",
+        ],
+        C::WashingMachine => &[
+            "for laundry",
+            "that washes clothes",
+            "for a wash cycle",
+            "that spins the washing",
+        ],
+        C::Piano => &[
+            "with the keys",
+            "for making music",
+            "for practising scales",
+            "for playing tunes",
+        ],
+        C::Bench => &[
+            "for sitting on",
+            "for pulling boots on",
+            "with room for two",
+        ],
+        C::Stool => &[
+            "without a back",
+            "for perching on",
+            "with no backrest",
+            "for a quick perch",
+        ],
+        C::TrashCan => &[
+            "for rubbish",
+            "where waste goes",
+            "for scraps and wrappers",
+            "for litter",
+        ],
+        C::Cup | C::Mug => &[
+            "for hot drinks",
+            "for tea or coffee",
+            "for a cuppa",
+            "for cocoa",
+        ],
+        C::Laptop => &[
+            "for browsing",
+            "for emails",
+            "for video calls",
+            "for typing up documents",
+        ],
+        C::Vase => &[
+            "for flowers",
+            "for holding blooms",
+            "for a bouquet",
+            "for cut stems",
+        ],
+        C::Clock => &[
+            "that tells the time",
+            "showing the hour",
+            "ticking away",
+            "keeping time",
+        ],
+        C::TableLamp => &["for reading light", "with a shade", "for soft lighting"],
+        C::Monitor => &["for the computer", "for spreadsheets", "for gaming"],
+        C::Toaster => &["for bread", "for toast", "with the slots", "for crumpets"],
+        C::Kettle => &["for boiling water", "for brewing tea", "that whistles"],
+        C::Microwave => &[
+            "for reheating food",
+            "for heating meals",
+            "for warming soup",
+            "for defrosting",
+        ],
+        C::Towel => &["for drying off", "for drying your hands", "after a wash"],
+        C::SoapDispenser => &["for soap", "for handwash", "with a pump"],
+        C::Candle => &["for candlelight", "with a wick", "for a cosy evening"],
+        C::Bowl => &["for cereal", "for soup or salad"],
+        C::Plate => &["for dinner", "for a meal"],
+        C::Bottle => &["with a cap", "for drinks"],
+        C::Keyboard => &["for typing", "with the keys"],
+        C::Remote => &["for changing channels", "for the volume"],
+        C::Pillow => &["for resting your head", "plumped up"],
+        C::PictureFrame => &["holding a photograph", "with a print inside"],
+        C::Book => &["for reading", "for a quiet read"],
         _ => &[],
     }
 }
@@ -211,41 +440,285 @@ pub fn color_phrases(o: &SceneObject) -> Vec<String> {
     let sat = if hi > 0.0 { (hi - lo) / hi } else { 0.0 };
     let mut add = |words: &[&str]| out.extend(words.iter().map(|w| w.to_string()));
     match c {
-        "white" if hi > 0.89 => add(&["pure white", "snow-white"]),
-        "white" if sat > 0.05 => add(&["off-white", "creamy white", "ivory"]),
-        "white" => add(&["whitish", "pale"]),
-        "black" => add(&["jet-black", "dark", "ebony"]),
-        "grey" if hi < 0.37 => add(&["dark grey", "charcoal", "charcoal-grey", "slate-grey"]),
-        "grey" if hi > 0.5 => add(&["light grey", "pale grey", "greyish"]),
-        "grey" => add(&["mid-grey", "grey-coloured", "greyish"]),
-        "silver" => add(&["silvery", "steel-grey", "silver-coloured"]),
-        "gold" => add(&["golden", "gold-coloured", "brassy"]),
-        "wooden" => add(&["wood-coloured", "honey-brown", "warm brown"]),
-        "beige" => add(&["sandy", "cream-coloured", "light beige", "tan"]),
-        "pink" => add(&["pale pink", "rosy", "pinkish"]),
-        "orange" if hi < 0.7 => add(&["burnt orange", "rusty orange", "orangey"]),
-        "orange" => add(&["deep orange", "tangerine", "orangey"]),
+        "white" if hi > 0.89 => add(&[
+            "pure white",
+            "snow-white",
+            "stark white",
+            "chalk-white",
+            "milk-white",
+            "crisp white",
+            "gleaming white",
+        ]),
+        "white" if sat > 0.05 => add(&[
+            "off-white",
+            "creamy white",
+            "ivory",
+            "eggshell",
+            "cream",
+            "bone-white",
+            "vanilla",
+            "oyster-white",
+        ]),
+        "white" => add(&[
+            "whitish",
+            "pale",
+            "chalky",
+            "milky",
+            "clean white",
+            "frosty white",
+        ]),
+        "black" => add(&[
+            "jet-black",
+            "dark",
+            "ebony",
+            "pitch-black",
+            "inky",
+            "coal-black",
+            "sooty",
+            "raven-black",
+            "onyx",
+            "midnight-black",
+        ]),
+        "grey" if hi < 0.37 => add(&[
+            "dark grey",
+            "charcoal",
+            "charcoal-grey",
+            "slate-grey",
+            "gunmetal",
+            "graphite",
+            "storm-grey",
+            "smoky grey",
+            "iron-grey",
+        ]),
+        "grey" if hi > 0.5 => add(&[
+            "light grey",
+            "pale grey",
+            "greyish",
+            "dove-grey",
+            "pearl-grey",
+            "ash-grey",
+            "stone-grey",
+            "cloud-grey",
+            "silver-grey",
+        ]),
+        "grey" => add(&[
+            "mid-grey",
+            "grey-coloured",
+            "greyish",
+            "pewter",
+            "mouse-grey",
+            "medium grey",
+            "flint-grey",
+            "elephant-grey",
+            "battleship grey",
+        ]),
+        "silver" => add(&[
+            "silvery",
+            "steel-grey",
+            "silver-coloured",
+            "silvery-grey",
+            "metallic grey",
+            "platinum",
+            "aluminium-coloured",
+            "gleaming silver",
+        ]),
+        "gold" => add(&[
+            "golden",
+            "gold-coloured",
+            "brassy",
+            "gilt",
+            "gilded",
+            "brass-coloured",
+            "antique gold",
+            "burnished gold",
+            "honey-gold",
+        ]),
+        "wooden" => add(&[
+            "wood-coloured",
+            "honey-brown",
+            "warm brown",
+            "oak-toned",
+            "walnut-brown",
+            "teak-coloured",
+            "caramel",
+            "chestnut",
+            "amber-brown",
+            "natural wood",
+        ]),
+        "beige" => add(&[
+            "sandy",
+            "cream-coloured",
+            "light beige",
+            "tan",
+            "oatmeal",
+            "taupe",
+            "fawn",
+            "camel",
+            "biscuit-coloured",
+            "buff",
+            "stone-coloured",
+            "mushroom",
+            "parchment",
+        ]),
+        "pink" => add(&[
+            "pale pink",
+            "rosy",
+            "pinkish",
+            "rose-pink",
+            "dusky pink",
+            "blush",
+            "candy pink",
+            "raspberry",
+            "salmon",
+        ]),
+        "orange" if hi < 0.7 => add(&[
+            "burnt orange",
+            "rusty orange",
+            "orangey",
+            "terracotta",
+            "rust",
+            "copper",
+            "ginger",
+            "cinnamon",
+            "clay-coloured",
+        ]),
+        "orange" => add(&[
+            "deep orange",
+            "tangerine",
+            "orangey",
+            "pumpkin",
+            "marmalade",
+            "carrot-orange",
+            "flame-orange",
+            "amber",
+        ]),
         _ if hi < 0.32 => add(match c {
-            "brown" => &["dark brown", "chocolate-brown", "deep brown"],
-            "green" => &["dark green", "forest-green", "deep green"],
-            "blue" => &["dark blue", "navy", "navy-blue"],
-            "red" => &["dark red", "maroon", "wine-red"],
+            "brown" => &[
+                "dark brown",
+                "chocolate-brown",
+                "deep brown",
+                "espresso",
+                "coffee-brown",
+                "mahogany",
+                "umber",
+                "cocoa",
+                "dark walnut",
+            ],
+            "green" => &[
+                "dark green",
+                "forest-green",
+                "deep green",
+                "bottle-green",
+                "pine-green",
+                "hunter green",
+            ],
+            "blue" => &[
+                "dark blue",
+                "navy",
+                "navy-blue",
+                "midnight-blue",
+                "ink-blue",
+            ],
+            "red" => &["dark red", "maroon", "wine-red", "oxblood", "burgundy"],
             _ => &[],
         }),
         _ if hi < 0.56 => add(match c {
-            "red" => &["deep red", "crimson", "brick-red", "reddish"],
-            "blue" => &["deep blue", "dark blue", "navy", "bluish"],
-            "green" => &["deep green", "dark green", "leafy green", "greenish"],
-            "brown" => &["mid-brown", "brownish"],
+            "red" => &[
+                "deep red",
+                "crimson",
+                "brick-red",
+                "reddish",
+                "burgundy",
+                "wine-coloured",
+                "cherry",
+                "ruby",
+                "claret",
+                "cranberry",
+            ],
+            "blue" => &[
+                "deep blue",
+                "dark blue",
+                "navy",
+                "bluish",
+                "indigo",
+                "sapphire",
+                "midnight-blue",
+                "denim",
+                "ultramarine",
+                "ink-blue",
+            ],
+            "green" => &[
+                "deep green",
+                "dark green",
+                "leafy green",
+                "greenish",
+                "emerald",
+                "bottle-green",
+                "pine-green",
+                "moss-green",
+                "fir-green",
+                "jade",
+                "racing green",
+            ],
+            "brown" => &[
+                "mid-brown",
+                "brownish",
+                "chestnut",
+                "tawny",
+                "hazel",
+                "russet",
+                "toffee-coloured",
+                "coffee-coloured",
+            ],
             _ => &[],
         }),
         _ => add(match c {
-            "red" => &["vivid red", "scarlet", "reddish", "rich red"],
-            "blue" => &["royal blue", "mid-blue", "bluish", "cobalt"],
-            "green" => &["mid-green", "grass-green", "greenish"],
+            "red" => &[
+                "vivid red",
+                "scarlet",
+                "reddish",
+                "rich red",
+                "cherry-red",
+                "tomato-red",
+                "poppy-red",
+                "postbox red",
+                "ruby-red",
+                "lipstick red",
+                "fire-engine red",
+            ],
+            "blue" => &[
+                "royal blue",
+                "mid-blue",
+                "bluish",
+                "cobalt",
+                "cobalt-blue",
+                "sapphire",
+                "ultramarine",
+                "electric blue",
+                "marine blue",
+            ],
+            "green" => &[
+                "mid-green",
+                "grass-green",
+                "greenish",
+                "apple-green",
+                "fern-green",
+                "leaf-green",
+            ],
             "yellow" if rgb[1] < 0.66 * rgb[0] => &["mustard", "mustard-yellow", "ochre"],
-            "yellow" => &["golden yellow", "sunny yellow", "yellowish", "lemon-yellow"],
-            "brown" => &["brownish", "light brown"],
+            "yellow" => &[
+                "golden yellow",
+                "sunny yellow",
+                "yellowish",
+                "lemon-yellow",
+                "canary-yellow",
+                "buttercup",
+                "saffron",
+                "sunflower-yellow",
+                "butter-yellow",
+                "egg-yolk yellow",
+            ],
+            "brown" => &["brownish", "light brown", "toffee", "nutmeg", "hazelnut"],
             _ => &[],
         }),
     }
@@ -257,16 +730,42 @@ pub fn color_phrases(o: &SceneObject) -> Vec<String> {
 pub fn material_words(o: &SceneObject) -> &'static [&'static str] {
     let upholstered = matches!(o.class, C::Sofa | C::Armchair | C::OfficeChair | C::Bench);
     match o.material.as_str() {
-        "wood" if o.color != "wooden" => &["wooden", "wood", "timber"],
-        "fabric" if upholstered => &["fabric", "upholstered", "cloth-covered"],
-        "fabric" => &["fabric", "cloth"],
-        "leather" => &["leather", "leather-covered"],
-        "metal" => &["metal", "metallic", "steel"],
-        "plastic" => &["plastic"],
-        "ceramic" => &["ceramic", "china", "porcelain"],
-        "glass" => &["glass"],
-        "wax" => &["wax"],
+        "wood" if o.color != "wooden" => &["wooden", "wood", "timber", "wood-built"],
+        "fabric" if upholstered => &[
+            "fabric",
+            "upholstered",
+            "cloth-covered",
+            "padded",
+            "cushioned",
+            "plush",
+            "fabric-covered",
+        ],
+        "fabric" => &["fabric", "cloth", "woven", "textile", "soft"],
+        "leather" => &["leather", "leather-covered", "leather-upholstered", "hide"],
+        "metal" => &["metal", "metallic", "steel", "metal-bodied", "shiny metal"],
+        "plastic" => &["plastic", "moulded plastic", "synthetic"],
+        "ceramic" => &["ceramic", "china", "porcelain", "glazed"],
+        "glass" => &["glass", "glassy", "translucent"],
+        "wax" => &["wax", "waxy"],
+        "paper" => &["paper", "paperback", "soft-cover"],
         _ => &[],
+    }
+}
+
+/// The plain material noun behind a material adjective ("made of wood").
+pub fn material_noun(word: &str) -> &str {
+    match word {
+        "wooden" | "timber" | "wood-built" => "wood",
+        "upholstered" | "cloth-covered" | "cloth" | "padded" | "cushioned" | "plush"
+        | "fabric-covered" | "woven" | "textile" | "soft" => "fabric",
+        "leather-covered" | "leather-upholstered" | "hide" => "leather",
+        "metallic" | "steel" | "metal-bodied" | "shiny metal" => "metal",
+        "moulded plastic" | "synthetic" => "plastic",
+        "china" | "porcelain" | "glazed" => "ceramic",
+        "glassy" | "translucent" => "glass",
+        "waxy" => "wax",
+        "paperback" | "soft-cover" => "paper",
+        other => other,
     }
 }
 
@@ -278,24 +777,58 @@ pub fn shape_words(o: &SceneObject, peers: &[&SceneObject]) -> Vec<&'static str>
     let mut out = Vec::new();
     let furniture = o.class.kind() == vlnverse_env::ClassKind::Furniture;
     if furniture && h > 1.5 {
-        out.extend(["tall", "towering", "high"]);
+        out.extend([
+            "tall",
+            "towering",
+            "high",
+            "lofty",
+            "full-height",
+            "head-high",
+        ]);
+    } else if furniture && h > 1.15 {
+        out.extend(["chest-high", "chest-height", "fairly tall"]);
+    } else if furniture && (0.75..=1.05).contains(&h) && w > 0.5 {
+        out.extend(["waist-high", "waist-height", "hip-height"]);
     } else if furniture && h < 0.55 && w > 0.5 {
-        out.extend(["low", "low-slung", "squat"]);
+        out.extend(["low", "low-slung", "squat", "knee-high", "ground-hugging"]);
     }
     if furniture && w > 1.8 {
-        out.extend(["long", "wide", "broad"]);
+        out.extend(["long", "wide", "broad", "sprawling", "lengthy", "expansive"]);
     } else if furniture && d > 0.0 && w / d > 2.5 && w > 0.8 {
-        out.extend(["long", "narrow", "slim"]);
+        out.extend(["long", "narrow", "slim", "slender", "elongated", "thin"]);
     } else if furniture && (w - d).abs() < 0.1 * w && w > 0.5 {
-        out.extend(["square", "boxy"]);
+        out.extend(["square", "boxy", "squarish", "chunky"]);
+    } else if furniture && d > 0.0 && w / d > 1.3 && w > 0.5 {
+        out.extend(["rectangular", "oblong"]);
+    }
+    // Sizes people name for beds and sofas, from the width across.
+    match o.class {
+        C::Bed if d > 1.7 => out.extend(["king-size", "king-sized"]),
+        C::Bed if d > 1.3 => out.extend(["double", "double-sized"]),
+        C::Bed if d > 0.5 && d < 1.1 => out.extend(["single", "narrow single"]),
+        C::Sofa if w > 2.1 => out.extend(["three-seater", "three-seat"]),
+        C::Sofa if w > 1.3 => out.extend(["two-seater", "two-seat"]),
+        _ => {}
     }
     let largest = o
         .parts
         .iter()
         .max_by(|a, b| part_volume(&a.shape).total_cmp(&part_volume(&b.shape)));
     match largest.map(|p| &p.shape) {
-        Some(Shape::Cylinder { .. }) => out.extend(["round", "circular", "cylindrical"]),
-        Some(Shape::Sphere { .. }) => out.extend(["round", "rounded", "ball-shaped"]),
+        Some(Shape::Cylinder { .. }) => {
+            out.extend(["round", "circular", "cylindrical", "drum-shaped", "tubular"])
+        }
+        Some(Shape::Sphere { .. }) => out.extend([
+            "round",
+            "rounded",
+            "ball-shaped",
+            "globe-shaped",
+            "spherical",
+            "bulbous",
+        ]),
+        Some(Shape::Cuboid { .. }) if furniture => {
+            out.extend(["straight-edged", "angular", "square-cornered"])
+        }
         _ => {}
     }
     // Bulk against the other objects of its class, when there are any.
@@ -311,9 +844,28 @@ pub fn shape_words(o: &SceneObject, peers: &[&SceneObject]) -> Vec<&'static str>
     if !others.is_empty() {
         let v = vol(o);
         if others.iter().all(|&x| v > 1.3 * x) {
-            out.extend(["large", "big", "bigger", "larger", "sizeable"]);
+            out.extend([
+                "large",
+                "big",
+                "bigger",
+                "larger",
+                "sizeable",
+                "hefty",
+                "bulky",
+                "substantial",
+                "oversized",
+            ]);
         } else if others.iter().all(|&x| v * 1.3 < x) {
-            out.extend(["small", "little", "smaller", "compact"]);
+            out.extend([
+                "small",
+                "little",
+                "smaller",
+                "compact",
+                "petite",
+                "dinky",
+                "modest",
+                "diminutive",
+            ]);
         }
     }
     out
@@ -352,6 +904,15 @@ pub fn number_word(n: u32) -> String {
         20..=99 => format!("{}-{}", TENS[(n / 10) as usize], ONES[(n % 10) as usize]),
         _ => n.to_string(),
     }
+}
+
+/// An ordinal written out ("first", "seventh"), up to twelfth; `None` beyond.
+pub fn ordinal_word(n: u32) -> Option<&'static str> {
+    const ORD: [&str; 12] = [
+        "first", "second", "third", "fourth", "fifth", "sixth", "seventh", "eighth", "ninth",
+        "tenth", "eleventh", "twelfth",
+    ];
+    n.checked_sub(1).and_then(|i| ORD.get(i as usize)).copied()
 }
 
 #[cfg(test)]

@@ -57,6 +57,15 @@ pub(crate) const START_TURN: &[&str] = &[
     "swivel {dir}",
     "wheel round to the {dir}",
     "get yourself facing {dir}",
+    "start off facing {dir}",
+    "turn yourself to the {dir}",
+    "first, swing {dir}",
+    "rotate {dir} on the spot",
+    "turn on the spot to your {dir}",
+    "face towards your {dir}",
+    "begin by swivelling {dir}",
+    "square up to the {dir}",
+    "set yourself facing {dir}",
 ];
 
 /// Turning around (start or mid-path); every entry says "around", "opposite", "u-turn" or
@@ -78,6 +87,17 @@ pub(crate) const TURN_AROUND: &[&str] = &[
     "wheel around",
     "turn back on yourself",
     "reverse direction and face the opposite wall",
+    "double back and turn around",
+    "turn around on your heel",
+    "about-turn so you face the opposite way",
+    "reverse course and turn around",
+    "flip around",
+    "turn around to face the other way",
+    "do a full U-turn",
+    "spin around on the spot",
+    "rotate all the way around",
+    "turn back the other way",
+    "swivel around completely",
 ];
 
 /// A clear turn at a waypoint.
@@ -104,6 +124,25 @@ pub(crate) const TURN: &[&str] = &[
     "turn off to the {dir}",
     "take a sharp {dir}",
     "go round to the {dir}",
+    "peel off {dir}",
+    "branch off {dir}",
+    "swing a {dir}",
+    "veer hard {dir}",
+    "cut across to the {dir}",
+    "make a quarter turn {dir}",
+    "do a ninety-degree turn to the {dir}",
+    "bank {dir}",
+    "turn off {dir}",
+    "take a hard {dir}",
+    "jink {dir}",
+    "head off to the {dir}",
+    "swerve {dir}",
+    "steer {dir}",
+    "rotate {dir}",
+    "twist {dir}",
+    "angle sharply {dir}",
+    "go off to the {dir}",
+    "turn {dir}wards",
 ];
 
 /// A clear turn given as an angle (`{deg}` degrees).
@@ -113,6 +152,11 @@ pub(crate) const TURN_DEG: &[&str] = &[
     "rotate roughly {deg} degrees to your {dir}",
     "make a {deg}-degree turn to the {dir}",
     "swing through about {deg} degrees {dir}",
+    "pivot {deg} degrees {dir}",
+    "rotate {deg} degrees to the {dir}",
+    "turn through {deg} degrees to your {dir}",
+    "swivel {deg} degrees {dir}",
+    "turn {dir} by about {deg} degrees",
 ];
 
 /// A slight turn at a waypoint.
@@ -135,6 +179,21 @@ pub(crate) const SLIGHT_TURN: &[&str] = &[
     "steer a bit to the {dir}",
     "make a soft {dir}",
     "nudge over to the {dir}",
+    "slant {dir}",
+    "head diagonally {dir}",
+    "arc {dir}",
+    "sweep gently {dir}",
+    "slide over to the {dir}",
+    "drift {dir}",
+    "angle a touch {dir}",
+    "incline {dir}",
+    "bend gently {dir}",
+    "ease {dir}",
+    "cut slightly {dir}",
+    "bear a fraction {dir}",
+    "skew a bit {dir}",
+    "veer a little {dir}",
+    "take a gentle {dir}",
 ];
 
 /// A slight turn given as a clock hour ("two o'clock").
@@ -143,6 +202,10 @@ pub(crate) const SLIGHT_CLOCK: &[&str] = &[
     "head off at {clock} o'clock",
     "angle towards {clock} o'clock",
     "veer to about {clock} o'clock",
+    "drift towards {clock} o'clock",
+    "aim for your {clock} o'clock",
+    "head for {clock} o'clock",
+    "swing towards {clock} o'clock",
 ];
 
 // ---------------------------------------------------------------- fine-grained: movement
@@ -197,6 +260,34 @@ pub(crate) const MOVE_VERB: &[&str] = &[
     "keep heading",
     "march",
     "roll on",
+    "ramble",
+    "traipse",
+    "trek",
+    "potter",
+    "hoof it",
+    "wend your way",
+    "thread your way",
+    "pick your way",
+    "nip along",
+    "mosey",
+    "stride out",
+    "set off",
+    "head off",
+    "creep",
+    "tiptoe",
+    "trudge",
+    "plough on",
+    "soldier on",
+    "bowl along",
+    "set out",
+    "move off",
+    "step out",
+    "walk along",
+    "go along",
+    "get going",
+    "start walking",
+    "carry on walking",
+    "keep pressing on",
 ];
 
 /// Directions of walking on.
@@ -214,6 +305,17 @@ pub(crate) const ONWARD: &[&str] = &[
     "straight",
     "in a straight line",
     "dead ahead",
+    "forth",
+    "directly forward",
+    "on ahead",
+    "forward again",
+    "on through",
+    "in the same direction",
+    "the same way",
+    "ahead of you",
+    "in front of you",
+    "straight forward",
+    "on in a straight line",
 ];
 
 /// How one walks (often nothing).
@@ -274,6 +376,72 @@ pub(crate) const MANNER: &[&str] = &[
     "unhurriedly",
     "briskly",
     "with care",
+    "leisurely",
+    "at a steady clip",
+    "at a relaxed pace",
+    "without rushing",
+    "in no hurry",
+    "at your own pace",
+    "with purpose",
+    "confidently",
+    "cautiously",
+    "softly",
+    "lightly",
+    "easily",
+    "gradually",
+    "nonchalantly",
+    "methodically",
+    "mindfully",
+    "watchfully",
+    "warily",
+    "at a measured pace",
+    "with small steps",
+    "with long strides",
+    "in a relaxed way",
+    "at a comfortable speed",
+    "at an unhurried pace",
+    "with even steps",
+    "sure-footedly",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
+    "",
 ];
 
 /// Walking through a room (`{room}`).
@@ -287,6 +455,16 @@ pub(crate) const THROUGH_ROOM: &[&str] = &[
     "head through {room}",
     "traverse {room}",
     "continue through {room}",
+    "stroll across {room}",
+    "wander through {room}",
+    "walk the length of {room}",
+    "go straight across {room}",
+    "make your way through {room}",
+    "head across {room}",
+    "carry on across {room}",
+    "tramp across {room}",
+    "pick your way across {room}",
+    "weave through {room}",
 ];
 
 /// Walking along a hallway (`{room}`).
@@ -298,6 +476,15 @@ pub(crate) const ALONG_HALL: &[&str] = &[
     "continue down {room}",
     "make your way along {room}",
     "stroll the length of {room}",
+    "walk the length of {room}",
+    "proceed down {room}",
+    "carry on down {room}",
+    "wander down {room}",
+    "stride down {room}",
+    "pad down {room}",
+    "keep to {room}",
+    "travel the length of {room}",
+    "go on down {room}",
 ];
 
 // ---------------------------------------------------------------- fine-grained: distances
@@ -314,6 +501,18 @@ pub(crate) const DIST_SHORT: &[&str] = &[
     "a pace or two",
     "only briefly",
     "a tiny bit",
+    "an arm's length or so",
+    "just a stride",
+    "a stone's throw",
+    "barely a step",
+    "a smidge",
+    "a tad",
+    "a hop",
+    "a short hop",
+    "only a stride or two",
+    "a couple of paces",
+    "hardly any distance",
+    "a yard or so",
 ];
 
 /// "about" words for a distance.
@@ -330,10 +529,26 @@ pub(crate) const ABOUT: &[&str] = &[
     "maybe",
     "perhaps",
     "an estimated",
+    "in the region of",
+    "getting on for",
+    "nigh on",
+    "close on",
+    "somewhere around",
+    "in the neighbourhood of",
+    "round about",
+    "near enough",
 ];
 
 /// Units of a distance in metres (`{n}` the number).
-pub(crate) const METRES: &[&str] = &["{n} metres", "{n} meters", "{n} m", "{n} metres or so"];
+pub(crate) const METRES: &[&str] = &[
+    "{n} metres",
+    "{n} meters",
+    "{n} m",
+    "{n} metres or so",
+    "{n} metres or thereabouts",
+    "{n} metres, give or take",
+    "a distance of {n} metres",
+];
 
 // ---------------------------------------------------------------- fine-grained: landmarks
 
@@ -356,6 +571,19 @@ pub(crate) const PASS_SIDE: &[&str] = &[
     "past {obj} {side}",
     "alongside {obj} {side}",
     "keeping {obj} close {side}",
+    "going by {obj} {side}",
+    "clearing {obj} {side}",
+    "sweeping past {obj} {side}",
+    "gliding past {obj} {side}",
+    "strolling past {obj} {side}",
+    "wandering past {obj} {side}",
+    "ambling by {obj} {side}",
+    "making sure {obj} stays {side}",
+    "steering past {obj} {side}",
+    "walking alongside {obj} {side}",
+    "sailing past {obj} {side}",
+    "breezing past {obj} {side}",
+    "staying clear of {obj} {side}",
 ];
 
 /// A full sentence about a landmark on a side (`{obj}`, `{side}`).
@@ -375,6 +603,21 @@ pub(crate) const SEE_SIDE: &[&str] = &[
     "you'll walk by {obj} {side}",
     "{obj} ought to be {side}",
     "{obj} is there {side}",
+    "{obj} will come into view {side}",
+    "you'll catch sight of {obj} {side}",
+    "watch for {obj} {side}",
+    "you should notice {obj} {side}",
+    "{obj} sits {side}",
+    "{obj} can be seen {side}",
+    "{obj} appears {side}",
+    "you'll spy {obj} {side}",
+    "there'll be {obj} {side}",
+    "you'll go by {obj} {side}",
+    "{obj} lies {side}",
+    "{obj} ought to show up {side}",
+    "on the way you'll glimpse {obj} {side}",
+    "you'll come across {obj} {side}",
+    "make a note of {obj} {side}",
 ];
 
 /// Keeping a landmark on a side, opening the sentence (`{obj}`, `{side}`).
@@ -384,6 +627,11 @@ pub(crate) const WITH_SIDE: &[&str] = &[
     "leaving {obj} {side}",
     "having {obj} {side}",
     "once {obj} is {side}",
+    "making sure {obj} is {side}",
+    "as you pass {obj} {side}",
+    "once you have {obj} {side}",
+    "as soon as {obj} is {side}",
+    "staying clear of {obj} {side}",
 ];
 
 /// Once a landmark is behind you (`{obj}`), before a turn.
@@ -398,6 +646,15 @@ pub(crate) const AFTER_OBJ: &[&str] = &[
     "a little past {obj}",
     "after going by {obj}",
     "once {obj} is behind you",
+    "the moment you're past {obj}",
+    "once you've gone by {obj}",
+    "having passed {obj}",
+    "after you clear {obj}",
+    "once you're beyond {obj}",
+    "just after you pass {obj}",
+    "as you come past {obj}",
+    "when {obj} is at your back",
+    "immediately after {obj}",
 ];
 
 /// A landmark straight ahead.
@@ -415,6 +672,16 @@ pub(crate) const TOWARDS: &[&str] = &[
     "in line with {obj}",
     "with {obj} dead ahead",
     "with {obj} in front of you",
+    "straight for {obj}",
+    "making a beeline for {obj}",
+    "heading straight for {obj}",
+    "directly towards {obj}",
+    "on course for {obj}",
+    "homing in on {obj}",
+    "approaching {obj}",
+    "closing in on {obj}",
+    "pointed at {obj}",
+    "facing {obj}",
 ];
 
 /// Walking until a landmark ahead (`{obj}`).
@@ -428,6 +695,16 @@ pub(crate) const UNTIL_OBJ: &[&str] = &[
     "until you arrive at {obj}",
     "up to {obj}",
     "until {obj} is just in front of you",
+    "until you're standing by {obj}",
+    "until {obj} is within reach",
+    "till you hit {obj}",
+    "until you're nearly touching {obj}",
+    "all the way to {obj}",
+    "until you're face to face with {obj}",
+    "until you meet {obj}",
+    "until you're in front of {obj}",
+    "till you arrive at {obj}",
+    "until you end up at {obj}",
 ];
 
 /// Side phrases (`{dir}`).
@@ -444,6 +721,17 @@ pub(crate) const SIDE: &[&str] = &[
     "along your {dir}",
     "on the {dir}-hand side",
     "just to your {dir}",
+    "on the {dir} side of you",
+    "over on your {dir}",
+    "by your {dir} shoulder",
+    "at your {dir} hand",
+    "towards your {dir}",
+    "on your {dir} flank",
+    "to your {dir} side",
+    "off on the {dir}",
+    "a little to your {dir}",
+    "beside you on the {dir}",
+    "over to your {dir}",
 ];
 
 // ---------------------------------------------------------------- fine-grained: rooms
@@ -460,6 +748,15 @@ pub(crate) const LEAVE_ROOM: &[&str] = &[
     "slip out of {room}",
     "depart {room}",
     "quit {room}",
+    "come out of {room}",
+    "move out of {room}",
+    "leave {room} behind",
+    "wander out of {room}",
+    "walk away from {room}",
+    "pass out of {room}",
+    "go out of {room}",
+    "stroll out of {room}",
+    "vacate {room}",
 ];
 
 /// Entering a room.
@@ -481,6 +778,21 @@ pub(crate) const ENTER_ROOM: &[&str] = &[
     "arrive in {room}",
     "find yourself in {room}",
     "emerge into {room}",
+    "walk on into {room}",
+    "step inside {room}",
+    "go inside {room}",
+    "head on into {room}",
+    "pop into {room}",
+    "duck into {room}",
+    "nip into {room}",
+    "stroll into {room}",
+    "amble into {room}",
+    "push on into {room}",
+    "cross into {room}",
+    "venture into {room}",
+    "get yourself into {room}",
+    "proceed into {room}",
+    "advance into {room}",
 ];
 
 /// Entering a room through an opening (`{door}`, `{room}`).
@@ -497,6 +809,14 @@ pub(crate) const THROUGH_DOOR: &[&str] = &[
     "slip through {door} into {room}",
     "step over the threshold into {room}",
     "cross the threshold into {room}",
+    "duck through {door} into {room}",
+    "nip through {door} into {room}",
+    "make your way through {door} into {room}",
+    "head for {door} and go into {room}",
+    "aim for {door} and step into {room}",
+    "go via {door} into {room}",
+    "use {door} to get into {room}",
+    "cross through {door} into {room}",
 ];
 
 /// Moving from one room into another in one clause (`{from}`, `{room}`).
@@ -511,6 +831,14 @@ pub(crate) const ROOM_TO_ROOM: &[&str] = &[
     "come out of {from} into {room}",
     "get out of {from} and go into {room}",
     "swap {from} for {room}",
+    "move from {from} through to {room}",
+    "step from {from} into {room}",
+    "pass from {from} through to {room}",
+    "carry on out of {from} and into {room}",
+    "make your way from {from} to {room}",
+    "go on from {from} into {room}",
+    "head out of {from} towards {room}",
+    "trade {from} for {room}",
 ];
 
 /// Leaving a room through an opening (`{from}`, `{door}`, `{room}`).
@@ -531,6 +859,15 @@ pub(crate) const NOW_IN: &[&str] = &[
     "you should now be in {room}",
     "you have reached {room}",
     "welcome to {room}",
+    "you've now arrived in {room}",
+    "you're in {room} at this point",
+    "that's {room} you're in now",
+    "this puts you in {room}",
+    "here you are in {room}",
+    "you'll now find yourself in {room}",
+    "you should be standing in {room}",
+    "so now you're in {room}",
+    "by now you'll be in {room}",
 ];
 
 /// Where the walk starts (a sentence, or a prefix ending in a comma, or nothing).
@@ -548,6 +885,17 @@ pub(crate) const START_ROOM: &[&str] = &[
     "From your spot in {room},",
     "Standing in {room},",
     "",
+    "",
+    "",
+    "",
+    "You're currently in {room}.",
+    "At present you are in {room}.",
+    "You'll begin in {room}.",
+    "To start, you're in {room}.",
+    "Your walk begins in {room}.",
+    "Setting off from {room},",
+    "You're starting out in {room}.",
+    "You find yourself in {room}.",
     "",
     "",
     "",
@@ -599,6 +947,26 @@ pub(crate) const STOP_AT: &[&str] = &[
     "remain next to {obj}",
     "end up alongside {obj}",
     "the goal is in front of {obj}",
+    "draw to a halt at {obj}",
+    "pull up next to {obj}",
+    "stop once you're alongside {obj}",
+    "take up position by {obj}",
+    "stand and wait beside {obj}",
+    "hang around by {obj}",
+    "stop within arm's reach of {obj}",
+    "your stopping point is next to {obj}",
+    "the finish line is at {obj}",
+    "stop once {obj} is within reach",
+    "halt beside {obj}",
+    "pause next to {obj}",
+    "stay put by {obj}",
+    "you'll stop at {obj}",
+    "that's your stop, by {obj}",
+    "make {obj} your stopping place",
+    "the spot you want is beside {obj}",
+    "your endpoint is beside {obj}",
+    "stop when {obj} is within touching distance",
+    "come to a standstill next to {obj}",
 ];
 
 /// Where an object at the end stands in the room.
@@ -607,6 +975,10 @@ pub(crate) const IN_CORNER: &[&str] = &[
     "tucked into the corner",
     "over in the corner",
     "in the nearby corner",
+    "wedged into the corner",
+    "in a corner of the room",
+    "sitting in the corner",
+    "set back in the corner",
 ];
 
 /// An object standing against a wall.
@@ -616,6 +988,10 @@ pub(crate) const AT_WALL: &[&str] = &[
     "up against the wall",
     "along the wall",
     "set against the wall",
+    "flush against the wall",
+    "pushed up against the wall",
+    "lined up along the wall",
+    "backed onto the wall",
 ];
 
 /// An object standing free in the room.
@@ -624,6 +1000,10 @@ pub(crate) const MID_ROOM: &[&str] = &[
     "in the centre of the room",
     "out in the open",
     "near the middle of the room",
+    "standing free in the room",
+    "away from the walls",
+    "in the open part of the room",
+    "out in the middle",
 ];
 
 /// An object near a doorway.
@@ -632,6 +1012,10 @@ pub(crate) const BY_DOOR: &[&str] = &[
     "near the door",
     "close to the entrance",
     "just inside the doorway",
+    "next to the entrance",
+    "beside the doorway",
+    "near the way in",
+    "close to the door",
 ];
 
 /// Stopping in a room.
@@ -649,6 +1033,15 @@ pub(crate) const STOP_ROOM: &[&str] = &[
     "your goal is in {room}",
     "finish in {room}",
     "stay put in {room}",
+    "stop as soon as you're in {room}",
+    "halt just inside {room}",
+    "your endpoint is {room}",
+    "that's it once you reach {room}",
+    "pull up in {room}",
+    "wait once you've entered {room}",
+    "end your walk inside {room}",
+    "the walk ends in {room}",
+    "remain in {room}",
 ];
 
 /// Stopping in a room near its corner or wall (`{room}`, `{where}`).
@@ -685,7 +1078,103 @@ pub(crate) const STOP: &[&str] = &[
     "stand still",
     "that is the end point",
     "pull up there",
+    "that'll do",
+    "you can stop now",
+    "halt",
+    "and that's where you stop",
+    "you've made it",
+    "end of the line",
+    "rest your legs there",
+    "pull up",
+    "that's your stop",
+    "you're at the finish",
+    "your walk ends here",
+    "stand there and wait",
+    "pause there",
+    "go no further",
 ];
+
+/// Whole clauses of walking on in the same direction (no [`ONWARD`] word after them).
+pub(crate) const MOVE_WHOLE: &[&str] = &[
+    "stay on this heading",
+    "hold your course",
+    "keep to this line",
+    "follow your nose",
+    "keep straight on",
+    "carry straight on",
+    "continue on the same heading",
+    "keep going the same way",
+    "keep on in the same direction",
+    "stick to this direction",
+    "maintain this direction",
+    "go on in a straight line",
+    "keep your bearing",
+    "walk on along the same line",
+    "hold this line",
+];
+
+/// Said after the stop when walking on past the goal leads into another room (`{room}`).
+pub(crate) const OVERSHOOT: &[&str] = &[
+    "If you find yourself in {room}, you've gone too far.",
+    "If you reach {room}, you've overshot.",
+    "Don't carry on into {room}; that's too far.",
+    "Should you end up in {room}, turn back - you've gone past it.",
+    "You don't need to go as far as {room}.",
+    "If you walk into {room}, you've missed it.",
+    "There's no need to go on into {room}.",
+    "If you get as far as {room}, you've come too far.",
+    "Going into {room} means you've walked past your spot.",
+];
+
+/// Said of an end object whose class is unique in the home (`{name}`).
+pub(crate) const ONLY_ONE: &[&str] = &[
+    "It's the only {name} in the house.",
+    "There's just the one {name} in the home, so you can't get it wrong.",
+    "There's no other {name} around.",
+    "You won't find a second {name} anywhere in the house.",
+    "It's the one and only {name} here.",
+    "The home has a single {name}, so there's no confusion.",
+];
+
+/// Said of a large end object.
+pub(crate) const CANT_MISS: &[&str] = &[
+    "You can't miss it.",
+    "It's hard to miss.",
+    "It's big enough to spot straight away.",
+    "You'll notice it immediately.",
+    "It's impossible to overlook.",
+    "It stands out.",
+    "It's pretty conspicuous.",
+    "It's a big piece, easy to see.",
+];
+
+/// Said of a small room just entered.
+pub(crate) const ROOM_SMALL: &[&str] = &[
+    "It's a fairly small room.",
+    "It's quite a cramped space.",
+    "It's a snug little room.",
+    "The room is on the poky side.",
+    "It's not a big room.",
+];
+
+/// Said of a large room just entered.
+pub(crate) const ROOM_BIG: &[&str] = &[
+    "It's a large, open room.",
+    "It's a spacious room.",
+    "It's quite a roomy space.",
+    "The room is generously sized.",
+    "It's a big, airy room.",
+];
+
+/// Said of a long hallway just entered.
+pub(crate) const HALL_LONG: &[&str] = &[
+    "It's a long, narrow passage.",
+    "The corridor is fairly long.",
+    "It's a lengthy hallway.",
+];
+
+/// Numbering of the legs by a writer who counts them (`{ord}` "second", `{num}` "two").
+pub(crate) const NUMBERED: &[&str] = &["{ord}, ", "{ord}ly, ", "step {num}: ", "{ord} step: "];
 
 // ---------------------------------------------------------------- fine-grained: discourse
 
@@ -702,6 +1191,14 @@ pub(crate) const AND: &[&str] = &[
     ", and after that ",
     ", and next ",
     " - then ",
+    ", and once that's done, ",
+    ", then after that ",
+    " and afterwards ",
+    ", after which you ",
+    ", at which point you ",
+    ", and then go on to ",
+    "; after that, ",
+    ", and from there ",
 ];
 
 /// Starting a later sentence.
@@ -737,6 +1234,27 @@ pub(crate) const NEXT: &[&str] = &[
     "so ",
     "again, ",
     "after this, ",
+    "once you've done that, ",
+    "from this point, ",
+    "carrying on, ",
+    "good, now ",
+    "next up, ",
+    "continuing on, ",
+    "with that done, ",
+    "after doing so, ",
+    "having done that, ",
+    "from this spot, ",
+    "beyond that, ",
+    "once that's done, ",
+    "then, ",
+    "following this, ",
+    "further on, ",
+    "a bit further on, ",
+    "soon after, ",
+    "",
+    "",
+    "",
+    "",
 ];
 
 /// Starting the last sentence.
@@ -754,6 +1272,19 @@ pub(crate) const LAST: &[&str] = &[
     "and then ",
     "at the end, ",
     "your final step: ",
+    "and finally, ",
+    "finally then, ",
+    "to end, ",
+    "last of all, ",
+    "for the final stretch, ",
+    "at the very end, ",
+    "to wrap up, ",
+    "ultimately, ",
+    "last thing: ",
+    "for the last bit, ",
+    "",
+    "",
+    "",
 ];
 
 /// Opening sentences some writers put first.
@@ -798,6 +1329,25 @@ pub(crate) const OPEN: &[&str] = &[
     "OK, so.",
     "Hi there.",
     "Good, let's begin.",
+    "Morning!",
+    "Hey there.",
+    "Howdy.",
+    "Greetings.",
+    "Good afternoon.",
+    "Let me explain the way.",
+    "Here's how you get there.",
+    "Listen closely.",
+    "Off we go.",
+    "Shall we?",
+    "Stick with me.",
+    "I'll walk you through it.",
+    "Don't worry, it's simple.",
+    "No trouble at all.",
+    "You'll be there in no time.",
+    "Follow these steps closely.",
+    "Let's get you there.",
+    "Bear with me while I explain.",
+    "Read this through first.",
 ];
 
 /// Remarks some writers make along the way.
@@ -879,6 +1429,27 @@ pub(crate) const ASIDE: &[&str] = &[
     "Stick to the open floor.",
     "Be careful not to bump into anything.",
     "Go at your own speed.",
+    "So far, so good.",
+    "Keep it steady.",
+    "No need to rush.",
+    "You're doing brilliantly.",
+    "Nice and easy.",
+    "Keep your wits about you.",
+    "Mind how you go.",
+    "Don't dawdle, though.",
+    "Stay on track.",
+    "Doing well.",
+    "Everything OK?",
+    "Chin up.",
+    "Be careful of your footing.",
+    "Good going.",
+    "Nothing to worry about.",
+    "The route is straightforward.",
+    "Great, keep it up.",
+    "Keep looking ahead.",
+    "Stay relaxed.",
+    "You're handling this well.",
+    "Keep a steady rhythm.",
 ];
 
 /// Closing sentences some writers add.
@@ -918,6 +1489,24 @@ pub(crate) const CLOSE: &[&str] = &[
     "Nice work.",
     "See you there.",
     "Cheers.",
+    "Nicely done.",
+    "Spot on.",
+    "Top work.",
+    "Superb.",
+    "Fantastic.",
+    "Marvellous.",
+    "There you have it.",
+    "That's everything.",
+    "Over and out.",
+    "Ta-da.",
+    "Hope that helps.",
+    "Great stuff.",
+    "Splendid.",
+    "Bravo.",
+    "All done and dusted.",
+    "Goal reached.",
+    "Journey complete.",
+    "Cheers for that.",
 ];
 
 // --------------------------------------------------------------- coarse-grained
@@ -946,6 +1535,16 @@ pub(crate) const FORMAL_OPEN: &[&str] = &[
     "The following describes your destination. ",
     "A single goal has been assigned. ",
     "Here is the assignment. ",
+    "Attention is requested. ",
+    "The following directive applies. ",
+    "Please heed the following. ",
+    "Kindly observe the following directive. ",
+    "Your next objective has been specified. ",
+    "A navigation objective has been issued. ",
+    "The details of your task are provided below. ",
+    "Please note your designated destination. ",
+    "Be advised of the following. ",
+    "Proceed according to the following. ",
 ];
 
 /// Formal coarse sentences (`{desc}` = "the red mug", `{sup}`, `{rel}`, `{room}` clauses may be
@@ -991,6 +1590,24 @@ pub(crate) const FORMAL: &[&str] = &[
     "The destination is {desc}{sup}{rel}{room}",
     "Advance towards {desc}{sup}{rel}{room} and stop once it is within reach",
     "Station yourself next to {desc}{sup}{rel}{room}",
+    "Please proceed forthwith to {desc}{sup}{rel}{room}",
+    "Your designated endpoint is {desc}{sup}{rel}{room}",
+    "You are instructed to proceed to {desc}{sup}{rel}{room}",
+    "Commence navigation towards {desc}{sup}{rel}{room} and cease movement upon arrival",
+    "Kindly relocate yourself to {desc}{sup}{rel}{room}",
+    "Navigate to the location of {desc}{sup}{rel}{room}",
+    "Please ensure that you reach {desc}{sup}{rel}{room}",
+    "Progress towards {desc}{sup}{rel}{room} and come to a halt",
+    "It is necessary that you reach {desc}{sup}{rel}{room}",
+    "The designated target is {desc}{sup}{rel}{room}",
+    "Please direct yourself to {desc}{sup}{rel}{room}",
+    "Transit to {desc}{sup}{rel}{room} and await further instruction",
+    "Advance to {desc}{sup}{rel}{room} and halt adjacent to it",
+    "Your final position should be beside {desc}{sup}{rel}{room}",
+    "Conclude the episode beside {desc}{sup}{rel}{room}",
+    "Locate and approach {desc}{sup}{rel}{room}",
+    "Please situate yourself alongside {desc}{sup}{rel}{room}",
+    "Undertake navigation to {desc}{sup}{rel}{room}",
 ];
 
 /// Formal closing sentences (after the main one; may be empty).
@@ -1021,6 +1638,17 @@ pub(crate) const FORMAL_CLOSE: &[&str] = &[
     ". Take the most direct route.",
     ". Avoid unnecessary detours.",
     ". Then stop.",
+    ". Exercise caution throughout.",
+    ". Avoid contact with furnishings.",
+    ". Movement should cease upon arrival.",
+    ". Please proceed with care.",
+    ". Adhere to the most efficient path.",
+    ". Kindly conclude at that location.",
+    ". No additional stops are necessary.",
+    ". This instruction is now complete.",
+    ". Thank you for your attention.",
+    ". Do not deviate from the route.",
+    ". Minimise unnecessary movement.",
 ];
 
 /// Formal support clause (`{obj}`).
@@ -1033,6 +1661,12 @@ pub(crate) const FORMAL_SUP: &[&str] = &[
     " situated on top of {obj}",
     " resting upon {obj}",
     " that has been placed on {obj}",
+    " set upon {obj}",
+    " deposited on {obj}",
+    " arranged on {obj}",
+    " supported by {obj}",
+    " which is placed atop {obj}",
+    " lying upon {obj}",
 ];
 
 /// Formal "next to" clause.
@@ -1043,6 +1677,11 @@ pub(crate) const FORMAL_NEXT: &[&str] = &[
     " directly next to {obj}",
     " located alongside {obj}",
     " positioned beside {obj}",
+    " immediately adjacent to {obj}",
+    " in direct proximity to {obj}",
+    " flanking {obj}",
+    " positioned alongside {obj}",
+    " situated beside {obj}",
 ];
 
 /// Formal "near" clause.
@@ -1053,6 +1692,12 @@ pub(crate) const FORMAL_NEAR: &[&str] = &[
     " in proximity to {obj}",
     " within a short distance of {obj}",
     " not far from {obj}",
+    " in close proximity to {obj}",
+    " within the general area of {obj}",
+    " at a modest distance from {obj}",
+    " in the neighbourhood of {obj}",
+    " near to {obj}",
+    " within reasonable distance of {obj}",
 ];
 
 /// Formal room clause.
@@ -1064,6 +1709,12 @@ pub(crate) const FORMAL_ROOM: &[&str] = &[
     " in {room} of this residence",
     " within {room} of the house",
     " located in {room}",
+    " within {room} of the premises",
+    " inside {room} of the dwelling",
+    " situated within {room}",
+    " in {room} of the property",
+    " contained within {room}",
+    " in the area designated as {room}",
 ];
 
 /// Natural openers (may be empty).
@@ -1092,6 +1743,21 @@ pub(crate) const NATURAL_OPEN: &[&str] = &[
     "Ready? ",
     "Easy one. ",
     "Okay, ",
+    "Hi! ",
+    "Hello there. ",
+    "Good morning. ",
+    "Sorry to bother you, but ",
+    "Could I ask a favour? ",
+    "Here's the thing: ",
+    "Do me a favour: ",
+    "Just one thing. ",
+    "Okay, listen. ",
+    "Hey there. ",
+    "Hi, ",
+    "Thanks in advance. ",
+    "When you have a moment, ",
+    "Let's see. ",
+    "Good news, this one's easy. ",
 ];
 
 /// Natural coarse sentences when a room is named (`{room}` bare room phrase).
@@ -1120,6 +1786,22 @@ pub(crate) const NATURAL_ROOM: &[&str] = &[
     "Find your way to {room} and then to {desc}{sup}{rel}",
     "Go over to {room} and find {desc}{sup}{rel}",
     "Walk into {room}; stop when you reach {desc}{sup}{rel}",
+    "Pop through to {room} and stand by {desc}{sup}{rel}",
+    "Head through to {room} - you'll find {desc}{sup}{rel} there",
+    "Could you nip to {room} and stop beside {desc}{sup}{rel}",
+    "Go into {room}; I'm after {desc}{sup}{rel}",
+    "Drop by {room} and find {desc}{sup}{rel}",
+    "Swing through {room} and stand next to {desc}{sup}{rel}",
+    "Make your way into {room} and look for {desc}{sup}{rel}",
+    "In {room} there's {desc}{sup}{rel} - that's where I want you",
+    "Stroll into {room} and wait by {desc}{sup}{rel}",
+    "Please head to {room} and find {desc}{sup}{rel}",
+    "You'll want to go to {room} and stand by {desc}{sup}{rel}",
+    "Wander through to {room} and track down {desc}{sup}{rel}",
+    "Get yourself into {room} and find {desc}{sup}{rel}",
+    "Go along to {room}, then look for {desc}{sup}{rel}",
+    "I'd like you in {room}, by {desc}{sup}{rel}",
+    "Could you pop over to {room} and locate {desc}{sup}{rel}",
 ];
 
 /// Natural coarse sentences without a room.
@@ -1150,6 +1832,20 @@ pub(crate) const NATURAL: &[&str] = &[
     "Please find {desc}{sup}{rel}",
     "Your goal is {desc}{sup}{rel}",
     "Get to {desc}{sup}{rel} and wait",
+    "Pop over to {desc}{sup}{rel}",
+    "Could you nip over to {desc}{sup}{rel}",
+    "Go and track down {desc}{sup}{rel}",
+    "I'd love it if you'd go to {desc}{sup}{rel}",
+    "Head on over to {desc}{sup}{rel}",
+    "Have a wander over to {desc}{sup}{rel}",
+    "Please make your way to {desc}{sup}{rel}",
+    "Would you mind walking over to {desc}{sup}{rel}",
+    "Go and hunt out {desc}{sup}{rel}",
+    "Try and get to {desc}{sup}{rel}",
+    "What I need is for you to reach {desc}{sup}{rel}",
+    "Go on over to {desc}{sup}{rel}",
+    "Find your way to {desc}{sup}{rel}",
+    "Amble over to {desc}{sup}{rel}",
 ];
 
 /// Natural closing remarks (may be empty).
@@ -1176,6 +1872,19 @@ pub(crate) const NATURAL_CLOSE: &[&str] = &[
     ". Then you're done.",
     ". You'll know it when you see it.",
     ". Take whatever route you like.",
+    ". Many thanks.",
+    ". Thanks a lot.",
+    ". Lovely, thank you.",
+    ". Much appreciated.",
+    ". Ta very much.",
+    ". I'll meet you there.",
+    ". Hang on there for me.",
+    ". It's not far.",
+    ". You'll spot it easily.",
+    ". Don't rush.",
+    ". Thank you kindly.",
+    ". That'd be great.",
+    ". Wait for me there, thanks.",
 ];
 
 /// Natural support clause.
@@ -1186,6 +1895,11 @@ pub(crate) const NATURAL_SUP: &[&str] = &[
     " that's on {obj}",
     " standing on {obj}",
     " lying on {obj}",
+    " resting on {obj}",
+    " sat on {obj}",
+    " that sits on {obj}",
+    " perched on {obj}",
+    " set on {obj}",
 ];
 
 /// Natural "next to" clause.
@@ -1195,6 +1909,10 @@ pub(crate) const NATURAL_NEXT: &[&str] = &[
     " beside {obj}",
     " right next to {obj}",
     " just by {obj}",
+    " just beside {obj}",
+    " alongside {obj}",
+    " tucked beside {obj}",
+    " by the side of {obj}",
 ];
 
 /// Natural "near" clause.
@@ -1204,6 +1922,11 @@ pub(crate) const NATURAL_NEAR: &[&str] = &[
     " not far from {obj}",
     " a little way from {obj}",
     " close by {obj}",
+    " not too far from {obj}",
+    " over by {obj}",
+    " a short way from {obj}",
+    " fairly close to {obj}",
+    " just a few steps from {obj}",
 ];
 
 /// Casual openers (may be empty).
@@ -1235,6 +1958,25 @@ pub(crate) const CASUAL_OPEN: &[&str] = &[
     "oi, ",
     "so basically ",
     "erm, ",
+    "yo yo, ",
+    "oi oi, ",
+    "hiya, ",
+    "hey hey, ",
+    "sup, ",
+    "bro, ",
+    "fam, ",
+    "buddy, ",
+    "pal, ",
+    "welp, ",
+    "righto, ",
+    "soo, ",
+    "lol ok ",
+    "ayy, ",
+    "yoo, ",
+    "so like, ",
+    "hey pal, ",
+    "oh btw, ",
+    "okey dokey, ",
 ];
 
 /// Casual coarse sentences (lower case, clipped).
@@ -1275,6 +2017,26 @@ pub(crate) const CASUAL: &[&str] = &[
     "shuffle on over to {desc}{sup}{rel}{room}",
     "go chill by {desc}{sup}{rel}{room}",
     "park it next to {desc}{sup}{rel}{room}",
+    "mooch over to {desc}{sup}{rel}{room}",
+    "leg it to {desc}{sup}{rel}{room}",
+    "trot over to {desc}{sup}{rel}{room}",
+    "hustle over to {desc}{sup}{rel}{room}",
+    "toddle over to {desc}{sup}{rel}{room}",
+    "go camp out by {desc}{sup}{rel}{room}",
+    "go hover by {desc}{sup}{rel}{room}",
+    "slide over to {desc}{sup}{rel}{room}",
+    "stroll on over to {desc}{sup}{rel}{room}",
+    "head on down to {desc}{sup}{rel}{room}",
+    "swing on by {desc}{sup}{rel}{room}",
+    "you're off to {desc}{sup}{rel}{room}",
+    "next stop {desc}{sup}{rel}{room}",
+    "gonna need you at {desc}{sup}{rel}{room}",
+    "lemme get you to {desc}{sup}{rel}{room}",
+    "go find {desc}{sup}{rel}{room} innit",
+    "yeet yourself over to {desc}{sup}{rel}{room}",
+    "peg it to {desc}{sup}{rel}{room}",
+    "scurry over to {desc}{sup}{rel}{room}",
+    "boogie on over to {desc}{sup}{rel}{room}",
 ];
 
 /// Casual closers (no final full stop).
@@ -1313,6 +2075,29 @@ pub(crate) const CASUAL_CLOSE: &[&str] = &[
     " ok",
     " nice one",
     " go go go",
+    " tysm",
+    " thanks a bunch",
+    " legend",
+    " ur a star",
+    " nice",
+    " sorted",
+    " ta-ra",
+    " laters",
+    " peace",
+    " ttyl",
+    " thanks fam",
+    " awesome",
+    " good stuff",
+    " lovely jubbly",
+    " bish bash bosh",
+    " simples",
+    " easy peasy",
+    " cheers bud",
+    " deffo",
+    " fab",
+    " noice",
+    " ace",
+    " cool beans",
 ];
 
 /// Casual support clause.
@@ -1323,6 +2108,11 @@ pub(crate) const CASUAL_SUP: &[&str] = &[
     " on top of {obj}",
     " chilling on {obj}",
     " that's on {obj}",
+    " perched on {obj}",
+    " sat on {obj}",
+    " stuck on {obj}",
+    " plonked on {obj}",
+    " just sitting on {obj}",
 ];
 
 /// Casual "next to" clause.
@@ -1332,6 +2122,9 @@ pub(crate) const CASUAL_NEXT: &[&str] = &[
     " next to {obj}",
     " smack next to {obj}",
     " right up by {obj}",
+    " like right by {obj}",
+    " right next to {obj}",
+    " next to {obj} basically",
 ];
 
 /// Casual "near" clause.
@@ -1341,6 +2134,10 @@ pub(crate) const CASUAL_NEAR: &[&str] = &[
     " close to {obj}",
     " kinda near {obj}",
     " somewhere near {obj}",
+    " over near {obj}",
+    " kinda by {obj}",
+    " round by {obj}",
+    " not far off {obj}",
 ];
 
 /// Casual room clause.
@@ -1351,7 +2148,74 @@ pub(crate) const CASUAL_ROOM: &[&str] = &[
     " in {room} btw",
     " down in {room}",
     " out in {room}",
+    " in {room} innit",
+    " over in {room} somewhere",
+    " in {room} ya know",
+    " in {room} fyi",
+    " all the way in {room}",
 ];
+
+/// Formal remark on the target's material (`{m}` a material noun).
+pub(crate) const FORMAL_MATERIAL: &[&str] = &[
+    ". It is constructed of {m}",
+    ". It is made of {m}",
+    ". Its material is {m}",
+    ". The item is fabricated from {m}",
+];
+
+/// Formal remark on the target's shade (`{c}`).
+pub(crate) const FORMAL_SHADE: &[&str] = &[
+    ". Its colour may be described as {c}",
+    ". It is {c} in colour",
+    ". Its finish is {c}",
+];
+
+/// Formal remark on what the target is for (`{name}`, `{use}`).
+pub(crate) const FORMAL_USE: &[&str] = &[
+    ". The {name} in question is the one {use}",
+    ". This is the {name} {use}",
+];
+
+/// Formal remark on where the target stands in its room (`{f}`).
+pub(crate) const FORMAL_PLACE: &[&str] = &[
+    ". It stands {f}",
+    ". It is located {f}",
+    ". It may be found {f}",
+];
+
+/// Natural remark on the target's material (`{a}` an adjective, `{m}` a noun).
+pub(crate) const NATURAL_MATERIAL: &[&str] = &[
+    ". It's the {a} one",
+    ". It's made of {m}",
+    ". It's made from {m}",
+];
+
+/// Natural remark on the target's shade.
+pub(crate) const NATURAL_SHADE: &[&str] = &[
+    ". It's a sort of {c} colour",
+    ". It's more {c}, really",
+    ". The colour is {c}, more or less",
+];
+
+/// Natural remark on what the target is for.
+pub(crate) const NATURAL_USE: &[&str] = &[". It's the one {use}", ". You know, the one {use}"];
+
+/// Natural remark on where the target stands.
+pub(crate) const NATURAL_PLACE: &[&str] = &[". It's {f}", ". You'll find it {f}"];
+
+/// Casual remark on the target's material.
+pub(crate) const CASUAL_MATERIAL: &[&str] =
+    &[" - the {a} one", " (the {a} one)", " ya know the {a} one"];
+
+/// Casual remark on the target's shade.
+pub(crate) const CASUAL_SHADE: &[&str] =
+    &[" - kinda {c}", " (more like {c} tbh)", " it's like {c}"];
+
+/// Casual remark on what the target is for.
+pub(crate) const CASUAL_USE: &[&str] = &[" - the one {use}", " (the one {use} lol)"];
+
+/// Casual remark on where the target stands.
+pub(crate) const CASUAL_PLACE: &[&str] = &[" - it's {f}", " (it's {f})"];
 
 // ------------------------------------------------------------------ long-horizon
 
@@ -1367,6 +2231,12 @@ pub(crate) const CHAIN_FIRST: &[&str] = &[
     "Before anything else, ",
     "Let's start here: ",
     "For a start, ",
+    "Opening move: ",
+    "To kick things off, ",
+    "Your first stop: ",
+    "Begin with this: ",
+    "Straight away, ",
+    "Number one: ",
 ];
 
 /// Openers of middle sub-instructions.
@@ -1381,6 +2251,13 @@ pub(crate) const CHAIN_MID: &[&str] = &[
     "second, ",
     "following that, ",
     "moving on, ",
+    "next up, ",
+    "subsequently, ",
+    "after doing that, ",
+    "with that done, ",
+    "your second stop: ",
+    "once that's sorted, ",
+    "and then ",
 ];
 
 /// Openers of the last sub-instruction.
@@ -1395,6 +2272,12 @@ pub(crate) const CHAIN_LAST: &[&str] = &[
     "and to conclude, ",
     "at the very end, ",
     "and finally, ",
+    "to round it all off, ",
+    "as a last step, ",
+    "your final stop: ",
+    "and to finish up, ",
+    "ultimately, ",
+    "lastly, ",
 ];
 
 #[cfg(test)]
@@ -1436,6 +2319,14 @@ mod tests {
         ASIDE,
         CLOSE,
         TURN_AROUND,
+        MOVE_WHOLE,
+        OVERSHOOT,
+        ONLY_ONE,
+        CANT_MISS,
+        ROOM_SMALL,
+        ROOM_BIG,
+        HALL_LONG,
+        NUMBERED,
     ];
 
     #[test]

@@ -1,6 +1,6 @@
 //! The default, template-based instruction generator.
 
-use super::lexicon::shape_words;
+use super::lexicon::{class_uses, color_phrases, material_noun, material_words, shape_words};
 use super::path::{env_side, floor_points, footprint, segment_headings, TurnConfig};
 use super::phrases::{self as ph, capitalize, decapitalize, fill, pick};
 use super::{InstructionGenerator, PathContext};
@@ -176,6 +176,14 @@ impl InstructionGenerator for TemplateGenerator {
             _ => String::new(),
         };
         let room = expr.room.map(|r| format!("the {}", r.kind.words()));
+        // Now and then a remark on the target from what the scene model holds: its material,
+        // the shade of its colour, what its class is for, or where it stands in its room.
+        let remark = ctx
+            .scene
+            .object(target)
+            .filter(|_| rng.random_bool(0.35))
+            .and_then(|o| target_remark(ctx, o, &expr.class.words(), style, &mut rng))
+            .unwrap_or_default();
         let text = match style {
             Style::Formal => {
                 let rc = room
@@ -187,7 +195,7 @@ impl InstructionGenerator for TemplateGenerator {
                     &[("desc", &desc), ("sup", &sup), ("rel", &rel), ("room", &rc)],
                 );
                 format!(
-                    "{}{core}{}",
+                    "{}{core}{remark}{}",
                     pick(&mut rng, ph::FORMAL_OPEN),
                     pick(&mut rng, ph::FORMAL_CLOSE)
                 )
@@ -209,7 +217,13 @@ impl InstructionGenerator for TemplateGenerator {
                 } else {
                     core
                 };
-                format!("{open}{core}{}", pick(&mut rng, ph::NATURAL_CLOSE))
+                let close = pick(&mut rng, ph::NATURAL_CLOSE);
+                let close = if !remark.is_empty() && close.starts_with(',') {
+                    "."
+                } else {
+                    close
+                };
+                format!("{open}{core}{remark}{close}")
             }
             Style::Casual => {
                 let rc = room
@@ -221,7 +235,7 @@ impl InstructionGenerator for TemplateGenerator {
                     &[("desc", &desc), ("sup", &sup), ("rel", &rel), ("room", &rc)],
                 );
                 format!(
-                    "{}{core}{}",
+                    "{}{core}{remark}{}",
                     pick(&mut rng, ph::CASUAL_OPEN),
                     pick(&mut rng, ph::CASUAL_CLOSE)
                 )
@@ -264,6 +278,75 @@ impl InstructionGenerator for TemplateGenerator {
     fn chain(&self, parts: &[Instruction], seed: u64) -> Result<Instruction> {
         chain_parts(parts, seed)
     }
+}
+
+/// A remark on `o` in the style's register ("It is made of wood", " - kinda navy"), from its
+/// material, the shade of its colour, its class's use or its place in the room; `None` when the
+/// scene model holds none of these.
+fn target_remark(
+    ctx: &PathContext<'_>,
+    o: &SceneObject,
+    name: &str,
+    style: Style,
+    rng: &mut ChaCha8Rng,
+) -> Option<String> {
+    let (mat_b, shade_b, use_b, place_b) = match style {
+        Style::Formal => (
+            ph::FORMAL_MATERIAL,
+            ph::FORMAL_SHADE,
+            ph::FORMAL_USE,
+            ph::FORMAL_PLACE,
+        ),
+        Style::Natural => (
+            ph::NATURAL_MATERIAL,
+            ph::NATURAL_SHADE,
+            ph::NATURAL_USE,
+            ph::NATURAL_PLACE,
+        ),
+        Style::Casual => (
+            ph::CASUAL_MATERIAL,
+            ph::CASUAL_SHADE,
+            ph::CASUAL_USE,
+            ph::CASUAL_PLACE,
+        ),
+    };
+    let mats = material_words(o);
+    // Shades only: the plain colour word is already in the description when it is needed.
+    let shades: Vec<String> = color_phrases(o).into_iter().skip(1).collect();
+    let uses = class_uses(o.class);
+    let place = super::describe::room_feature(ctx.scene, o);
+    let mut kinds: Vec<u8> = Vec::new();
+    for (k, ok) in [
+        (0u8, !mats.is_empty()),
+        (1, !shades.is_empty()),
+        (2, !uses.is_empty()),
+        (3, place.is_some()),
+    ] {
+        if ok {
+            kinds.push(k);
+        }
+    }
+    if kinds.is_empty() {
+        return None;
+    }
+    Some(match kinds[rng.random_range(0..kinds.len())] {
+        0 => {
+            let a = pick(rng, mats);
+            fill(pick(rng, mat_b), &[("a", a), ("m", material_noun(a))])
+        }
+        1 => {
+            let c = &shades[rng.random_range(0..shades.len())];
+            fill(pick(rng, shade_b), &[("c", c)])
+        }
+        2 => fill(
+            pick(rng, use_b),
+            &[("use", pick(rng, uses)), ("name", name)],
+        ),
+        _ => fill(
+            pick(rng, place_b),
+            &[("f", pick(rng, place.unwrap_or(&[])))],
+        ),
+    })
 }
 
 fn capitalize_sentence(s: &str, style: Style) -> String {
