@@ -1,4 +1,5 @@
-//! A compact triangle BVH for camera rays (the per-pixel hot loop of the ray-cast backend).
+//! A compact triangle BVH for camera rays (the per-pixel hot loop of the ray-cast backend in
+//! `vlnverse-sensors`) and for the light baker ([`crate::light`]).
 //!
 //! parry's generic BVH answers LiDAR and single queries; images need ~10^5 rays per view, where a
 //! flat node array, a slab test with a precomputed inverse direction and near-child-first
