@@ -3,6 +3,7 @@
 //! (or the goal view of a coarse episode) with the same CPU rasteriser as the reference images.
 
 use std::path::Path;
+use std::sync::{Arc, Mutex};
 
 use glam::{Vec2, Vec3};
 use vlnverse_env::ObjectId;
@@ -17,6 +18,8 @@ use crate::instructions::{PathContext, TemplateGenerator};
 pub const LLM_REPORT_FILE: &str = "llm_report.json";
 /// Default folder of the reply cache, in the dataset folder.
 pub const LLM_CACHE_DIR: &str = ".llm-cache";
+/// Scenes whose renderers the frame source keeps.
+const RENDERERS_KEPT: usize = 8;
 
 /// The template generator behind the LLM stage of `config`, caching replies under `out`
 /// unless the config names a cache folder.
@@ -29,8 +32,28 @@ pub fn llm_generator(
     if config.cache_dir.is_none() {
         config.cache_dir = Some(out.join(LLM_CACHE_DIR));
     }
+    // Preparing a scene for rendering bakes its light: keep the last few scenes' renderers
+    // (workers handle one scene at a time, so a handful covers every worker).
+    let cache: Mutex<Vec<(String, Arc<ReferenceRenderer>)>> = Mutex::new(Vec::new());
     let frames = move |ctx: &PathContext<'_>, target: Option<ObjectId>, n: u32| {
-        frames(ctx, target, n, &image)
+        if n == 0 {
+            return Ok(Vec::new());
+        }
+        let renderer = {
+            let mut c = cache.lock().unwrap_or_else(|p| p.into_inner());
+            match c.iter().find(|(id, _)| *id == ctx.scene.id) {
+                Some((_, r)) => r.clone(),
+                None => {
+                    let r = Arc::new(ReferenceRenderer::new(ctx.scene, &image)?);
+                    if c.len() >= RENDERERS_KEPT {
+                        c.remove(0);
+                    }
+                    c.push((ctx.scene.id.clone(), r.clone()));
+                    r
+                }
+            }
+        };
+        frames(ctx, &renderer, target, n, &image)
     };
     Ok(LlmGenerator::new(TemplateGenerator::default(), config)?.with_frames(Box::new(frames)))
 }
@@ -39,6 +62,7 @@ pub fn llm_generator(
 /// from the start to the end of the path, each facing along the path.
 pub fn frames(
     ctx: &PathContext<'_>,
+    r: &ReferenceRenderer,
     target: Option<ObjectId>,
     n: u32,
     image: &ImageConfig,
@@ -50,7 +74,6 @@ pub fn frames(
     if n == 0 {
         return Ok(Vec::new());
     }
-    let r = ReferenceRenderer::new(ctx.scene, image)?;
     if let Some(id) = target {
         let centre = ctx
             .scene
