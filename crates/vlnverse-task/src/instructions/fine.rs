@@ -43,8 +43,8 @@ enum Writer {
 impl Writer {
     fn draw(rng: &mut ChaCha8Rng) -> Writer {
         match rng.random_range(0..10) {
-            0 | 1 => Writer::Terse,
-            2..=5 => Writer::Plain,
+            0..=2 => Writer::Terse,
+            3..=5 => Writer::Plain,
             6 | 7 => Writer::Chatty,
             _ => Writer::Precise,
         }
@@ -52,10 +52,10 @@ impl Writer {
     /// Probability of giving a leg's distance.
     fn distance(self) -> f64 {
         match self {
-            Writer::Terse => 0.25,
-            Writer::Plain => 0.5,
-            Writer::Chatty => 0.4,
-            Writer::Precise => 0.9,
+            Writer::Terse => 0.2,
+            Writer::Plain => 0.35,
+            Writer::Chatty => 0.3,
+            Writer::Precise => 0.75,
         }
     }
     fn np(self) -> NpOptions {
@@ -310,7 +310,7 @@ fn turn_clause(
 }
 
 /// "walk forward about 3 metres", "stroll on slowly".
-fn move_clause(len: f32, w: Writer, rng: &mut ChaCha8Rng) -> String {
+fn move_clause(len: f32, w: Writer, landmark: bool, rng: &mut ChaCha8Rng) -> String {
     if rng.random_bool(0.12) {
         return pick(rng, ph::MOVE_WHOLE).to_string();
     }
@@ -318,9 +318,13 @@ fn move_clause(len: f32, w: Writer, rng: &mut ChaCha8Rng) -> String {
     let dir = if verb.contains("path") {
         ""
     } else {
-        pick(rng, ph::ONWARD)
+        match pick(rng, ph::ONWARD) {
+            // Not "press on on ahead".
+            d if verb.ends_with(" on") && (d == "on" || d.starts_with("on ")) => "ahead",
+            d => d,
+        }
     };
-    let manner = if w == Writer::Terse {
+    let manner = if w == Writer::Terse || rng.random_bool(0.65) {
         ""
     } else {
         pick(rng, ph::MANNER)
@@ -332,7 +336,9 @@ fn move_clause(len: f32, w: Writer, rng: &mut ChaCha8Rng) -> String {
             s.push_str(part);
         }
     }
-    if rng.random_bool(w.distance()) {
+    // A landmark on the leg often stands in for its distance.
+    let p = if landmark { 0.5 } else { 1.0 } * w.distance();
+    if rng.random_bool(p) {
         let d = distance_phrase(len, w, rng);
         let join = if d.starts_with("a ") || rng.random_bool(0.5) {
             " "
@@ -448,7 +454,7 @@ fn room_change(
         .replace("{room}", &to_np);
     }
     let door = door_np(scene, from, to, at, rng);
-    match (rng.random_range(0..6), door) {
+    match (rng.random_range(0..8), door) {
         (0 | 1, Some(d)) => fill(
             pick(rng, ph::THROUGH_DOOR),
             &[("door", &d), ("room", &to_np)],
@@ -562,7 +568,7 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
     let numbered = matches!(writer, Writer::Plain | Writer::Precise) && rng.random_bool(0.12);
     let number_form = pick(&mut rng, ph::NUMBERED);
     let mut step_no = 0u32;
-    let start_p = if writer == Writer::Terse { 0.15 } else { 0.6 };
+    let start_p = if writer == Writer::Terse { 0.1 } else { 0.35 };
     if let Some(&(_, r0)) = rooms.first() {
         if rng.random_bool(start_p) {
             let room = room_np(ctx.scene, r0, room_syn, &mut rng);
@@ -585,7 +591,7 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
         Writer::Precise => cfg.max_landmarks_per_leg,
         _ => cfg.max_landmarks_per_leg.min(1),
     };
-    let mut budget = if writer == Writer::Terse { 2 } else { 4 };
+    let mut budget = if writer == Writer::Precise { 3 } else { 2 };
     for (li, leg) in legs.iter().enumerate() {
         // Landmarks of this leg: left / right / ahead, closest first, distinct classes.
         let mut mine: Vec<&Landmark> = landmarks
@@ -606,7 +612,7 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
             && matches!(leg.turn, Turn::Slight(_))
             && li > 0
             && li + 1 < legs.len()
-            && rng.random_bool(0.6)
+            && rng.random_bool(0.8)
         {
             continue;
         }
@@ -666,13 +672,32 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
                 after = Some(fill(pick(&mut rng, ph::AFTER_OBJ), &[("obj", &m.text)]));
             }
         }
-        let changes: Vec<String> = (1..rooms.len())
+        let ks: Vec<usize> = (1..rooms.len())
             .filter(|&k| leg_of(rooms[k].0) == li)
-            .map(|k| {
-                let at = pts[rooms[k].0.min(n - 1)];
-                room_change(ctx, rooms[k - 1].1, rooms[k].1, at, room_syn, &mut rng)
-            })
             .collect();
+        // Several rooms crossed on one leg are often said in one go ("go through the bedroom
+        // into the office"); every room entered is still named by its type.
+        let changes: Vec<String> = if ks.len() >= 2 && rng.random_bool(0.7) {
+            let kind = |k: usize| {
+                ctx.scene
+                    .room(rooms[k].1)
+                    .map(|r| format!("the {}", r.kind.words()))
+                    .unwrap_or_else(|| "the next room".into())
+            };
+            let mids: Vec<String> = ks[..ks.len() - 1].iter().map(|&k| kind(k)).collect();
+            let last = kind(ks[ks.len() - 1]);
+            vec![fill(
+                pick(&mut rng, ph::THROUGH_ROOMS),
+                &[("mid", &mids.join(" and then ")), ("room", &last)],
+            )]
+        } else {
+            ks.iter()
+                .map(|&k| {
+                    let at = pts[rooms[k].0.min(n - 1)];
+                    room_change(ctx, rooms[k - 1].1, rooms[k].1, at, room_syn, &mut rng)
+                })
+                .collect()
+        };
 
         let entered = (1..rooms.len())
             .rev()
@@ -697,7 +722,7 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
                 let room = room_np(ctx.scene, r, room_syn, &mut rng);
                 fill(pick(&mut rng, ph::THROUGH_ROOM), &[("room", &room)])
             }
-            _ => move_clause(leg.len, writer, &mut rng),
+            _ => move_clause(leg.len, writer, !named.is_empty(), &mut rng),
         };
         let lm_clause = |m: &Named, rng: &mut ChaCha8Rng| {
             if m.side == Side::Ahead {
@@ -721,12 +746,20 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
             && changes.is_empty()
             && turn.is_some()
             && li + 1 < legs.len()
-            && rng.random_bool(0.7);
+            && (writer == Writer::Terse || rng.random_bool(if li >= 2 { 0.95 } else { 0.8 }));
         // Sentence plans.
         let mut out: Vec<String> = Vec::new();
         let lateral_first = named.first().is_some_and(|m| m.side != Side::Ahead);
         let ahead_last = named.last().is_some_and(|m| m.side == Side::Ahead);
-        let plan = if bare { 0 } else { rng.random_range(0..6) };
+        // A leg into another room is often only its turn and the room change ("Turn left into
+        // the kitchen"), more so further along a long route.
+        let plan = if bare {
+            0
+        } else if !changes.is_empty() && rng.random_bool(if li >= 1 { 0.6 } else { 0.4 }) {
+            4
+        } else {
+            rng.random_range(0..6)
+        };
         match plan {
             // "With the sofa on your left, turn right and walk on."
             1 if lateral_first => {
@@ -829,7 +862,7 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
         }
         // Now and then a word on the size of the room just entered.
         if let Some(r) = entered.and_then(|r| ctx.scene.room(r)) {
-            if writer != Writer::Terse && rng.random_bool(0.15) {
+            if writer != Writer::Terse && rng.random_bool(0.1) {
                 let area = r.area();
                 let bank = if r.kind == RoomType::Hallway {
                     (area > 6.0).then_some(ph::HALL_LONG)
@@ -890,7 +923,7 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
         grounding.extend(extra);
         let mut s = fill(pick(&mut rng, ph::STOP_AT), &[("obj", &obj)]);
         if let Some(sd @ (Side::Left | Side::Right)) = side {
-            if rng.random_bool(0.5) {
+            if rng.random_bool(0.35) {
                 let sp = fill(pick(&mut rng, ph::SIDE), &[("dir", side_word(sd))]);
                 s = match rng.random_range(0..3) {
                     0 => format!("{s}, which is {sp}"),
@@ -903,9 +936,15 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
     } else if let Some(r) = last_room {
         let room = room_np(ctx.scene, r, room_syn, &mut rng);
         match end_place(ctx.scene, Some(r), end, end_heading, &mut rng) {
-            Some(w) if rng.random_bool(0.6) => fill(
+            // "stop in the far left corner of the kitchen"; other places after a comma
+            // ("wait just inside the kitchen, with the wall behind you").
+            Some(w) if w.contains("corner") && rng.random_bool(0.6) => fill(
                 pick(&mut rng, ph::STOP_ROOM_WHERE),
                 &[("room", &room), ("where", &w)],
+            ),
+            Some(w) if rng.random_bool(0.6) => format!(
+                "{}, {w}",
+                fill(pick(&mut rng, ph::STOP_ROOM), &[("room", &room)])
             ),
             _ => fill(pick(&mut rng, ph::STOP_ROOM), &[("room", &room)]),
         }
@@ -936,6 +975,22 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
         if let Some(room) = room_beyond(ctx, end, end_heading, &walls, cfg.sight_slack) {
             sentences.push(fill(pick(&mut rng, ph::OVERSHOOT), &[("room", &room)]));
         }
+    }
+    if matches!(writer, Writer::Chatty | Writer::Plain) && rng.random_bool(0.08) {
+        // At an easy walking pace of about a metre a second.
+        let secs = pts.windows(2).map(|w| w[0].distance(w[1])).sum::<f32>();
+        let t = match secs {
+            s if s < 8.0 => "a few seconds".to_string(),
+            s if (25.0..35.0).contains(&s) => "about half a minute".to_string(),
+            s if s < 50.0 => format!(
+                "{} {} seconds",
+                pick(&mut rng, &["about", "roughly", "around"]),
+                number_word(((s / 5.0).round() * 5.0) as u32)
+            ),
+            s if s < 75.0 => "about a minute".to_string(),
+            _ => "a minute or two".to_string(),
+        };
+        sentences.push(fill(pick(&mut rng, ph::WALK_TIME), &[("t", &t)]));
     }
     if rng.random_bool(if chatty { 0.5 } else { 0.04 }) {
         sentences.push(pick(&mut rng, ph::CLOSE).to_string());

@@ -175,7 +175,22 @@ impl InstructionGenerator for TemplateGenerator {
             }
             _ => String::new(),
         };
-        let room = expr.room.map(|r| format!("the {}", r.kind.words()));
+        // The room, now and then with its size from the floor area ("the spacious kitchen").
+        let room = expr.room.map(|r| {
+            let area = ctx.scene.room(r.room).map_or(15.0, |x| x.area());
+            let size: &[&str] = if area > 24.0 {
+                &["large", "big", "spacious", "roomy", "sizeable"]
+            } else if area < 8.0 {
+                &["small", "little", "compact", "cosy", "snug"]
+            } else {
+                &[]
+            };
+            if !size.is_empty() && rng.random_bool(0.25) {
+                format!("the {} {}", pick(&mut rng, size), r.kind.words())
+            } else {
+                format!("the {}", r.kind.words())
+            }
+        });
         // Now and then a remark on the target from what the scene model holds: its material,
         // the shade of its colour, what its class is for, or where it stands in its room.
         let remark = ctx
