@@ -27,7 +27,8 @@ def test_check_env_passes_for_every_task_and_action_space(dataset: Path, task: s
     assert obs["rgb"].shape == (224, 224, 3) and obs["rgb"].dtype == np.uint8
     assert obs["depth"].shape == (256, 256, 1) and obs["depth"].dtype == np.float32
     assert 0.0 <= float(obs["depth"].min()) and float(obs["depth"].max()) <= 1.0
-    assert obs["instruction"] and obs["instruction_tokens"][0] > 1
+    # Tokens in the vocabulary (ids > 1); a word only val/test instructions use is <unk> (1).
+    assert obs["instruction"] and int((obs["instruction_tokens"] > 1).sum()) >= 3
     expert = np.asarray(info["expert_action"], dtype=env.action_space.dtype)
     assert env.action_space.contains(expert)
     if task == "dialogue":
