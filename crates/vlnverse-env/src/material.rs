@@ -99,48 +99,21 @@ impl Surface {
     }
 
     /// The texture: `TEX_SIZE * TEX_SIZE` RGB multipliers (255 = 1), row-major, `v` down the
-    /// rows: [`Surface::luma`] times [`Surface::tint`]. Built once per process.
+    /// rows. Built once per process.
     pub fn texture(self) -> &'static [[u8; 3]] {
         static TEX: OnceLock<Vec<Vec<[u8; 3]>>> = OnceLock::new();
-        &TEX.get_or_init(|| {
-            Surface::ALL
-                .iter()
-                .map(|s| {
-                    let tint = s.tint();
-                    s.luma()
-                        .iter()
-                        .map(|&g| tint.map(|t| (g as f32 * t).round().min(255.0) as u8))
-                        .collect()
-                })
-                .collect()
-        })[self.index()]
+        &TEX.get_or_init(|| Surface::ALL.iter().map(|s| s.generate()).collect())[self.index()]
     }
 
-    /// The grey part of the texture (renderers fetch one byte per texel and fold the tint into
-    /// the vertex colours).
-    pub fn luma(self) -> &'static [u8] {
-        static LUMA: OnceLock<Vec<Vec<u8>>> = OnceLock::new();
-        &LUMA.get_or_init(|| Surface::ALL.iter().map(|s| s.generate()).collect())[self.index()]
-    }
-
-    /// The constant colour cast of the texture (warm wood), per channel.
-    pub fn tint(self) -> [f32; 3] {
-        match self {
-            Surface::WoodFloor => [1.02, 1.0, 0.96],
-            Surface::Wood => [1.02, 1.0, 0.95],
-            _ => [1.0; 3],
-        }
-    }
-
-    fn generate(self) -> Vec<u8> {
+    fn generate(self) -> Vec<[u8; 3]> {
         let n = TEX_SIZE;
         let seed = 0x9e37_79b9 ^ (self.index() as u32).wrapping_mul(0x85eb_ca6b);
         let mut out = Vec::with_capacity(n * n);
         for y in 0..n {
             for x in 0..n {
                 let (fx, fy) = (x as f32, y as f32);
-                let v: f32 = match self {
-                    Surface::Plain => 0.9,
+                let v: [f32; 3] = match self {
+                    Surface::Plain => [0.9; 3],
                     Surface::Plaster => {
                         grey(0.86 + 0.05 * fbm(seed, fx, fy, 16.0) + 0.02 * hash01(seed, x, y))
                     }
@@ -169,11 +142,8 @@ impl Surface {
                         let joint = (x + off).is_multiple_of(64) || y.is_multiple_of(16);
                         let tone = 0.78 + 0.14 * hash01(seed, plank, row);
                         let grain = 0.06 * (fy * 0.9 + 6.0 * fbm(seed ^ 5, fx, fy, 24.0)).sin();
-                        if joint {
-                            0.5
-                        } else {
-                            tone + grain
-                        }
+                        let k = if joint { 0.5 } else { tone + grain };
+                        [k * 1.02, k, k * 0.96]
                     }
                     Surface::Tiles => {
                         let grout = x % 32 < 2 || y % 32 < 2;
@@ -189,7 +159,8 @@ impl Surface {
                     }
                     Surface::Wood => {
                         let g = (fx * 0.35 + 9.0 * fbm(seed, fx, fy, 32.0)).sin();
-                        0.8 + 0.08 * g + 0.04 * fbm(seed ^ 3, fx, fy, 4.0)
+                        let k = 0.8 + 0.08 * g + 0.04 * fbm(seed ^ 3, fx, fy, 4.0);
+                        [k * 1.02, k, k * 0.95]
                     }
                     Surface::Fabric => {
                         let warp = (x / 2 + y / 2) % 2 == 0;
@@ -201,15 +172,15 @@ impl Surface {
                     Surface::Metal => grey(0.82 + 0.1 * fbm(seed, fx * 0.05, fy, 3.0)),
                     Surface::Ceramic => grey(0.92 + 0.03 * fbm(seed, fx, fy, 32.0)),
                 };
-                out.push((v.clamp(0.0, 1.0) * 255.0).round() as u8);
+                out.push(v.map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8));
             }
         }
         out
     }
 }
 
-fn grey(v: f32) -> f32 {
-    v
+fn grey(v: f32) -> [f32; 3] {
+    [v; 3]
 }
 
 fn hash(seed: u32, x: usize, y: usize) -> u32 {
@@ -318,7 +289,7 @@ mod tests {
         for s in Surface::ALL {
             let t = s.texture();
             assert_eq!(t.len(), TEX_SIZE * TEX_SIZE);
-            assert_eq!(s.luma(), s.generate().as_slice(), "{s:?}");
+            assert_eq!(t, s.generate().as_slice(), "{s:?}");
             let distinct: std::collections::BTreeSet<_> = t.iter().collect();
             assert_eq!(distinct.len() == 1, s == Surface::Plain, "{s:?}");
         }

@@ -338,12 +338,11 @@ fn create_context() -> std::result::Result<GpuContext, String> {
     })
 }
 
-/// Every surface texture's grey part stacked vertically in one `Rgba8Unorm` texture
-/// (multipliers, not sRGB; tints are in the vertex colours, as on the CPU).
+/// Every surface texture stacked vertically in one `Rgba8Unorm` texture (multipliers, not sRGB).
 fn surfaces_texture(device: &wgpu::Device, queue: &wgpu::Queue) -> wgpu::TextureView {
     let texels: Vec<u8> = Surface::ALL
         .iter()
-        .flat_map(|s| s.luma().iter().flat_map(|&g| [g, g, g, 255]))
+        .flat_map(|s| s.texture().iter().flat_map(|t| [t[0], t[1], t[2], 255]))
         .collect();
     let size = wgpu::Extent3d {
         width: TEX_SIZE as u32,

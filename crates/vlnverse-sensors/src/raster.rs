@@ -96,9 +96,8 @@ pub struct RasterScene {
     tag_object: Vec<u32>,
     /// Look of each triangle.
     look: Vec<Look>,
-    /// Every surface texture's grey part ([`Surface::luma`]), one after the other
-    /// ([`Surface::ALL`] order); tints are in the vertex colours.
-    texels: Vec<u8>,
+    /// Every surface texture, one after the other ([`Surface::ALL`] order).
+    texels: Vec<[u8; 3]>,
     /// Linear (times 255, for the texel factor) -> sRGB byte.
     lut: Vec<u8>,
     /// Unit geometric normal per triangle (as [`SceneMesh::normal`]).
@@ -380,7 +379,7 @@ impl RasterScene {
             look,
             texels: Surface::ALL
                 .iter()
-                .flat_map(|s| s.luma().iter().copied())
+                .flat_map(|s| s.texture().iter().copied())
                 .collect(),
             lut: (0..LUT)
                 .map(|i| shading::encode(i as f32 / (LUT - 1) as f32))
@@ -782,10 +781,10 @@ impl RasterScene {
                 // floor(t) as round(t - 0.5); the mask wraps negative coordinates too.
                 let tu = (at(3) - 0.5 + MAGIC).to_bits() & MASK;
                 let tv = (at(4) - 0.5 + MAGIC).to_bits() & MASK;
-                let t = texels[(s.tex + tv * TEX_SIZE as u32 + tu) as usize] as f32 * scale;
-                px[0] = lut[index(at(0) * t)];
-                px[1] = lut[index(at(1) * t)];
-                px[2] = lut[index(at(2) * t)];
+                let t = texels[(s.tex + tv * TEX_SIZE as u32 + tu) as usize];
+                px[0] = lut[index(at(0) * t[0] as f32 * scale)];
+                px[1] = lut[index(at(1) * t[1] as f32 * scale)];
+                px[2] = lut[index(at(2) * t[2] as f32 * scale)];
             }
         }
     }

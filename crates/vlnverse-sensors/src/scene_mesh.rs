@@ -14,7 +14,7 @@ use vlnverse_env::{Aabb, Scene};
 /// How one triangle looks: per corner, the lit linear colour and texture coordinates.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TriLook {
-    /// Part colour times baked light and the texture's tint at each corner (linear RGB).
+    /// Part colour times baked light at each corner (linear RGB).
     pub corner: [[f32; 3]; 3],
     /// Texture coordinates of each corner in texels of a [`TEX_SIZE`] texture (repeating).
     pub uv: [[f32; 2]; 3],
@@ -82,7 +82,6 @@ impl SceneMesh {
         for o in &scene.objects {
             let surface = surface_of(scene, o);
             let texels = TEX_SIZE as f32 / surface.repeat();
-            let tint = surface.tint();
             for part in &o.parts {
                 let tm = triangulate_part(part, &o.pose);
                 let lights = light
@@ -98,7 +97,7 @@ impl SceneMesh {
                     let v = t.map(|i| Vec3::from_array(tm.positions[i as usize]));
                     let corner = t.map(|i| {
                         let l = lights.map_or([200; 3], |l| l[i as usize]);
-                        [0, 1, 2].map(|k| base[k] * tint[k] * l[k] as f32 / 255.0)
+                        [0, 1, 2].map(|k| base[k] * l[k] as f32 / 255.0)
                     });
                     let uv = t.map(|i| {
                         let i = i as usize;
@@ -180,8 +179,9 @@ impl SceneMesh {
         let mask = TEX_SIZE as i32 - 1;
         let tu = ((at(l.uv.map(|p| p[0])) + bias) as i32) & mask;
         let tv = ((at(l.uv.map(|p| p[1])) + bias) as i32) & mask;
-        let texel = l.surface.luma()[(tv * TEX_SIZE as i32 + tu) as usize] as f32 / 255.0;
-        [0, 1, 2].map(|k| crate::shading::encode(at(l.corner.map(|c| c[k])) * texel))
+        let texel = l.surface.texture()[(tv * TEX_SIZE as i32 + tu) as usize];
+        [0, 1, 2]
+            .map(|k| crate::shading::encode(at(l.corner.map(|c| c[k])) * texel[k] as f32 / 255.0))
     }
 
     /// Geometric unit normal of triangle `i`.
