@@ -7,7 +7,7 @@ use glam::Vec3;
 /// Segments around a cylinder.
 pub const CYLINDER_SEGMENTS: u32 = 16;
 /// Largest side in metres of the grid cells a box face is cut into (see [`triangulate`]).
-pub const MAX_CELL: f32 = 0.6;
+pub const MAX_CELL: f32 = 0.5;
 /// Latitude bands of a sphere (longitude uses twice as many).
 pub const SPHERE_BANDS: u32 = 6;
 

@@ -52,6 +52,9 @@ const TILE: usize = 8;
 
 /// Entries of the linear -> sRGB byte table of the resolve pass.
 const LUT: usize = 4096;
+/// Texture coordinates are offset by this many texels before truncation, so that negative ones
+/// wrap like positive ones (a multiple of the texture size).
+const UV_BIAS: f32 = (TEX_SIZE * 256) as f32;
 
 /// How a triangle's look varies over it: corner 0 and the vectors giving the barycentric
 /// weights of corners 1 and 2 of a point `q` on its plane (`(q - a) . wu`, `(q - a) . wv`),
@@ -750,17 +753,9 @@ impl RasterScene {
         ids: &[u32],
         rgb: &mut [u8],
     ) {
-        // Float -> int by the magic-number trick (adding 1.5 * 2^23 leaves the rounded value
-        // in the low mantissa bits): no saturating conversions, no branches in the hot loop.
-        const MAGIC: f32 = 12_582_912.0;
-        const MASK: u32 = TEX_SIZE as u32 - 1;
+        const MASK: i32 = TEX_SIZE as i32 - 1;
         let scale = (LUT - 1) as f32 / 255.0;
         let lut = &self.lut[..LUT];
-        let texels = &self.texels[..];
-        let index = |v: f32| -> usize {
-            let v = if v > 0.0 { v } else { 0.0 };
-            ((v.min(65_536.0) + MAGIC).to_bits() & 0x3f_ffff).min(LUT as u32 - 1) as usize
-        };
         for (row, ((zr, ir), out)) in zbuf
             .chunks_exact(w)
             .zip(ids.chunks_exact(w))
@@ -778,13 +773,13 @@ impl RasterScene {
                 let s = &setup.slots[*id as usize - 1];
                 let (xf, inv) = (x as f32, 1.0 / *iz);
                 let at = |k: usize| (s.k[k][0] * xf + s.k[k][1] * y + s.k[k][2]) * inv;
-                // floor(t) as round(t - 0.5); the mask wraps negative coordinates too.
-                let tu = (at(3) - 0.5 + MAGIC).to_bits() & MASK;
-                let tv = (at(4) - 0.5 + MAGIC).to_bits() & MASK;
-                let t = texels[(s.tex + tv * TEX_SIZE as u32 + tu) as usize];
-                px[0] = lut[index(at(0) * t[0] as f32 * scale)];
-                px[1] = lut[index(at(1) * t[1] as f32 * scale)];
-                px[2] = lut[index(at(2) * t[2] as f32 * scale)];
+                let tu = ((at(3) + UV_BIAS) as i32) & MASK;
+                let tv = ((at(4) + UV_BIAS) as i32) & MASK;
+                let t = self.texels[s.tex as usize + (tv * TEX_SIZE as i32 + tu) as usize];
+                let enc = |c: f32, t: u8| lut[((c * t as f32 * scale) as usize).min(LUT - 1)];
+                px[0] = enc(at(0), t[0]);
+                px[1] = enc(at(1), t[1]);
+                px[2] = enc(at(2), t[2]);
             }
         }
     }
