@@ -1,5 +1,4 @@
-//! A compact triangle BVH for camera rays (the per-pixel hot loop of the ray-cast backend in
-//! `vlnverse-sensors`) and for the light baker ([`crate::light`]).
+//! A compact triangle BVH for camera rays (the per-pixel hot loop of the ray-cast backend).
 //!
 //! parry's generic BVH answers LiDAR and single queries; images need ~10^5 rays per view, where a
 //! flat node array, a slab test with a precomputed inverse direction and near-child-first
