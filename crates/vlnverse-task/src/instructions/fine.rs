@@ -488,9 +488,7 @@ fn room_beyond(
     let here = ctx.scene.room_at(end.x, end.y)?;
     for k in 1..=4 {
         let q = end + heading * (0.75 * k as f32);
-        let Some(r) = ctx.scene.room_at(q.x, q.y) else {
-            return None;
-        };
+        let r = ctx.scene.room_at(q.x, q.y)?;
         if r.id == here.id {
             continue;
         }
