@@ -4,7 +4,8 @@
 //! 2. a virtual environment in `.venv/` with the Python test tools
 //!    (`crates/vlnverse-py/requirements-dev.txt`), the `vlnverse` package built into it by
 //!    maturin, and a `tiny` dataset under `target/py-test-data/`;
-//! 3. ruff and mypy over the Python package, then pytest over `crates/vlnverse-py/tests`.
+//! 3. for each Python suite (the package, the LeRobot export check, the baselines, the browser
+//!    tests): its packages, ruff and mypy; then one pytest over all their tests.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -26,6 +27,67 @@ pub struct Args {
     #[arg(last = true)]
     pub pytest_args: Vec<String>,
 }
+
+/// One Python test suite: a folder with its own packages, lint, types and tests.
+struct Suite {
+    /// Shown in the step names.
+    name: &'static str,
+    /// Folder, relative to the workspace root; a suite whose folder is absent is skipped.
+    dir: &'static str,
+    /// `pip install -r` this file (relative to `dir`) first.
+    requirements: Option<&'static str>,
+    /// `pip install -e dir` (a pure-Python package with a pyproject.toml).
+    editable: bool,
+    /// What ruff checks (relative to `dir`; the folder's pyproject.toml configures it).
+    lint: &'static [&'static str],
+    /// What mypy checks (relative to `dir`).
+    typed: Option<&'static str>,
+    /// The pytest folder (relative to `dir`).
+    tests: &'static str,
+}
+
+/// Every Python suite, in the order pytest runs them. One pytest collects them all (default
+/// import mode), so only `crates/vlnverse-py/tests` is a package with a `conftest.py`; the other
+/// folders have neither `__init__.py` nor `conftest.py`, and their file names are unique
+/// (`test_export_*`, `test_baselines_*`, `test_web_*`, helpers `_<suite>_*.py`).
+const SUITES: &[Suite] = &[
+    Suite {
+        name: "vlnverse",
+        dir: "crates/vlnverse-py",
+        requirements: None,
+        editable: false,
+        lint: &["python", "tests", "bench", "../../examples/python"],
+        typed: Some("python/vlnverse"),
+        tests: "tests",
+    },
+    Suite {
+        name: "export (LeRobot)",
+        dir: "crates/vlnverse-export/python-tests",
+        requirements: Some("requirements.txt"),
+        editable: false,
+        lint: &["."],
+        typed: None,
+        tests: ".",
+    },
+    Suite {
+        name: "baselines",
+        dir: "baselines",
+        requirements: Some("requirements.txt"),
+        editable: true,
+        lint: &["."],
+        typed: Some("vlnverse_baselines"),
+        tests: "tests",
+    },
+    Suite {
+        name: "web (browser)",
+        dir: "crates/vlnverse-web/browser-tests",
+        requirements: Some("requirements.txt"),
+        editable: false,
+        lint: &["."],
+        typed: None,
+        tests: ".",
+    },
+];
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -95,24 +157,68 @@ pub fn run_tests(args: Args) -> anyhow::Result<()> {
             .args(["generate", "--preset", "tiny", "--out"])
             .arg(&data),
     )?;
-    run(
-        "ruff (python lint)",
-        Command::new(venv.join("bin").join("ruff"))
-            .current_dir(&pkg)
-            .args(["check", "python", "tests", "bench", "../../examples/python"]),
-    )?;
-    run(
-        "mypy (python types)",
-        Command::new(&py)
-            .current_dir(&pkg)
-            .args(["-m", "mypy", "python/vlnverse"]),
-    )?;
+    for suite in SUITES {
+        if !root.join(suite.dir).exists() {
+            continue;
+        }
+        if let Some(req) = suite.requirements {
+            run(
+                &format!("{}: python packages", suite.name),
+                Command::new(&py)
+                    .current_dir(root.join(suite.dir))
+                    .args(["-m", "pip", "install", "-q", "-r", req]),
+            )?;
+        }
+        if suite.editable {
+            run(
+                &format!("{}: editable install", suite.name),
+                Command::new(&py)
+                    .current_dir(&root)
+                    .args([
+                        "-m",
+                        "pip",
+                        "install",
+                        "-q",
+                        "--no-deps",
+                        "--no-build-isolation",
+                        "-e",
+                    ])
+                    .arg(suite.dir),
+            )?;
+        }
+        run(
+            &format!("{}: ruff (python lint)", suite.name),
+            Command::new(venv.join("bin").join("ruff"))
+                .current_dir(root.join(suite.dir))
+                .arg("check")
+                .args(suite.lint),
+        )?;
+        if let Some(typed) = suite.typed {
+            run(
+                &format!("{}: mypy (python types)", suite.name),
+                Command::new(&py)
+                    .current_dir(root.join(suite.dir))
+                    .args(["-m", "mypy", typed]),
+            )?;
+        }
+    }
+    let mut pytest = Command::new(&py);
+    pytest.current_dir(&root).args([
+        "-m",
+        "pytest",
+        "-q",
+        "-p",
+        "no:cacheprovider",
+        "--import-mode=importlib",
+    ]);
+    for suite in SUITES {
+        if root.join(suite.dir).exists() {
+            pytest.arg(root.join(suite.dir).join(suite.tests));
+        }
+    }
     run(
         "pytest",
-        Command::new(&py)
-            .current_dir(&root)
-            .args(["-m", "pytest", "-q", "-p", "no:cacheprovider"])
-            .arg(pkg.join("tests"))
+        pytest
             .args(&args.pytest_args)
             .env("VLNVERSE_TEST_DATASET", &data)
             .env("VLNVERSE_XTASK", &exe),

@@ -5,13 +5,16 @@ use clap::{Parser, Subcommand};
 
 mod cmd_bench;
 mod cmd_evaluate;
+mod cmd_export;
 mod cmd_generate;
 mod cmd_import;
 mod cmd_merge;
 mod cmd_render;
+mod cmd_review;
 mod cmd_scene_info;
 mod cmd_scenes;
 mod cmd_score;
+mod cmd_serve;
 mod cmd_stats;
 mod cmd_test;
 mod cmd_topdown;
@@ -48,6 +51,12 @@ enum Command {
     Evaluate(cmd_evaluate::Args),
     /// Score trajectories recorded elsewhere with the benchmark's metrics.
     Score(cmd_score::Args),
+    /// Export observations along teacher trajectories as an offline dataset (LeRobot layout).
+    Export(cmd_export::Args),
+    /// Apply review decisions (from the web app's Review mode) to make a reviewed dataset copy.
+    Review(cmd_review::Args),
+    /// Serve the web app: drive episodes, replay runs, review generated instructions.
+    Serve(cmd_serve::Args),
     /// Run the benchmarks that print figures (scenes, geodesic, physics, rendering, metrics).
     Bench(cmd_bench::Args),
     /// Run every test: Rust (cargo test) and Python (the vlnverse package, pytest).
@@ -76,6 +85,9 @@ fn main() {
         Command::Stats(a) => cmd_stats::run(a),
         Command::Evaluate(a) => cmd_evaluate::run(a),
         Command::Score(a) => cmd_score::run(a),
+        Command::Export(a) => cmd_export::run(a),
+        Command::Review(a) => cmd_review::run(a),
+        Command::Serve(a) => cmd_serve::run(a),
         Command::Bench(a) => cmd_bench::run(a),
         Command::Test(a) => cmd_test::run_tests(a),
     };
