@@ -104,7 +104,7 @@ class TrainConfig:
     dagger_batch: int = 4
     episodes: int | None = None
     seed: int = 0
-    threads: int = 2
+    threads: int = 1
     init: str = ""
     extra: dict[str, Any] = field(default_factory=dict)
 

@@ -252,10 +252,7 @@ class Trainer:
                 prev[starts] = 0
                 teacher = np.asarray(infos["expert_action"], dtype=np.int64)
                 valid = ~pending & (teacher >= 0) & (teacher < NUM_ACTIONS)
-                with torch.no_grad():
-                    logits, state = self.model.forward_sequence(
-                        step_batch(rgb, depth, tokens, prev, starts), state, cache=cache)
-                policy = logits[0].argmax(dim=1).numpy().astype(np.int64)
+                policy, state = self._act(rgb, depth, tokens, prev, starts, state, cache)
                 actions, used = mix_actions(np.clip(teacher, 0, NUM_ACTIONS - 1), policy,
                                             p_teacher, self.rng)
                 teacher_used += int(used[valid].sum())
@@ -287,19 +284,10 @@ class Trainer:
             t0 = time.monotonic()
             batch = SeqBatch(*(torch.from_numpy(np.stack(chunk[k])) for k in (
                 "rgb", "depth", "tokens", "prev", "starts", "targets", "weights")))
-            logits, _ = self.model.forward_sequence(batch, state0)
-            loss = imitation_loss(logits, batch)
-            samples += int((batch.weights > 0).sum())
-            if c.dagger and len(buffer) >= c.dagger_batch:
-                picks = self.rng.choice(len(buffer), size=c.dagger_batch, replace=False)
-                replay = collate([buffer[int(i)] for i in picks], c.inflection_weight)
-                r_logits, _ = self.model.forward_sequence(replay, self.model.initial_state(
-                    replay.batch))
-                loss = loss + imitation_loss(r_logits, replay)
-                samples += int((replay.weights > 0).sum())
-            self.step(loss)
+            loss, n_samples = self._update(batch, state0, buffer)
+            samples += n_samples
             cache.clear()  # the weights changed
-            losses.append(float(loss.detach()))
+            losses.append(loss)
             t_model += time.monotonic() - t0
         wall = time.monotonic() - started
         rec: dict[str, Any] = {
@@ -316,6 +304,33 @@ class Trainer:
                 if vals:
                     rec[f"mean_{key}"] = float(np.mean(vals))
         return rec
+
+    @torch.no_grad()
+    def _act(self, rgb: np.ndarray, depth: np.ndarray, tokens: np.ndarray, prev: np.ndarray,
+             starts: np.ndarray, state: torch.Tensor, cache: InstructionCache
+             ) -> tuple[np.ndarray, torch.Tensor]:
+        """The policy's greedy action for every environment (no gradient)."""
+        logits, state = self.model.forward_sequence(
+            step_batch(rgb, depth, tokens, prev, starts), state, cache=cache)
+        return logits[0].argmax(dim=1).numpy().astype(np.int64), state
+
+    def _update(self, batch: SeqBatch, state0: torch.Tensor, buffer: deque[Trajectory]
+                ) -> tuple[float, int]:
+        """One update on the rollout just collected (from its initial recurrent state), plus
+        a teacher-forced batch of aggregated episodes with DAgger; returns loss, samples."""
+        c = self.config
+        logits, _ = self.model.forward_sequence(batch, state0)
+        loss = imitation_loss(logits, batch)
+        samples = int((batch.weights > 0).sum())
+        if c.dagger and len(buffer) >= c.dagger_batch:
+            picks = self.rng.choice(len(buffer), size=c.dagger_batch, replace=False)
+            replay = collate([buffer[int(i)] for i in picks], c.inflection_weight)
+            r_logits, _ = self.model.forward_sequence(replay, self.model.initial_state(
+                replay.batch))
+            loss = loss + imitation_loss(r_logits, replay)
+            samples += int((replay.weights > 0).sum())
+        self.step(loss)
+        return float(loss.detach()), samples
 
 
 def read_vocab(dataset: str) -> tuple[int, str]:
