@@ -126,8 +126,7 @@ def train(args: argparse.Namespace) -> int:
             from vlnverse_baselines.lerobot_data import load_lerobot_trajectories
 
             trajs = load_lerobot_trajectories(args.data, rgb_size=mc.rgb_size,
-                                              depth_size=mc.depth_size, episodes=args.episodes,
-                                              vocab_sha256=vocab_sha)
+                                              depth_size=mc.depth_size, episodes=args.episodes)
         print(f"train: {len(trajs)} trajectories, {sum(len(t) for t in trajs)} frames",
               file=sys.stderr)
         trainer.fit_offline(trajs)
