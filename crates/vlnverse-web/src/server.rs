@@ -1,0 +1,255 @@
+//! The router: the page and its assets, the catalogue of the dataset, the three modes' APIs,
+//! and raw files of the dataset and runs (refused outside them).
+
+use std::net::SocketAddr;
+use std::sync::atomic::Ordering;
+use std::sync::Arc;
+
+use axum::extract::{Path as UrlPath, Query, State};
+use axum::http::header;
+use axum::response::{IntoResponse, Response};
+use axum::routing::{get, post};
+use axum::{Json, Router};
+use serde_json::{json, Value};
+use vlnverse_task::{dataset, Split, Task};
+
+use crate::app::{profiles, App};
+use crate::error::{ApiError, ApiResult};
+use crate::files::{content_type, resolve_inside};
+use crate::{assets, drive, replay, review};
+
+/// The app's routes over a shared state.
+pub fn router(app: Arc<App>) -> Router {
+    Router::new()
+        .route("/", get(|| async { asset("index.html") }))
+        .route(
+            "/assets/{name}",
+            get(|UrlPath(n): UrlPath<String>| async move { asset(&n) }),
+        )
+        .route("/api/info", get(info))
+        .route("/api/stats", get(stats))
+        .route("/api/episodes", get(episodes))
+        .route("/api/episode", get(episode))
+        .route("/api/reference-image", get(reference_image))
+        .route("/api/drive", get(drive::drive_ws))
+        .route("/api/runs", get(replay::runs))
+        .route("/api/runs/{run}/episodes", get(replay::run_episodes))
+        .route("/api/runs/{run}/episodes/{id}", get(replay::run_episode))
+        .route(
+            "/api/runs/{run}/episodes/{id}/topdown.png",
+            get(replay::run_topdown),
+        )
+        .route(
+            "/api/runs/{run}/episodes/{id}/view/{step}",
+            get(replay::run_view),
+        )
+        .route("/api/review/episodes", get(review::review_list))
+        .route("/api/review/view", get(review::review_view))
+        .route("/api/review/topdown.png", get(review::review_topdown))
+        .route("/api/review/decision", post(review::review_decide))
+        .route("/api/review/decisions", get(review::review_decisions))
+        .route("/files/dataset/{*path}", get(dataset_file))
+        .route("/files/runs/{run}/{*path}", get(run_file))
+        .fallback(|| async { ApiError::not_found("no such page or endpoint") })
+        .with_state(app)
+}
+
+fn asset(name: &str) -> Response {
+    match assets::get(name) {
+        Some((bytes, ty)) => (
+            [
+                (header::CONTENT_TYPE, ty),
+                (header::CACHE_CONTROL, "no-cache"),
+            ],
+            bytes,
+        )
+            .into_response(),
+        None => ApiError::not_found(format!("no asset `{name}`")).into_response(),
+    }
+}
+
+/// `GET /api/info`: the dataset's tasks and splits (with episode counts), settings, profiles,
+/// runs and whether teacher hints are on.
+async fn info(State(app): State<Arc<App>>) -> Json<Value> {
+    let mut splits = Vec::new();
+    for task in Task::ALL {
+        for split in Split::ALL {
+            if dataset::split_path(&app.dataset, task, split).is_file() {
+                splits.push(json!({"task": task.name(), "split": split.name()}));
+            }
+        }
+    }
+    Json(json!({
+        "dataset": app.dataset.display().to_string(),
+        "splits": splits,
+        "settings": ["strict", "telhop", "lenient"],
+        "profiles": profiles(),
+        "runs": app.runs.iter().map(|r| r.name.clone()).collect::<Vec<_>>(),
+        "teacher_hints": app.cfg.teacher_hints,
+        "drive_log": crate::drive::drive_dir(&app.out, Task::Fine, Split::Train)
+            .parent().and_then(|p| p.parent()).map(|p| p.display().to_string()),
+        "keys": {"w": "forward", "a": "turn left", "d": "turn right", "q": "look up", "e": "look down", "space": "stop"},
+    }))
+}
+
+/// Resident memory of this process (bytes), from `/proc/self/status` (Linux).
+pub fn rss_bytes() -> Option<u64> {
+    let s = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = s.lines().find(|l| l.starts_with("VmRSS:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024)
+}
+
+/// `GET /api/stats`: drivers connected and the server's resident memory.
+async fn stats(State(app): State<Arc<App>>) -> Json<Value> {
+    Json(json!({
+        "drivers": app.drivers.load(Ordering::SeqCst),
+        "rss_bytes": rss_bytes(),
+    }))
+}
+
+/// Query naming a split (and an episode).
+#[derive(Debug, Default, serde::Deserialize)]
+struct EpQuery {
+    task: Option<String>,
+    split: Option<String>,
+    id: Option<String>,
+}
+
+fn need<'a>(v: &'a Option<String>, name: &str) -> ApiResult<&'a str> {
+    v.as_deref()
+        .filter(|s| !s.is_empty())
+        .ok_or_else(|| ApiError::bad_request(format!("missing query parameter `{name}`")))
+}
+
+/// `GET /api/episodes?task&split`: the split's episodes (id, scene, instruction).
+async fn episodes(State(app): State<Arc<App>>, Query(q): Query<EpQuery>) -> ApiResult<Json<Value>> {
+    let (task, split) = App::task_split(need(&q.task, "task")?, need(&q.split, "split")?)?;
+    let eps = app.episodes(task, split)?;
+    let list: Vec<Value> = eps
+        .iter()
+        .map(|e| {
+            json!({
+                "episode_id": e.episode_id,
+                "scene_id": e.scene_id,
+                "instruction": e.instruction.instruction_text,
+                "geodesic_distance": e.info.geodesic_distance,
+            })
+        })
+        .collect();
+    Ok(Json(
+        json!({"task": task.name(), "split": split.name(), "episodes": list}),
+    ))
+}
+
+/// `GET /api/episode?task&split&id`: what the driver is shown of an episode.
+async fn episode(State(app): State<Arc<App>>, Query(q): Query<EpQuery>) -> ApiResult<Json<Value>> {
+    let (task, split) = App::task_split(need(&q.task, "task")?, need(&q.split, "split")?)?;
+    let id = App::parse_id(need(&q.id, "id")?)?;
+    let (eps, k) = app.episode(task, split, id)?;
+    let e = &eps[k];
+    Ok(Json(json!({
+        "task": task.name(),
+        "split": split.name(),
+        "episode_id": e.episode_id,
+        "scene_id": e.scene_id,
+        "instruction": e.instruction.instruction_text,
+        "sub_instructions": e.instruction.sub_instructions,
+        "style": e.style(),
+        "has_reference_image": e.reference_image.is_some(),
+        "oracle_budget": e.oracle_budget,
+    })))
+}
+
+/// `GET /api/reference-image?task&split&id`: a visual-reference episode's goal image.
+async fn reference_image(
+    State(app): State<Arc<App>>,
+    Query(q): Query<EpQuery>,
+) -> ApiResult<Response> {
+    let (task, split) = App::task_split(need(&q.task, "task")?, need(&q.split, "split")?)?;
+    let id = App::parse_id(need(&q.id, "id")?)?;
+    let (eps, k) = app.episode(task, split, id)?;
+    let rel = eps[k].reference_image.clone().ok_or_else(|| {
+        ApiError::not_found(format!(
+            "{task}/{split} episode {id} has no reference image"
+        ))
+    })?;
+    let split_dir = dataset::split_path(&app.dataset, task, split)
+        .parent()
+        .map(|p| p.to_path_buf())
+        .unwrap_or_else(|| app.dataset.clone());
+    // The image path is relative to the split's folder and must stay inside the dataset.
+    let rel_to_dataset = split_dir
+        .strip_prefix(&app.dataset)
+        .map(|p| p.join(&rel))
+        .map_err(|_| ApiError::internal("split folder outside the dataset"))?;
+    let rel_str = rel_to_dataset.to_string_lossy().replace('\\', "/");
+    serve_file(&app.dataset, &rel_str).await
+}
+
+async fn serve_file(root: &std::path::Path, rel: &str) -> ApiResult<Response> {
+    let path = resolve_inside(root, rel)?;
+    let bytes = tokio::fs::read(&path)
+        .await
+        .map_err(|e| ApiError::not_found(format!("{rel}: {e}")))?;
+    Ok(([(header::CONTENT_TYPE, content_type(&path))], bytes).into_response())
+}
+
+/// `GET /files/dataset/{path}`: a file of the dataset.
+async fn dataset_file(
+    State(app): State<Arc<App>>,
+    UrlPath(path): UrlPath<String>,
+) -> ApiResult<Response> {
+    serve_file(&app.dataset, &path).await
+}
+
+/// `GET /files/runs/{run}/{path}`: a file of a run folder (plots, report.md, ...).
+async fn run_file(
+    State(app): State<Arc<App>>,
+    UrlPath((run, path)): UrlPath<(String, String)>,
+) -> ApiResult<Response> {
+    let i: usize = run
+        .parse()
+        .map_err(|_| ApiError::bad_request(format!("invalid run index `{run}`")))?;
+    let dir = app.run(i)?.dir.clone();
+    serve_file(&dir, &path).await
+}
+
+/// Serve on `listener` until `shutdown` resolves.
+pub async fn serve_on(
+    app: Arc<App>,
+    listener: tokio::net::TcpListener,
+    shutdown: impl std::future::Future<Output = ()> + Send + 'static,
+) -> std::io::Result<()> {
+    axum::serve(listener, router(app))
+        .with_graceful_shutdown(shutdown)
+        .await
+}
+
+/// Bind `addr` and serve until Ctrl-C; `on_ready` gets the bound address (port 0 picks a free
+/// one) before the first request is taken.
+pub fn run_server(
+    cfg: crate::ServerConfig,
+    addr: SocketAddr,
+    on_ready: impl FnOnce(SocketAddr),
+) -> Result<(), String> {
+    let app = Arc::new(App::new(cfg)?);
+    let rt = tokio::runtime::Builder::new_multi_thread()
+        .enable_all()
+        .build()
+        .map_err(|e| format!("cannot start the async runtime: {e}"))?;
+    rt.block_on(async move {
+        let listener = tokio::net::TcpListener::bind(addr)
+            .await
+            .map_err(|e| format!("cannot listen on {addr}: {e}"))?;
+        let bound = listener
+            .local_addr()
+            .map_err(|e| format!("listening socket: {e}"))?;
+        on_ready(bound);
+        serve_on(app, listener, async {
+            let _ = tokio::signal::ctrl_c().await;
+        })
+        .await
+        .map_err(|e| format!("server on {bound}: {e}"))
+    })
+}
