@@ -118,5 +118,13 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         "  plan {plan:.2} s, render {render:.2} s ({} frames, {fps:.1} frames/s), assemble {assemble:.2} s",
         s.rendered_frames
     );
+    let [sim, encode, write] = s.render_breakdown;
+    let total = (sim + encode + write).max(1e-9);
+    println!(
+        "  render thread-seconds: simulate+render {sim:.2} s ({:.0}%), encode PNG+stats {encode:.2} s ({:.0}%), write Parquet {write:.2} s ({:.0}%)",
+        100.0 * sim / total,
+        100.0 * encode / total,
+        100.0 * write / total
+    );
     Ok(())
 }

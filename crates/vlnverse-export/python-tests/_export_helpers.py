@@ -45,20 +45,41 @@ def episodes_meta(root: Path) -> list[dict[str, Any]]:
     return [json.loads(line) for line in lines if line.strip()]
 
 
+def data_file(root: Path, episode_index: int) -> Path:
+    """Episode `episode_index`'s data file (one per episode)."""
+    chunk, file = divmod(episode_index, 1000)
+    return root / "data" / f"chunk-{chunk:03d}" / f"file-{file:03d}.parquet"
+
+
+def column(root: Path, episode_index: int, key: str) -> np.ndarray:
+    """One scalar or fixed-length column of an episode as a NumPy array."""
+    col = pq.read_table(data_file(root, episode_index), columns=[key]).column(key)
+    return np.asarray(col.to_pylist())
+
+
 def frames(root: Path, episode_index: int) -> dict[str, Any]:
     """One episode's data file as raw arrays: `rgb` uint8 [T, H, W, 3] (PNG decoded), `depth`
     float32 [T, H, W, 1], the other columns as NumPy arrays."""
-    path = root / "data" / f"chunk-{episode_index // 1000:03d}" / (
-        f"file-{episode_index % 1000:03d}.parquet"
-    )
-    table = pq.read_table(path).to_pydict()
+    table = pq.read_table(data_file(root, episode_index))
+    n = table.num_rows
     out: dict[str, Any] = {}
-    out["rgb"] = np.stack([
-        np.asarray(Image.open(io.BytesIO(img["bytes"])).convert("RGB"))
-        for img in table["observation.images.rgb"]
-    ])
-    out["depth"] = np.asarray(table["observation.depth"], dtype=np.float32)
-    for key in ["observation.pose", "observation.compass", "observation.gps",
-                "observation.instruction_tokens", "action", "frame_index", "index"]:
-        out[key] = np.asarray(table[key])
+    out["rgb"] = np.stack(
+        [
+            np.asarray(Image.open(io.BytesIO(img["bytes"])).convert("RGB"))
+            for img in table.column("observation.images.rgb").to_pylist()
+        ]
+    )
+    depth = table.column("observation.depth").combine_chunks()
+    flat = depth.flatten().flatten().flatten().to_numpy(zero_copy_only=False)
+    out["depth"] = flat.astype(np.float32).reshape(n, 256, 256, 1)
+    for key in [
+        "observation.pose",
+        "observation.compass",
+        "observation.gps",
+        "observation.instruction_tokens",
+        "action",
+        "frame_index",
+        "index",
+    ]:
+        out[key] = np.asarray(table.column(key).to_pylist())
     return out

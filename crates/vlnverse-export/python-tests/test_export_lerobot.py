@@ -9,7 +9,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from _export_helpers import dataset, episodes_meta, export, frames
+
+from _export_helpers import column, dataset, episodes_meta, export, frames
 
 os.environ.setdefault("HF_HUB_OFFLINE", "1")
 
@@ -41,16 +42,16 @@ def test_lerobot_dataset_opens_the_export(exported: Path) -> None:
     assert first["observation.instruction_tokens"].shape == (200,)
     assert ds.meta.stats is not None and "observation.depth" in ds.meta.stats
     for m in meta:
-        start = m["from_index"]
-        end = start + m["length"]
-        assert m["length"] >= 2
+        end = m["from_index"] + m["length"]
         last = ds[end - 1]
         assert int(last["action"]) == 0, "the last frame's action is STOP"
         assert last["task"] == m["instruction"]
         assert int(last["episode_index"]) == m["episode_index"]
+        assert int(last["frame_index"]) == m["length"] - 1
         assert float(last["timestamp"]) == pytest.approx((m["length"] - 1) / 10)
-        actions = [int(ds[i]["action"]) for i in range(start, end)]
-        assert set(actions[:-1]) <= {1, 2, 3}, actions
+        actions = [int(a) for a in column(exported, m["episode_index"], "action")]
+        assert len(actions) == m["length"] >= 2
+        assert actions[-1] == 0 and set(actions[:-1]) <= {1, 2, 3}, actions
         assert 1 in actions, "the teacher moves forward at least once"
     depth = first["observation.depth"].numpy()
     assert 0.0 <= depth.min() and depth.max() <= 1.0 and depth.std() > 0
@@ -61,8 +62,9 @@ def test_frames_equal_the_env_at_the_same_poses(exported: Path) -> None:
 
     meta = episodes_meta(exported)[0]
     data = frames(exported, 0)
-    env = vlnverse.VLNEnv(dataset(), TASK, SPLIT, episode_ids=[meta["episode_id"]],
-                          setting="telhop", seed=0)
+    env = vlnverse.VLNEnv(
+        dataset(), TASK, SPLIT, episode_ids=[meta["episode_id"]], setting="telhop", seed=0
+    )
     try:
         obs, info = env.reset(seed=0)
         n = meta["length"]
@@ -73,7 +75,8 @@ def test_frames_equal_the_env_at_the_same_poses(exported: Path) -> None:
             np.testing.assert_array_equal(obs["gps"], data["observation.gps"][t])
             assert float(obs["compass"][0]) == float(data["observation.compass"][t])
             np.testing.assert_array_equal(
-                obs["instruction_tokens"], data["observation.instruction_tokens"][t])
+                obs["instruction_tokens"], data["observation.instruction_tokens"][t]
+            )
             action = int(data["action"][t])
             assert int(info["expert_action"]) == action, f"teacher differs at frame {t}"
             obs, _, terminated, truncated, info = env.step(action)

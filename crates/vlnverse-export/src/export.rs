@@ -121,6 +121,9 @@ pub struct ExportSummary {
     pub rendered_frames: u64,
     /// Seconds spent planning, rendering and assembling.
     pub seconds: [f64; 3],
+    /// Thread-seconds of the render stage, summed over workers: simulation and rendering,
+    /// encoding (PNG, statistics), writing (Parquet columns, zstd, file).
+    pub render_breakdown: [f64; 3],
     /// Bytes of the data files.
     pub data_bytes: u64,
     /// Threads used.
@@ -323,6 +326,8 @@ struct Job<'a> {
     scenes: SceneCache,
     workers: Mutex<Vec<Worker>>,
     fingerprint: String,
+    /// Thread-nanoseconds: simulate + render, encode (PNG, statistics), write (Parquet).
+    nanos: [AtomicU64; 3],
 }
 
 impl Job<'_> {
@@ -401,8 +406,11 @@ impl Job<'_> {
         let mut pano_acc = PixelAccumulator::new(3, 256);
         let mut depth_acc = PixelAccumulator::new(1, 1001);
         let locate = |what: &str| format!("episode {}: {what}", ep.episode_id);
+        let started = Instant::now();
+        let mut encode = std::time::Duration::ZERO;
         let actions = self.with_worker(true, |w| {
             teacher::run(w, ep, &scene, &self.settings, |step: &Step<'_>| {
+                let t = Instant::now();
                 let obs = step.observations;
                 let Some(Observation::Rgb(f)) = obs.get(&s.rgb.0) else {
                     return Err(ExportError::invalid(
@@ -445,9 +453,14 @@ impl Job<'_> {
                 cols.compass.push(step.compass());
                 cols.gps.push(step.gps().to_vec());
                 cols.action.push(step.action);
+                encode += t.elapsed();
                 Ok(())
             })
         })?;
+        let run = started.elapsed();
+        self.nanos[0].fetch_add((run - encode.min(run)).as_nanos() as u64, Ordering::Relaxed);
+        self.nanos[1].fetch_add(encode.as_nanos() as u64, Ordering::Relaxed);
+        let written = Instant::now();
         if actions != planned {
             return Err(ExportError::invalid(
                 &locate("teacher actions"),
@@ -531,6 +544,7 @@ impl Job<'_> {
         let bytes = std::fs::metadata(&path)
             .map_err(|e| ExportError::io(&path, e))?
             .len();
+        self.nanos[2].fetch_add(written.elapsed().as_nanos() as u64, Ordering::Relaxed);
         let part = Part {
             fingerprint: self.fingerprint.clone(),
             episode_index: index,
@@ -712,6 +726,7 @@ pub fn export(req: &ExportRequest, progress: &(dyn Fn(Progress) + Sync)) -> Resu
         scenes: SceneCache::new(&req.dataset, 2 * threads + 2),
         workers: Mutex::new(Vec::new()),
         fingerprint: fingerprint.clone(),
+        nanos: Default::default(),
     };
 
     // 1. Plan: the teacher's actions without rendering (cheap), for the frame layout.
@@ -891,6 +906,10 @@ pub fn export(req: &ExportRequest, progress: &(dyn Fn(Progress) + Sync)) -> Resu
         resumed,
         rendered_frames: frames.load(Ordering::Relaxed),
         seconds: [plan_s, render_s, assemble_s],
+        render_breakdown: job
+            .nanos
+            .each_ref()
+            .map(|n| n.load(Ordering::Relaxed) as f64 * 1e-9),
         data_bytes: parts_done.iter().map(|p| p.bytes).sum(),
         threads,
     })

@@ -42,7 +42,7 @@ fn interpolate(v: &[f64], pos: f64) -> f64 {
 impl Stats {
     /// Exact statistics of `frames` rows of `dims` values each (row-major).
     pub fn exact(values: &[f64], dims: usize) -> Stats {
-        let n = if dims == 0 { 0 } else { values.len() / dims };
+        let n = values.len().checked_div(dims).unwrap_or(0);
         let mut s = Stats {
             min: vec![f64::INFINITY; dims],
             max: vec![f64::NEG_INFINITY; dims],

@@ -141,7 +141,7 @@ pub fn run(
         if over {
             break;
         }
-        state.apply(&mut w.sim, action.clone(), &settings.config)?;
+        state.apply(&mut w.sim, action, &settings.config)?;
         if action == Action::Stop && state.is_over() {
             break;
         }

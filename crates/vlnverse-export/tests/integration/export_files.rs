@@ -158,3 +158,40 @@ fn another_request_into_the_same_folder_is_refused() {
     let e = export(&req, &|_| {}).unwrap_err().to_string();
     assert!(e.contains("another request"), "{e}");
 }
+
+#[test]
+fn the_panorama_starts_with_the_rgb_view() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("ds");
+    let mut req = request(&out, 2);
+    req.episodes = Some(1);
+    req.panorama = true;
+    export(&req, &|_| {}).unwrap();
+    let info: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("meta/info.json")).unwrap()).unwrap();
+    let pano = &info["features"]["observation.images.pano"];
+    assert_eq!(pano["dtype"], "image");
+    assert_eq!(pano["shape"], serde_json::json!([224, 224 * 12, 3]));
+    let file = std::fs::File::open(out.join("data/chunk-000/file-000.parquet")).unwrap();
+    let reader = SerializedFileReader::new(file).unwrap();
+    let fields = reader
+        .metadata()
+        .file_metadata()
+        .schema_descr()
+        .root_schema()
+        .get_fields()
+        .to_vec();
+    let at = |name: &str| fields.iter().position(|f| f.name() == name).unwrap();
+    let (rgb, pano) = (at("observation.images.rgb"), at("observation.images.pano"));
+    let decode = |bytes: &[u8]| image::load_from_memory(bytes).unwrap().to_rgb8();
+    for row in reader.get_row_iter(None).unwrap().take(3) {
+        let row = row.unwrap();
+        let front = decode(row.get_group(rgb).unwrap().get_bytes(0).unwrap().data());
+        let all = decode(row.get_group(pano).unwrap().get_bytes(0).unwrap().data());
+        assert_eq!((all.width(), all.height()), (224 * 12, 224));
+        let view0 = image::imageops::crop_imm(&all, 0, 0, 224, 224).to_image();
+        assert_eq!(view0, front, "panorama view 0 is the RGB camera's view");
+        let view3 = image::imageops::crop_imm(&all, 3 * 224, 0, 224, 224).to_image();
+        assert_ne!(view3, front, "view 3 looks 90 degrees to the left");
+    }
+}
