@@ -84,6 +84,11 @@ const Drive = {
 
   async start() {
     if (this.socket) this.socket.close();
+    this.socket = null;
+    this.state = null;
+    this.frames = 0;
+    this.inflight = 0;
+    this.fpsWindow = [];
     const t = $("d-task").value, s = $("d-split").value, id = $("d-episode").value;
     const ep = await getJSON(`/api/episode?task=${t}&split=${s}&id=${id}`);
     $("d-instruction").textContent = ep.instruction;
@@ -93,10 +98,6 @@ const Drive = {
     $("d-answer").textContent = "";
     $("d-result").classList.add("hidden");
     $("d-depth").checked = false;
-    this.state = null;
-    this.frames = 0;
-    this.inflight = 0;
-    this.fpsWindow = [];
     const q = new URLSearchParams({ task: t, split: s, episode: id, setting: $("d-setting").value, profile: $("d-profile").value });
     const ws = new WebSocket(`ws://${location.host}/api/drive?${q}`);
     ws.binaryType = "blob";

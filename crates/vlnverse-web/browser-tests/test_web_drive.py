@@ -57,8 +57,14 @@ def test_web_drive_to_success_logs_csv_and_scores_sr_1(
         page.keyboard.press(" " if key == "space" else key)
         steps += 1
         page.wait_for_function(f"window.vlnDrive.state.step === {state['step'] + 1}")
-        if steps == 6 and (d := screenshot_dir()):
-            page.screenshot(path=str(d / "web-drive.png"))
+        shot = screenshot_dir()
+        if shot and steps >= 8 and key == "w" and not (shot / "web-drive.png").exists():
+            page.wait_for_function(
+                f"window.vlnDrive.frames === {steps + 1}"
+                " && document.querySelector('#d-view').complete"
+            )
+            page.wait_for_timeout(600)  # the frames/s counter updates twice a second
+            page.screenshot(path=str(shot / "web-drive.png"))
     state = page.evaluate("window.vlnDrive.state")
     assert state["done"] and state["metrics"]["success"], state
     assert "Success" in page.inner_text("#d-result")

@@ -83,7 +83,7 @@ def test_web_replay_lists_episodes_and_steps_through_one(
     w = page.evaluate("document.querySelector('#r-map').width")
     assert w > 100
     if d := screenshot_dir():
-        page.screenshot(path=str(d / "web-replay.png"))
+        page.screenshot(path=str(d / "web-replay.png"), full_page=True)
     # The last pose: where the agent stopped.
     page.evaluate(f"window.vlnReplay.show({n - 1})")
     assert page.inner_text("#r-action") == f"action at step {n - 1}: stop"

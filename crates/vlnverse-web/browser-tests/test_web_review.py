@@ -59,7 +59,8 @@ def test_web_review_reject_and_edit_then_apply(
     page.click("#v-save-edit")
     page.wait_for_function("document.querySelector('#v-decision').textContent === 'edited'")
     if d := screenshot_dir():
-        page.screenshot(path=str(d / "web-review.png"))
+        page.evaluate("window.scrollTo(0, 0)")
+        page.screenshot(path=str(d / "web-review.png"), full_page=True)
 
     review = server.out / "review.json"
     doc = json.loads(review.read_text())

@@ -76,6 +76,16 @@ pub fn make_dataset(dir: &Path, n: usize) -> Vec<Episode> {
     }
     assert_eq!(eps.len(), n, "fixture: not enough episodes");
     dataset::write_split(dir, Task::Fine, Split::ValUnseen, &eps).unwrap();
+    // The same paths as dialogue episodes with an oracle budget of 2 questions.
+    let dialogue: Vec<Episode> = eps
+        .iter()
+        .map(|e| Episode {
+            task: Task::Dialogue,
+            oracle_budget: Some(2),
+            ..e.clone()
+        })
+        .collect();
+    dataset::write_split(dir, Task::Dialogue, Split::ValUnseen, &dialogue).unwrap();
     let protocols = dir.join("protocols");
     std::fs::create_dir_all(&protocols).unwrap();
     std::fs::write(
