@@ -5,13 +5,17 @@ from __future__ import annotations
 
 import csv
 import json
+import sys
 from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 from playwright.sync_api import Page
 
-from _web_support import Server, browser, dataset, run_xtask, screenshot_dir, serve
+# `cargo xtask test` runs pytest with --import-mode=importlib, which does not put this folder
+# on sys.path: the helper module beside this file is found through it.
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _web_support import Server, browser, dataset, run_xtask, screenshot_dir, serve  # noqa: E402
 
 KEYS = {"w": "w", "a": "a", "d": "d", "q": "q", "e": "e", "space": " "}
 
