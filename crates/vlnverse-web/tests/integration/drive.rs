@@ -208,8 +208,11 @@ async fn dialogue_questions_are_answered_within_the_budget() {
     let dir = tempfile::tempdir().unwrap();
     make_dataset(dir.path(), 1);
     let srv = Server::start(config(dir.path())).await;
-    let mut d =
-        Driver::connect(srv.addr, "task=dialogue&split=val_unseen&episode=1&setting=strict").await;
+    let mut d = Driver::connect(
+        srv.addr,
+        "task=dialogue&split=val_unseen&episode=1&setting=strict",
+    )
+    .await;
     assert_eq!(d.states[0]["questions_left"], 2);
     for left in [1, 0] {
         d.send(json!({"ask": "which way?"})).await;
@@ -220,7 +223,10 @@ async fn dialogue_questions_are_answered_within_the_budget() {
     }
     d.send(json!({"ask": "and now?"})).await;
     let s = d.next_state().await;
-    assert_eq!(s["step"], 1, "a question beyond the budget is a refused action");
+    assert_eq!(
+        s["step"], 1,
+        "a question beyond the budget is a refused action"
+    );
     assert_eq!(s["refused"], "no questions left");
     let end = d.follow_teacher().await;
     assert_eq!(end["metrics"]["success"], true);
