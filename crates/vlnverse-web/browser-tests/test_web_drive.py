@@ -119,3 +119,46 @@ def test_web_drive_to_success_logs_csv_and_scores_sr_1(
     summary = json.loads((report / "summary.json").read_text())
     # Every other episode is missing (a failure), so SR is exactly 1 / episodes.
     assert summary["sr"] == pytest.approx(1 / summary["episodes"])
+
+
+def _start(page: Page, task: str, episode: int) -> None:
+    page.select_option("#d-task", task)
+    page.wait_for_selector("#d-split option[value='val_unseen']", state="attached")
+    page.select_option("#d-split", "val_unseen")
+    page.wait_for_selector(f"#d-episode option[value='{episode}']", state="attached")
+    page.select_option("#d-episode", str(episode))
+    page.select_option("#d-setting", "strict")
+    page.click("#d-start")
+    page.wait_for_function("window.vlnDrive.state && window.vlnDrive.frames > 0")
+
+
+def test_web_drive_shows_reference_image_question_box_and_sub_instruction(
+    server: Server, page: Page
+) -> None:
+    def first(task: str) -> int:
+        eps = server.get_json(f"/api/episodes?task={task}&split=val_unseen")["episodes"]
+        return int(eps[0]["episode_id"])
+
+    # Visual reference: the goal image is shown.
+    _start(page, "visual_reference", first("visual_reference"))
+    assert page.is_visible("#d-ref") and not page.is_visible("#d-dialogue")
+    page.wait_for_function(
+        "document.querySelector('#d-ref-img').complete"
+        " && document.querySelector('#d-ref-img').naturalWidth > 0"
+    )
+    # Dialogue: a question is answered by the oracle and costs no step.
+    _start(page, "dialogue", first("dialogue"))
+    assert page.is_visible("#d-dialogue") and not page.is_visible("#d-ref")
+    left = page.evaluate("window.vlnDrive.state.questions_left")
+    page.fill("#d-question", "which way?")
+    page.click("#d-ask-form button")
+    page.wait_for_function(f"window.vlnDrive.state.questions_left === {left - 1}")
+    assert len(page.inner_text("#d-answer")) > 3
+    assert page.evaluate("window.vlnDrive.state.step") == 0
+    # Long horizon: the current sub-instruction.
+    _start(page, "long_horizon", first("long_horizon"))
+    ep = server.get_json(
+        f"/api/episode?task=long_horizon&split=val_unseen&id={first('long_horizon')}"
+    )
+    sub = page.inner_text("#d-sub")
+    assert sub.startswith("Now (1/") and ep["sub_instructions"][0] in sub

@@ -232,3 +232,28 @@ async fn dialogue_questions_are_answered_within_the_budget() {
     assert_eq!(end["metrics"]["success"], true);
     srv.stop().await;
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn walking_into_a_wall_fails_a_strict_episode_as_in_evaluation() {
+    let dir = tempfile::tempdir().unwrap();
+    make_dataset(dir.path(), 1);
+    let srv = Server::start(config(dir.path())).await;
+    let mut d = Driver::connect(srv.addr, &fine_query(1)).await;
+    let mut s = d.states[0].clone();
+    for _ in 0..80 {
+        if s["done"].as_bool().unwrap() {
+            break;
+        }
+        s = d.key("w").await;
+    }
+    assert_eq!(s["done"], true, "15+ m straight ahead meets a wall: {s}");
+    assert_eq!(s["terminated"], true);
+    assert_eq!(s["noticeable"], true);
+    assert!(
+        s["failure"].is_string(),
+        "a Strict failure is reported: {s}"
+    );
+    assert_eq!(s["metrics"]["success"], false);
+    assert_eq!(s["metrics"]["collisions"], 1);
+    srv.stop().await;
+}
