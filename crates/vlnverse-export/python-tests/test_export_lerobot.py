@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 import os
 from pathlib import Path
+from typing import cast
 
 import numpy as np
 import pytest
@@ -87,3 +88,30 @@ def test_frames_equal_the_env_at_the_same_poses(exported: Path) -> None:
         env.close()
     assert list(data["frame_index"]) == list(range(meta["length"]))
     assert list(data["index"]) == list(range(meta["from_index"], meta["from_index"] + n))
+
+
+def test_stats_json_is_lerobots_aggregate_of_the_episode_stats(exported: Path) -> None:
+    import pyarrow.parquet as pq
+    from lerobot.datasets.compute_stats import aggregate_stats
+
+    rows = pq.read_table(exported / "meta" / "episodes" / "chunk-000" / "file-000.parquet")
+    per_episode: list[dict[str, dict[str, np.ndarray]]] = []
+    for row in rows.to_pylist():
+        stats: dict[str, dict[str, np.ndarray]] = {}
+        for key, value in row.items():
+            if key.startswith("stats/"):
+                feature, stat = key.removeprefix("stats/").rsplit("/", 1)
+                stats.setdefault(feature, {})[stat] = np.asarray(value, dtype=np.float64)
+        per_episode.append(stats)
+    assert len(per_episode) == EPISODES
+    assert per_episode[0]["observation.images.rgb"]["mean"].shape == (3, 1, 1)
+    # (LeRobot annotates the result as a flat dict; it is per feature, per statistic.)
+    expected = cast(dict[str, dict[str, np.ndarray]], aggregate_stats(per_episode))
+    written = json.loads((exported / "meta" / "stats.json").read_text())
+    assert set(written) == set(expected)
+    for feature, feature_stats in expected.items():
+        for stat, value in feature_stats.items():
+            got = np.asarray(written[feature][stat], dtype=np.float64)
+            np.testing.assert_allclose(got, value, rtol=1e-9, atol=1e-12, err_msg=feature + stat)
+    rgb = written["observation.images.rgb"]
+    assert 0.0 <= rgb["min"][0][0][0] <= rgb["mean"][0][0][0] <= rgb["max"][0][0][0] <= 1.0

@@ -35,7 +35,7 @@ pub const PARTS_DIR: &str = ".parts";
 /// The Python env's default `instruction_length` (crates/vlnverse-py/src/env.rs).
 pub const INSTRUCTION_LENGTH: usize = 200;
 /// Bump when the bytes written for the same request change.
-const FORMAT_REVISION: u32 = 1;
+const FORMAT_REVISION: u32 = 2;
 
 /// What to export.
 #[derive(Debug, Clone)]
@@ -857,14 +857,14 @@ pub fn export(req: &ExportRequest, progress: &(dyn Fn(Progress) + Sync)) -> Resu
     mkdirs(&meta_dir.join("episodes/chunk-000"))?;
     let episodes_file = meta_dir.join("episodes/chunk-000/file-000.parquet");
     let tmp = tmp_path(&episodes_file);
-    lerobot::episodes_table(&metas).write(&tmp)?;
+    let per_episode: Vec<BTreeMap<String, Stats>> =
+        parts_done.iter().map(|p| p.stats.clone()).collect();
+    lerobot::episodes_table(&metas, &features, &per_episode).write(&tmp)?;
     std::fs::rename(&tmp, &episodes_file).map_err(|e| ExportError::io(&episodes_file, e))?;
     let tasks_file = meta_dir.join("tasks.parquet");
     let tmp = tmp_path(&tasks_file);
     lerobot::tasks_table(&tasks).write(&tmp)?;
     std::fs::rename(&tmp, &tasks_file).map_err(|e| ExportError::io(&tasks_file, e))?;
-    let per_episode: Vec<BTreeMap<String, Stats>> =
-        parts_done.iter().map(|p| p.stats.clone()).collect();
     let stats = lerobot::stats_json(&features, &per_episode);
     write_atomic(&meta_dir.join("stats.json"), &pretty(&stats))?;
     let mut jsonl = String::new();

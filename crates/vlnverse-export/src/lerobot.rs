@@ -152,8 +152,14 @@ pub struct EpisodeMeta {
     pub task_index: usize,
 }
 
-/// `meta/episodes/chunk-000/file-000.parquet`: LeRobot's columns plus `vlnverse/*` ones.
-pub fn episodes_table(eps: &[EpisodeMeta]) -> Table {
+/// `meta/episodes/chunk-000/file-000.parquet`: LeRobot's columns (with each episode's
+/// statistics, `stats/<feature>/<stat>`, which LeRobot's dataset tools read to split or edit a
+/// dataset) plus `vlnverse/*` ones.
+pub fn episodes_table(
+    eps: &[EpisodeMeta],
+    features: &[Feature],
+    stats: &[BTreeMap<String, Stats>],
+) -> Table {
     let mut t = Table::new(eps.len());
     let col = |f: &dyn Fn(&EpisodeMeta) -> i64| eps.iter().map(f).collect::<Vec<i64>>();
     t.i64("episode_index", col(&|e| e.episode_index as i64));
@@ -173,6 +179,47 @@ pub fn episodes_table(eps: &[EpisodeMeta]) -> Table {
         "dataset_to_index",
         col(&|e| (e.from_index + e.length) as i64),
     );
+    for f in features {
+        let per: Vec<&Stats> = stats.iter().filter_map(|m| m.get(&f.key)).collect();
+        if per.len() != eps.len() {
+            continue;
+        }
+        let key = |stat: &str| format!("stats/{}/{stat}", f.key);
+        let int = f.dtype == DType::I64;
+        let image = f.dtype == DType::Image;
+        let mut named: Vec<(&str, Vec<Vec<f64>>, bool)> = vec![
+            ("min", per.iter().map(|s| s.min.clone()).collect(), int),
+            ("max", per.iter().map(|s| s.max.clone()).collect(), int),
+            ("mean", per.iter().map(|s| s.mean.clone()).collect(), false),
+            ("std", per.iter().map(|s| s.std.clone()).collect(), false),
+        ];
+        for (k, q) in crate::stats::QUANTILE_KEYS.iter().enumerate() {
+            named.push((
+                q,
+                per.iter().map(|s| s.quantiles[k].clone()).collect(),
+                false,
+            ));
+        }
+        for (i, (stat, rows, as_int)) in named.into_iter().enumerate() {
+            if image {
+                let dims = [rows.first().map_or(3, Vec::len), 1, 1];
+                t.array3_f64(&key(stat), &rows, dims);
+            } else if as_int {
+                let rows: Vec<Vec<i64>> = rows
+                    .iter()
+                    .map(|r| r.iter().map(|&v| v as i64).collect())
+                    .collect();
+                t.list_i64(&key(stat), &rows);
+            } else {
+                t.list_f64(&key(stat), &rows);
+            }
+            if i == 3 {
+                // LeRobot's order: min, max, mean, std, count, quantiles.
+                let counts: Vec<Vec<i64>> = per.iter().map(|s| vec![s.count as i64]).collect();
+                t.list_i64(&key("count"), &counts);
+            }
+        }
+    }
     t.i64("meta/episodes/chunk_index", col(&|_| 0));
     t.i64("meta/episodes/file_index", col(&|_| 0));
     t.i64("vlnverse/episode_id", col(&|e| e.episode_id as i64));

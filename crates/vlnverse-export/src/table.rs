@@ -184,6 +184,12 @@ impl Table {
         self.list(name, Values::F32(rows.concat()), &lens, false);
     }
 
+    /// A `list<double>` column, one list per row.
+    pub fn list_f64(&mut self, name: &str, rows: &[Vec<f64>]) {
+        let lens: Vec<usize> = rows.iter().map(Vec::len).collect();
+        self.list(name, Values::F64(rows.concat()), &lens, false);
+    }
+
     /// A `list<int64>` column, one list per row.
     pub fn list_i64(&mut self, name: &str, rows: &[Vec<i64>]) {
         let lens: Vec<usize> = rows.iter().map(Vec::len).collect();
@@ -206,7 +212,24 @@ impl Table {
     /// compresses floats far better.
     pub fn array3_f32(&mut self, name: &str, rows: &[&[f32]], dims: [usize; 3]) {
         self.check(name, rows.len());
-        let inner = list_of("element", element("element", &Values::F32(vec![]), false));
+        let per = dims[0] * dims[1] * dims[2];
+        let mut values = Vec::with_capacity(per * rows.len());
+        for r in rows {
+            debug_assert_eq!(r.len(), per, "{name}: array of the wrong size");
+            values.extend_from_slice(r);
+        }
+        self.nested3(name, Values::F32(values), rows.len(), dims, true);
+    }
+
+    /// A `list<list<list<double>>>` column of `[d0, d1, d2]` arrays (row-major).
+    pub fn array3_f64(&mut self, name: &str, rows: &[Vec<f64>], dims: [usize; 3]) {
+        self.check(name, rows.len());
+        self.nested3(name, Values::F64(rows.concat()), rows.len(), dims, false);
+    }
+
+    /// Three nested lists over flat row-major `values` of `rows` arrays of shape `dims`.
+    fn nested3(&mut self, name: &str, values: Values, rows: usize, dims: [usize; 3], split: bool) {
+        let inner = list_of("element", element("element", &values, false));
         let middle = list_of("element", inner);
         let outer = {
             let list = build(
@@ -226,8 +249,6 @@ impl Table {
         };
         self.fields.push(outer);
         let per = dims[0] * dims[1] * dims[2];
-        let mut values = Vec::with_capacity(per * rows.len());
-        let mut rep = Vec::with_capacity(per * rows.len());
         // Repetition level of element k of a row: where the index first changes.
         let mut levels = Vec::with_capacity(per);
         for k in 0..per {
@@ -243,14 +264,10 @@ impl Table {
                 1
             });
         }
-        for r in rows {
-            debug_assert_eq!(r.len(), per, "{name}: array of the wrong size");
-            values.extend_from_slice(r);
-            rep.extend_from_slice(&levels);
-        }
-        let def = vec![7; values.len()];
+        let rep: Vec<i16> = (0..rows).flat_map(|_| levels.iter().copied()).collect();
+        let def = vec![7; rep.len()];
         self.leaves.push(Leaf {
-            values: Values::F32(values),
+            values,
             def,
             rep: Some(rep),
             path: [
@@ -258,7 +275,7 @@ impl Table {
             ]
             .map(String::from)
             .to_vec(),
-            byte_stream_split: true,
+            byte_stream_split: split,
         });
     }
 
