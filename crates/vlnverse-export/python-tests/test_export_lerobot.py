@@ -5,13 +5,17 @@ from __future__ import annotations
 
 import json
 import os
+import sys
 from pathlib import Path
 from typing import cast
 
 import numpy as np
 import pytest
 
-from _export_helpers import column, dataset, episodes_meta, export, frames
+# `cargo xtask test` runs pytest with --import-mode=importlib, which does not put this folder
+# on sys.path: the helper module beside this file is found through it.
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _export_helpers import column, dataset, episodes_meta, export, frames  # noqa: E402
 
 os.environ.setdefault("HF_HUB_OFFLINE", "1")
 
