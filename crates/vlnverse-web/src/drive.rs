@@ -14,10 +14,10 @@
 //!   as `{"type": "error", "error": "..."}` and leave the episode as it was.
 //! - The drive log, written as the paper logs its human study: a CSV row every 50 ms
 //!   (`time_s,step,x,y,z,heading_rad,key`, `key` the keys pressed in that interval) in
-//!   `OUT/drives/<task>/<split>/ep<ID>-<unix ms>.csv`; when the episode ends, its trajectory
+//!   `OUT/drives/<task>/<split>/ep<ID>-<unix ms>-<n>.csv`; when the episode ends, its trajectory
 //!   joins `OUT/drives/<task>/<split>/trajectories.jsonl` (one line per episode, the latest
 //!   drive of an episode wins), the file `cargo xtask score` reads, and its record (trajectory,
-//!   metrics, protocol) goes to `ep<ID>-<unix ms>.json`. A client that drops mid-episode
+//!   metrics, protocol) goes to `ep<ID>-<unix ms>-<n>.json` (`n` numbers the server's drives). A client that drops mid-episode
 //!   leaves its CSV (flushed row by row) and no trajectory.
 
 use std::io::Write as _;
@@ -247,7 +247,7 @@ impl DriveLog {
             std::fs::create_dir_all(dir)
                 .map_err(|e| ApiError::internal(format!("{}: {e}", dir.display())))?;
         }
-        let f = std::fs::File::create(&path)
+        let f = std::fs::File::create_new(&path)
             .map_err(|e| ApiError::internal(format!("{}: {e}", path.display())))?;
         let mut log = DriveLog {
             file: std::io::BufWriter::new(f),
@@ -372,7 +372,8 @@ fn drive(
     let agent = env.settings().agent.clone();
     let mut step = env.reset_all().map_err(env_err)?.remove(0);
     let dir = drive_dir(&app.out, spec.task, spec.split);
-    let stem = format!("ep{}-{}", spec.episode_id, unix_ms());
+    let seq = app.drive_seq.fetch_add(1, Ordering::SeqCst);
+    let stem = format!("ep{}-{}-{seq}", spec.episode_id, unix_ms());
     let mut log = DriveLog::create(dir.join(format!("{stem}.csv")))?;
     let log_path = log.path.clone();
     let started = Instant::now();

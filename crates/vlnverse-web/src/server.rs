@@ -51,7 +51,33 @@ pub fn router(app: Arc<App>) -> Router {
         .route("/files/dataset/{*path}", get(dataset_file))
         .route("/files/runs/{run}/{*path}", get(run_file))
         .fallback(|| async { ApiError::not_found("no such page or endpoint") })
+        .layer(axum::middleware::from_fn(same_origin))
         .with_state(app)
+}
+
+/// Refuse requests sent by pages of other sites: a browser names the page's origin in
+/// `Origin` (WebSocket handshakes and POSTs always); it must be this server's own address, so
+/// a web page elsewhere cannot drive, review or read through the user's browser.
+async fn same_origin(req: axum::extract::Request, next: axum::middleware::Next) -> Response {
+    let headers = req.headers();
+    if let Some(origin) = headers.get(header::ORIGIN) {
+        let host = headers
+            .get(header::HOST)
+            .and_then(|h| h.to_str().ok())
+            .unwrap_or("");
+        let origin = origin.to_str().unwrap_or("");
+        let own = origin
+            .strip_prefix("http://")
+            .or_else(|| origin.strip_prefix("https://"))
+            .is_some_and(|o| o == host);
+        if !own {
+            return ApiError::forbidden(format!(
+                "requests from pages of other sites are refused (Origin `{origin}`, this server `{host}`)"
+            ))
+            .into_response();
+        }
+    }
+    next.run(req).await
 }
 
 fn asset(name: &str) -> Response {

@@ -153,3 +153,37 @@ async fn the_page_and_its_assets_are_served_from_the_binary() {
         .any(|p| p == "vlnverse"));
     srv.stop().await;
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn requests_from_pages_of_other_sites_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    make_dataset(dir.path(), 1);
+    let srv = Server::start(config(dir.path())).await;
+    let mut req =
+        tokio_tungstenite::tungstenite::client::IntoClientRequest::into_client_request(format!(
+            "ws://{}/api/drive?{}",
+            srv.addr,
+            crate::support::fine_query(1)
+        ))
+        .unwrap();
+    req.headers_mut()
+        .insert("Origin", "http://evil.example".parse().unwrap());
+    match tokio_tungstenite::connect_async(req).await {
+        Err(tokio_tungstenite::tungstenite::Error::Http(r)) => {
+            assert_eq!(r.status().as_u16(), 403)
+        }
+        other => panic!("expected 403, got {:?}", other.map(|_| ())),
+    }
+    // The page's own origin is welcome.
+    let mut req =
+        tokio_tungstenite::tungstenite::client::IntoClientRequest::into_client_request(format!(
+            "ws://{}/api/drive?{}",
+            srv.addr,
+            crate::support::fine_query(1)
+        ))
+        .unwrap();
+    req.headers_mut()
+        .insert("Origin", format!("http://{}", srv.addr).parse().unwrap());
+    assert!(tokio_tungstenite::connect_async(req).await.is_ok());
+    srv.stop().await;
+}
