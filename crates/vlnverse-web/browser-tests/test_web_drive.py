@@ -119,6 +119,45 @@ def test_web_drive_to_success_logs_csv_and_scores_sr_1(
     summary = json.loads((report / "summary.json").read_text())
     # Every other episode is missing (a failure), so SR is exactly 1 / episodes.
     assert summary["sr"] == pytest.approx(1 / summary["episodes"])
+    # The human baseline of a split holding just this episode (a reviewed copy keeping only
+    # it): SR 1 with nothing missing.
+    review = tmp_path / "review.json"
+    decision = {"task": "fine", "split": "val_unseen", "episode_id": ep["episode_id"]}
+    review.write_text(
+        json.dumps(
+            {
+                "format": "vlnverse-review/1",
+                "dataset": str(dataset()),
+                "decisions": [{**decision, "decision": "accepted"}],
+            }
+        )
+    )
+    one = tmp_path / "one-episode"
+    run_xtask(
+        "review",
+        "--dataset",
+        str(dataset()),
+        "--decisions",
+        str(review),
+        "--out",
+        str(one),
+        "--require-all",
+    )
+    run_xtask(
+        "score",
+        "--dataset",
+        str(one),
+        "--task",
+        "fine",
+        "--split",
+        "val_unseen",
+        "--trajectories",
+        str(out / "trajectories.jsonl"),
+        "--out",
+        str(tmp_path / "score1"),
+    )
+    summary = json.loads((tmp_path / "score1" / "summary.json").read_text())
+    assert (summary["episodes"], summary["sr"]) == (1, 1.0)
 
 
 def _start(page: Page, task: str, episode: int) -> None:
