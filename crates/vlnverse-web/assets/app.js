@@ -240,8 +240,15 @@ const Replay = {
     $("r-step").value = String(k);
     $("r-step-label").textContent = `step ${k} / ${n - 1}`;
     $("r-view").src = `/api/runs/${this.run}/episodes/${d.episode.episode_id}/view/${k}`;
-    const acts = d.trajectory.actions || [];
-    $("r-action").textContent = k < acts.length ? `action at step ${k}: ${acts[k]}` : (d.trajectory.stopped ? "stopped here" : "end of the trajectory");
+    // Every action but STOP adds a position, so a long-horizon sub-goal STOP shares its
+    // position with the action after it.
+    const at = d.trajectory.positions.map(() => []);
+    let p = 0;
+    for (const a of d.trajectory.actions || []) {
+      if (p < at.length) at[p].push(a);
+      if (a !== "stop") p += 1;
+    }
+    $("r-action").textContent = at[k].length ? `action at step ${k}: ${at[k].join(", then ")}` : "end of the trajectory";
     const c = $("r-map");
     if (this.map && this.map.complete && this.map.naturalWidth) {
       c.width = this.map.naturalWidth;
