@@ -470,6 +470,13 @@ fn drive(
         };
         if let Some(rec) = &step.info.record {
             live = false;
+            // The ticks that passed while the last action ran, then the end itself.
+            let now = Instant::now();
+            while next_row <= now {
+                log.row((next_row - started).as_secs_f64(), &step, &keys)?;
+                keys.clear();
+                next_row += interval;
+            }
             log.row(started.elapsed().as_secs_f64(), &step, &keys)?;
             keys.clear();
             let _guard = lock(&app.traj_lock);
