@@ -112,3 +112,20 @@ def test_online_schedule_sampling_rate_and_resume(tmp_path: Path) -> None:
     assert [r["epoch"] for r in rest] == [3]
     a, b = trainer.model.state_dict(), resumed.model.state_dict()
     assert all(torch.equal(a[k], b[k]) for k in a)
+
+
+def test_dagger_aggregates_visited_episodes(tmp_path: Path) -> None:
+    """With --dagger, finished episodes enter the buffer (with the teacher's labels) and each
+    update adds a teacher-forced batch of them: more samples than rollout decisions."""
+    config = TrainConfig(mode="online", epochs=1, updates_per_epoch=6, rollout_length=16,
+                         num_envs=2, schedule_ratio=0.9, dagger=True, dagger_batch=1, seed=5)
+    trainer = Trainer(_model_config("seq2seq"), config, tmp_path / "dagger", log=lambda _: None)
+    envs = vlnverse.VectorEnv(DATASET, "fine", "train", num_envs=2, mode="train", seed=5,
+                              copy=False)
+    try:
+        rec = trainer.fit_online(envs)[0]
+    finally:
+        envs.close()
+    assert rec["episodes_finished"] >= 1
+    assert 1 <= rec["dagger_buffer"] <= rec["episodes_finished"]
+    assert rec["samples"] > rec["decisions"], rec
