@@ -29,18 +29,18 @@ for m in seq2seq cma; do
     --dataset "$D" --task fine --out "$R/$m-online" --epochs 8 --updates-per-epoch 25 \
     --decay-every 2 --num-envs 4 --lr 5e-4
   for v in offline online; do
-    for s in telhop strict; do
+    for sp in val_unseen/telhop val_unseen/strict test/telhop; do
       step $PY -m vlnverse_baselines evaluate --checkpoint "$R/$m-$v/model.safetensors" \
-        --dataset "$D" --task fine --split val_unseen --setting "$s" --sample "$SAMPLE" --seed 0 \
-        --name "$m-$v" --out "$R/eval/$m-$v-fine-val_unseen-$s"
+        --dataset "$D" --task fine --split "${sp%/*}" --setting "${sp#*/}" --sample "$SAMPLE" \
+        --seed 0 --name "$m-$v" --out "$R/eval/$m-$v-fine-${sp%/*}-${sp#*/}"
     done
   done
 done
 
 for a in random forward semantic oracle; do
-  for s in telhop strict; do
-    step "$XTASK" evaluate --dataset "$D" --task fine --split val_unseen --agent "$a" --setting "$s" \
-      --sample "$SAMPLE" --seed 0 --out "$R/eval/$a-fine-val_unseen-$s"
+  for sp in val_unseen/telhop val_unseen/strict test/telhop; do
+    step "$XTASK" evaluate --dataset "$D" --task fine --split "${sp%/*}" --agent "$a" \
+      --setting "${sp#*/}" --sample "$SAMPLE" --seed 0 --out "$R/eval/$a-fine-${sp%/*}-${sp#*/}"
   done
 done
 
