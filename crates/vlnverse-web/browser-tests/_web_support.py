@@ -125,7 +125,11 @@ def browser() -> Iterator[BrowserContext]:
     from playwright.sync_api import sync_playwright
 
     if not Path(CHROMIUM).exists():
-        pytest.skip(f"{CHROMIUM} is not installed (apt-get install chromium)")
+        # On CI (.ci/run installs it) a missing browser is a failure, not a skip.
+        message = f"{CHROMIUM} is not installed (apt-get install chromium)"
+        if os.environ.get("CI"):
+            pytest.fail(message)
+        pytest.skip(message)
     profile = tempfile.mkdtemp(prefix="vlnverse-web-chromium-")
     pw = sync_playwright().start()
     try:

@@ -20,8 +20,7 @@ from pathlib import Path
 
 from playwright.sync_api import Page
 
-# `cargo xtask test` runs pytest with --import-mode=importlib, which does not put this folder
-# on sys.path: the helper module beside this file is found through it.
+# Run as a script (not under pytest), so the helper module beside this file is put on sys.path.
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _web_support import browser, serve  # noqa: E402
 
