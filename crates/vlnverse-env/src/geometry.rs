@@ -6,6 +6,8 @@ use glam::Vec3;
 
 /// Segments around a cylinder.
 pub const CYLINDER_SEGMENTS: u32 = 16;
+/// Largest side in metres of the grid cells a box face is cut into (see [`triangulate`]).
+pub const MAX_CELL: f32 = 0.6;
 /// Latitude bands of a sphere (longitude uses twice as many).
 pub const SPHERE_BANDS: u32 = 6;
 
@@ -54,7 +56,10 @@ impl TriMesh {
 /// Number of triangles [`triangulate`] produces for a shape.
 pub fn triangle_count(shape: &Shape) -> usize {
     match shape {
-        Shape::Cuboid { .. } => 12,
+        Shape::Cuboid { half_extents: h } => {
+            let [x, y, z] = h.map(cells);
+            (4 * (x * y + y * z + x * z)) as usize
+        }
         Shape::Cylinder { .. } => (CYLINDER_SEGMENTS * 4) as usize,
         Shape::Sphere { .. } => (SPHERE_BANDS * SPHERE_BANDS * 2 * 2) as usize,
         Shape::Mesh(m) => m.indices.len(),
@@ -137,6 +142,22 @@ pub fn scene_triangles(scene: &Scene) -> Vec<WorldTriangle> {
     out
 }
 
+/// Segments along one box edge of half length `h`: cells of at most [`MAX_CELL`] metres, so that
+/// light baked per vertex ([`crate::light`]) has some resolution on walls and floors.
+fn cells(h: f32) -> u32 {
+    ((2.0 * h.abs() / MAX_CELL).ceil() as u32).clamp(1, 64)
+}
+
+/// Coordinate `k` of `n` along an axis of half length `h`, from `-h` (the same arithmetic for
+/// every face sharing the edge, so shared edge vertices are bit-identical: no cracks).
+fn grid(h: f32, k: u32, n: u32) -> f32 {
+    if k == n {
+        h
+    } else {
+        -h + 2.0 * h * (k as f32 / n as f32)
+    }
+}
+
 fn cuboid(h: Vec3) -> TriMesh {
     let mut m = TriMesh::default();
     // Each face: normal axis, and two tangent axes chosen so (u x v) = n (CCW from outside).
@@ -148,15 +169,38 @@ fn cuboid(h: Vec3) -> TriMesh {
         (Vec3::Z, Vec3::X, Vec3::Y),
         (Vec3::NEG_Z, Vec3::NEG_X, Vec3::Y),
     ];
+    let axis = |v: Vec3| -> (usize, bool) {
+        let i = if v.x != 0.0 {
+            0
+        } else if v.y != 0.0 {
+            1
+        } else {
+            2
+        };
+        (i, v[i] > 0.0)
+    };
     for (n, u, v) in faces {
         let base = m.positions.len() as u32;
-        for (su, sv) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
-            let p = (n + u * su + v * sv) * h;
-            m.positions.push(p.to_array());
-            m.normals.push(n.to_array());
+        let ((an, pn), (au, pu), (av, pv)) = (axis(n), axis(u), axis(v));
+        let (nu, nv) = (cells(h[au]), cells(h[av]));
+        for j in 0..=nv {
+            for i in 0..=nu {
+                let mut p = [0.0f32; 3];
+                p[an] = if pn { h[an] } else { -h[an] };
+                p[au] = grid(h[au], if pu { i } else { nu - i }, nu);
+                p[av] = grid(h[av], if pv { j } else { nv - j }, nv);
+                m.positions.push(p);
+                m.normals.push(n.to_array());
+            }
         }
-        m.indices.push([base, base + 1, base + 2]);
-        m.indices.push([base, base + 2, base + 3]);
+        for j in 0..nv {
+            for i in 0..nu {
+                let a = base + j * (nu + 1) + i;
+                let (b, c, d) = (a + 1, a + nu + 2, a + nu + 1);
+                m.indices.push([a, b, c]);
+                m.indices.push([a, c, d]);
+            }
+        }
     }
     m
 }
