@@ -3,8 +3,10 @@
 //! only multiply per pixel.
 //!
 //! [`bake`] gives one light value per vertex of every part's triangulation
-//! ([`crate::geometry::triangulate`]; box faces are cut into cells of at most
-//! [`crate::geometry::MAX_CELL`] for resolution). `scene.glb` stores it as `COLOR_0` (with
+//! ([`crate::geometry::triangulate_part_cells`] with [`cell_of`]: the walls, floors and
+//! ceilings of procedural homes are cut into cells of at most [`crate::geometry::MAX_CELL`] for
+//! resolution, everything else keeps two triangles per box face, so the renderers draw few
+//! more triangles than without light). `scene.glb` stores it as `COLOR_0` (with
 //! `KHR_materials_unlit`, so viewers show the baked look) and the renderers multiply it with the
 //! part colour and texture ([`crate::material`]). It is a pure function of the scene: the same
 //! scene gives the same bytes on any number of threads (each vertex draws its rays from a hash
@@ -14,11 +16,17 @@
 //! every room (two in long rooms), 16 occlusion rays and two shadow rays per lamp per vertex.
 //! Other scenes (imported houses, hand-made fixtures) get the old directional look per vertex,
 //! which costs nothing.
+//!
+//! A scene is usually baked twice in a row (its `scene.glb` is written, then the renderer is
+//! prepared), so [`bake`] keeps the last few results in a small process-wide cache keyed by the
+//! scene's content; a hit returns the same bytes as a fresh bake.
 
 use crate::bvh::TriBvh;
-use crate::scene::Scene;
+use crate::scene::{Scene, SceneObject};
+use crate::SemanticClass;
 use glam::Vec3;
 use rayon::prelude::*;
+use std::sync::{Arc, Mutex};
 
 /// Occlusion rays per vertex.
 const AO_RAYS: usize = 16;
@@ -36,20 +44,68 @@ const LAMP_DROP: f32 = 0.35;
 const FLAT_AMBIENT: f32 = 0.35;
 const FLAT_DIFFUSE: f32 = 0.65;
 const FLAT_LIGHT: [f32; 3] = [0.35, 1.0, 0.25];
+/// Colour of the lamps (warm: a touch more red than blue), green = 1.
+pub const LAMP_TINT: [f32; 3] = [1.04, 1.0, 0.92];
+/// Cells of walls, in units of [`crate::geometry::MAX_CELL`].
+const WALL_CELL: f32 = 2.0;
+/// Results kept by the cache of [`bake`].
+const CACHE: usize = 32;
 
-/// Light per vertex of every part: `parts[k][i]` is vertex `i` of `triangulate(shape)` of the
-/// `k`-th part of the scene (object order, then part order), linear, 255 = full base colour.
+/// Light per vertex of every part: `parts[k][i]` is vertex `i` of
+/// `triangulate_part_cells(part, pose, cell_of(scene, object))` of the `k`-th part of the scene
+/// (object order, then part order), linear, 255 = full base colour. Every value is the light's
+/// colour ([`BakedLight::tint`]) times one intensity, so renderers may interpolate the green
+/// channel alone and multiply the tint into the part colour.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct BakedLight {
     /// Per part, per vertex, RGB.
     pub parts: Vec<Vec<[u8; 3]>>,
+    /// Colour of the light (green is 1): [`LAMP_TINT`] for lamp-lit homes, white otherwise.
+    pub tint: [f32; 3],
+}
+
+/// Whether a scene gets lamps and the full bake (procedural homes).
+pub fn is_lit(scene: &Scene) -> bool {
+    scene.source == "procgen"
+}
+
+/// Cell size of an object's triangulation for baking (see the module docs): floors of lamp-lit
+/// homes get [`crate::geometry::MAX_CELL`] (shadows of furniture), walls cells twice as
+/// large (smooth falloff, corner occlusion), other objects `None` (two triangles per box face).
+pub fn cell_of(scene: &Scene, o: &SceneObject) -> Option<f32> {
+    if !is_lit(scene) {
+        return None;
+    }
+    let m = crate::geometry::MAX_CELL;
+    match o.class {
+        // Shadows of furniture on the floor need the finest cells; walls and ceilings carry
+        // smooth falloff and corner occlusion.
+        SemanticClass::Floor => Some(m),
+        SemanticClass::Wall => Some(m * WALL_CELL),
+        // Ceilings: light from their corners only (a smooth gradient; cells there cost
+        // triangles in every view and show little).
+        _ => None,
+    }
+}
+
+/// World-space triangulation of every part as baked (object order, then part order).
+pub fn bake_meshes(scene: &Scene) -> Vec<crate::geometry::TriMesh> {
+    scene
+        .objects
+        .iter()
+        .flat_map(|o| {
+            let cell = cell_of(scene, o);
+            o.parts.iter().map(move |p| (o, p, cell))
+        })
+        .map(|(o, p, cell)| crate::geometry::triangulate_part_cells(p, &o.pose, cell))
+        .collect()
 }
 
 /// Where the lamps of a scene hang: under the ceiling of every room, at the centre of its
 /// outline's box, two along the long side of rooms longer than 4.5 m. Empty for scenes that are
 /// not procedural homes.
 pub fn lamps(scene: &Scene) -> Vec<Vec3> {
-    if scene.source != "procgen" {
+    if !is_lit(scene) {
         return Vec::new();
     }
     let top = scene
@@ -92,16 +148,60 @@ pub fn lamps(scene: &Scene) -> Vec<Vec3> {
     out
 }
 
-/// Bake the light of a scene (see the module docs).
-pub fn bake(scene: &Scene) -> BakedLight {
-    // World-space triangulation of every part, in part order.
-    let parts: Vec<crate::geometry::TriMesh> = scene
-        .objects
-        .iter()
-        .flat_map(|o| o.parts.iter().map(move |p| (o, p)))
-        .map(|(o, p)| crate::geometry::triangulate_part(p, &o.pose))
-        .collect();
+/// The last bakes: content key, result.
+type Cache = Mutex<Vec<(u64, Arc<BakedLight>)>>;
+
+fn cache() -> &'static Cache {
+    static C: std::sync::OnceLock<Cache> = std::sync::OnceLock::new();
+    C.get_or_init(|| Mutex::new(Vec::new()))
+}
+
+/// A 64-bit key of everything the bake reads: the triangulated parts and the lamps.
+fn content_key(parts: &[crate::geometry::TriMesh], lamps: &[Vec3]) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    let mut mix = |v: u32| {
+        h = (h ^ u64::from(v)).wrapping_mul(0x0000_0100_0000_01b3);
+        h ^= h >> 29;
+    };
+    for m in parts {
+        mix(m.positions.len() as u32);
+        for p in m.positions.iter().chain(&m.normals) {
+            p.iter().for_each(|c| mix(c.to_bits()));
+        }
+        for t in &m.indices {
+            t.iter().for_each(|i| mix(*i));
+        }
+    }
+    for l in lamps {
+        l.to_array().iter().for_each(|c| mix(c.to_bits()));
+    }
+    h
+}
+
+/// Bake the light of a scene (see the module docs); the same result as a fresh bake, taken
+/// from the cache when this scene was baked a moment ago.
+pub fn bake(scene: &Scene) -> Arc<BakedLight> {
+    let parts = bake_meshes(scene);
     let lamps = lamps(scene);
+    let key = content_key(&parts, &lamps);
+    if let Some(hit) = cache()
+        .lock()
+        .ok()
+        .and_then(|c| c.iter().find(|(k, _)| *k == key).map(|(_, l)| l.clone()))
+    {
+        return hit;
+    }
+    let light = Arc::new(bake_uncached(parts, &lamps));
+    if let Ok(mut c) = cache().lock() {
+        if c.len() >= CACHE {
+            c.remove(0);
+        }
+        c.push((key, light.clone()));
+    }
+    light
+}
+
+fn bake_uncached(parts: Vec<crate::geometry::TriMesh>, lamps: &[Vec3]) -> BakedLight {
     if lamps.is_empty() {
         let l = Vec3::from_array(FLAT_LIGHT).normalize();
         return BakedLight {
@@ -118,6 +218,7 @@ pub fn bake(scene: &Scene) -> BakedLight {
                         .collect()
                 })
                 .collect(),
+            tint: [1.0; 3],
         };
     }
     let mut positions = Vec::new();
@@ -133,7 +234,7 @@ pub fn bake(scene: &Scene) -> BakedLight {
     let ctx = Ctx {
         bvh: &bvh,
         normals: &normals,
-        lamps: &lamps,
+        lamps,
         dirs: hemisphere(),
     };
     BakedLight {
@@ -142,6 +243,7 @@ pub fn bake(scene: &Scene) -> BakedLight {
             .enumerate()
             .map(|(k, m)| ctx.bake_part(k, m))
             .collect(),
+        tint: LAMP_TINT,
     }
 }
 
@@ -218,14 +320,25 @@ impl Ctx<'_> {
         let t = n.any_orthonormal_vector();
         let b = n.cross(t);
         let (t, b) = (t * cos + b * sin, b * cos - t * sin);
-        let blocked = self
-            .dirs
-            .iter()
-            .filter(|d| {
-                let dir = t * d.x + b * d.y + n * d.z;
-                self.hit(s, dir, AO_REACH).is_some()
-            })
-            .count();
+        let occluded = |s: Vec3| {
+            self.dirs
+                .iter()
+                .filter(|d| {
+                    let dir = t * d.x + b * d.y + n * d.z;
+                    self.hit(s, dir, AO_REACH).is_some()
+                })
+                .count()
+        };
+        let mut blocked = occluded(s);
+        // A corner buried in a neighbouring solid (a ceiling's corner inside the walls) sees
+        // nothing: sample its face a little inwards instead.
+        for f in [0.1, 0.25, 0.5] {
+            if blocked < AO_RAYS {
+                break;
+            }
+            s = p + (inward - p) * f + lift;
+            blocked = occluded(s);
+        }
         let ao = 1.0 - blocked as f32 / AO_RAYS as f32;
         // Direct light from every lamp in reach, two shadow rays each (a lamp is a small disc).
         let mut direct = 0.0;
@@ -251,8 +364,7 @@ impl Ctx<'_> {
         }
         let ambient = 0.17 + 0.06 * n.y;
         let k = ao * ambient + (0.25 + 0.75 * ao) * direct;
-        // Warm lamps: a touch more red than blue.
-        [to_u8(k * 1.04), to_u8(k), to_u8(k * 0.92)]
+        LAMP_TINT.map(|c| to_u8(k * c))
     }
 }
 

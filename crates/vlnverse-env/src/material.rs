@@ -123,6 +123,23 @@ impl Surface {
         &LUMA.get_or_init(|| Surface::ALL.iter().map(|s| s.generate()).collect())[self.index()]
     }
 
+    /// [`Surface::luma`] encoded for display (each value `v / 255` raised to `1 / 2.2`, times
+    /// 255): renderers multiply encoded colours (see `vlnverse_sensors::SceneMesh`).
+    pub fn luma_encoded(self) -> &'static [u8] {
+        static ENC: OnceLock<Vec<Vec<u8>>> = OnceLock::new();
+        &ENC.get_or_init(|| {
+            Surface::ALL
+                .iter()
+                .map(|s| {
+                    s.luma()
+                        .iter()
+                        .map(|&g| ((g as f32 / 255.0).powf(1.0 / 2.2) * 255.0).round() as u8)
+                        .collect()
+                })
+                .collect()
+        })[self.index()]
+    }
+
     /// The constant colour cast of the texture (warm wood), per channel.
     pub fn tint(self) -> [f32; 3] {
         match self {
@@ -142,7 +159,7 @@ impl Surface {
                 let v: f32 = match self {
                     Surface::Plain => 0.9,
                     Surface::Plaster => {
-                        grey(0.86 + 0.05 * fbm(seed, fx, fy, 16.0) + 0.02 * hash01(seed, x, y))
+                        grey(0.85 + 0.1 * fbm(seed, fx, fy, 16.0) + 0.05 * hash01(seed, x, y))
                     }
                     Surface::Wallpaper => {
                         // Stripes of two widths and a faint dotted motif.

@@ -6,7 +6,7 @@ use glam::Vec3;
 use std::time::Instant;
 use vlnverse_env::{SceneSource, SemanticClass};
 use vlnverse_procgen::{HomeGenerator, Preset};
-use vlnverse_sensors::{AgentState, Backend, RigConfig, SensorRig};
+use vlnverse_sensors::{AgentState, Backend, RigConfig, SceneMesh, SensorRig};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -47,8 +47,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let secs = t.elapsed().as_secs_f64();
     println!(
-        "{} triangles, scene prepared (bake included) in {prep:.3} s; {n} observations: {:.0} frames/s",
-        scene.triangle_count(),
+        "{} triangles drawn, scene prepared (bake included) in {prep:.3} s; {n} observations: {:.0} frames/s",
+        SceneMesh::new(&scene)?.triangle_count(),
         n as f64 / secs
     );
     Ok(())

@@ -58,12 +58,13 @@ fn has(mask: u8, k: usize) -> bool {
     mask & (1 << k) != 0
 }
 
-/// Vertex stage shared by all target sets. Colours are the baked light of each corner times the
-/// part colour ([`SceneMesh::look`]), linear, interpolated (perspective-correct) over the
-/// triangle with the texture coordinates; the colour fragment stage fetches the texel with
-/// `textureLoad` (nearest, wrapped with the same integer arithmetic as the CPU rasteriser) from
-/// one texture holding every surface texture stacked, multiplies and encodes sRGB. Linear depth
-/// is linear in world position, so perspective-correct interpolation gives it exactly.
+/// Vertex stage shared by all target sets. Colours are the triangle's encoded colour times the
+/// encoded baked light of each corner ([`SceneMesh::look`]), interpolated (perspective-correct)
+/// over the triangle with the texture coordinates; the colour fragment stage fetches the
+/// encoded texel with `textureLoad` (nearest, wrapped with the same integer arithmetic as the
+/// CPU rasteriser) from one texture holding every surface texture stacked and multiplies, as
+/// the CPU backends do. Linear depth is linear in world position, so perspective-correct
+/// interpolation gives it exactly.
 const VERTEX_SHADER: &str = r#"
 struct ViewU { view_proj: mat4x4<f32>, cam_pos: vec4<f32>, forward: vec4<f32>, light: vec4<f32> };
 @group(0) @binding(0) var<uniform> u: ViewU;
@@ -107,8 +108,7 @@ fn shader_source(mask: u8) -> String {
             "let tu = i32(i.uv.x + UV_BIAS) & TEX_MASK;\n    \
              let tv = i32(i.uv.y + UV_BIAS) & TEX_MASK;\n    \
              let t = textureLoad(surfaces, vec2<i32>(tu, i32(i.tex) + tv), 0).rgb;\n    \
-             o.color = vec4<f32>(pow(clamp(i.color.rgb * t, vec3<f32>(0.0), vec3<f32>(1.0)), \
-             vec3<f32>(1.0 / 2.2)), 1.0);",
+             o.color = vec4<f32>(clamp(i.color.rgb * t, vec3<f32>(0.0), vec3<f32>(1.0)), 1.0);",
         ),
         ("depth: u32", "o.depth = bitcast<u32>(i.dist);"),
         ("id: u32", "o.id = i.id;"),
@@ -138,7 +138,7 @@ fn shader_source(mask: u8) -> String {
 struct Vertex {
     pos: [f32; 3],
     normal: [f32; 3],
-    /// Linear lit colour (float: 8 bits are too coarse in the dark after encoding).
+    /// Encoded lit colour (float: the light may exceed 1 before the texel darkens it).
     color: [f32; 4],
     id: u32,
     /// Texture coordinates in texels.
@@ -338,12 +338,12 @@ fn create_context() -> std::result::Result<GpuContext, String> {
     })
 }
 
-/// Every surface texture's grey part stacked vertically in one `Rgba8Unorm` texture
-/// (multipliers, not sRGB; tints are in the vertex colours, as on the CPU).
+/// Every surface texture's encoded grey part ([`Surface::luma_encoded`]) stacked vertically in
+/// one `Rgba8Unorm` texture (multipliers; tints are in the vertex colours, as on the CPU).
 fn surfaces_texture(device: &wgpu::Device, queue: &wgpu::Queue) -> wgpu::TextureView {
     let texels: Vec<u8> = Surface::ALL
         .iter()
-        .flat_map(|s| s.luma().iter().flat_map(|&g| [g, g, g, 255]))
+        .flat_map(|s| s.luma_encoded().iter().flat_map(|&g| [g, g, g, 255]))
         .collect();
     let size = wgpu::Extent3d {
         width: TEX_SIZE as u32,
@@ -842,8 +842,12 @@ impl Renderer for GpuRenderer {
                 let m = &mesh;
                 (0..3).map(move |k| {
                     let (c, uv, tex) = match look {
-                        Some(l) => (l.corner[k], l.uv[k], (l.surface.index() * TEX_SIZE) as u32),
-                        None => (flat, [0.0; 2], 0),
+                        Some(l) => (
+                            l.tone.map(|c| c * l.light[k]),
+                            l.uv[k],
+                            (l.surface.index() * TEX_SIZE) as u32,
+                        ),
+                        None => (flat.map(|c| c.clamp(0.0, 1.0).powf(1.0 / 2.2)), [0.0; 2], 0),
                     };
                     Vertex {
                         pos: m.positions[3 * t + k].to_array(),

@@ -8,11 +8,12 @@
 //! leave cracks nor overlap. Depth is `1 / z` from the triangle's plane (linear in screen space)
 //! and is kept in the depth buffer; a resolve pass turns it into metres along the optical axis
 //! and the winning triangle into colour, class and object ids. Colour is the baked light of the
-//! triangle's corners times its surface texture ([`SceneMesh::look`]): for views with RGB, each
-//! visible triangle gets a slot with five attributes (lit R, G, B and texture u, v) set up so
-//! that `attribute / depth` is linear in screen space; the resolve pass evaluates them at the
-//! pixel from the depth buffer (perspective-correct, one division per pixel), fetches the
-//! texel and encodes sRGB through a table. The light is baked, so the per-pixel cost is flat.
+//! triangle's corners times its surface texture times its colour, in encoded space
+//! ([`SceneMesh::look`]): for views with RGB, each visible triangle gets a slot with three
+//! attributes (light, texture u, v) set up so that `attribute / depth` is linear in screen
+//! space; the resolve pass evaluates them at the pixel from the depth buffer
+//! (perspective-correct, one division per pixel), fetches one byte of texel and multiplies by
+//! the triangle's colour. The light is baked, so the per-pixel cost is flat and small.
 //!
 //! Back faces are culled only where that cannot change the image: for objects whose triangles
 //! form closed, outward-oriented surfaces, seen from outside their box (with room for the near
@@ -31,7 +32,6 @@ use crate::error::{Result, SensorError};
 use crate::frame::{Frame, View};
 use crate::renderer::Renderer;
 use crate::scene_mesh::SceneMesh;
-use crate::shading;
 use glam::{DVec3, Mat3, Vec3};
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -49,32 +49,38 @@ const MAX_FIXED: f64 = (1u64 << 25) as f64;
 const MIN_BAND_ROWS: usize = 16;
 /// Side in pixels of the square tiles of the coarse depth buffer used for occlusion culling.
 const TILE: usize = 8;
+/// Longest run of pixels of one triangle shaded at once by the RGB resolve.
+const RUN: usize = 64;
 
-/// Entries of the linear -> sRGB byte table of the resolve pass.
-const LUT: usize = 4096;
+/// Attributes interpolated over a triangle: encoded light, texture u, v.
+const ATTRS: usize = 3;
 
 /// How a triangle's look varies over it: corner 0 and the vectors giving the barycentric
 /// weights of corners 1 and 2 of a point `q` on its plane (`(q - a) . wu`, `(q - a) . wv`),
-/// and the five attributes (lit R, G, B, texture u, v) at corner 0 and their changes towards
+/// and the attributes (encoded light, texture u, v) at corner 0 and their changes towards
 /// corners 1 and 2.
 #[derive(Clone, Copy, Debug)]
 struct Look {
     a: Vec3,
     wu: Vec3,
     wv: Vec3,
-    at: [f32; 5],
-    du: [f32; 5],
-    dv: [f32; 5],
+    at: [f32; ATTRS],
+    du: [f32; ATTRS],
+    dv: [f32; ATTRS],
     /// First texel of the surface texture in [`RasterScene::texels`].
     tex: u32,
+    /// Encoded colour ([`crate::TriLook::tone`]) scaled so that `tone x light x texel byte`
+    /// is the output byte.
+    tone: [f32; 3],
 }
 
 /// A visible triangle of one view: attribute `k` times `1 / depth` at pixel `(x, y)` is
 /// `k[k][0] x + k[k][1] y + k[k][2]`.
 #[derive(Clone, Copy, Debug)]
 struct Slot {
-    k: [[f32; 3]; 5],
+    k: [[f32; 3]; ATTRS],
     tex: u32,
+    tone: [f32; 3],
 }
 
 /// An object's triangle range and whether its back faces may be culled.
@@ -96,11 +102,9 @@ pub struct RasterScene {
     tag_object: Vec<u32>,
     /// Look of each triangle.
     look: Vec<Look>,
-    /// Every surface texture's grey part ([`Surface::luma`]), one after the other
-    /// ([`Surface::ALL`] order); tints are in the vertex colours.
+    /// Every surface texture's grey part, encoded ([`Surface::luma_encoded`]), one after the
+    /// other ([`Surface::ALL`] order); tints are in the triangle colours.
     texels: Vec<u8>,
-    /// Linear (times 255, for the texel factor) -> sRGB byte.
-    lut: Vec<u8>,
     /// Unit geometric normal per triangle (as [`SceneMesh::normal`]).
     normal: Vec<Vec3>,
     objects: Vec<ObjInfo>,
@@ -330,20 +334,16 @@ impl RasterScene {
                 (Vec3::ZERO, Vec3::ZERO)
             };
             let l = mesh.look.get(t);
-            let attr = |k: usize| -> [f32; 5] {
+            let attr = |k: usize| -> [f32; ATTRS] {
                 match l {
-                    Some(l) => [
-                        l.corner[k][0],
-                        l.corner[k][1],
-                        l.corner[k][2],
-                        l.uv[k][0],
-                        l.uv[k][1],
-                    ],
-                    None => {
-                        let c = mesh.color[t];
-                        [c[0], c[1], c[2], 0.0, 0.0]
-                    }
+                    Some(l) => [l.light[k], l.uv[k][0], l.uv[k][1]],
+                    None => [1.0, 0.0, 0.0],
                 }
+            };
+            // Bytes: tone x light x texel byte (255 = 1) is the output byte.
+            let tone = match l {
+                Some(l) => l.tone,
+                None => mesh.color[t].map(|c| c.clamp(0.0, 1.0).powf(1.0 / 2.2)),
             };
             let (a0, a1, a2) = (attr(0), attr(1), attr(2));
             look.push(Look {
@@ -351,9 +351,10 @@ impl RasterScene {
                 wu,
                 wv,
                 at: a0,
-                du: [0, 1, 2, 3, 4].map(|k| a1[k] - a0[k]),
-                dv: [0, 1, 2, 3, 4].map(|k| a2[k] - a0[k]),
+                du: [0, 1, 2].map(|k| a1[k] - a0[k]),
+                dv: [0, 1, 2].map(|k| a2[k] - a0[k]),
                 tex: (l.map_or(Surface::Plain, |l| l.surface).index() * TEX_SIZE * TEX_SIZE) as u32,
+                tone,
             });
         }
         let objects = mesh
@@ -380,10 +381,7 @@ impl RasterScene {
             look,
             texels: Surface::ALL
                 .iter()
-                .flat_map(|s| s.luma().iter().copied())
-                .collect(),
-            lut: (0..LUT)
-                .map(|i| shading::encode(i as f32 / (LUT - 1) as f32))
+                .flat_map(|s| s.luma_encoded().iter().copied())
                 .collect(),
             mesh,
             normal,
@@ -581,11 +579,15 @@ impl RasterScene {
             ]
         };
         let (u, v) = (lin(l.wu), lin(l.wv));
-        let k = [0, 1, 2, 3, 4].map(|i| {
+        let k = [0, 1, 2].map(|i| {
             let (a0, a1, a2) = (l.at[i] as f64, l.du[i] as f64, l.dv[i] as f64);
             [0, 1, 2].map(|j| (a0 * plane[j] + a1 * u[j] + a2 * v[j]) as f32)
         });
-        Slot { k, tex: l.tex }
+        Slot {
+            k,
+            tex: l.tex,
+            tone: l.tone,
+        }
     }
 
     /// Clip, project and emit one triangle; its `1 / depth` plane when it may be visible.
@@ -755,13 +757,19 @@ impl RasterScene {
         // in the low mantissa bits): no saturating conversions, no branches in the hot loop.
         const MAGIC: f32 = 12_582_912.0;
         const MASK: u32 = TEX_SIZE as u32 - 1;
-        let scale = (LUT - 1) as f32 / 255.0;
-        let lut = &self.lut[..LUT];
-        let texels = &self.texels[..];
-        let index = |v: f32| -> usize {
-            let v = if v > 0.0 { v } else { 0.0 };
-            ((v.min(65_536.0) + MAGIC).to_bits() & 0x3f_ffff).min(LUT as u32 - 1) as usize
-        };
+        const TEXELS: usize = TEX_SIZE * TEX_SIZE;
+        let slots = &setup.slots[..];
+        // `v` in [0, 255]: its rounded value.
+        let byte = |v: f32| -> u32 { (v + MAGIC).to_bits() & 0xff };
+        // A run of pixels of one slot is shaded in passes: attributes and texel indices
+        // (branch-free, vectorised), texel fetch, colour packed in a word (vectorised), bytes.
+        let mut light = [0.0f32; RUN];
+        let mut index = [0u32; RUN];
+        let mut packed = [0u32; RUN];
+        let mut lanes = [0.0f32; RUN];
+        for (j, l) in lanes.iter_mut().enumerate() {
+            *l = j as f32;
+        }
         for (row, ((zr, ir), out)) in zbuf
             .chunks_exact(w)
             .zip(ids.chunks_exact(w))
@@ -769,23 +777,72 @@ impl RasterScene {
             .enumerate()
         {
             let y = (y0 + row) as f32;
-            for (x, ((iz, id), px)) in zr.iter().zip(ir).zip(out.chunks_exact_mut(3)).enumerate() {
-                if *id == 0 {
-                    px[0] = 0;
-                    px[1] = 0;
-                    px[2] = 0;
-                    continue;
+            let mut x = 0;
+            while x < w {
+                let id = ir[x];
+                let end = (x + RUN).min(w);
+                // Whole blocks of 8 equal ids first (branch-free compare), then one by one.
+                let mut e = x + 1;
+                while e + 8 <= end && ir[e..e + 8].iter().fold(true, |all, &v| all & (v == id)) {
+                    e += 8;
                 }
-                let s = &setup.slots[*id as usize - 1];
-                let (xf, inv) = (x as f32, 1.0 / *iz);
-                let at = |k: usize| (s.k[k][0] * xf + s.k[k][1] * y + s.k[k][2]) * inv;
-                // floor(t) as round(t - 0.5); the mask wraps negative coordinates too.
-                let tu = (at(3) - 0.5 + MAGIC).to_bits() & MASK;
-                let tv = (at(4) - 0.5 + MAGIC).to_bits() & MASK;
-                let t = texels[(s.tex + tv * TEX_SIZE as u32 + tu) as usize] as f32 * scale;
-                px[0] = lut[index(at(0) * t)];
-                px[1] = lut[index(at(1) * t)];
-                px[2] = lut[index(at(2) * t)];
+                while e < end && ir[e] == id {
+                    e += 1;
+                }
+                let n = e - x;
+                let px = &mut out[3 * x..3 * e];
+                let Some(s) = (id as usize).checked_sub(1).and_then(|i| slots.get(i)) else {
+                    px.fill(0);
+                    x = e;
+                    continue;
+                };
+                let Some(tex) = self
+                    .texels
+                    .get(s.tex as usize..s.tex as usize + TEXELS)
+                    .and_then(|t| <&[u8; TEXELS]>::try_from(t).ok())
+                else {
+                    px.fill(0);
+                    x = e;
+                    continue;
+                };
+                let xf = x as f32;
+                let k = &s.k;
+                // Attribute / depth at pixel x + j is a x_j + b.
+                let (a0, a1, a2) = (k[0][0], k[1][0], k[2][0]);
+                let b0 = k[0][0] * xf + k[0][1] * y + k[0][2];
+                let b1 = k[1][0] * xf + k[1][1] * y + k[1][2];
+                let b2 = k[2][0] * xf + k[2][1] * y + k[2][2];
+                for (((l, i), iz), j) in light[..n]
+                    .iter_mut()
+                    .zip(index[..n].iter_mut())
+                    .zip(&zr[x..e])
+                    .zip(&lanes[..n])
+                {
+                    let inv = 1.0 / *iz;
+                    *l = (a0 * j + b0) * inv;
+                    // floor(t) as round(t - 0.5); the mask wraps negative coordinates too.
+                    let tu = ((a1 * j + b1) * inv - 0.5 + MAGIC).to_bits() & MASK;
+                    let tv = ((a2 * j + b2) * inv - 0.5 + MAGIC).to_bits() & MASK;
+                    *i = tv * TEX_SIZE as u32 + tu;
+                }
+                let [tr, tg, tb] = s.tone;
+                // Clamping the product once keeps every channel in [0, 255].
+                let top = 255.0 / tr.max(tg).max(tb).max(1e-6);
+                for (l, i) in light[..n].iter_mut().zip(&index[..n]) {
+                    *l *= tex[*i as usize & (TEXELS - 1)] as f32;
+                }
+                for (c, l) in packed[..n].iter_mut().zip(&light[..n]) {
+                    let m = if *l < top { *l } else { top };
+                    let m = if m > 0.0 { m } else { 0.0 };
+                    *c = byte(tr * m) | byte(tg * m) << 8 | byte(tb * m) << 16;
+                }
+                for (p, c) in px.chunks_exact_mut(3).zip(&packed[..n]) {
+                    let [r, g, b, _] = c.to_le_bytes();
+                    p[0] = r;
+                    p[1] = g;
+                    p[2] = b;
+                }
+                x = e;
             }
         }
     }

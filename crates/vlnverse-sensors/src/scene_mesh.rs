@@ -1,21 +1,35 @@
 //! The scene prepared for rendering: every triangle in world space, grouped by object, with
 //! per-object bounding boxes (for frustum culling), an id -> class table, and the look of each
-//! triangle: lit colour at its corners (part colour times the light baked by
-//! [`vlnverse_env::light`]) and texture coordinates into its surface's texture
-//! ([`vlnverse_env::material`]), the same data `scene.glb` holds.
+//! triangle: its colour, the light baked by [`vlnverse_env::light`] at its corners and texture
+//! coordinates into its surface's texture ([`vlnverse_env::material`]), the same data
+//! `scene.glb` holds.
+//!
+//! Every backend computes a pixel the same way, in the encoded (gamma 2.2) space of the output:
+//! `tone x light x texel`, clamped to 1, where `tone` is the triangle's encoded colour, `light`
+//! the encoded light interpolated (perspective-correct) from the corners and `texel` the
+//! encoded texture value ([`Surface::luma_encoded`]). With a pure 2.2 gamma this is the
+//! encoded product of the linear values; only the interpolation of the light differs from a
+//! viewer of `scene.glb`, which interpolates linear light (a few levels at most, in the
+//! gradients). One interpolated value per pixel instead of three keeps the rasteriser fast.
 
 use crate::error::{Result, SensorError};
 use glam::Vec3;
-use vlnverse_env::geometry::triangulate_part;
-use vlnverse_env::light::{bake, BakedLight};
+use vlnverse_env::geometry::triangulate_part_cells;
+use vlnverse_env::light::{bake, cell_of, BakedLight};
 use vlnverse_env::material::{box_uv, surface_of, Surface, TEX_SIZE};
 use vlnverse_env::{Aabb, Scene};
 
-/// How one triangle looks: per corner, the lit linear colour and texture coordinates.
+/// Gamma of the encoded output (as [`crate::shading::encode`]).
+const GAMMA: f32 = 1.0 / 2.2;
+
+/// How one triangle looks (see the module docs for how a pixel is made of it).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TriLook {
-    /// Part colour times baked light and the texture's tint at each corner (linear RGB).
-    pub corner: [[f32; 3]; 3],
+    /// Encoded colour: part colour times the texture's tint times the light's colour, each
+    /// linear value raised to `1 / 2.2` (may exceed 1 slightly).
+    pub tone: [f32; 3],
+    /// Encoded light intensity at each corner (linear intensity raised to `1 / 2.2`).
+    pub light: [f32; 3],
     /// Texture coordinates of each corner in texels of a [`TEX_SIZE`] texture (repeating).
     pub uv: [[f32; 2]; 3],
     /// The surface whose texture applies.
@@ -79,12 +93,20 @@ impl SceneMesh {
             look: Vec::with_capacity(n_tri),
         };
         let mut part_index = 0;
+        // Encoded intensity of an 8-bit light value.
+        let encoded: Vec<f32> = (0..256).map(|i| (i as f32 / 255.0).powf(GAMMA)).collect();
+        let light_tint = if light.tint == [0.0; 3] {
+            [1.0; 3]
+        } else {
+            light.tint
+        };
         for o in &scene.objects {
             let surface = surface_of(scene, o);
             let texels = TEX_SIZE as f32 / surface.repeat();
             let tint = surface.tint();
+            let cell = cell_of(scene, o);
             for part in &o.parts {
-                let tm = triangulate_part(part, &o.pose);
+                let tm = triangulate_part_cells(part, &o.pose, cell);
                 let lights = light
                     .parts
                     .get(part_index)
@@ -94,12 +116,12 @@ impl SceneMesh {
                 let base = part
                     .color
                     .map(|c| (c.clamp(0.0, 1.0) * 255.0).round() / 255.0);
+                let tone = [0, 1, 2].map(|k| (base[k] * tint[k] * light_tint[k]).powf(GAMMA));
                 for t in &tm.indices {
                     let v = t.map(|i| Vec3::from_array(tm.positions[i as usize]));
-                    let corner = t.map(|i| {
-                        let l = lights.map_or([200; 3], |l| l[i as usize]);
-                        [0, 1, 2].map(|k| base[k] * tint[k] * l[k] as f32 / 255.0)
-                    });
+                    // The green channel carries the intensity (the light's tint is in `tone`).
+                    let corner_light =
+                        t.map(|i| encoded[lights.map_or(200, |l| l[i as usize][1]) as usize]);
                     let uv = t.map(|i| {
                         let i = i as usize;
                         let [u, v] = box_uv(
@@ -110,7 +132,8 @@ impl SceneMesh {
                     });
                     m.push(v, o.id, part.color);
                     m.look.push(TriLook {
-                        corner,
+                        tone,
+                        light: corner_light,
                         uv,
                         surface,
                     });
@@ -180,8 +203,10 @@ impl SceneMesh {
         let mask = TEX_SIZE as i32 - 1;
         let tu = ((at(l.uv.map(|p| p[0])) + bias) as i32) & mask;
         let tv = ((at(l.uv.map(|p| p[1])) + bias) as i32) & mask;
-        let texel = l.surface.luma()[(tv * TEX_SIZE as i32 + tu) as usize] as f32 / 255.0;
-        [0, 1, 2].map(|k| crate::shading::encode(at(l.corner.map(|c| c[k])) * texel))
+        let texel = l.surface.luma_encoded()[(tv * TEX_SIZE as i32 + tu) as usize] as f32;
+        let k = at(l.light) * texel;
+        l.tone
+            .map(|c| (c * k).clamp(0.0, 255.0).round_ties_even() as u8)
     }
 
     /// Geometric unit normal of triangle `i`.

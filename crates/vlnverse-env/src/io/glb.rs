@@ -12,8 +12,8 @@
 //! what [`MeshData::glb_mesh`] names.
 
 use crate::error::{EnvError, Result};
-use crate::geometry::{mesh_with_normals, triangulate, TriMesh};
-use crate::light::{bake, BakedLight};
+use crate::geometry::{mesh_with_normals, triangulate_cells, TriMesh};
+use crate::light::{bake, cell_of, BakedLight};
 use crate::material::{box_uv, surface_of, Surface, TEX_SIZE};
 use crate::scene::{MeshData, Motion, Pose, Scene, SceneObject, Shape};
 use glam::Vec3;
@@ -382,7 +382,7 @@ pub fn write_glb_with(scene: &Scene, light: &BakedLight) -> Vec<u8> {
                 mesh_part += 1;
                 continue;
             }
-            let tri = triangulate(&p.shape);
+            let tri = triangulate_cells(&p.shape, cell_of(scene, o));
             let gi = match groups.iter().position(|(m, _)| *m == mat) {
                 Some(gi) => gi,
                 None => {
