@@ -201,6 +201,11 @@ pub fn bake(scene: &Scene) -> Arc<BakedLight> {
     light
 }
 
+/// [`bake`] without the cache: always computes (tests compare the two, and thread counts).
+pub fn bake_fresh(scene: &Scene) -> BakedLight {
+    bake_uncached(bake_meshes(scene), &lamps(scene))
+}
+
 fn bake_uncached(parts: Vec<crate::geometry::TriMesh>, lamps: &[Vec3]) -> BakedLight {
     if lamps.is_empty() {
         let l = Vec3::from_array(FLAT_LIGHT).normalize();

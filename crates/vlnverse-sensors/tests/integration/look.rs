@@ -4,7 +4,7 @@ use crate::common;
 
 use glam::Vec3;
 use std::sync::Arc;
-use vlnverse_env::light::bake;
+use vlnverse_env::light::{bake, bake_fresh};
 use vlnverse_env::{
     Part, Pose, Room, RoomType, Scene, SceneObject, SceneSource, SemanticClass, Shape,
 };
@@ -202,7 +202,8 @@ fn baked_light_and_images_are_the_same_on_one_and_two_threads() {
             .build()
             .unwrap();
         pool.install(|| {
-            let light = bake(&home);
+            // Computed, not taken from the cache of `bake`.
+            let light = bake_fresh(&home);
             let glb = vlnverse_env::io::glb::write_glb_with(&home, &light);
             let mesh = Arc::new(SceneMesh::with_light(&home, &light).unwrap());
             let mut r = RasterRenderer::new();
@@ -216,6 +217,8 @@ fn baked_light_and_images_are_the_same_on_one_and_two_threads() {
     };
     let (a, b) = (run(1), run(2));
     assert_eq!(a.0, b.0, "baked light differs");
+    // The cached bake gives the same light.
+    assert_eq!(*bake(&home), a.0);
     assert!(a.1 == b.1, "scene.glb bytes differ");
     for (x, y) in a.2.iter().zip(&b.2) {
         assert_eq!(x.rgb, y.rgb);
