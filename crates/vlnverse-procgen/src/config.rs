@@ -84,8 +84,7 @@ pub struct WallsConfig {
     pub thickness: f32,
     /// Wall height (m).
     pub height: f32,
-    /// Add a ceiling slab per room (on by default: rooms seen from inside have a ceiling;
-    /// top-down pictures leave ceilings out).
+    /// Add a ceiling slab per room (off by default: top-down views look through).
     pub ceiling: bool,
 }
 
@@ -191,7 +190,7 @@ impl Default for WallsConfig {
         WallsConfig {
             thickness: 0.12,
             height: 2.7,
-            ceiling: true,
+            ceiling: false,
         }
     }
 }

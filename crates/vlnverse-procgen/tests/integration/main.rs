@@ -1,5 +1,4 @@
 //! Integration tests of `vlnverse-procgen`, linked into one test binary (one link, shared fixtures).
 
 mod homes;
-mod look;
 mod navigable;

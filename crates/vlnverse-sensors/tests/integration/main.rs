@@ -3,6 +3,5 @@
 mod common;
 
 mod backends;
-mod look;
 mod raster_backends;
 mod rig;
