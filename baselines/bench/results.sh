@@ -44,4 +44,19 @@ for a in random forward semantic oracle; do
   done
 done
 
+# Coarse-grained: offline only (the same recipe on the first 200 coarse training episodes).
+step "$XTASK" export --dataset "$D" --task coarse --split train --format lerobot \
+  --episodes "$TRAIN_EPISODES" --out "$R/export-coarse-train"
+for m in seq2seq cma; do
+  step $PY -m vlnverse_baselines train --model "$m" --mode offline --data "$R/export-coarse-train" \
+    --dataset "$D" --task coarse --out "$R/$m-offline-coarse" --epochs 10 --batch-size 4 --lr 1e-3
+  step $PY -m vlnverse_baselines evaluate --checkpoint "$R/$m-offline-coarse/model.safetensors" \
+    --dataset "$D" --task coarse --split val_unseen --setting telhop --sample "$SAMPLE" --seed 0 \
+    --name "$m-offline" --out "$R/eval/$m-offline-coarse-val_unseen-telhop"
+done
+for a in random forward semantic oracle; do
+  step "$XTASK" evaluate --dataset "$D" --task coarse --split val_unseen --agent "$a" \
+    --setting telhop --sample "$SAMPLE" --seed 0 --out "$R/eval/$a-coarse-val_unseen-telhop"
+done
+
 $PY baselines/bench/results_table.py "$R"/eval/*
