@@ -44,7 +44,7 @@ for a in random forward semantic oracle; do
   done
 done
 
-# Coarse-grained: offline only (the same recipe on the first 200 coarse training episodes).
+# Coarse-grained: the same recipe on the first 200 coarse training episodes, then online.
 step "$XTASK" export --dataset "$D" --task coarse --split train --format lerobot \
   --episodes "$TRAIN_EPISODES" --out "$R/export-coarse-train"
 for m in seq2seq cma; do
@@ -53,6 +53,13 @@ for m in seq2seq cma; do
   step $PY -m vlnverse_baselines evaluate --checkpoint "$R/$m-offline-coarse/model.safetensors" \
     --dataset "$D" --task coarse --split val_unseen --setting telhop --sample "$SAMPLE" --seed 0 \
     --name "$m-offline" --out "$R/eval/$m-offline-coarse-val_unseen-telhop"
+  step $PY -m vlnverse_baselines train --model "$m" --mode online \
+    --init "$R/$m-offline-coarse/model.safetensors" --dataset "$D" --task coarse \
+    --out "$R/$m-online-coarse" --epochs 8 --updates-per-epoch 25 --decay-every 2 --num-envs 4 \
+    --lr 5e-4
+  step $PY -m vlnverse_baselines evaluate --checkpoint "$R/$m-online-coarse/model.safetensors" \
+    --dataset "$D" --task coarse --split val_unseen --setting telhop --sample "$SAMPLE" --seed 0 \
+    --name "$m-online" --out "$R/eval/$m-online-coarse-val_unseen-telhop"
 done
 for a in random forward semantic oracle; do
   step "$XTASK" evaluate --dataset "$D" --task coarse --split val_unseen --agent "$a" \
