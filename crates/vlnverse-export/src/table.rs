@@ -231,22 +231,7 @@ impl Table {
     fn nested3(&mut self, name: &str, values: Values, rows: usize, dims: [usize; 3], split: bool) {
         let inner = list_of("element", element("element", &values, false));
         let middle = list_of("element", inner);
-        let outer = {
-            let list = build(
-                Type::group_type_builder("list")
-                    .with_repetition(Repetition::REPEATED)
-                    .with_fields(vec![middle])
-                    .build(),
-            );
-            build(
-                Type::group_type_builder(name)
-                    .with_repetition(Repetition::OPTIONAL)
-                    .with_converted_type(ConvertedType::LIST)
-                    .with_logical_type(Some(LogicalType::List))
-                    .with_fields(vec![list])
-                    .build(),
-            )
-        };
+        let outer = list_of(name, middle);
         self.fields.push(outer);
         let per = dims[0] * dims[1] * dims[2];
         // Repetition level of element k of a row: where the index first changes.

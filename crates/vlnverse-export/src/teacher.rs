@@ -10,7 +10,7 @@ use glam::{Quat, Vec3};
 use vlnverse_env::Pose;
 use vlnverse_sensors::{Observations, SensorRig};
 use vlnverse_sim::{Action, RapierSimulator};
-use vlnverse_task::eval::agent::{Agent, StepInput};
+use vlnverse_task::eval::agent::Agent;
 use vlnverse_task::eval::agents::oracle::OracleAgent;
 use vlnverse_task::eval::agents::wrap_angle;
 use vlnverse_task::eval::episode_loop::check_episode;
@@ -114,14 +114,7 @@ pub fn run(
         let action = if over {
             Action::Stop
         } else {
-            w.teacher.act(&mut StepInput {
-                step: state.steps(),
-                observations: &observations,
-                pose: state.pose(),
-                last: state.last(),
-                sub_goal: state.sub_goal(),
-                oracle: None,
-            })?
+            w.teacher.act(&mut state.step_input(&observations))?
         };
         let id = action_id(&action).ok_or_else(|| {
             ExportError::invalid(

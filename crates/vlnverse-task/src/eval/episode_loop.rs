@@ -387,6 +387,18 @@ impl EpisodeState {
         self.progress
     }
 
+    /// What an agent without the dialogue oracle gets at this step (the teacher's input).
+    pub fn step_input<'a>(&'a self, observations: &'a Observations) -> StepInput<'a> {
+        StepInput {
+            step: self.steps,
+            observations,
+            pose: self.pose,
+            last: self.last.as_ref(),
+            sub_goal: self.progress,
+            oracle: None,
+        }
+    }
+
     /// The outcome of the last simulator step (`None` at the start and after a refused action).
     pub fn last(&self) -> Option<&StepOutcome> {
         self.last.as_ref()

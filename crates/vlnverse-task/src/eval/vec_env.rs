@@ -29,7 +29,7 @@ use vlnverse_sim::{Action, SimConfig, Simulator};
 use crate::dataset;
 use crate::episode::{Episode, Split, Task};
 use crate::error::{Result, TaskError};
-use crate::eval::agent::{Agent, StepInput};
+use crate::eval::agent::Agent;
 use crate::eval::agents::oracle::OracleAgent;
 use crate::eval::episode_loop::{check_episode, Applied, EpisodeSettings, EpisodeState};
 use crate::eval::protocol::EvalConfig;
@@ -544,14 +544,7 @@ impl Ctx<'_> {
         let expert_action = if over {
             Action::Stop
         } else {
-            slot.teacher.act(&mut StepInput {
-                step: state.steps(),
-                observations: &observations,
-                pose: state.pose(),
-                last: state.last(),
-                sub_goal: state.sub_goal(),
-                oracle: None,
-            })?
+            slot.teacher.act(&mut state.step_input(&observations))?
         };
         let success = record.as_ref().is_some_and(|r| r.metrics.success);
         let r = &self.reward;
