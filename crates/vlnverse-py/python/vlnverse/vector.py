@@ -10,6 +10,7 @@ import numpy as np
 from gymnasium.vector import AutoresetMode
 from gymnasium.vector import VectorEnv as GymVectorEnv
 from gymnasium.vector.utils import batch_space
+from numpy.typing import NDArray
 
 from vlnverse import _errors as check
 from vlnverse import _spaces
@@ -109,7 +110,7 @@ class VectorEnv(GymVectorEnv):
         self.single_action_space = _spaces.action_space(self.spec_native)
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
-        self._buffers: dict[str, np.ndarray] = dict(native.buffers())
+        self._buffers: dict[str, NDArray[Any]] = dict(native.buffers())
         self._autoreset = np.zeros(self.num_envs, dtype=bool)
         self._copy = bool(copy)
         self._seed = int(seed)
@@ -139,7 +140,7 @@ class VectorEnv(GymVectorEnv):
 
     def step(
         self, actions: Any
-    ) -> tuple[dict[str, Any], np.ndarray, np.ndarray, np.ndarray, dict[str, Any]]:
+    ) -> tuple[dict[str, Any], NDArray[Any], NDArray[Any], NDArray[Any], dict[str, Any]]:
         """Step every environment (environments that ended last step reset instead)."""
         native = self._live()
         raw = native.step(self._encode(actions), self._autoreset.tolist())
@@ -161,7 +162,7 @@ class VectorEnv(GymVectorEnv):
             raise VLNVerseError("the environment is closed")
         return self._native
 
-    def _encode(self, actions: Any) -> np.ndarray:
+    def _encode(self, actions: Any) -> NDArray[Any]:
         n = self.num_envs
         try:
             arr = np.asarray(actions)
