@@ -6,6 +6,7 @@
 //! trajectory does not record the camera pitch of look up/down, nor does the evaluation rig
 //! render it).
 
+use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use axum::extract::{Path as UrlPath, Query, State};
@@ -13,7 +14,7 @@ use axum::http::header;
 use axum::response::IntoResponse;
 use axum::Json;
 use serde_json::{json, Map, Value};
-use vlnverse_task::{Split, Task};
+use vlnverse_task::{Split, Task, Trajectory};
 
 use crate::app::App;
 use crate::error::{ApiError, ApiResult};
@@ -27,6 +28,21 @@ fn read_json(path: &std::path::Path) -> Value {
 }
 
 /// Task and split of a run, from its `run.json` (or its `summary.json`).
+/// Run `i`'s recorded trajectory of episode `id` (404 when the run has none).
+fn recorded<'a>(
+    app: &App,
+    i: usize,
+    trajs: &'a BTreeMap<u64, Trajectory>,
+    id: u64,
+) -> ApiResult<&'a Trajectory> {
+    trajs.get(&id).ok_or_else(|| {
+        ApiError::not_found(format!(
+            "run `{}` has no trajectory for episode {id}",
+            app.runs[i].name
+        ))
+    })
+}
+
 fn run_task_split(app: &App, i: usize) -> ApiResult<(Task, Split, Value)> {
     let run = app.run(i)?;
     let mut meta = read_json(&run.dir.join("run.json"));
@@ -125,12 +141,7 @@ pub async fn run_episode(
         let (eps, k) = app.episode(task, split, id)?;
         let ep = &eps[k];
         let trajs = app.run_trajectories(i)?;
-        let traj = trajs.get(&id).ok_or_else(|| {
-            ApiError::not_found(format!(
-                "run `{}` has no trajectory for episode {id}",
-                app.runs[i].name
-            ))
-        })?;
+        let traj = recorded(&app, i, &trajs, id)?;
         let scene = app.scene(&ep.scene_id)?;
         let (_, frame) = episode_topdown(
             &scene.scene,
@@ -201,12 +212,7 @@ pub async fn run_view(
         let (eps, k) = app.episode(task, split, id)?;
         let ep = &eps[k];
         let trajs = app.run_trajectories(i)?;
-        let traj = trajs.get(&id).ok_or_else(|| {
-            ApiError::not_found(format!(
-                "run `{}` has no trajectory for episode {id}",
-                app.runs[i].name
-            ))
-        })?;
+        let traj = recorded(&app, i, &trajs, id)?;
         let p = *traj.positions.get(step).ok_or_else(|| {
             ApiError::not_found(format!(
                 "episode {id} has {} recorded positions; no step {step}",
