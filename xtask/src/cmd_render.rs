@@ -17,6 +17,10 @@
 //!
 //! Without `--sensors` the rig is the paper's RGB and depth cameras plus semantic and instance
 //! cameras matching the RGB one (`rgb.png`, `depth.png`, `semantic.png`, `instance.png`).
+//!
+//! `--top-down SIZE` instead writes `topdown_rgb.png`: the whole home seen from high above
+//! (a narrow, nearly orthographic view, north = -Z up) on the CPU rasteriser, with the light
+//! baked for the full home but the ceilings left out so the rooms show.
 
 use anyhow::Context;
 use glam::{Vec2, Vec3};
@@ -37,8 +41,11 @@ pub struct Args {
     #[arg(long)]
     scene: PathBuf,
     /// Agent base position on the floor, `x,y,z` in metres.
-    #[arg(long, allow_hyphen_values = true)]
-    position: String,
+    #[arg(long, allow_hyphen_values = true, required_unless_present = "top_down")]
+    position: Option<String>,
+    /// Render the whole home from above into `topdown_rgb.png`, SIZE pixels square (no agent).
+    #[arg(long, value_name = "SIZE")]
+    top_down: Option<u32>,
     /// Agent yaw in degrees (counter-clockwise from above; 0 looks along -Z).
     #[arg(long, allow_hyphen_values = true, default_value_t = 0.0)]
     yaw: f32,
@@ -101,7 +108,19 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if let Some(b) = &args.backend {
         config.backend = b.parse::<Backend>()?;
     }
-    let position = parse_position(&args.position)?;
+    if let Some(size) = args.top_down {
+        let scene = vlnverse_env::io::load_scene(&args.scene)
+            .with_context(|| format!("loading scene {}", args.scene.display()))?;
+        std::fs::create_dir_all(&args.out)
+            .with_context(|| format!("creating {}", args.out.display()))?;
+        let path = args.out.join("topdown_rgb.png");
+        top_down(&scene, size)?
+            .save(&path)
+            .with_context(|| format!("writing {}", path.display()))?;
+        tracing::info!("wrote {}", path.display());
+        return Ok(());
+    }
+    let position = parse_position(args.position.as_deref().unwrap_or_default())?;
     anyhow::ensure!(args.yaw.is_finite(), "--yaw {}: not a number", args.yaw);
     let scene = vlnverse_env::io::load_scene(&args.scene)
         .with_context(|| format!("loading scene {}", args.scene.display()))?;
@@ -116,6 +135,59 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     };
     tracing::info!("wrote {names} to {}", args.out.display());
     Ok(())
+}
+
+/// The home seen from 40 m above its centre, looking straight down, without its ceilings.
+pub fn top_down(scene: &Scene, size: u32) -> anyhow::Result<image::RgbImage> {
+    use std::sync::Arc;
+    use vlnverse_sensors::{Channels, RasterRenderer, Renderer, SceneMesh, View};
+    anyhow::ensure!(
+        (16..=4096).contains(&size),
+        "--top-down {size}: 16 to 4096 pixels"
+    );
+    let full = SceneMesh::new(scene)?;
+    let ceiling = vlnverse_env::SemanticClass::Ceiling.id();
+    let mut mesh = SceneMesh {
+        objects: Vec::new(),
+        positions: Vec::new(),
+        object: Vec::new(),
+        color: Vec::new(),
+        look: Vec::new(),
+        ..full.clone()
+    };
+    for r in full.objects.iter().filter(|r| full.class(r.id) != ceiling) {
+        let (a, b) = (r.first as usize, (r.first + r.count) as usize);
+        mesh.objects
+            .push(vlnverse_sensors::scene_mesh::ObjectRange {
+                first: mesh.object.len() as u32,
+                ..*r
+            });
+        mesh.positions
+            .extend_from_slice(&full.positions[3 * a..3 * b]);
+        mesh.object.extend_from_slice(&full.object[a..b]);
+        mesh.color.extend_from_slice(&full.color[a..b]);
+        mesh.look.extend_from_slice(&full.look[a..b]);
+    }
+    let b = scene.bounds();
+    let (lo, hi) = (b.min_v(), b.max_v());
+    let centre = (lo + hi) * 0.5;
+    let half = ((hi.x - lo.x).max(hi.z - lo.z) * 0.5 + 0.3).max(1.0);
+    let height = 40.0;
+    let pose = Pose {
+        position: [centre.x, hi.y.max(3.0) + height, centre.z],
+        rotation: glam::Quat::from_rotation_x(-std::f32::consts::FRAC_PI_2).to_array(),
+    };
+    let hfov = 2.0 * (half / (height + hi.y.max(3.0))).atan();
+    let camera = Camera::new(&pose, size, size, hfov, 1.0, height + 20.0);
+    let mut r = RasterRenderer::new();
+    r.set_scene(Arc::new(mesh))?;
+    let frame = r
+        .render(&[View {
+            camera,
+            channels: Channels::RGB,
+        }])?
+        .remove(0);
+    image::RgbImage::from_raw(size, size, frame.rgb).context("top-down frame has the wrong size")
 }
 
 /// The scene's maps: `occupancy.yaml` and `navigable.yaml` of its folder, else built from the

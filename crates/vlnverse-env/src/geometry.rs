@@ -6,6 +6,9 @@ use glam::Vec3;
 
 /// Segments around a cylinder.
 pub const CYLINDER_SEGMENTS: u32 = 16;
+/// Largest side in metres of the grid cells a box face is cut into by [`triangulate_cells`]
+/// (walls, floors and ceilings of homes with baked light, see [`crate::light`]).
+pub const MAX_CELL: f32 = 0.75;
 /// Latitude bands of a sphere (longitude uses twice as many).
 pub const SPHERE_BANDS: u32 = 6;
 
@@ -53,8 +56,16 @@ impl TriMesh {
 
 /// Number of triangles [`triangulate`] produces for a shape.
 pub fn triangle_count(shape: &Shape) -> usize {
+    triangle_count_cells(shape, None)
+}
+
+/// Number of triangles [`triangulate_cells`] produces for a shape.
+pub fn triangle_count_cells(shape: &Shape, cell: Option<f32>) -> usize {
     match shape {
-        Shape::Cuboid { .. } => 12,
+        Shape::Cuboid { half_extents: h } => {
+            let [x, y, z] = h.map(|h| cells(h, cell));
+            (4 * (x * y + y * z + x * z)) as usize
+        }
         Shape::Cylinder { .. } => (CYLINDER_SEGMENTS * 4) as usize,
         Shape::Sphere { .. } => (SPHERE_BANDS * SPHERE_BANDS * 2 * 2) as usize,
         Shape::Mesh(m) => m.indices.len(),
@@ -85,10 +96,16 @@ pub fn shape_corners(shape: &Shape) -> Vec<Vec3> {
     v
 }
 
-/// Triangulate a shape in its own frame.
+/// Triangulate a shape in its own frame (two triangles per box face).
 pub fn triangulate(shape: &Shape) -> TriMesh {
+    triangulate_cells(shape, None)
+}
+
+/// Triangulate a shape in its own frame, box faces cut into a grid of cells of at most `cell`
+/// metres (`None`: two triangles per face), so that light baked per vertex has resolution.
+pub fn triangulate_cells(shape: &Shape, cell: Option<f32>) -> TriMesh {
     match shape {
-        Shape::Cuboid { half_extents } => cuboid(Vec3::from_array(*half_extents)),
+        Shape::Cuboid { half_extents } => cuboid(Vec3::from_array(*half_extents), cell),
         Shape::Cylinder {
             radius,
             half_height,
@@ -100,8 +117,16 @@ pub fn triangulate(shape: &Shape) -> TriMesh {
 
 /// Triangulate a part placed by `object_pose` (world space).
 pub fn triangulate_part(part: &Part, object_pose: &Pose) -> TriMesh {
+    triangulate_part_cells(part, object_pose, None)
+}
+
+/// [`triangulate_part`] with box faces cut into cells (see [`triangulate_cells`]).
+pub fn triangulate_part_cells(part: &Part, object_pose: &Pose, cell: Option<f32>) -> TriMesh {
     let mut out = TriMesh::default();
-    out.append_transformed(&triangulate(&part.shape), &object_pose.mul(&part.transform));
+    out.append_transformed(
+        &triangulate_cells(&part.shape, cell),
+        &object_pose.mul(&part.transform),
+    );
     out
 }
 
@@ -137,7 +162,26 @@ pub fn scene_triangles(scene: &Scene) -> Vec<WorldTriangle> {
     out
 }
 
-fn cuboid(h: Vec3) -> TriMesh {
+/// Segments along one box edge of half length `h`: cells of at most `cell` metres (one segment
+/// for `None`).
+fn cells(h: f32, cell: Option<f32>) -> u32 {
+    match cell {
+        Some(c) if c > 0.0 => ((2.0 * h.abs() / c).ceil() as u32).clamp(1, 64),
+        _ => 1,
+    }
+}
+
+/// Coordinate `k` of `n` along an axis of half length `h`, from `-h` (the same arithmetic for
+/// every face sharing the edge, so shared edge vertices are bit-identical: no cracks).
+fn grid(h: f32, k: u32, n: u32) -> f32 {
+    if k == n {
+        h
+    } else {
+        -h + 2.0 * h * (k as f32 / n as f32)
+    }
+}
+
+fn cuboid(h: Vec3, cell: Option<f32>) -> TriMesh {
     let mut m = TriMesh::default();
     // Each face: normal axis, and two tangent axes chosen so (u x v) = n (CCW from outside).
     let faces: [(Vec3, Vec3, Vec3); 6] = [
@@ -148,15 +192,38 @@ fn cuboid(h: Vec3) -> TriMesh {
         (Vec3::Z, Vec3::X, Vec3::Y),
         (Vec3::NEG_Z, Vec3::NEG_X, Vec3::Y),
     ];
+    let axis = |v: Vec3| -> (usize, bool) {
+        let i = if v.x != 0.0 {
+            0
+        } else if v.y != 0.0 {
+            1
+        } else {
+            2
+        };
+        (i, v[i] > 0.0)
+    };
     for (n, u, v) in faces {
         let base = m.positions.len() as u32;
-        for (su, sv) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
-            let p = (n + u * su + v * sv) * h;
-            m.positions.push(p.to_array());
-            m.normals.push(n.to_array());
+        let ((an, pn), (au, pu), (av, pv)) = (axis(n), axis(u), axis(v));
+        let (nu, nv) = (cells(h[au], cell), cells(h[av], cell));
+        for j in 0..=nv {
+            for i in 0..=nu {
+                let mut p = [0.0f32; 3];
+                p[an] = if pn { h[an] } else { -h[an] };
+                p[au] = grid(h[au], if pu { i } else { nu - i }, nu);
+                p[av] = grid(h[av], if pv { j } else { nv - j }, nv);
+                m.positions.push(p);
+                m.normals.push(n.to_array());
+            }
         }
-        m.indices.push([base, base + 1, base + 2]);
-        m.indices.push([base, base + 2, base + 3]);
+        for j in 0..nv {
+            for i in 0..nu {
+                let a = base + j * (nu + 1) + i;
+                let (b, c, d) = (a + 1, a + nu + 2, a + nu + 1);
+                m.indices.push([a, b, c]);
+                m.indices.push([a, c, d]);
+            }
+        }
     }
     m
 }
@@ -282,6 +349,17 @@ mod tests {
             let m = triangulate(&s);
             check_closed_outward(&m);
             assert_eq!(m.triangle_count(), triangle_count(&s), "{s:?}");
+            let fine = triangulate_cells(&s, Some(0.3));
+            check_closed_outward(&fine);
+            assert_eq!(
+                fine.triangle_count(),
+                triangle_count_cells(&s, Some(0.3)),
+                "{s:?}"
+            );
+            if matches!(s, Shape::Cuboid { .. }) {
+                assert_eq!(m.triangle_count(), 12);
+                assert!(fine.triangle_count() > 12);
+            }
         }
     }
 }

@@ -1,9 +1,12 @@
 #![doc = include_str!("../README.md")]
 
+pub mod bvh;
 pub mod error;
 pub mod geodesic;
 pub mod geometry;
 pub mod io;
+pub mod light;
+pub mod material;
 pub mod occupancy;
 pub mod scene;
 pub mod scene_graph;

@@ -84,7 +84,8 @@ pub struct WallsConfig {
     pub thickness: f32,
     /// Wall height (m).
     pub height: f32,
-    /// Add a ceiling slab per room (off by default: top-down views look through).
+    /// Add a ceiling slab per room (on by default: rooms seen from inside have a ceiling;
+    /// top-down pictures leave ceilings out).
     pub ceiling: bool,
 }
 
@@ -190,7 +191,7 @@ impl Default for WallsConfig {
         WallsConfig {
             thickness: 0.12,
             height: 2.7,
-            ceiling: false,
+            ceiling: true,
         }
     }
 }

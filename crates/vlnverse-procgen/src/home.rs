@@ -170,7 +170,13 @@ fn merge(mut v: Vec<(f32, f32)>) -> Vec<(f32, f32)> {
 }
 
 /// Floors, walls, door frames.
-fn build_structure(cfg: &ProcgenConfig, plan: &Plan, rng: &mut ChaCha8Rng, b: &mut Builder) {
+/// Floors, walls and door frames; returns the wall finish (ceilings share it).
+fn build_structure(
+    cfg: &ProcgenConfig,
+    plan: &Plan,
+    rng: &mut ChaCha8Rng,
+    b: &mut Builder,
+) -> Finish {
     let t = cfg.walls.thickness;
     let h = cfg.walls.height;
     for (i, room) in plan.rooms.iter().enumerate() {
@@ -244,22 +250,26 @@ fn build_structure(cfg: &ProcgenConfig, plan: &Plan, rng: &mut ChaCha8Rng, b: &m
     for o in plan.openings.iter().filter(|o| !o.open_plan) {
         add_door_frame(cfg, o, rng, b);
     }
+    wall
+}
 
-    if cfg.walls.ceiling {
-        for (i, room) in plan.rooms.iter().enumerate() {
-            let (cx, cz) = room.rect.center();
-            let size = Vec3::new(room.rect.w(), 0.05, room.rect.d());
-            b.add(
-                C::Ceiling,
-                Some(i as RoomId),
-                Pose::from_yaw(Vec3::new(cx, h, cz), 0.0),
-                vec![box_part(Vec3::new(0.0, 0.025, 0.0), size, wall.rgb)],
-                wall.color,
-                wall.material,
-                size.x * size.z * 30.0,
-                None,
-            );
-        }
+/// A ceiling slab per room in the wall finish. Added after the furniture so that turning
+/// ceilings on or off leaves every other object id as it is.
+fn add_ceilings(cfg: &ProcgenConfig, plan: &Plan, wall: Finish, b: &mut Builder) {
+    let h = cfg.walls.height;
+    for (i, room) in plan.rooms.iter().enumerate() {
+        let (cx, cz) = room.rect.center();
+        let size = Vec3::new(room.rect.w(), 0.05, room.rect.d());
+        b.add(
+            C::Ceiling,
+            Some(i as RoomId),
+            Pose::from_yaw(Vec3::new(cx, h, cz), 0.0),
+            vec![box_part(Vec3::new(0.0, 0.025, 0.0), size, wall.rgb)],
+            wall.color,
+            wall.material,
+            size.x * size.z * 30.0,
+            None,
+        );
     }
 }
 
@@ -339,8 +349,11 @@ pub(crate) fn generate(cfg: &ProcgenConfig, seed: u64, id: &str) -> Result<Scene
     let mut b = Builder {
         objects: Vec::with_capacity(256),
     };
-    build_structure(cfg, &plan, &mut rng, &mut b);
+    let wall = build_structure(cfg, &plan, &mut rng, &mut b);
     furnish::furnish(cfg, &plan, &mut rng, &mut b);
+    if cfg.walls.ceiling {
+        add_ceilings(cfg, &plan, wall, &mut b);
+    }
 
     let t = cfg.walls.thickness;
     let mut counts: BTreeMap<RoomType, usize> = BTreeMap::new();

@@ -26,6 +26,7 @@ use crate::renderer::Renderer;
 use crate::scene_mesh::SceneMesh;
 use crate::shading;
 use std::sync::{Arc, OnceLock};
+use vlnverse_env::material::{Surface, TEX_SIZE};
 use wgpu::util::DeviceExt;
 
 /// Packages that provide a software Vulkan driver on Debian/Ubuntu.
@@ -57,34 +58,41 @@ fn has(mask: u8, k: usize) -> bool {
     mask & (1 << k) != 0
 }
 
-/// Vertex stage shared by all target sets. Normals and colours are per triangle, so the lit
-/// colour (same model as [`shading`]) is flat and computed per vertex; linear depth is linear in
-/// world position, so perspective-correct interpolation gives it exactly.
+/// Vertex stage shared by all target sets. Colours are the triangle's encoded colour times the
+/// encoded baked light of each corner ([`SceneMesh::look`]), interpolated (perspective-correct)
+/// over the triangle with the texture coordinates; the colour fragment stage fetches the
+/// encoded texel with `textureLoad` (nearest, wrapped with the same integer arithmetic as the
+/// CPU rasteriser) from one texture holding every surface texture stacked and multiplies, as
+/// the CPU backends do. Linear depth is linear in world position, so perspective-correct
+/// interpolation gives it exactly.
 const VERTEX_SHADER: &str = r#"
 struct ViewU { view_proj: mat4x4<f32>, cam_pos: vec4<f32>, forward: vec4<f32>, light: vec4<f32> };
 @group(0) @binding(0) var<uniform> u: ViewU;
+@group(0) @binding(1) var surfaces: texture_2d<f32>;
 
 struct VIn {
     @location(0) pos: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) color: vec4<f32>,
     @location(3) id: u32,
+    @location(4) uv: vec2<f32>,
+    @location(5) tex: u32,
 };
 struct VOut {
     @builtin(position) clip: vec4<f32>,
-    @location(0) @interpolate(flat) color: vec4<f32>,
+    @location(0) color: vec4<f32>,
     @location(1) dist: f32,
     @location(2) @interpolate(flat) id: u32,
+    @location(3) uv: vec2<f32>,
+    @location(4) @interpolate(flat) tex: u32,
 };
 @vertex fn vs(v: VIn) -> VOut {
     var o: VOut;
     o.clip = u.view_proj * vec4<f32>(v.pos, 1.0);
     let rel = v.pos - u.cam_pos.xyz;
-    var n = normalize(v.normal);
-    if (dot(n, rel) > 0.0) { n = -n; }
-    let k = u.light.w + u.cam_pos.w * max(dot(n, u.light.xyz), 0.0);
-    let c = pow(clamp(v.color.rgb * k, vec3<f32>(0.0), vec3<f32>(1.0)), vec3<f32>(1.0 / 2.2));
-    o.color = vec4<f32>(c, 1.0);
+    o.color = v.color;
+    o.uv = v.uv;
+    o.tex = v.tex;
     o.dist = dot(rel, u.forward.xyz);
     o.id = v.id;
     return o;
@@ -95,7 +103,13 @@ struct VOut {
 /// the targets in `mask`, at consecutive locations.
 fn shader_source(mask: u8) -> String {
     let outputs = [
-        ("color: vec4<f32>", "o.color = i.color;"),
+        (
+            "color: vec4<f32>",
+            "let tu = i32(i.uv.x + UV_BIAS) & TEX_MASK;\n    \
+             let tv = i32(i.uv.y + UV_BIAS) & TEX_MASK;\n    \
+             let t = textureLoad(surfaces, vec2<i32>(tu, i32(i.tex) + tv), 0).rgb;\n    \
+             o.color = vec4<f32>(clamp(i.color.rgb * t, vec3<f32>(0.0), vec3<f32>(1.0)), 1.0);",
+        ),
         ("depth: u32", "o.depth = bitcast<u32>(i.dist);"),
         ("id: u32", "o.id = i.id;"),
     ];
@@ -108,8 +122,13 @@ fn shader_source(mask: u8) -> String {
         fields += &format!("    @location({loc}) {field},\n");
         body += &format!("    {store}\n");
     }
+    let consts = format!(
+        "const UV_BIAS: f32 = {:.1};\nconst TEX_MASK: i32 = {};\n",
+        (TEX_SIZE * 256) as f32,
+        TEX_SIZE - 1
+    );
     format!(
-        "{VERTEX_SHADER}struct FOut {{\n{fields}}};\n\
+        "{consts}{VERTEX_SHADER}struct FOut {{\n{fields}}};\n\
          @fragment fn fs(i: VOut) -> FOut {{\n    var o: FOut;\n{body}    return o;\n}}\n"
     )
 }
@@ -119,8 +138,13 @@ fn shader_source(mask: u8) -> String {
 struct Vertex {
     pos: [f32; 3],
     normal: [f32; 3],
-    color: [u8; 4],
+    /// Encoded lit colour (float: the light may exceed 1 before the texel darkens it).
+    color: [f32; 4],
     id: u32,
+    /// Texture coordinates in texels.
+    uv: [f32; 2],
+    /// First row of the surface's texture in the stacked texture.
+    tex: u32,
 }
 
 #[repr(C)]
@@ -141,6 +165,8 @@ pub struct GpuContext {
     info: wgpu::AdapterInfo,
     layout: wgpu::BindGroupLayout,
     pipeline_layout: wgpu::PipelineLayout,
+    /// Every surface texture stacked vertically (`TEX_SIZE` wide).
+    surfaces: wgpu::TextureView,
     /// One pipeline per target set, built on first use.
     pipelines: [OnceLock<wgpu::RenderPipeline>; 8],
     max_dim: u32,
@@ -168,8 +194,7 @@ impl GpuContext {
                 label: Some("vlnverse-sensors shader"),
                 source: wgpu::ShaderSource::Wgsl(shader_source(mask).into()),
             });
-        let attrs =
-            wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Unorm8x4, 3 => Uint32];
+        let attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x4, 3 => Uint32, 4 => Float32x2, 5 => Uint32];
         let targets: Vec<Option<wgpu::ColorTargetState>> = (0..3)
             .filter(|&k| has(mask, k))
             .map(|k| {
@@ -269,17 +294,32 @@ fn create_context() -> std::result::Result<GpuContext, String> {
     .map_err(|e| format!("adapter {} refused a device: {e}", info.name))?;
     let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("view"),
-        entries: &[wgpu::BindGroupLayoutEntry {
-            binding: 0,
-            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Uniform,
-                has_dynamic_offset: true,
-                min_binding_size: wgpu::BufferSize::new(std::mem::size_of::<ViewUniform>() as u64),
+        entries: &[
+            wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: true,
+                    min_binding_size: wgpu::BufferSize::new(
+                        std::mem::size_of::<ViewUniform>() as u64
+                    ),
+                },
+                count: None,
             },
-            count: None,
-        }],
+            wgpu::BindGroupLayoutEntry {
+                binding: 1,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+                count: None,
+            },
+        ],
     });
+    let surfaces = surfaces_texture(&device, &queue);
     let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some("view"),
         bind_group_layouts: &[Some(&layout)],
@@ -292,9 +332,40 @@ fn create_context() -> std::result::Result<GpuContext, String> {
         info,
         layout,
         pipeline_layout,
+        surfaces,
         pipelines: std::array::from_fn(|_| OnceLock::new()),
         max_dim,
     })
+}
+
+/// Every surface texture's encoded grey part ([`Surface::luma_encoded`]) stacked vertically in
+/// one `Rgba8Unorm` texture (multipliers; tints are in the vertex colours, as on the CPU).
+fn surfaces_texture(device: &wgpu::Device, queue: &wgpu::Queue) -> wgpu::TextureView {
+    let texels: Vec<u8> = Surface::ALL
+        .iter()
+        .flat_map(|s| s.luma_encoded().iter().flat_map(|&g| [g, g, g, 255]))
+        .collect();
+    let size = wgpu::Extent3d {
+        width: TEX_SIZE as u32,
+        height: (TEX_SIZE * Surface::ALL.len()) as u32,
+        depth_or_array_layers: 1,
+    };
+    let texture = device.create_texture_with_data(
+        queue,
+        &wgpu::TextureDescriptor {
+            label: Some("surfaces"),
+            size,
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba8Unorm,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        &texels,
+    );
+    texture.create_view(&Default::default())
 }
 
 /// The targets of one target set at one size.
@@ -451,14 +522,20 @@ impl GpuRenderer {
         let bg = d.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("views"),
             layout: &self.ctx.layout,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                    buffer: &buf,
-                    offset: 0,
-                    size: wgpu::BufferSize::new(std::mem::size_of::<ViewUniform>() as u64),
-                }),
-            }],
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer: &buf,
+                        offset: 0,
+                        size: wgpu::BufferSize::new(std::mem::size_of::<ViewUniform>() as u64),
+                    }),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&self.ctx.surfaces),
+                },
+            ],
         });
         self.uniforms = Some((buf, bg, n));
     }
@@ -759,14 +836,27 @@ impl Renderer for GpuRenderer {
         let verts: Vec<Vertex> = (0..mesh.triangle_count())
             .flat_map(|t| {
                 let n = mesh.normal(t).to_array();
-                let c = mesh.color[t].map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8);
+                let look = mesh.look.get(t).copied();
+                let flat = mesh.color[t];
                 let id = mesh.object[t];
                 let m = &mesh;
-                (0..3).map(move |k| Vertex {
-                    pos: m.positions[3 * t + k].to_array(),
-                    normal: n,
-                    color: [c[0], c[1], c[2], 255],
-                    id,
+                (0..3).map(move |k| {
+                    let (c, uv, tex) = match look {
+                        Some(l) => (
+                            l.tone.map(|c| c * l.light[k]),
+                            l.uv[k],
+                            (l.surface.index() * TEX_SIZE) as u32,
+                        ),
+                        None => (flat.map(|c| c.clamp(0.0, 1.0).powf(1.0 / 2.2)), [0.0; 2], 0),
+                    };
+                    Vertex {
+                        pos: m.positions[3 * t + k].to_array(),
+                        normal: n,
+                        color: [c[0], c[1], c[2], 1.0],
+                        id,
+                        uv,
+                        tex,
+                    }
                 })
             })
             .collect();

@@ -7,8 +7,13 @@
 //! pixel centres `(x + 0.5, y + 0.5)` under the top-left rule, so neighbouring triangles neither
 //! leave cracks nor overlap. Depth is `1 / z` from the triangle's plane (linear in screen space)
 //! and is kept in the depth buffer; a resolve pass turns it into metres along the optical axis
-//! and the winning triangle into colour, class and object ids. Colours are flat: the same
-//! Lambert model and per-triangle normal as the other backends ([`crate::shading`]).
+//! and the winning triangle into colour, class and object ids. Colour is the baked light of the
+//! triangle's corners times its surface texture times its colour, in encoded space
+//! ([`SceneMesh::look`]): for views with RGB, each visible triangle gets a slot with three
+//! attributes (light, texture u, v) set up so that `attribute / depth` is linear in screen
+//! space; the resolve pass evaluates them at the pixel from the depth buffer
+//! (perspective-correct, one division per pixel), fetches one byte of texel and multiplies by
+//! the triangle's colour. The light is baked, so the per-pixel cost is flat and small.
 //!
 //! Back faces are culled only where that cannot change the image: for objects whose triangles
 //! form closed, outward-oriented surfaces, seen from outside their box (with room for the near
@@ -27,11 +32,11 @@ use crate::error::{Result, SensorError};
 use crate::frame::{Frame, View};
 use crate::renderer::Renderer;
 use crate::scene_mesh::SceneMesh;
-use crate::shading;
 use glam::{DVec3, Mat3, Vec3};
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
+use vlnverse_env::material::{Surface, TEX_SIZE};
 use vlnverse_env::Aabb;
 
 /// Projected vertices stay within `[-guard, guard]` pixels (else they are clipped); `guard` is at
@@ -44,23 +49,38 @@ const MAX_FIXED: f64 = (1u64 << 25) as f64;
 const MIN_BAND_ROWS: usize = 16;
 /// Side in pixels of the square tiles of the coarse depth buffer used for occlusion culling.
 const TILE: usize = 8;
+/// Longest run of pixels of one triangle shaded at once by the RGB resolve.
+const RUN: usize = 64;
 
-/// What the resolve pass needs of a triangle.
+/// Attributes interpolated over a triangle: encoded light, texture u, v.
+const ATTRS: usize = 3;
+
+/// How a triangle's look varies over it: corner 0 and the vectors giving the barycentric
+/// weights of corners 1 and 2 of a point `q` on its plane (`(q - a) . wu`, `(q - a) . wv`),
+/// and the attributes (encoded light, texture u, v) at corner 0 and their changes towards
+/// corners 1 and 2.
 #[derive(Clone, Copy, Debug)]
-struct TriInfo {
-    /// sRGB colour lit from the front (winding normal) and from the back.
-    rgb: [[u8; 3]; 2],
-    /// Semantic class id.
-    class: u16,
-    /// Object id.
-    object: u32,
+struct Look {
+    a: Vec3,
+    wu: Vec3,
+    wv: Vec3,
+    at: [f32; ATTRS],
+    du: [f32; ATTRS],
+    dv: [f32; ATTRS],
+    /// First texel of the surface texture in [`RasterScene::texels`].
+    tex: u32,
+    /// Encoded colour ([`crate::TriLook::tone`]) scaled so that `tone x light x texel byte`
+    /// is the output byte.
+    tone: [f32; 3],
 }
 
-/// Colour and class of a tag.
+/// A visible triangle of one view: attribute `k` times `1 / depth` at pixel `(x, y)` is
+/// `k[k][0] x + k[k][1] y + k[k][2]`.
 #[derive(Clone, Copy, Debug)]
-struct TagPx {
-    rgb: [u8; 3],
-    class: u16,
+struct Slot {
+    k: [[f32; 3]; ATTRS],
+    tex: u32,
+    tone: [f32; 3],
 }
 
 /// An object's triangle range and whether its back faces may be culled.
@@ -77,13 +97,14 @@ struct ObjInfo {
 #[derive(Debug)]
 pub struct RasterScene {
     mesh: Arc<SceneMesh>,
-    /// Colour of each tag (`2 * triangle + back + 1`; tag 0 is black), for the resolve pass.
-    tag_rgb: Vec<[u8; 3]>,
-    /// Class and object id of each tag (0 for tag 0).
+    /// Class and object id of each tag (`2 * triangle + back + 1`; 0 for tag 0).
     tag_class: Vec<u16>,
-    /// Colour and class of each tag together, for views that want both.
-    tag_px: Vec<TagPx>,
     tag_object: Vec<u32>,
+    /// Look of each triangle.
+    look: Vec<Look>,
+    /// Every surface texture's grey part, encoded ([`Surface::luma_encoded`]), one after the
+    /// other ([`Surface::ALL`] order); tints are in the triangle colours.
+    texels: Vec<u8>,
     /// Unit geometric normal per triangle (as [`SceneMesh::normal`]).
     normal: Vec<Vec3>,
     objects: Vec<ObjInfo>,
@@ -213,10 +234,13 @@ struct Group {
     zmax: f32,
 }
 
-/// Triangles set up for one view, grouped by object, nearest objects first.
+/// Triangles set up for one view, grouped by object, nearest objects first. Views with RGB
+/// write slot numbers (`slot + 1`) instead of tags; `slot_tag` maps them back.
 struct Setup {
     tris: Vec<ScreenTri>,
     groups: Vec<Group>,
+    slots: Vec<Slot>,
+    slot_tag: Vec<u32>,
 }
 
 /// Per-view constants.
@@ -293,28 +317,45 @@ struct Poly {
 }
 
 impl RasterScene {
-    /// Prepare a mesh: per-triangle lit colours for both sides, ids, and which objects are
-    /// closed surfaces.
+    /// Prepare a mesh: per-triangle looks, ids, and which objects are closed surfaces.
     pub fn new(mesh: Arc<SceneMesh>) -> Self {
-        let light = shading::light_dir();
         let n_tri = mesh.triangle_count();
-        let mut info = Vec::with_capacity(n_tri);
         let mut normal = Vec::with_capacity(n_tri);
+        let mut look = Vec::with_capacity(n_tri);
         for t in 0..n_tri {
-            let n = mesh.normal(t);
-            // The same arithmetic as the ray caster (8-bit base colour, as the GPU's vertices).
-            let base = mesh.color[t].map(|c| (c.clamp(0.0, 1.0) * 255.0).round() / 255.0);
-            let lit = |n: Vec3| {
-                let k = shading::AMBIENT + shading::DIFFUSE * n.dot(light).max(0.0);
-                base.map(|c| shading::encode(c * k))
+            normal.push(mesh.normal(t));
+            let [a, b, c] = [0, 1, 2].map(|k| mesh.positions[3 * t + k]);
+            let (e1, e2) = (b - a, c - a);
+            let (d00, d01, d11) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
+            let den = d00 * d11 - d01 * d01;
+            let (wu, wv) = if den.abs() > 1e-20 {
+                ((e1 * d11 - e2 * d01) / den, (e2 * d00 - e1 * d01) / den)
+            } else {
+                (Vec3::ZERO, Vec3::ZERO)
             };
-            let object = mesh.object[t];
-            info.push(TriInfo {
-                rgb: [lit(n), lit(-n)],
-                class: mesh.class(object),
-                object,
+            let l = mesh.look.get(t);
+            let attr = |k: usize| -> [f32; ATTRS] {
+                match l {
+                    Some(l) => [l.light[k], l.uv[k][0], l.uv[k][1]],
+                    None => [1.0, 0.0, 0.0],
+                }
+            };
+            // Bytes: tone x light x texel byte (255 = 1) is the output byte.
+            let tone = match l {
+                Some(l) => l.tone,
+                None => mesh.color[t].map(|c| c.clamp(0.0, 1.0).powf(1.0 / 2.2)),
+            };
+            let (a0, a1, a2) = (attr(0), attr(1), attr(2));
+            look.push(Look {
+                a,
+                wu,
+                wv,
+                at: a0,
+                du: [0, 1, 2].map(|k| a1[k] - a0[k]),
+                dv: [0, 1, 2].map(|k| a2[k] - a0[k]),
+                tex: (l.map_or(Surface::Plain, |l| l.surface).index() * TEX_SIZE * TEX_SIZE) as u32,
+                tone,
             });
-            normal.push(n);
         }
         let objects = mesh
             .objects
@@ -329,28 +370,20 @@ impl RasterScene {
                 }
             })
             .collect();
+        let class = |t: usize| mesh.class(mesh.object[t]);
         RasterScene {
-            mesh,
-            tag_rgb: std::iter::once([0; 3])
-                .chain(info.iter().flat_map(|t| t.rgb))
-                .collect(),
             tag_class: std::iter::once(0)
-                .chain(info.iter().flat_map(|t| [t.class; 2]))
+                .chain((0..n_tri).flat_map(|t| [class(t); 2]))
                 .collect(),
-            tag_px: std::iter::once(TagPx {
-                rgb: [0; 3],
-                class: 0,
-            })
-            .chain(info.iter().flat_map(|t| {
-                t.rgb.map(|rgb| TagPx {
-                    rgb,
-                    class: t.class,
-                })
-            }))
-            .collect(),
             tag_object: std::iter::once(0)
-                .chain(info.iter().flat_map(|t| [t.object; 2]))
+                .chain((0..n_tri).flat_map(|t| [mesh.object[t]; 2]))
                 .collect(),
+            look,
+            texels: Surface::ALL
+                .iter()
+                .flat_map(|s| s.luma_encoded().iter().copied())
+                .collect(),
+            mesh,
             normal,
             objects,
             spare_z: Mutex::new(Vec::new()),
@@ -377,7 +410,7 @@ impl RasterScene {
         let n = w * h;
         let ch = view.channels;
         let ids_needed = ch.rgb || ch.ids();
-        let tris = self.setup(c, &p);
+        let tris = self.setup(c, &p, ch.rgb);
         let inv_far = 1.0 / p.far;
         let mut zbuf = if ch.depth {
             vec![inv_far; n]
@@ -446,7 +479,7 @@ impl RasterScene {
     /// Cull, clip and project every triangle that may be seen, object by object, nearest
     /// objects (by distance from the eye to their box) first so that occlusion culling in
     /// [`Self::fill_band`] skips many of the far ones.
-    fn setup(&self, c: &Camera, p: &ViewParams) -> Setup {
+    fn setup(&self, c: &Camera, p: &ViewParams, shade: bool) -> Setup {
         let frustum = c.frustum();
         // Distance from the eye to the near plane's corners: a back face may be culled only
         // when no part of the near plane can be inside the object.
@@ -466,6 +499,12 @@ impl RasterScene {
         order.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         let mut out = Vec::with_capacity(self.mesh.triangle_count() / 2);
         let mut groups = Vec::with_capacity(order.len());
+        let (mut slots, mut slot_tag) = (Vec::new(), Vec::new());
+        if shade {
+            slots.reserve(self.mesh.triangle_count() / 2);
+            slot_tag.reserve(self.mesh.triangle_count() / 2);
+            slot_tag.push(0);
+        }
         for &(_, oi) in &order {
             let o = &self.objects[oi];
             let first = out.len();
@@ -481,7 +520,18 @@ impl RasterScene {
                 }
                 let v = [p.to_camera(wp[0]), p.to_camera(wp[1]), p.to_camera(wp[2])];
                 let tag = 2 * t as u32 + back as u32 + 1;
-                self.setup_triangle(p, v, tag, &mut out);
+                if shade {
+                    let n = out.len();
+                    let slot = slots.len() as u32 + 1;
+                    if let Some(plane) = self.setup_triangle(p, v, slot, &mut out) {
+                        if out.len() > n {
+                            slots.push(self.slot(p, t, plane));
+                            slot_tag.push(tag);
+                        }
+                    }
+                } else {
+                    self.setup_triangle(p, v, tag, &mut out);
+                }
             }
             if out.len() > first {
                 let mut g = Group {
@@ -503,13 +553,54 @@ impl RasterScene {
                 groups.push(g);
             }
         }
-        Setup { tris: out, groups }
+        Setup {
+            tris: out,
+            groups,
+            slots,
+            slot_tag,
+        }
     }
 
-    fn setup_triangle(&self, p: &ViewParams, v: [Vec3; 3], tag: u32, out: &mut Vec<ScreenTri>) {
+    /// The attribute planes of triangle `t` in this view (see [`Slot`]); `plane` is its
+    /// `1 / depth` plane.
+    fn slot(&self, p: &ViewParams, t: usize, plane: [f64; 3]) -> Slot {
+        let l = &self.look[t];
+        let (fx, fy, cx, cy) = (p.fx as f64, p.fy as f64, p.cx as f64, p.cy as f64);
+        // A barycentric weight w = (q - a) . g_w with q = pos + rot^T c (camera point c) is
+        // c . (rot g_w) + (pos - a) . g_w; with c = depth * ((x + 0.5 - cx) / fx,
+        // -(y + 0.5 - cy) / fy, -1), w / depth is linear in the pixel (x, y).
+        let lin = |g: Vec3| -> [f64; 3] {
+            let r = (p.rot * g).as_dvec3();
+            let h = (p.pos - l.a).dot(g) as f64;
+            [
+                r.x / fx + h * plane[0],
+                -r.y / fy + h * plane[1],
+                r.x * (0.5 - cx) / fx + r.y * (cy - 0.5) / fy - r.z + h * plane[2],
+            ]
+        };
+        let (u, v) = (lin(l.wu), lin(l.wv));
+        let k = [0, 1, 2].map(|i| {
+            let (a0, a1, a2) = (l.at[i] as f64, l.du[i] as f64, l.dv[i] as f64);
+            [0, 1, 2].map(|j| (a0 * plane[j] + a1 * u[j] + a2 * v[j]) as f32)
+        });
+        Slot {
+            k,
+            tex: l.tex,
+            tone: l.tone,
+        }
+    }
+
+    /// Clip, project and emit one triangle; its `1 / depth` plane when it may be visible.
+    fn setup_triangle(
+        &self,
+        p: &ViewParams,
+        v: [Vec3; 3],
+        tag: u32,
+        out: &mut Vec<ScreenTri>,
+    ) -> Option<[f64; 3]> {
         let nz = -p.near;
         if v.iter().all(|q| q.z > nz) || v.iter().all(|q| q.z < -p.far) {
-            return;
+            return None;
         }
         // Entirely to one side of the view (all vertices in front of the eye plane here).
         if v.iter().all(|q| q.z < 0.0) {
@@ -519,7 +610,7 @@ impl RasterScene {
                 || side(&|q| p.fy * q.y > p.cy * -q.z)
                 || side(&|q| p.fy * q.y < -(p.h as f32 - p.cy) * -q.z)
             {
-                return;
+                return None;
             }
         }
         // The plane of the whole triangle gives 1/depth at every pixel (exact under clipping).
@@ -527,13 +618,14 @@ impl RasterScene {
         let nrm: DVec3 = (b - a).cross(c - a);
         let d = nrm.dot(a);
         if d.abs() <= 1e-7 * nrm.length() {
-            return; // Edge-on: the plane passes through the eye.
+            return None; // Edge-on: the plane passes through the eye.
         }
         let (fx, fy, cx, cy) = (p.fx as f64, p.fy as f64, p.cx as f64, p.cy as f64);
         let za = nrm.x / (fx * d);
         let zb = -nrm.y / (fy * d);
         let zc = (-nrm.x * cx / fx + nrm.y * cy / fy - nrm.z) / d + 0.5 * (za + zb);
         let plane = [za as f32, zb as f32, zc as f32];
+        let plane64 = Some([za, zb, zc]);
 
         let in_guard = |q: &Vec3| {
             let (sx, sy, _) = p.project(*q);
@@ -541,7 +633,7 @@ impl RasterScene {
         };
         if v.iter().all(|q| q.z <= nz) && v.iter().all(in_guard) {
             emit(p, [v[0], v[1], v[2]], plane, tag, out);
-            return;
+            return plane64;
         }
         let mut poly = Poly {
             v: [Vec3::ZERO; 9],
@@ -550,19 +642,20 @@ impl RasterScene {
         poly.v[..3].copy_from_slice(&v);
         poly = clip(p, &poly, 0);
         if poly.n < 3 {
-            return;
+            return None;
         }
         if !poly.v[..poly.n].iter().all(in_guard) {
             for k in 1..5 {
                 poly = clip(p, &poly, k);
                 if poly.n < 3 {
-                    return;
+                    return None;
                 }
             }
         }
         for i in 1..poly.n - 1 {
             emit(p, [poly.v[0], poly.v[i], poly.v[i + 1]], plane, tag, out);
         }
+        plane64
     }
 
     /// Fill one band of rows with every triangle, then resolve it into the outputs.
@@ -582,7 +675,6 @@ impl RasterScene {
             rgb,
             semantic,
         } = b;
-        let (mut rgb, mut semantic) = (rgb, semantic);
         // Coarse depth buffer: the smallest `1 / depth` of each tile of the band. An object
         // none of whose triangles can write more than that over its screen box is hidden.
         let w = p.w;
@@ -616,33 +708,19 @@ impl RasterScene {
                 }
             }
         }
-        // Resolve: 1/depth to metres, tags to colour, class and object.
-        let (inv_far, far) = (1.0 / p.far, p.far);
-        if want_depth {
-            for z in zbuf.iter_mut() {
-                let d = (1.0 / *z).min(far);
-                *z = if *z > inv_far { d } else { far };
+        // Resolve: slots to colour (from 1/depth), then 1/depth to metres, tags to class and
+        // object.
+        let Some(ids) = ids else {
+            self.resolve_depth(p, zbuf, want_depth);
+            return;
+        };
+        if let Some(rgb) = rgb {
+            self.resolve_rgb(setup, w, y0, zbuf, ids, rgb);
+            for id in ids.iter_mut() {
+                *id = setup.slot_tag[*id as usize];
             }
         }
-        let Some(ids) = ids else { return };
-        if let (Some(rgb), Some(sem)) = (rgb.as_deref_mut(), semantic.as_deref_mut()) {
-            // One pass and one table load per pixel for both.
-            for ((px, s), id) in rgb.chunks_exact_mut(3).zip(sem.iter_mut()).zip(ids.iter()) {
-                let t = self.tag_px[*id as usize];
-                px[0] = t.rgb[0];
-                px[1] = t.rgb[1];
-                px[2] = t.rgb[2];
-                *s = t.class;
-            }
-        } else if let Some(rgb) = rgb {
-            for (px, id) in rgb.chunks_exact_mut(3).zip(ids.iter()) {
-                let c = self.tag_rgb[*id as usize];
-                // Byte stores: `copy_from_slice` of 3 bytes becomes a memmove call.
-                px[0] = c[0];
-                px[1] = c[1];
-                px[2] = c[2];
-            }
-        }
+        self.resolve_depth(p, zbuf, want_depth);
         if let Some(sem) = semantic {
             for (s, id) in sem.iter_mut().zip(ids.iter()) {
                 *s = self.tag_class[*id as usize];
@@ -651,6 +729,120 @@ impl RasterScene {
         if want_instance {
             for id in ids.iter_mut() {
                 *id = self.tag_object[*id as usize];
+            }
+        }
+    }
+
+    fn resolve_depth(&self, p: &ViewParams, zbuf: &mut [f32], want_depth: bool) {
+        let (inv_far, far) = (1.0 / p.far, p.far);
+        if want_depth {
+            for z in zbuf.iter_mut() {
+                let d = (1.0 / *z).min(far);
+                *z = if *z > inv_far { d } else { far };
+            }
+        }
+    }
+
+    /// Colour of every pixel of a band from its slot and `1 / depth`.
+    fn resolve_rgb(
+        &self,
+        setup: &Setup,
+        w: usize,
+        y0: usize,
+        zbuf: &[f32],
+        ids: &[u32],
+        rgb: &mut [u8],
+    ) {
+        // Float -> int by the magic-number trick (adding 1.5 * 2^23 leaves the rounded value
+        // in the low mantissa bits): no saturating conversions, no branches in the hot loop.
+        const MAGIC: f32 = 12_582_912.0;
+        const MASK: u32 = TEX_SIZE as u32 - 1;
+        const TEXELS: usize = TEX_SIZE * TEX_SIZE;
+        let slots = &setup.slots[..];
+        // `v` in [0, 255]: its rounded value.
+        let byte = |v: f32| -> u32 { (v + MAGIC).to_bits() & 0xff };
+        // A run of pixels of one slot is shaded in passes: attributes and texel indices
+        // (branch-free, vectorised), texel fetch, colour packed in a word (vectorised), bytes.
+        let mut light = [0.0f32; RUN];
+        let mut index = [0u32; RUN];
+        let mut packed = [0u32; RUN];
+        let mut lanes = [0.0f32; RUN];
+        for (j, l) in lanes.iter_mut().enumerate() {
+            *l = j as f32;
+        }
+        for (row, ((zr, ir), out)) in zbuf
+            .chunks_exact(w)
+            .zip(ids.chunks_exact(w))
+            .zip(rgb.chunks_exact_mut(3 * w))
+            .enumerate()
+        {
+            let y = (y0 + row) as f32;
+            let mut x = 0;
+            while x < w {
+                let id = ir[x];
+                let end = (x + RUN).min(w);
+                // Whole blocks of 8 equal ids first (branch-free compare), then one by one.
+                let mut e = x + 1;
+                while e + 8 <= end && ir[e..e + 8].iter().fold(true, |all, &v| all & (v == id)) {
+                    e += 8;
+                }
+                while e < end && ir[e] == id {
+                    e += 1;
+                }
+                let n = e - x;
+                let px = &mut out[3 * x..3 * e];
+                let Some(s) = (id as usize).checked_sub(1).and_then(|i| slots.get(i)) else {
+                    px.fill(0);
+                    x = e;
+                    continue;
+                };
+                let Some(tex) = self
+                    .texels
+                    .get(s.tex as usize..s.tex as usize + TEXELS)
+                    .and_then(|t| <&[u8; TEXELS]>::try_from(t).ok())
+                else {
+                    px.fill(0);
+                    x = e;
+                    continue;
+                };
+                let xf = x as f32;
+                let k = &s.k;
+                // Attribute / depth at pixel x + j is a x_j + b.
+                let (a0, a1, a2) = (k[0][0], k[1][0], k[2][0]);
+                let b0 = k[0][0] * xf + k[0][1] * y + k[0][2];
+                let b1 = k[1][0] * xf + k[1][1] * y + k[1][2];
+                let b2 = k[2][0] * xf + k[2][1] * y + k[2][2];
+                for (((l, i), iz), j) in light[..n]
+                    .iter_mut()
+                    .zip(index[..n].iter_mut())
+                    .zip(&zr[x..e])
+                    .zip(&lanes[..n])
+                {
+                    let inv = 1.0 / *iz;
+                    *l = (a0 * j + b0) * inv;
+                    // floor(t) as round(t - 0.5); the mask wraps negative coordinates too.
+                    let tu = ((a1 * j + b1) * inv - 0.5 + MAGIC).to_bits() & MASK;
+                    let tv = ((a2 * j + b2) * inv - 0.5 + MAGIC).to_bits() & MASK;
+                    *i = tv * TEX_SIZE as u32 + tu;
+                }
+                let [tr, tg, tb] = s.tone;
+                // Clamping the product once keeps every channel in [0, 255].
+                let top = 255.0 / tr.max(tg).max(tb).max(1e-6);
+                for (l, i) in light[..n].iter_mut().zip(&index[..n]) {
+                    *l *= tex[*i as usize & (TEXELS - 1)] as f32;
+                }
+                for (c, l) in packed[..n].iter_mut().zip(&light[..n]) {
+                    let m = if *l < top { *l } else { top };
+                    let m = if m > 0.0 { m } else { 0.0 };
+                    *c = byte(tr * m) | byte(tg * m) << 8 | byte(tb * m) << 16;
+                }
+                for (p, c) in px.chunks_exact_mut(3).zip(&packed[..n]) {
+                    let [r, g, b, _] = c.to_le_bytes();
+                    p[0] = r;
+                    p[1] = g;
+                    p[2] = b;
+                }
+                x = e;
             }
         }
     }

@@ -8,7 +8,6 @@ use crate::error::{Result, SensorError};
 use crate::frame::{Frame, View};
 use crate::renderer::Renderer;
 use crate::scene_mesh::SceneMesh;
-use crate::shading;
 use glam::Vec3;
 use parry3d::query::Ray;
 use parry3d::shape::{CompositeShapeRef, TriMesh};
@@ -113,7 +112,6 @@ impl SceneRaycaster {
 
     fn render_row(&self, c: &Camera, mut row: Row<'_>) {
         let fwd = c.forward();
-        let light = shading::light_dir();
         let (fx, cx, cy) = (c.fx(), c.cx(), c.cy());
         let y = -(row.v as f32 + 0.5 - cy) / fx;
         for u in 0..c.width {
@@ -139,17 +137,9 @@ impl SceneRaycaster {
             }
             if let Some(rgb) = row.rgb.as_deref_mut() {
                 let px = match hit {
-                    Some(h) => {
-                        let t = h.triangle as usize;
-                        let mut n = self.mesh.normal(t);
-                        if n.dot(dir) > 0.0 {
-                            n = -n;
-                        }
-                        let base =
-                            self.mesh.color[t].map(|c| (c.clamp(0.0, 1.0) * 255.0).round() / 255.0);
-                        let k = shading::AMBIENT + shading::DIFFUSE * n.dot(light).max(0.0);
-                        base.map(|c| shading::encode(c * k))
-                    }
+                    Some(h) => self
+                        .mesh
+                        .shade(h.triangle as usize, c.position + dir * (t0 + h.distance)),
                     None => [0, 0, 0],
                 };
                 rgb[3 * i..3 * i + 3].copy_from_slice(&px);

@@ -1,10 +1,40 @@
 //! The scene prepared for rendering: every triangle in world space, grouped by object, with
-//! per-object bounding boxes (for frustum culling) and an id -> class table.
+//! per-object bounding boxes (for frustum culling), an id -> class table, and the look of each
+//! triangle: its colour, the light baked by [`vlnverse_env::light`] at its corners and texture
+//! coordinates into its surface's texture ([`vlnverse_env::material`]), the same data
+//! `scene.glb` holds.
+//!
+//! Every backend computes a pixel the same way, in the encoded (gamma 2.2) space of the output:
+//! `tone x light x texel`, clamped to 1, where `tone` is the triangle's encoded colour, `light`
+//! the encoded light interpolated (perspective-correct) from the corners and `texel` the
+//! encoded texture value ([`Surface::luma_encoded`]). With a pure 2.2 gamma this is the
+//! encoded product of the linear values; only the interpolation of the light differs from a
+//! viewer of `scene.glb`, which interpolates linear light (a few levels at most, in the
+//! gradients). One interpolated value per pixel instead of three keeps the rasteriser fast.
 
 use crate::error::{Result, SensorError};
 use glam::Vec3;
-use vlnverse_env::geometry::scene_triangles;
+use vlnverse_env::geometry::triangulate_part_cells;
+use vlnverse_env::light::{bake, cell_of, BakedLight};
+use vlnverse_env::material::{box_uv, surface_of, Surface, TEX_SIZE};
 use vlnverse_env::{Aabb, Scene};
+
+/// Gamma of the encoded output (as [`crate::shading::encode`]).
+const GAMMA: f32 = 1.0 / 2.2;
+
+/// How one triangle looks (see the module docs for how a pixel is made of it).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TriLook {
+    /// Encoded colour: part colour times the texture's tint times the light's colour, each
+    /// linear value raised to `1 / 2.2` (may exceed 1 slightly).
+    pub tone: [f32; 3],
+    /// Encoded light intensity at each corner (linear intensity raised to `1 / 2.2`).
+    pub light: [f32; 3],
+    /// Texture coordinates of each corner in texels of a [`TEX_SIZE`] texture (repeating).
+    pub uv: [[f32; 2]; 3],
+    /// The surface whose texture applies.
+    pub surface: Surface,
+}
 
 /// A contiguous run of triangles belonging to one object.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -34,18 +64,20 @@ pub struct SceneMesh {
     pub objects: Vec<ObjectRange>,
     /// Semantic class id indexed by object id (0 for unknown ids).
     pub class_of: Vec<u16>,
+    /// Look of each triangle (baked light, texture).
+    pub look: Vec<TriLook>,
 }
 
 impl SceneMesh {
-    /// Triangulate a scene (with the shared [`vlnverse_env::geometry`] code).
+    /// Triangulate a scene (with the shared [`vlnverse_env::geometry`] code) and bake its light
+    /// ([`vlnverse_env::light::bake`], the light `scene.glb` holds).
     pub fn new(scene: &Scene) -> Result<Self> {
-        let tris = scene_triangles(scene);
-        if tris.is_empty() {
-            return Err(SensorError::Scene {
-                scene: scene.id.clone(),
-                message: "no triangles to render (every object has no parts)".into(),
-            });
-        }
+        Self::with_light(scene, &bake(scene))
+    }
+
+    /// [`SceneMesh::new`] with light already baked for this scene.
+    pub fn with_light(scene: &Scene, light: &BakedLight) -> Result<Self> {
+        let n_tri = scene.triangle_count();
         let max_id = scene.objects.iter().map(|o| o.id).max().unwrap_or(0) as usize;
         let mut class_of = vec![0u16; max_id + 1];
         for o in &scene.objects {
@@ -53,34 +85,91 @@ impl SceneMesh {
         }
         let mut m = SceneMesh {
             scene_id: scene.id.clone(),
-            positions: Vec::with_capacity(tris.len() * 3),
-            object: Vec::with_capacity(tris.len()),
-            color: Vec::with_capacity(tris.len()),
+            positions: Vec::with_capacity(n_tri * 3),
+            object: Vec::with_capacity(n_tri),
+            color: Vec::with_capacity(n_tri),
             objects: Vec::new(),
             class_of,
+            look: Vec::with_capacity(n_tri),
         };
-        for (i, t) in tris.iter().enumerate() {
-            m.positions.extend_from_slice(&t.v);
-            m.object.push(t.object);
-            m.color.push(t.color);
-            match m.objects.last_mut() {
-                Some(r) if r.id == t.object => {
-                    r.count += 1;
-                    t.v.iter().for_each(|p| r.bbox.extend(*p));
-                }
-                _ => {
-                    let mut bbox = Aabb::EMPTY;
-                    t.v.iter().for_each(|p| bbox.extend(*p));
-                    m.objects.push(ObjectRange {
-                        id: t.object,
-                        first: i as u32,
-                        count: 1,
-                        bbox,
+        let mut part_index = 0;
+        // Encoded intensity of an 8-bit light value.
+        let encoded: Vec<f32> = (0..256).map(|i| (i as f32 / 255.0).powf(GAMMA)).collect();
+        let light_tint = if light.tint == [0.0; 3] {
+            [1.0; 3]
+        } else {
+            light.tint
+        };
+        for o in &scene.objects {
+            let surface = surface_of(scene, o);
+            let texels = TEX_SIZE as f32 / surface.repeat();
+            let tint = surface.tint();
+            let cell = cell_of(scene, o);
+            for part in &o.parts {
+                let tm = triangulate_part_cells(part, &o.pose, cell);
+                let lights = light
+                    .parts
+                    .get(part_index)
+                    .filter(|l| l.len() == tm.positions.len());
+                part_index += 1;
+                // 8-bit base colour, as the GPU's vertices.
+                let base = part
+                    .color
+                    .map(|c| (c.clamp(0.0, 1.0) * 255.0).round() / 255.0);
+                let tone = [0, 1, 2].map(|k| (base[k] * tint[k] * light_tint[k]).powf(GAMMA));
+                for t in &tm.indices {
+                    let v = t.map(|i| Vec3::from_array(tm.positions[i as usize]));
+                    // The green channel carries the intensity (the light's tint is in `tone`).
+                    let corner_light =
+                        t.map(|i| encoded[lights.map_or(200, |l| l[i as usize][1]) as usize]);
+                    let uv = t.map(|i| {
+                        let i = i as usize;
+                        let [u, v] = box_uv(
+                            Vec3::from_array(tm.positions[i]),
+                            Vec3::from_array(tm.normals[i]),
+                        );
+                        [u * texels, v * texels]
+                    });
+                    m.push(v, o.id, part.color);
+                    m.look.push(TriLook {
+                        tone,
+                        light: corner_light,
+                        uv,
+                        surface,
                     });
                 }
             }
         }
+        if m.object.is_empty() {
+            return Err(SensorError::Scene {
+                scene: scene.id.clone(),
+                message: "no triangles to render (every object has no parts)".into(),
+            });
+        }
         Ok(m)
+    }
+
+    fn push(&mut self, v: [Vec3; 3], object: u32, color: [f32; 3]) {
+        let i = self.object.len();
+        self.positions.extend_from_slice(&v);
+        self.object.push(object);
+        self.color.push(color);
+        match self.objects.last_mut() {
+            Some(r) if r.id == object => {
+                r.count += 1;
+                v.iter().for_each(|p| r.bbox.extend(*p));
+            }
+            _ => {
+                let mut bbox = Aabb::EMPTY;
+                v.iter().for_each(|p| bbox.extend(*p));
+                self.objects.push(ObjectRange {
+                    id: object,
+                    first: i as u32,
+                    count: 1,
+                    bbox,
+                });
+            }
+        }
     }
 
     /// Number of triangles.
@@ -91,6 +180,33 @@ impl SceneMesh {
     /// Class id of an object id (0 for 0 or unknown).
     pub fn class(&self, id: u32) -> u16 {
         self.class_of.get(id as usize).copied().unwrap_or(0)
+    }
+
+    /// sRGB colour of triangle `t` at the world point `q` on it: baked light and texture, the
+    /// reference for the rasteriser's per-pixel resolve (the ray caster uses it).
+    pub fn shade(&self, t: usize, q: Vec3) -> [u8; 3] {
+        let [a, b, c] = [0, 1, 2].map(|k| self.positions[3 * t + k]);
+        let (e1, e2, d) = (b - a, c - a, q - a);
+        let (d00, d01, d11) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
+        let den = d00 * d11 - d01 * d01;
+        let (u, v) = if den.abs() > 1e-20 {
+            let (d20, d21) = (d.dot(e1), d.dot(e2));
+            ((d11 * d20 - d01 * d21) / den, (d00 * d21 - d01 * d20) / den)
+        } else {
+            (0.0, 0.0)
+        };
+        let Some(l) = self.look.get(t) else {
+            return self.color[t].map(crate::shading::encode);
+        };
+        let at = |x: [f32; 3]| x[0] + u * (x[1] - x[0]) + v * (x[2] - x[0]);
+        let bias = (TEX_SIZE * 256) as f32;
+        let mask = TEX_SIZE as i32 - 1;
+        let tu = ((at(l.uv.map(|p| p[0])) + bias) as i32) & mask;
+        let tv = ((at(l.uv.map(|p| p[1])) + bias) as i32) & mask;
+        let texel = l.surface.luma_encoded()[(tv * TEX_SIZE as i32 + tu) as usize] as f32;
+        let k = at(l.light) * texel;
+        l.tone
+            .map(|c| (c * k).clamp(0.0, 255.0).round_ties_even() as u8)
     }
 
     /// Geometric unit normal of triangle `i`.

@@ -3,14 +3,20 @@
 //! Layout (see `docs/formats.md`): node `i` (a root node) is object `i` of the scene, named after
 //! the object, with the object pose as its translation/rotation and `extras` holding id, class
 //! and physics. Its mesh holds the object's primitive parts (cuboids, cylinders, spheres) in
-//! object-local coordinates, one glTF primitive per distinct colour. Mesh parts
+//! object-local coordinates, one glTF primitive per distinct (colour, surface material), with
+//! the baked light ([`crate::light`]) as `COLOR_0` and box-projected texture coordinates
+//! ([`crate::material`]) as `TEXCOORD_0`; materials are unlit (`KHR_materials_unlit`: the light
+//! is in the vertices) and carry the surface's procedural texture. Mesh parts
 //! ([`Shape::Mesh`]) each get a child node carrying the part transform and a mesh of their own;
 //! the `k`-th mesh part of the scene (object order, then part order) is glTF mesh `k`, which is
 //! what [`MeshData::glb_mesh`] names.
 
 use crate::error::{EnvError, Result};
-use crate::geometry::{mesh_with_normals, triangulate, TriMesh};
+use crate::geometry::{mesh_with_normals, triangulate_cells, TriMesh};
+use crate::light::{bake, cell_of, BakedLight};
+use crate::material::{box_uv, surface_of, Surface, TEX_SIZE};
 use crate::scene::{MeshData, Motion, Pose, Scene, SceneObject, Shape};
+use glam::Vec3;
 use serde_json::{json, Value};
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -21,6 +27,7 @@ const CHUNK_BIN: u32 = 0x004E_4942;
 const ARRAY_BUFFER: u32 = 34962;
 const ELEMENT_ARRAY_BUFFER: u32 = 34963;
 const FLOAT: u32 = 5126;
+const UNSIGNED_BYTE: u32 = 5121;
 const UNSIGNED_INT: u32 = 5125;
 
 /// An `f32` as the `f64` with the same shortest decimal form, so the JSON reads `0.85` rather
@@ -123,18 +130,131 @@ impl Bin {
             "mode": 4
         })
     }
+
+    /// A primitive with baked light (`COLOR_0`, RGBA8 normalised) and texture coordinates.
+    fn lit_primitive(&mut self, m: &Lit, material: usize) -> Value {
+        let mut p = self.primitive(&m.mesh, material);
+        let view = self.view(m.light.len() * 4, ARRAY_BUFFER, |d| {
+            for c in &m.light {
+                d.extend_from_slice(&[c[0], c[1], c[2], 255]);
+            }
+        });
+        self.accessors.push(json!({
+            "bufferView": view, "componentType": UNSIGNED_BYTE, "normalized": true,
+            "count": m.light.len(), "type": "VEC4"
+        }));
+        p["attributes"]["COLOR_0"] = json!(self.accessors.len() - 1);
+        let view = self.view(m.uv.len() * 8, ARRAY_BUFFER, |d| {
+            for x in m.uv.iter().flatten() {
+                d.extend_from_slice(&x.to_le_bytes());
+            }
+        });
+        self.accessors.push(json!({
+            "bufferView": view, "componentType": FLOAT, "count": m.uv.len(), "type": "VEC2"
+        }));
+        p["attributes"]["TEXCOORD_0"] = json!(self.accessors.len() - 1);
+        p
+    }
+
+    /// A buffer view holding raw bytes (an image), no target.
+    fn blob(&mut self, bytes: &[u8]) -> usize {
+        pad4(&mut self.data, 0);
+        let offset = self.data.len();
+        self.data.extend_from_slice(bytes);
+        self.views
+            .push(json!({"buffer": 0, "byteOffset": offset, "byteLength": bytes.len()}));
+        self.views.len() - 1
+    }
 }
 
-/// Materials deduplicated by (colour, metallic) in order of first use.
+/// Triangles with their per-vertex light and texture coordinates.
+#[derive(Default)]
+struct Lit {
+    mesh: TriMesh,
+    light: Vec<[u8; 3]>,
+    uv: Vec<[f32; 2]>,
+}
+
+impl Lit {
+    /// Append part `shape` placed by `local` (object frame), its light and texture coordinates
+    /// from the world frame (`object` pose).
+    fn append(
+        &mut self,
+        tri: &TriMesh,
+        local: &Pose,
+        object: &Pose,
+        light: &[[u8; 3]],
+        surface: Surface,
+    ) {
+        let start = self.mesh.positions.len();
+        self.mesh.append_transformed(tri, local);
+        let q = object.quat();
+        let r = surface.repeat();
+        for i in start..self.mesh.positions.len() {
+            let w = object.transform_point(Vec3::from_array(self.mesh.positions[i]));
+            let n = q * Vec3::from_array(self.mesh.normals[i]);
+            let [u, v] = box_uv(w, n);
+            self.uv.push([u / r, v / r]);
+        }
+        // Light is per vertex of the part's triangulation; grey if it does not fit.
+        let n = self.mesh.positions.len() - start;
+        if light.len() == n {
+            self.light.extend_from_slice(light);
+        } else {
+            self.light.extend(std::iter::repeat_n([200u8; 3], n));
+        }
+    }
+}
+
+/// Materials deduplicated by (colour, metallic, surface) in order of first use; textures
+/// (one per surface used) likewise.
 #[derive(Default)]
 struct Materials {
-    index: BTreeMap<([u32; 3], bool), usize>,
+    index: BTreeMap<([u32; 3], bool, Option<Surface>), usize>,
     list: Vec<Value>,
+    textures: Vec<Surface>,
 }
 
 impl Materials {
+    /// A textured, unlit material for a part with baked light.
+    fn lit(&mut self, color: [f32; 3], surface: Surface) -> usize {
+        let key = (color.map(f32::to_bits), surface.metallic(), Some(surface));
+        if let Some(&i) = self.index.get(&key) {
+            return i;
+        }
+        let tex = match self.textures.iter().position(|t| *t == surface) {
+            Some(t) => t,
+            None => {
+                self.textures.push(surface);
+                self.textures.len() - 1
+            }
+        };
+        let srgb = color.map(|c| (linear_to_srgb(c) * 255.0).round() as u8);
+        let name = format!(
+            "{}_{:02x}{:02x}{:02x}",
+            surface.name(),
+            srgb[0],
+            srgb[1],
+            srgb[2]
+        );
+        let metal = surface.metallic();
+        self.list.push(json!({
+            "name": name,
+            "pbrMetallicRoughness": {
+                "baseColorFactor": [short(color[0]), short(color[1]), short(color[2]), 1.0],
+                "baseColorTexture": {"index": tex},
+                "metallicFactor": if metal { 0.6 } else { 0.0 },
+                "roughnessFactor": if metal { 0.35 } else { 0.8 }
+            },
+            "extensions": {"KHR_materials_unlit": {}},
+            "doubleSided": false
+        }));
+        self.index.insert(key, self.list.len() - 1);
+        self.list.len() - 1
+    }
+
     fn get(&mut self, color: [f32; 3], metal: bool) -> usize {
-        let key = (color.map(f32::to_bits), metal);
+        let key = (color.map(f32::to_bits), metal, None);
         if let Some(&i) = self.index.get(&key) {
             return i;
         }
@@ -198,36 +318,56 @@ fn set_pose(node: &mut Value, pose: &Pose) {
 /// Encode a scene as a glTF 2.0 binary (`scene.glb`). Deterministic: the same scene gives the
 /// same bytes.
 pub fn write_glb(scene: &Scene) -> Vec<u8> {
+    write_glb_with(scene, &bake(scene))
+}
+
+/// [`write_glb`] with light already baked ([`crate::light::bake`] of this scene).
+pub fn write_glb_with(scene: &Scene, light: &BakedLight) -> Vec<u8> {
     let mut bin = Bin::default();
     let mut mats = Materials::default();
     let mut meshes: Vec<Value> = Vec::new();
     let mut nodes: Vec<Value> = Vec::new();
+    let no_light: Vec<[u8; 3]> = Vec::new();
+    let light_of = |k: usize| light.parts.get(k).unwrap_or(&no_light);
     // Mesh parts first so their glTF mesh index is their canonical index.
+    let mut part_index = 0usize;
     for o in &scene.objects {
-        let metal = o.material == "metal";
+        let surface = surface_of(scene, o);
         for (k, p) in o.parts.iter().enumerate() {
             if let Shape::Mesh(m) = &p.shape {
-                let mat = mats.get(p.color, metal);
+                let mat = mats.lit(p.color, surface);
                 let tri = mesh_with_normals(&m.positions, &m.indices);
                 let prims = if tri.indices.is_empty() {
                     vec![]
                 } else {
-                    vec![bin.primitive(&tri, mat)]
+                    let mut lit = Lit::default();
+                    lit.append(
+                        &tri,
+                        &Pose::IDENTITY,
+                        &o.pose.mul(&p.transform),
+                        light_of(part_index),
+                        surface,
+                    );
+                    vec![bin.lit_primitive(&lit, mat)]
                 };
                 meshes.push(json!({"name": format!("{}/part{k}", o.name), "primitives": prims}));
             }
+            part_index += 1;
         }
     }
     let n_objects = scene.objects.len();
     let mut children_nodes: Vec<Value> = Vec::new();
     let mut mesh_part = 0usize;
+    let mut part_index = 0usize;
     for o in &scene.objects {
-        let metal = o.material == "metal";
+        let surface = surface_of(scene, o);
         // Group primitive parts by material, in order of first appearance.
-        let mut groups: Vec<(usize, TriMesh)> = Vec::new();
+        let mut groups: Vec<(usize, Lit)> = Vec::new();
         let mut children = Vec::new();
         for (k, p) in o.parts.iter().enumerate() {
-            let mat = mats.get(p.color, metal);
+            let part_light = light_of(part_index);
+            part_index += 1;
+            let mat = mats.lit(p.color, surface);
             if let Shape::Mesh(_) = p.shape {
                 let mut child = json!({"name": format!("{}/part{k}", o.name), "mesh": mesh_part});
                 set_pose(&mut child, &p.transform);
@@ -242,22 +382,24 @@ pub fn write_glb(scene: &Scene) -> Vec<u8> {
                 mesh_part += 1;
                 continue;
             }
-            let tri = triangulate(&p.shape);
+            let tri = triangulate_cells(&p.shape, cell_of(scene, o));
             let gi = match groups.iter().position(|(m, _)| *m == mat) {
                 Some(gi) => gi,
                 None => {
-                    groups.push((mat, TriMesh::default()));
+                    groups.push((mat, Lit::default()));
                     groups.len() - 1
                 }
             };
-            groups[gi].1.append_transformed(&tri, &p.transform);
+            groups[gi]
+                .1
+                .append(&tri, &p.transform, &o.pose, part_light, surface);
         }
         let mut node = json!({"name": o.name, "extras": node_extras(o)});
         set_pose(&mut node, &o.pose);
         let prims: Vec<Value> = groups
             .iter()
-            .filter(|(_, m)| !m.indices.is_empty())
-            .map(|(mat, m)| bin.primitive(m, *mat))
+            .filter(|(_, m)| !m.mesh.indices.is_empty())
+            .map(|(mat, m)| bin.lit_primitive(m, *mat))
             .collect();
         if !prims.is_empty() {
             meshes.push(json!({"name": o.name, "primitives": prims}));
@@ -294,6 +436,20 @@ pub fn write_glb(scene: &Scene) -> Vec<u8> {
         }],
         "nodes": nodes,
     });
+    if !mats.textures.is_empty() {
+        let mut images = Vec::new();
+        for t in &mats.textures {
+            let view = bin.blob(&texture_png(*t));
+            images.push(json!({"name": t.name(), "bufferView": view, "mimeType": "image/png"}));
+        }
+        doc["images"] = json!(images);
+        doc["samplers"] =
+            json!([{"magFilter": 9729, "minFilter": 9987, "wrapS": 10497, "wrapT": 10497}]);
+        doc["textures"] = json!((0..images.len())
+            .map(|i| json!({"sampler": 0, "source": i}))
+            .collect::<Vec<_>>());
+        doc["extensionsUsed"] = json!(["KHR_materials_unlit"]);
+    }
     if !meshes.is_empty() {
         doc["meshes"] = json!(meshes);
         doc["materials"] = json!(mats.list);
@@ -326,6 +482,26 @@ pub fn write_glb(scene: &Scene) -> Vec<u8> {
         out.extend_from_slice(&CHUNK_BIN.to_le_bytes());
         out.extend_from_slice(&bin.data);
     }
+    out
+}
+
+/// A surface texture as PNG bytes (8-bit sRGB-encoded, as glTF base colour textures are).
+fn texture_png(s: Surface) -> Vec<u8> {
+    let data: Vec<u8> = s
+        .texture()
+        .iter()
+        .flat_map(|c| c.map(|v| (linear_to_srgb(v as f32 / 255.0) * 255.0).round() as u8))
+        .collect();
+    let mut out = Vec::new();
+    let enc = image::codecs::png::PngEncoder::new(&mut out);
+    image::ImageEncoder::write_image(
+        enc,
+        &data,
+        TEX_SIZE as u32,
+        TEX_SIZE as u32,
+        image::ExtendedColorType::Rgb8,
+    )
+    .expect("encoding a PNG into memory does not fail");
     out
 }
 

@@ -1,4 +1,5 @@
 //! Integration tests of `vlnverse-procgen`, linked into one test binary (one link, shared fixtures).
 
 mod homes;
+mod look;
 mod navigable;

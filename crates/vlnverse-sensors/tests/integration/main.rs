@@ -3,5 +3,6 @@
 mod common;
 
 mod backends;
+mod look;
 mod raster_backends;
 mod rig;

@@ -1,0 +1,383 @@
+//! Light baked into the vertices of a scene: ambient occlusion and direct light with shadows
+//! from ceiling lamps, computed once with the ray caster ([`crate::bvh`]) so that renderers
+//! only multiply per pixel.
+//!
+//! [`bake`] gives one light value per vertex of every part's triangulation
+//! ([`crate::geometry::triangulate_part_cells`] with [`cell_of`]: the walls, floors and
+//! ceilings of procedural homes are cut into cells of at most [`crate::geometry::MAX_CELL`] for
+//! resolution, everything else keeps two triangles per box face, so the renderers draw few
+//! more triangles than without light). `scene.glb` stores it as `COLOR_0` (with
+//! `KHR_materials_unlit`, so viewers show the baked look) and the renderers multiply it with the
+//! part colour and texture ([`crate::material`]). It is a pure function of the scene: the same
+//! scene gives the same bytes on any number of threads (each vertex draws its rays from a hash
+//! of its own index, and parts are baked independently and collected in order).
+//!
+//! Procedural homes (`source = "procgen"`) get the full bake: a lamp under the ceiling of
+//! every room (two in long rooms), 16 occlusion rays and two shadow rays per lamp per vertex.
+//! Other scenes (imported houses, hand-made fixtures) get the old directional look per vertex,
+//! which costs nothing.
+//!
+//! A scene is usually baked twice in a row (its `scene.glb` is written, then the renderer is
+//! prepared), so [`bake`] keeps the last few results in a small process-wide cache keyed by the
+//! scene's content; a hit returns the same bytes as a fresh bake.
+
+use crate::bvh::TriBvh;
+use crate::scene::{Scene, SceneObject};
+use crate::SemanticClass;
+use glam::Vec3;
+use rayon::prelude::*;
+use std::sync::{Arc, Mutex};
+
+/// Occlusion rays per vertex.
+const AO_RAYS: usize = 16;
+/// Reach of occlusion rays in metres (local occlusion: corners, under furniture).
+const AO_REACH: f32 = 0.9;
+/// Lamp power (light at 1 m straight below, before the `+ LAMP_SOFT` falloff).
+const LAMP_POWER: f32 = 3.2;
+/// Added to the squared distance so light near a lamp does not blow up.
+const LAMP_SOFT: f32 = 0.6;
+/// Lamps farther than this do not light a vertex.
+const LAMP_REACH: f32 = 9.0;
+/// Lamps hang this far below the top of the walls.
+const LAMP_DROP: f32 = 0.35;
+/// Directional look of unbaked scenes (as the renderers' flat shading was).
+const FLAT_AMBIENT: f32 = 0.35;
+const FLAT_DIFFUSE: f32 = 0.65;
+const FLAT_LIGHT: [f32; 3] = [0.35, 1.0, 0.25];
+/// Colour of the lamps (warm: a touch more red than blue), green = 1.
+pub const LAMP_TINT: [f32; 3] = [1.04, 1.0, 0.92];
+/// Cells of walls, in units of [`crate::geometry::MAX_CELL`].
+const WALL_CELL: f32 = 2.0;
+/// Results kept by the cache of [`bake`].
+const CACHE: usize = 32;
+
+/// Light per vertex of every part: `parts[k][i]` is vertex `i` of
+/// `triangulate_part_cells(part, pose, cell_of(scene, object))` of the `k`-th part of the scene
+/// (object order, then part order), linear, 255 = full base colour. Every value is the light's
+/// colour ([`BakedLight::tint`]) times one intensity, so renderers may interpolate the green
+/// channel alone and multiply the tint into the part colour.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BakedLight {
+    /// Per part, per vertex, RGB.
+    pub parts: Vec<Vec<[u8; 3]>>,
+    /// Colour of the light (green is 1): [`LAMP_TINT`] for lamp-lit homes, white otherwise.
+    pub tint: [f32; 3],
+}
+
+/// Whether a scene gets lamps and the full bake (procedural homes).
+pub fn is_lit(scene: &Scene) -> bool {
+    scene.source == "procgen"
+}
+
+/// Cell size of an object's triangulation for baking (see the module docs): floors of lamp-lit
+/// homes get [`crate::geometry::MAX_CELL`] (shadows of furniture), walls cells twice as
+/// large (smooth falloff, corner occlusion), other objects `None` (two triangles per box face).
+pub fn cell_of(scene: &Scene, o: &SceneObject) -> Option<f32> {
+    if !is_lit(scene) {
+        return None;
+    }
+    let m = crate::geometry::MAX_CELL;
+    match o.class {
+        // Shadows of furniture on the floor need the finest cells; walls and ceilings carry
+        // smooth falloff and corner occlusion.
+        SemanticClass::Floor => Some(m),
+        SemanticClass::Wall => Some(m * WALL_CELL),
+        // Ceilings: light from their corners only (a smooth gradient; cells there cost
+        // triangles in every view and show little).
+        _ => None,
+    }
+}
+
+/// World-space triangulation of every part as baked (object order, then part order).
+pub fn bake_meshes(scene: &Scene) -> Vec<crate::geometry::TriMesh> {
+    scene
+        .objects
+        .iter()
+        .flat_map(|o| {
+            let cell = cell_of(scene, o);
+            o.parts.iter().map(move |p| (o, p, cell))
+        })
+        .map(|(o, p, cell)| crate::geometry::triangulate_part_cells(p, &o.pose, cell))
+        .collect()
+}
+
+/// Where the lamps of a scene hang: under the ceiling of every room, at the centre of its
+/// outline's box, two along the long side of rooms longer than 4.5 m. Empty for scenes that are
+/// not procedural homes.
+pub fn lamps(scene: &Scene) -> Vec<Vec3> {
+    if !is_lit(scene) {
+        return Vec::new();
+    }
+    let top = scene
+        .objects
+        .iter()
+        .filter(|o| o.class == crate::SemanticClass::Wall)
+        .map(|o| o.bbox.max[1])
+        .fold(f32::NEG_INFINITY, f32::max);
+    let y = if top.is_finite() {
+        top - LAMP_DROP
+    } else {
+        scene.floor_height + 2.3
+    };
+    let mut out = Vec::new();
+    for r in &scene.rooms {
+        if r.polygon.is_empty() {
+            continue;
+        }
+        let (mut lo, mut hi) = ([f32::INFINITY; 2], [f32::NEG_INFINITY; 2]);
+        for p in &r.polygon {
+            for k in 0..2 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        let c = [(lo[0] + hi[0]) * 0.5, (lo[1] + hi[1]) * 0.5];
+        let (w, d) = (hi[0] - lo[0], hi[1] - lo[1]);
+        if w.max(d) > 4.5 {
+            let (dx, dz) = if w >= d {
+                (w * 0.25, 0.0)
+            } else {
+                (0.0, d * 0.25)
+            };
+            out.push(Vec3::new(c[0] - dx, y, c[1] - dz));
+            out.push(Vec3::new(c[0] + dx, y, c[1] + dz));
+        } else {
+            out.push(Vec3::new(c[0], y, c[1]));
+        }
+    }
+    out
+}
+
+/// The last bakes: content key, result.
+type Cache = Mutex<Vec<(u64, Arc<BakedLight>)>>;
+
+fn cache() -> &'static Cache {
+    static C: std::sync::OnceLock<Cache> = std::sync::OnceLock::new();
+    C.get_or_init(|| Mutex::new(Vec::new()))
+}
+
+/// A 64-bit key of everything the bake reads: the triangulated parts and the lamps.
+fn content_key(parts: &[crate::geometry::TriMesh], lamps: &[Vec3]) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    let mut mix = |v: u32| {
+        h = (h ^ u64::from(v)).wrapping_mul(0x0000_0100_0000_01b3);
+        h ^= h >> 29;
+    };
+    for m in parts {
+        mix(m.positions.len() as u32);
+        for p in m.positions.iter().chain(&m.normals) {
+            p.iter().for_each(|c| mix(c.to_bits()));
+        }
+        for t in &m.indices {
+            t.iter().for_each(|i| mix(*i));
+        }
+    }
+    for l in lamps {
+        l.to_array().iter().for_each(|c| mix(c.to_bits()));
+    }
+    h
+}
+
+/// Bake the light of a scene (see the module docs); the same result as a fresh bake, taken
+/// from the cache when this scene was baked a moment ago.
+pub fn bake(scene: &Scene) -> Arc<BakedLight> {
+    let parts = bake_meshes(scene);
+    let lamps = lamps(scene);
+    let key = content_key(&parts, &lamps);
+    if let Some(hit) = cache()
+        .lock()
+        .ok()
+        .and_then(|c| c.iter().find(|(k, _)| *k == key).map(|(_, l)| l.clone()))
+    {
+        return hit;
+    }
+    let light = Arc::new(bake_uncached(parts, &lamps));
+    if let Ok(mut c) = cache().lock() {
+        if c.len() >= CACHE {
+            c.remove(0);
+        }
+        c.push((key, light.clone()));
+    }
+    light
+}
+
+/// [`bake`] without the cache: always computes (tests compare the two, and thread counts).
+pub fn bake_fresh(scene: &Scene) -> BakedLight {
+    bake_uncached(bake_meshes(scene), &lamps(scene))
+}
+
+fn bake_uncached(parts: Vec<crate::geometry::TriMesh>, lamps: &[Vec3]) -> BakedLight {
+    if lamps.is_empty() {
+        let l = Vec3::from_array(FLAT_LIGHT).normalize();
+        return BakedLight {
+            parts: parts
+                .iter()
+                .map(|m| {
+                    m.normals
+                        .iter()
+                        .map(|n| {
+                            let k =
+                                FLAT_AMBIENT + FLAT_DIFFUSE * Vec3::from_array(*n).dot(l).max(0.0);
+                            [to_u8(k); 3]
+                        })
+                        .collect()
+                })
+                .collect(),
+            tint: [1.0; 3],
+        };
+    }
+    let mut positions = Vec::new();
+    let mut normals = Vec::new();
+    for m in &parts {
+        for t in &m.indices {
+            let v = t.map(|i| Vec3::from_array(m.positions[i as usize]));
+            positions.extend_from_slice(&v);
+            normals.push((v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero());
+        }
+    }
+    let bvh = TriBvh::new(&positions);
+    let ctx = Ctx {
+        bvh: &bvh,
+        normals: &normals,
+        lamps,
+        dirs: hemisphere(),
+    };
+    BakedLight {
+        parts: parts
+            .par_iter()
+            .enumerate()
+            .map(|(k, m)| ctx.bake_part(k, m))
+            .collect(),
+        tint: LAMP_TINT,
+    }
+}
+
+fn to_u8(k: f32) -> u8 {
+    (k.clamp(0.0, 1.0) * 255.0).round() as u8
+}
+
+struct Ctx<'a> {
+    bvh: &'a TriBvh,
+    normals: &'a [Vec3],
+    lamps: &'a [Vec3],
+    /// Cosine-weighted directions around +Z.
+    dirs: Vec<Vec3>,
+}
+
+/// Fixed cosine-weighted hemisphere directions around +Z (a Hammersley set).
+fn hemisphere() -> Vec<Vec3> {
+    (0..AO_RAYS)
+        .map(|i| {
+            let u = (i as f32 + 0.5) / AO_RAYS as f32;
+            let v = (i as u32).reverse_bits() as f32 / 4_294_967_296.0;
+            let r = u.sqrt();
+            let phi = std::f32::consts::TAU * v;
+            Vec3::new(r * phi.cos(), r * phi.sin(), (1.0 - u).max(0.0).sqrt())
+        })
+        .collect()
+}
+
+impl Ctx<'_> {
+    /// First hit along a ray: distance and whether it is a back face (the ray leaves a solid).
+    fn hit(&self, o: Vec3, d: Vec3, t_max: f32) -> Option<(f32, bool)> {
+        self.bvh
+            .cast(o, d, t_max)
+            .map(|(t, id)| (t, self.normals[id as usize].dot(d) > 0.0))
+    }
+
+    fn bake_part(&self, part: usize, m: &crate::geometry::TriMesh) -> Vec<[u8; 3]> {
+        // A neighbour point inside the surface for every vertex: the centroid of the first
+        // triangle using it (vertices of boxes that overlap, such as a floor under a wall or
+        // the corner of two walls, lie inside the other solid and are moved out along it).
+        let mut inward: Vec<Option<Vec3>> = vec![None; m.positions.len()];
+        for t in &m.indices {
+            let c = t
+                .iter()
+                .map(|&i| Vec3::from_array(m.positions[i as usize]))
+                .sum::<Vec3>()
+                / 3.0;
+            for &i in t {
+                inward[i as usize].get_or_insert(c);
+            }
+        }
+        (0..m.positions.len())
+            .map(|i| {
+                let p = Vec3::from_array(m.positions[i]);
+                let n = Vec3::from_array(m.normals[i]).normalize_or(Vec3::Y);
+                let c = inward[i].unwrap_or(p);
+                self.vertex(part, i, p, n, c)
+            })
+            .collect()
+    }
+
+    fn vertex(&self, part: usize, index: usize, p: Vec3, n: Vec3, inward: Vec3) -> [u8; 3] {
+        let lift = n * 0.004;
+        let mut s = p + lift;
+        for f in [0.15, 0.35, 0.7, 0.98] {
+            match self.hit(s, n, 1.0) {
+                Some((_, true)) => s = p + (inward - p) * f + lift,
+                _ => break,
+            }
+        }
+        // Occlusion: cosine-weighted rays in a frame turned by a per-vertex hash.
+        let h = hash(part as u32, index as u32);
+        let (sin, cos) = (h as f32 / 4_294_967_296.0 * std::f32::consts::TAU).sin_cos();
+        let t = n.any_orthonormal_vector();
+        let b = n.cross(t);
+        let (t, b) = (t * cos + b * sin, b * cos - t * sin);
+        let occluded = |s: Vec3| {
+            self.dirs
+                .iter()
+                .filter(|d| {
+                    let dir = t * d.x + b * d.y + n * d.z;
+                    self.hit(s, dir, AO_REACH).is_some()
+                })
+                .count()
+        };
+        let mut blocked = occluded(s);
+        // A corner buried in a neighbouring solid (a ceiling's corner inside the walls) sees
+        // nothing: sample its face a little inwards instead.
+        for f in [0.1, 0.25, 0.5] {
+            if blocked < AO_RAYS {
+                break;
+            }
+            s = p + (inward - p) * f + lift;
+            blocked = occluded(s);
+        }
+        let ao = 1.0 - blocked as f32 / AO_RAYS as f32;
+        // Direct light from every lamp in reach, two shadow rays each (a lamp is a small disc).
+        let mut direct = 0.0;
+        for lamp in self.lamps {
+            let to = *lamp - s;
+            let d2 = to.length_squared();
+            if d2 > LAMP_REACH * LAMP_REACH {
+                continue;
+            }
+            let cos_n = n.dot(to) / d2.sqrt();
+            if cos_n <= 0.0 {
+                continue;
+            }
+            let mut seen = 0.0;
+            for off in [Vec3::new(0.12, 0.0, 0.05), Vec3::new(-0.12, 0.0, -0.05)] {
+                let q = *lamp + off - s;
+                let dist = q.length();
+                if self.hit(s, q / dist, dist - 0.02).is_none() {
+                    seen += 0.5;
+                }
+            }
+            direct += seen * LAMP_POWER * cos_n / (d2 + LAMP_SOFT);
+        }
+        let ambient = 0.17 + 0.06 * n.y;
+        let k = ao * ambient + (0.25 + 0.75 * ao) * direct;
+        LAMP_TINT.map(|c| to_u8(k * c))
+    }
+}
+
+fn hash(a: u32, b: u32) -> u32 {
+    let mut h = a.wrapping_mul(0x9e37_79b1) ^ b.wrapping_mul(0x85eb_ca77);
+    h ^= h >> 16;
+    h = h.wrapping_mul(0x7feb_352d);
+    h ^= h >> 15;
+    h = h.wrapping_mul(0x846c_a68b);
+    h ^ (h >> 16)
+}

@@ -1,0 +1,350 @@
+//! Surface materials and their procedural textures, shared by the glTF writer and the renderers
+//! so that `scene.glb` in a viewer and the agent's camera show the same surfaces.
+//!
+//! A material is derived from what the scene already says (class, material word, room, seed;
+//! see [`surface_of`]), so old scene files get materials too. Each [`Surface`] has one seeded,
+//! tileable [`TEX_SIZE`]-square texture of multipliers in `[0, 1]` (grain, weave, grout,
+//! stripes) that repeats every [`Surface::repeat`] metres. Texture coordinates are a box
+//! projection of the world position ([`box_uv`]), so patterns run on across neighbouring parts.
+//! The texel is multiplied with the part colour and the baked light ([`crate::light`]), as
+//! glTF multiplies `baseColorFactor`, `baseColorTexture` and `COLOR_0`.
+
+use crate::scene::{Scene, SceneObject};
+use crate::vocab::{RoomType, SemanticClass};
+use glam::Vec3;
+use std::sync::OnceLock;
+
+/// Side of every texture in texels (a power of two: renderers wrap with a mask).
+pub const TEX_SIZE: usize = 128;
+
+/// What a surface is made of.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Surface {
+    /// No pattern (plastic, glass, paper, unknown).
+    Plain,
+    /// Painted plaster walls and ceilings.
+    Plaster,
+    /// Striped wallpaper.
+    Wallpaper,
+    /// Wooden floor boards.
+    WoodFloor,
+    /// Square tiles with grout.
+    Tiles,
+    /// Carpet.
+    Carpet,
+    /// Wood grain (furniture, door frames).
+    Wood,
+    /// Woven fabric.
+    Fabric,
+    /// Leather.
+    Leather,
+    /// Brushed metal.
+    Metal,
+    /// Glazed ceramic.
+    Ceramic,
+}
+
+impl Surface {
+    /// Every surface, in index order.
+    pub const ALL: [Surface; 11] = [
+        Surface::Plain,
+        Surface::Plaster,
+        Surface::Wallpaper,
+        Surface::WoodFloor,
+        Surface::Tiles,
+        Surface::Carpet,
+        Surface::Wood,
+        Surface::Fabric,
+        Surface::Leather,
+        Surface::Metal,
+        Surface::Ceramic,
+    ];
+
+    /// Position in [`Surface::ALL`].
+    pub fn index(self) -> usize {
+        Surface::ALL.iter().position(|s| *s == self).unwrap_or(0)
+    }
+
+    /// Lower-case name (glTF material and image names).
+    pub fn name(self) -> &'static str {
+        match self {
+            Surface::Plain => "plain",
+            Surface::Plaster => "plaster",
+            Surface::Wallpaper => "wallpaper",
+            Surface::WoodFloor => "wood_floor",
+            Surface::Tiles => "tiles",
+            Surface::Carpet => "carpet",
+            Surface::Wood => "wood",
+            Surface::Fabric => "fabric",
+            Surface::Leather => "leather",
+            Surface::Metal => "metal",
+            Surface::Ceramic => "ceramic",
+        }
+    }
+
+    /// Metres covered by one repeat of the texture.
+    pub fn repeat(self) -> f32 {
+        match self {
+            Surface::WoodFloor => 2.0,
+            Surface::Tiles => 1.2,
+            Surface::Plaster => 2.0,
+            Surface::Fabric | Surface::Leather => 0.8,
+            _ => 1.0,
+        }
+    }
+
+    /// Whether glTF should call it metallic.
+    pub fn metallic(self) -> bool {
+        self == Surface::Metal
+    }
+
+    /// The texture: `TEX_SIZE * TEX_SIZE` RGB multipliers (255 = 1), row-major, `v` down the
+    /// rows: [`Surface::luma`] times [`Surface::tint`]. Built once per process.
+    pub fn texture(self) -> &'static [[u8; 3]] {
+        static TEX: OnceLock<Vec<Vec<[u8; 3]>>> = OnceLock::new();
+        &TEX.get_or_init(|| {
+            Surface::ALL
+                .iter()
+                .map(|s| {
+                    let tint = s.tint();
+                    s.luma()
+                        .iter()
+                        .map(|&g| tint.map(|t| (g as f32 * t).round().min(255.0) as u8))
+                        .collect()
+                })
+                .collect()
+        })[self.index()]
+    }
+
+    /// The grey part of the texture (renderers fetch one byte per texel and fold the tint into
+    /// the vertex colours).
+    pub fn luma(self) -> &'static [u8] {
+        static LUMA: OnceLock<Vec<Vec<u8>>> = OnceLock::new();
+        &LUMA.get_or_init(|| Surface::ALL.iter().map(|s| s.generate()).collect())[self.index()]
+    }
+
+    /// [`Surface::luma`] encoded for display (each value `v / 255` raised to `1 / 2.2`, times
+    /// 255): renderers multiply encoded colours (see `vlnverse_sensors::SceneMesh`).
+    pub fn luma_encoded(self) -> &'static [u8] {
+        static ENC: OnceLock<Vec<Vec<u8>>> = OnceLock::new();
+        &ENC.get_or_init(|| {
+            Surface::ALL
+                .iter()
+                .map(|s| {
+                    s.luma()
+                        .iter()
+                        .map(|&g| ((g as f32 / 255.0).powf(1.0 / 2.2) * 255.0).round() as u8)
+                        .collect()
+                })
+                .collect()
+        })[self.index()]
+    }
+
+    /// The constant colour cast of the texture (warm wood), per channel.
+    pub fn tint(self) -> [f32; 3] {
+        match self {
+            Surface::WoodFloor => [1.02, 1.0, 0.96],
+            Surface::Wood => [1.02, 1.0, 0.95],
+            _ => [1.0; 3],
+        }
+    }
+
+    fn generate(self) -> Vec<u8> {
+        let n = TEX_SIZE;
+        let seed = 0x9e37_79b9 ^ (self.index() as u32).wrapping_mul(0x85eb_ca6b);
+        let mut out = Vec::with_capacity(n * n);
+        for y in 0..n {
+            for x in 0..n {
+                let (fx, fy) = (x as f32, y as f32);
+                let v: f32 = match self {
+                    Surface::Plain => 0.9,
+                    Surface::Plaster => {
+                        grey(0.85 + 0.1 * fbm(seed, fx, fy, 16.0) + 0.05 * hash01(seed, x, y))
+                    }
+                    Surface::Wallpaper => {
+                        // Stripes of two widths and a faint dotted motif.
+                        let s = (x % 32) as f32;
+                        let stripe = if s < 14.0 {
+                            0.93
+                        } else if s < 16.0 {
+                            0.8
+                        } else {
+                            0.86
+                        };
+                        let dot = if (x % 32 == 23) && (y % 16 == 8) {
+                            -0.08
+                        } else {
+                            0.0
+                        };
+                        grey(stripe + dot + 0.02 * fbm(seed, fx, fy, 8.0))
+                    }
+                    Surface::WoodFloor => {
+                        // Boards 16 texels wide (along v), 64 long with staggered joints.
+                        let row = y / 16;
+                        let off = (hash(seed, row, 7) % 64) as usize;
+                        let plank = (x + off) / 64;
+                        let joint = (x + off).is_multiple_of(64) || y.is_multiple_of(16);
+                        let tone = 0.78 + 0.14 * hash01(seed, plank, row);
+                        let grain = 0.06 * (fy * 0.9 + 6.0 * fbm(seed ^ 5, fx, fy, 24.0)).sin();
+                        if joint {
+                            0.5
+                        } else {
+                            tone + grain
+                        }
+                    }
+                    Surface::Tiles => {
+                        let grout = x % 32 < 2 || y % 32 < 2;
+                        let t = hash01(seed, x / 32, y / 32);
+                        grey(if grout {
+                            0.62
+                        } else {
+                            0.9 + 0.06 * t + 0.02 * fbm(seed, fx, fy, 8.0)
+                        })
+                    }
+                    Surface::Carpet => {
+                        grey(0.78 + 0.1 * fbm(seed, fx, fy, 6.0) + 0.1 * hash01(seed, x, y))
+                    }
+                    Surface::Wood => {
+                        let g = (fx * 0.35 + 9.0 * fbm(seed, fx, fy, 32.0)).sin();
+                        0.8 + 0.08 * g + 0.04 * fbm(seed ^ 3, fx, fy, 4.0)
+                    }
+                    Surface::Fabric => {
+                        let warp = (x / 2 + y / 2) % 2 == 0;
+                        grey(if warp { 0.86 } else { 0.76 } + 0.06 * fbm(seed, fx, fy, 12.0))
+                    }
+                    Surface::Leather => {
+                        grey(0.8 + 0.12 * fbm(seed, fx, fy, 5.0) - 0.05 * hash01(seed, x, y))
+                    }
+                    Surface::Metal => grey(0.82 + 0.1 * fbm(seed, fx * 0.05, fy, 3.0)),
+                    Surface::Ceramic => grey(0.92 + 0.03 * fbm(seed, fx, fy, 32.0)),
+                };
+                out.push((v.clamp(0.0, 1.0) * 255.0).round() as u8);
+            }
+        }
+        out
+    }
+}
+
+fn grey(v: f32) -> f32 {
+    v
+}
+
+fn hash(seed: u32, x: usize, y: usize) -> u32 {
+    let mut h = seed ^ (x as u32).wrapping_mul(0x27d4_eb2d) ^ (y as u32).wrapping_mul(0x1656_67b1);
+    h ^= h >> 15;
+    h = h.wrapping_mul(0x2c1b_3c6d);
+    h ^= h >> 12;
+    h = h.wrapping_mul(0x297a_2d39);
+    h ^ (h >> 15)
+}
+
+fn hash01(seed: u32, x: usize, y: usize) -> f32 {
+    (hash(seed, x, y) >> 8) as f32 / (1u32 << 24) as f32
+}
+
+/// Tileable value noise with period [`TEX_SIZE`] at lattice spacing `cell` texels, in
+/// `[-0.5, 0.5]`, two octaves.
+fn fbm(seed: u32, x: f32, y: f32, cell: f32) -> f32 {
+    let mut sum = 0.0;
+    let mut amp = 0.65;
+    let mut c = cell;
+    for o in 0..2u32 {
+        let period = ((TEX_SIZE as f32 / c).round() as usize).max(1);
+        let (gx, gy) = (x / c, y / c);
+        let (ix, iy) = (gx.floor(), gy.floor());
+        let (tx, ty) = (gx - ix, gy - iy);
+        let (sx, sy) = (tx * tx * (3.0 - 2.0 * tx), ty * ty * (3.0 - 2.0 * ty));
+        let at = |i: f32, j: f32| {
+            let (i, j) = (
+                (i as i64).rem_euclid(period as i64) as usize,
+                (j as i64).rem_euclid(period as i64) as usize,
+            );
+            hash01(seed.wrapping_add(o), i, j) - 0.5
+        };
+        let a = at(ix, iy) + (at(ix + 1.0, iy) - at(ix, iy)) * sx;
+        let b = at(ix, iy + 1.0) + (at(ix + 1.0, iy + 1.0) - at(ix, iy + 1.0)) * sx;
+        sum += amp * (a + (b - a) * sy);
+        amp *= 0.5;
+        c = (c * 0.5).max(1.0);
+    }
+    sum
+}
+
+/// The material of an object's surfaces: from its class (walls, floors, ceilings), its
+/// material word, and for walls and bedroom floors a choice seeded by the scene seed, so homes
+/// differ in look as they differ in layout.
+pub fn surface_of(scene: &Scene, o: &SceneObject) -> Surface {
+    let seed = scene.seed.unwrap_or(0);
+    let pick = |salt: u64| {
+        let h = hash((seed ^ (seed >> 32)) as u32, salt as usize, 0x5eed);
+        h % 3
+    };
+    match o.class {
+        SemanticClass::Wall => {
+            if pick(1) == 0 {
+                Surface::Wallpaper
+            } else {
+                Surface::Plaster
+            }
+        }
+        SemanticClass::Ceiling => Surface::Plaster,
+        SemanticClass::Floor => {
+            let bedroom = o
+                .room
+                .and_then(|r| scene.room(r))
+                .is_some_and(|r| matches!(r.kind, RoomType::Bedroom | RoomType::Office));
+            match o.material.as_str() {
+                "tile" | "stone" | "marble" => Surface::Tiles,
+                "carpet" => Surface::Carpet,
+                _ if bedroom && pick(2 + o.id as u64) == 0 => Surface::Carpet,
+                "wood" | "wooden" => Surface::WoodFloor,
+                _ => Surface::Plain,
+            }
+        }
+        SemanticClass::DoorFrame => Surface::Wood,
+        _ => match o.material.as_str() {
+            "wood" | "wooden" => Surface::Wood,
+            "fabric" | "cotton" | "wool" => Surface::Fabric,
+            "leather" => Surface::Leather,
+            "metal" | "steel" | "aluminium" => Surface::Metal,
+            "ceramic" | "porcelain" | "tile" => Surface::Ceramic,
+            _ => Surface::Plain,
+        },
+    }
+}
+
+/// Texture coordinates in metres of a world point on a surface with normal `n`: a box
+/// projection onto the plane of the dominant normal axis (u along x or z, v down).
+pub fn box_uv(p: Vec3, n: Vec3) -> [f32; 2] {
+    let a = n.abs();
+    if a.y >= a.x && a.y >= a.z {
+        [p.x, p.z]
+    } else if a.x >= a.z {
+        [p.z, -p.y]
+    } else {
+        [p.x, -p.y]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn textures_are_deterministic_and_not_flat() {
+        for s in Surface::ALL {
+            let t = s.texture();
+            assert_eq!(t.len(), TEX_SIZE * TEX_SIZE);
+            assert_eq!(s.luma(), s.generate().as_slice(), "{s:?}");
+            let distinct: std::collections::BTreeSet<_> = t.iter().collect();
+            assert_eq!(distinct.len() == 1, s == Surface::Plain, "{s:?}");
+        }
+    }
+
+    #[test]
+    fn box_uv_follows_the_dominant_axis() {
+        assert_eq!(box_uv(Vec3::new(1.0, 2.0, 3.0), Vec3::Y), [1.0, 3.0]);
+        assert_eq!(box_uv(Vec3::new(1.0, 2.0, 3.0), Vec3::X), [3.0, -2.0]);
+        assert_eq!(box_uv(Vec3::new(1.0, 2.0, 3.0), Vec3::NEG_Z), [1.0, -2.0]);
+    }
+}
