@@ -8,6 +8,7 @@
 use crate::vocab::{RoomType, SemanticClass};
 use glam::{Quat, Vec3};
 use serde::{Deserialize, Serialize};
+use std::sync::Arc;
 
 /// Current version of the `scene.json` format.
 pub const SCENE_FORMAT_VERSION: u32 = 1;
@@ -190,6 +191,70 @@ pub struct MeshData {
     pub indices: Vec<[u32; 3]>,
     /// Index of the glTF mesh in `scene.glb` holding the data.
     pub glb_mesh: Option<u32>,
+    /// Base-colour texture coordinates per vertex (glTF convention: `(0, 0)` is the image's
+    /// top-left corner, `v` runs down, repeating), empty when the part has no [`MeshTexture`].
+    /// Not in `scene.json`: restored from `scene.glb` (`TEXCOORD_0`) like the positions.
+    #[serde(skip)]
+    pub uvs: Vec<[f32; 2]>,
+    /// The part's own base-colour texture (imported homes), if any.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub texture: Option<MeshTexture>,
+}
+
+/// A base-colour image texture of a mesh part, as imported from glTF. The part's
+/// [`Part::color`] stays its flat colour (`factor` times the image's mean), which is what
+/// consumers without textures (maps, language, flat shading) use.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct MeshTexture {
+    /// glTF `baseColorFactor` (linear RGB), multiplied with the image.
+    pub factor: [f32; 3],
+    /// Image width in texels (a power of two, at most [`MeshTexture::MAX_SIDE`]).
+    pub width: u32,
+    /// Image height in texels (a power of two, at most [`MeshTexture::MAX_SIDE`]).
+    pub height: u32,
+    /// `width * height` sRGB-encoded RGB texels, row-major, `v` down the rows. Not in
+    /// `scene.json`: restored from the image in `scene.glb`. Shared between parts that use the
+    /// same image.
+    #[serde(skip)]
+    pub texels: Arc<Vec<[u8; 3]>>,
+}
+
+impl MeshTexture {
+    /// Largest side of an imported texture (larger images are resampled down).
+    pub const MAX_SIDE: u32 = 1024;
+
+    /// Whether the image has the sides and texel count the renderers rely on.
+    pub fn is_valid(&self) -> bool {
+        self.width.is_power_of_two()
+            && self.height.is_power_of_two()
+            && self.width <= Self::MAX_SIDE
+            && self.height <= Self::MAX_SIDE
+            && self.texels.len() == (self.width * self.height) as usize
+    }
+
+    /// Mean linear colour of the image (sRGB decoded; black for an empty image).
+    pub fn mean_linear(&self) -> [f32; 3] {
+        let lut: Vec<f64> = (0..256)
+            .map(|i| srgb_to_linear(i as f32 / 255.0) as f64)
+            .collect();
+        let mut sum = [0.0f64; 3];
+        for t in self.texels.iter() {
+            for k in 0..3 {
+                sum[k] += lut[t[k] as usize];
+            }
+        }
+        let n = self.texels.len().max(1) as f64;
+        sum.map(|s| (s / n) as f32)
+    }
+}
+
+/// sRGB -> linear transfer function for one channel in `[0, 1]`.
+pub fn srgb_to_linear(c: f32) -> f32 {
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
+    }
 }
 
 /// One primitive of an object: shape, placement relative to the object, colour.

@@ -518,6 +518,8 @@ pub fn import_scene_full(path: &Path, opts: &ImportOptions) -> Result<ImportOutp
             // Keep only referenced vertices, in object-local coordinates.
             let mut remap = vec![u32::MAX; p.positions.len()];
             let mut positions = Vec::new();
+            let mut uvs = Vec::new();
+            let textured = p.texture.is_some() && p.uvs.len() == p.positions.len();
             let mut indices = Vec::with_capacity(p.indices.len());
             for t in &p.indices {
                 let [a, b, c] = t.map(|i| p.positions[i as usize]);
@@ -531,6 +533,9 @@ pub fn import_scene_full(path: &Path, opts: &ImportOptions) -> Result<ImportOutp
                     if *r == u32::MAX {
                         *r = positions.len() as u32;
                         positions.push((p.positions[i as usize] - origin).to_array());
+                        if textured {
+                            uvs.push(p.uvs[i as usize]);
+                        }
                     }
                     *r
                 }));
@@ -543,6 +548,8 @@ pub fn import_scene_full(path: &Path, opts: &ImportOptions) -> Result<ImportOutp
                     positions,
                     indices,
                     glb_mesh: None,
+                    uvs,
+                    texture: if textured { p.texture } else { None },
                 }),
                 transform: Pose::IDENTITY,
                 color: p.color,

@@ -6,6 +6,8 @@ use crate::{ImportOptions, UpAxis};
 use glam::{Mat4, Vec3};
 use serde::Deserialize;
 use std::path::Path;
+use std::sync::Arc;
+use vlnverse_env::scene::MeshTexture;
 use vlnverse_env::{EnvError, Motion, Result, SemanticClass};
 
 /// What a label source (glTF extras or a mapping rule) says about some geometry.
@@ -34,8 +36,12 @@ pub struct RawPrim {
     pub positions: Vec<Vec3>,
     /// Triangles.
     pub indices: Vec<[u32; 3]>,
-    /// Linear RGB base colour.
+    /// Linear RGB flat colour (base colour factor times the texture's mean).
     pub color: [f32; 3],
+    /// Base-colour texture coordinates per vertex (empty without `texture`).
+    pub uvs: Vec<[f32; 2]>,
+    /// Base-colour texture (factor and resampled image).
+    pub texture: Option<MeshTexture>,
     /// Material name, if any.
     pub material: Option<String>,
 }
@@ -193,18 +199,30 @@ pub fn load_gltf(path: &Path, opts: &ImportOptions) -> Result<Vec<RawNode>> {
         }
     }
     let buffers = gltf::import_buffers(&document, base, blob).map_err(|e| gltf_err(path, e))?;
-    // Textures are optional: a missing or undecodable image only loses its average colour.
-    let images = match gltf::import_images(&document, base, &buffers) {
-        Ok(i) => Some(i),
-        Err(e) => {
-            tracing::warn!(file = %path.display(), "textures not loaded ({e}); using base colour factors");
-            None
-        }
-    };
-    let tex_avg: Vec<Option<[f32; 3]>> = images
-        .as_ref()
-        .map(|imgs| imgs.iter().map(average_color).collect())
-        .unwrap_or_default();
+    // Textures are optional: a missing or undecodable image leaves the parts that use it with
+    // their base colour factor (and a warning), never an error.
+    let images: Vec<Option<MeshTexture>> = document
+        .images()
+        .map(|img| {
+            let decoded = gltf::image::Data::from_source(img.source(), base, &buffers)
+                .map_err(|e| e.to_string())
+                .and_then(|d| texture_of(&d));
+            decoded
+                .map_err(|e| {
+                    tracing::warn!(
+                        file = %path.display(),
+                        image = img.index(),
+                        "images[{}] not loaded ({e}); its parts keep their base colour factor",
+                        img.index()
+                    )
+                })
+                .ok()
+        })
+        .collect();
+    let means: Vec<Option<[f32; 3]>> = images
+        .iter()
+        .map(|t| t.as_ref().map(MeshTexture::mean_linear))
+        .collect();
 
     let scene = document
         .default_scene()
@@ -300,11 +318,33 @@ pub fn load_gltf(path: &Path, opts: &ImportOptions) -> Result<Vec<RawNode>> {
                 let mat = prim.material();
                 let pbr = mat.pbr_metallic_roughness();
                 let f = pbr.base_color_factor();
-                let mut color = [f[0], f[1], f[2]];
+                let factor = [f[0], f[1], f[2]].map(|c| c.clamp(0.0, 1.0));
+                let mut color = factor;
+                let mut texture = None;
+                let mut uvs = Vec::new();
                 if let Some(info) = pbr.base_color_texture() {
                     let img = info.texture().source().index();
-                    if let Some(Some(avg)) = tex_avg.get(img) {
-                        color = [color[0] * avg[0], color[1] * avg[1], color[2] * avg[2]];
+                    let coords: Option<Vec<[f32; 2]>> = reader
+                        .read_tex_coords(info.tex_coord())
+                        .map(|t| t.into_f32().collect())
+                        .filter(|t: &Vec<[f32; 2]>| {
+                            t.len() == positions.len() && t.iter().flatten().all(|x| x.is_finite())
+                        });
+                    if let (Some(Some(t)), Some(Some(avg)), Some(c)) =
+                        (images.get(img), means.get(img), coords)
+                    {
+                        color = [0, 1, 2].map(|k| factor[k] * avg[k]);
+                        texture = Some(MeshTexture {
+                            factor,
+                            ..t.clone()
+                        });
+                        uvs = c;
+                    } else if images.get(img).is_some_and(Option::is_some) {
+                        tracing::warn!(
+                            node = %name,
+                            "{here}: baseColorTexture without usable TEXCOORD_{}; base colour factor only",
+                            info.tex_coord()
+                        );
                     }
                 }
                 if mat.index().is_none() {
@@ -314,6 +354,8 @@ pub fn load_gltf(path: &Path, opts: &ImportOptions) -> Result<Vec<RawNode>> {
                     positions,
                     indices,
                     color,
+                    uvs,
+                    texture,
                     material: mat.name().map(str::to_string),
                 });
             }
@@ -337,36 +379,96 @@ pub fn load_gltf(path: &Path, opts: &ImportOptions) -> Result<Vec<RawNode>> {
     Ok(out)
 }
 
-fn srgb_to_linear(c: f32) -> f32 {
-    if c <= 0.04045 {
-        c / 12.92
+/// Side a texture is resampled to: the power of two nearest to `n` (in ratio), at most
+/// [`MeshTexture::MAX_SIDE`].
+fn pow2_side(n: u32) -> u32 {
+    let lo = if n.is_power_of_two() {
+        n
     } else {
-        ((c + 0.055) / 1.055).powf(2.4)
-    }
+        n.next_power_of_two() / 2
+    };
+    // Between lo and 2 lo the geometric middle is lo * sqrt(2).
+    let side = if (n as f64) > lo as f64 * std::f64::consts::SQRT_2 {
+        lo * 2
+    } else {
+        lo
+    };
+    side.clamp(1, MeshTexture::MAX_SIDE)
 }
 
-/// Mean linear colour of a decoded texture (sampled on a sparse grid: it only tints a part).
-fn average_color(img: &gltf::image::Data) -> Option<[f32; 3]> {
+/// An imported image as a texture: RGB bytes as encoded in the file (alpha dropped, grey
+/// spread to RGB, 16-bit and float channels reduced to 8 bits), resampled to power-of-two
+/// sides (box filter when shrinking, nearest texel when growing).
+pub(crate) fn texture_of(img: &gltf::image::Data) -> std::result::Result<MeshTexture, String> {
     use gltf::image::Format;
-    let ch = match img.format {
-        Format::R8G8B8 => 3,
-        Format::R8G8B8A8 => 4,
-        _ => return None,
+    let (w, h) = (img.width as usize, img.height as usize);
+    if w == 0 || h == 0 {
+        return Err(format!("empty image ({w}x{h})"));
+    }
+    let (ch, bytes_per) = match img.format {
+        Format::R8 => (1, 1),
+        Format::R8G8 => (2, 1),
+        Format::R8G8B8 => (3, 1),
+        Format::R8G8B8A8 => (4, 1),
+        Format::R16 => (1, 2),
+        Format::R16G16 => (2, 2),
+        Format::R16G16B16 => (3, 2),
+        Format::R16G16B16A16 => (4, 2),
+        Format::R32G32B32FLOAT => (3, 4),
+        Format::R32G32B32A32FLOAT => (4, 4),
     };
-    let n = (img.width as usize) * (img.height as usize);
-    if n == 0 || img.pixels.len() < n * ch {
-        return None;
+    let px = ch * bytes_per;
+    if img.pixels.len() < w * h * px {
+        return Err(format!(
+            "{w}x{h} image with {} bytes of pixels",
+            img.pixels.len()
+        ));
     }
-    let step = (n / 4096).max(1);
-    let mut sum = [0.0f64; 3];
-    let mut cnt = 0usize;
-    for i in (0..n).step_by(step) {
-        for (k, s) in sum.iter_mut().enumerate() {
-            *s += srgb_to_linear(img.pixels[i * ch + k] as f32 / 255.0) as f64;
+    let channel = |p: &[u8], k: usize| -> u8 {
+        let k = if ch < 3 { 0 } else { k };
+        let b = &p[k * bytes_per..(k + 1) * bytes_per];
+        match bytes_per {
+            1 => b[0],
+            // 16-bit channels are stored in native (little-endian) order by the decoder.
+            2 => (u16::from_ne_bytes([b[0], b[1]]) >> 8) as u8,
+            _ => {
+                let f = f32::from_ne_bytes([b[0], b[1], b[2], b[3]]);
+                (f.clamp(0.0, 1.0) * 255.0).round() as u8
+            }
         }
-        cnt += 1;
+    };
+    let src: Vec<[u8; 3]> = img.pixels[..w * h * px]
+        .chunks_exact(px)
+        .map(|p| [0, 1, 2].map(|k| channel(p, k)))
+        .collect();
+    let (tw, th) = (pow2_side(w as u32) as usize, pow2_side(h as u32) as usize);
+    let span = |t: usize, n: usize, s: usize| {
+        let a = t * s / n;
+        (a, ((t + 1) * s / n).max(a + 1))
+    };
+    let mut texels = Vec::with_capacity(tw * th);
+    for ty in 0..th {
+        let (y0, y1) = span(ty, th, h);
+        for tx in 0..tw {
+            let (x0, x1) = span(tx, tw, w);
+            let mut sum = [0u64; 3];
+            for row in src[y0 * w..y1 * w].chunks_exact(w) {
+                for t in &row[x0..x1] {
+                    for k in 0..3 {
+                        sum[k] += t[k] as u64;
+                    }
+                }
+            }
+            let n = ((y1 - y0) * (x1 - x0)) as u64;
+            texels.push(sum.map(|s| ((s + n / 2) / n) as u8));
+        }
     }
-    Some(sum.map(|s| (s / cnt as f64) as f32))
+    Ok(MeshTexture {
+        factor: [1.0; 3],
+        width: tw as u32,
+        height: th as u32,
+        texels: Arc::new(texels),
+    })
 }
 
 /// Read a Wavefront `.obj` (and its `.mtl` files): one node per object/group, one primitive per
@@ -416,6 +518,7 @@ pub fn load_obj(path: &Path, opts: &ImportOptions) -> Result<Vec<RawNode>> {
             indices,
             color,
             material: mat.map(|m| m.name.clone()),
+            ..Default::default()
         };
         let name = if model.name.is_empty() {
             format!("object_{i}")

@@ -842,6 +842,19 @@ impl Renderer for GpuRenderer {
                 let m = &mesh;
                 (0..3).map(move |k| {
                     let (c, uv, tex) = match look {
+                        // Imported images are not uploaded: their mean over the plain texture.
+                        Some(l) if l.image.is_some() => {
+                            let mean = l
+                                .image
+                                .and_then(|i| m.images.get(i as usize))
+                                .map_or([1.0; 3], |img| img.mean_encoded());
+                            let plain = Surface::Plain.luma_encoded()[0].max(1) as f32;
+                            (
+                                [0, 1, 2].map(|c| l.tone[c] * l.light[k] * mean[c] * 255.0 / plain),
+                                [0.0; 2],
+                                (Surface::Plain.index() * TEX_SIZE) as u32,
+                            )
+                        }
                         Some(l) => (
                             l.tone.map(|c| c * l.light[k]),
                             l.uv[k],

@@ -11,13 +11,19 @@
 //! encoded product of the linear values; only the interpolation of the light differs from a
 //! viewer of `scene.glb`, which interpolates linear light (a few levels at most, in the
 //! gradients). One interpolated value per pixel instead of three keeps the rasteriser fast.
+//!
+//! Imported mesh parts with a base-colour image ([`vlnverse_env::scene::MeshTexture`]) use it
+//! instead of the surface texture: `tone` is then the encoded `baseColorFactor` times the
+//! light's colour and `texel` the image's RGB bytes / 255 (nearest texel, repeating), see
+//! [`TriLook::image`].
 
 use crate::error::{Result, SensorError};
 use glam::Vec3;
 use vlnverse_env::geometry::triangulate_part_cells;
 use vlnverse_env::light::{bake, cell_of, BakedLight};
 use vlnverse_env::material::{box_uv, surface_of, Surface, TEX_SIZE};
-use vlnverse_env::{Aabb, Scene};
+use vlnverse_env::scene::MeshTexture;
+use vlnverse_env::{Aabb, Scene, Shape};
 
 /// Gamma of the encoded output (as [`crate::shading::encode`]).
 const GAMMA: f32 = 1.0 / 2.2;
@@ -34,6 +40,45 @@ pub struct TriLook {
     pub uv: [[f32; 2]; 3],
     /// The surface whose texture applies.
     pub surface: Surface,
+    /// When set, the texel comes from this image (RGB) instead of the surface texture, and
+    /// `uv` are in texels of that image (repeating).
+    pub image: Option<u32>,
+}
+
+/// An imported base-colour texture resampled to power-of-two sides (<= 1024), encoded RGB
+/// bytes as in the file (sRGB), row-major, v down the rows.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ImageTexture {
+    /// Width in texels (a power of two).
+    pub width: u32,
+    /// Height in texels (a power of two).
+    pub height: u32,
+    /// `width * height` texels.
+    pub texels: Vec<[u8; 3]>,
+}
+
+impl ImageTexture {
+    /// The texel at texel coordinates `(u, v)`, repeating (floor, then modulo each side).
+    pub fn texel(&self, u: f32, v: f32) -> [u8; 3] {
+        let wrap = |x: f32, n: u32| (x.floor() as i64).rem_euclid(n.max(1) as i64) as usize;
+        let (x, y) = (wrap(u, self.width), wrap(v, self.height));
+        self.texels
+            .get(y * self.width as usize + x)
+            .copied()
+            .unwrap_or([255; 3])
+    }
+
+    /// Mean of the texels per channel, as a fraction of 255 (encoded, like the texels).
+    pub fn mean_encoded(&self) -> [f32; 3] {
+        let mut sum = [0u64; 3];
+        for t in &self.texels {
+            for k in 0..3 {
+                sum[k] += t[k] as u64;
+            }
+        }
+        let n = self.texels.len().max(1) as f64 * 255.0;
+        sum.map(|s| (s as f64 / n) as f32)
+    }
 }
 
 /// A contiguous run of triangles belonging to one object.
@@ -66,6 +111,8 @@ pub struct SceneMesh {
     pub class_of: Vec<u16>,
     /// Look of each triangle (baked light, texture).
     pub look: Vec<TriLook>,
+    /// Imported textures, indexed by [`TriLook::image`].
+    pub images: Vec<ImageTexture>,
 }
 
 impl SceneMesh {
@@ -91,7 +138,10 @@ impl SceneMesh {
             objects: Vec::new(),
             class_of,
             look: Vec::with_capacity(n_tri),
+            images: Vec::new(),
         };
+        // The scene's textures, deduplicated, with the index each got in `images`.
+        let mut seen: Vec<&MeshTexture> = Vec::new();
         let mut part_index = 0;
         // Encoded intensity of an 8-bit light value.
         let encoded: Vec<f32> = (0..256).map(|i| (i as f32 / 255.0).powf(GAMMA)).collect();
@@ -117,6 +167,39 @@ impl SceneMesh {
                     .color
                     .map(|c| (c.clamp(0.0, 1.0) * 255.0).round() / 255.0);
                 let tone = [0, 1, 2].map(|k| (base[k] * tint[k] * light_tint[k]).powf(GAMMA));
+                // An imported image replaces the surface texture when it fits the vertices.
+                let image = match &part.shape {
+                    Shape::Mesh(md)
+                        if md.uvs.len() == tm.positions.len()
+                            && md.texture.as_ref().is_some_and(MeshTexture::is_valid) =>
+                    {
+                        md.texture.as_ref().map(|t| (t, &md.uvs))
+                    }
+                    _ => None,
+                };
+                let image = image.map(|(t, uvs)| {
+                    let same = |s: &&MeshTexture| {
+                        std::sync::Arc::ptr_eq(&s.texels, &t.texels)
+                            || (s.width, s.height, &s.texels) == (t.width, t.height, &t.texels)
+                    };
+                    let idx = match seen.iter().position(same) {
+                        Some(i) => i,
+                        None => {
+                            seen.push(t);
+                            m.images.push(ImageTexture {
+                                width: t.width,
+                                height: t.height,
+                                texels: t.texels.to_vec(),
+                            });
+                            seen.len() - 1
+                        }
+                    };
+                    let f = t
+                        .factor
+                        .map(|c| (c.clamp(0.0, 1.0) * 255.0).round() / 255.0);
+                    let tone = [0, 1, 2].map(|k| (f[k] * light_tint[k]).powf(GAMMA));
+                    (idx as u32, tone, uvs, [t.width as f32, t.height as f32])
+                });
                 for t in &tm.indices {
                     let v = t.map(|i| Vec3::from_array(tm.positions[i as usize]));
                     // The green channel carries the intensity (the light's tint is in `tone`).
@@ -131,11 +214,24 @@ impl SceneMesh {
                         [u * texels, v * texels]
                     });
                     m.push(v, o.id, part.color);
-                    m.look.push(TriLook {
-                        tone,
-                        light: corner_light,
-                        uv,
-                        surface,
+                    m.look.push(match image {
+                        Some((idx, tone, uvs, [w, h])) => TriLook {
+                            tone,
+                            light: corner_light,
+                            uv: t.map(|i| {
+                                let [u, v] = uvs[i as usize];
+                                [u * w, v * h]
+                            }),
+                            surface: Surface::Plain,
+                            image: Some(idx),
+                        },
+                        None => TriLook {
+                            tone,
+                            light: corner_light,
+                            uv,
+                            surface,
+                            image: None,
+                        },
                     });
                 }
             }
@@ -199,6 +295,15 @@ impl SceneMesh {
             return self.color[t].map(crate::shading::encode);
         };
         let at = |x: [f32; 3]| x[0] + u * (x[1] - x[0]) + v * (x[2] - x[0]);
+        if let Some(img) = l.image.and_then(|i| self.images.get(i as usize)) {
+            let texel = img.texel(at(l.uv.map(|p| p[0])), at(l.uv.map(|p| p[1])));
+            let k = at(l.light);
+            return [0, 1, 2].map(|c| {
+                (l.tone[c] * k * texel[c] as f32)
+                    .clamp(0.0, 255.0)
+                    .round_ties_even() as u8
+            });
+        }
         let bias = (TEX_SIZE * 256) as f32;
         let mask = TEX_SIZE as i32 - 1;
         let tu = ((at(l.uv.map(|p| p[0])) + bias) as i32) & mask;

@@ -15,11 +15,12 @@ use crate::error::{EnvError, Result};
 use crate::geometry::{mesh_with_normals, triangulate_cells, TriMesh};
 use crate::light::{bake, cell_of, BakedLight};
 use crate::material::{box_uv, surface_of, Surface, TEX_SIZE};
-use crate::scene::{MeshData, Motion, Pose, Scene, SceneObject, Shape};
+use crate::scene::{MeshData, MeshTexture, Motion, Pose, Scene, SceneObject, Shape};
 use glam::Vec3;
 use serde_json::{json, Value};
 use std::collections::BTreeMap;
 use std::path::Path;
+use std::sync::Arc;
 
 const GLB_MAGIC: u32 = 0x4654_6C67; // "glTF"
 const CHUNK_JSON: u32 = 0x4E4F_534A;
@@ -206,13 +207,26 @@ impl Lit {
     }
 }
 
+/// Where a glTF texture's image comes from.
+#[derive(Clone, Copy, PartialEq)]
+enum TexSource {
+    /// A procedural surface texture.
+    Surface(Surface),
+    /// An imported image: index into [`Materials::images`].
+    Image(usize),
+}
+
 /// Materials deduplicated by (colour, metallic, surface) in order of first use; textures
-/// (one per surface used) likewise.
+/// (one per surface or imported image used) likewise.
 #[derive(Default)]
 struct Materials {
     index: BTreeMap<([u32; 3], bool, Option<Surface>), usize>,
+    /// Materials of imported images, by (factor, image).
+    image_index: BTreeMap<([u32; 3], usize), usize>,
     list: Vec<Value>,
-    textures: Vec<Surface>,
+    textures: Vec<TexSource>,
+    /// Distinct imported images, in order of first use.
+    images: Vec<MeshTexture>,
 }
 
 impl Materials {
@@ -222,13 +236,7 @@ impl Materials {
         if let Some(&i) = self.index.get(&key) {
             return i;
         }
-        let tex = match self.textures.iter().position(|t| *t == surface) {
-            Some(t) => t,
-            None => {
-                self.textures.push(surface);
-                self.textures.len() - 1
-            }
-        };
+        let tex = self.texture(TexSource::Surface(surface));
         let srgb = color.map(|c| (linear_to_srgb(c) * 255.0).round() as u8);
         let name = format!(
             "{}_{:02x}{:02x}{:02x}",
@@ -250,6 +258,51 @@ impl Materials {
             "doubleSided": false
         }));
         self.index.insert(key, self.list.len() - 1);
+        self.list.len() - 1
+    }
+
+    /// Index of the glTF texture for `src`, added on first use.
+    fn texture(&mut self, src: TexSource) -> usize {
+        match self.textures.iter().position(|t| *t == src) {
+            Some(t) => t,
+            None => {
+                self.textures.push(src);
+                self.textures.len() - 1
+            }
+        }
+    }
+
+    /// An unlit material showing an imported image times `factor` (the part has baked light).
+    fn image(&mut self, t: &MeshTexture) -> usize {
+        let img = match self
+            .images
+            .iter()
+            .position(|i| Arc::ptr_eq(&i.texels, &t.texels) || i == t)
+        {
+            Some(i) => i,
+            None => {
+                self.images.push(t.clone());
+                self.images.len() - 1
+            }
+        };
+        let key = (t.factor.map(f32::to_bits), img);
+        if let Some(&i) = self.image_index.get(&key) {
+            return i;
+        }
+        let tex = self.texture(TexSource::Image(img));
+        let f = t.factor;
+        self.list.push(json!({
+            "name": format!("image{img}_{}", self.list.len()),
+            "pbrMetallicRoughness": {
+                "baseColorFactor": [short(f[0]), short(f[1]), short(f[2]), 1.0],
+                "baseColorTexture": {"index": tex},
+                "metallicFactor": 0.0,
+                "roughnessFactor": 0.8
+            },
+            "extensions": {"KHR_materials_unlit": {}},
+            "doubleSided": false
+        }));
+        self.image_index.insert(key, self.list.len() - 1);
         self.list.len() - 1
     }
 
@@ -335,7 +388,15 @@ pub fn write_glb_with(scene: &Scene, light: &BakedLight) -> Vec<u8> {
         let surface = surface_of(scene, o);
         for (k, p) in o.parts.iter().enumerate() {
             if let Shape::Mesh(m) = &p.shape {
-                let mat = mats.lit(p.color, surface);
+                // An imported image replaces the surface texture when it fits the vertices.
+                let image = m
+                    .texture
+                    .as_ref()
+                    .filter(|t| t.is_valid() && m.uvs.len() == m.positions.len());
+                let mat = match image {
+                    Some(t) => mats.image(t),
+                    None => mats.lit(p.color, surface),
+                };
                 let tri = mesh_with_normals(&m.positions, &m.indices);
                 let prims = if tri.indices.is_empty() {
                     vec![]
@@ -348,6 +409,9 @@ pub fn write_glb_with(scene: &Scene, light: &BakedLight) -> Vec<u8> {
                         light_of(part_index),
                         surface,
                     );
+                    if image.is_some() {
+                        lit.uv.clone_from(&m.uvs);
+                    }
                     vec![bin.lit_primitive(&lit, mat)]
                 };
                 meshes.push(json!({"name": format!("{}/part{k}", o.name), "primitives": prims}));
@@ -439,8 +503,12 @@ pub fn write_glb_with(scene: &Scene, light: &BakedLight) -> Vec<u8> {
     if !mats.textures.is_empty() {
         let mut images = Vec::new();
         for t in &mats.textures {
-            let view = bin.blob(&texture_png(*t));
-            images.push(json!({"name": t.name(), "bufferView": view, "mimeType": "image/png"}));
+            let (name, png) = match *t {
+                TexSource::Surface(s) => (s.name().to_string(), texture_png(s)),
+                TexSource::Image(i) => (format!("image{i}"), image_png(&mats.images[i])),
+            };
+            let view = bin.blob(&png);
+            images.push(json!({"name": name, "bufferView": view, "mimeType": "image/png"}));
         }
         doc["images"] = json!(images);
         doc["samplers"] =
@@ -505,6 +573,22 @@ fn texture_png(s: Surface) -> Vec<u8> {
     out
 }
 
+/// An imported image as PNG bytes (its sRGB texels as they are).
+fn image_png(t: &MeshTexture) -> Vec<u8> {
+    let data: Vec<u8> = t.texels.iter().flatten().copied().collect();
+    let mut out = Vec::new();
+    let enc = image::codecs::png::PngEncoder::new(&mut out);
+    image::ImageEncoder::write_image(
+        enc,
+        &data,
+        t.width,
+        t.height,
+        image::ExtendedColorType::Rgb8,
+    )
+    .expect("encoding a PNG of a valid texture into memory does not fail");
+    out
+}
+
 /// A node read back from a `.glb`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GlbNode {
@@ -533,6 +617,19 @@ pub struct GlbMesh {
     pub indices: Vec<[u32; 3]>,
     /// Number of glTF primitives.
     pub primitives: usize,
+    /// `TEXCOORD_0` of every vertex, when every primitive has it (else empty).
+    pub uvs: Vec<[f32; 2]>,
+    /// The image of the first primitive's `baseColorTexture`, if any.
+    pub image: Option<u32>,
+}
+
+/// An image of a `.glb` stored in its binary chunk, still encoded.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct GlbImage {
+    /// `mimeType` (empty when not given).
+    pub mime: String,
+    /// The encoded bytes (empty when the image is not in the binary chunk).
+    pub bytes: Vec<u8>,
 }
 
 /// The content of a `.glb` as far as scenes need it.
@@ -544,6 +641,8 @@ pub struct GlbContents {
     pub roots: Vec<u32>,
     /// Every mesh, in file order.
     pub meshes: Vec<GlbMesh>,
+    /// Every image, in file order.
+    pub images: Vec<GlbImage>,
 }
 
 /// Why the data of accessor `acc` cannot be read, for errors: no bufferView, no buffer data
@@ -666,6 +765,21 @@ pub fn read_glb_bytes(bytes: &[u8], path: &Path) -> Result<GlbContents> {
                     what(&format!("index {bad} >= vertex count {n}")),
                 ));
             }
+            let uvs: Option<Vec<[f32; 2]>> = r
+                .read_tex_coords(0)
+                .map(|t| t.into_f32().collect())
+                .filter(|t: &Vec<[f32; 2]>| t.len() == pos.len());
+            match uvs {
+                Some(t) if mesh.uvs.len() == mesh.positions.len() => mesh.uvs.extend(t),
+                _ => mesh.uvs.clear(),
+            }
+            if mesh.primitives == 0 {
+                mesh.image = p
+                    .material()
+                    .pbr_metallic_roughness()
+                    .base_color_texture()
+                    .map(|i| i.texture().source().index() as u32);
+            }
             mesh.positions.extend(pos);
             mesh.indices.extend(
                 idx.chunks_exact(3)
@@ -673,19 +787,75 @@ pub fn read_glb_bytes(bytes: &[u8], path: &Path) -> Result<GlbContents> {
             );
             mesh.primitives += 1;
         }
+        if mesh.uvs.len() != mesh.positions.len() {
+            mesh.uvs.clear();
+        }
         out.meshes.push(mesh);
+    }
+    for img in gltf.images() {
+        out.images.push(match img.source() {
+            gltf::image::Source::View { view, mime_type } => {
+                let bytes = blob
+                    .filter(|_| matches!(view.buffer().source(), gltf::buffer::Source::Bin))
+                    .and_then(|b| b.get(view.offset()..view.offset() + view.length()))
+                    .unwrap_or_default();
+                GlbImage {
+                    mime: mime_type.to_string(),
+                    bytes: bytes.to_vec(),
+                }
+            }
+            gltf::image::Source::Uri { mime_type, .. } => GlbImage {
+                mime: mime_type.unwrap_or_default().to_string(),
+                bytes: Vec::new(),
+            },
+        });
     }
     Ok(out)
 }
 
-/// Fill the vertex data of every mesh part of `scene` from `glb` (by [`MeshData::glb_mesh`]).
+/// Decode image `i` of `glb` as the texels of a `width x height` texture (errors without the
+/// file name, which the caller adds).
+fn decode_image(
+    glb: &GlbContents,
+    i: u32,
+    size: (u32, u32),
+) -> std::result::Result<Vec<[u8; 3]>, String> {
+    let what = format!("images[{i}]");
+    let img = glb
+        .images
+        .get(i as usize)
+        .ok_or_else(|| format!("{what}: the file has {} images", glb.images.len()))?;
+    if img.bytes.is_empty() {
+        return Err(format!("{what}: no image data in the binary chunk"));
+    }
+    let dec = image::load_from_memory_with_format(&img.bytes, image::ImageFormat::Png)
+        .map_err(|e| format!("{what} (mimeType `{}`): not a readable PNG: {e}", img.mime))?
+        .into_rgb8();
+    if dec.dimensions() != size {
+        return Err(format!(
+            "{what} is {}x{}, scene.json says {}x{}",
+            dec.width(),
+            dec.height(),
+            size.0,
+            size.1
+        ));
+    }
+    Ok(dec.pixels().map(|p| p.0).collect())
+}
+
+/// Fill the vertex data of every mesh part of `scene` from `glb` (by [`MeshData::glb_mesh`]),
+/// and the texture coordinates and image of parts with a [`MeshTexture`].
 pub fn restore_mesh_parts(scene: &mut Scene, glb: &GlbContents, path: &Path) -> Result<()> {
+    // Decoded images by glTF image index, shared between the parts that use them.
+    let mut decoded: BTreeMap<u32, Arc<Vec<[u8; 3]>>> = BTreeMap::new();
     for o in &mut scene.objects {
         for (k, p) in o.parts.iter_mut().enumerate() {
             if let Shape::Mesh(MeshData {
                 positions,
                 indices,
                 glb_mesh,
+                uvs,
+                texture,
             }) = &mut p.shape
             {
                 let i = glb_mesh.ok_or_else(|| {
@@ -706,6 +876,40 @@ pub fn restore_mesh_parts(scene: &mut Scene, glb: &GlbContents, path: &Path) -> 
                 })?;
                 positions.clone_from(&m.positions);
                 indices.clone_from(&m.indices);
+                let Some(t) = texture else {
+                    uvs.clear();
+                    continue;
+                };
+                let here = |x: String| {
+                    EnvError::parse(path, format!("object {} part {k} (mesh {i}): {x}", o.id))
+                };
+                if m.uvs.len() != m.positions.len() {
+                    return Err(here(
+                        "the part has a `texture` but the mesh has no TEXCOORD_0".into(),
+                    ));
+                }
+                let img = m.image.ok_or_else(|| {
+                    here("the part has a `texture` but the mesh has no baseColorTexture".into())
+                })?;
+                let texels = match decoded.get(&img) {
+                    Some(d) => d.clone(),
+                    None => {
+                        let d =
+                            Arc::new(decode_image(glb, img, (t.width, t.height)).map_err(here)?);
+                        decoded.insert(img, d.clone());
+                        d
+                    }
+                };
+                t.texels = texels;
+                if !t.is_valid() {
+                    return Err(here(format!(
+                        "texture {}x{}: sides must be powers of two <= {}",
+                        t.width,
+                        t.height,
+                        MeshTexture::MAX_SIDE
+                    )));
+                }
+                uvs.clone_from(&m.uvs);
             }
         }
     }

@@ -3,3 +3,5 @@
 mod example;
 mod fixtures;
 mod real_scenes;
+mod textured_glb;
+mod textures;
