@@ -60,6 +60,7 @@ fn load_glb_as_meshes(path: &Path) -> Option<Scene> {
                             positions,
                             indices,
                             glb_mesh: None,
+                            ..Default::default()
                         }),
                         transform: Pose::IDENTITY,
                         color: [0.5; 3],

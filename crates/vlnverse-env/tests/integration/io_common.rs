@@ -103,6 +103,7 @@ pub fn fixture_scene() -> Scene {
         ],
         indices: vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3], [4, 1, 0]],
         glb_mesh: Some(0),
+        ..Default::default()
     };
     let statue = obj(
         4,

@@ -134,6 +134,7 @@ pub fn mesh(
             positions,
             indices,
             glb_mesh: None,
+            ..Default::default()
         }),
     )
 }

@@ -124,6 +124,7 @@ fn quads(qs: &[[f32; 6]]) -> vlnverse_env::Part {
             positions,
             indices,
             glb_mesh: None,
+            ..Default::default()
         }),
         transform: vlnverse_env::Pose::IDENTITY,
         color: [0.5, 0.5, 0.5],
