@@ -14,6 +14,9 @@
 //!
 //! Procedural homes (`source = "procgen"`) get the full bake: a lamp under the ceiling of
 //! every room (two in long rooms), 16 occlusion rays and two shadow rays per lamp per vertex.
+//! Window panes ([`is_pane`]) glow at full light and are area lights: daylight from two points
+//! on each pane, with cosine falloff at both ends and a shadow ray each, brightens the floor
+//! and walls in front of windows.
 //! Other scenes (imported houses, hand-made fixtures) get the old directional look per vertex,
 //! which costs nothing.
 //!
@@ -50,6 +53,75 @@ pub const LAMP_TINT: [f32; 3] = [1.04, 1.0, 0.92];
 const WALL_CELL: f32 = 2.0;
 /// Results kept by the cache of [`bake`].
 const CACHE: usize = 32;
+/// Daylight through a window: light per square metre of pane at 1 m, straight in front.
+const DAY_POWER: f32 = 1.6;
+/// Added to the squared distance of daylight samples (the pane is large, not a point).
+const DAY_SOFT: f32 = 0.5;
+/// Windows farther than this do not light a vertex.
+const DAY_REACH: f32 = 7.0;
+/// Daylight is sampled this far in front of the pane (in front of frames and curtains, which
+/// stay within 5 cm of the wall).
+const DAY_LIFT: f32 = 0.06;
+/// Objects of class `wall` lower than this are skirting boards: no cells (a long thin board
+/// would cost many triangles for a light that hardly changes along it).
+const LOW_WALL: f32 = 0.5;
+
+/// Whether an object is a window pane: class `window` of material `glass`. Panes glow at full
+/// light and light the room (see the module docs).
+pub fn is_pane(o: &SceneObject) -> bool {
+    o.class == SemanticClass::Window && o.material == "glass"
+}
+
+/// A window pane as a light: two sample points in front of it and its normal into the room.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Pane {
+    samples: [Vec3; 2],
+    normal: Vec3,
+    /// Light of each sample: [`DAY_POWER`] times half the pane's area.
+    power: f32,
+}
+
+/// The window panes of a lit scene as lights (a pane's box: its thinnest axis is the normal,
+/// which points to the side of the object's local +z, into the room).
+fn panes(scene: &Scene) -> Vec<Pane> {
+    if !is_lit(scene) {
+        return Vec::new();
+    }
+    let mut out = Vec::new();
+    for o in scene.objects.iter().filter(|o| is_pane(o)) {
+        for p in &o.parts {
+            let crate::scene::Shape::Cuboid { half_extents } = p.shape else {
+                continue;
+            };
+            let pose = o.pose.mul(&p.transform);
+            let q = pose.quat();
+            let c = pose.translation();
+            let h = Vec3::from_array(half_extents);
+            let axes = [q * Vec3::X, q * Vec3::Y, q * Vec3::Z];
+            let thin = if h.x <= h.y && h.x <= h.z {
+                0
+            } else if h.y <= h.z {
+                1
+            } else {
+                2
+            };
+            let (a, b) = ((thin + 1) % 3, (thin + 2) % 3);
+            let mut normal = axes[thin];
+            // Into the room: towards the object's local +z.
+            if normal.dot(o.pose.quat() * Vec3::Z) < 0.0 {
+                normal = -normal;
+            }
+            let (ea, eb) = (axes[a] * h[a] * 0.5, axes[b] * h[b] * 0.5);
+            let front = c + normal * (h[thin] + DAY_LIFT);
+            out.push(Pane {
+                samples: [front + ea + eb, front - ea - eb],
+                normal,
+                power: DAY_POWER * 2.0 * h[a] * h[b],
+            });
+        }
+    }
+    out
+}
 
 /// Light per vertex of every part: `parts[k][i]` is vertex `i` of
 /// `triangulate_part_cells(part, pose, cell_of(scene, object))` of the `k`-th part of the scene
@@ -78,6 +150,7 @@ pub fn cell_of(scene: &Scene, o: &SceneObject) -> Option<f32> {
     }
     let m = crate::geometry::MAX_CELL;
     match o.class {
+        SemanticClass::Wall if o.bbox.max[1] - o.bbox.min[1] < LOW_WALL => None,
         // Shadows of furniture on the floor need the finest cells; walls and ceilings carry
         // smooth falloff and corner occlusion.
         SemanticClass::Floor => Some(m),
@@ -157,7 +230,7 @@ fn cache() -> &'static Cache {
 }
 
 /// A 64-bit key of everything the bake reads: the triangulated parts and the lamps.
-fn content_key(parts: &[crate::geometry::TriMesh], lamps: &[Vec3]) -> u64 {
+fn content_key(parts: &[crate::geometry::TriMesh], lights: &Lights) -> u64 {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
     let mut mix = |v: u32| {
         h = (h ^ u64::from(v)).wrapping_mul(0x0000_0100_0000_01b3);
@@ -172,18 +245,48 @@ fn content_key(parts: &[crate::geometry::TriMesh], lamps: &[Vec3]) -> u64 {
             t.iter().for_each(|i| mix(*i));
         }
     }
-    for l in lamps {
+    for l in &lights.lamps {
         l.to_array().iter().for_each(|c| mix(c.to_bits()));
     }
+    for p in &lights.panes {
+        for v in p.samples.iter().chain([&p.normal]) {
+            v.to_array().iter().for_each(|c| mix(c.to_bits()));
+        }
+        mix(p.power.to_bits());
+    }
+    for e in &lights.glowing {
+        mix(u32::from(*e));
+    }
     h
+}
+
+/// Everything that lights a scene.
+struct Lights {
+    lamps: Vec<Vec3>,
+    panes: Vec<Pane>,
+    /// Per part (as [`bake_meshes`]): whether it glows at full light (window panes).
+    glowing: Vec<bool>,
+}
+
+fn lights(scene: &Scene) -> Lights {
+    let lit = is_lit(scene);
+    Lights {
+        lamps: lamps(scene),
+        panes: panes(scene),
+        glowing: scene
+            .objects
+            .iter()
+            .flat_map(|o| o.parts.iter().map(move |_| lit && is_pane(o)))
+            .collect(),
+    }
 }
 
 /// Bake the light of a scene (see the module docs); the same result as a fresh bake, taken
 /// from the cache when this scene was baked a moment ago.
 pub fn bake(scene: &Scene) -> Arc<BakedLight> {
     let parts = bake_meshes(scene);
-    let lamps = lamps(scene);
-    let key = content_key(&parts, &lamps);
+    let lights = lights(scene);
+    let key = content_key(&parts, &lights);
     if let Some(hit) = cache()
         .lock()
         .ok()
@@ -191,7 +294,7 @@ pub fn bake(scene: &Scene) -> Arc<BakedLight> {
     {
         return hit;
     }
-    let light = Arc::new(bake_uncached(parts, &lamps));
+    let light = Arc::new(bake_uncached(parts, &lights));
     if let Ok(mut c) = cache().lock() {
         if c.len() >= CACHE {
             c.remove(0);
@@ -203,11 +306,11 @@ pub fn bake(scene: &Scene) -> Arc<BakedLight> {
 
 /// [`bake`] without the cache: always computes (tests compare the two, and thread counts).
 pub fn bake_fresh(scene: &Scene) -> BakedLight {
-    bake_uncached(bake_meshes(scene), &lamps(scene))
+    bake_uncached(bake_meshes(scene), &lights(scene))
 }
 
-fn bake_uncached(parts: Vec<crate::geometry::TriMesh>, lamps: &[Vec3]) -> BakedLight {
-    if lamps.is_empty() {
+fn bake_uncached(parts: Vec<crate::geometry::TriMesh>, lights: &Lights) -> BakedLight {
+    if lights.lamps.is_empty() && lights.panes.is_empty() {
         let l = Vec3::from_array(FLAT_LIGHT).normalize();
         return BakedLight {
             parts: parts
@@ -239,14 +342,21 @@ fn bake_uncached(parts: Vec<crate::geometry::TriMesh>, lamps: &[Vec3]) -> BakedL
     let ctx = Ctx {
         bvh: &bvh,
         normals: &normals,
-        lamps,
+        lamps: &lights.lamps,
+        panes: &lights.panes,
         dirs: hemisphere(),
     };
     BakedLight {
         parts: parts
             .par_iter()
             .enumerate()
-            .map(|(k, m)| ctx.bake_part(k, m))
+            .map(|(k, m)| {
+                if lights.glowing.get(k).copied().unwrap_or(false) {
+                    vec![LAMP_TINT.map(to_u8); m.positions.len()]
+                } else {
+                    ctx.bake_part(k, m)
+                }
+            })
             .collect(),
         tint: LAMP_TINT,
     }
@@ -260,6 +370,7 @@ struct Ctx<'a> {
     bvh: &'a TriBvh,
     normals: &'a [Vec3],
     lamps: &'a [Vec3],
+    panes: &'a [Pane],
     /// Cosine-weighted directions around +Z.
     dirs: Vec<Vec3>,
 }
@@ -366,6 +477,25 @@ impl Ctx<'_> {
                 }
             }
             direct += seen * LAMP_POWER * cos_n / (d2 + LAMP_SOFT);
+        }
+        // Daylight: each pane in front of the vertex and facing it, two samples.
+        for pane in self.panes {
+            for q in pane.samples {
+                let to = q - s;
+                let d2 = to.length_squared();
+                if d2 > DAY_REACH * DAY_REACH {
+                    continue;
+                }
+                let dist = d2.sqrt();
+                let dir = to / dist;
+                let (cos_n, cos_p) = (n.dot(dir), -pane.normal.dot(dir));
+                if cos_n <= 0.0 || cos_p <= 0.0 {
+                    continue;
+                }
+                if self.hit(s, dir, dist - 0.02).is_none() {
+                    direct += pane.power * cos_n * cos_p / (d2 + DAY_SOFT);
+                }
+            }
         }
         let ambient = 0.17 + 0.06 * n.y;
         let k = ao * ambient + (0.25 + 0.75 * ao) * direct;

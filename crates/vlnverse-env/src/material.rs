@@ -42,11 +42,13 @@ pub enum Surface {
     Metal,
     /// Glazed ceramic.
     Ceramic,
+    /// Window glass (daylight with faint reflections).
+    Glass,
 }
 
 impl Surface {
     /// Every surface, in index order.
-    pub const ALL: [Surface; 11] = [
+    pub const ALL: [Surface; 12] = [
         Surface::Plain,
         Surface::Plaster,
         Surface::Wallpaper,
@@ -58,6 +60,7 @@ impl Surface {
         Surface::Leather,
         Surface::Metal,
         Surface::Ceramic,
+        Surface::Glass,
     ];
 
     /// Position in [`Surface::ALL`].
@@ -79,6 +82,7 @@ impl Surface {
             Surface::Leather => "leather",
             Surface::Metal => "metal",
             Surface::Ceramic => "ceramic",
+            Surface::Glass => "glass",
         }
     }
 
@@ -217,6 +221,13 @@ impl Surface {
                     }
                     Surface::Metal => grey(0.82 + 0.1 * fbm(seed, fx * 0.05, fy, 3.0)),
                     Surface::Ceramic => grey(0.92 + 0.03 * fbm(seed, fx, fy, 32.0)),
+                    Surface::Glass => {
+                        // Two soft diagonal reflections over bright daylight.
+                        let d = ((x + y) % 128) as f32;
+                        let streak = (-(d - 40.0).powi(2) / 60.0).exp()
+                            + 0.6 * (-(d - 58.0).powi(2) / 20.0).exp();
+                        0.9 + 0.1 * streak + 0.01 * fbm(seed, fx, fy, 16.0)
+                    }
                 };
                 out.push((v.clamp(0.0, 1.0) * 255.0).round() as u8);
             }
@@ -280,6 +291,14 @@ pub fn surface_of(scene: &Scene, o: &SceneObject) -> Surface {
         h % 3
     };
     match o.class {
+        // Skirting boards are walls of wood or painted plastic.
+        SemanticClass::Wall if matches!(o.material.as_str(), "wood" | "plastic") => {
+            if o.material == "wood" {
+                Surface::Wood
+            } else {
+                Surface::Plain
+            }
+        }
         SemanticClass::Wall => {
             if pick(1) == 0 {
                 Surface::Wallpaper
@@ -308,6 +327,7 @@ pub fn surface_of(scene: &Scene, o: &SceneObject) -> Surface {
             "leather" => Surface::Leather,
             "metal" | "steel" | "aluminium" => Surface::Metal,
             "ceramic" | "porcelain" | "tile" => Surface::Ceramic,
+            "glass" => Surface::Glass,
             _ => Surface::Plain,
         },
     }

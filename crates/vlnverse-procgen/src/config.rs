@@ -87,6 +87,10 @@ pub struct WallsConfig {
     /// Add a ceiling slab per room (on by default: rooms seen from inside have a ceiling;
     /// top-down pictures leave ceilings out).
     pub ceiling: bool,
+    /// Add windows (frame, daylight pane, sill, some with curtains) on exterior walls, skirting
+    /// boards and pictures (on by default). They come after every other object and draw from
+    /// their own random stream, so turning them off leaves the rest of a home as it is.
+    pub decor: bool,
 }
 
 /// Doorways and open-plan openings.
@@ -192,6 +196,7 @@ impl Default for WallsConfig {
             thickness: 0.12,
             height: 2.7,
             ceiling: true,
+            decor: true,
         }
     }
 }

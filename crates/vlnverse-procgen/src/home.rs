@@ -354,6 +354,9 @@ pub(crate) fn generate(cfg: &ProcgenConfig, seed: u64, id: &str) -> Result<Scene
     if cfg.walls.ceiling {
         add_ceilings(cfg, &plan, wall, &mut b);
     }
+    if cfg.walls.decor {
+        crate::decor::add_decor(cfg, &plan, seed, &mut b);
+    }
 
     let t = cfg.walls.thickness;
     let mut counts: BTreeMap<RoomType, usize> = BTreeMap::new();

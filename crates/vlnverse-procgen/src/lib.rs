@@ -1,6 +1,7 @@
 #![doc = include_str!("../README.md")]
 
 mod config;
+mod decor;
 mod floorplan;
 mod furnish;
 mod home;

@@ -1,5 +1,6 @@
 //! Integration tests of `vlnverse-procgen`, linked into one test binary (one link, shared fixtures).
 
+mod decor;
 mod homes;
 mod look;
 mod navigable;

@@ -1,0 +1,177 @@
+//! Windows, skirting boards and pictures: where they stand, and that they change nothing else
+//! (object ids, occupancy, the navigable map) while windows brighten the baked light.
+
+use vlnverse_env::occupancy::{build_maps, OccupancyConfig};
+use vlnverse_env::{light, Scene, SceneObject, SceneSource, SemanticClass as C};
+use vlnverse_procgen::{HomeGenerator, Preset, ProcgenConfig};
+
+fn generator(decor: bool) -> HomeGenerator {
+    let mut cfg: ProcgenConfig = Preset::Tiny.config().unwrap();
+    cfg.walls.decor = decor;
+    HomeGenerator::new(cfg).unwrap()
+}
+
+fn pair(i: usize) -> (Scene, Scene) {
+    (
+        generator(true).scene(i).unwrap(),
+        generator(false).scene(i).unwrap(),
+    )
+}
+
+fn panes(s: &Scene) -> Vec<&SceneObject> {
+    s.objects.iter().filter(|o| light::is_pane(o)).collect()
+}
+
+#[test]
+fn decor_comes_after_every_other_object_and_changes_no_map() {
+    let vln = HomeGenerator::from_preset(Preset::Vlnverse).unwrap();
+    let mut cfg = vln.config().clone();
+    cfg.walls.decor = false;
+    let bare_vln = HomeGenerator::new(cfg).unwrap();
+    let tiny = (0..generator(true).len()).map(pair);
+    let big = (0..6).map(|k| (vln.scene(k * 40).unwrap(), bare_vln.scene(k * 40).unwrap()));
+    let occ = OccupancyConfig::default();
+    let mut windows = 0;
+    for (with, without) in tiny.chain(big) {
+        let n = without.objects.len();
+        assert!(with.objects.len() > n, "{}: no decoration", with.id);
+        assert_eq!(with.objects[..n], without.objects[..], "{}", with.id);
+        assert_eq!(with.rooms, without.rooms);
+        assert_eq!(with.doors, without.doors);
+        for o in &with.objects[n..] {
+            assert!(
+                matches!(o.class, C::Window | C::Wall | C::PictureFrame),
+                "{}: {:?}",
+                with.id,
+                o.class
+            );
+        }
+        windows += panes(&with).len();
+        let (a, b) = (
+            build_maps(&with, &occ).unwrap(),
+            build_maps(&without, &occ).unwrap(),
+        );
+        assert_eq!(a.occupancy, b.occupancy, "{}: occupancy changed", with.id);
+        assert_eq!(
+            a.navigable, b.navigable,
+            "{}: navigable map changed",
+            with.id
+        );
+    }
+    assert!(windows >= 10, "{windows} windows");
+}
+
+#[test]
+fn windows_hang_on_exterior_walls_at_window_height_clear_of_doors() {
+    let g = generator(true);
+    let mut count = 0;
+    for i in 0..g.len() {
+        let s = g.scene(i).unwrap();
+        let (lo, hi) = (s.bounds().min, s.bounds().max);
+        for o in s.objects.iter().filter(|o| o.class == C::Window) {
+            count += 1;
+            let b = o.bbox;
+            assert!(b.min[1] >= 0.75 && b.max[1] <= 2.45, "{}: {b:?}", s.id);
+            // Against an exterior wall: within 0.25 m of the home's outer bounds along the
+            // thin axis.
+            let thin = if b.max[0] - b.min[0] < b.max[2] - b.min[2] {
+                0
+            } else {
+                2
+            };
+            let near_edge =
+                (b.min[thin] - lo[thin]).abs() < 0.25 || (hi[thin] - b.max[thin]).abs() < 0.25;
+            assert!(
+                near_edge,
+                "{}: window {} not on an exterior wall",
+                s.id, o.id
+            );
+            for d in &s.doors {
+                let c = vlnverse_procgen::door_clearance(d, 0.3, 2.0);
+                let overlap = (0..3).all(|k| b.min[k] < c.max[k] && b.max[k] > c.min[k]);
+                assert!(!overlap, "{}: window {} overlaps door {}", s.id, o.id, d.id);
+            }
+        }
+        // The pane glows: baked at full light.
+        let baked = light::bake_fresh(&s);
+        let mut k = 0;
+        for o in &s.objects {
+            for _ in &o.parts {
+                if light::is_pane(o) {
+                    assert!(baked.parts[k].iter().all(|c| c[1] == 255));
+                }
+                k += 1;
+            }
+        }
+    }
+    assert!(count > 0);
+}
+
+#[test]
+fn skirting_boards_run_along_the_walls() {
+    let s = generator(true).scene(0).unwrap();
+    let boards: Vec<_> = s
+        .objects
+        .iter()
+        .filter(|o| o.class == C::Wall && o.bbox.max[1] < 0.2)
+        .collect();
+    assert_eq!(boards.len(), s.rooms.len());
+    assert!(boards.iter().all(|o| o.parts.len() >= 4));
+}
+
+#[test]
+fn window_daylight_brightens_the_floor_in_front_of_it() {
+    let s = generator(true).scene(0).unwrap();
+    let mut dark = s.clone();
+    // Same geometry, panes no longer lights (material word changed).
+    for o in dark.objects.iter_mut().filter(|o| light::is_pane(o)) {
+        o.material = "plastic".into();
+    }
+    let (lit, unlit) = (light::bake_fresh(&s), light::bake_fresh(&dark));
+    let pane = panes(&s)[0];
+    let centre = pane.bbox.center();
+    let meshes = light::bake_meshes(&s);
+    // Floor vertices within 1.2 m of the window's foot.
+    let (mut gain, mut n) = (0i32, 0);
+    let mut k = 0;
+    for o in &s.objects {
+        for _ in &o.parts {
+            if o.class == C::Floor {
+                for (i, p) in meshes[k].positions.iter().enumerate() {
+                    let d = glam::Vec2::new(p[0] - centre.x, p[2] - centre.z).length();
+                    if p[1] > -0.01 && d < 1.2 {
+                        gain += i32::from(lit.parts[k][i][1]) - i32::from(unlit.parts[k][i][1]);
+                        n += 1;
+                    }
+                }
+            }
+            k += 1;
+        }
+    }
+    assert!(n > 0);
+    assert!(gain as f32 / n as f32 > 8.0, "mean gain {gain}/{n}");
+}
+
+#[test]
+fn decor_is_deterministic() {
+    let a = generator(true).scene(1).unwrap();
+    let b = generator(true).scene(1).unwrap();
+    assert_eq!(
+        serde_json::to_string(&a).unwrap(),
+        serde_json::to_string(&b).unwrap()
+    );
+}
+
+#[test]
+fn zz_print_counts() {
+    let (with, without) = pair(0);
+    let n = without.objects.len();
+    for o in &with.objects[n..] {
+        let tris: usize = o
+            .parts
+            .iter()
+            .map(|p| vlnverse_env::geometry::triangle_count_cells(&p.shape, light::cell_of(&with, o)))
+            .sum();
+        println!("{:?} {} parts {} tris {} room {:?}", o.class, o.material, o.parts.len(), tris, o.room);
+    }
+}
