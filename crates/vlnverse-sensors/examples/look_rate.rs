@@ -11,7 +11,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 use vlnverse_env::{Scene, SceneSource, SemanticClass};
 use vlnverse_procgen::{HomeGenerator, Preset};
-use vlnverse_sensors::{AgentState, Backend, RigConfig, SceneMesh, SensorRig};
+use vlnverse_sensors::{AgentState, Backend, RasterScene, RigConfig, SceneMesh, SensorRig};
 
 /// The AWS small house, imported with its label mapping, and `n` seeded navigable states.
 fn aws(n: usize) -> Result<(Scene, Vec<AgentState>), Box<dyn std::error::Error>> {
@@ -85,10 +85,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         std::hint::black_box(rig.observe(s)?);
     }
     let secs = t.elapsed().as_secs_f64();
+    let mesh = std::sync::Arc::new(SceneMesh::new(&scene)?);
     println!(
-        "{}: {} triangles drawn, scene prepared (bake included) in {prep:.3} s; {n} observations: {:.0} frames/s",
+        "{}: {} triangles ({} drawn), scene prepared (bake included) in {prep:.3} s; {n} observations: {:.0} frames/s",
         scene.id,
-        SceneMesh::new(&scene)?.triangle_count(),
+        mesh.triangle_count(),
+        RasterScene::new(mesh).drawn_triangles(),
         n as f64 / secs
     );
     Ok(())

@@ -39,6 +39,8 @@ use std::sync::{Arc, Mutex};
 use vlnverse_env::material::{Surface, TEX_SIZE};
 use vlnverse_env::Aabb;
 
+mod faces;
+
 /// Projected vertices stay within `[-guard, guard]` pixels (else they are clipped); `guard` is at
 /// least this and twice the image size.
 const MIN_GUARD: f32 = 8192.0;
@@ -67,11 +69,23 @@ struct Look {
     at: [f32; ATTRS],
     du: [f32; ATTRS],
     dv: [f32; ATTRS],
-    /// First texel of the surface texture in [`RasterScene::texels`].
+    /// First texel of the surface texture in [`RasterScene::texels`] (or of the face texture
+    /// in [`RasterScene::face_texels`]).
     tex: u32,
     /// Encoded colour ([`crate::TriLook::tone`]) scaled so that `tone x light x texel byte`
     /// is the output byte.
     tone: [f32; 3],
+    /// How the texel is found.
+    kind: Kind,
+}
+
+/// Where a triangle's pixels take their texel from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Kind {
+    /// Light interpolated from the corners times a repeating surface texture.
+    Tiled,
+    /// A face texture of `w x h` texels holding light times texture (light attribute unused).
+    Face { w: u32, h: u32 },
 }
 
 /// A visible triangle of one view: attribute `k` times `1 / depth` at pixel `(x, y)` is
@@ -81,6 +95,7 @@ struct Slot {
     k: [[f32; 3]; ATTRS],
     tex: u32,
     tone: [f32; 3],
+    kind: Kind,
 }
 
 /// An object's triangle range and whether its back faces may be culled.
@@ -105,7 +120,9 @@ pub struct RasterScene {
     /// Every surface texture's grey part, encoded ([`Surface::luma_encoded`]), one after the
     /// other ([`Surface::ALL`] order); tints are in the triangle colours.
     texels: Vec<u8>,
-    /// Unit geometric normal per triangle (as [`SceneMesh::normal`]).
+    /// The triangles drawn (the mesh's, with faces cut into cells merged back).
+    draw: faces::DrawMesh,
+    /// Unit geometric normal per draw triangle (as [`SceneMesh::normal`]).
     normal: Vec<Vec3>,
     objects: Vec<ObjInfo>,
     /// Reused depth and id buffers of views that do not return them (saves page faults).
@@ -317,14 +334,22 @@ struct Poly {
 }
 
 impl RasterScene {
-    /// Prepare a mesh: per-triangle looks, ids, and which objects are closed surfaces.
+    /// Prepare a mesh: the triangles to draw (cut faces merged, with their face textures),
+    /// per-triangle looks, ids, and which objects are closed surfaces.
     pub fn new(mesh: Arc<SceneMesh>) -> Self {
         let n_tri = mesh.triangle_count();
-        let mut normal = Vec::with_capacity(n_tri);
-        let mut look = Vec::with_capacity(n_tri);
-        for t in 0..n_tri {
-            normal.push(mesh.normal(t));
-            let [a, b, c] = [0, 1, 2].map(|k| mesh.positions[3 * t + k]);
+        let texels: Vec<u8> = Surface::ALL
+            .iter()
+            .flat_map(|s| s.luma_encoded().iter().copied())
+            .collect();
+        let draw = faces::build(&mesh, &texels);
+        let n_draw = draw.src.len();
+        let mut normal = Vec::with_capacity(n_draw);
+        let mut look = Vec::with_capacity(n_draw);
+        for d in 0..n_draw {
+            let t = draw.src[d] as usize;
+            let [a, b, c] = [0, 1, 2].map(|k| draw.pos[3 * d + k]);
+            normal.push((b - a).cross(c - a).normalize_or(Vec3::Y));
             let (e1, e2) = (b - a, c - a);
             let (d00, d01, d11) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
             let den = d00 * d11 - d01 * d01;
@@ -334,10 +359,12 @@ impl RasterScene {
                 (Vec3::ZERO, Vec3::ZERO)
             };
             let l = mesh.look.get(t);
+            let face = draw.face[d];
             let attr = |k: usize| -> [f32; ATTRS] {
-                match l {
-                    Some(l) => [l.light[k], l.uv[k][0], l.uv[k][1]],
-                    None => [1.0, 0.0, 0.0],
+                match (face, l) {
+                    (Some((_, uv)), _) => [1.0, uv[k][0], uv[k][1]],
+                    (None, Some(l)) => [l.light[k], l.uv[k][0], l.uv[k][1]],
+                    (None, None) => [1.0, 0.0, 0.0],
                 }
             };
             // Bytes: tone x light x texel byte (255 = 1) is the output byte.
@@ -346,6 +373,13 @@ impl RasterScene {
                 None => mesh.color[t].map(|c| c.clamp(0.0, 1.0).powf(1.0 / 2.2)),
             };
             let (a0, a1, a2) = (attr(0), attr(1), attr(2));
+            let (tex, kind) = match face {
+                Some((f, _)) => (f.base, Kind::Face { w: f.w, h: f.h }),
+                None => (
+                    (l.map_or(Surface::Plain, |l| l.surface).index() * TEX_SIZE * TEX_SIZE) as u32,
+                    Kind::Tiled,
+                ),
+            };
             look.push(Look {
                 a,
                 wu,
@@ -353,20 +387,24 @@ impl RasterScene {
                 at: a0,
                 du: [0, 1, 2].map(|k| a1[k] - a0[k]),
                 dv: [0, 1, 2].map(|k| a2[k] - a0[k]),
-                tex: (l.map_or(Surface::Plain, |l| l.surface).index() * TEX_SIZE * TEX_SIZE) as u32,
+                tex,
                 tone,
+                kind,
             });
         }
+        // Closed surfaces are judged on the mesh's own triangles (merged faces meet their
+        // neighbours' cells at T-junctions, but bound the same solid).
         let objects = mesh
             .objects
             .iter()
-            .map(|o| {
-                let (first, count) = (o.first as usize, o.count as usize);
+            .zip(&draw.objects)
+            .map(|(o, &(first, count, bbox))| {
+                let (f, n) = (o.first as usize, o.count as usize);
                 ObjInfo {
                     first,
                     count,
-                    bbox: o.bbox,
-                    closed: closed_outward(&mesh.positions[3 * first..3 * (first + count)]),
+                    bbox,
+                    closed: closed_outward(&mesh.positions[3 * f..3 * (f + n)]),
                 }
             })
             .collect();
@@ -379,10 +417,8 @@ impl RasterScene {
                 .chain((0..n_tri).flat_map(|t| [mesh.object[t]; 2]))
                 .collect(),
             look,
-            texels: Surface::ALL
-                .iter()
-                .flat_map(|s| s.luma_encoded().iter().copied())
-                .collect(),
+            texels,
+            draw,
             mesh,
             normal,
             objects,
@@ -394,6 +430,11 @@ impl RasterScene {
     /// The triangles drawn.
     pub fn mesh(&self) -> &Arc<SceneMesh> {
         &self.mesh
+    }
+
+    /// Number of triangles drawn (the mesh's, with faces cut into cells merged back).
+    pub fn drawn_triangles(&self) -> usize {
+        self.draw.src.len()
     }
 
     /// Number of objects whose back faces may be culled (closed, outward-oriented surfaces).
@@ -497,12 +538,12 @@ impl RasterScene {
             .collect();
         // Ties (and NaN-free keys) broken by object index: the order is deterministic.
         order.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        let mut out = Vec::with_capacity(self.mesh.triangle_count() / 2);
+        let mut out = Vec::with_capacity(self.draw.src.len() / 2);
         let mut groups = Vec::with_capacity(order.len());
         let (mut slots, mut slot_tag) = (Vec::new(), Vec::new());
         if shade {
-            slots.reserve(self.mesh.triangle_count() / 2);
-            slot_tag.reserve(self.mesh.triangle_count() / 2);
+            slots.reserve(self.draw.src.len() / 2);
+            slot_tag.reserve(self.draw.src.len() / 2);
             slot_tag.push(0);
         }
         for &(_, oi) in &order {
@@ -513,13 +554,13 @@ impl RasterScene {
                 !(p.pos.cmpge(lo).all() && p.pos.cmple(hi).all())
             };
             for t in o.first..o.first + o.count {
-                let wp = &self.mesh.positions[3 * t..3 * t + 3];
+                let wp = &self.draw.pos[3 * t..3 * t + 3];
                 let back = self.normal[t].dot(wp[0] - p.pos) > 0.0;
                 if back && cull {
                     continue;
                 }
                 let v = [p.to_camera(wp[0]), p.to_camera(wp[1]), p.to_camera(wp[2])];
-                let tag = 2 * t as u32 + back as u32 + 1;
+                let tag = 2 * self.draw.src[t] + back as u32 + 1;
                 if shade {
                     let n = out.len();
                     let slot = slots.len() as u32 + 1;
@@ -587,6 +628,7 @@ impl RasterScene {
             k,
             tex: l.tex,
             tone: l.tone,
+            kind: l.kind,
         }
     }
 
@@ -679,7 +721,10 @@ impl RasterScene {
         // none of whose triangles can write more than that over its screen box is hidden.
         let w = p.w;
         let (tw, th) = (w.div_ceil(TILE), (y1 - y0).div_ceil(TILE));
+        // Tiles drawn into since their minimum was taken are recomputed only when a test
+        // reads them (most are drawn into again, or never read, before that).
         let mut hiz = vec![1.0 / p.far; tw * th];
+        let mut dirty = vec![false; tw * th];
         let (by0, by1) = (y0 as i32, y1 as i32 - 1);
         for g in &setup.groups {
             let (ya, yb) = (g.y0.max(by0), g.y1.min(by1));
@@ -689,9 +734,20 @@ impl RasterScene {
             let (ty0, ty1) = ((ya as usize - y0) / TILE, (yb as usize - y0) / TILE);
             let (tx0, tx1) = (g.x0 as usize / TILE, g.x1 as usize / TILE);
             let hidden = (ty0..=ty1).all(|ty| {
-                hiz[ty * tw + tx0..=ty * tw + tx1]
-                    .iter()
-                    .all(|m| g.zmax <= *m)
+                (tx0..=tx1).all(|tx| {
+                    // A stale minimum is a lower bound of the true one.
+                    let i = ty * tw + tx;
+                    if g.zmax <= hiz[i] {
+                        return true;
+                    }
+                    if !dirty[i] {
+                        return false;
+                    }
+                    dirty[i] = false;
+                    let r1 = ((ty + 1) * TILE).min(y1 - y0);
+                    hiz[i] = tile_min(zbuf, w, ty * TILE, r1, tx * TILE);
+                    g.zmax <= hiz[i]
+                })
             });
             if hidden {
                 continue;
@@ -702,10 +758,7 @@ impl RasterScene {
                 None => raster::<false>(w, y0, y1, tris, zbuf, &mut []),
             }
             for ty in ty0..=ty1 {
-                let (r0, r1) = (ty * TILE, ((ty + 1) * TILE).min(y1 - y0));
-                for tx in tx0..=tx1 {
-                    hiz[ty * tw + tx] = tile_min(zbuf, w, r0, r1, tx * TILE);
-                }
+                dirty[ty * tw + tx0..=ty * tw + tx1].fill(true);
             }
         }
         // Resolve: slots to colour (from 1/depth), then 1/depth to metres, tags to class and
@@ -796,15 +849,6 @@ impl RasterScene {
                     x = e;
                     continue;
                 };
-                let Some(tex) = self
-                    .texels
-                    .get(s.tex as usize..s.tex as usize + TEXELS)
-                    .and_then(|t| <&[u8; TEXELS]>::try_from(t).ok())
-                else {
-                    px.fill(0);
-                    x = e;
-                    continue;
-                };
                 let xf = x as f32;
                 let k = &s.k;
                 // Attribute / depth at pixel x + j is a x_j + b.
@@ -812,25 +856,60 @@ impl RasterScene {
                 let b0 = k[0][0] * xf + k[0][1] * y + k[0][2];
                 let b1 = k[1][0] * xf + k[1][1] * y + k[1][2];
                 let b2 = k[2][0] * xf + k[2][1] * y + k[2][2];
-                for (((l, i), iz), j) in light[..n]
-                    .iter_mut()
-                    .zip(index[..n].iter_mut())
-                    .zip(&zr[x..e])
-                    .zip(&lanes[..n])
-                {
-                    let inv = 1.0 / *iz;
-                    *l = (a0 * j + b0) * inv;
-                    // floor(t) as round(t - 0.5); the mask wraps negative coordinates too.
-                    let tu = ((a1 * j + b1) * inv - 0.5 + MAGIC).to_bits() & MASK;
-                    let tv = ((a2 * j + b2) * inv - 0.5 + MAGIC).to_bits() & MASK;
-                    *i = tv * TEX_SIZE as u32 + tu;
+                match s.kind {
+                    Kind::Tiled => {
+                        let Some(tex) = self
+                            .texels
+                            .get(s.tex as usize..s.tex as usize + TEXELS)
+                            .and_then(|t| <&[u8; TEXELS]>::try_from(t).ok())
+                        else {
+                            px.fill(0);
+                            x = e;
+                            continue;
+                        };
+                        for (((l, i), iz), j) in light[..n]
+                            .iter_mut()
+                            .zip(index[..n].iter_mut())
+                            .zip(&zr[x..e])
+                            .zip(&lanes[..n])
+                        {
+                            let inv = 1.0 / *iz;
+                            *l = (a0 * j + b0) * inv;
+                            // floor(t) as round(t - 0.5); the mask wraps negative coordinates.
+                            let tu = ((a1 * j + b1) * inv - 0.5 + MAGIC).to_bits() & MASK;
+                            let tv = ((a2 * j + b2) * inv - 0.5 + MAGIC).to_bits() & MASK;
+                            *i = tv * TEX_SIZE as u32 + tu;
+                        }
+                        for (l, i) in light[..n].iter_mut().zip(&index[..n]) {
+                            *l *= tex[*i as usize & (TEXELS - 1)] as f32;
+                        }
+                    }
+                    Kind::Face { w: fw, h: fh } => {
+                        let len = (fw * fh) as usize;
+                        let Some(tex) = self.draw.texels.get(s.tex as usize..s.tex as usize + len)
+                        else {
+                            px.fill(0);
+                            x = e;
+                            continue;
+                        };
+                        // Coordinates clamped into the face texture (rounding at its edges).
+                        let (umax, vmax) = (fw as f32 - 0.5, fh as f32 - 0.5);
+                        for ((i, iz), j) in index[..n].iter_mut().zip(&zr[x..e]).zip(&lanes[..n]) {
+                            let inv = 1.0 / *iz;
+                            let u = ((a1 * j + b1) * inv).clamp_range(0.0, umax);
+                            let v = ((a2 * j + b2) * inv).clamp_range(0.0, vmax);
+                            let tu = (u - 0.5 + MAGIC).to_bits() & 0x3f_ffff;
+                            let tv = (v - 0.5 + MAGIC).to_bits() & 0x3f_ffff;
+                            *i = tv * fw + tu;
+                        }
+                        for (l, i) in light[..n].iter_mut().zip(&index[..n]) {
+                            *l = tex.get(*i as usize).copied().unwrap_or(0) as f32;
+                        }
+                    }
                 }
                 let [tr, tg, tb] = s.tone;
                 // Clamping the product once keeps every channel in [0, 255].
                 let top = 255.0 / tr.max(tg).max(tb).max(1e-6);
-                for (l, i) in light[..n].iter_mut().zip(&index[..n]) {
-                    *l *= tex[*i as usize & (TEXELS - 1)] as f32;
-                }
                 for (c, l) in packed[..n].iter_mut().zip(&light[..n]) {
                     let m = if *l < top { *l } else { top };
                     let m = if m > 0.0 { m } else { 0.0 };

@@ -1,0 +1,244 @@
+//! Faces drawn whole: the floors and walls of lit homes are cut into cells so that the bake can
+//! give them shadows and falloff ([`vlnverse_env::light::cell_of`]), but every cell costs the
+//! rasteriser a triangle in every view and breaks the resolve's runs of one triangle. Here the
+//! cells of each rectangular face are merged back into two triangles, and the face's light
+//! times its texture is written once into a face texture (one byte per texel, texels of the
+//! surface texture) that the resolve samples directly: the per-pixel work of a wall or floor is
+//! one texel fetch, whatever the light does across it.
+//!
+//! A group of coplanar triangles of one object (same surface and colour) merges only when their
+//! areas add up to the rectangle that bounds them (so they tile it exactly); the texel for a
+//! point is the one the cells would have fetched (same texture coordinates), times the light
+//! the cells interpolate there, rounded to a byte.
+
+use crate::scene_mesh::SceneMesh;
+use glam::{Vec2, Vec3};
+use std::collections::HashMap;
+use vlnverse_env::material::TEX_SIZE;
+use vlnverse_env::Aabb;
+
+/// Largest face texture (texels); bigger faces keep their cells.
+const MAX_TEXELS: usize = 1 << 22;
+
+/// A merged face's texture: `w x h` bytes at `base` of [`DrawMesh::texels`], row-major; texel
+/// `(i, j)` covers texture coordinates `[u0 + i, u0 + i + 1) x [v0 + j, v0 + j + 1)`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct FaceTexture {
+    pub base: u32,
+    pub w: u32,
+    pub h: u32,
+}
+
+/// The triangles the rasteriser draws: the mesh's, with cut faces merged.
+#[derive(Debug, Default)]
+pub(crate) struct DrawMesh {
+    /// Corners of draw triangle `i` are `pos[3i..3i+3]`.
+    pub pos: Vec<Vec3>,
+    /// The mesh triangle each draw triangle stands for (ids, class, look).
+    pub src: Vec<u32>,
+    /// For merged triangles: the face texture and the face-texture coordinates of the corners.
+    pub face: Vec<Option<(FaceTexture, [[f32; 2]; 3])>>,
+    /// Draw triangle range and box of each mesh object (same order).
+    pub objects: Vec<(usize, usize, Aabb)>,
+    /// Every face texture, one after the other.
+    pub texels: Vec<u8>,
+}
+
+/// Texture coordinates as an affine function of a point on a triangle's plane.
+struct UvMap {
+    a: Vec3,
+    wu: Vec3,
+    wv: Vec3,
+    uv: [Vec2; 3],
+}
+
+impl UvMap {
+    fn new(p: [Vec3; 3], uv: [[f32; 2]; 3]) -> Option<UvMap> {
+        let (e1, e2) = (p[1] - p[0], p[2] - p[0]);
+        let (d00, d01, d11) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
+        let den = d00 * d11 - d01 * d01;
+        (den.abs() > 1e-20).then(|| UvMap {
+            a: p[0],
+            wu: (e1 * d11 - e2 * d01) / den,
+            wv: (e2 * d00 - e1 * d01) / den,
+            uv: uv.map(Vec2::from_array),
+        })
+    }
+
+    fn at(&self, q: Vec3) -> Vec2 {
+        let (s, t) = ((q - self.a).dot(self.wu), (q - self.a).dot(self.wv));
+        self.uv[0] + s * (self.uv[1] - self.uv[0]) + t * (self.uv[2] - self.uv[0])
+    }
+}
+
+/// Merge the cut faces of `mesh` and bake their face textures from `luma` (each surface's
+/// encoded grey texture, [`vlnverse_env::material::Surface::ALL`] order).
+pub(crate) fn build(mesh: &SceneMesh, luma: &[u8]) -> DrawMesh {
+    let mut d = DrawMesh::default();
+    for o in &mesh.objects {
+        let first = d.src.len();
+        let (lo, hi) = (o.first as usize, (o.first + o.count) as usize);
+        // Group the object's triangles by plane and look, in order of first appearance.
+        let mut key_of: HashMap<[i64; 8], usize> = HashMap::new();
+        let mut groups: Vec<Vec<usize>> = Vec::new();
+        let mut group_of = vec![usize::MAX; hi - lo];
+        for t in lo..hi {
+            let Some(l) = mesh.look.get(t) else { continue };
+            let n = mesh.normal(t);
+            let q = |v: f32| (v as f64 * 1e4).round() as i64;
+            let key = [
+                q(n.x),
+                q(n.y),
+                q(n.z),
+                q(n.dot(mesh.positions[3 * t])),
+                l.tone[0].to_bits() as i64,
+                l.tone[1].to_bits() as i64,
+                l.tone[2].to_bits() as i64,
+                l.surface.index() as i64,
+            ];
+            let g = *key_of.entry(key).or_insert_with(|| {
+                groups.push(Vec::new());
+                groups.len() - 1
+            });
+            groups[g].push(t);
+            group_of[t - lo] = g;
+        }
+        let mut done = vec![false; groups.len()];
+        for t in lo..hi {
+            let g = group_of[t - lo];
+            if g == usize::MAX || groups[g].len() <= 2 {
+                push_plain(&mut d, mesh, t);
+                continue;
+            }
+            if done[g] {
+                continue;
+            }
+            done[g] = true;
+            if !merge(&mut d, mesh, &groups[g], luma) {
+                for &s in &groups[g] {
+                    push_plain(&mut d, mesh, s);
+                }
+            }
+        }
+        d.objects.push((first, d.src.len() - first, o.bbox));
+    }
+    d
+}
+
+fn push_plain(d: &mut DrawMesh, mesh: &SceneMesh, t: usize) {
+    d.pos.extend_from_slice(&mesh.positions[3 * t..3 * t + 3]);
+    d.src.push(t as u32);
+    d.face.push(None);
+}
+
+/// Replace a group of coplanar triangles tiling a rectangle by two triangles and a face
+/// texture; false (nothing added) when they do not tile a rectangle.
+fn merge(d: &mut DrawMesh, mesh: &SceneMesh, tris: &[usize], luma: &[u8]) -> bool {
+    let t0 = tris[0];
+    let p0: [Vec3; 3] = [0, 1, 2].map(|k| mesh.positions[3 * t0 + k]);
+    let n = mesh.normal(t0);
+    let area: f32 = tris
+        .iter()
+        .map(|&t| {
+            let p = &mesh.positions[3 * t..3 * t + 3];
+            0.5 * (p[1] - p[0]).cross(p[2] - p[0]).length()
+        })
+        .sum();
+    // The rectangle's axes: one of the first triangle's edges (cells have two along the face).
+    let rect = (0..3).find_map(|k| {
+        let e1 = (p0[(k + 1) % 3] - p0[k]).normalize_or_zero();
+        if e1 == Vec3::ZERO {
+            return None;
+        }
+        let e2 = n.cross(e1);
+        let (mut s0, mut s1, mut r0, mut r1) = (f32::MAX, f32::MIN, f32::MAX, f32::MIN);
+        for &t in tris {
+            for p in &mesh.positions[3 * t..3 * t + 3] {
+                let (s, r) = ((*p - p0[0]).dot(e1), (*p - p0[0]).dot(e2));
+                (s0, s1, r0, r1) = (s0.min(s), s1.max(s), r0.min(r), r1.max(r));
+            }
+        }
+        let rect = (s1 - s0) * (r1 - r0);
+        ((rect - area).abs() <= 1e-4 * rect.max(1e-6)).then(|| {
+            let c = |s: f32, r: f32| p0[0] + s * e1 + r * e2;
+            [c(s0, r0), c(s1, r0), c(s1, r1), c(s0, r1)]
+        })
+    });
+    let Some(corner) = rect else { return false };
+    let look = &mesh.look[t0];
+    let Some(map) = UvMap::new(p0, look.uv) else {
+        return false;
+    };
+    let cuv = corner.map(|c| map.at(c));
+    let (mut umin, mut vmin) = (f32::MAX, f32::MAX);
+    let (mut umax, mut vmax) = (f32::MIN, f32::MIN);
+    for c in &cuv {
+        (umin, umax, vmin, vmax) = (umin.min(c.x), umax.max(c.x), vmin.min(c.y), vmax.max(c.y));
+    }
+    let (u0, v0) = (umin.floor(), vmin.floor());
+    let (w, h) = (
+        ((umax.ceil() - u0) as usize).max(1),
+        ((vmax.ceil() - v0) as usize).max(1),
+    );
+    if !(u0.is_finite() && v0.is_finite()) || w * h > MAX_TEXELS {
+        return false;
+    }
+    let tex = &luma[look.surface.index() * TEX_SIZE * TEX_SIZE..][..TEX_SIZE * TEX_SIZE];
+    let base = d.texels.len();
+    let mut texels = vec![None::<u8>; w * h];
+    let mask = TEX_SIZE as i64 - 1;
+    for &t in tris {
+        let l = &mesh.look[t];
+        let uv = l.uv.map(|p| Vec2::new(p[0] - u0, p[1] - v0));
+        let (e1, e2) = (uv[1] - uv[0], uv[2] - uv[0]);
+        let den = e1.perp_dot(e2);
+        if den.abs() < 1e-12 {
+            continue;
+        }
+        let lo = uv[0].min(uv[1]).min(uv[2]);
+        let hi = uv[0].max(uv[1]).max(uv[2]);
+        let (i0, i1) = (
+            (lo.x - 0.5).floor().max(0.0) as usize,
+            (hi.x.ceil() as usize).min(w),
+        );
+        let (j0, j1) = (
+            (lo.y - 0.5).floor().max(0.0) as usize,
+            (hi.y.ceil() as usize).min(h),
+        );
+        for j in j0..j1 {
+            for i in i0..i1 {
+                let q = Vec2::new(i as f32 + 0.5, j as f32 + 0.5) - uv[0];
+                let (b1, b2) = (q.perp_dot(e2) / den, e1.perp_dot(q) / den);
+                if b1 < -1e-4 || b2 < -1e-4 || b1 + b2 > 1.0 + 1e-4 {
+                    continue;
+                }
+                let light =
+                    l.light[0] + b1 * (l.light[1] - l.light[0]) + b2 * (l.light[2] - l.light[0]);
+                let (tu, tv) = ((u0 as i64 + i as i64) & mask, (v0 as i64 + j as i64) & mask);
+                let texel = tex[(tv * TEX_SIZE as i64 + tu) as usize] as f32;
+                let cell = &mut texels[j * w + i];
+                if cell.is_none() {
+                    *cell = Some((light * texel).round().clamp(0.0, 255.0) as u8);
+                }
+            }
+        }
+    }
+    // Texels no cell centre fell in (rounding along the outline): their neighbour's value.
+    let mut last = 0u8;
+    d.texels.extend(texels.iter().map(|t| {
+        last = t.unwrap_or(last);
+        last
+    }));
+    let face = FaceTexture {
+        base: base as u32,
+        w: w as u32,
+        h: h as u32,
+    };
+    let local = cuv.map(|c| [c.x - u0, c.y - v0]);
+    for (a, b, c) in [(0, 1, 2), (0, 2, 3)] {
+        d.pos.extend_from_slice(&[corner[a], corner[b], corner[c]]);
+        d.src.push(t0 as u32);
+        d.face.push(Some((face, [local[a], local[b], local[c]])));
+    }
+    true
+}
