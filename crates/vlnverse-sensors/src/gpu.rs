@@ -63,8 +63,10 @@ fn has(mask: u8, k: usize) -> bool {
 /// over the triangle with the texture coordinates; the colour fragment stage fetches the
 /// encoded texel with `textureLoad` (nearest, wrapped with the same integer arithmetic as the
 /// CPU rasteriser) from one texture holding every surface texture stacked and multiplies, as
-/// the CPU backends do. Linear depth is linear in world position, so perspective-correct
-/// interpolation gives it exactly.
+/// the CPU backends do. Imported images ([`SceneMesh::images`]) are not uploaded: their
+/// triangles show the image's mean colour over the plain texture, where the CPU backends show
+/// each texel. Linear depth is linear in world position, so perspective-correct interpolation
+/// gives it exactly.
 const VERTEX_SHADER: &str = r#"
 struct ViewU { view_proj: mat4x4<f32>, cam_pos: vec4<f32>, forward: vec4<f32>, light: vec4<f32> };
 @group(0) @binding(0) var<uniform> u: ViewU;

@@ -9,7 +9,10 @@
 //! is in the vertices) and carry the surface's procedural texture. Mesh parts
 //! ([`Shape::Mesh`]) each get a child node carrying the part transform and a mesh of their own;
 //! the `k`-th mesh part of the scene (object order, then part order) is glTF mesh `k`, which is
-//! what [`MeshData::glb_mesh`] names.
+//! what [`MeshData::glb_mesh`] names. A mesh part with its own base-colour image
+//! ([`MeshData::texture`], imported homes) is written with its texture coordinates as
+//! `TEXCOORD_0` and a material whose `baseColorTexture` is that image (an RGB PNG in the BIN
+//! chunk); [`restore_mesh_parts`] reads both back.
 
 use crate::error::{EnvError, Result};
 use crate::geometry::{mesh_with_normals, triangulate_cells, TriMesh};

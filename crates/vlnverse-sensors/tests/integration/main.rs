@@ -3,6 +3,7 @@
 mod common;
 
 mod backends;
+mod imported_textures;
 mod look;
 mod raster_backends;
 mod rig;
