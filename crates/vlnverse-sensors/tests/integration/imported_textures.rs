@@ -1,12 +1,15 @@
 //! Imported glTF textures appear in renders: a textured floor and wall written by the test,
-//! imported, and rendered; each sampled pixel is the texel under it times the light.
+//! imported, and rendered by the ray caster and the CPU rasteriser; each sampled pixel is the
+//! texel under it times the light.
 
 use glam::Quat;
 use std::sync::Arc;
 use vlnverse_env::light::bake;
 use vlnverse_env::{Pose, Scene};
 use vlnverse_import::{import_scene, ImportOptions};
-use vlnverse_sensors::{Camera, Channels, Frame, RaycastRenderer, Renderer, SceneMesh, View};
+use vlnverse_sensors::{
+    Camera, Channels, Frame, RasterRenderer, RaycastRenderer, Renderer, SceneMesh, View,
+};
 
 #[path = "../../../vlnverse-import/tests/integration/textured_glb.rs"]
 mod fx;
@@ -100,7 +103,7 @@ fn check_pixels(scene: &Scene, cam: &Camera, f: &Frame, who: &str) -> (usize, us
 }
 
 #[test]
-fn imported_textures_appear_in_ray_cast_images() {
+fn imported_textures_appear_in_cpu_images() {
     let scene = textured_scene();
     let mesh = Arc::new(SceneMesh::new(&scene).unwrap());
     assert_eq!(mesh.images.len(), 1, "floor and wall share one image");
@@ -112,22 +115,32 @@ fn imported_textures_appear_in_ray_cast_images() {
         rotation: (Quat::from_rotation_y(0.15) * Quat::from_rotation_x(-0.35)).to_array(),
     };
     let cam = Camera::new(&pose, 96, 72, 70f32.to_radians(), 0.05, 20.0);
-    let mut r = RaycastRenderer::new();
-    r.set_scene(mesh).unwrap();
-    let f = &r
-        .render(&[View {
-            camera: cam,
-            channels: Channels::ALL,
-        }])
-        .unwrap()[0];
-    let (checked, distinct, far) = check_pixels(&scene, &cam, f, r.name());
-    assert!(checked > 1000, "{checked} pixels checked");
-    assert!(distinct >= 32, "{distinct} distinct texels seen");
-    assert!(
-        far * 10 > checked * 8,
-        "{far} of {checked} differ from the mean colour"
-    );
-    // Both surfaces are seen.
-    let ids: std::collections::BTreeSet<u32> = f.instance.iter().copied().collect();
-    assert!(ids.len() >= 2, "{ids:?}");
+    let backends: Vec<Box<dyn Renderer>> = vec![
+        Box::new(RaycastRenderer::new()),
+        Box::new(RasterRenderer::new()),
+    ];
+    for mut r in backends {
+        r.set_scene(mesh.clone()).unwrap();
+        let f = &r
+            .render(&[View {
+                camera: cam,
+                channels: Channels::ALL,
+            }])
+            .unwrap()[0];
+        let (checked, distinct, far) = check_pixels(&scene, &cam, f, r.name());
+        assert!(checked > 1000, "{}: {checked} pixels checked", r.name());
+        assert!(
+            distinct >= 32,
+            "{}: {distinct} distinct texels seen",
+            r.name()
+        );
+        assert!(
+            far * 10 > checked * 8,
+            "{}: {far} of {checked} differ from the mean colour",
+            r.name()
+        );
+        // Both surfaces are seen.
+        let ids: std::collections::BTreeSet<u32> = f.instance.iter().copied().collect();
+        assert!(ids.len() >= 2, "{}: {ids:?}", r.name());
+    }
 }
