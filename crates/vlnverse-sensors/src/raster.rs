@@ -86,6 +86,9 @@ enum Kind {
     Tiled,
     /// A face texture of `w x h` texels holding light times texture (light attribute unused).
     Face { w: u32, h: u32 },
+    /// Light interpolated from the corners times an imported RGB image of `w x h` texels
+    /// (powers of two) in [`RasterScene::image_texels`], repeating.
+    Image { w: u32, h: u32 },
 }
 
 /// A visible triangle of one view: attribute `k` times `1 / depth` at pixel `(x, y)` is
@@ -122,6 +125,8 @@ pub struct RasterScene {
     texels: Vec<u8>,
     /// The triangles drawn (the mesh's, with faces cut into cells merged back).
     draw: faces::DrawMesh,
+    /// Every imported image ([`SceneMesh::images`]), texels packed as `r | g << 8 | b << 16`.
+    image_texels: Vec<u32>,
     /// Unit geometric normal per draw triangle (as [`SceneMesh::normal`]).
     normal: Vec<Vec3>,
     objects: Vec<ObjInfo>,
@@ -343,6 +348,20 @@ impl RasterScene {
             .flat_map(|s| s.luma_encoded().iter().copied())
             .collect();
         let draw = faces::build(&mesh, &texels);
+        let mut image_texels = Vec::new();
+        let image_base: Vec<u32> = mesh
+            .images
+            .iter()
+            .map(|im| {
+                let base = image_texels.len() as u32;
+                image_texels.extend(
+                    im.texels
+                        .iter()
+                        .map(|[r, g, b]| *r as u32 | (*g as u32) << 8 | (*b as u32) << 16),
+                );
+                base
+            })
+            .collect();
         let n_draw = draw.src.len();
         let mut normal = Vec::with_capacity(n_draw);
         let mut look = Vec::with_capacity(n_draw);
@@ -373,9 +392,20 @@ impl RasterScene {
                 None => mesh.color[t].map(|c| c.clamp(0.0, 1.0).powf(1.0 / 2.2)),
             };
             let (a0, a1, a2) = (attr(0), attr(1), attr(2));
-            let (tex, kind) = match face {
-                Some((f, _)) => (f.base, Kind::Face { w: f.w, h: f.h }),
-                None => (
+            let image = l
+                .and_then(|l| l.image)
+                .and_then(|i| Some((*image_base.get(i as usize)?, mesh.images.get(i as usize)?)))
+                .filter(|(_, im)| im.width.is_power_of_two() && im.height.is_power_of_two());
+            let (tex, kind) = match (face, image) {
+                (Some((f, _)), _) => (f.base, Kind::Face { w: f.w, h: f.h }),
+                (None, Some((base, im))) => (
+                    base,
+                    Kind::Image {
+                        w: im.width,
+                        h: im.height,
+                    },
+                ),
+                (None, None) => (
                     (l.map_or(Surface::Plain, |l| l.surface).index() * TEX_SIZE * TEX_SIZE) as u32,
                     Kind::Tiled,
                 ),
@@ -419,6 +449,7 @@ impl RasterScene {
             look,
             texels,
             draw,
+            image_texels,
             mesh,
             normal,
             objects,
@@ -884,6 +915,21 @@ impl RasterScene {
                             *l *= tex[*i as usize & (TEXELS - 1)] as f32;
                         }
                     }
+                    Kind::Image { w: iw, h: ih } => {
+                        let (mu, mv) = (iw - 1, ih - 1);
+                        for (((l, i), iz), j) in light[..n]
+                            .iter_mut()
+                            .zip(index[..n].iter_mut())
+                            .zip(&zr[x..e])
+                            .zip(&lanes[..n])
+                        {
+                            let inv = 1.0 / *iz;
+                            *l = (a0 * j + b0) * inv;
+                            let tu = ((a1 * j + b1) * inv - 0.5 + MAGIC).to_bits() & mu;
+                            let tv = ((a2 * j + b2) * inv - 0.5 + MAGIC).to_bits() & mv;
+                            *i = s.tex + tv * iw + tu;
+                        }
+                    }
                     Kind::Face { w: fw, h: fh } => {
                         let len = (fw * fh) as usize;
                         let Some(tex) = self.draw.texels.get(s.tex as usize..s.tex as usize + len)
@@ -908,12 +954,24 @@ impl RasterScene {
                     }
                 }
                 let [tr, tg, tb] = s.tone;
-                // Clamping the product once keeps every channel in [0, 255].
-                let top = 255.0 / tr.max(tg).max(tb).max(1e-6);
-                for (c, l) in packed[..n].iter_mut().zip(&light[..n]) {
-                    let m = if *l < top { *l } else { top };
-                    let m = if m > 0.0 { m } else { 0.0 };
-                    *c = byte(tr * m) | byte(tg * m) << 8 | byte(tb * m) << 16;
+                if let Kind::Image { .. } = s.kind {
+                    // RGB texels: each channel clamped on its own.
+                    let f = |v: f32| byte(v.clamp_range(0.0, 255.0));
+                    for ((c, l), i) in packed[..n].iter_mut().zip(&light[..n]).zip(&index[..n]) {
+                        let t = self.image_texels.get(*i as usize).copied().unwrap_or(0);
+                        let [r, g, b, _] = t.to_le_bytes();
+                        *c = f(tr * l * r as f32)
+                            | f(tg * l * g as f32) << 8
+                            | f(tb * l * b as f32) << 16;
+                    }
+                } else {
+                    // Clamping the product once keeps every channel in [0, 255].
+                    let top = 255.0 / tr.max(tg).max(tb).max(1e-6);
+                    for (c, l) in packed[..n].iter_mut().zip(&light[..n]) {
+                        let m = if *l < top { *l } else { top };
+                        let m = if m > 0.0 { m } else { 0.0 };
+                        *c = byte(tr * m) | byte(tg * m) << 8 | byte(tb * m) << 16;
+                    }
                 }
                 for (p, c) in px.chunks_exact_mut(3).zip(&packed[..n]) {
                     let [r, g, b, _] = c.to_le_bytes();

@@ -83,7 +83,10 @@ pub(crate) fn build(mesh: &SceneMesh, luma: &[u8]) -> DrawMesh {
         let mut groups: Vec<Vec<usize>> = Vec::new();
         let mut group_of = vec![usize::MAX; hi - lo];
         for t in lo..hi {
-            let Some(l) = mesh.look.get(t) else { continue };
+            // Imported images keep their own texture coordinates.
+            let Some(l) = mesh.look.get(t).filter(|l| l.image.is_none()) else {
+                continue;
+            };
             let n = mesh.normal(t);
             let q = |v: f32| (v as f64 * 1e4).round() as i64;
             let key = [
