@@ -44,11 +44,15 @@ pub enum Surface {
     Ceramic,
     /// Window glass (daylight with faint reflections).
     Glass,
+    /// A rug's woven pattern (a diamond lattice between bands).
+    Rug,
+    /// A painted canvas (a landscape of bands, hills and brush strokes).
+    Painting,
 }
 
 impl Surface {
     /// Every surface, in index order.
-    pub const ALL: [Surface; 12] = [
+    pub const ALL: [Surface; 14] = [
         Surface::Plain,
         Surface::Plaster,
         Surface::Wallpaper,
@@ -61,6 +65,8 @@ impl Surface {
         Surface::Metal,
         Surface::Ceramic,
         Surface::Glass,
+        Surface::Rug,
+        Surface::Painting,
     ];
 
     /// Position in [`Surface::ALL`].
@@ -83,6 +89,8 @@ impl Surface {
             Surface::Metal => "metal",
             Surface::Ceramic => "ceramic",
             Surface::Glass => "glass",
+            Surface::Rug => "rug",
+            Surface::Painting => "painting",
         }
     }
 
@@ -93,6 +101,8 @@ impl Surface {
             Surface::Tiles => 1.2,
             Surface::Plaster => 2.0,
             Surface::Fabric | Surface::Leather => 0.8,
+            Surface::Rug => 1.6,
+            Surface::Painting => 0.5,
             _ => 1.0,
         }
     }
@@ -228,6 +238,38 @@ impl Surface {
                             + 0.6 * (-(d - 58.0).powi(2) / 20.0).exp();
                         0.9 + 0.1 * streak + 0.01 * fbm(seed, fx, fy, 16.0)
                     }
+                    Surface::Rug => {
+                        // Diamonds of 32 texels with a dark outline, bands every 64 rows,
+                        // over a fine weave.
+                        let (u, v) = ((x % 32) as f32 - 16.0, (y % 32) as f32 - 16.0);
+                        let r = u.abs() + v.abs();
+                        let motif = if (r - 12.0).abs() < 1.5 {
+                            0.45
+                        } else if r < 5.0 {
+                            0.62
+                        } else if r < 12.0 {
+                            0.95
+                        } else {
+                            0.78
+                        };
+                        let band = if y % 64 < 4 { 0.55 } else { motif };
+                        let weave = if (x + y) % 2 == 0 { 0.03 } else { -0.03 };
+                        band + weave + 0.05 * fbm(seed, fx, fy, 8.0)
+                    }
+                    Surface::Painting => {
+                        // Sky brightening to a horizon, two hill lines, brush noise.
+                        let hill =
+                            70.0 + 10.0 * (fx * 0.05).sin() + 6.0 * fbm(seed, fx, 0.0, 16.0) * 8.0;
+                        let far = 58.0 + 8.0 * (fx * 0.09 + 1.0).sin();
+                        let base = if fy > hill {
+                            0.45 + 0.1 * (fy - hill) / 58.0
+                        } else if fy > far {
+                            0.68
+                        } else {
+                            0.98 - 0.3 * (fy / 58.0)
+                        };
+                        base + 0.08 * fbm(seed ^ 11, fx, fy * 0.25, 8.0)
+                    }
                 };
                 out.push((v.clamp(0.0, 1.0) * 255.0).round() as u8);
             }
@@ -321,6 +363,8 @@ pub fn surface_of(scene: &Scene, o: &SceneObject) -> Surface {
             }
         }
         SemanticClass::DoorFrame => Surface::Wood,
+        SemanticClass::Rug => Surface::Rug,
+        _ if o.material == "canvas" => Surface::Painting,
         _ => match o.material.as_str() {
             "wood" | "wooden" => Surface::Wood,
             "fabric" | "cotton" | "wool" => Surface::Fabric,

@@ -213,7 +213,7 @@ fn blocked(objects: &[SceneObject], v: [Vec3; 2]) -> bool {
     objects.iter().any(|o| {
         !matches!(
             o.class,
-            C::Floor | C::Wall | C::Ceiling | C::DoorFrame | C::Rug | C::Window
+            C::Floor | C::Wall | C::Ceiling | C::DoorFrame | C::Rug
         ) && (0..3).all(|k| o.bbox.min[k] < v[1][k] && o.bbox.max[k] > v[0][k])
     })
 }
@@ -507,10 +507,94 @@ fn add_skirting(cfg: &ProcgenConfig, plan: &Plan, faces: &[Face], b: &mut Builde
     }
 }
 
+const PICTURE_FRAMES: &[[f32; 3]] = &[
+    [0.12, 0.1, 0.08],
+    [0.42, 0.3, 0.18],
+    [0.85, 0.84, 0.8],
+    [0.62, 0.52, 0.3],
+];
+
+const CANVASES: &[(&str, [f32; 3])] = &[
+    ("blue", [0.35, 0.5, 0.72]),
+    ("green", [0.45, 0.62, 0.42]),
+    ("orange", [0.85, 0.55, 0.3]),
+    ("red", [0.7, 0.3, 0.28]),
+    ("yellow", [0.85, 0.75, 0.4]),
+    ("beige", [0.8, 0.72, 0.6]),
+];
+
+/// Pictures on the walls of living rooms, bedrooms and hallways: a frame and a painted canvas
+/// (material `canvas`: a painting texture), one or two per room, at eye height, clear of
+/// windows, doorways and tall furniture. They stay under 0.5 m across, below the size at which
+/// small objects are named in instructions, so instructions stay as they were.
+fn add_pictures(
+    cfg: &ProcgenConfig,
+    plan: &Plan,
+    faces: &[Face],
+    rng: &mut ChaCha8Rng,
+    b: &mut Builder,
+) {
+    let t = cfg.walls.thickness;
+    for (i, room) in plan.rooms.iter().enumerate() {
+        let want = match room.kind {
+            RoomType::LivingRoom => 2,
+            RoomType::Bedroom | RoomType::Hallway => 1,
+            _ => continue,
+        };
+        let mut placed = 0;
+        // Start at a seeded face so pictures do not all hang on the same side.
+        let room_faces: Vec<&Face> = faces.iter().filter(|f| f.room == i).collect();
+        let start = rng.random_range(0..room_faces.len().max(1));
+        for k in 0..room_faces.len() {
+            if placed >= want {
+                break;
+            }
+            let face = room_faces[(start + k) % room_faces.len()];
+            let Some(depth) = face.depth.filter(|d| *d >= 0.008) else {
+                continue;
+            };
+            let (w, h) = if rng.random_bool(0.5) {
+                (rng.random_range(0.36..0.48), rng.random_range(0.28..0.36))
+            } else {
+                (rng.random_range(0.28..0.36), rng.random_range(0.36..0.48))
+            };
+            let cy = rng.random_range(1.45..1.6);
+            let stretches = free_stretches(cfg, plan, face, face.span, CLEAR);
+            let ys = (cy - h * 0.5 - 0.1, cy + h * 0.5 + 0.1);
+            let Some(c) = find_spot(&b.objects, face, t, &stretches, w, 0.3, ys) else {
+                continue;
+            };
+            let frame = *PICTURE_FRAMES.choose(rng).unwrap_or(&PICTURE_FRAMES[0]);
+            let (name, canvas) = *CANVASES.choose(rng).unwrap_or(&CANVASES[0]);
+            let d = depth.min(0.03);
+            let parts = vec![
+                box_part(Vec3::new(0.0, cy, d * 0.3), Vec3::new(w, h, d * 0.6), frame),
+                box_part(
+                    Vec3::new(0.0, cy, d * 0.6),
+                    Vec3::new(w - 0.06, h - 0.06, d * 0.6),
+                    canvas,
+                ),
+            ];
+            b.add(
+                C::PictureFrame,
+                Some(i as RoomId),
+                face.pose(t, c),
+                parts,
+                name,
+                "canvas",
+                1.5,
+                None,
+            );
+            placed += 1;
+        }
+    }
+}
+
 /// Add windows, skirting boards and pictures to a home whose other objects are all placed.
 pub(crate) fn add_decor(cfg: &ProcgenConfig, plan: &Plan, seed: u64, b: &mut Builder) {
     let mut rng = ChaCha8Rng::seed_from_u64(seed ^ SALT);
     let faces = faces(cfg, plan);
     add_windows(cfg, plan, &faces, &mut rng, b);
     add_skirting(cfg, plan, &faces, b);
+    add_pictures(cfg, plan, &faces, &mut rng, b);
 }

@@ -120,6 +120,37 @@ fn skirting_boards_run_along_the_walls() {
 }
 
 #[test]
+fn pictures_hang_at_eye_height_and_are_never_landmarks() {
+    let g = generator(true);
+    let mut count = 0;
+    for i in 0..g.len() {
+        let s = g.scene(i).unwrap();
+        for o in s
+            .objects
+            .iter()
+            .filter(|o| o.class == C::PictureFrame && o.material == "canvas")
+        {
+            count += 1;
+            assert!(
+                o.bbox.min[1] > 1.1 && o.bbox.max[1] < 1.9,
+                "{}: {:?}",
+                s.id,
+                o.bbox
+            );
+            assert!(!vlnverse_env::scene_graph::is_landmark(o));
+            let room = s.room(o.room.unwrap()).unwrap();
+            assert!(matches!(
+                room.kind,
+                vlnverse_env::RoomType::LivingRoom
+                    | vlnverse_env::RoomType::Bedroom
+                    | vlnverse_env::RoomType::Hallway
+            ));
+        }
+    }
+    assert!(count >= 3, "{count} pictures");
+}
+
+#[test]
 fn window_daylight_brightens_the_floor_in_front_of_it() {
     let s = generator(true).scene(0).unwrap();
     let mut dark = s.clone();
@@ -160,18 +191,4 @@ fn decor_is_deterministic() {
         serde_json::to_string(&a).unwrap(),
         serde_json::to_string(&b).unwrap()
     );
-}
-
-#[test]
-fn zz_print_counts() {
-    let (with, without) = pair(0);
-    let n = without.objects.len();
-    for o in &with.objects[n..] {
-        let tris: usize = o
-            .parts
-            .iter()
-            .map(|p| vlnverse_env::geometry::triangle_count_cells(&p.shape, light::cell_of(&with, o)))
-            .sum();
-        println!("{:?} {} parts {} tris {} room {:?}", o.class, o.material, o.parts.len(), tris, o.room);
-    }
 }
