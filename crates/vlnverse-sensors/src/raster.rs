@@ -686,6 +686,26 @@ impl RasterScene {
                 return None;
             }
         }
+        // In front of the near plane and so small that no pixel centre can be inside its box
+        // (with a margin far above snapping and rounding): most triangles of detailed far
+        // objects, rejected before the exact set-up.
+        if v.iter().all(|q| q.z <= nz) {
+            let s = v.map(|q| p.project(q));
+            let (x0, x1) = (
+                s[0].0.min(s[1].0).min(s[2].0),
+                s[0].0.max(s[1].0).max(s[2].0),
+            );
+            let (y0, y1) = (
+                s[0].1.min(s[1].1).min(s[2].1),
+                s[0].1.max(s[1].1).max(s[2].1),
+            );
+            const M: f32 = 0.01;
+            if (x0 - 0.5 - M).ceil() > (x1 - 0.5 + M).floor()
+                || (y0 - 0.5 - M).ceil() > (y1 - 0.5 + M).floor()
+            {
+                return None;
+            }
+        }
         // The plane of the whole triangle gives 1/depth at every pixel (exact under clipping).
         let [a, b, c] = v.map(|q| q.as_dvec3());
         let nrm: DVec3 = (b - a).cross(c - a);
