@@ -86,11 +86,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let secs = t.elapsed().as_secs_f64();
     let mesh = std::sync::Arc::new(SceneMesh::new(&scene)?);
+    let raster = RasterScene::new(mesh.clone());
     println!(
-        "{}: {} triangles ({} drawn), scene prepared (bake included) in {prep:.3} s; {n} observations: {:.0} frames/s",
+        "{}: {} triangles ({} drawn, {:.1} MB of face textures), scene prepared (bake included) in {prep:.3} s; {n} observations: {:.0} frames/s",
         scene.id,
         mesh.triangle_count(),
-        RasterScene::new(mesh).drawn_triangles(),
+        raster.drawn_triangles(),
+        raster.face_texture_bytes() as f64 / 1e6,
         n as f64 / secs
     );
     Ok(())

@@ -468,6 +468,11 @@ impl RasterScene {
         self.draw.src.len()
     }
 
+    /// Bytes of the face textures of the merged faces.
+    pub fn face_texture_bytes(&self) -> usize {
+        self.draw.texels.len()
+    }
+
     /// Number of objects whose back faces may be culled (closed, outward-oriented surfaces).
     pub fn closed_objects(&self) -> usize {
         self.objects.iter().filter(|o| o.closed).count()
@@ -820,8 +825,10 @@ impl RasterScene {
         };
         if let Some(rgb) = rgb {
             self.resolve_rgb(setup, w, y0, zbuf, ids, rgb);
-            for id in ids.iter_mut() {
-                *id = setup.slot_tag[*id as usize];
+            if semantic.is_some() || want_instance {
+                for id in ids.iter_mut() {
+                    *id = setup.slot_tag[*id as usize];
+                }
             }
         }
         self.resolve_depth(p, zbuf, want_depth);
@@ -993,11 +1000,14 @@ impl RasterScene {
                         *c = byte(tr * m) | byte(tg * m) << 8 | byte(tb * m) << 16;
                     }
                 }
-                for (p, c) in px.chunks_exact_mut(3).zip(&packed[..n]) {
-                    let [r, g, b, _] = c.to_le_bytes();
-                    p[0] = r;
-                    p[1] = g;
-                    p[2] = b;
+                // Four bytes at a time, each pixel's fourth overwritten by the next pixel.
+                for (j, c) in packed[..n - 1].iter().enumerate() {
+                    if let Some(p) = px.get_mut(3 * j..3 * j + 4) {
+                        p.copy_from_slice(&c.to_le_bytes());
+                    }
+                }
+                if let Some(p) = px.get_mut(3 * n - 3..3 * n) {
+                    p.copy_from_slice(&packed[n - 1].to_le_bytes()[..3]);
                 }
                 x = e;
             }
