@@ -19,8 +19,6 @@ use vlnverse_env::Aabb;
 
 /// Largest face texture (texels); bigger faces keep their cells.
 const MAX_TEXELS: usize = 1 << 22;
-/// Most face-texture texels per metre (surface textures finer than that are box-filtered).
-const MAX_DENSITY: f32 = 64.0;
 
 /// A merged face's texture: `w x h` bytes at `base` of [`DrawMesh::texels`], row-major; texel
 /// `(i, j)` covers texture coordinates `[u0 + i, u0 + i + 1) x [v0 + j, v0 + j + 1)`.
@@ -180,30 +178,21 @@ fn merge(d: &mut DrawMesh, mesh: &SceneMesh, tris: &[usize], luma: &[u8]) -> boo
     for c in &cuv {
         (umin, umax, vmin, vmax) = (umin.min(c.x), umax.max(c.x), vmin.min(c.y), vmax.max(c.y));
     }
-    // Texels of the surface texture per face texel along each side: faces keep at most
-    // `MAX_DENSITY` texels per metre (the texture box-filtered), so that the face textures of
-    // a home stay small enough for the caches.
-    let density = TEX_SIZE as f32 / look.surface.repeat();
-    let k = (density / MAX_DENSITY).ceil().max(1.0);
     let (u0, v0) = (umin.floor(), vmin.floor());
     let (w, h) = (
-        (((umax - u0) / k).ceil() as usize).max(1),
-        (((vmax - v0) / k).ceil() as usize).max(1),
+        ((umax.ceil() - u0) as usize).max(1),
+        ((vmax.ceil() - v0) as usize).max(1),
     );
     if !(u0.is_finite() && v0.is_finite()) || w * h > MAX_TEXELS {
         return false;
     }
-    let filtered = box_filter(
-        &luma[look.surface.index() * TEX_SIZE * TEX_SIZE..][..TEX_SIZE * TEX_SIZE],
-        k as usize,
-    );
+    let tex = &luma[look.surface.index() * TEX_SIZE * TEX_SIZE..][..TEX_SIZE * TEX_SIZE];
     let base = d.texels.len();
     let mut texels = vec![None::<u8>; w * h];
     let mask = TEX_SIZE as i64 - 1;
-    let (ku, kv) = (u0 as i64, v0 as i64);
     for &t in tris {
         let l = &mesh.look[t];
-        let uv = l.uv.map(|p| Vec2::new((p[0] - u0) / k, (p[1] - v0) / k));
+        let uv = l.uv.map(|p| Vec2::new(p[0] - u0, p[1] - v0));
         let (e1, e2) = (uv[1] - uv[0], uv[2] - uv[0]);
         let den = e1.perp_dot(e2);
         if den.abs() < 1e-12 {
@@ -219,21 +208,19 @@ fn merge(d: &mut DrawMesh, mesh: &SceneMesh, tris: &[usize], luma: &[u8]) -> boo
             (lo.y - 0.5).floor().max(0.0) as usize,
             (hi.y.ceil() as usize).min(h),
         );
-        let dl = [l.light[1] - l.light[0], l.light[2] - l.light[0]];
         for j in j0..j1 {
-            let tv = (kv + (k as i64) * j as i64) & mask;
-            let row = &filtered[tv as usize * TEX_SIZE..][..TEX_SIZE];
             for i in i0..i1 {
                 let q = Vec2::new(i as f32 + 0.5, j as f32 + 0.5) - uv[0];
                 let (b1, b2) = (q.perp_dot(e2) / den, e1.perp_dot(q) / den);
                 if b1 < -1e-4 || b2 < -1e-4 || b1 + b2 > 1.0 + 1e-4 {
                     continue;
                 }
+                let light =
+                    l.light[0] + b1 * (l.light[1] - l.light[0]) + b2 * (l.light[2] - l.light[0]);
+                let (tu, tv) = ((u0 as i64 + i as i64) & mask, (v0 as i64 + j as i64) & mask);
+                let texel = tex[(tv * TEX_SIZE as i64 + tu) as usize] as f32;
                 let cell = &mut texels[j * w + i];
                 if cell.is_none() {
-                    let light = l.light[0] + b1 * dl[0] + b2 * dl[1];
-                    let tu = (ku + (k as i64) * i as i64) & mask;
-                    let texel = row[tu as usize];
                     *cell = Some((light * texel).round().clamp(0.0, 255.0) as u8);
                 }
             }
@@ -250,25 +237,11 @@ fn merge(d: &mut DrawMesh, mesh: &SceneMesh, tris: &[usize], luma: &[u8]) -> boo
         w: w as u32,
         h: h as u32,
     };
-    let local = cuv.map(|c| [(c.x - u0) / k, (c.y - v0) / k]);
+    let local = cuv.map(|c| [c.x - u0, c.y - v0]);
     for (a, b, c) in [(0, 1, 2), (0, 2, 3)] {
         d.pos.extend_from_slice(&[corner[a], corner[b], corner[c]]);
         d.src.push(t0 as u32);
         d.face.push(Some((face, [local[a], local[b], local[c]])));
     }
     true
-}
-
-/// The mean of each `k x k` block of a repeating `TEX_SIZE` texture, starting at every texel.
-fn box_filter(tex: &[u8], k: usize) -> Vec<f32> {
-    let n = TEX_SIZE;
-    (0..n * n)
-        .map(|i| {
-            let (y, x) = (i / n, i % n);
-            let sum: u32 = (0..k * k)
-                .map(|j| tex[((y + j / k) % n) * n + (x + j % k) % n] as u32)
-                .sum();
-            sum as f32 / (k * k) as f32
-        })
-        .collect()
 }
