@@ -13,7 +13,6 @@
 
 use crate::scene_mesh::SceneMesh;
 use glam::{Vec2, Vec3};
-use std::collections::HashMap;
 use vlnverse_env::material::TEX_SIZE;
 use vlnverse_env::Aabb;
 
@@ -78,33 +77,42 @@ pub(crate) fn build(mesh: &SceneMesh, luma: &[u8]) -> DrawMesh {
     for o in &mesh.objects {
         let first = d.src.len();
         let (lo, hi) = (o.first as usize, (o.first + o.count) as usize);
-        // Group the object's triangles by plane and look, in order of first appearance.
-        let mut key_of: HashMap<[i64; 8], usize> = HashMap::new();
+        // Group the object's triangles by plane and look, then into pieces that share corners
+        // (coplanar faces of separate parts, such as wall pieces beside a door, stay apart).
+        let mut keyed: Vec<([i64; 8], usize)> = (lo..hi)
+            .filter_map(|t| {
+                // Imported images keep their own texture coordinates.
+                let l = mesh.look.get(t).filter(|l| l.image.is_none())?;
+                let n = mesh.normal(t);
+                let q = |v: f32| (v as f64 * 1e4).round() as i64;
+                Some((
+                    [
+                        q(n.x),
+                        q(n.y),
+                        q(n.z),
+                        q(n.dot(mesh.positions[3 * t])),
+                        l.tone[0].to_bits() as i64,
+                        l.tone[1].to_bits() as i64,
+                        l.tone[2].to_bits() as i64,
+                        l.surface.index() as i64,
+                    ],
+                    t,
+                ))
+            })
+            .collect();
+        keyed.sort_unstable();
         let mut groups: Vec<Vec<usize>> = Vec::new();
+        for run in keyed.chunk_by(|a, b| a.0 == b.0) {
+            let tris: Vec<usize> = run.iter().map(|k| k.1).collect();
+            groups.extend(pieces(mesh, &tris));
+        }
+        // In order of first triangle, so the draw order follows the mesh.
+        groups.sort_unstable_by_key(|g| g[0]);
         let mut group_of = vec![usize::MAX; hi - lo];
-        for t in lo..hi {
-            // Imported images keep their own texture coordinates.
-            let Some(l) = mesh.look.get(t).filter(|l| l.image.is_none()) else {
-                continue;
-            };
-            let n = mesh.normal(t);
-            let q = |v: f32| (v as f64 * 1e4).round() as i64;
-            let key = [
-                q(n.x),
-                q(n.y),
-                q(n.z),
-                q(n.dot(mesh.positions[3 * t])),
-                l.tone[0].to_bits() as i64,
-                l.tone[1].to_bits() as i64,
-                l.tone[2].to_bits() as i64,
-                l.surface.index() as i64,
-            ];
-            let g = *key_of.entry(key).or_insert_with(|| {
-                groups.push(Vec::new());
-                groups.len() - 1
-            });
-            groups[g].push(t);
-            group_of[t - lo] = g;
+        for (g, tris) in groups.iter().enumerate() {
+            for &t in tris {
+                group_of[t - lo] = g;
+            }
         }
         let mut done = vec![false; groups.len()];
         for t in lo..hi {
@@ -126,6 +134,54 @@ pub(crate) fn build(mesh: &SceneMesh, luma: &[u8]) -> DrawMesh {
         d.objects.push((first, d.src.len() - first, o.bbox));
     }
     d
+}
+
+/// Split triangles into pieces connected through shared corners (exact positions), each in
+/// triangle order.
+fn pieces(mesh: &SceneMesh, tris: &[usize]) -> Vec<Vec<usize>> {
+    if tris.len() <= 2 {
+        return vec![tris.to_vec()];
+    }
+    let mut parent: Vec<usize> = (0..tris.len()).collect();
+    fn find(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    let mut corner: Vec<([u32; 3], usize)> = tris
+        .iter()
+        .enumerate()
+        .flat_map(|(i, &t)| {
+            (0..3).map(move |k| {
+                (
+                    mesh.positions[3 * t + k]
+                        .to_array()
+                        .map(|c| (c + 0.0).to_bits()),
+                    i,
+                )
+            })
+        })
+        .collect();
+    corner.sort_unstable();
+    for run in corner.chunk_by(|a, b| a.0 == b.0) {
+        for w in run.windows(2) {
+            let (a, b) = (find(&mut parent, w[0].1), find(&mut parent, w[1].1));
+            parent[a] = b;
+        }
+    }
+    let mut out: Vec<Vec<usize>> = Vec::new();
+    let mut slot: Vec<usize> = vec![usize::MAX; tris.len()];
+    for (i, &t) in tris.iter().enumerate() {
+        let r = find(&mut parent, i);
+        if slot[r] == usize::MAX {
+            slot[r] = out.len();
+            out.push(Vec::new());
+        }
+        out[slot[r]].push(t);
+    }
+    out
 }
 
 fn push_plain(d: &mut DrawMesh, mesh: &SceneMesh, t: usize) {
@@ -244,4 +300,97 @@ fn merge(d: &mut DrawMesh, mesh: &SceneMesh, tris: &[usize], luma: &[u8]) -> boo
         d.face.push(Some((face, [local[a], local[b], local[c]])));
     }
     true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene_mesh::{ObjectRange, TriLook};
+    use vlnverse_env::material::Surface;
+
+    /// Light of the test floors: linear, so every triangulation interpolates it exactly.
+    fn light(p: Vec3) -> f32 {
+        0.2 + 0.3 * p.x + 0.1 * p.z
+    }
+
+    /// A floor object of unit cells at y = 0 (two triangles each, upward), texture coordinates
+    /// 64 texels per metre.
+    fn floor(cells: &[(i32, i32)]) -> SceneMesh {
+        let mut m = SceneMesh::default();
+        for &(x, z) in cells {
+            let c = |dx: i32, dz: i32| Vec3::new((x + dx) as f32, 0.0, (z + dz) as f32);
+            for tri in [[c(0, 0), c(0, 1), c(1, 1)], [c(0, 0), c(1, 1), c(1, 0)]] {
+                m.positions.extend_from_slice(&tri);
+                m.object.push(1);
+                m.color.push([0.8; 3]);
+                m.look.push(TriLook {
+                    tone: [0.9; 3],
+                    light: tri.map(light),
+                    uv: tri.map(|p| [p.x * 64.0, p.z * 64.0]),
+                    surface: Surface::Plain,
+                    image: None,
+                });
+            }
+        }
+        let mut bbox = Aabb::EMPTY;
+        m.positions.iter().for_each(|p| bbox.extend(*p));
+        m.objects.push(ObjectRange {
+            id: 1,
+            first: 0,
+            count: m.object.len() as u32,
+            bbox,
+        });
+        m
+    }
+
+    fn luma() -> Vec<u8> {
+        Surface::ALL
+            .iter()
+            .flat_map(|s| s.luma_encoded().iter().copied())
+            .collect()
+    }
+
+    #[test]
+    fn cells_of_a_rectangle_become_two_triangles_and_a_face_texture_of_their_light() {
+        let m = floor(&[(0, 0), (0, 1), (1, 0), (1, 1)]);
+        let luma = luma();
+        let d = build(&m, &luma);
+        assert_eq!(d.src.len(), 2, "8 cell triangles drawn as 2");
+        let (f, _) = d.face[0].expect("merged");
+        assert_eq!((f.w, f.h), (128, 128));
+        // The same normal as the cells (upward), so back faces stay back faces.
+        let p = &d.pos[0..3];
+        assert!((p[1] - p[0]).cross(p[2] - p[0]).y > 0.0);
+        let plain = Surface::Plain.luma_encoded()[0] as f32;
+        for (i, j) in [(0, 0), (5, 100), (127, 127), (64, 3)] {
+            let q = Vec3::new((i as f32 + 0.5) / 64.0, 0.0, (j as f32 + 0.5) / 64.0);
+            let want = (light(q) * plain).round();
+            let got = d.texels[(f.base + j * f.w + i) as usize] as f32;
+            assert!(
+                (got - want).abs() <= 1.0,
+                "texel ({i}, {j}): {got} vs {want}"
+            );
+        }
+    }
+
+    #[test]
+    fn cells_that_do_not_tile_a_rectangle_stay_cells() {
+        // An L of three cells, and two squares apart on one plane (merged one by one).
+        let l = floor(&[(0, 0), (0, 1), (1, 0)]);
+        assert_eq!(build(&l, &luma()).src.len(), 6);
+        let apart = floor(&[
+            (0, 0),
+            (0, 1),
+            (1, 0),
+            (1, 1),
+            (5, 0),
+            (5, 1),
+            (6, 0),
+            (6, 1),
+        ]);
+        let d = build(&apart, &luma());
+        assert_eq!(d.src.len(), 4);
+        assert!(d.face.iter().all(|f| f.is_some()));
+        assert_eq!(d.objects, vec![(0, 4, apart.objects[0].bbox)]);
+    }
 }
