@@ -958,13 +958,10 @@ impl RasterScene {
                         }
                     }
                     Kind::Face { w: fw, h: fh } => {
-                        let len = (fw * fh) as usize;
-                        let Some(tex) = self.draw.texels.get(s.tex as usize..s.tex as usize + len)
-                        else {
-                            px.fill(0);
-                            x = e;
-                            continue;
-                        };
+                        // Face textures are padded to a power of two: a masked index needs no
+                        // bounds check (and every face's texels lie inside).
+                        let mask = self.draw.texels.len().saturating_sub(1);
+                        let all = &self.draw.texels[..=mask];
                         // Coordinates clamped into the face texture (rounding at its edges).
                         let (umax, vmax) = (fw as f32 - 0.5, fh as f32 - 0.5);
                         for ((i, iz), j) in index[..n].iter_mut().zip(&zr[x..e]).zip(&lanes[..n]) {
@@ -973,10 +970,10 @@ impl RasterScene {
                             let v = ((a2 * j + b2) * inv).clamp_range(0.0, vmax);
                             let tu = (u - 0.5 + MAGIC).to_bits() & 0x3f_ffff;
                             let tv = (v - 0.5 + MAGIC).to_bits() & 0x3f_ffff;
-                            *i = tv * fw + tu;
+                            *i = s.tex + tv * fw + tu;
                         }
                         for (l, i) in light[..n].iter_mut().zip(&index[..n]) {
-                            *l = tex.get(*i as usize).copied().unwrap_or(0) as f32;
+                            *l = all[*i as usize & mask] as f32;
                         }
                     }
                 }

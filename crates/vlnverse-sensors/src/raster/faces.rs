@@ -39,7 +39,7 @@ pub(crate) struct DrawMesh {
     pub face: Vec<Option<(FaceTexture, [[f32; 2]; 3])>>,
     /// Draw triangle range and box of each mesh object (same order).
     pub objects: Vec<(usize, usize, Aabb)>,
-    /// Every face texture, one after the other.
+    /// Every face texture, one after the other (then zeros up to a power of two).
     pub texels: Vec<u8>,
 }
 
@@ -133,6 +133,9 @@ pub(crate) fn build(mesh: &SceneMesh, luma: &[u8]) -> DrawMesh {
         }
         d.objects.push((first, d.src.len() - first, o.bbox));
     }
+    // A power-of-two length lets the resolve mask its indices instead of checking them.
+    let n = d.texels.len().max(1).next_power_of_two();
+    d.texels.resize(n, 0);
     d
 }
 
