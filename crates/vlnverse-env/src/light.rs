@@ -62,7 +62,7 @@ const DAY_REACH: f32 = 7.0;
 /// Daylight is sampled this far in front of the pane (in front of frames and curtains, which
 /// stay within 5 cm of the wall).
 const DAY_LIFT: f32 = 0.06;
-/// Objects of class `wall` lower than this are skirting boards: no cells (a long thin board
+/// Objects of class `wall` lower than this (or floors taller than 6 cm) are skirting boards: no cells (a long thin board
 /// would cost many triangles for a light that hardly changes along it).
 const LOW_WALL: f32 = 0.5;
 
@@ -150,7 +150,9 @@ pub fn cell_of(scene: &Scene, o: &SceneObject) -> Option<f32> {
     }
     let m = crate::geometry::MAX_CELL;
     match o.class {
+        // Skirting boards (low walls or raised floors): two triangles per face.
         SemanticClass::Wall if o.bbox.max[1] - o.bbox.min[1] < LOW_WALL => None,
+        SemanticClass::Floor if o.bbox.max[1] > o.bbox.min[1] + 0.06 => None,
         // Shadows of furniture on the floor need the finest cells; walls and ceilings carry
         // smooth falloff and corner occlusion.
         SemanticClass::Floor => Some(m),

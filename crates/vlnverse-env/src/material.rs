@@ -333,8 +333,12 @@ pub fn surface_of(scene: &Scene, o: &SceneObject) -> Surface {
         h % 3
     };
     match o.class {
-        // Skirting boards are walls of wood or painted plastic.
-        SemanticClass::Wall if matches!(o.material.as_str(), "wood" | "plastic") => {
+        // Skirting boards (low walls or raised floors) of wood or painted plastic.
+        SemanticClass::Wall | SemanticClass::Floor
+            if matches!(o.material.as_str(), "wood" | "plastic")
+                && o.bbox.max[1] - o.bbox.min[1] > 0.06
+                && o.bbox.max[1] - o.bbox.min[1] < 0.5 =>
+        {
             if o.material == "wood" {
                 Surface::Wood
             } else {

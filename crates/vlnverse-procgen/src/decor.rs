@@ -33,8 +33,17 @@ const WINDOW_Y: (f32, f32) = (0.9, 2.2);
 const CLEAR: f32 = 0.3;
 /// Most windows in one room.
 const MAX_WINDOWS: usize = 2;
+/// Class of skirting boards. `floor`, not `wall`: instructions test sight lines against the
+/// footprints of all `wall` objects (`vlnverse-task`, `wall_rects`), and a board's strip along
+/// a wall face cuts the sight line to furniture standing flush against the wall, which changes
+/// instructions. Floors are only covered area to the maps, and boards lie inside the room's
+/// floor.
+const SKIRTING_CLASS: C = C::Floor;
 /// Skirting board height (m).
 const SKIRTING_H: f32 = 0.09;
+/// Skirting boards stop this far short of a doorway (m), so that no sight line through the
+/// doorway grazes one.
+const SKIRTING_SETBACK: f32 = 0.06;
 
 /// Material word of window panes: the light bake makes them area lights
 /// (`vlnverse_env::light`), the renderers draw them as glass.
@@ -446,64 +455,55 @@ fn add_windows(
     }
 }
 
-/// Skirting boards: one `Wall` object per room, a board along each interior face between
-/// doorways.
+/// Skirting boards: an object of [`SKIRTING_CLASS`] per board, one along each interior face
+/// between doorways, [`SKIRTING_SETBACK`] short of each doorway.
 fn add_skirting(cfg: &ProcgenConfig, plan: &Plan, faces: &[Face], b: &mut Builder) {
     let t = cfg.walls.thickness;
     // One finish per home, as a builder would fit it.
     let fin = SKIRTING[(plan.rooms.len() + plan.openings.len()) % SKIRTING.len()];
-    for (i, _) in plan.rooms.iter().enumerate() {
-        let mut parts = Vec::new();
-        for face in faces.iter().filter(|f| f.room == i) {
-            let Some(depth) = face.depth.filter(|d| *d >= 0.006) else {
-                continue;
-            };
-            let d = depth.min(0.015);
-            let doors: Vec<(f32, f32)> = plan
-                .openings
-                .iter()
-                .filter(|o| o.along_z == face.along_z && key(o.line) == key(face.line))
-                .map(|o| {
-                    let g = o.gap(cfg) * 0.5 + 0.002;
-                    (o.center - g, o.center + g)
-                })
-                .collect();
-            let lo = face.span.0 + t * 0.5;
-            let hi = face.span.1 - t * 0.5;
-            for (s, e) in subtract(lo, hi, &doors) {
-                let len = e - s;
-                if len < 0.05 {
-                    continue;
-                }
-                let mid = (s + e) * 0.5;
-                let f = face.face(t) + face.sign * d * 0.5;
-                let (pos, size) = if face.along_z {
-                    (
-                        Vec3::new(f, SKIRTING_H * 0.5, mid),
-                        Vec3::new(d, SKIRTING_H, len),
-                    )
-                } else {
-                    (
-                        Vec3::new(mid, SKIRTING_H * 0.5, f),
-                        Vec3::new(len, SKIRTING_H, d),
-                    )
-                };
-                parts.push(box_part(pos, size, fin.rgb));
-            }
-        }
-        if parts.is_empty() {
+    for face in faces {
+        let Some(depth) = face.depth.filter(|d| *d >= 0.006) else {
             continue;
+        };
+        let d = depth.min(0.015);
+        let doors: Vec<(f32, f32)> = plan
+            .openings
+            .iter()
+            .filter(|o| o.along_z == face.along_z && key(o.line) == key(face.line))
+            .map(|o| {
+                let g = o.gap(cfg) * 0.5 + SKIRTING_SETBACK;
+                (o.center - g, o.center + g)
+            })
+            .collect();
+        let lo = face.span.0 + t * 0.5;
+        let hi = face.span.1 - t * 0.5;
+        for (s, e) in subtract(lo, hi, &doors) {
+            let len = e - s;
+            if len < 0.1 {
+                continue;
+            }
+            let mid = (s + e) * 0.5;
+            let f = face.face(t) + face.sign * d * 0.5;
+            let (pos, size) = if face.along_z {
+                (Vec3::new(f, 0.0, mid), Vec3::new(d, SKIRTING_H, len))
+            } else {
+                (Vec3::new(mid, 0.0, f), Vec3::new(len, SKIRTING_H, d))
+            };
+            b.add(
+                SKIRTING_CLASS,
+                Some(face.room as RoomId),
+                Pose::from_yaw(pos, 0.0),
+                vec![box_part(
+                    Vec3::new(0.0, SKIRTING_H * 0.5, 0.0),
+                    size,
+                    fin.rgb,
+                )],
+                fin.color,
+                fin.material,
+                len,
+                None,
+            );
         }
-        b.add(
-            C::Wall,
-            Some(i as RoomId),
-            Pose::IDENTITY,
-            parts,
-            fin.color,
-            fin.material,
-            5.0,
-            None,
-        );
     }
 }
 
@@ -596,5 +596,7 @@ pub(crate) fn add_decor(cfg: &ProcgenConfig, plan: &Plan, seed: u64, b: &mut Bui
     let faces = faces(cfg, plan);
     add_windows(cfg, plan, &faces, &mut rng, b);
     add_skirting(cfg, plan, &faces, b);
-    add_pictures(cfg, plan, &faces, &mut rng, b);
+    if cfg.walls.pictures {
+        add_pictures(cfg, plan, &faces, &mut rng, b);
+    }
 }
