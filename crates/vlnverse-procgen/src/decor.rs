@@ -31,6 +31,8 @@ const GRID_MARGIN: f64 = 3e-4;
 const WINDOW_Y: (f32, f32) = (0.9, 2.2);
 /// Distance windows and pictures keep from doorways and corners (m).
 const CLEAR: f32 = 0.3;
+/// Width a window needs beside its frame for curtains (both sides together, m).
+const CURTAIN_ROOM: f32 = 0.75;
 /// Most windows in one room.
 const MAX_WINDOWS: usize = 2;
 /// Class of skirting boards. `floor`, not `wall`: instructions test sight lines against the
@@ -436,12 +438,13 @@ fn add_windows(
                     .iter()
                     .flat_map(|&(s, e)| subtract(s, e, &taken))
                     .collect();
+                // Room for curtains drawn open at both sides.
                 let Some(c) = find_spot(
                     &b.objects,
                     face,
                     t,
                     &free,
-                    w,
+                    w + CURTAIN_ROOM,
                     0.35,
                     (WINDOW_Y.0 - 0.15, WINDOW_Y.1 + 0.25),
                 ) else {
