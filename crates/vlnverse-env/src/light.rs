@@ -51,6 +51,8 @@ const FLAT_LIGHT: [f32; 3] = [0.35, 1.0, 0.25];
 pub const LAMP_TINT: [f32; 3] = [1.04, 1.0, 0.92];
 /// Cells of walls, in units of [`crate::geometry::MAX_CELL`].
 const WALL_CELL: f32 = 2.0;
+/// Light thrown back up by floors and walls onto faces looking down (a cheap bounce).
+const BOUNCE: f32 = 0.24;
 /// Results kept by the cache of [`bake`].
 const CACHE: usize = 32;
 /// Daylight through a window: light per square metre of pane at 1 m, straight in front.
@@ -156,9 +158,9 @@ pub fn cell_of(scene: &Scene, o: &SceneObject) -> Option<f32> {
         // Shadows of furniture on the floor need the finest cells; walls and ceilings carry
         // smooth falloff and corner occlusion.
         SemanticClass::Floor => Some(m),
-        SemanticClass::Wall => Some(m * WALL_CELL),
-        // Ceilings: light from their corners only (a smooth gradient; cells there cost
-        // triangles in every view and show little).
+        // Walls and ceilings carry smooth falloff, the lamps' pools of light and corner
+        // occlusion. The rasteriser draws cut faces whole, so cells cost it no triangles.
+        SemanticClass::Wall | SemanticClass::Ceiling => Some(m * WALL_CELL),
         _ => None,
     }
 }
@@ -499,7 +501,9 @@ impl Ctx<'_> {
                 }
             }
         }
-        let ambient = 0.17 + 0.06 * n.y;
+        // Sky-ish ambient from above; faces looking down (ceilings, undersides) get the light
+        // the lit floor and walls throw back up instead.
+        let ambient = 0.17 + 0.06 * n.y + BOUNCE * (-n.y).max(0.0);
         let k = ao * ambient + (0.25 + 0.75 * ao) * direct;
         LAMP_TINT.map(|c| to_u8(k * c))
     }

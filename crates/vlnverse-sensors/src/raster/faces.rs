@@ -139,6 +139,28 @@ pub(crate) fn build(mesh: &SceneMesh, luma: &[u8]) -> DrawMesh {
     d
 }
 
+/// Give empty texels the value of the nearest filled one before (else after) them in their
+/// row, then texels of rows left empty the same along their column.
+fn fill_gaps(t: &mut [Option<f32>], w: usize, h: usize) {
+    let fill = |t: &mut [Option<f32>], line: &[usize]| {
+        let mut last = None;
+        for &i in line.iter().chain(line.iter().rev()) {
+            match t[i] {
+                Some(v) => last = Some(v),
+                None => t[i] = last,
+            }
+        }
+    };
+    for j in 0..h {
+        fill(t, &(j * w..(j + 1) * w).collect::<Vec<_>>());
+    }
+    if t.iter().any(|v| v.is_none()) {
+        for i in 0..w {
+            fill(t, &(0..h).map(|j| j * w + i).collect::<Vec<_>>());
+        }
+    }
+}
+
 /// Split triangles into pieces connected through shared corners (exact positions), each in
 /// triangle order.
 fn pieces(mesh: &SceneMesh, tris: &[usize]) -> Vec<Vec<usize>> {
@@ -247,7 +269,8 @@ fn merge(d: &mut DrawMesh, mesh: &SceneMesh, tris: &[usize], luma: &[u8]) -> boo
     }
     let tex = &luma[look.surface.index() * TEX_SIZE * TEX_SIZE..][..TEX_SIZE * TEX_SIZE];
     let base = d.texels.len();
-    let mut texels = vec![None::<u8>; w * h];
+    // Light at each texel centre; the texture comes in at the end.
+    let mut texels = vec![None::<f32>; w * h];
     let mask = TEX_SIZE as i64 - 1;
     for &t in tris {
         let l = &mesh.look[t];
@@ -274,22 +297,25 @@ fn merge(d: &mut DrawMesh, mesh: &SceneMesh, tris: &[usize], luma: &[u8]) -> boo
                 if b1 < -1e-4 || b2 < -1e-4 || b1 + b2 > 1.0 + 1e-4 {
                     continue;
                 }
-                let light =
-                    l.light[0] + b1 * (l.light[1] - l.light[0]) + b2 * (l.light[2] - l.light[0]);
-                let (tu, tv) = ((u0 as i64 + i as i64) & mask, (v0 as i64 + j as i64) & mask);
-                let texel = tex[(tv * TEX_SIZE as i64 + tu) as usize] as f32;
                 let cell = &mut texels[j * w + i];
                 if cell.is_none() {
-                    *cell = Some((light * texel).round().clamp(0.0, 255.0) as u8);
+                    *cell = Some(
+                        l.light[0]
+                            + b1 * (l.light[1] - l.light[0])
+                            + b2 * (l.light[2] - l.light[0]),
+                    );
                 }
             }
         }
     }
-    // Texels no cell centre fell in (rounding along the outline): their neighbour's value.
-    let mut last = 0u8;
-    d.texels.extend(texels.iter().map(|t| {
-        last = t.unwrap_or(last);
-        last
+    // Texels whose centre lies outside the face (its outline is not on texel boundaries):
+    // the light of the nearest texel inside, along the row, else along the column.
+    fill_gaps(&mut texels, w, h);
+    d.texels.extend(texels.iter().enumerate().map(|(k, light)| {
+        let (i, j) = ((k % w) as i64, (k / w) as i64);
+        let (tu, tv) = ((u0 as i64 + i) & mask, (v0 as i64 + j) & mask);
+        let texel = tex[(tv * TEX_SIZE as i64 + tu) as usize] as f32;
+        (light.unwrap_or(0.0) * texel).round().clamp(0.0, 255.0) as u8
     }));
     let face = FaceTexture {
         base: base as u32,
@@ -319,6 +345,11 @@ mod tests {
     /// A floor object of unit cells at y = 0 (two triangles each, upward), texture coordinates
     /// 64 texels per metre.
     fn floor(cells: &[(i32, i32)]) -> SceneMesh {
+        floor_uv(cells, 0.0)
+    }
+
+    /// [`floor`] with texture coordinates shifted by `shift` texels.
+    fn floor_uv(cells: &[(i32, i32)], shift: f32) -> SceneMesh {
         let mut m = SceneMesh::default();
         for &(x, z) in cells {
             let c = |dx: i32, dz: i32| Vec3::new((x + dx) as f32, 0.0, (z + dz) as f32);
@@ -329,7 +360,7 @@ mod tests {
                 m.look.push(TriLook {
                     tone: [0.9; 3],
                     light: tri.map(light),
-                    uv: tri.map(|p| [p.x * 64.0, p.z * 64.0]),
+                    uv: tri.map(|p| [p.x * 64.0 + shift, p.z * 64.0 + shift]),
                     surface: Surface::Plain,
                     image: None,
                 });
@@ -373,6 +404,28 @@ mod tests {
                 (got - want).abs() <= 1.0,
                 "texel ({i}, {j}): {got} vs {want}"
             );
+        }
+    }
+
+    #[test]
+    fn texels_past_the_outline_take_the_light_inside() {
+        // The outline falls inside texels: the last row and column have centres past it.
+        let m = floor_uv(&[(0, 0), (0, 1), (1, 0), (1, 1)], 0.4);
+        let d = build(&m, &luma());
+        let (f, _) = d.face[0].expect("merged");
+        assert_eq!((f.w, f.h), (129, 129));
+        let plain = Surface::Plain.luma_encoded()[0] as f32;
+        for j in 0..f.h {
+            for i in 0..f.w {
+                // The texel centre, clamped onto the floor.
+                let at = |k: u32| ((k as f32 + 0.5 - 0.4) / 64.0).clamp(0.0, 2.0);
+                let want = light(Vec3::new(at(i), 0.0, at(j))) * plain;
+                let got = d.texels[(f.base + j * f.w + i) as usize] as f32;
+                assert!(
+                    (got - want).abs() <= 3.0,
+                    "texel ({i}, {j}): {got} vs {want}"
+                );
+            }
         }
     }
 
