@@ -1387,9 +1387,10 @@ impl Renderer for RasterRenderer {
     fn render(&mut self, views: &[View]) -> Result<Vec<Frame>> {
         let scene = self.scene.as_ref().ok_or(SensorError::NoScene)?;
         // Enough pieces of work to keep every thread busy: whole views for big batches, bands
-        // of rows for small ones.
+        // of rows for small ones (four per thread: an RGB view costs more than a depth view, and
+        // finer pieces even the threads out).
         let threads = rayon::current_num_threads();
-        let bands = (2 * threads).div_ceil(views.len().max(1)).max(1);
+        let bands = (4 * threads).div_ceil(views.len().max(1)).max(1);
         if views.len() == 1 {
             return Ok(vec![scene.render_view(&views[0], bands)]);
         }
