@@ -13,13 +13,13 @@
 
 use crate::config::ProcgenConfig;
 use crate::floorplan::Plan;
-use crate::home::Builder;
+use crate::home::{box_part, Builder};
 use crate::palette::{f, Finish};
 use glam::Vec3;
 use rand::seq::IndexedRandom;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use vlnverse_env::{Part, Pose, RoomId, RoomType, SceneObject, SemanticClass as C, Shape};
+use vlnverse_env::{Pose, RoomId, RoomType, SceneObject, SemanticClass as C};
 
 /// Salt of the decoration's random stream.
 const SALT: u64 = 0xdec0_7a7e_5eed_0001;
@@ -207,16 +207,19 @@ fn free_stretches(
     if hi <= lo {
         return Vec::new();
     }
-    let doors: Vec<(f32, f32)> = plan
-        .openings
+    subtract(lo, hi, &doorways(cfg, plan, face, clear))
+}
+
+/// The doorways in a face's wall as intervals along it, each widened by `clear` on both sides.
+fn doorways(cfg: &ProcgenConfig, plan: &Plan, face: &Face, clear: f32) -> Vec<(f32, f32)> {
+    plan.openings
         .iter()
         .filter(|o| o.along_z == face.along_z && key(o.line) == key(face.line))
         .map(|o| {
             let g = o.gap(cfg) * 0.5 + clear;
             (o.center - g, o.center + g)
         })
-        .collect();
-    subtract(lo, hi, &doors)
+        .collect()
 }
 
 /// Whether any placed object other than the room shell reaches into a world box.
@@ -227,19 +230,6 @@ fn blocked(objects: &[SceneObject], v: [Vec3; 2]) -> bool {
             C::Floor | C::Wall | C::Ceiling | C::DoorFrame | C::Rug
         ) && (0..3).all(|k| o.bbox.min[k] < v[1][k] && o.bbox.max[k] > v[0][k])
     })
-}
-
-fn box_part(center: Vec3, size: Vec3, rgb: [f32; 3]) -> Part {
-    Part {
-        shape: Shape::Cuboid {
-            half_extents: (size * 0.5).to_array(),
-        },
-        transform: Pose {
-            position: center.to_array(),
-            rotation: [0.0, 0.0, 0.0, 1.0],
-        },
-        color: rgb,
-    }
 }
 
 /// A spot on a face for an item `width` wide: the first of a few positions from the middle of a
@@ -469,15 +459,7 @@ fn add_skirting(cfg: &ProcgenConfig, plan: &Plan, faces: &[Face], b: &mut Builde
             continue;
         };
         let d = depth.min(0.015);
-        let doors: Vec<(f32, f32)> = plan
-            .openings
-            .iter()
-            .filter(|o| o.along_z == face.along_z && key(o.line) == key(face.line))
-            .map(|o| {
-                let g = o.gap(cfg) * 0.5 + SKIRTING_SETBACK;
-                (o.center - g, o.center + g)
-            })
-            .collect();
+        let doors = doorways(cfg, plan, face, SKIRTING_SETBACK);
         let lo = face.span.0 + t * 0.5;
         let hi = face.span.1 - t * 0.5;
         for (s, e) in subtract(lo, hi, &doors) {

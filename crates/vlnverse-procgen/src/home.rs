@@ -84,7 +84,8 @@ impl Builder {
     }
 }
 
-fn box_part(center: Vec3, size: Vec3, rgb: [f32; 3]) -> Part {
+/// An axis-aligned box part centred at `center` (object frame).
+pub(crate) fn box_part(center: Vec3, size: Vec3, rgb: [f32; 3]) -> Part {
     Part {
         shape: Shape::Cuboid {
             half_extents: (size * 0.5).to_array(),
