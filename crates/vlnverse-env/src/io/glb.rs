@@ -578,17 +578,15 @@ fn texture_png(s: Surface) -> Vec<u8> {
 
 /// An imported image as PNG bytes (its sRGB texels as they are).
 fn image_png(t: &MeshTexture) -> Vec<u8> {
-    let data: Vec<u8> = t.texels.iter().flatten().copied().collect();
+    let mut data: Vec<u8> = t.texels.iter().flatten().copied().collect();
+    // A texture whose texels do not fill its sides (hand-built scenes) is padded white rather
+    // than failing the whole file; the importer always fills them.
+    let (w, h) = (t.width.max(1), t.height.max(1));
+    data.resize(3 * w as usize * h as usize, 255);
     let mut out = Vec::new();
     let enc = image::codecs::png::PngEncoder::new(&mut out);
-    image::ImageEncoder::write_image(
-        enc,
-        &data,
-        t.width,
-        t.height,
-        image::ExtendedColorType::Rgb8,
-    )
-    .expect("encoding a PNG of a valid texture into memory does not fail");
+    image::ImageEncoder::write_image(enc, &data, w, h, image::ExtendedColorType::Rgb8)
+        .expect("encoding a PNG of whole rows into memory does not fail");
     out
 }
 
