@@ -226,9 +226,12 @@ const Replay = {
     $("r-instruction").textContent = d.episode.instruction;
     const n = d.trajectory.positions.length;
     $("r-step").max = String(n - 1);
+    // Step 0 at once (the label and view must not show the previous episode while the
+    // top-down picture renders); the map is drawn again when it arrives.
     this.map = new Image();
-    this.map.onload = () => this.show(0);
+    this.map.onload = () => this.show(this.step);
     this.map.src = `/api/runs/${this.run}/episodes/${id}/topdown.png`;
+    this.show(0);
   },
 
   show(k) {

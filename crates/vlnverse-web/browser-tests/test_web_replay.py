@@ -84,8 +84,7 @@ def test_web_replay_lists_episodes_and_steps_through_one(
     _view_loaded(page)
     assert page.get_attribute("#r-view", "src") != first_view
     # The map canvas has the top-down picture drawn.
-    w = page.evaluate("document.querySelector('#r-map').width")
-    assert w > 100
+    page.wait_for_function("document.querySelector('#r-map').width > 100")
     if d := screenshot_dir():
         page.screenshot(path=str(d / "web-replay.png"), full_page=True)
     # The last pose: where the agent stopped.
