@@ -547,23 +547,7 @@ mod tests {
     /// buffer (3 vertices).
     fn glb_out_of_range() -> Vec<u8> {
         let json = r#"{"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0,"name":"sofa"}],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],"buffers":[{"byteLength":36}],"bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36}],"accessors":[{"bufferView":0,"componentType":5126,"count":30,"type":"VEC3","min":[0,0,0],"max":[1,1,1]}]}"#;
-        let mut j = json.as_bytes().to_vec();
-        while !j.len().is_multiple_of(4) {
-            j.push(b' ');
-        }
-        let bin = [0u8; 36];
-        let total = 12 + 8 + j.len() + 8 + bin.len();
-        let mut out = Vec::new();
-        out.extend_from_slice(b"glTF");
-        out.extend_from_slice(&2u32.to_le_bytes());
-        out.extend_from_slice(&(total as u32).to_le_bytes());
-        out.extend_from_slice(&(j.len() as u32).to_le_bytes());
-        out.extend_from_slice(&0x4E4F_534Au32.to_le_bytes());
-        out.extend_from_slice(&j);
-        out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
-        out.extend_from_slice(&0x004E_4942u32.to_le_bytes());
-        out.extend_from_slice(&bin);
-        out
+        vlnverse_env::io::glb::glb_container(json.as_bytes(), &[0u8; 36])
     }
 
     #[test]

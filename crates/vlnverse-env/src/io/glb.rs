@@ -531,27 +531,28 @@ pub fn write_glb_with(scene: &Scene, light: &BakedLight) -> Vec<u8> {
     if !bin.data.is_empty() {
         doc["buffers"] = json!([{"byteLength": bin.data.len()}]);
     }
-    let mut json_bytes = serde_json::to_vec(&doc).expect("glTF JSON is always serialisable");
-    pad4(&mut json_bytes, b' ');
-    let total = 12
-        + 8
-        + json_bytes.len()
-        + if bin.data.is_empty() {
-            0
-        } else {
-            8 + bin.data.len()
-        };
+    let json_bytes = serde_json::to_vec(&doc).expect("glTF JSON is always serialisable");
+    glb_container(&json_bytes, &bin.data)
+}
+
+/// A binary glTF container: the header, the JSON chunk (padded with spaces) and, when `bin`
+/// is not empty, the BIN chunk (padded with zeros).
+pub fn glb_container(json: &[u8], bin: &[u8]) -> Vec<u8> {
+    let (mut json, mut bin) = (json.to_vec(), bin.to_vec());
+    pad4(&mut json, b' ');
+    pad4(&mut bin, 0);
+    let total = 12 + 8 + json.len() + if bin.is_empty() { 0 } else { 8 + bin.len() };
     let mut out = Vec::with_capacity(total);
     out.extend_from_slice(&GLB_MAGIC.to_le_bytes());
     out.extend_from_slice(&2u32.to_le_bytes());
     out.extend_from_slice(&(total as u32).to_le_bytes());
-    out.extend_from_slice(&(json_bytes.len() as u32).to_le_bytes());
+    out.extend_from_slice(&(json.len() as u32).to_le_bytes());
     out.extend_from_slice(&CHUNK_JSON.to_le_bytes());
-    out.extend_from_slice(&json_bytes);
-    if !bin.data.is_empty() {
-        out.extend_from_slice(&(bin.data.len() as u32).to_le_bytes());
+    out.extend_from_slice(&json);
+    if !bin.is_empty() {
+        out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
         out.extend_from_slice(&CHUNK_BIN.to_le_bytes());
-        out.extend_from_slice(&bin.data);
+        out.extend_from_slice(&bin);
     }
     out
 }

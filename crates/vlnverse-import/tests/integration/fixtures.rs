@@ -62,26 +62,7 @@ fn cube_buffer() -> (Vec<u8>, serde_json::Value, serde_json::Value) {
 
 fn glb_bytes(mut doc: serde_json::Value, bin: &[u8]) -> Vec<u8> {
     doc["buffers"] = json!([{"byteLength": bin.len()}]);
-    let mut js = serde_json::to_vec(&doc).unwrap();
-    while !js.len().is_multiple_of(4) {
-        js.push(b' ');
-    }
-    let mut b = bin.to_vec();
-    while !b.len().is_multiple_of(4) {
-        b.push(0);
-    }
-    let total = 12 + 8 + js.len() + 8 + b.len();
-    let mut out = Vec::with_capacity(total);
-    out.extend_from_slice(b"glTF");
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&(total as u32).to_le_bytes());
-    out.extend_from_slice(&(js.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"JSON");
-    out.extend_from_slice(&js);
-    out.extend_from_slice(&(b.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"BIN\0");
-    out.extend_from_slice(&b);
-    out
+    vlnverse_env::io::glb::glb_container(&serde_json::to_vec(&doc).unwrap(), bin)
 }
 
 /// A document with one cube mesh (index 0) and the given nodes; material 0 is red.
