@@ -867,7 +867,6 @@ impl RasterScene {
         // Float -> int by the magic-number trick (adding 1.5 * 2^23 leaves the rounded value
         // in the low mantissa bits): no saturating conversions, no branches in the hot loop.
         const MAGIC: f32 = 12_582_912.0;
-        const MASK: u32 = TEX_SIZE as u32 - 1;
         const TEXELS: usize = TEX_SIZE * TEX_SIZE;
         let slots = &setup.slots[..];
         // `v` in [0, 255]: its rounded value.
@@ -914,6 +913,23 @@ impl RasterScene {
                 let b0 = k[0][0] * xf + k[0][1] * y + k[0][2];
                 let b1 = k[1][0] * xf + k[1][1] * y + k[1][2];
                 let b2 = k[2][0] * xf + k[2][1] * y + k[2][2];
+                // Light, and the index (from `base`) of the texel of a repeating `w x h`
+                // texture (sides powers of two): floor(t) as round(t - 0.5), the mask wraps
+                // negative coordinates.
+                let mut repeating = |w: u32, h: u32, base: u32| {
+                    for (((l, i), iz), j) in light[..n]
+                        .iter_mut()
+                        .zip(index[..n].iter_mut())
+                        .zip(&zr[x..e])
+                        .zip(&lanes[..n])
+                    {
+                        let inv = 1.0 / *iz;
+                        *l = (a0 * j + b0) * inv;
+                        let tu = ((a1 * j + b1) * inv - 0.5 + MAGIC).to_bits() & (w - 1);
+                        let tv = ((a2 * j + b2) * inv - 0.5 + MAGIC).to_bits() & (h - 1);
+                        *i = base + tv * w + tu;
+                    }
+                };
                 match s.kind {
                     Kind::Tiled => {
                         let Some(tex) = self
@@ -925,38 +941,12 @@ impl RasterScene {
                             x = e;
                             continue;
                         };
-                        for (((l, i), iz), j) in light[..n]
-                            .iter_mut()
-                            .zip(index[..n].iter_mut())
-                            .zip(&zr[x..e])
-                            .zip(&lanes[..n])
-                        {
-                            let inv = 1.0 / *iz;
-                            *l = (a0 * j + b0) * inv;
-                            // floor(t) as round(t - 0.5); the mask wraps negative coordinates.
-                            let tu = ((a1 * j + b1) * inv - 0.5 + MAGIC).to_bits() & MASK;
-                            let tv = ((a2 * j + b2) * inv - 0.5 + MAGIC).to_bits() & MASK;
-                            *i = tv * TEX_SIZE as u32 + tu;
-                        }
+                        repeating(TEX_SIZE as u32, TEX_SIZE as u32, 0);
                         for (l, i) in light[..n].iter_mut().zip(&index[..n]) {
                             *l *= tex[*i as usize & (TEXELS - 1)] as f32;
                         }
                     }
-                    Kind::Image { w: iw, h: ih } => {
-                        let (mu, mv) = (iw - 1, ih - 1);
-                        for (((l, i), iz), j) in light[..n]
-                            .iter_mut()
-                            .zip(index[..n].iter_mut())
-                            .zip(&zr[x..e])
-                            .zip(&lanes[..n])
-                        {
-                            let inv = 1.0 / *iz;
-                            *l = (a0 * j + b0) * inv;
-                            let tu = ((a1 * j + b1) * inv - 0.5 + MAGIC).to_bits() & mu;
-                            let tv = ((a2 * j + b2) * inv - 0.5 + MAGIC).to_bits() & mv;
-                            *i = s.tex + tv * iw + tu;
-                        }
-                    }
+                    Kind::Image { w: iw, h: ih } => repeating(iw, ih, s.tex),
                     Kind::Face { w: fw, h: fh } => {
                         // Face textures are padded to a power of two: a masked index needs no
                         // bounds check (and every face's texels lie inside).
