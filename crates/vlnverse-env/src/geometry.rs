@@ -62,7 +62,9 @@ pub fn triangle_count(shape: &Shape) -> usize {
 /// Number of triangles [`triangulate_cells`] produces for a shape.
 pub fn triangle_count_cells(shape: &Shape, cell: Option<f32>) -> usize {
     match shape {
-        Shape::Cuboid { half_extents: h } => {
+        Shape::Cuboid {
+            half_extents: h, ..
+        } => {
             let [x, y, z] = h.map(|h| cells(h, cell));
             (4 * (x * y + y * z + x * z)) as usize
         }
@@ -75,7 +77,7 @@ pub fn triangle_count_cells(shape: &Shape, cell: Option<f32>) -> usize {
 /// Corners of a conservative local bounding box of a shape (8 points).
 pub fn shape_corners(shape: &Shape) -> Vec<Vec3> {
     let h = match shape {
-        Shape::Cuboid { half_extents } => Vec3::from_array(*half_extents),
+        Shape::Cuboid { half_extents, .. } => Vec3::from_array(*half_extents),
         Shape::Cylinder {
             radius,
             half_height,
@@ -105,7 +107,7 @@ pub fn triangulate(shape: &Shape) -> TriMesh {
 /// metres (`None`: two triangles per face), so that light baked per vertex has resolution.
 pub fn triangulate_cells(shape: &Shape, cell: Option<f32>) -> TriMesh {
     match shape {
-        Shape::Cuboid { half_extents } => cuboid(Vec3::from_array(*half_extents), cell),
+        Shape::Cuboid { half_extents, .. } => cuboid(Vec3::from_array(*half_extents), cell),
         Shape::Cylinder {
             radius,
             half_height,
@@ -339,6 +341,7 @@ mod tests {
         for s in [
             Shape::Cuboid {
                 half_extents: [1.0, 2.0, 0.5],
+                bevel: 0.0,
             },
             Shape::Cylinder {
                 radius: 0.5,

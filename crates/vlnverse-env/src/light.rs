@@ -92,7 +92,7 @@ fn panes(scene: &Scene) -> Vec<Pane> {
     let mut out = Vec::new();
     for o in scene.objects.iter().filter(|o| is_pane(o)) {
         for p in &o.parts {
-            let crate::scene::Shape::Cuboid { half_extents } = p.shape else {
+            let crate::scene::Shape::Cuboid { half_extents, .. } = p.shape else {
                 continue;
             };
             let pose = o.pose.mul(&p.transform);

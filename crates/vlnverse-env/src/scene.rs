@@ -162,6 +162,10 @@ pub enum Shape {
     Cuboid {
         /// Half sizes along x, y, z.
         half_extents: [f32; 3],
+        /// Width in metres of the 45-degree chamfer on every edge (0: sharp edges). Only the
+        /// drawn mesh is bevelled: physics and occupancy keep the full box, which contains it.
+        #[serde(default, skip_serializing_if = "is_zero")]
+        bevel: f32,
     },
     /// A cylinder around the local Y axis.
     Cylinder {
@@ -348,6 +352,7 @@ impl SceneObject {
         let part = Part {
             shape: Shape::Cuboid {
                 half_extents: ((max - min) * 0.5).to_array(),
+                bevel: 0.0,
             },
             transform: Pose::IDENTITY,
             color: [0.8, 0.8, 0.8],
@@ -549,4 +554,10 @@ mod tests {
         let c = Aabb::new(Vec3::splat(0.5), Vec3::splat(1.5));
         assert!(a.intersects(&c, 1e-4));
     }
+}
+
+/// Serde helper: a bevel of 0 is left out of `scene.json`, which keeps sharp-edged scenes
+/// byte-identical to files written before bevels existed.
+fn is_zero(v: &f32) -> bool {
+    *v == 0.0
 }

@@ -89,6 +89,7 @@ pub(crate) fn box_part(center: Vec3, size: Vec3, rgb: [f32; 3]) -> Part {
     Part {
         shape: Shape::Cuboid {
             half_extents: (size * 0.5).to_array(),
+            bevel: 0.0,
         },
         transform: Pose {
             position: center.to_array(),

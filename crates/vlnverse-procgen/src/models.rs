@@ -56,6 +56,7 @@ fn cube(p: &mut Vec<Part>, x: f32, y0: f32, z: f32, size: [f32; 3], rgb: [f32; 3
     p.push(Part {
         shape: Shape::Cuboid {
             half_extents: [size[0] * 0.5, size[1] * 0.5, size[2] * 0.5],
+            bevel: 0.0,
         },
         transform: Pose {
             position: [x, y0 + size[1] * 0.5, z],

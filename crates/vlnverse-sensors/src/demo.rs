@@ -20,6 +20,7 @@ fn cuboid(center: Vec3, half: Vec3, color: [f32; 3]) -> Part {
     Part {
         shape: Shape::Cuboid {
             half_extents: half.to_array(),
+            bevel: 0.0,
         },
         transform: Pose {
             position: center.to_array(),

@@ -1398,6 +1398,7 @@ mod tests {
     fn cube() -> Vec<Vec3> {
         let s = vlnverse_env::Shape::Cuboid {
             half_extents: [0.5, 1.0, 0.25],
+            bevel: 0.0,
         };
         let m = vlnverse_env::geometry::triangulate(&s);
         m.indices

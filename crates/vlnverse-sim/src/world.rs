@@ -249,9 +249,9 @@ fn object_shapes(
         let local = to_iso(&part.transform);
         let ok = |v: f32| v.is_finite() && v > 0.0;
         let shape = match &part.shape {
-            Shape::Cuboid { half_extents: h } if h.iter().all(|v| ok(*v)) => {
-                Some(SharedShape::cuboid(h[0], h[1], h[2]))
-            }
+            Shape::Cuboid {
+                half_extents: h, ..
+            } if h.iter().all(|v| ok(*v)) => Some(SharedShape::cuboid(h[0], h[1], h[2])),
             Shape::Cylinder {
                 radius,
                 half_height,

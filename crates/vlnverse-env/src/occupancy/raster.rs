@@ -94,7 +94,7 @@ fn part_footprint(shape: &Shape, pose: &Pose, band: Option<Band>, out: &mut Foot
     let t = pose.translation();
     let in_band = |ymin: f32, ymax: f32| band.is_none_or(|b| b.overlaps(ymin, ymax));
     match shape {
-        Shape::Cuboid { half_extents } if keeps_vertical(q) => {
+        Shape::Cuboid { half_extents, .. } if keeps_vertical(q) => {
             let h = Vec3::from_array(*half_extents);
             if !in_band(t.y - h.y, t.y + h.y) {
                 return;

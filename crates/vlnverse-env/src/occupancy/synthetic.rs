@@ -134,7 +134,10 @@ pub fn grid_home(rooms_x: u32, rooms_z: u32, room_size: f32, seed: u64) -> Scene
                     next_id(),
                     *class,
                     Pose::from_yaw(c, rng.next_f32() * std::f32::consts::PI),
-                    Shape::Cuboid { half_extents: half },
+                    Shape::Cuboid {
+                        half_extents: half,
+                        bevel: 0.0,
+                    },
                 ));
             }
             objs.push(object(

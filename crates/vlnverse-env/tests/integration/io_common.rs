@@ -40,6 +40,7 @@ pub fn fixture_scene() -> Scene {
         vec![part(
             Shape::Cuboid {
                 half_extents: [2.0, 1.25, 0.05],
+                bevel: 0.0,
             },
             Vec3::new(0.0, 1.25, -2.0),
             [0.8, 0.8, 0.78],
@@ -58,6 +59,7 @@ pub fn fixture_scene() -> Scene {
             part(
                 Shape::Cuboid {
                     half_extents: [0.6, 0.02, 0.4],
+                    bevel: 0.0,
                 },
                 Vec3::new(0.0, 0.74, 0.0),
                 [0.4, 0.2, 0.1],
@@ -114,6 +116,7 @@ pub fn fixture_scene() -> Scene {
             part(
                 Shape::Cuboid {
                     half_extents: [0.2, 0.1, 0.2],
+                    bevel: 0.0,
                 },
                 Vec3::new(0.0, 0.1, 0.0),
                 [0.3, 0.6, 0.2],

@@ -110,6 +110,7 @@ fn yawed_box_and_cylinder_use_their_true_footprint() {
         Pose::from_yaw(Vec3::new(2.0, 0.4, 2.0), yaw),
         Shape::Cuboid {
             half_extents: [1.0, 0.4, 0.1],
+            bevel: 0.0,
         },
     ));
     s.objects.push(object(

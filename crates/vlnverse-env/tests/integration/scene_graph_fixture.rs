@@ -64,6 +64,7 @@ pub fn obj(
     let part = Part {
         shape: Shape::Cuboid {
             half_extents: ((hi - lo) * 0.5).to_array(),
+            bevel: 0.0,
         },
         transform: Pose::IDENTITY,
         color: [0.5, 0.5, 0.5],

@@ -98,6 +98,7 @@ pub fn one_box_scene() -> Scene {
     o.parts = vec![vlnverse_env::Part {
         shape: vlnverse_env::Shape::Cuboid {
             half_extents: [0.5, 0.5, 0.5],
+            bevel: 0.0,
         },
         transform: Pose::IDENTITY,
         color: [1.0, 0.0, 0.0],

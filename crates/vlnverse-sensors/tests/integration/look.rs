@@ -20,6 +20,7 @@ fn cuboid(id: u32, class: SemanticClass, min: Vec3, max: Vec3, rgb: [f32; 3]) ->
         vec![Part {
             shape: Shape::Cuboid {
                 half_extents: ((max - min) * 0.5).to_array(),
+                bevel: 0.0,
             },
             transform: Pose::IDENTITY,
             color: rgb,

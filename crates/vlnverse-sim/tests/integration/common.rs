@@ -32,6 +32,7 @@ pub fn boxed(
         parts: vec![Part {
             shape: Shape::Cuboid {
                 half_extents: half.to_array(),
+                bevel: 0.0,
             },
             transform: Pose::IDENTITY,
             color: [0.8; 3],

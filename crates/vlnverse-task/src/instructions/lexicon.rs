@@ -449,7 +449,9 @@ fn main_rgb(o: &SceneObject) -> Option<[f32; 3]> {
 
 fn part_volume(s: &Shape) -> f32 {
     match s {
-        Shape::Cuboid { half_extents: h } => 8.0 * h[0] * h[1] * h[2],
+        Shape::Cuboid {
+            half_extents: h, ..
+        } => 8.0 * h[0] * h[1] * h[2],
         Shape::Cylinder {
             radius,
             half_height,
