@@ -11,6 +11,11 @@ pub const CYLINDER_SEGMENTS: u32 = 16;
 pub const MAX_CELL: f32 = 0.75;
 /// Latitude bands of a sphere (longitude uses twice as many).
 pub const SPHERE_BANDS: u32 = 6;
+/// Triangles of a bevelled box: 6 inset faces and 12 edge strips of two triangles, 8 corners.
+pub const BEVELLED_BOX_TRIANGLES: usize = 44;
+/// Largest bevel as a fraction of the smallest half extent (keeps every face and strip of a
+/// thin panel non-degenerate).
+pub const MAX_BEVEL_FRACTION: f32 = 0.45;
 
 /// An indexed triangle mesh with per-vertex normals.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -63,8 +68,12 @@ pub fn triangle_count(shape: &Shape) -> usize {
 pub fn triangle_count_cells(shape: &Shape, cell: Option<f32>) -> usize {
     match shape {
         Shape::Cuboid {
-            half_extents: h, ..
+            half_extents: h,
+            bevel,
         } => {
+            if !is_cut(cell) && drawn_bevel(*h, *bevel) > 0.0 {
+                return BEVELLED_BOX_TRIANGLES;
+            }
             let [x, y, z] = h.map(|h| cells(h, cell));
             (4 * (x * y + y * z + x * z)) as usize
         }
@@ -98,16 +107,44 @@ pub fn shape_corners(shape: &Shape) -> Vec<Vec3> {
     v
 }
 
-/// Triangulate a shape in its own frame (two triangles per box face).
+/// The bevel a box is drawn with: `bevel` clamped to [`MAX_BEVEL_FRACTION`] of the smallest
+/// half extent, 0 (sharp) when it is not positive and finite or the box has a side that is
+/// not (a flat or broken box has no edges to bevel).
+pub fn drawn_bevel(half_extents: [f32; 3], bevel: f32) -> f32 {
+    let min = half_extents.into_iter().fold(f32::INFINITY, f32::min);
+    if !(bevel > 0.0 && bevel.is_finite() && min > 0.0 && min.is_finite()) {
+        return 0.0;
+    }
+    bevel.min(MAX_BEVEL_FRACTION * min)
+}
+
+/// Triangulate a shape in its own frame (two triangles per box face; a bevelled box gets
+/// [`BEVELLED_BOX_TRIANGLES`]).
 pub fn triangulate(shape: &Shape) -> TriMesh {
     triangulate_cells(shape, None)
 }
 
 /// Triangulate a shape in its own frame, box faces cut into a grid of cells of at most `cell`
 /// metres (`None`: two triangles per face), so that light baked per vertex has resolution.
+///
+/// A box with a bevel ([`drawn_bevel`] > 0) and no cells is drawn chamfered: its 6 faces inset
+/// by the bevel, a 45-degree strip along each of the 12 edges and a triangle at each of the 8
+/// corners, each with its own flat normal (the light baked per vertex then differs on the
+/// chamfer, which is what shows the edge). Cut boxes (walls and floors of lit homes) keep
+/// their cells and sharp edges: bevel and cells do not combine.
 pub fn triangulate_cells(shape: &Shape, cell: Option<f32>) -> TriMesh {
     match shape {
-        Shape::Cuboid { half_extents, .. } => cuboid(Vec3::from_array(*half_extents), cell),
+        Shape::Cuboid {
+            half_extents,
+            bevel,
+        } => {
+            let b = drawn_bevel(*half_extents, *bevel);
+            if !is_cut(cell) && b > 0.0 {
+                chamfered_box(Vec3::from_array(*half_extents), b)
+            } else {
+                cuboid(Vec3::from_array(*half_extents), cell)
+            }
+        }
         Shape::Cylinder {
             radius,
             half_height,
@@ -162,6 +199,11 @@ pub fn scene_triangles(scene: &Scene) -> Vec<WorldTriangle> {
         }
     }
     out
+}
+
+/// Whether `cell` cuts box faces into cells (as [`cells`] reads it).
+fn is_cut(cell: Option<f32>) -> bool {
+    matches!(cell, Some(c) if c > 0.0)
 }
 
 /// Segments along one box edge of half length `h`: cells of at most `cell` metres (one segment
@@ -224,6 +266,90 @@ fn cuboid(h: Vec3, cell: Option<f32>) -> TriMesh {
                 let (b, c, d) = (a + 1, a + nu + 2, a + nu + 1);
                 m.indices.push([a, b, c]);
                 m.indices.push([a, c, d]);
+            }
+        }
+    }
+    m
+}
+
+/// A box of half extents `h` with every edge chamfered at 45 degrees by `b` (`0 < b < min h`).
+/// Every vertex coordinate is `+-h` or `+-(h - b)` on its axis, computed once, so the faces,
+/// strips and corners that share a corner share it bit for bit (a closed surface, no cracks).
+fn chamfered_box(h: Vec3, b: f32) -> TriMesh {
+    let inner = h - Vec3::splat(b);
+    // Coordinate on axis `a`: sign `s` (+-1), at the surface (`out`) or inset.
+    let at = |a: usize, s: f32, out: bool| if out { s * h[a] } else { s * inner[a] };
+    let mut m = TriMesh::default();
+    // One flat polygon (3 or 4 corners in order around it), wound to face along `n`.
+    let mut poly = |corners: &[Vec3], n: Vec3| {
+        let base = m.positions.len() as u32;
+        let n = n.normalize();
+        for c in corners {
+            m.positions.push(c.to_array());
+            m.normals.push(n.to_array());
+        }
+        let (a, b, c) = (corners[0], corners[1], corners[2]);
+        let flip = (b - a).cross(c - a).dot(n) < 0.0;
+        for k in 1..corners.len() as u32 - 1 {
+            let (i, j) = (base + k, base + k + 1);
+            m.indices
+                .push(if flip { [base, j, i] } else { [base, i, j] });
+        }
+    };
+    // Faces: normal axis `a` with sign `s`, the two other axes inset, corners around the rim.
+    for a in 0..3 {
+        let (u, v) = ((a + 1) % 3, (a + 2) % 3);
+        for s in [1.0f32, -1.0] {
+            let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(su, sv)| {
+                let mut p = Vec3::ZERO;
+                p[a] = at(a, s, true);
+                p[u] = at(u, su, false);
+                p[v] = at(v, sv, false);
+                p
+            });
+            let mut n = Vec3::ZERO;
+            n[a] = s;
+            poly(&corners, n);
+        }
+    }
+    // Edge strips along axis `a`, between the faces of axes `u` (sign `su`) and `v` (`sv`).
+    for a in 0..3 {
+        let (u, v) = ((a + 1) % 3, (a + 2) % 3);
+        for (su, sv) in [(1.0f32, 1.0f32), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)] {
+            let corner = |sa: f32, on_u: bool| {
+                let mut p = Vec3::ZERO;
+                p[a] = at(a, sa, false);
+                p[u] = at(u, su, on_u);
+                p[v] = at(v, sv, !on_u);
+                p
+            };
+            let mut n = Vec3::ZERO;
+            n[u] = su;
+            n[v] = sv;
+            poly(
+                &[
+                    corner(-1.0, true),
+                    corner(1.0, true),
+                    corner(1.0, false),
+                    corner(-1.0, false),
+                ],
+                n,
+            );
+        }
+    }
+    // Corners: one triangle joining the three faces' corners.
+    for sx in [1.0f32, -1.0] {
+        for sy in [1.0f32, -1.0] {
+            for sz in [1.0f32, -1.0] {
+                let sign = Vec3::new(sx, sy, sz);
+                let corners = [0, 1, 2].map(|k| {
+                    let mut p = Vec3::ZERO;
+                    for a in 0..3 {
+                        p[a] = at(a, sign[a], a == k);
+                    }
+                    p
+                });
+                poly(&corners, sign);
             }
         }
     }
@@ -343,6 +469,10 @@ mod tests {
                 half_extents: [1.0, 2.0, 0.5],
                 bevel: 0.0,
             },
+            Shape::Cuboid {
+                half_extents: [1.0, 2.0, 0.5],
+                bevel: 0.1,
+            },
             Shape::Cylinder {
                 radius: 0.5,
                 half_height: 1.0,
@@ -359,8 +489,13 @@ mod tests {
                 triangle_count_cells(&s, Some(0.3)),
                 "{s:?}"
             );
-            if matches!(s, Shape::Cuboid { .. }) {
-                assert_eq!(m.triangle_count(), 12);
+            if let Shape::Cuboid { bevel, .. } = s {
+                let want = if bevel > 0.0 {
+                    BEVELLED_BOX_TRIANGLES
+                } else {
+                    12
+                };
+                assert_eq!(m.triangle_count(), want);
                 assert!(fine.triangle_count() > 12);
             }
         }

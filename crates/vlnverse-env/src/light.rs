@@ -5,8 +5,8 @@
 //! [`bake`] gives one light value per vertex of every part's triangulation
 //! ([`crate::geometry::triangulate_part_cells`] with [`cell_of`]: the walls, floors and
 //! ceilings of procedural homes are cut into cells of at most [`crate::geometry::MAX_CELL`] for
-//! resolution, everything else keeps two triangles per box face, so the renderers draw few
-//! more triangles than without light). `scene.glb` stores it as `COLOR_0` (with
+//! resolution, everything else keeps two triangles per box face, or 44 per bevelled box whose
+//! chamfers get their own light, so the renderers draw few more triangles than without light). `scene.glb` stores it as `COLOR_0` (with
 //! `KHR_materials_unlit`, so viewers show the baked look) and the renderers multiply it with the
 //! part colour and texture ([`crate::material`]). It is a pure function of the scene: the same
 //! scene gives the same bytes on any number of threads (each vertex draws its rays from a hash
@@ -92,6 +92,7 @@ fn panes(scene: &Scene) -> Vec<Pane> {
     let mut out = Vec::new();
     for o in scene.objects.iter().filter(|o| is_pane(o)) {
         for p in &o.parts {
+            // The full box: a bevel narrows the pane's rim only.
             let crate::scene::Shape::Cuboid { half_extents, .. } = p.shape else {
                 continue;
             };

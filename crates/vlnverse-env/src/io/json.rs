@@ -1,7 +1,7 @@
 //! `scene.json`: the scene model as JSON (mesh vertex data excluded; it lives in `scene.glb`).
 
 use crate::error::{EnvError, Result};
-use crate::scene::{Scene, SCENE_FORMAT_VERSION};
+use crate::scene::{Scene, Shape, SCENE_FORMAT_VERSION};
 use std::path::Path;
 
 /// Serialise a scene as pretty-printed `scene.json` bytes (ends with a newline).
@@ -33,14 +33,31 @@ pub fn scene_from_json(bytes: &[u8], path: &Path) -> Result<Scene> {
             ));
         }
     }
-    let scene: Scene = serde_json::from_slice(bytes).map_err(|e| json_error(path, bytes, &e))?;
+    let scene: Scene = serde_json::from_slice(bytes).map_err(|e| {
+        // Inside a shape (a tagged enum) serde points at the shape's end, not the field.
+        bad_bevel(bytes, path).unwrap_or_else(|| json_error(path, bytes, &e))
+    })?;
     check_values(&scene, path)?;
     Ok(scene)
 }
 
-/// Values serde accepts but a scene cannot hold: negative or non-finite physics.
+/// Values serde accepts but a scene cannot hold: negative or non-finite physics or bevels
+/// (an `f32` field reads a too-large number such as `1e39` as infinity).
 fn check_values(scene: &Scene, path: &Path) -> Result<()> {
     for o in &scene.objects {
+        for (k, p) in o.parts.iter().enumerate() {
+            if let Shape::Cuboid { bevel, .. } = p.shape {
+                if !(bevel.is_finite() && bevel >= 0.0) {
+                    return Err(EnvError::parse(
+                        path,
+                        format!(
+                            "object {} (`{}`) part {k}: field `bevel` = {bevel}: must be finite and >= 0",
+                            o.id, o.name
+                        ),
+                    ));
+                }
+            }
+        }
         for (field, v) in [
             ("physics.mass", o.physics.mass),
             ("physics.friction", o.physics.friction),
@@ -57,6 +74,32 @@ fn check_values(scene: &Scene, path: &Path) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// The first `bevel` that is not a number (a NaN bevel is written as `null`), as an error
+/// naming its object and part; `None` when every bevel is a number or the file is not a scene.
+fn bad_bevel(bytes: &[u8], path: &Path) -> Option<EnvError> {
+    let v: serde_json::Value = serde_json::from_slice(bytes).ok()?;
+    for o in v.get("objects")?.as_array()? {
+        let parts = o.get("parts").and_then(|p| p.as_array());
+        for (k, p) in parts.into_iter().flatten().enumerate() {
+            match p.get("shape").and_then(|s| s.get("bevel")) {
+                Some(b) if !b.is_number() => {
+                    return Some(EnvError::parse(
+                        path,
+                        format!(
+                            "object {} ({}) part {k}: field `bevel` = {b}: must be a finite \
+                             number >= 0 (a NaN bevel is written as null)",
+                            o.get("id").unwrap_or(&serde_json::Value::Null),
+                            o.get("name").unwrap_or(&serde_json::Value::Null),
+                        ),
+                    ));
+                }
+                _ => {}
+            }
+        }
+    }
+    None
 }
 
 fn json_error(path: &Path, bytes: &[u8], e: &serde_json::Error) -> EnvError {

@@ -6,6 +6,7 @@ mod io_common;
 mod occupancy_fixtures;
 mod scene_graph_fixture;
 
+mod bevel;
 mod io_leftovers;
 mod io_scene_files;
 mod occupancy_geodesic;
