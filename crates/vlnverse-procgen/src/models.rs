@@ -53,10 +53,16 @@ impl Model {
 
 /// Box with its bottom centre at `(x, y0, z)`.
 fn cube(p: &mut Vec<Part>, x: f32, y0: f32, z: f32, size: [f32; 3], rgb: [f32; 3]) {
+    bcube(p, x, y0, z, size, 0.0, rgb);
+}
+
+/// Box with its bottom centre at `(x, y0, z)` and its edges chamfered by `bevel` metres (only
+/// the drawn mesh: physics and occupancy keep the full box).
+fn bcube(p: &mut Vec<Part>, x: f32, y0: f32, z: f32, size: [f32; 3], bevel: f32, rgb: [f32; 3]) {
     p.push(Part {
         shape: Shape::Cuboid {
             half_extents: [size[0] * 0.5, size[1] * 0.5, size[2] * 0.5],
-            bevel: 0.0,
+            bevel,
         },
         transform: Pose {
             position: [x, y0 + size[1] * 0.5, z],
@@ -130,11 +136,46 @@ fn legs(p: &mut Vec<Part>, w: f32, d: f32, h: f32, s: f32, rgb: [f32; 3]) {
     }
 }
 
+/// A shape centred at `c`, turned by `rot`.
+fn turned(p: &mut Vec<Part>, shape: Shape, c: [f32; 3], rot: Quat, rgb: [f32; 3]) {
+    p.push(Part {
+        shape,
+        transform: Pose {
+            position: c,
+            rotation: rot.to_array(),
+        },
+        color: rgb,
+    });
+}
+
+#[cfg(test)]
+thread_local! {
+    /// Tests force one variant of every model built on this thread.
+    static FORCE_VARIANT: std::cell::Cell<Option<usize>> = const { std::cell::Cell::new(None) };
+}
+
+/// Which of `n` variants of a model to build, hashed from values the model already drew from
+/// the rng. Drawing the choice instead would shift every later draw and so change the layout,
+/// episodes and instructions of every home.
+fn variant(n: usize, drawn: &[f32]) -> usize {
+    #[cfg(test)]
+    if let Some(v) = FORCE_VARIANT.with(|f| f.get()) {
+        return v % n;
+    }
+    let mut z: u64 = 0x243F_6A88_85A3_08D3;
+    for v in drawn {
+        z = (z ^ u64::from(v.to_bits())).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+        z ^= z >> 29;
+    }
+    (z % n as u64) as usize
+}
+
 fn r(rng: &mut ChaCha8Rng, lo: f32, hi: f32) -> f32 {
     rng.random_range(lo..=hi)
 }
 
-/// A double (or single) bed: frame, mattress, blanket, pillows, headboard.
+/// A double (or single) bed: frame, mattress, blanket, pillows, headboard. Variants: a panel
+/// or a slatted headboard (posts, rails, slats), with or without a footboard.
 pub(crate) fn bed(rng: &mut ChaCha8Rng, double: bool) -> Model {
     let fin = palette::pick(C::Bed, rng);
     let w = if double {
@@ -145,14 +186,16 @@ pub(crate) fn bed(rng: &mut ChaCha8Rng, double: bool) -> Model {
     let d = r(rng, 2.0, 2.15);
     let head_h = r(rng, 0.9, 1.15);
     let bedding = palette::fabric(rng);
+    let v = variant(4, &[w, d, head_h]);
     let mut p = Vec::new();
-    cube(&mut p, 0.0, 0.0, -0.04, [w, 0.3, d - 0.08], fin.rgb);
-    cube(
+    bcube(&mut p, 0.0, 0.0, -0.04, [w, 0.3, d - 0.08], 0.02, fin.rgb);
+    bcube(
         &mut p,
         0.0,
         0.3,
         -0.05,
         [w - 0.06, 0.2, d - 0.16],
+        0.04,
         tone::LINEN,
     );
     cube(&mut p, 0.0, 0.5, -0.3, [w - 0.04, 0.03, d * 0.6], bedding);
@@ -163,63 +206,159 @@ pub(crate) fn bed(rng: &mut ChaCha8Rng, double: bool) -> Model {
         } else {
             (i as f32 - 0.5) * w * 0.48
         };
-        cube(
+        bcube(
             &mut p,
             x,
             0.5,
             d * 0.5 - 0.34,
             [0.5, 0.12, 0.34],
+            0.025,
             tone::WHITE,
         );
     }
-    cube(
-        &mut p,
-        0.0,
-        0.0,
-        d * 0.5 - 0.04,
-        [w, head_h, 0.08],
-        shade(fin.rgb, 0.85),
-    );
+    let head_rgb = shade(fin.rgb, 0.85);
+    // Every headboard keeps the panel's depth, height and footprint (a full-width part from the
+    // floor), so the bed's box and its occupancy stay those of the panel bed.
+    let hz = d * 0.5 - 0.04;
+    if v & 1 == 0 {
+        bcube(&mut p, 0.0, 0.0, hz, [w, head_h, 0.08], 0.015, head_rgb);
+    } else {
+        for s in [-1.0, 1.0] {
+            bcube(
+                &mut p,
+                s * (w * 0.5 - 0.05),
+                0.0,
+                hz,
+                [0.08, head_h, 0.08],
+                0.015,
+                head_rgb,
+            );
+        }
+        cube(&mut p, 0.0, 0.01, hz, [w, 0.49, 0.08], head_rgb);
+        bcube(
+            &mut p,
+            0.0,
+            head_h - 0.12,
+            hz,
+            [w - 0.1, 0.09, 0.08],
+            0.015,
+            head_rgb,
+        );
+        let span = w - 0.18;
+        let n = ((span / 0.14) as usize).max(2);
+        for i in 0..n {
+            let x = -span * 0.5 + span * (i as f32 + 0.5) / n as f32;
+            cube(&mut p, x, 0.5, hz, [0.04, head_h - 0.62, 0.03], head_rgb);
+        }
+    }
+    if v & 2 != 0 {
+        // A footboard just in front of the mattress, inside the frame's footprint.
+        cube(
+            &mut p,
+            0.0,
+            0.01,
+            -d * 0.5 + 0.016,
+            [w - 0.02, 0.6, 0.028],
+            head_rgb,
+        );
+    }
     Model::new(C::Bed, fin, [w, head_h, d], 60.0 + 20.0 * w, p)
 }
 
-/// A nightstand: body, drawer front, handle; small objects on top.
+/// A nightstand: body, drawer fronts with handles; small objects on top. Variants: one
+/// drawer, two drawers, a drawer over an open niche.
 pub(crate) fn nightstand(rng: &mut ChaCha8Rng) -> Model {
     let fin = palette::pick(C::Nightstand, rng);
     let (w, h, d) = (r(rng, 0.4, 0.5), r(rng, 0.5, 0.6), r(rng, 0.35, 0.42));
+    let v = variant(3, &[w, h, d]);
     let mut p = Vec::new();
-    cube(&mut p, 0.0, 0.0, 0.0, [w, h, d], fin.rgb);
-    front(
-        &mut p,
-        d,
-        [0.0, h * 0.55, -0.005],
-        [w - 0.06, h * 0.3, 0.01],
-        shade(fin.rgb, 0.8),
-    );
-    front(
-        &mut p,
-        d,
-        [0.0, h * 0.68, -0.02],
-        [0.08, 0.02, 0.02],
-        tone::METAL,
-    );
+    bcube(&mut p, 0.0, 0.0, 0.0, [w, h, d], 0.012, fin.rgb);
+    // Fronts and handles keep their x extent and depth in every variant (they stick out of
+    // the body, so they are part of the footprint); only their heights change.
+    let drawer = |p: &mut Vec<Part>, y: f32| {
+        front(
+            p,
+            d,
+            [0.0, y, -0.005],
+            [w - 0.06, h * 0.3, 0.01],
+            shade(fin.rgb, 0.8),
+        );
+        front(
+            p,
+            d,
+            [0.0, y + h * 0.13, -0.02],
+            [0.08, 0.02, 0.02],
+            tone::METAL,
+        );
+    };
+    drawer(&mut p, h * 0.55);
+    match v {
+        1 => drawer(&mut p, h * 0.2),
+        2 => front(
+            &mut p,
+            d,
+            [0.0, h * 0.1, -0.005],
+            [w - 0.06, h * 0.38, 0.01],
+            shade(fin.rgb, 0.35),
+        ),
+        _ => {}
+    }
     Model::new(C::Nightstand, fin, [w, h, d + 0.02], 12.0, p).with_top(0.04)
 }
 
-/// A wardrobe: body, two doors, handles.
+/// A wardrobe: body, doors, handles. Variants: two doors; two doors over a row of drawers;
+/// three doors with a mirror in the middle; two doors under a row of top cupboards.
 pub(crate) fn wardrobe(rng: &mut ChaCha8Rng) -> Model {
     let fin = palette::pick(C::Wardrobe, rng);
     let (w, h, d) = (r(rng, 0.9, 1.6), r(rng, 1.9, 2.2), r(rng, 0.55, 0.62));
+    let v = variant(4, &[w, h, d]);
+    let door_rgb = shade(fin.rgb, 0.9);
     let mut p = Vec::new();
-    cube(&mut p, 0.0, 0.0, 0.01, [w, h, d - 0.02], fin.rgb);
+    bcube(&mut p, 0.0, 0.0, 0.01, [w, h, d - 0.02], 0.015, fin.rgb);
+    // Door fronts fill the same strip in front of the body in every variant (same outer edges,
+    // 2 cm gaps at most, which no 5 cm map cell can fall into); the two handles, which stick
+    // out further, keep their place.
+    let pair = |p: &mut Vec<Part>, y0: f32, dh: f32, rgb: [f32; 3]| {
+        for s in [-1.0, 1.0] {
+            front(
+                p,
+                d,
+                [s * w * 0.25, y0, 0.01],
+                [w * 0.5 - 0.02, dh, 0.02],
+                rgb,
+            );
+        }
+    };
+    match v {
+        1 => {
+            pair(&mut p, 0.45, h - 0.5, door_rgb);
+            pair(&mut p, 0.05, 0.38, shade(fin.rgb, 0.8));
+        }
+        2 => {
+            let dw = w / 3.0;
+            for i in [-1.0, 0.0, 1.0] {
+                let rgb = if i == 0.0 { tone::GLASS } else { door_rgb };
+                front(
+                    &mut p,
+                    d,
+                    [i * dw, 0.05, 0.01],
+                    [dw - 0.02, h - 0.1, 0.02],
+                    rgb,
+                );
+            }
+        }
+        3 => {
+            pair(&mut p, 0.05, h * 0.74, door_rgb);
+            pair(
+                &mut p,
+                h * 0.74 + 0.07,
+                h * 0.26 - 0.12,
+                shade(fin.rgb, 0.8),
+            );
+        }
+        _ => pair(&mut p, 0.05, h - 0.1, door_rgb),
+    }
     for s in [-1.0, 1.0] {
-        front(
-            &mut p,
-            d,
-            [s * w * 0.25, 0.05, 0.01],
-            [w * 0.5 - 0.02, h - 0.1, 0.02],
-            shade(fin.rgb, 0.9),
-        );
         front(
             &mut p,
             d,
@@ -231,21 +370,45 @@ pub(crate) fn wardrobe(rng: &mut ChaCha8Rng) -> Model {
     Model::new(C::Wardrobe, fin, [w, h, d], 70.0, p)
 }
 
-/// A dresser: body with three drawer fronts; small objects on top.
+/// A dresser: body with drawer fronts; small objects on top. Variants: three full-width rows;
+/// two columns of three; four rows with a split top row; two columns of two in a contrasting
+/// colour.
 pub(crate) fn dresser(rng: &mut ChaCha8Rng) -> Model {
     let fin = palette::pick(C::Dresser, rng);
     let (w, h, d) = (r(rng, 0.9, 1.4), r(rng, 0.75, 0.95), r(rng, 0.42, 0.52));
+    let v = variant(4, &[w, h, d]);
     let mut p = Vec::new();
-    cube(&mut p, 0.0, 0.0, 0.01, [w, h, d - 0.02], fin.rgb);
-    for i in 0..3 {
-        let y = 0.06 + i as f32 * (h - 0.1) / 3.0;
-        front(
-            &mut p,
-            d,
-            [0.0, y, 0.005],
-            [w - 0.08, (h - 0.1) / 3.0 - 0.03, 0.01],
-            shade(fin.rgb, 0.85),
-        );
+    bcube(&mut p, 0.0, 0.0, 0.01, [w, h, d - 0.02], 0.015, fin.rgb);
+    // Drawer fronts stick out of the body: every layout covers the same strip (outer edges at
+    // +-(w - 0.08) / 2, 1 cm gaps).
+    let fw = w - 0.08;
+    let rgb = if v == 3 {
+        tone::LINEN
+    } else {
+        shade(fin.rgb, 0.85)
+    };
+    let (rows, split): (usize, &[usize]) = match v {
+        1 => (3, &[0, 1, 2]),
+        2 => (4, &[3]),
+        3 => (2, &[0, 1]),
+        _ => (3, &[]),
+    };
+    for i in 0..rows {
+        let rh = (h - 0.1) / rows as f32;
+        let y = 0.06 + i as f32 * rh;
+        if split.contains(&i) {
+            for s in [-1.0, 1.0] {
+                front(
+                    &mut p,
+                    d,
+                    [s * (fw + 0.01) * 0.25, y, 0.005],
+                    [(fw - 0.01) * 0.5, rh - 0.03, 0.01],
+                    rgb,
+                );
+            }
+        } else {
+            front(&mut p, d, [0.0, y, 0.005], [fw, rh - 0.03, 0.01], rgb);
+        }
     }
     Model::new(C::Dresser, fin, [w, h, d], 45.0, p).with_top(0.05)
 }
@@ -255,10 +418,10 @@ pub(crate) fn toilet(rng: &mut ChaCha8Rng) -> Model {
     let fin = palette::pick(C::Toilet, rng);
     let (w, d) = (0.42, 0.7);
     let mut p = Vec::new();
-    cube(&mut p, 0.0, 0.0, 0.0, [0.26, 0.3, 0.4], fin.rgb);
+    bcube(&mut p, 0.0, 0.0, 0.0, [0.26, 0.3, 0.4], 0.03, fin.rgb);
     cyl(&mut p, 0.0, 0.3, -0.08, 0.19, 0.1, fin.rgb);
     cyl(&mut p, 0.0, 0.4, -0.08, 0.2, 0.03, shade(fin.rgb, 0.9));
-    cube(&mut p, 0.0, 0.3, 0.26, [w, 0.5, 0.18], fin.rgb);
+    bcube(&mut p, 0.0, 0.3, 0.26, [w, 0.5, 0.18], 0.03, fin.rgb);
     Model::new(C::Toilet, fin, [w, 0.8, d], 30.0, p)
 }
 
@@ -268,7 +431,7 @@ pub(crate) fn sink(rng: &mut ChaCha8Rng) -> Model {
     let wood = palette::pick(C::Cabinet, rng);
     let (w, h, d) = (r(rng, 0.6, 0.9), 0.85, 0.5);
     let mut p = Vec::new();
-    cube(&mut p, 0.0, 0.0, 0.0, [w, h - 0.04, d], wood.rgb);
+    bcube(&mut p, 0.0, 0.0, 0.0, [w, h - 0.04, d], 0.012, wood.rgb);
     cube(&mut p, 0.0, h - 0.04, 0.0, [w, 0.04, d], fin.rgb);
     cyl(
         &mut p,
@@ -297,7 +460,7 @@ pub(crate) fn bathtub(rng: &mut ChaCha8Rng) -> Model {
     let (w, h, d) = (r(rng, 1.5, 1.75), 0.56, r(rng, 0.72, 0.8));
     let t = 0.08;
     let mut p = Vec::new();
-    cube(&mut p, 0.0, 0.0, 0.0, [w, 0.12, d], fin.rgb);
+    bcube(&mut p, 0.0, 0.0, 0.0, [w, 0.12, d], 0.02, fin.rgb);
     cube(
         &mut p,
         0.0,
@@ -382,7 +545,7 @@ pub(crate) fn fridge(rng: &mut ChaCha8Rng) -> Model {
     let fin = palette::pick(C::Fridge, rng);
     let (w, h, d) = (r(rng, 0.6, 0.8), r(rng, 1.7, 1.95), 0.68);
     let mut p = Vec::new();
-    cube(&mut p, 0.0, 0.0, 0.02, [w, h, d - 0.04], fin.rgb);
+    bcube(&mut p, 0.0, 0.0, 0.02, [w, h, d - 0.04], 0.025, fin.rgb);
     front(
         &mut p,
         d,
@@ -440,7 +603,15 @@ pub(crate) fn counter(rng: &mut ChaCha8Rng, w: f32) -> Model {
             tone::STEEL,
         );
     }
-    cube(&mut p, 0.0, h - 0.04, 0.0, [w, 0.04, d], [0.75, 0.74, 0.7]);
+    bcube(
+        &mut p,
+        0.0,
+        h - 0.04,
+        0.0,
+        [w, 0.04, d],
+        0.008,
+        [0.75, 0.74, 0.7],
+    );
     Model::new(C::Counter, fin, [w, h, d], 40.0 * w, p).with_top(0.06)
 }
 
@@ -449,7 +620,7 @@ pub(crate) fn stove(rng: &mut ChaCha8Rng) -> Model {
     let fin = palette::pick(C::Stove, rng);
     let (w, h, d) = (0.6, 0.9, 0.62);
     let mut p = Vec::new();
-    cube(&mut p, 0.0, 0.0, 0.0, [w, h - 0.02, d], fin.rgb);
+    bcube(&mut p, 0.0, 0.0, 0.0, [w, h - 0.02, d], 0.012, fin.rgb);
     front(
         &mut p,
         d,
@@ -478,7 +649,7 @@ pub(crate) fn dishwasher(rng: &mut ChaCha8Rng) -> Model {
     let fin = palette::pick(C::Dishwasher, rng);
     let (w, h, d) = (0.6, 0.88, 0.62);
     let mut p = Vec::new();
-    cube(&mut p, 0.0, 0.0, 0.0, [w, h, d], fin.rgb);
+    bcube(&mut p, 0.0, 0.0, 0.0, [w, h, d], 0.015, fin.rgb);
     front(
         &mut p,
         d,
@@ -501,7 +672,7 @@ pub(crate) fn kitchen_cabinet(rng: &mut ChaCha8Rng) -> Model {
     let fin = palette::pick(C::KitchenCabinet, rng);
     let (w, h, d) = (r(rng, 0.5, 0.8), r(rng, 1.9, 2.1), 0.6);
     let mut p = Vec::new();
-    cube(&mut p, 0.0, 0.0, 0.01, [w, h, d - 0.02], fin.rgb);
+    bcube(&mut p, 0.0, 0.0, 0.01, [w, h, d - 0.02], 0.015, fin.rgb);
     front(
         &mut p,
         d,
@@ -526,83 +697,157 @@ pub(crate) fn kitchen_cabinet(rng: &mut ChaCha8Rng) -> Model {
     Model::new(C::KitchenCabinet, fin, [w, h, d], 50.0, p)
 }
 
-/// A sofa of width `w`: base, seat cushions, back, arms, cushions.
+/// Sofa and armchair variants, from three bits of a hash: a plinth instead of legs; low arms
+/// (an armless look: the arm parts keep their footprint but end at the base's top); one long
+/// seat cushion instead of one per seat.
+#[derive(Clone, Copy)]
+struct Seating {
+    plinth: bool,
+    low_arms: bool,
+    bench: bool,
+}
+
+impl Seating {
+    fn of(v: usize) -> Seating {
+        Seating {
+            plinth: v & 1 != 0,
+            low_arms: v & 2 != 0,
+            bench: v & 4 != 0,
+        }
+    }
+}
+
+/// Feet of a sofa or armchair: four legs at the corners of `(w, d)`, or a recessed plinth that
+/// covers them (so the footprint under the base is the same).
+fn seat_feet(p: &mut Vec<Part>, v: Seating, w: f32, d: f32, h: f32, s: f32, rgb: [f32; 3]) {
+    if v.plinth {
+        cube(p, 0.0, 0.0, 0.0, [w, h, d], shade(rgb, 0.6));
+    } else {
+        legs(p, w, d, h, s, rgb);
+    }
+}
+
+/// A sofa of width `w`: feet, base, seat cushions, back, arms, back cushions. See [`Seating`]
+/// for its variants.
 pub(crate) fn sofa(rng: &mut ChaCha8Rng, w: f32) -> Model {
     let fin = palette::pick(C::Sofa, rng);
     let (h, d) = (r(rng, 0.8, 0.9), r(rng, 0.85, 0.95));
+    let v = Seating::of(variant(8, &[w, h, d]));
     let arm = 0.2;
     let mut p = Vec::new();
-    legs(&mut p, w - 0.1, d - 0.1, 0.08, 0.05, tone::METAL);
-    cube(&mut p, 0.0, 0.08, 0.0, [w, 0.25, d], shade(fin.rgb, 0.9));
-    let seats = if w > 1.7 { 3 } else { 2 };
-    let sw = (w - 2.0 * arm) / seats as f32;
+    seat_feet(&mut p, v, w - 0.1, d - 0.1, 0.08, 0.05, tone::METAL);
+    bcube(
+        &mut p,
+        0.0,
+        0.08,
+        0.0,
+        [w, 0.25, d],
+        0.03,
+        shade(fin.rgb, 0.9),
+    );
+    // Without arms the seat cushions reach almost to the sides.
+    let inner = if v.low_arms { 0.04 } else { arm };
+    let seats = if v.bench {
+        1
+    } else if w > 1.7 {
+        3
+    } else {
+        2
+    };
+    let sw = (w - 2.0 * inner) / seats as f32;
     for i in 0..seats {
-        let x = -w * 0.5 + arm + sw * (i as f32 + 0.5);
-        cube(&mut p, x, 0.33, -0.08, [sw - 0.02, 0.12, d - 0.3], fin.rgb);
+        let x = -w * 0.5 + inner + sw * (i as f32 + 0.5);
+        bcube(
+            &mut p,
+            x,
+            0.33,
+            -0.08,
+            [sw - 0.02, 0.12, d - 0.3],
+            0.025,
+            fin.rgb,
+        );
     }
-    cube(
+    bcube(
         &mut p,
         0.0,
         0.33,
         d * 0.5 - 0.11,
         [w, h - 0.33, 0.22],
+        0.04,
         fin.rgb,
     );
+    let arm_h = if v.low_arms { 0.25 } else { 0.55 };
     for s in [-1.0, 1.0] {
-        cube(
+        bcube(
             &mut p,
             s * (w - arm) * 0.5,
             0.08,
             0.0,
-            [arm, 0.55, d],
+            [arm, arm_h, d],
+            0.04,
             shade(fin.rgb, 0.95),
         );
     }
     let cushion = palette::fabric(rng);
     for s in [-1.0, 1.0] {
-        cube(
+        bcube(
             &mut p,
             s * (w * 0.5 - arm - 0.25),
             0.45,
             d * 0.5 - 0.3,
             [0.4, 0.35, 0.12],
+            0.025,
             cushion,
         );
     }
     Model::new(C::Sofa, fin, [w, h, d], 30.0 + 25.0 * w, p)
 }
 
-/// An armchair: a one-seat sofa.
+/// An armchair: a one-seat sofa (plinth or legs, high or low arms).
 pub(crate) fn armchair(rng: &mut ChaCha8Rng) -> Model {
     let fin = palette::pick(C::Armchair, rng);
     let (w, h, d) = (r(rng, 0.75, 0.9), r(rng, 0.8, 0.95), r(rng, 0.75, 0.85));
+    let v = Seating::of(variant(4, &[w, h, d]));
     let arm = 0.15;
     let mut p = Vec::new();
-    legs(&mut p, w - 0.1, d - 0.1, 0.1, 0.04, tone::WOOD);
-    cube(&mut p, 0.0, 0.1, 0.0, [w, 0.22, d], shade(fin.rgb, 0.9));
-    cube(
+    seat_feet(&mut p, v, w - 0.1, d - 0.1, 0.1, 0.04, tone::WOOD);
+    bcube(
+        &mut p,
+        0.0,
+        0.1,
+        0.0,
+        [w, 0.22, d],
+        0.03,
+        shade(fin.rgb, 0.9),
+    );
+    let inner = if v.low_arms { 0.04 } else { arm };
+    bcube(
         &mut p,
         0.0,
         0.32,
         -0.06,
-        [w - 2.0 * arm, 0.1, d - 0.22],
+        [w - 2.0 * inner, 0.1, d - 0.22],
+        0.02,
         fin.rgb,
     );
-    cube(
+    bcube(
         &mut p,
         0.0,
         0.32,
         d * 0.5 - 0.09,
         [w, h - 0.32, 0.18],
+        0.04,
         fin.rgb,
     );
+    let arm_h = if v.low_arms { 0.22 } else { 0.5 };
     for s in [-1.0, 1.0] {
-        cube(
+        bcube(
             &mut p,
             s * (w - arm) * 0.5,
             0.1,
             0.0,
-            [arm, 0.5, d],
+            [arm, arm_h, d],
+            0.03,
             shade(fin.rgb, 0.95),
         );
     }
@@ -635,7 +880,7 @@ pub(crate) fn tv_stand(rng: &mut ChaCha8Rng) -> Model {
     let (w, h, d) = (r(rng, 1.2, 1.8), r(rng, 0.45, 0.55), r(rng, 0.4, 0.48));
     let mut p = Vec::new();
     legs(&mut p, w - 0.05, d - 0.05, 0.08, 0.04, tone::METAL);
-    cube(&mut p, 0.0, 0.08, 0.0, [w, h - 0.08, d], fin.rgb);
+    bcube(&mut p, 0.0, 0.08, 0.0, [w, h - 0.08, d], 0.012, fin.rgb);
     for s in [-1.0, 1.0] {
         front(
             &mut p,
@@ -648,29 +893,106 @@ pub(crate) fn tv_stand(rng: &mut ChaCha8Rng) -> Model {
     Model::new(C::TvStand, fin, [w, h, d + 0.01], 30.0, p).with_top(0.02)
 }
 
-/// A table with a top and four legs (coffee, dining, side tables; desks).
+/// Height of the feet of table variants. Parts standing on the floor set the bottom of an
+/// object's box, which is rounded differently for parts of different heights once the object
+/// is turned: variants stand only on parts as tall as the four legs they replace; their feet
+/// float 2 mm above the floor.
+const LIFT: f32 = 0.002;
+
+/// Table variants: four legs; a pedestal (two for long tables) on crossed feet; two trestle
+/// ends joined by a stretcher; four legs braced by an apron and low rails.
+const TABLE_VARIANTS: usize = 4;
+
+/// The variant of a table, from its drawn size and colours (a dining table's size is chosen by
+/// the room, its colours are its own draws).
+fn table_variant(fin: Finish, w: f32, h: f32, d: f32, leg_rgb: [f32; 3]) -> usize {
+    variant(
+        TABLE_VARIANTS,
+        &[w, h, d, fin.rgb[0], fin.rgb[2], leg_rgb[1]],
+    )
+}
+
+/// A table top on one of the [`TABLE_VARIANTS`] supports (coffee, dining, side tables). The
+/// top covers the whole footprint and is the largest part in every variant.
 fn table(class: C, fin: Finish, w: f32, h: f32, d: f32, leg_rgb: [f32; 3], mass: f32) -> Model {
     let mut p = Vec::new();
     let top = 0.04;
-    cube(&mut p, 0.0, h - top, 0.0, [w, top, d], fin.rgb);
-    legs(&mut p, w - 0.06, d - 0.06, h - top, 0.05, leg_rgb);
+    let under = h - top;
+    bcube(&mut p, 0.0, under, 0.0, [w, top, d], 0.008, fin.rgb);
+    match table_variant(fin, w, h, d, leg_rgb) {
+        1 => {
+            let r = (w.min(d) * 0.1).clamp(0.03, 0.05);
+            let xs: &[f32] = if w > 1.3 { &[-0.3, 0.3] } else { &[0.0] };
+            for &f in xs {
+                let x = f * w;
+                cyl(&mut p, x, 0.0, 0.0, r, under, leg_rgb);
+                cube(&mut p, x, LIFT, 0.0, [0.08, 0.04, d * 0.7], leg_rgb);
+                if xs.len() == 1 {
+                    cube(&mut p, x, LIFT, 0.0, [w * 0.7, 0.04, 0.08], leg_rgb);
+                }
+            }
+            if xs.len() == 2 {
+                cube(&mut p, 0.0, 0.25, 0.0, [w * 0.6, 0.05, 0.05], leg_rgb);
+            }
+        }
+        2 => {
+            for s in [-1.0, 1.0] {
+                let x = s * (w * 0.5 - 0.1);
+                cube(&mut p, x, 0.0, 0.0, [0.035, under, d * 0.45], leg_rgb);
+                cube(&mut p, x, LIFT, 0.0, [0.07, 0.03, d - 0.1], leg_rgb);
+            }
+            cube(
+                &mut p,
+                0.0,
+                under * 0.3,
+                0.0,
+                [w - 0.2, 0.05, 0.03],
+                leg_rgb,
+            );
+        }
+        3 => {
+            legs(&mut p, w - 0.06, d - 0.06, under, 0.05, leg_rgb);
+            for s in [-1.0, 1.0] {
+                cube(
+                    &mut p,
+                    0.0,
+                    under - 0.07,
+                    s * (d * 0.5 - 0.05),
+                    [w - 0.12, 0.07, 0.02],
+                    leg_rgb,
+                );
+                cube(
+                    &mut p,
+                    s * (w * 0.5 - 0.055),
+                    0.12,
+                    0.0,
+                    [0.025, 0.03, d - 0.12],
+                    leg_rgb,
+                );
+            }
+            cube(&mut p, 0.0, 0.12, 0.0, [w - 0.12, 0.03, 0.025], leg_rgb);
+        }
+        _ => legs(&mut p, w - 0.06, d - 0.06, under, 0.05, leg_rgb),
+    }
     Model::new(class, fin, [w, h, d], mass, p).with_top(0.05)
 }
 
-/// A coffee table.
+/// A coffee table (with a lower shelf when it stands on legs).
 pub(crate) fn coffee_table(rng: &mut ChaCha8Rng) -> Model {
     let fin = palette::pick(C::CoffeeTable, rng);
     let (w, h, d) = (r(rng, 0.9, 1.2), r(rng, 0.38, 0.46), r(rng, 0.5, 0.65));
     let mut m = table(C::CoffeeTable, fin, w, h, d, shade(fin.rgb, 0.8), 15.0);
-    // A lower shelf makes it read as a coffee table rather than a bench.
-    cube(
-        &mut m.parts,
-        0.0,
-        0.08,
-        0.0,
-        [w - 0.1, 0.02, d - 0.1],
-        shade(fin.rgb, 0.8),
-    );
+    if matches!(table_variant(fin, w, h, d, shade(fin.rgb, 0.8)), 0 | 3) {
+        // A lower shelf makes it read as a coffee table rather than a bench.
+        cube(
+            &mut m.parts,
+            0.0,
+            0.08,
+            0.0,
+            [w - 0.1, 0.02, d - 0.1],
+            shade(fin.rgb, 0.8),
+        );
+    }
     m
 }
 
@@ -713,7 +1035,7 @@ pub(crate) fn desk(rng: &mut ChaCha8Rng) -> Model {
     let fin = palette::pick(C::Desk, rng);
     let (w, h, d) = (r(rng, 1.1, 1.5), 0.75, r(rng, 0.6, 0.7));
     let mut p = Vec::new();
-    cube(&mut p, 0.0, h - 0.04, 0.0, [w, 0.04, d], fin.rgb);
+    bcube(&mut p, 0.0, h - 0.04, 0.0, [w, 0.04, d], 0.008, fin.rgb);
     for s in [-1.0, 1.0] {
         cube(
             &mut p,
@@ -743,12 +1065,15 @@ pub(crate) fn desk(rng: &mut ChaCha8Rng) -> Model {
     Model::new(C::Desk, fin, [w, h, d], 30.0, p).with_top(0.05)
 }
 
-/// A chair: four legs, seat, backrest (with two posts).
+/// A chair: four legs, seat, backrest on two posts. Variants: a top panel; spindles under
+/// the panel; a solid back down to the seat; arms. The panel, seat and legs keep their place
+/// in every variant (they make the chair's box), the rest stays inside it.
 pub(crate) fn chair(rng: &mut ChaCha8Rng) -> Model {
     let fin = palette::pick(C::Chair, rng);
     let (w, d) = (r(rng, 0.42, 0.5), r(rng, 0.44, 0.52));
     let seat = r(rng, 0.44, 0.48);
     let h = r(rng, 0.85, 0.98);
+    let v = variant(4, &[w, d, seat, h]);
     let leg_rgb = if fin.material == "wood" {
         shade(fin.rgb, 0.8)
     } else {
@@ -756,7 +1081,8 @@ pub(crate) fn chair(rng: &mut ChaCha8Rng) -> Model {
     };
     let mut p = Vec::new();
     legs(&mut p, w, d, seat - 0.04, 0.035, leg_rgb);
-    cube(&mut p, 0.0, seat - 0.04, 0.0, [w, 0.04, d], fin.rgb);
+    bcube(&mut p, 0.0, seat - 0.04, 0.0, [w, 0.04, d], 0.008, fin.rgb);
+    let back_z = d * 0.5 - 0.02;
     for s in [-1.0, 1.0] {
         cube(
             &mut p,
@@ -767,14 +1093,46 @@ pub(crate) fn chair(rng: &mut ChaCha8Rng) -> Model {
             leg_rgb,
         );
     }
-    cube(
+    bcube(
         &mut p,
         0.0,
         h - 0.18,
-        d * 0.5 - 0.02,
+        back_z,
         [w, 0.18, 0.04],
+        0.008,
         fin.rgb,
     );
+    let below = h - seat - 0.18;
+    match v {
+        1 => {
+            for x in [-0.25, 0.0, 0.25] {
+                cube(&mut p, x * w, seat, back_z, [0.02, below, 0.02], leg_rgb);
+            }
+        }
+        2 => cube(
+            &mut p,
+            0.0,
+            seat,
+            back_z,
+            [w - 0.07, below, 0.03],
+            shade(fin.rgb, 0.95),
+        ),
+        3 => {
+            for s in [-1.0, 1.0] {
+                let x = s * (w * 0.5 - 0.025);
+                cube(&mut p, x, seat + 0.2, 0.0, [0.04, 0.03, d * 0.8], fin.rgb);
+                cube(
+                    &mut p,
+                    x,
+                    seat,
+                    -d * 0.5 + 0.06,
+                    [0.025, 0.2, 0.025],
+                    leg_rgb,
+                );
+            }
+        }
+        _ => {}
+    }
     Model::new(C::Chair, fin, [w, h, d], 5.0, p)
 }
 
@@ -795,9 +1153,17 @@ pub(crate) fn office_chair(rng: &mut ChaCha8Rng) -> Model {
         cube(&mut p, x, 0.0, z, [0.05, 0.03, 0.05], tone::METAL);
     }
     cyl(&mut p, 0.0, 0.06, 0.0, 0.03, 0.36, tone::STEEL);
-    cube(&mut p, 0.0, 0.42, 0.0, [0.5, 0.08, 0.5], fin.rgb);
+    bcube(&mut p, 0.0, 0.42, 0.0, [0.5, 0.08, 0.5], 0.015, fin.rgb);
     cube(&mut p, 0.0, 0.45, 0.24, [0.06, 0.15, 0.04], tone::METAL);
-    cube(&mut p, 0.0, 0.6, 0.25, [0.46, h - 0.6, 0.06], fin.rgb);
+    bcube(
+        &mut p,
+        0.0,
+        0.6,
+        0.25,
+        [0.46, h - 0.6, 0.06],
+        0.012,
+        fin.rgb,
+    );
     Model::new(C::OfficeChair, fin, [s, h, s], 12.0, p)
 }
 
@@ -848,29 +1214,86 @@ pub(crate) fn bookshelf(rng: &mut ChaCha8Rng) -> Model {
     Model::new(C::Bookshelf, fin, [w, h, d], 35.0, p)
 }
 
-/// A potted plant: pot, soil, stem, foliage.
+/// A potted plant: pot, soil, stem, foliage. Variants: one round bush; a bush with smaller
+/// clumps around its base; a bush with broad leaves sticking out. The main ball (the largest
+/// part) is in every variant and the rest stays inside its outline seen from above.
 pub(crate) fn potted_plant(rng: &mut ChaCha8Rng) -> Model {
     let fin = palette::pick(C::PottedPlant, rng);
     let pot_r = r(rng, 0.14, 0.2);
     let h = r(rng, 0.8, 1.4);
     let fol = (pot_r * 1.6).min(0.3);
+    let v = variant(3, &[pot_r, h]);
     let mut p = Vec::new();
     cyl(&mut p, 0.0, 0.0, 0.0, pot_r, 0.35, fin.rgb);
     cyl(&mut p, 0.0, 0.35, 0.0, pot_r - 0.02, 0.01, tone::SOIL);
     cyl(&mut p, 0.0, 0.35, 0.0, 0.025, h - 0.35 - fol, tone::WOOD);
     ball(&mut p, [0.0, h - fol, 0.0], fol, tone::LEAF);
+    let dark = shade(tone::LEAF, 0.75);
+    match v {
+        1 => {
+            for k in 0..3 {
+                let a = k as f32 * std::f32::consts::TAU / 3.0 + 0.5;
+                let c = [a.cos() * fol * 0.4, h - fol * 1.25, a.sin() * fol * 0.4];
+                ball(&mut p, c, fol * 0.55, dark);
+            }
+        }
+        2 => {
+            for k in 0..5 {
+                let a = k as f32 * std::f32::consts::TAU / 5.0;
+                let rot = Quat::from_rotation_y(-a) * Quat::from_rotation_z(0.6);
+                let len = fol * 0.85;
+                let c = [a.cos() * fol * 0.5, h - fol * 1.1, a.sin() * fol * 0.5];
+                let blade = Shape::Cuboid {
+                    half_extents: [len * 0.5, 0.005, 0.04],
+                    bevel: 0.0,
+                };
+                turned(&mut p, blade, c, rot, dark);
+            }
+        }
+        _ => {}
+    }
     let s = 2.0 * fol.max(pot_r);
     Model::new(C::PottedPlant, fin, [s, h, s], 10.0, p)
 }
 
-/// A floor lamp: base, pole, shade.
+/// A floor lamp: base, pole, shade. Variants: a drum shade; a tapered shade (a narrow drum over
+/// a wide rim); a drum on a tripod.
 pub(crate) fn floor_lamp(rng: &mut ChaCha8Rng) -> Model {
     let fin = palette::pick(C::FloorLamp, rng);
     let h = r(rng, 1.5, 1.8);
+    let v = variant(3, &[h]);
     let mut p = Vec::new();
     cyl(&mut p, 0.0, 0.0, 0.0, 0.15, 0.03, tone::METAL);
     cyl(&mut p, 0.0, 0.03, 0.0, 0.015, h - 0.33, tone::METAL);
-    cyl(&mut p, 0.0, h - 0.32, 0.0, 0.17, 0.32, fin.rgb);
+    // The widest shade part keeps the drum's radius and stays in the agent's height band, so
+    // the footprint is the drum's disc in every variant.
+    if v == 1 {
+        cyl(&mut p, 0.0, h - 0.32, 0.0, 0.12, 0.32, fin.rgb);
+        cyl(&mut p, 0.0, h - 0.32, 0.0, 0.17, 0.1, fin.rgb);
+        cyl(&mut p, 0.0, h - 0.23, 0.0, 0.145, 0.1, fin.rgb);
+    } else {
+        cyl(&mut p, 0.0, h - 0.32, 0.0, 0.17, 0.32, fin.rgb);
+    }
+    if v == 2 {
+        // Three legs from the pole down to the rim of the base.
+        let (top, foot, r): (f32, f32, f32) = (0.5, 0.13, 0.012);
+        let len = (foot * foot + (top - 0.01) * (top - 0.01)).sqrt();
+        let tilt = (foot / (top - 0.01)).atan();
+        for k in 0..3 {
+            let a = k as f32 * std::f32::consts::TAU / 3.0;
+            let rot = Quat::from_rotation_y(-a) * Quat::from_rotation_z(tilt);
+            let c = [
+                a.cos() * foot * 0.5,
+                (top + 0.01) * 0.5,
+                a.sin() * foot * 0.5,
+            ];
+            let leg = Shape::Cylinder {
+                radius: r,
+                half_height: len * 0.5,
+            };
+            turned(&mut p, leg, c, rot, tone::METAL);
+        }
+    }
     Model::new(C::FloorLamp, fin, [0.34, h, 0.34], 5.0, p)
 }
 
@@ -895,7 +1318,7 @@ pub(crate) fn cabinet(rng: &mut ChaCha8Rng) -> Model {
     let fin = palette::pick(C::Cabinet, rng);
     let (w, h, d) = (r(rng, 0.6, 1.0), r(rng, 0.75, 0.95), r(rng, 0.38, 0.48));
     let mut p = Vec::new();
-    cube(&mut p, 0.0, 0.0, 0.01, [w, h, d - 0.02], fin.rgb);
+    bcube(&mut p, 0.0, 0.0, 0.01, [w, h, d - 0.02], 0.015, fin.rgb);
     for s in [-1.0, 1.0] {
         front(
             &mut p,
@@ -988,7 +1411,7 @@ pub(crate) fn washing_machine(rng: &mut ChaCha8Rng) -> Model {
     let fin = palette::pick(C::WashingMachine, rng);
     let (w, h, d) = (0.6, 0.85, 0.6);
     let mut p = Vec::new();
-    cube(&mut p, 0.0, 0.0, 0.0, [w, h, d], fin.rgb);
+    bcube(&mut p, 0.0, 0.0, 0.0, [w, h, d], 0.015, fin.rgb);
     disc_z(
         &mut p,
         [0.0, h * 0.45, -d * 0.5 - 0.015],
@@ -1018,8 +1441,8 @@ pub(crate) fn piano(rng: &mut ChaCha8Rng) -> Model {
     let fin = palette::pick(C::Piano, rng);
     let (w, h, d) = (1.45, r(rng, 1.1, 1.3), 0.6);
     let mut p = Vec::new();
-    cube(&mut p, 0.0, 0.0, 0.1, [w, h, 0.4], fin.rgb);
-    cube(&mut p, 0.0, 0.7, -0.15, [w, 0.06, 0.3], fin.rgb);
+    bcube(&mut p, 0.0, 0.0, 0.1, [w, h, 0.4], 0.015, fin.rgb);
+    bcube(&mut p, 0.0, 0.7, -0.15, [w, 0.06, 0.3], 0.012, fin.rgb);
     cube(&mut p, 0.0, 0.76, -0.2, [w - 0.2, 0.02, 0.16], tone::WHITE);
     for s in [-1.0, 1.0] {
         cube(
@@ -1050,7 +1473,7 @@ pub(crate) fn bench(rng: &mut ChaCha8Rng) -> Model {
             wood.rgb,
         );
     }
-    cube(&mut p, 0.0, h - 0.06, 0.0, [w, 0.06, d], fin.rgb);
+    bcube(&mut p, 0.0, h - 0.06, 0.0, [w, 0.06, d], 0.012, fin.rgb);
     Model::new(C::Bench, fin, [w, h, d], 12.0, p)
 }
 
@@ -1244,4 +1667,231 @@ fn recentre(m: &mut Model) {
     m.w = hi.x - lo.x;
     m.h = hi.y.max(0.0);
     m.d = hi.z - lo.z;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{RngCore, SeedableRng};
+    use vlnverse_env::occupancy::{build_maps, OccupancyConfig, OccupancyMaps};
+    use vlnverse_env::{Scene, SceneObject, SCENE_FORMAT_VERSION};
+
+    type Build = (&'static str, fn(&mut ChaCha8Rng) -> Model);
+
+    /// Every furniture builder (small objects have no variants).
+    const BUILDERS: &[Build] = &[
+        ("double bed", |g| bed(g, true)),
+        ("single bed", |g| bed(g, false)),
+        ("nightstand", nightstand),
+        ("wardrobe", wardrobe),
+        ("dresser", dresser),
+        ("toilet", toilet),
+        ("sink", sink),
+        ("bathtub", bathtub),
+        ("shower", shower),
+        ("fridge", fridge),
+        ("counter", |g| counter(g, 1.3)),
+        ("stove", stove),
+        ("dishwasher", dishwasher),
+        ("kitchen cabinet", kitchen_cabinet),
+        ("sofa 2", |g| sofa(g, 1.5)),
+        ("sofa 3", |g| sofa(g, 2.2)),
+        ("armchair", armchair),
+        ("tv", |g| tv(g, 1.2)),
+        ("tv stand", tv_stand),
+        ("coffee table", coffee_table),
+        // The room chooses a dining table's size.
+        ("dining table", |g| {
+            let (w, d) = (r(g, 1.2, 1.8), r(g, 0.8, 1.0));
+            dining_table(g, w, d)
+        }),
+        ("small dining table", |g| dining_table(g, 0.9, 0.8)),
+        ("side table", side_table),
+        ("desk", desk),
+        ("chair", chair),
+        ("office chair", office_chair),
+        ("bookshelf", bookshelf),
+        ("potted plant", potted_plant),
+        ("floor lamp", floor_lamp),
+        ("cabinet", cabinet),
+        ("shoe rack", shoe_rack),
+        ("coat rack", coat_rack),
+        ("washing machine", washing_machine),
+        ("piano", piano),
+        ("bench", bench),
+        ("stool", stool),
+        ("trash can", trash_can),
+    ];
+
+    /// Build with variant `force` (None: the hashed one); also the rng's next draw.
+    fn build(b: fn(&mut ChaCha8Rng) -> Model, seed: u64, force: Option<usize>) -> (Model, u64) {
+        FORCE_VARIANT.with(|f| f.set(force));
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let m = b(&mut rng);
+        FORCE_VARIANT.with(|f| f.set(None));
+        (m, rng.next_u64())
+    }
+
+    fn volume(s: &Shape) -> f32 {
+        match s {
+            Shape::Cuboid {
+                half_extents: h, ..
+            } => 8.0 * h[0] * h[1] * h[2],
+            Shape::Cylinder {
+                radius,
+                half_height,
+            } => std::f32::consts::PI * radius * radius * 2.0 * half_height,
+            Shape::Sphere { radius } => 4.19 * radius * radius * radius,
+            Shape::Mesh(_) => 0.0,
+        }
+    }
+
+    /// What instructions read of a model: its largest part's shape kind and colour.
+    fn largest(m: &Model) -> (std::mem::Discriminant<Shape>, [u32; 3]) {
+        let p = m
+            .parts
+            .iter()
+            .max_by(|a, b| volume(&a.shape).total_cmp(&volume(&b.shape)))
+            .expect("a model has parts");
+        (std::mem::discriminant(&p.shape), p.color.map(f32::to_bits))
+    }
+
+    /// The model on a floor at two poses (one turned a quarter), and the maps of that scene.
+    fn placed(m: &Model) -> Vec<(Vec<[u32; 3]>, OccupancyMaps)> {
+        let poses = [
+            Pose::from_yaw(Vec3::new(0.013, 0.0, 0.027), 0.0),
+            Pose::from_yaw(Vec3::new(0.31, 0.0, -0.44), std::f32::consts::FRAC_PI_2),
+        ];
+        poses
+            .iter()
+            .map(|pose| {
+                let mut floor = Vec::new();
+                cube(&mut floor, 0.0, -0.05, 0.0, [6.0, 0.05, 6.0], tone::WHITE);
+                let objects = vec![
+                    SceneObject::from_parts(0, C::Floor, Pose::IDENTITY, floor),
+                    SceneObject::from_parts(1, m.class, *pose, m.parts.clone()),
+                ];
+                let bbox = objects[1].bbox;
+                let bits = vec![bbox.min.map(f32::to_bits), bbox.max.map(f32::to_bits)];
+                let scene = Scene {
+                    format_version: SCENE_FORMAT_VERSION,
+                    id: "variant".into(),
+                    source: "test".into(),
+                    seed: None,
+                    floor_height: 0.0,
+                    rooms: Vec::new(),
+                    doors: Vec::new(),
+                    objects,
+                };
+                let maps = build_maps(&scene, &OccupancyConfig::default()).expect("maps");
+                (bits, maps)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn variants_keep_everything_episodes_read() {
+        for &(name, b) in BUILDERS {
+            for seed in 0..24 {
+                let (base, base_next) = build(b, seed, Some(0));
+                let base_maps = placed(&base);
+                let (hashed, _) = build(b, seed, None);
+                let mut hashed_is_a_variant = false;
+                for k in 0..8 {
+                    let (m, next) = build(b, seed, Some(k));
+                    let what = format!("{name}, seed {seed}, variant {k}");
+                    hashed_is_a_variant |= m.parts == hashed.parts;
+                    assert_eq!(next, base_next, "{what}: rng draws");
+                    assert_eq!(m.class, base.class, "{what}");
+                    assert_eq!(m.finish, base.finish, "{what}");
+                    assert_eq!(m.mass.to_bits(), base.mass.to_bits(), "{what}");
+                    let size = |m: &Model| [m.w, m.h, m.d].map(f32::to_bits);
+                    assert_eq!(size(&m), size(&base), "{what}: measured size");
+                    assert_eq!(m.top, base.top, "{what}: top");
+                    assert_eq!(largest(&m), largest(&base), "{what}: largest part");
+                    let maps = placed(&m);
+                    for (i, (got, want)) in maps.iter().zip(&base_maps).enumerate() {
+                        assert_eq!(got.0, want.0, "{what}, pose {i}: bbox");
+                        assert!(got.1 == want.1, "{what}, pose {i}: occupancy maps differ");
+                    }
+                    for p in &m.parts {
+                        if let Shape::Cuboid {
+                            half_extents: h,
+                            bevel,
+                        } = p.shape
+                        {
+                            let min = h[0].min(h[1]).min(h[2]);
+                            assert!(bevel <= 0.45 * min, "{what}: bevel {bevel} on {h:?}");
+                        }
+                    }
+                }
+                assert!(hashed_is_a_variant, "{name}, seed {seed}");
+            }
+        }
+    }
+
+    #[test]
+    fn furniture_classes_have_visibly_different_variants() {
+        let with_variants = [
+            ("double bed", 4),
+            ("nightstand", 3),
+            ("wardrobe", 4),
+            ("dresser", 4),
+            ("sofa 3", 8),
+            ("armchair", 4),
+            ("coffee table", 4),
+            ("dining table", 4),
+            ("side table", 4),
+            ("chair", 4),
+            ("potted plant", 3),
+            ("floor lamp", 3),
+        ];
+        for (name, n) in with_variants {
+            let b = BUILDERS.iter().find(|x| x.0 == name).expect(name).1;
+            let mut layouts: Vec<Vec<Part>> = Vec::new();
+            for k in 0..n {
+                let parts = build(b, 7, Some(k)).0.parts;
+                assert!(!layouts.contains(&parts), "{name}: variant {k} repeats one");
+                layouts.push(parts);
+            }
+            // The hash spreads real models over the variants.
+            let mut seen = vec![0; n];
+            for seed in 0..200 {
+                let parts = build(b, seed, None).0.parts;
+                let k = (0..n).find(|&k| build(b, seed, Some(k)).0.parts == parts);
+                seen[k.expect("the hashed model is one of the variants")] += 1;
+            }
+            assert!(seen.iter().all(|c| *c > 200 / n / 3), "{name}: {seen:?}");
+        }
+    }
+
+    /// A whole home with variants against the same seed built with the first variant of every
+    /// model: same objects (class, box, colour, material, mass, support), same maps.
+    #[test]
+    fn homes_with_variants_match_homes_without() {
+        let cfg = crate::Preset::Tiny.config().expect("tiny preset");
+        for seed in 0..3 {
+            FORCE_VARIANT.with(|f| f.set(Some(0)));
+            let plain = crate::home::generate(&cfg, seed, "plain");
+            FORCE_VARIANT.with(|f| f.set(None));
+            let plain = plain.expect("home");
+            let varied = crate::home::generate(&cfg, seed, "plain").expect("home");
+            assert_eq!(plain.objects.len(), varied.objects.len(), "seed {seed}");
+            let mut differ = 0;
+            for (a, b) in plain.objects.iter().zip(&varied.objects) {
+                let what = format!("seed {seed}, object {} ({:?})", a.id, a.class);
+                assert_eq!(a.class, b.class, "{what}");
+                assert_eq!(a.bbox, b.bbox, "{what}");
+                assert_eq!(a.pose, b.pose, "{what}");
+                assert_eq!((&a.color, &a.material), (&b.color, &b.material), "{what}");
+                assert_eq!(a.physics, b.physics, "{what}");
+                assert_eq!(a.supported_by, b.supported_by, "{what}");
+                differ += usize::from(a.parts != b.parts);
+            }
+            assert!(differ > 0, "seed {seed}: no object got another variant");
+            let cfg = OccupancyConfig::default();
+            let (pm, vm) = (build_maps(&plain, &cfg), build_maps(&varied, &cfg));
+            assert!(pm.expect("maps") == vm.expect("maps"), "seed {seed}: maps");
+        }
+    }
 }
