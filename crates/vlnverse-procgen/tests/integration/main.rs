@@ -4,3 +4,4 @@ mod decor;
 mod homes;
 mod look;
 mod navigable;
+mod variants;
