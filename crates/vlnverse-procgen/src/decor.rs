@@ -1,6 +1,7 @@
 //! Decoration added after everything else in a home: windows on exterior walls (frame, a
 //! daylight pane, sill, curtains on some), skirting boards along the foot of the walls and
-//! pictures in living rooms, bedrooms and hallways.
+//! pictures in living rooms, bedrooms and hallways, and a light panel on the ceiling over
+//! every lamp of the light bake.
 //!
 //! Two rules keep the rest of a home as it was without them:
 //! - they are added last and draw from their own random stream (the home seed with a salt), so
@@ -19,7 +20,7 @@ use glam::Vec3;
 use rand::seq::IndexedRandom;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use vlnverse_env::{Pose, RoomId, RoomType, SceneObject, SemanticClass as C};
+use vlnverse_env::{Pose, RoomId, RoomType, Scene, SceneObject, SemanticClass as C};
 
 /// Salt of the decoration's random stream.
 const SALT: u64 = 0xdec0_7a7e_5eed_0001;
@@ -46,6 +47,12 @@ const SKIRTING_H: f32 = 0.09;
 /// Skirting boards stop this far short of a doorway (m), so that no sight line through the
 /// doorway grazes one.
 const SKIRTING_SETBACK: f32 = 0.06;
+
+/// Ceiling light panel: side and thickness (m).
+const PANEL: (f32, f32) = (0.36, 0.025);
+/// Warm white of the panels (the bake lights their underside fully: the lamp hangs just
+/// below).
+const PANEL_RGB: [f32; 3] = [0.97, 0.95, 0.9];
 
 /// Material word of window panes: the light bake makes them area lights
 /// (`vlnverse_env::light`), the renderers draw them as glass.
@@ -583,5 +590,45 @@ pub(crate) fn add_decor(cfg: &ProcgenConfig, plan: &Plan, seed: u64, b: &mut Bui
     add_skirting(cfg, plan, &faces, b);
     if cfg.walls.pictures {
         add_pictures(cfg, plan, &faces, &mut rng, b);
+    }
+}
+
+/// A square light panel on the ceiling over every lamp of the light bake
+/// ([`vlnverse_env::light::lamps`]), so that the light in a room has a visible source. The
+/// panel is a part of the room's ceiling object, not an object of its own: ceilings are
+/// structure, so targets, the scene graph and episodes stay as they are, and the panel is
+/// above the agent's height band, so the maps do too. Its class in semantic images is
+/// `ceiling`.
+pub(crate) fn add_light_panels(scene: &mut Scene) {
+    let lamps = vlnverse_env::light::lamps(scene);
+    for lamp in lamps {
+        let inside = |o: &SceneObject| {
+            o.class == C::Ceiling
+                && (o.bbox.min[0]..=o.bbox.max[0]).contains(&lamp.x)
+                && (o.bbox.min[2]..=o.bbox.max[2]).contains(&lamp.z)
+        };
+        let Some(ceiling) = scene.objects.iter_mut().find(|o| inside(o)) else {
+            continue;
+        };
+        // Ceilings are placed without rotation; the panel hangs from the slab's underside.
+        let local = lamp - Vec3::from_array(ceiling.pose.position);
+        // The slab is the first part (a second lamp's panel must not hang from the first's).
+        let Some(slab) = ceiling.parts.first() else {
+            continue;
+        };
+        let vlnverse_env::Shape::Cuboid { half_extents, .. } = slab.shape else {
+            continue;
+        };
+        let bottom = slab.transform.position[1] - half_extents[1];
+        let mut part = box_part(
+            Vec3::new(local.x, bottom - PANEL.1 * 0.5, local.z),
+            Vec3::new(PANEL.0, PANEL.1, PANEL.0),
+            PANEL_RGB,
+        );
+        if let vlnverse_env::Shape::Cuboid { bevel, .. } = &mut part.shape {
+            *bevel = 0.006;
+        }
+        ceiling.parts.push(part);
+        ceiling.bbox = ceiling.compute_bbox();
     }
 }

@@ -401,7 +401,7 @@ pub(crate) fn generate(cfg: &ProcgenConfig, seed: u64, id: &str) -> Result<Scene
             }
         })
         .collect();
-    Ok(Scene {
+    let mut scene = Scene {
         format_version: SCENE_FORMAT_VERSION,
         id: id.to_string(),
         source: "procgen".into(),
@@ -410,5 +410,9 @@ pub(crate) fn generate(cfg: &ProcgenConfig, seed: u64, id: &str) -> Result<Scene
         rooms,
         doors,
         objects: b.objects,
-    })
+    };
+    if cfg.walls.ceiling && cfg.walls.decor {
+        crate::decor::add_light_panels(&mut scene);
+    }
+    Ok(scene)
 }

@@ -23,6 +23,21 @@ fn panes(s: &Scene) -> Vec<&SceneObject> {
     s.objects.iter().filter(|o| light::is_pane(o)).collect()
 }
 
+/// The objects with the ceilings' light panels (parts after the slab) taken off.
+fn without_panels(objects: &[SceneObject]) -> Vec<SceneObject> {
+    objects
+        .iter()
+        .map(|o| {
+            let mut o = o.clone();
+            if o.class == C::Ceiling {
+                o.parts.truncate(1);
+                o.bbox = o.compute_bbox();
+            }
+            o
+        })
+        .collect()
+}
+
 #[test]
 fn decor_comes_after_every_other_object_and_changes_no_map() {
     let vln = HomeGenerator::from_preset(Preset::Vlnverse).unwrap();
@@ -36,7 +51,12 @@ fn decor_comes_after_every_other_object_and_changes_no_map() {
     for (with, without) in tiny.chain(big) {
         let n = without.objects.len();
         assert!(with.objects.len() > n, "{}: no decoration", with.id);
-        assert_eq!(with.objects[..n], without.objects[..], "{}", with.id);
+        assert_eq!(
+            without_panels(&with.objects[..n]),
+            without.objects[..],
+            "{}",
+            with.id
+        );
         assert_eq!(with.rooms, without.rooms);
         assert_eq!(with.doors, without.doors);
         for o in &with.objects[n..] {
@@ -199,4 +219,69 @@ fn decor_is_deterministic() {
         serde_json::to_string(&a).unwrap(),
         serde_json::to_string(&b).unwrap()
     );
+}
+
+#[test]
+fn a_light_panel_hangs_over_every_lamp_and_glows() {
+    for i in 0..generator(true).len() {
+        let s = generator(true).scene(i).unwrap();
+        let lamps = light::lamps(&s);
+        assert!(!lamps.is_empty(), "{}: no lamps", s.id);
+        let baked = light::bake_fresh(&s);
+        let meshes = light::bake_meshes(&s);
+        // Part index of each (object, part), in the bake's order.
+        let mut k = 0;
+        let mut panels = Vec::new();
+        for o in &s.objects {
+            for (j, _) in o.parts.iter().enumerate() {
+                if o.class == C::Ceiling && j > 0 {
+                    panels.push(k);
+                }
+                k += 1;
+            }
+        }
+        assert_eq!(panels.len(), lamps.len(), "{}: panels per lamp", s.id);
+        for lamp in &lamps {
+            // The panel right above the lamp, flush under its ceiling slab.
+            let above = panels.iter().find(|&&k| {
+                let m = &meshes[k];
+                let (lo, hi) = m.positions.iter().fold(
+                    ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]),
+                    |(lo, hi), p| {
+                        (
+                            [lo[0].min(p[0]), lo[1].min(p[1]), lo[2].min(p[2])],
+                            [hi[0].max(p[0]), hi[1].max(p[1]), hi[2].max(p[2])],
+                        )
+                    },
+                );
+                (lo[0]..hi[0]).contains(&lamp.x)
+                    && (lo[2]..hi[2]).contains(&lamp.z)
+                    && lo[1] > lamp.y
+            });
+            let Some(&k) = above else {
+                panic!("{}: no panel over the lamp at {lamp}", s.id)
+            };
+            // Its underside (the flat face, not the bevel's rim), facing the lamp a few decimetres
+            // below, is lit to the full.
+            let m = &meshes[k];
+            let bottom = m
+                .positions
+                .iter()
+                .map(|p| p[1])
+                .fold(f32::INFINITY, f32::min);
+            let under: Vec<u8> = m
+                .normals
+                .iter()
+                .zip(&baked.parts[k])
+                .filter(|(n, _)| n[1] < -0.999)
+                .map(|(_, l)| l[1])
+                .collect();
+            assert!(!under.is_empty());
+            assert!(
+                under.iter().all(|&g| g >= 250),
+                "{}: panel underside light {under:?}",
+                s.id
+            );
+        }
+    }
 }
