@@ -71,7 +71,7 @@ pub fn triangle_count_cells(shape: &Shape, cell: Option<f32>) -> usize {
             half_extents: h,
             bevel,
         } => {
-            if !is_cut(cell) && drawn_bevel(*h, *bevel) > 0.0 {
+            if cut_bevel(*h, *bevel, cell) > 0.0 {
                 return BEVELLED_BOX_TRIANGLES;
             }
             let [x, y, z] = h.map(|h| cells(h, cell));
@@ -130,16 +130,17 @@ pub fn triangulate(shape: &Shape) -> TriMesh {
 /// A box with a bevel ([`drawn_bevel`] > 0) and no cells is drawn chamfered: its 6 faces inset
 /// by the bevel, a 45-degree strip along each of the 12 edges and a triangle at each of the 8
 /// corners, each with its own flat normal (the light baked per vertex then differs on the
-/// chamfer, which is what shows the edge). Cut boxes (walls and floors of lit homes) keep
-/// their cells and sharp edges: bevel and cells do not combine.
+/// chamfer, which is what shows the edge). A box whose faces `cell` cuts into more than one
+/// cell (walls and floors of lit homes) keeps its cells and sharp edges: bevel and cells do
+/// not combine (a small box `cell` leaves whole is bevelled as without it).
 pub fn triangulate_cells(shape: &Shape, cell: Option<f32>) -> TriMesh {
     match shape {
         Shape::Cuboid {
             half_extents,
             bevel,
         } => {
-            let b = drawn_bevel(*half_extents, *bevel);
-            if !is_cut(cell) && b > 0.0 {
+            let b = cut_bevel(*half_extents, *bevel, cell);
+            if b > 0.0 {
                 chamfered_box(Vec3::from_array(*half_extents), b)
             } else {
                 cuboid(Vec3::from_array(*half_extents), cell)
@@ -201,9 +202,13 @@ pub fn scene_triangles(scene: &Scene) -> Vec<WorldTriangle> {
     out
 }
 
-/// Whether `cell` cuts box faces into cells (as [`cells`] reads it).
-fn is_cut(cell: Option<f32>) -> bool {
-    matches!(cell, Some(c) if c > 0.0)
+/// The bevel a box is drawn with when its faces are cut by `cell`: [`drawn_bevel`] when every
+/// face stays one cell (small boxes of lit classes, such as ceiling fixtures), else 0.
+fn cut_bevel(h: [f32; 3], bevel: f32, cell: Option<f32>) -> f32 {
+    if h.iter().any(|h| cells(*h, cell) > 1) {
+        return 0.0;
+    }
+    drawn_bevel(h, bevel)
 }
 
 /// Segments along one box edge of half length `h`: cells of at most `cell` metres (one segment

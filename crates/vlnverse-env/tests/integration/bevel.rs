@@ -189,6 +189,13 @@ fn sharp_boxes_are_drawn_exactly_as_before() {
         triangle_count_cells(&cuboid(h, 0.1), Some(0.75)),
         cut.triangle_count()
     );
+    // A box small enough to stay one cell per face is bevelled as without cells.
+    let small = cuboid([0.18, 0.0125, 0.18], 0.006);
+    assert_eq!(triangulate_cells(&small, Some(1.5)), triangulate(&small));
+    assert_eq!(
+        triangle_count_cells(&small, Some(1.5)),
+        BEVELLED_BOX_TRIANGLES
+    );
     assert_eq!(triangle_count(&cuboid(h, 0.1)), BEVELLED_BOX_TRIANGLES);
     assert_eq!(triangle_count(&cuboid(h, 0.0)), 12);
 }
