@@ -297,6 +297,42 @@ fn scene_glb_holds_the_chamfered_triangles() {
             .len()
             + 24
     );
+    // Placed by the node, the file's triangles are the ones the renderers draw (so a ray cast
+    // of scene.glb sees the chamfers too).
+    let (t, r, _) = node.transform().decomposed();
+    let pose = Pose {
+        position: t,
+        rotation: r,
+    };
+    let mut from_file: Vec<[f32; 9]> = Vec::new();
+    for p in mesh.primitives() {
+        let rd = p.reader(|_| Some(&blob[..]));
+        let pos: Vec<Vec3> = rd
+            .read_positions()
+            .unwrap()
+            .map(|v| pose.transform_point(Vec3::from_array(v)))
+            .collect();
+        let idx: Vec<u32> = rd.read_indices().unwrap().into_u32().collect();
+        for t in idx.chunks_exact(3) {
+            let v = [0, 1, 2].map(|k| pos[t[k] as usize]);
+            from_file.push(std::array::from_fn(|i| v[i / 3][i % 3]));
+        }
+    }
+    let mut drawn: Vec<[f32; 9]> = vlnverse_env::geometry::scene_triangles(&scene)
+        .iter()
+        .map(|t| std::array::from_fn(|i| t.v[i / 3][i % 3]))
+        .collect();
+    let order = |a: &[f32; 9], b: &[f32; 9]| a.partial_cmp(b).unwrap();
+    // Quantised to 0.1 mm so rounding in the two placements sorts alike.
+    let q = |t: &mut Vec<[f32; 9]>| {
+        for x in t.iter_mut().flatten() {
+            *x = (*x * 1e4).round() / 1e4;
+        }
+        t.sort_by(order);
+    };
+    q(&mut from_file);
+    q(&mut drawn);
+    assert_eq!(from_file, drawn);
     let sharp = glb::write_glb(&bevel_scene(0.0));
     let doc = gltf::Gltf::from_slice(&sharp).unwrap();
     let blob = doc.blob.clone().unwrap();
