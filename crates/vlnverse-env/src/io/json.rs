@@ -88,10 +88,10 @@ fn bad_bevel(bytes: &[u8], path: &Path) -> Option<EnvError> {
                     return Some(EnvError::parse(
                         path,
                         format!(
-                            "object {} ({}) part {k}: field `bevel` = {b}: must be a finite \
+                            "object {} (`{}`) part {k}: field `bevel` = {b}: must be a finite \
                              number >= 0 (a NaN bevel is written as null)",
                             o.get("id").unwrap_or(&serde_json::Value::Null),
-                            o.get("name").unwrap_or(&serde_json::Value::Null),
+                            o.get("name").and_then(|n| n.as_str()).unwrap_or("?"),
                         ),
                     ));
                 }

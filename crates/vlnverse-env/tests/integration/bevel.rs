@@ -262,6 +262,7 @@ fn bad_bevels_are_refused_naming_the_field_and_value() {
         assert!(e.contains("bevel"), "{value}: {e}");
         assert!(e.contains(shown), "{value}: {e}");
         assert!(e.contains("homes/x/scene.json"), "{value}: {e}");
+        assert!(e.contains("object 1 (`cabinet_1`) part 0"), "{value}: {e}");
     }
     // A scene built in code with a NaN bevel is written as null, which does not load.
     let nan = json::scene_to_json(&bevel_scene(f32::NAN));
