@@ -517,6 +517,12 @@ impl Scene {
     }
 }
 
+/// Serde helper: a bevel of 0 is left out of `scene.json`, which keeps sharp-edged scenes
+/// byte-identical to files written before bevels existed.
+fn is_zero(v: &f32) -> bool {
+    *v == 0.0
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -554,10 +560,4 @@ mod tests {
         let c = Aabb::new(Vec3::splat(0.5), Vec3::splat(1.5));
         assert!(a.intersects(&c, 1e-4));
     }
-}
-
-/// Serde helper: a bevel of 0 is left out of `scene.json`, which keeps sharp-edged scenes
-/// byte-identical to files written before bevels existed.
-fn is_zero(v: &f32) -> bool {
-    *v == 0.0
 }

@@ -144,6 +144,18 @@ fn part_footprint(shape: &Shape, pose: &Pose, band: Option<Band>, out: &mut Foot
             }
         }
         other => {
+            // The full box, as for upright boxes: a bevel only shapes the drawn mesh.
+            let sharp;
+            let other = match other {
+                Shape::Cuboid { half_extents, .. } => {
+                    sharp = Shape::Cuboid {
+                        half_extents: *half_extents,
+                        bevel: 0.0,
+                    };
+                    &sharp
+                }
+                _ => other,
+            };
             let local = geometry::triangulate(other);
             let aff = Affine3A::from_rotation_translation(q, t);
             for tri in &local.indices {
