@@ -217,8 +217,10 @@ pub(crate) fn bed(rng: &mut ChaCha8Rng, double: bool) -> Model {
         );
     }
     let head_rgb = shade(fin.rgb, 0.85);
-    // Every headboard keeps the panel's depth, height and footprint (a full-width part from the
-    // floor), so the bed's box and its occupancy stay those of the panel bed.
+    // Every headboard keeps the panel's depth, height and footprint (a full-width rail), so the
+    // bed's box and its occupancy stay those of the panel bed. Only parts with the panel's x
+    // and z may touch its faces: once the bed is turned, a box face is rounded from the x and
+    // z of the part that makes it, so other parts stay 0.5 mm inside.
     let hz = d * 0.5 - 0.04;
     if v & 1 == 0 {
         bcube(&mut p, 0.0, 0.0, hz, [w, head_h, 0.08], 0.015, head_rgb);
@@ -229,7 +231,7 @@ pub(crate) fn bed(rng: &mut ChaCha8Rng, double: bool) -> Model {
                 s * (w * 0.5 - 0.05),
                 0.0,
                 hz,
-                [0.08, head_h, 0.08],
+                [0.08, head_h, 0.079],
                 0.015,
                 head_rgb,
             );
@@ -240,7 +242,7 @@ pub(crate) fn bed(rng: &mut ChaCha8Rng, double: bool) -> Model {
             0.0,
             head_h - 0.12,
             hz,
-            [w - 0.1, 0.09, 0.08],
+            [w - 0.1, 0.09, 0.079],
             0.015,
             head_rgb,
         );
@@ -401,14 +403,25 @@ pub(crate) fn dresser(rng: &mut ChaCha8Rng) -> Model {
                 front(
                     &mut p,
                     d,
-                    [s * (fw + 0.01) * 0.25, y, 0.005],
-                    [(fw - 0.01) * 0.5, rh - 0.03, 0.01],
+                    [s * (fw + 0.01) * 0.25, y, 0.0055],
+                    [(fw - 0.01) * 0.5, rh - 0.03, 0.009],
                     rgb,
                 );
             }
         } else {
             front(&mut p, d, [0.0, y, 0.005], [fw, rh - 0.03, 0.01], rgb);
         }
+    }
+    if !split.is_empty() {
+        // Split fronts stand 0.5 mm back (their x would round the turned box's front face
+        // differently); a kick strip with the full front's x and z makes that face.
+        front(
+            &mut p,
+            d,
+            [0.0, 0.02, 0.005],
+            [fw, 0.035, 0.01],
+            shade(rgb, 0.7),
+        );
     }
     Model::new(C::Dresser, fin, [w, h, d], 45.0, p).with_top(0.05)
 }
@@ -1756,11 +1769,14 @@ mod tests {
         (std::mem::discriminant(&p.shape), p.color.map(f32::to_bits))
     }
 
-    /// The model on a floor at two poses (one turned a quarter), and the maps of that scene.
+    /// The model on a floor at the four quarter turns homes use (a box is rounded from the parts
+    /// that make its faces, differently at each turn), and the maps of that scene.
     fn placed(m: &Model) -> Vec<(Vec<[u32; 3]>, OccupancyMaps)> {
         let poses = [
             Pose::from_yaw(Vec3::new(0.013, 0.0, 0.027), 0.0),
             Pose::from_yaw(Vec3::new(0.31, 0.0, -0.44), std::f32::consts::FRAC_PI_2),
+            Pose::from_yaw(Vec3::new(5.68, 0.0, -1.87), std::f32::consts::PI),
+            Pose::from_yaw(Vec3::new(-3.1, 0.0, 2.2), -std::f32::consts::FRAC_PI_2),
         ];
         poses
             .iter()
