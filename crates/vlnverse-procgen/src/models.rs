@@ -212,7 +212,7 @@ pub(crate) fn bed(rng: &mut ChaCha8Rng, double: bool) -> Model {
             0.5,
             d * 0.5 - 0.34,
             [0.5, 0.12, 0.34],
-            0.025,
+            0.0,
             tone::WHITE,
         );
     }
@@ -1094,7 +1094,8 @@ pub(crate) fn chair(rng: &mut ChaCha8Rng) -> Model {
     };
     let mut p = Vec::new();
     legs(&mut p, w, d, seat - 0.04, 0.035, leg_rgb);
-    bcube(&mut p, 0.0, seat - 0.04, 0.0, [w, 0.04, d], 0.008, fin.rgb);
+    // Chairs come in sets: their thin seat and back stay sharp (a bevel costs 32 triangles).
+    cube(&mut p, 0.0, seat - 0.04, 0.0, [w, 0.04, d], fin.rgb);
     let back_z = d * 0.5 - 0.02;
     for s in [-1.0, 1.0] {
         cube(
@@ -1106,15 +1107,7 @@ pub(crate) fn chair(rng: &mut ChaCha8Rng) -> Model {
             leg_rgb,
         );
     }
-    bcube(
-        &mut p,
-        0.0,
-        h - 0.18,
-        back_z,
-        [w, 0.18, 0.04],
-        0.008,
-        fin.rgb,
-    );
+    bcube(&mut p, 0.0, h - 0.18, back_z, [w, 0.18, 0.04], 0.0, fin.rgb);
     let below = h - seat - 0.18;
     match v {
         1 => {
