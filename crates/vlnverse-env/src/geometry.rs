@@ -11,8 +11,9 @@ pub const CYLINDER_SEGMENTS: u32 = 16;
 pub const MAX_CELL: f32 = 0.75;
 /// Latitude bands of a sphere (longitude uses twice as many).
 pub const SPHERE_BANDS: u32 = 6;
-/// Triangles of a bevelled box: 6 inset faces and 12 edge strips of two triangles, 8 corners.
-pub const BEVELLED_BOX_TRIANGLES: usize = 44;
+/// Triangles of a bevelled box: 6 faces and the 4 chamfer strips of its top edges, two
+/// triangles each.
+pub const BEVELLED_BOX_TRIANGLES: usize = 20;
 /// Largest bevel as a fraction of the smallest half extent (keeps every face and strip of a
 /// thin panel non-degenerate).
 pub const MAX_BEVEL_FRACTION: f32 = 0.45;
@@ -127,10 +128,13 @@ pub fn triangulate(shape: &Shape) -> TriMesh {
 /// Triangulate a shape in its own frame, box faces cut into a grid of cells of at most `cell`
 /// metres (`None`: two triangles per face), so that light baked per vertex has resolution.
 ///
-/// A box with a bevel ([`drawn_bevel`] > 0) and no cells is drawn chamfered: its 6 faces inset
-/// by the bevel, a 45-degree strip along each of the 12 edges and a triangle at each of the 8
-/// corners, each with its own flat normal (the light baked per vertex then differs on the
-/// chamfer, which is what shows the edge). A box whose faces `cell` cuts into more than one
+/// A box with a bevel ([`drawn_bevel`] > 0) and no cells is drawn with its four top edges
+/// chamfered: a 45-degree strip along each, mitred at the corners, each face and strip with its
+/// own flat normal (the light baked per vertex then differs on the chamfer, which is what shows
+/// the edge). Only the top edges: the camera (1.25 m) sees furniture from above, where the top
+/// edges are what reads as rounded, and a box stays at [`BEVELLED_BOX_TRIANGLES`] = 20
+/// triangles (44 with every edge chamfered; triangle set-up is most of what a bevel costs the
+/// rasteriser). A box whose faces `cell` cuts into more than one
 /// cell (walls and floors of lit homes) keeps its cells and sharp edges: bevel and cells do
 /// not combine (a small box `cell` leaves whole is bevelled as without it).
 pub fn triangulate_cells(shape: &Shape, cell: Option<f32>) -> TriMesh {
@@ -277,86 +281,89 @@ fn cuboid(h: Vec3, cell: Option<f32>) -> TriMesh {
     m
 }
 
-/// A box of half extents `h` with every edge chamfered at 45 degrees by `b` (`0 < b < min h`).
-/// Every vertex coordinate is `+-h` or `+-(h - b)` on its axis, computed once, so the faces,
-/// strips and corners that share a corner share it bit for bit (a closed surface, no cracks).
+/// A box of half extents `h` whose four top edges are chamfered at 45 degrees by `b`
+/// (`0 < b < min h`), the strips meeting in mitres at the corners; the vertical and bottom
+/// edges stay sharp. Every vertex coordinate is `+-h` or `+-(h - b)` on its axis, computed
+/// once, so the faces and strips that share a corner share it bit for bit (a closed surface,
+/// no cracks).
 fn chamfered_box(h: Vec3, b: f32) -> TriMesh {
-    let inner = h - Vec3::splat(b);
-    // Coordinate on axis `a`: sign `s` (+-1), at the surface (`out`) or inset.
-    let at = |a: usize, s: f32, out: bool| if out { s * h[a] } else { s * inner[a] };
+    let i = h - Vec3::splat(b);
     let mut m = TriMesh::default();
-    // One flat polygon (3 or 4 corners in order around it), wound to face along `n`.
-    let mut poly = |corners: &[Vec3], n: Vec3| {
+    // One flat quad (corners in order around it), wound to face along `n`.
+    let mut quad = |c: [Vec3; 4], n: Vec3| {
         let base = m.positions.len() as u32;
         let n = n.normalize();
-        for c in corners {
-            m.positions.push(c.to_array());
+        for p in c {
+            m.positions.push(p.to_array());
             m.normals.push(n.to_array());
         }
-        let (a, b, c) = (corners[0], corners[1], corners[2]);
-        let flip = (b - a).cross(c - a).dot(n) < 0.0;
-        for k in 1..corners.len() as u32 - 1 {
+        let flip = (c[1] - c[0]).cross(c[2] - c[0]).dot(n) < 0.0;
+        for k in 1..3 {
             let (i, j) = (base + k, base + k + 1);
             m.indices
                 .push(if flip { [base, j, i] } else { [base, i, j] });
         }
     };
-    // Faces: normal axis `a` with sign `s`, the two other axes inset, corners around the rim.
-    for a in 0..3 {
-        let (u, v) = ((a + 1) % 3, (a + 2) % 3);
-        for s in [1.0f32, -1.0] {
-            let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(su, sv)| {
-                let mut p = Vec3::ZERO;
-                p[a] = at(a, s, true);
-                p[u] = at(u, su, false);
-                p[v] = at(v, sv, false);
-                p
-            });
-            let mut n = Vec3::ZERO;
-            n[a] = s;
-            poly(&corners, n);
-        }
-    }
-    // Edge strips along axis `a`, between the faces of axes `u` (sign `su`) and `v` (`sv`).
-    for a in 0..3 {
-        let (u, v) = ((a + 1) % 3, (a + 2) % 3);
-        for (su, sv) in [(1.0f32, 1.0f32), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)] {
-            let corner = |sa: f32, on_u: bool| {
-                let mut p = Vec3::ZERO;
-                p[a] = at(a, sa, false);
-                p[u] = at(u, su, on_u);
-                p[v] = at(v, sv, !on_u);
-                p
-            };
-            let mut n = Vec3::ZERO;
-            n[u] = su;
-            n[v] = sv;
-            poly(
-                &[
-                    corner(-1.0, true),
-                    corner(1.0, true),
-                    corner(1.0, false),
-                    corner(-1.0, false),
-                ],
-                n,
-            );
-        }
-    }
-    // Corners: one triangle joining the three faces' corners.
-    for sx in [1.0f32, -1.0] {
-        for sy in [1.0f32, -1.0] {
-            for sz in [1.0f32, -1.0] {
-                let sign = Vec3::new(sx, sy, sz);
-                let corners = [0, 1, 2].map(|k| {
-                    let mut p = Vec3::ZERO;
-                    for a in 0..3 {
-                        p[a] = at(a, sign[a], a == k);
-                    }
-                    p
-                });
-                poly(&corners, sign);
-            }
-        }
+    let v = Vec3::new;
+    // Top face inset on both sides, bottom face whole.
+    quad(
+        [
+            v(-i.x, h.y, -i.z),
+            v(i.x, h.y, -i.z),
+            v(i.x, h.y, i.z),
+            v(-i.x, h.y, i.z),
+        ],
+        Vec3::Y,
+    );
+    quad(
+        [
+            v(-h.x, -h.y, -h.z),
+            v(h.x, -h.y, -h.z),
+            v(h.x, -h.y, h.z),
+            v(-h.x, -h.y, h.z),
+        ],
+        Vec3::NEG_Y,
+    );
+    let top = h.y - b;
+    for s in [1.0f32, -1.0] {
+        // Sides facing +-x and +-z, up to where the chamfer starts.
+        quad(
+            [
+                v(s * h.x, -h.y, -h.z),
+                v(s * h.x, -h.y, h.z),
+                v(s * h.x, top, h.z),
+                v(s * h.x, top, -h.z),
+            ],
+            v(s, 0.0, 0.0),
+        );
+        quad(
+            [
+                v(-h.x, -h.y, s * h.z),
+                v(h.x, -h.y, s * h.z),
+                v(h.x, top, s * h.z),
+                v(-h.x, top, s * h.z),
+            ],
+            v(0.0, 0.0, s),
+        );
+        // Chamfer strips: trapezoids from the side's top edge to the top face's edge.
+        quad(
+            [
+                v(s * h.x, top, -h.z),
+                v(s * h.x, top, h.z),
+                v(s * i.x, h.y, i.z),
+                v(s * i.x, h.y, -i.z),
+            ],
+            v(s, 1.0, 0.0),
+        );
+        quad(
+            [
+                v(-h.x, top, s * h.z),
+                v(h.x, top, s * h.z),
+                v(i.x, h.y, s * i.z),
+                v(-i.x, h.y, s * i.z),
+            ],
+            v(0.0, 1.0, s),
+        );
     }
     m
 }

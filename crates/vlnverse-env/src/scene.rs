@@ -162,8 +162,8 @@ pub enum Shape {
     Cuboid {
         /// Half sizes along x, y, z.
         half_extents: [f32; 3],
-        /// Width in metres of the 45-degree chamfer on every edge (0: sharp edges). Only the
-        /// drawn mesh is bevelled: physics and occupancy keep the full box, which contains it.
+        /// Width in metres of the 45-degree chamfer on the four top edges (0: sharp edges).
+        /// Only the drawn mesh is bevelled: physics and occupancy keep the full box, which contains it.
         #[serde(default, skip_serializing_if = "is_zero")]
         bevel: f32,
     },

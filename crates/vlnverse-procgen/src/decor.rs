@@ -620,15 +620,12 @@ pub(crate) fn add_light_panels(scene: &mut Scene) {
             continue;
         };
         let bottom = slab.transform.position[1] - half_extents[1];
-        let mut part = box_part(
+        // Sharp: bevels chamfer top edges, which here touch the slab.
+        ceiling.parts.push(box_part(
             Vec3::new(local.x, bottom - PANEL.1 * 0.5, local.z),
             Vec3::new(PANEL.0, PANEL.1, PANEL.0),
             PANEL_RGB,
-        );
-        if let vlnverse_env::Shape::Cuboid { bevel, .. } = &mut part.shape {
-            *bevel = 0.006;
-        }
-        ceiling.parts.push(part);
+        ));
         ceiling.bbox = ceiling.compute_bbox();
     }
 }

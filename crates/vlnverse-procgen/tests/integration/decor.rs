@@ -261,14 +261,8 @@ fn a_light_panel_hangs_over_every_lamp_and_glows() {
             let Some(&k) = above else {
                 panic!("{}: no panel over the lamp at {lamp}", s.id)
             };
-            // Its underside (the flat face, not the bevel's rim), facing the lamp a few decimetres
-            // below, is lit to the full.
+            // Its underside, facing the lamp a few decimetres below, is lit to the full.
             let m = &meshes[k];
-            let bottom = m
-                .positions
-                .iter()
-                .map(|p| p[1])
-                .fold(f32::INFINITY, f32::min);
             let under: Vec<u8> = m
                 .normals
                 .iter()
