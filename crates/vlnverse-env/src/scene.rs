@@ -184,6 +184,26 @@ pub enum Shape {
     Mesh(MeshData),
 }
 
+impl Shape {
+    /// Nominal volume in cubic metres, used to rank an object's parts (its largest part gives
+    /// the colour and shape words of instructions): boxes ignore their bevel, spheres use
+    /// 4.19 for 4/3 pi (kept as it was: the ranking and so the released instructions depend on
+    /// it), meshes count 0.
+    pub fn nominal_volume(&self) -> f32 {
+        match self {
+            Shape::Cuboid {
+                half_extents: h, ..
+            } => 8.0 * h[0] * h[1] * h[2],
+            Shape::Cylinder {
+                radius,
+                half_height,
+            } => std::f32::consts::PI * radius * radius * 2.0 * half_height,
+            Shape::Sphere { radius } => 4.19 * radius * radius * radius,
+            Shape::Mesh(_) => 0.0,
+        }
+    }
+}
+
 /// Triangle mesh data.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct MeshData {

@@ -1738,26 +1738,16 @@ mod tests {
         (m, rng.next_u64())
     }
 
-    fn volume(s: &Shape) -> f32 {
-        match s {
-            Shape::Cuboid {
-                half_extents: h, ..
-            } => 8.0 * h[0] * h[1] * h[2],
-            Shape::Cylinder {
-                radius,
-                half_height,
-            } => std::f32::consts::PI * radius * radius * 2.0 * half_height,
-            Shape::Sphere { radius } => 4.19 * radius * radius * radius,
-            Shape::Mesh(_) => 0.0,
-        }
-    }
-
     /// What instructions read of a model: its largest part's shape kind and colour.
     fn largest(m: &Model) -> (std::mem::Discriminant<Shape>, [u32; 3]) {
         let p = m
             .parts
             .iter()
-            .max_by(|a, b| volume(&a.shape).total_cmp(&volume(&b.shape)))
+            .max_by(|a, b| {
+                a.shape
+                    .nominal_volume()
+                    .total_cmp(&b.shape.nominal_volume())
+            })
             .expect("a model has parts");
         (std::mem::discriminant(&p.shape), p.color.map(f32::to_bits))
     }

@@ -29,20 +29,6 @@ fn layout(o: &SceneObject) -> Vec<&'static str> {
     o.parts.iter().map(|p| kind(&p.shape)).collect()
 }
 
-fn volume(s: &Shape) -> f32 {
-    match s {
-        Shape::Cuboid {
-            half_extents: h, ..
-        } => 8.0 * h[0] * h[1] * h[2],
-        Shape::Cylinder {
-            radius,
-            half_height,
-        } => std::f32::consts::PI * radius * radius * 2.0 * half_height,
-        Shape::Sphere { radius } => 4.19 * radius * radius * radius,
-        Shape::Mesh(_) => 0.0,
-    }
-}
-
 fn bevel(s: &Shape) -> f32 {
     match s {
         Shape::Cuboid { bevel, .. } => *bevel,
@@ -88,7 +74,11 @@ fn largest_part_kind_is_the_same_for_every_model_of_a_class() {
             let largest = o
                 .parts
                 .iter()
-                .max_by(|a, b| volume(&a.shape).total_cmp(&volume(&b.shape)))
+                .max_by(|a, b| {
+                    a.shape
+                        .nominal_volume()
+                        .total_cmp(&b.shape.nominal_volume())
+                })
                 .expect("parts");
             kinds
                 .entry(o.class)

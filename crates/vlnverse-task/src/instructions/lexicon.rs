@@ -442,23 +442,9 @@ pub fn class_uses(class: C) -> &'static [&'static str] {
 fn main_rgb(o: &SceneObject) -> Option<[f32; 3]> {
     o.parts
         .iter()
-        .map(|p| (part_volume(&p.shape), p.color))
+        .map(|p| (p.shape.nominal_volume(), p.color))
         .max_by(|a, b| a.0.total_cmp(&b.0))
         .map(|(_, c)| c)
-}
-
-fn part_volume(s: &Shape) -> f32 {
-    match s {
-        Shape::Cuboid {
-            half_extents: h, ..
-        } => 8.0 * h[0] * h[1] * h[2],
-        Shape::Cylinder {
-            radius,
-            half_height,
-        } => std::f32::consts::PI * radius * radius * 2.0 * half_height,
-        Shape::Sphere { radius } => 4.19 * radius * radius * radius,
-        Shape::Mesh(_) => 0.0,
-    }
 }
 
 /// Colour phrases for an object: its colour word, alone or with a shade read from the rendered
@@ -848,10 +834,11 @@ pub fn shape_words(o: &SceneObject, peers: &[&SceneObject]) -> Vec<&'static str>
         C::Sofa if w > 1.3 => out.extend(["two-seater", "two-seat"]),
         _ => {}
     }
-    let largest = o
-        .parts
-        .iter()
-        .max_by(|a, b| part_volume(&a.shape).total_cmp(&part_volume(&b.shape)));
+    let largest = o.parts.iter().max_by(|a, b| {
+        a.shape
+            .nominal_volume()
+            .total_cmp(&b.shape.nominal_volume())
+    });
     match largest.map(|p| &p.shape) {
         Some(Shape::Cylinder { .. }) => {
             out.extend(["round", "circular", "cylindrical", "drum-shaped", "tubular"])
