@@ -63,14 +63,15 @@ fn has(mask: u8, k: usize) -> bool {
 /// over the triangle with the texture coordinates; the colour fragment stage fetches the
 /// encoded texel with `textureLoad` (nearest, wrapped with the same integer arithmetic as the
 /// CPU rasteriser) from one texture holding every surface texture stacked and multiplies, as
-/// the CPU backends do. Imported images ([`SceneMesh::images`]) are not uploaded: their
-/// triangles show the image's mean colour over the plain texture, where the CPU backends show
-/// each texel. Linear depth is linear in world position, so perspective-correct interpolation
+/// the CPU backends do. Imported images ([`SceneMesh::images`]) are stacked in a second texture
+/// per scene and fetched the same way (nearest texel, repeating; [`IMAGE_FLAG`] in the
+/// vertex's `tex` says which). Linear depth is linear in world position, so perspective-correct interpolation
 /// gives it exactly.
 const VERTEX_SHADER: &str = r#"
 struct ViewU { view_proj: mat4x4<f32>, cam_pos: vec4<f32>, forward: vec4<f32>, light: vec4<f32> };
 @group(0) @binding(0) var<uniform> u: ViewU;
 @group(0) @binding(1) var surfaces: texture_2d<f32>;
+@group(0) @binding(2) var images: texture_2d<f32>;
 
 struct VIn {
     @location(0) pos: vec3<f32>,
@@ -107,9 +108,18 @@ fn shader_source(mask: u8) -> String {
     let outputs = [
         (
             "color: vec4<f32>",
-            "let tu = i32(i.uv.x + UV_BIAS) & TEX_MASK;\n    \
-             let tv = i32(i.uv.y + UV_BIAS) & TEX_MASK;\n    \
-             let t = textureLoad(surfaces, vec2<i32>(tu, i32(i.tex) + tv), 0).rgb;\n    \
+            "var t: vec3<f32>;\n    \
+             if ((i.tex & IMAGE_FLAG) != 0u) {\n        \
+             let wm = (1 << ((i.tex >> 16u) & 15u)) - 1;\n        \
+             let hm = (1 << ((i.tex >> 20u) & 15u)) - 1;\n        \
+             let x = i32(floor(i.uv.x)) & wm;\n        \
+             let y = i32(floor(i.uv.y)) & hm;\n        \
+             t = textureLoad(images, vec2<i32>(x, i32(i.tex & 0xffffu) + y), 0).rgb;\n    \
+             } else {\n        \
+             let tu = i32(i.uv.x + UV_BIAS) & TEX_MASK;\n        \
+             let tv = i32(i.uv.y + UV_BIAS) & TEX_MASK;\n        \
+             t = textureLoad(surfaces, vec2<i32>(tu, i32(i.tex) + tv), 0).rgb;\n    \
+             }\n    \
              o.color = vec4<f32>(clamp(i.color.rgb * t, vec3<f32>(0.0), vec3<f32>(1.0)), 1.0);",
         ),
         ("depth: u32", "o.depth = bitcast<u32>(i.dist);"),
@@ -125,9 +135,10 @@ fn shader_source(mask: u8) -> String {
         body += &format!("    {store}\n");
     }
     let consts = format!(
-        "const UV_BIAS: f32 = {:.1};\nconst TEX_MASK: i32 = {};\n",
+        "const UV_BIAS: f32 = {:.1};\nconst TEX_MASK: i32 = {};\nconst IMAGE_FLAG: u32 = {}u;\n",
         (TEX_SIZE * 256) as f32,
-        TEX_SIZE - 1
+        TEX_SIZE - 1,
+        IMAGE_FLAG
     );
     format!(
         "{consts}{VERTEX_SHADER}struct FOut {{\n{fields}}};\n\
@@ -145,9 +156,14 @@ struct Vertex {
     id: u32,
     /// Texture coordinates in texels.
     uv: [f32; 2],
-    /// First row of the surface's texture in the stacked texture.
+    /// First row of the surface's texture in the stacked texture, or with [`IMAGE_FLAG`]: the
+    /// first row of an imported image in the scene's image texture (bits 0-15) and the log2 of
+    /// its width (16-19) and height (20-23).
     tex: u32,
 }
+
+/// Set in [`Vertex::tex`] when the texel comes from an imported image.
+const IMAGE_FLAG: u32 = 1 << 31;
 
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
@@ -319,6 +335,16 @@ fn create_context() -> std::result::Result<GpuContext, String> {
                 },
                 count: None,
             },
+            wgpu::BindGroupLayoutEntry {
+                binding: 2,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+                count: None,
+            },
         ],
     });
     let surfaces = surfaces_texture(&device, &queue);
@@ -368,6 +394,72 @@ fn surfaces_texture(device: &wgpu::Device, queue: &wgpu::Queue) -> wgpu::Texture
         &texels,
     );
     texture.create_view(&Default::default())
+}
+
+/// A scene's imported images stacked vertically in one `Rgba8Unorm` texture as wide as the
+/// widest (a 1 x 1 white texture when there are none), and for each image the [`Vertex::tex`]
+/// that fetches from it: `None` for images past the device's size limit (or not a power of
+/// two), which then show their mean colour.
+fn images_texture(
+    ctx: &GpuContext,
+    images: &[crate::scene_mesh::ImageTexture],
+) -> (wgpu::TextureView, Vec<Option<u32>>) {
+    let limit = ctx.max_dim.min(1 << 16);
+    let width = images
+        .iter()
+        .map(|i| i.width)
+        .max()
+        .unwrap_or(1)
+        .clamp(1, limit);
+    let mut rows = Vec::with_capacity(images.len());
+    let mut height = 0u32;
+    for img in images {
+        let fits = img.width.is_power_of_two()
+            && img.height.is_power_of_two()
+            && img.width <= width
+            && img.texels.len() == (img.width * img.height) as usize
+            && height + img.height <= limit;
+        rows.push(fits.then(|| {
+            let tex = IMAGE_FLAG
+                | height
+                | img.width.trailing_zeros() << 16
+                | img.height.trailing_zeros() << 20;
+            height += img.height;
+            tex
+        }));
+    }
+    let height = height.max(1);
+    let mut texels = vec![255u8; (width * height * 4) as usize];
+    for (img, tex) in images.iter().zip(&rows) {
+        let Some(tex) = tex else { continue };
+        let y0 = (tex & 0xffff) as usize;
+        for (r, row) in img.texels.chunks_exact(img.width as usize).enumerate() {
+            let start = ((y0 + r) * width as usize) * 4;
+            for (x, t) in row.iter().enumerate() {
+                texels[start + 4 * x..start + 4 * x + 3].copy_from_slice(t);
+            }
+        }
+    }
+    let texture = ctx.device.create_texture_with_data(
+        &ctx.queue,
+        &wgpu::TextureDescriptor {
+            label: Some("images"),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba8Unorm,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        &texels,
+    );
+    (texture.create_view(&Default::default()), rows)
 }
 
 /// The targets of one target set at one size.
@@ -447,6 +539,8 @@ impl Group {
 struct GpuScene {
     mesh: Arc<SceneMesh>,
     vertices: wgpu::Buffer,
+    /// The scene's imported images stacked ([`images_texture`]).
+    images: wgpu::TextureView,
 }
 
 /// The wgpu backend of [`Renderer`].
@@ -513,6 +607,9 @@ impl GpuRenderer {
         if self.uniforms.as_ref().is_some_and(|u| u.2 >= n) {
             return;
         }
+        let Some(images) = self.scene.as_ref().map(|s| &s.images) else {
+            return;
+        };
         let n = n.next_power_of_two();
         let d = &self.ctx.device;
         let buf = d.create_buffer(&wgpu::BufferDescriptor {
@@ -536,6 +633,10 @@ impl GpuRenderer {
                 wgpu::BindGroupEntry {
                     binding: 1,
                     resource: wgpu::BindingResource::TextureView(&self.ctx.surfaces),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::TextureView(images),
                 },
             ],
         });
@@ -835,6 +936,7 @@ impl Renderer for GpuRenderer {
     }
 
     fn set_scene(&mut self, mesh: Arc<SceneMesh>) -> Result<()> {
+        let (images, rows) = images_texture(&self.ctx, &mesh.images);
         let verts: Vec<Vertex> = (0..mesh.triangle_count())
             .flat_map(|t| {
                 let n = mesh.normal(t).to_array();
@@ -842,20 +944,26 @@ impl Renderer for GpuRenderer {
                 let flat = mesh.color[t];
                 let id = mesh.object[t];
                 let m = &mesh;
+                let rows = &rows;
                 (0..3).map(move |k| {
                     let (c, uv, tex) = match look {
-                        // Imported images are not uploaded: their mean over the plain texture.
                         Some(l) if l.image.is_some() => {
-                            let mean = l
-                                .image
-                                .and_then(|i| m.images.get(i as usize))
-                                .map_or([1.0; 3], |img| img.mean_encoded());
-                            let plain = Surface::Plain.luma_encoded()[0].max(1) as f32;
-                            (
-                                [0, 1, 2].map(|c| l.tone[c] * l.light[k] * mean[c] * 255.0 / plain),
-                                [0.0; 2],
-                                (Surface::Plain.index() * TEX_SIZE) as u32,
-                            )
+                            let i = l.image.unwrap_or(0) as usize;
+                            match (rows.get(i).copied().flatten(), m.images.get(i)) {
+                                (Some(tex), _) => (l.tone.map(|c| c * l.light[k]), l.uv[k], tex),
+                                // Past the texture's size limit: the mean over the plain texture.
+                                (None, img) => {
+                                    let mean = img.map_or([1.0; 3], |img| img.mean_encoded());
+                                    let plain = Surface::Plain.luma_encoded()[0].max(1) as f32;
+                                    (
+                                        [0, 1, 2].map(|c| {
+                                            l.tone[c] * l.light[k] * mean[c] * 255.0 / plain
+                                        }),
+                                        [0.0; 2],
+                                        (Surface::Plain.index() * TEX_SIZE) as u32,
+                                    )
+                                }
+                            }
                         }
                         Some(l) => (
                             l.tone.map(|c| c * l.light[k]),
@@ -883,7 +991,13 @@ impl Renderer for GpuRenderer {
                 contents: bytemuck::cast_slice(&verts),
                 usage: wgpu::BufferUsages::VERTEX,
             });
-        self.scene = Some(GpuScene { mesh, vertices });
+        self.scene = Some(GpuScene {
+            mesh,
+            vertices,
+            images,
+        });
+        // The bind group holds the previous scene's images.
+        self.uniforms = None;
         Ok(())
     }
 

@@ -1,6 +1,6 @@
 //! Imported glTF textures appear in renders: a textured floor and wall written by the test,
-//! imported, and rendered by the ray caster and the CPU rasteriser; each sampled pixel is the
-//! texel under it times the light.
+//! imported, and rendered by the ray caster, the CPU rasteriser and wgpu (where an adapter
+//! exists); each sampled pixel is the texel under it times the light.
 
 use glam::Quat;
 use std::sync::Arc;
@@ -103,7 +103,7 @@ fn check_pixels(scene: &Scene, cam: &Camera, f: &Frame, who: &str) -> (usize, us
 }
 
 #[test]
-fn imported_textures_appear_in_cpu_images() {
+fn imported_textures_appear_in_every_backend() {
     let scene = textured_scene();
     let mesh = Arc::new(SceneMesh::new(&scene).unwrap());
     assert_eq!(mesh.images.len(), 1, "floor and wall share one image");
@@ -115,10 +115,14 @@ fn imported_textures_appear_in_cpu_images() {
         rotation: (Quat::from_rotation_y(0.15) * Quat::from_rotation_x(-0.35)).to_array(),
     };
     let cam = Camera::new(&pose, 96, 72, 70f32.to_radians(), 0.05, 20.0);
-    let backends: Vec<Box<dyn Renderer>> = vec![
+    let mut backends: Vec<Box<dyn Renderer>> = vec![
         Box::new(RaycastRenderer::new()),
         Box::new(RasterRenderer::new()),
     ];
+    // wgpu where an adapter exists (CI: Mesa's software Vulkan driver).
+    if let Some(gpu) = crate::common::gpu("imported_textures_appear_in_every_backend") {
+        backends.push(Box::new(gpu));
+    }
     for mut r in backends {
         r.set_scene(mesh.clone()).unwrap();
         let f = &r
