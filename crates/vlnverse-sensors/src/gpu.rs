@@ -325,26 +325,9 @@ fn create_context() -> std::result::Result<GpuContext, String> {
                 },
                 count: None,
             },
-            wgpu::BindGroupLayoutEntry {
-                binding: 1,
-                visibility: wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                    multisampled: false,
-                },
-                count: None,
-            },
-            wgpu::BindGroupLayoutEntry {
-                binding: 2,
-                visibility: wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                    multisampled: false,
-                },
-                count: None,
-            },
+            // The surface textures, then the scene's imported images.
+            texel_binding(1),
+            texel_binding(2),
         ],
     });
     let surfaces = surfaces_texture(&device, &queue);
@@ -364,6 +347,20 @@ fn create_context() -> std::result::Result<GpuContext, String> {
         pipelines: std::array::from_fn(|_| OnceLock::new()),
         max_dim,
     })
+}
+
+/// A texture read with `textureLoad` (no sampler) in the fragment stage.
+fn texel_binding(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable: false },
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    }
 }
 
 /// Every surface texture's encoded grey part ([`Surface::luma_encoded`]) stacked vertically in
