@@ -134,9 +134,9 @@ pub fn triangulate(shape: &Shape) -> TriMesh {
 /// the edge). Only the top edges: the camera (1.25 m) sees furniture from above, where the top
 /// edges are what reads as rounded, and a box stays at [`BEVELLED_BOX_TRIANGLES`] = 20
 /// triangles (44 with every edge chamfered; triangle set-up is most of what a bevel costs the
-/// rasteriser). A box whose faces `cell` cuts into more than one
-/// cell (walls and floors of lit homes) keeps its cells and sharp edges: bevel and cells do
-/// not combine (a small box `cell` leaves whole is bevelled as without it).
+/// rasteriser). A box whose faces `cell` cuts into more than one cell (walls and floors of lit
+/// homes) keeps its cells and sharp edges: bevel and cells do not combine (a small box `cell`
+/// leaves whole is bevelled as without it).
 pub fn triangulate_cells(shape: &Shape, cell: Option<f32>) -> TriMesh {
     match shape {
         Shape::Cuboid {

@@ -65,8 +65,8 @@ fn has(mask: u8, k: usize) -> bool {
 /// CPU rasteriser) from one texture holding every surface texture stacked and multiplies, as
 /// the CPU backends do. Imported images ([`SceneMesh::images`]) are stacked in a second texture
 /// per scene and fetched the same way (nearest texel, repeating; [`IMAGE_FLAG`] in the
-/// vertex's `tex` says which). Linear depth is linear in world position, so perspective-correct interpolation
-/// gives it exactly.
+/// vertex's `tex` says which). Linear depth is linear in world position, so
+/// perspective-correct interpolation gives it exactly.
 const VERTEX_SHADER: &str = r#"
 struct ViewU { view_proj: mat4x4<f32>, cam_pos: vec4<f32>, forward: vec4<f32>, light: vec4<f32> };
 @group(0) @binding(0) var<uniform> u: ViewU;
@@ -370,16 +370,32 @@ fn surfaces_texture(device: &wgpu::Device, queue: &wgpu::Queue) -> wgpu::Texture
         .iter()
         .flat_map(|s| s.luma_encoded().iter().flat_map(|&g| [g, g, g, 255]))
         .collect();
-    let size = wgpu::Extent3d {
-        width: TEX_SIZE as u32,
-        height: (TEX_SIZE * Surface::ALL.len()) as u32,
-        depth_or_array_layers: 1,
-    };
+    rgba8_texture(
+        device,
+        queue,
+        "surfaces",
+        (TEX_SIZE as u32, (TEX_SIZE * Surface::ALL.len()) as u32),
+        &texels,
+    )
+}
+
+/// A sampled-only `Rgba8Unorm` texture of `size` (width, height) holding `texels` (RGBA rows).
+fn rgba8_texture(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    label: &str,
+    size: (u32, u32),
+    texels: &[u8],
+) -> wgpu::TextureView {
     let texture = device.create_texture_with_data(
         queue,
         &wgpu::TextureDescriptor {
-            label: Some("surfaces"),
-            size,
+            label: Some(label),
+            size: wgpu::Extent3d {
+                width: size.0,
+                height: size.1,
+                depth_or_array_layers: 1,
+            },
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
@@ -388,7 +404,7 @@ fn surfaces_texture(device: &wgpu::Device, queue: &wgpu::Queue) -> wgpu::Texture
             view_formats: &[],
         },
         wgpu::util::TextureDataOrder::LayerMajor,
-        &texels,
+        texels,
     );
     texture.create_view(&Default::default())
 }
@@ -437,26 +453,8 @@ fn images_texture(
             }
         }
     }
-    let texture = ctx.device.create_texture_with_data(
-        &ctx.queue,
-        &wgpu::TextureDescriptor {
-            label: Some("images"),
-            size: wgpu::Extent3d {
-                width,
-                height,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rgba8Unorm,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[],
-        },
-        wgpu::util::TextureDataOrder::LayerMajor,
-        &texels,
-    );
-    (texture.create_view(&Default::default()), rows)
+    let view = rgba8_texture(&ctx.device, &ctx.queue, "images", (width, height), &texels);
+    (view, rows)
 }
 
 /// The targets of one target set at one size.
