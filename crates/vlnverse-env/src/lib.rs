@@ -1,6 +1,7 @@
 #![doc = include_str!("../README.md")]
 
 pub mod bvh;
+pub mod cache;
 pub mod error;
 pub mod geodesic;
 pub mod geometry;

@@ -20,16 +20,18 @@
 //! Other scenes (imported houses, hand-made fixtures) get the old directional look per vertex,
 //! which costs nothing.
 //!
-//! A scene is usually baked twice in a row (its `scene.glb` is written, then the renderer is
-//! prepared), so [`bake`] keeps the last few results in a small process-wide cache keyed by the
-//! scene's content; a hit returns the same bytes as a fresh bake.
+//! A scene is baked more than once: its `scene.glb` is written, then the renderer is prepared,
+//! and a training run loads each home again and again. So [`bake`] keeps results in a
+//! process-wide cache keyed by the scene's content ([`crate::cache`], 256 MB unless
+//! `VLNVERSE_LIGHT_CACHE_MB` says otherwise); a hit returns the same bytes as a fresh bake.
 
 use crate::bvh::TriBvh;
+use crate::cache;
 use crate::scene::{Scene, SceneObject};
 use crate::SemanticClass;
 use glam::Vec3;
 use rayon::prelude::*;
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, OnceLock};
 
 /// Occlusion rays per vertex.
 const AO_RAYS: usize = 16;
@@ -53,8 +55,11 @@ pub const LAMP_TINT: [f32; 3] = [1.04, 1.0, 0.92];
 const WALL_CELL: f32 = 2.0;
 /// Light thrown back up by floors and walls onto faces looking down (a cheap bounce).
 const BOUNCE: f32 = 0.24;
-/// Results kept by the cache of [`bake`].
-const CACHE: usize = 32;
+/// Megabytes of bakes kept by [`bake`] unless [`CACHE_MB_VAR`] says otherwise (a home's bake
+/// takes 30 to 60 kB: every home of the `vlnverse` preset fits many times over).
+pub const CACHE_MB: usize = 256;
+/// Environment variable with the megabytes of bakes kept by [`bake`] (0: none).
+pub const CACHE_MB_VAR: &str = "VLNVERSE_LIGHT_CACHE_MB";
 /// Daylight through a window: light per square metre of pane at 1 m, straight in front.
 const DAY_POWER: f32 = 1.6;
 /// Added to the squared distance of daylight samples (the pane is large, not a point).
@@ -137,6 +142,18 @@ pub struct BakedLight {
     pub parts: Vec<Vec<[u8; 3]>>,
     /// Colour of the light (green is 1): [`LAMP_TINT`] for lamp-lit homes, white otherwise.
     pub tint: [f32; 3],
+}
+
+impl BakedLight {
+    /// Bytes held (for the cache's budget).
+    pub fn bytes(&self) -> usize {
+        std::mem::size_of::<Self>()
+            + self
+                .parts
+                .iter()
+                .map(|p| std::mem::size_of_val(p.as_slice()) + std::mem::size_of::<Vec<u8>>())
+                .sum::<usize>()
+    }
 }
 
 /// Whether a scene gets lamps and the full bake (procedural homes).
@@ -226,43 +243,37 @@ pub fn lamps(scene: &Scene) -> Vec<Vec3> {
     out
 }
 
-/// The last bakes: content key, result.
-type Cache = Mutex<Vec<(u64, Arc<BakedLight>)>>;
-
-fn cache() -> &'static Cache {
-    static C: std::sync::OnceLock<Cache> = std::sync::OnceLock::new();
-    C.get_or_init(|| Mutex::new(Vec::new()))
+/// Bakes kept by [`bake`]: up to [`CACHE_MB_VAR`] megabytes (default [`CACHE_MB`]).
+fn cache() -> &'static cache::SharedLru<BakedLight> {
+    static C: OnceLock<cache::SharedLru<BakedLight>> = OnceLock::new();
+    C.get_or_init(|| cache::shared_lru(cache::budget_from_env(CACHE_MB_VAR, CACHE_MB)))
 }
 
 /// A 64-bit key of everything the bake reads: the triangulated parts and the lamps.
 fn content_key(parts: &[crate::geometry::TriMesh], lights: &Lights) -> u64 {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    let mut mix = |v: u32| {
-        h = (h ^ u64::from(v)).wrapping_mul(0x0000_0100_0000_01b3);
-        h ^= h >> 29;
-    };
+    let mut k = cache::ContentKey::new();
     for m in parts {
-        mix(m.positions.len() as u32);
+        k.u32(m.positions.len() as u32);
         for p in m.positions.iter().chain(&m.normals) {
-            p.iter().for_each(|c| mix(c.to_bits()));
+            k.f32s(p);
         }
         for t in &m.indices {
-            t.iter().for_each(|i| mix(*i));
+            t.iter().for_each(|i| k.u32(*i));
         }
     }
     for l in &lights.lamps {
-        l.to_array().iter().for_each(|c| mix(c.to_bits()));
+        k.f32s(&l.to_array());
     }
     for p in &lights.panes {
         for v in p.samples.iter().chain([&p.normal]) {
-            v.to_array().iter().for_each(|c| mix(c.to_bits()));
+            k.f32s(&v.to_array());
         }
-        mix(p.power.to_bits());
+        k.f32(p.power);
     }
     for e in &lights.glowing {
-        mix(u32::from(*e));
+        k.u32(u32::from(*e));
     }
-    h
+    k.finish()
 }
 
 /// Everything that lights a scene.
@@ -292,21 +303,12 @@ pub fn bake(scene: &Scene) -> Arc<BakedLight> {
     let parts = bake_meshes(scene);
     let lights = lights(scene);
     let key = content_key(&parts, &lights);
-    if let Some(hit) = cache()
-        .lock()
-        .ok()
-        .and_then(|c| c.iter().find(|(k, _)| *k == key).map(|(_, l)| l.clone()))
-    {
-        return hit;
-    }
-    let light = Arc::new(bake_uncached(parts, &lights));
-    if let Ok(mut c) = cache().lock() {
-        if c.len() >= CACHE {
-            c.remove(0);
-        }
-        c.push((key, light.clone()));
-    }
-    light
+    cache::get_or_insert(
+        cache(),
+        key,
+        || bake_uncached(parts, &lights),
+        BakedLight::bytes,
+    )
 }
 
 /// [`bake`] without the cache: always computes (tests compare the two, and thread counts).

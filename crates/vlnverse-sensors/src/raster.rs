@@ -35,11 +35,19 @@ use crate::scene_mesh::SceneMesh;
 use glam::{DVec3, Mat3, Vec3};
 use rayon::prelude::*;
 use std::collections::HashMap;
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, OnceLock};
+use vlnverse_env::cache::{self, SharedLru};
 use vlnverse_env::material::{Surface, TEX_SIZE};
 use vlnverse_env::Aabb;
 
 mod faces;
+
+/// Megabytes of prepared scenes kept by [`RasterScene::shared`] unless [`SCENE_CACHE_MB_VAR`]
+/// says otherwise (a generated home takes 6 to 12 MB).
+pub const SCENE_CACHE_MB: usize = 256;
+/// Environment variable with the megabytes of prepared scenes kept by [`RasterScene::shared`]
+/// (0: none).
+pub const SCENE_CACHE_MB_VAR: &str = "VLNVERSE_RASTER_CACHE_MB";
 
 /// Projected vertices stay within `[-guard, guard]` pixels (else they are clipped); `guard` is at
 /// least this and twice the image size.
@@ -471,6 +479,37 @@ impl RasterScene {
     /// Bytes of the face textures of the merged faces.
     pub fn face_texture_bytes(&self) -> usize {
         self.draw.texels.len()
+    }
+
+    /// Bytes held: drawn triangles, looks, face textures, images and the mesh.
+    pub fn bytes(&self) -> usize {
+        use std::mem::size_of_val;
+        let d = &self.draw;
+        self.mesh.bytes()
+            + size_of_val(d.pos.as_slice())
+            + size_of_val(d.src.as_slice())
+            + size_of_val(d.face.as_slice())
+            + d.texels.len()
+            + self.texels.len()
+            + size_of_val(self.image_texels.as_slice())
+            + size_of_val(self.look.as_slice())
+            + size_of_val(self.normal.as_slice())
+            + size_of_val(self.objects.as_slice())
+            + size_of_val(self.tag_class.as_slice())
+            + size_of_val(self.tag_object.as_slice())
+    }
+
+    /// [`RasterScene::new`], shared: a mesh prepared a moment ago (same
+    /// [`SceneMesh::content_key`]) is taken from a process-wide cache of up to
+    /// [`SCENE_CACHE_MB_VAR`] megabytes (default [`SCENE_CACHE_MB`]), so environments that keep
+    /// loading the same homes prepare each once.
+    pub fn shared(mesh: Arc<SceneMesh>) -> Arc<Self> {
+        static CACHE: OnceLock<SharedLru<RasterScene>> = OnceLock::new();
+        let cache = CACHE.get_or_init(|| {
+            cache::shared_lru(cache::budget_from_env(SCENE_CACHE_MB_VAR, SCENE_CACHE_MB))
+        });
+        let key = mesh.content_key();
+        cache::get_or_insert(cache, key, || RasterScene::new(mesh), RasterScene::bytes)
     }
 
     /// Number of objects whose back faces may be culled (closed, outward-oriented surfaces).
@@ -1370,7 +1409,7 @@ impl Renderer for RasterRenderer {
     }
 
     fn set_scene(&mut self, mesh: Arc<SceneMesh>) -> Result<()> {
-        self.scene = Some(Arc::new(RasterScene::new(mesh)));
+        self.scene = Some(RasterScene::shared(mesh));
         Ok(())
     }
 

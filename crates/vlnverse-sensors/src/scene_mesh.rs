@@ -116,6 +116,53 @@ pub struct SceneMesh {
 }
 
 impl SceneMesh {
+    /// A 64-bit hash of everything in the mesh (id included): equal meshes give equal keys,
+    /// so prepared scenes can be cached by it ([`vlnverse_env::cache`]).
+    pub fn content_key(&self) -> u64 {
+        let mut k = vlnverse_env::cache::ContentKey::new();
+        k.bytes(self.scene_id.as_bytes());
+        k.u32(self.positions.len() as u32);
+        self.positions.iter().for_each(|p| k.f32s(&p.to_array()));
+        self.object.iter().for_each(|o| k.u32(*o));
+        self.color.iter().for_each(|c| k.f32s(c));
+        for o in &self.objects {
+            [o.id, o.first, o.count].iter().for_each(|v| k.u32(*v));
+            k.f32s(&o.bbox.min);
+            k.f32s(&o.bbox.max);
+        }
+        self.class_of.iter().for_each(|c| k.u32(u32::from(*c)));
+        k.u32(self.look.len() as u32);
+        for l in &self.look {
+            k.f32s(&l.tone);
+            k.f32s(&l.light);
+            l.uv.iter().for_each(|uv| k.f32s(uv));
+            k.u32(l.surface.index() as u32);
+            k.u32(l.image.map_or(u32::MAX, |i| i));
+        }
+        for im in &self.images {
+            k.u32(im.width);
+            k.u32(im.height);
+            k.bytes(im.texels.as_flattened());
+        }
+        k.finish()
+    }
+
+    /// Bytes held by the mesh (for cache budgets).
+    pub fn bytes(&self) -> usize {
+        use std::mem::size_of_val;
+        size_of_val(self.positions.as_slice())
+            + size_of_val(self.object.as_slice())
+            + size_of_val(self.color.as_slice())
+            + size_of_val(self.objects.as_slice())
+            + size_of_val(self.class_of.as_slice())
+            + size_of_val(self.look.as_slice())
+            + self
+                .images
+                .iter()
+                .map(|im| size_of_val(im.texels.as_slice()))
+                .sum::<usize>()
+    }
+
     /// Triangulate a scene (with the shared [`vlnverse_env::geometry`] code) and bake its light
     /// ([`vlnverse_env::light::bake`], the light `scene.glb` holds).
     pub fn new(scene: &Scene) -> Result<Self> {

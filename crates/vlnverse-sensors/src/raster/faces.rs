@@ -139,26 +139,43 @@ pub(crate) fn build(mesh: &SceneMesh, luma: &[u8]) -> DrawMesh {
     d
 }
 
-/// Give empty texels the value of the nearest filled one before (else after) them in their
-/// row, then texels of rows left empty the same along their column.
-fn fill_gaps(t: &mut [Option<f32>], w: usize, h: usize) {
-    let fill = |t: &mut [Option<f32>], line: &[usize]| {
-        let mut last = None;
-        for &i in line.iter().chain(line.iter().rev()) {
-            match t[i] {
-                Some(v) => last = Some(v),
-                None => t[i] = last,
+/// Give empty texels (NaN) the value of the nearest filled one before (else after) them in
+/// their row, then texels of rows left empty the same along their column.
+fn fill_gaps(t: &mut [f32], w: usize, h: usize) {
+    // One line of texels: `n` of them, `stride` apart from `first`.
+    let fill = |t: &mut [f32], first: usize, stride: usize, n: usize| {
+        let mut last = f32::NAN;
+        for k in (0..n).chain((0..n).rev()) {
+            let v = &mut t[first + k * stride];
+            if v.is_nan() {
+                *v = last;
+            } else {
+                last = *v;
             }
         }
     };
+    let mut gaps = false;
     for j in 0..h {
-        fill(t, &(j * w..(j + 1) * w).collect::<Vec<_>>());
-    }
-    if t.iter().any(|v| v.is_none()) {
-        for i in 0..w {
-            fill(t, &(0..h).map(|j| j * w + i).collect::<Vec<_>>());
+        let row = &t[j * w..(j + 1) * w];
+        if row.iter().any(|v| v.is_nan()) {
+            fill(t, j * w, 1, w);
+            gaps |= t[j * w].is_nan();
         }
     }
+    if gaps {
+        for i in 0..w {
+            fill(t, i, w, h);
+        }
+    }
+}
+
+/// `v.round().clamp(0.0, 255.0) as u8` (0 for NaN) for the light times a texel, branch-free
+/// and without the libm call (`round` is one without SSE4.1): the fraction of `v` is exact
+/// below 2^23.
+fn round_byte(v: f32) -> u8 {
+    let v = if v > 0.0 { v.min(255.0) } else { 0.0 };
+    let t = v as u32;
+    (t + u32::from(v - t as f32 >= 0.5)) as u8
 }
 
 /// Split triangles into pieces connected through shared corners (exact positions), each in
@@ -269,9 +286,8 @@ fn merge(d: &mut DrawMesh, mesh: &SceneMesh, tris: &[usize], luma: &[u8]) -> boo
     }
     let tex = &luma[look.surface.index() * TEX_SIZE * TEX_SIZE..][..TEX_SIZE * TEX_SIZE];
     let base = d.texels.len();
-    // Light at each texel centre; the texture comes in at the end.
-    let mut texels = vec![None::<f32>; w * h];
-    let mask = TEX_SIZE as i64 - 1;
+    // Light at each texel centre (NaN: none yet); the texture comes in at the end.
+    let mut texels = vec![f32::NAN; w * h];
     for &t in tris {
         let l = &mesh.look[t];
         let uv = l.uv.map(|p| Vec2::new(p[0] - u0, p[1] - v0));
@@ -290,33 +306,45 @@ fn merge(d: &mut DrawMesh, mesh: &SceneMesh, tris: &[usize], luma: &[u8]) -> boo
             (lo.y - 0.5).floor().max(0.0) as usize,
             (hi.y.ceil() as usize).min(h),
         );
+        let (l0, l1, l2) = (l.light[0], l.light[1] - l.light[0], l.light[2] - l.light[0]);
         for j in j0..j1 {
-            for i in i0..i1 {
-                let q = Vec2::new(i as f32 + 0.5, j as f32 + 0.5) - uv[0];
-                let (b1, b2) = (q.perp_dot(e2) / den, e1.perp_dot(q) / den);
-                if b1 < -1e-4 || b2 < -1e-4 || b1 + b2 > 1.0 + 1e-4 {
-                    continue;
-                }
-                let cell = &mut texels[j * w + i];
-                if cell.is_none() {
-                    *cell = Some(
-                        l.light[0]
-                            + b1 * (l.light[1] - l.light[0])
-                            + b2 * (l.light[2] - l.light[0]),
-                    );
-                }
+            let qy = j as f32 + 0.5 - uv[0].y;
+            let row = &mut texels[j * w + i0..j * w + i1.max(i0)];
+            // Branch-free so that it runs on vector lanes (IEEE division and products give
+            // the same bits there). The first triangle (in order) that covers a texel centre
+            // gives its light.
+            for (k, cell) in row.iter_mut().enumerate() {
+                let qx = (i0 + k) as f32 + 0.5 - uv[0].x;
+                let b1 = (qx * e2.y - qy * e2.x) / den;
+                let b2 = (e1.x * qy - e1.y * qx) / den;
+                let inside = b1 >= -1e-4 && b2 >= -1e-4 && b1 + b2 <= 1.0 + 1e-4;
+                let v = l0 + b1 * l1 + b2 * l2;
+                *cell = if inside && cell.is_nan() { v } else { *cell };
             }
         }
     }
     // Texels whose centre lies outside the face (its outline is not on texel boundaries):
     // the light of the nearest texel inside, along the row, else along the column.
     fill_gaps(&mut texels, w, h);
-    d.texels.extend(texels.iter().enumerate().map(|(k, light)| {
-        let (i, j) = ((k % w) as i64, (k / w) as i64);
-        let (tu, tv) = ((u0 as i64 + i) & mask, (v0 as i64 + j) & mask);
-        let texel = tex[(tv * TEX_SIZE as i64 + tu) as usize] as f32;
-        (light.unwrap_or(0.0) * texel).round().clamp(0.0, 255.0) as u8
-    }));
+    d.texels.reserve(w * h);
+    let u0i = u0 as i64 as usize;
+    for (j, row) in texels.chunks_exact(w).enumerate() {
+        let tv = (v0 as i64 + j as i64) as usize & (TEX_SIZE - 1);
+        let tex_row = &tex[tv * TEX_SIZE..(tv + 1) * TEX_SIZE];
+        // Runs of the row over which the texture row does not wrap.
+        let mut i = 0;
+        while i < w {
+            let tu = u0i.wrapping_add(i) & (TEX_SIZE - 1);
+            let n = (TEX_SIZE - tu).min(w - i);
+            d.texels.extend(
+                row[i..i + n]
+                    .iter()
+                    .zip(&tex_row[tu..tu + n])
+                    .map(|(light, t)| round_byte(*light * *t as f32)),
+            );
+            i += n;
+        }
+    }
     let face = FaceTexture {
         base: base as u32,
         w: w as u32,
@@ -427,6 +455,20 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn round_byte_rounds_like_round_then_clamp() {
+        let mut v = -3.0f32;
+        while v < 260.0 {
+            for x in [v, v + 0.5, v + 0.49999997, v + 0.50000006] {
+                assert_eq!(round_byte(x), x.round().clamp(0.0, 255.0) as u8, "{x}");
+            }
+            v += 0.03125;
+        }
+        assert_eq!(round_byte(f32::NAN), 0);
+        assert_eq!(round_byte(f32::INFINITY), 255);
+        assert_eq!(round_byte(f32::NEG_INFINITY), 0);
     }
 
     #[test]

@@ -9,7 +9,7 @@ use vlnverse_env::{
     Part, Pose, Room, RoomType, Scene, SceneObject, SceneSource, SemanticClass, Shape,
 };
 use vlnverse_procgen::{HomeGenerator, Preset};
-use vlnverse_sensors::{Channels, RasterRenderer, Renderer, SceneMesh};
+use vlnverse_sensors::{Channels, RasterRenderer, RasterScene, Renderer, SceneMesh};
 
 fn cuboid(id: u32, class: SemanticClass, min: Vec3, max: Vec3, rgb: [f32; 3]) -> SceneObject {
     let c = (min + max) * 0.5;
@@ -207,13 +207,13 @@ fn baked_light_and_images_are_the_same_on_one_and_two_threads() {
             let light = bake_fresh(&home);
             let glb = vlnverse_env::io::glb::write_glb_with(&home, &light);
             let mesh = Arc::new(SceneMesh::with_light(&home, &light).unwrap());
-            let mut r = RasterRenderer::new();
-            r.set_scene(mesh).unwrap();
-            let views: Vec<_> = common::free_poses(&home, 4, 5, 1.25, 0.3)
+            // Prepared here, not taken from the cache of `RasterScene::shared`.
+            let r = RasterScene::new(mesh);
+            let frames: Vec<_> = common::free_poses(&home, 4, 5, 1.25, 0.3)
                 .iter()
-                .map(|p| common::view(p, 128, 128, Channels::ALL))
+                .map(|p| r.render_view(&common::view(p, 128, 128, Channels::ALL), 4))
                 .collect();
-            (light, glb, r.render(&views).unwrap())
+            (light, glb, frames)
         })
     };
     let (a, b) = (run(1), run(2));
@@ -225,4 +225,32 @@ fn baked_light_and_images_are_the_same_on_one_and_two_threads() {
         assert_eq!(x.rgb, y.rgb);
         assert_eq!(x.instance, y.instance);
     }
+}
+
+#[test]
+fn prepared_scenes_are_shared_by_content_and_render_like_fresh_ones() {
+    let gen = HomeGenerator::from_preset(Preset::Tiny).unwrap();
+    let (home, other) = (gen.scene(2).unwrap(), gen.scene(3).unwrap());
+    // Two meshes made apart from one home: one prepared scene.
+    let mesh = Arc::new(SceneMesh::new(&home).unwrap());
+    let a = RasterScene::shared(mesh.clone());
+    let b = RasterScene::shared(Arc::new(SceneMesh::new(&home).unwrap()));
+    assert!(Arc::ptr_eq(&a, &b), "the same home was prepared twice");
+    assert!(!Arc::ptr_eq(
+        &a,
+        &RasterScene::shared(Arc::new(SceneMesh::new(&other).unwrap()))
+    ));
+    // Any change to the mesh is another scene (here the light at one corner).
+    let mut changed = (*mesh).clone();
+    changed.look[0].light[0] += 0.01;
+    assert_ne!(changed.content_key(), mesh.content_key());
+    assert!(!Arc::ptr_eq(&a, &RasterScene::shared(Arc::new(changed))));
+    // A cached scene renders the bytes of a freshly prepared one.
+    let fresh = RasterScene::new(mesh);
+    for p in common::free_poses(&home, 3, 9, 1.25, 0.3) {
+        let v = common::view(&p, 96, 96, Channels::ALL);
+        let (x, y) = (a.render_view(&v, 2), fresh.render_view(&v, 2));
+        assert_eq!((x.rgb, x.depth, x.instance), (y.rgb, y.depth, y.instance));
+    }
+    assert!(a.bytes() > a.face_texture_bytes());
 }

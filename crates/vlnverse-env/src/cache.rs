@@ -1,0 +1,271 @@
+//! Small process-wide caches of what is prepared per scene (baked light, a renderer's scene).
+//!
+//! A training run draws episodes from many homes and every environment loads the home of its
+//! next episode; preparing a home costs far more than a step. [`ByteLru`] keeps the results
+//! keyed by a hash of the content they were made from ([`ContentKey`]), so a home prepared once
+//! is not prepared again while it fits in the byte budget, and a hit returns exactly what a
+//! fresh preparation would.
+
+use std::sync::{Arc, Mutex, OnceLock};
+
+/// 64-bit content key (FNV-1a with an extra shift per word): what a cached result was made
+/// from, word by word.
+#[derive(Clone, Copy, Debug)]
+pub struct ContentKey(u64);
+
+impl Default for ContentKey {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl ContentKey {
+    /// An empty key.
+    pub const fn new() -> Self {
+        ContentKey(0xcbf2_9ce4_8422_2325)
+    }
+
+    /// Mix in one word.
+    pub fn u32(&mut self, v: u32) {
+        self.0 = (self.0 ^ u64::from(v)).wrapping_mul(0x0000_0100_0000_01b3);
+        self.0 ^= self.0 >> 29;
+    }
+
+    /// Mix in a float (its bits).
+    pub fn f32(&mut self, v: f32) {
+        self.u32(v.to_bits());
+    }
+
+    /// Mix in floats.
+    pub fn f32s(&mut self, v: &[f32]) {
+        v.iter().for_each(|c| self.f32(*c));
+    }
+
+    /// Mix in bytes (length first).
+    pub fn bytes(&mut self, v: &[u8]) {
+        self.u32(v.len() as u32);
+        v.iter().for_each(|b| self.u32(u32::from(*b)));
+    }
+
+    /// The key.
+    pub fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
+/// Least-recently-used results up to a byte budget (the newest is kept even when larger).
+#[derive(Debug)]
+pub struct ByteLru<T> {
+    budget: usize,
+    used: usize,
+    /// Oldest first: key, value, bytes.
+    entries: Vec<(u64, Arc<T>, usize)>,
+}
+
+impl<T> ByteLru<T> {
+    /// An empty cache that holds up to `budget` bytes (0: holds nothing).
+    pub const fn new(budget: usize) -> Self {
+        ByteLru {
+            budget,
+            used: 0,
+            entries: Vec::new(),
+        }
+    }
+
+    /// The value for `key`, now the most recently used.
+    pub fn get(&mut self, key: u64) -> Option<Arc<T>> {
+        let i = self.entries.iter().position(|e| e.0 == key)?;
+        let e = self.entries.remove(i);
+        let v = e.1.clone();
+        self.entries.push(e);
+        Some(v)
+    }
+
+    /// Keep `value` (of `bytes` bytes) under `key`, dropping the least recently used entries
+    /// past the budget.
+    pub fn insert(&mut self, key: u64, value: Arc<T>, bytes: usize) {
+        if self.budget == 0 {
+            return;
+        }
+        if let Some(i) = self.entries.iter().position(|e| e.0 == key) {
+            self.used -= self.entries.remove(i).2;
+        }
+        self.entries.push((key, value, bytes));
+        self.used += bytes;
+        self.evict();
+    }
+
+    /// Number of entries.
+    pub fn len(&self) -> usize {
+        self.entries.len()
+    }
+
+    /// Whether nothing is kept.
+    pub fn is_empty(&self) -> bool {
+        self.entries.is_empty()
+    }
+
+    /// Bytes kept.
+    pub fn bytes(&self) -> usize {
+        self.used
+    }
+
+    /// Set the size of the entry under `key` (when it was inserted before its value was
+    /// made), dropping the least recently used entries past the budget.
+    pub fn resize(&mut self, key: u64, bytes: usize) {
+        if let Some(e) = self.entries.iter_mut().find(|e| e.0 == key) {
+            self.used = self.used - e.2 + bytes;
+            e.2 = bytes;
+        }
+        self.evict();
+    }
+
+    fn evict(&mut self) {
+        while self.used > self.budget && self.entries.len() > 1 {
+            self.used -= self.entries.remove(0).2;
+        }
+    }
+}
+
+/// A [`ByteLru`] shared by the process: each entry is made once, even when several threads ask
+/// for it at the same time (the others wait for it; other keys are made meanwhile).
+pub type SharedLru<T> = Mutex<ByteLru<OnceLock<Arc<T>>>>;
+
+/// A new [`SharedLru`] of `budget` bytes.
+pub const fn shared_lru<T>(budget: usize) -> SharedLru<T> {
+    Mutex::new(ByteLru::new(budget))
+}
+
+/// The cached value for `key` in `cache`, else `make()` stored with its size from `bytes`. A
+/// poisoned lock only loses the caching.
+pub fn get_or_insert<T>(
+    cache: &SharedLru<T>,
+    key: u64,
+    make: impl FnOnce() -> T,
+    bytes: impl FnOnce(&T) -> usize,
+) -> Arc<T> {
+    let slot = cache.lock().ok().map(|mut c| match c.get(key) {
+        Some(s) => s,
+        None => {
+            let s = Arc::new(OnceLock::new());
+            c.insert(key, s.clone(), 0);
+            s
+        }
+    });
+    let Some(slot) = slot else {
+        return Arc::new(make());
+    };
+    let mut made = false;
+    let v = slot
+        .get_or_init(|| {
+            made = true;
+            Arc::new(make())
+        })
+        .clone();
+    if made {
+        if let Ok(mut c) = cache.lock() {
+            c.resize(key, bytes(&v));
+        }
+    }
+    v
+}
+
+/// Megabytes from the environment variable `var` (a whole number), else `default_mb`; the
+/// budget of a process-wide cache.
+pub fn budget_from_env(var: &str, default_mb: usize) -> usize {
+    static WARNED: OnceLock<()> = OnceLock::new();
+    match std::env::var(var) {
+        Ok(v) => match v.trim().parse::<usize>() {
+            Ok(mb) => mb << 20,
+            Err(_) => {
+                WARNED.get_or_init(|| {
+                    eprintln!(
+                        "warning: {var}={v:?} is not a whole number of megabytes; using {default_mb}"
+                    )
+                });
+                default_mb << 20
+            }
+        },
+        Err(_) => default_mb << 20,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn least_recently_used_entries_leave_first_and_the_newest_stays() {
+        let mut c = ByteLru::new(10);
+        c.insert(1, Arc::new("a"), 4);
+        c.insert(2, Arc::new("b"), 4);
+        assert_eq!(c.get(1).as_deref(), Some(&"a")); // 1 is now the most recent
+        c.insert(3, Arc::new("c"), 4); // over budget: 2 leaves
+        assert!(c.get(2).is_none());
+        assert_eq!((c.len(), c.bytes()), (2, 8));
+        c.insert(4, Arc::new("d"), 50); // larger than the budget: kept alone
+        assert_eq!((c.len(), c.bytes()), (1, 50));
+        assert_eq!(c.get(4).as_deref(), Some(&"d"));
+        c.insert(4, Arc::new("e"), 2); // same key: replaced
+        assert_eq!((c.len(), c.bytes()), (1, 2));
+        let mut none = ByteLru::new(0);
+        none.insert(1, Arc::new(1), 1);
+        assert!(none.is_empty());
+    }
+
+    #[test]
+    fn get_or_insert_makes_once_per_key() {
+        let cache = shared_lru(1 << 20);
+        let mut made = 0;
+        for k in [1, 2, 1, 1, 2] {
+            let v = get_or_insert(
+                &cache,
+                k,
+                || {
+                    made += 1;
+                    k * 10
+                },
+                |_| 8,
+            );
+            assert_eq!(*v, k * 10);
+        }
+        assert_eq!(made, 2);
+        assert_eq!(cache.lock().unwrap().bytes(), 16);
+    }
+
+    #[test]
+    fn threads_asking_for_one_key_at_once_make_it_once() {
+        let cache = shared_lru(1 << 20);
+        let made = std::sync::atomic::AtomicUsize::new(0);
+        std::thread::scope(|s| {
+            for _ in 0..4 {
+                s.spawn(|| {
+                    let v = get_or_insert(
+                        &cache,
+                        7,
+                        || {
+                            made.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+                            std::thread::sleep(std::time::Duration::from_millis(50));
+                            70
+                        },
+                        |_| 8,
+                    );
+                    assert_eq!(*v, 70);
+                });
+            }
+        });
+        assert_eq!(made.load(std::sync::atomic::Ordering::SeqCst), 1);
+    }
+
+    #[test]
+    fn keys_differ_with_content_and_order() {
+        let key = |w: &[u32]| {
+            let mut k = ContentKey::new();
+            w.iter().for_each(|v| k.u32(*v));
+            k.finish()
+        };
+        assert_eq!(key(&[1, 2, 3]), key(&[1, 2, 3]));
+        assert_ne!(key(&[1, 2, 3]), key(&[3, 2, 1]));
+        assert_ne!(key(&[1, 2]), key(&[1, 2, 0]));
+    }
+}
