@@ -140,31 +140,42 @@ pub(crate) fn build(mesh: &SceneMesh, luma: &[u8]) -> DrawMesh {
 }
 
 /// Give empty texels (NaN) the value of the nearest filled one before (else after) them in
-/// their row, then texels of rows left empty the same along their column.
+/// their row, then rows left empty the values of the nearest filled row before (else after).
 fn fill_gaps(t: &mut [f32], w: usize, h: usize) {
-    // One line of texels: `n` of them, `stride` apart from `first`.
-    let fill = |t: &mut [f32], first: usize, stride: usize, n: usize| {
-        let mut last = f32::NAN;
-        for k in (0..n).chain((0..n).rev()) {
-            let v = &mut t[first + k * stride];
-            if v.is_nan() {
-                *v = last;
-            } else {
-                last = *v;
-            }
+    let mut empty_rows = false;
+    for row in t.chunks_exact_mut(w) {
+        if !row.iter().any(|v| v.is_nan()) {
+            continue;
         }
-    };
-    let mut gaps = false;
-    for j in 0..h {
-        let row = &t[j * w..(j + 1) * w];
-        if row.iter().any(|v| v.is_nan()) {
-            fill(t, j * w, 1, w);
-            gaps |= t[j * w].is_nan();
+        // Forward: each gap takes the last value before it; then a leading gap takes the
+        // first value of the row.
+        let mut last = f32::NAN;
+        for v in row.iter_mut() {
+            last = if v.is_nan() { last } else { *v };
+            *v = last;
+        }
+        match row.iter().position(|v| !v.is_nan()) {
+            Some(0) => {}
+            Some(p) => {
+                let first = row[p];
+                row[..p].fill(first);
+            }
+            None => empty_rows = true,
         }
     }
-    if gaps {
-        for i in 0..w {
-            fill(t, i, w, h);
+    if !empty_rows {
+        return;
+    }
+    let filled: Vec<usize> = (0..h).filter(|&j| !t[j * w].is_nan()).collect();
+    let Some(&first) = filled.first() else {
+        return;
+    };
+    let mut from = first;
+    for j in 0..h {
+        if !t[j * w].is_nan() {
+            from = j;
+        } else {
+            t.copy_within(from * w..(from + 1) * w, j * w);
         }
     }
 }
@@ -174,8 +185,8 @@ fn fill_gaps(t: &mut [f32], w: usize, h: usize) {
 /// below 2^23.
 fn round_byte(v: f32) -> u8 {
     let v = if v > 0.0 { v.min(255.0) } else { 0.0 };
-    let t = v as u32;
-    (t + u32::from(v - t as f32 >= 0.5)) as u8
+    let t = v as i32;
+    (t + i32::from(v - t as f32 >= 0.5)) as u8
 }
 
 /// Split triangles into pieces connected through shared corners (exact positions), each in
@@ -314,7 +325,8 @@ fn merge(d: &mut DrawMesh, mesh: &SceneMesh, tris: &[usize], luma: &[u8]) -> boo
             // the same bits there). The first triangle (in order) that covers a texel centre
             // gives its light.
             for (k, cell) in row.iter_mut().enumerate() {
-                let qx = (i0 + k) as f32 + 0.5 - uv[0].x;
+                // Through i32: exact below 2^24, and one instruction (usize is not).
+                let qx = (i0 + k) as i32 as f32 + 0.5 - uv[0].x;
                 let b1 = (qx * e2.y - qy * e2.x) / den;
                 let b2 = (e1.x * qy - e1.y * qx) / den;
                 let inside = b1 >= -1e-4 && b2 >= -1e-4 && b1 + b2 <= 1.0 + 1e-4;
@@ -455,6 +467,32 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn gaps_take_the_nearest_value_before_else_after_in_rows_then_columns() {
+        let n = f32::NAN;
+        #[rustfmt::skip]
+        let mut t = vec![
+            n, n, n, n,
+            n, 1.0, n, 2.0,
+            n, n, n, n,
+            3.0, n, n, n,
+            n, n, n, n,
+        ];
+        fill_gaps(&mut t, 4, 5);
+        #[rustfmt::skip]
+        let want = vec![
+            1.0, 1.0, 1.0, 2.0,
+            1.0, 1.0, 1.0, 2.0,
+            1.0, 1.0, 1.0, 2.0,
+            3.0, 3.0, 3.0, 3.0,
+            3.0, 3.0, 3.0, 3.0,
+        ];
+        assert_eq!(t, want);
+        let mut none = vec![n; 6];
+        fill_gaps(&mut none, 3, 2);
+        assert!(none.iter().all(|v| v.is_nan()));
     }
 
     #[test]
