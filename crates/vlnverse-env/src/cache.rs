@@ -110,16 +110,6 @@ impl<T> ByteLru<T> {
         self.used
     }
 
-    /// Set the size of the entry under `key` (when it was inserted before its value was
-    /// made), dropping the least recently used entries past the budget.
-    pub fn resize(&mut self, key: u64, bytes: usize) {
-        if let Some(e) = self.entries.iter_mut().find(|e| e.0 == key) {
-            self.used = self.used - e.2 + bytes;
-            e.2 = bytes;
-        }
-        self.evict();
-    }
-
     fn evict(&mut self) {
         while self.used > self.budget && self.entries.len() > 1 {
             self.used -= self.entries.remove(0).2;
@@ -127,9 +117,8 @@ impl<T> ByteLru<T> {
     }
 }
 
-/// A [`ByteLru`] shared by the process: each entry is made once, even when several threads ask
-/// for it at the same time (the others wait for it; other keys are made meanwhile).
-pub type SharedLru<T> = Mutex<ByteLru<OnceLock<Arc<T>>>>;
+/// A [`ByteLru`] shared by the process.
+pub type SharedLru<T> = Mutex<ByteLru<T>>;
 
 /// A new [`SharedLru`] of `budget` bytes.
 pub const fn shared_lru<T>(budget: usize) -> SharedLru<T> {
@@ -138,34 +127,26 @@ pub const fn shared_lru<T>(budget: usize) -> SharedLru<T> {
 
 /// The cached value for `key` in `cache`, else `make()` stored with its size from `bytes`. A
 /// poisoned lock only loses the caching.
+///
+/// `make` runs outside the lock and never waits for another thread making the same key: on a
+/// rayon pool the thread making it may be this one, further down its stack (work stealing), so
+/// waiting could deadlock. Two threads asking at the same moment may both make it; the first
+/// one stored is kept and returned to both.
 pub fn get_or_insert<T>(
     cache: &SharedLru<T>,
     key: u64,
     make: impl FnOnce() -> T,
     bytes: impl FnOnce(&T) -> usize,
 ) -> Arc<T> {
-    let slot = cache.lock().ok().map(|mut c| match c.get(key) {
-        Some(s) => s,
-        None => {
-            let s = Arc::new(OnceLock::new());
-            c.insert(key, s.clone(), 0);
-            s
+    if let Some(hit) = cache.lock().ok().and_then(|mut c| c.get(key)) {
+        return hit;
+    }
+    let v = Arc::new(make());
+    if let Ok(mut c) = cache.lock() {
+        if let Some(first) = c.get(key) {
+            return first;
         }
-    });
-    let Some(slot) = slot else {
-        return Arc::new(make());
-    };
-    let mut made = false;
-    let v = slot
-        .get_or_init(|| {
-            made = true;
-            Arc::new(make())
-        })
-        .clone();
-    if made {
-        if let Ok(mut c) = cache.lock() {
-            c.resize(key, bytes(&v));
-        }
+        c.insert(key, v.clone(), bytes(&v));
     }
     v
 }
@@ -234,27 +215,34 @@ mod tests {
     }
 
     #[test]
-    fn threads_asking_for_one_key_at_once_make_it_once() {
+    fn threads_asking_for_one_key_at_once_share_one_value() {
+        // On a rayon pool with fewer threads than tasks (work stealing runs a waiting task's
+        // neighbours on its stack): none waits for another, and all get the first value stored.
         let cache = shared_lru(1 << 20);
-        let made = std::sync::atomic::AtomicUsize::new(0);
-        std::thread::scope(|s| {
-            for _ in 0..4 {
-                s.spawn(|| {
-                    let v = get_or_insert(
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        let got: Vec<Arc<Vec<u32>>> = pool.install(|| {
+            use rayon::prelude::*;
+            (0..16)
+                .into_par_iter()
+                .map(|_| {
+                    get_or_insert(
                         &cache,
                         7,
-                        || {
-                            made.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
-                            std::thread::sleep(std::time::Duration::from_millis(50));
-                            70
-                        },
-                        |_| 8,
-                    );
-                    assert_eq!(*v, 70);
-                });
-            }
+                        || (0..1000u32).into_par_iter().map(|i| i * 2).collect(),
+                        |v: &Vec<u32>| v.len() * 4,
+                    )
+                })
+                .collect()
         });
-        assert_eq!(made.load(std::sync::atomic::Ordering::SeqCst), 1);
+        assert!(got.iter().all(|v| v[999] == 1998));
+        let first = cache.lock().unwrap().get(7).unwrap();
+        // Whether it found the value stored, stored it, or lost the race: every task holds the
+        // one value kept.
+        assert!(got.iter().all(|v| Arc::ptr_eq(v, &first)));
+        assert_eq!(cache.lock().unwrap().len(), 1);
     }
 
     #[test]
