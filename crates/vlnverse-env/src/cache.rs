@@ -6,7 +6,7 @@
 //! is not prepared again while it fits in the byte budget, and a hit returns exactly what a
 //! fresh preparation would.
 
-use std::sync::{Arc, Mutex, OnceLock};
+use std::sync::{Arc, Mutex};
 
 /// 64-bit content key (FNV-1a with an extra shift per word): what a cached result was made
 /// from, word by word.
@@ -41,10 +41,13 @@ impl ContentKey {
         v.iter().for_each(|c| self.f32(*c));
     }
 
-    /// Mix in bytes (length first).
+    /// Mix in bytes (length first, then four to a word: imported images run to megabytes).
     pub fn bytes(&mut self, v: &[u8]) {
         self.u32(v.len() as u32);
-        v.iter().for_each(|b| self.u32(u32::from(*b)));
+        let words = v.chunks_exact(4);
+        let tail = words.remainder();
+        words.for_each(|w| self.u32(u32::from_le_bytes([w[0], w[1], w[2], w[3]])));
+        tail.iter().for_each(|b| self.u32(u32::from(*b)));
     }
 
     /// The key.
@@ -152,18 +155,16 @@ pub fn get_or_insert<T>(
 }
 
 /// Megabytes from the environment variable `var` (a whole number), else `default_mb`; the
-/// budget of a process-wide cache.
+/// budget of a process-wide cache, read once when the cache is made (so a bad value warns
+/// once per cache).
 pub fn budget_from_env(var: &str, default_mb: usize) -> usize {
-    static WARNED: OnceLock<()> = OnceLock::new();
     match std::env::var(var) {
         Ok(v) => match v.trim().parse::<usize>() {
             Ok(mb) => mb << 20,
             Err(_) => {
-                WARNED.get_or_init(|| {
-                    eprintln!(
-                        "warning: {var}={v:?} is not a whole number of megabytes; using {default_mb}"
-                    )
-                });
+                eprintln!(
+                    "warning: {var}={v:?} is not a whole number of megabytes; using {default_mb}"
+                );
                 default_mb << 20
             }
         },
@@ -255,5 +256,14 @@ mod tests {
         assert_eq!(key(&[1, 2, 3]), key(&[1, 2, 3]));
         assert_ne!(key(&[1, 2, 3]), key(&[3, 2, 1]));
         assert_ne!(key(&[1, 2]), key(&[1, 2, 0]));
+        let bytes = |b: &[u8]| {
+            let mut k = ContentKey::new();
+            k.bytes(b);
+            k.finish()
+        };
+        assert_eq!(bytes(&[1, 2, 3, 4, 5]), bytes(&[1, 2, 3, 4, 5]));
+        assert_ne!(bytes(&[1, 2, 3, 4, 5]), bytes(&[1, 2, 3, 4, 6]));
+        assert_ne!(bytes(&[1, 2, 3, 4]), bytes(&[2, 1, 3, 4]));
+        assert_ne!(bytes(&[1, 2, 3, 4]), bytes(&[1, 2, 3, 4, 0]));
     }
 }

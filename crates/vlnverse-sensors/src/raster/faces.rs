@@ -166,11 +166,9 @@ fn fill_gaps(t: &mut [f32], w: usize, h: usize) {
     if !empty_rows {
         return;
     }
-    let filled: Vec<usize> = (0..h).filter(|&j| !t[j * w].is_nan()).collect();
-    let Some(&first) = filled.first() else {
+    let Some(mut from) = (0..h).find(|&j| !t[j * w].is_nan()) else {
         return;
     };
-    let mut from = first;
     for j in 0..h {
         if !t[j * w].is_nan() {
             from = j;
