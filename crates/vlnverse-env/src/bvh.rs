@@ -195,15 +195,7 @@ impl TriBvh {
             return None;
         }
         let (origin, dir) = (Vec3A::from(origin), Vec3A::from(dir));
-        // Avoid 0 * inf = NaN in the slab test for axis-parallel rays.
-        let safe = |x: f32| {
-            if x.abs() < 1e-20 {
-                1e-20f32.copysign(x)
-            } else {
-                x
-            }
-        };
-        let inv = Vec3A::new(1.0 / safe(dir.x), 1.0 / safe(dir.y), 1.0 / safe(dir.z));
+        let inv = safe_inverse(dir);
         let mut best_t = t_max;
         let mut best = None;
         let mut stack = [0u32; 64];
@@ -262,6 +254,63 @@ impl TriBvh {
         }
     }
 
+    /// Whether `origin + t * dir` hits any triangle with `0 < t < t_max`: the same answer as
+    /// `cast(..).is_some()`, but it stops at the first hit found (shadow and occlusion rays).
+    #[inline]
+    pub fn occluded(&self, origin: Vec3, dir: Vec3, t_max: f32) -> bool {
+        if self.nodes.is_empty() {
+            return false;
+        }
+        let (origin, dir) = (Vec3A::from(origin), Vec3A::from(dir));
+        let inv = safe_inverse(dir);
+        let mut stack = [0u32; 64];
+        let mut sp = 0usize;
+        let mut node = 0usize;
+        if self.enter(node, origin, inv, t_max).is_none() {
+            return false;
+        }
+        loop {
+            let n = &self.nodes[node];
+            if n.count > 0 {
+                let s = n.start as usize;
+                if (s..s + n.count as usize).any(|i| self.hit(i, origin, dir, t_max).is_some()) {
+                    return true;
+                }
+            } else {
+                let (l, r) = (n.start as usize, n.start as usize + 1);
+                let (tl, tr) = (
+                    self.enter(l, origin, inv, t_max),
+                    self.enter(r, origin, inv, t_max),
+                );
+                match (tl, tr) {
+                    (Some(_), Some(_)) => {
+                        // Like `cast`: a node past 64 levels of pending siblings is dropped.
+                        if sp < stack.len() {
+                            stack[sp] = r as u32;
+                            sp += 1;
+                        }
+                        node = l;
+                        continue;
+                    }
+                    (Some(_), None) => {
+                        node = l;
+                        continue;
+                    }
+                    (None, Some(_)) => {
+                        node = r;
+                        continue;
+                    }
+                    (None, None) => {}
+                }
+            }
+            if sp == 0 {
+                return false;
+            }
+            sp -= 1;
+            node = stack[sp] as usize;
+        }
+    }
+
     #[inline]
     fn enter(&self, node: usize, o: Vec3A, inv: Vec3A, t_max: f32) -> Option<f32> {
         let n = &self.nodes[node];
@@ -294,6 +343,20 @@ impl TriBvh {
         let t = e2.dot(q) * inv_det;
         (t > 0.0 && t < t_max).then_some(t)
     }
+}
+
+/// `1 / dir` per axis, with near-zero components kept off zero: avoids 0 * inf = NaN in the
+/// slab test for axis-parallel rays.
+#[inline]
+fn safe_inverse(dir: Vec3A) -> Vec3A {
+    let safe = |x: f32| {
+        if x.abs() < 1e-20 {
+            1e-20f32.copysign(x)
+        } else {
+            x
+        }
+    };
+    Vec3A::new(1.0 / safe(dir.x), 1.0 / safe(dir.y), 1.0 / safe(dir.z))
 }
 
 #[cfg(test)]
@@ -343,5 +406,47 @@ mod tests {
             hits += a.is_some() as usize;
         }
         assert!(hits > 200, "{hits}");
+    }
+
+    #[test]
+    fn occluded_answers_like_a_nearest_hit_within_reach() {
+        let mut rng = ChaCha8Rng::seed_from_u64(12);
+        let mut r = |s: f32| {
+            Vec3::new(
+                rng.random_range(-s..s),
+                rng.random_range(-s..s),
+                rng.random_range(-s..s),
+            )
+        };
+        let mut pos = Vec::new();
+        for _ in 0..800 {
+            let c = r(5.0);
+            pos.extend([c + r(0.8), c + r(0.8), c + r(0.8)]);
+        }
+        let bvh = TriBvh::new(&pos);
+        let (mut blocked, mut clear) = (0, 0);
+        for k in 0..4000 {
+            let o = r(4.0);
+            let d = r(1.0).normalize();
+            // Short reaches (occlusion rays) to long ones (shadow rays), and a reach that ends
+            // just before or just after the nearest hit.
+            let reach = match (k % 4, bvh.cast(o, d, 100.0)) {
+                (0, Some((t, _))) => t * 0.999,
+                (1, Some((t, _))) => t * 1.001,
+                _ => 0.2 + (k % 7) as f32 * 2.0,
+            };
+            let expected = bvh.cast(o, d, reach).is_some();
+            assert_eq!(bvh.occluded(o, d, reach), expected, "ray {k}");
+            if expected {
+                blocked += 1;
+            } else {
+                clear += 1;
+            }
+        }
+        assert!(
+            blocked > 400 && clear > 400,
+            "{blocked} blocked, {clear} clear"
+        );
+        assert!(!TriBvh::new(&[]).occluded(Vec3::ZERO, Vec3::X, 1.0));
     }
 }

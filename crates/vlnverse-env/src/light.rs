@@ -448,7 +448,7 @@ impl Ctx<'_> {
                 .iter()
                 .filter(|d| {
                     let dir = t * d.x + b * d.y + n * d.z;
-                    self.hit(s, dir, AO_REACH).is_some()
+                    self.bvh.occluded(s, dir, AO_REACH)
                 })
                 .count()
         };
@@ -479,7 +479,7 @@ impl Ctx<'_> {
             for off in [Vec3::new(0.12, 0.0, 0.05), Vec3::new(-0.12, 0.0, -0.05)] {
                 let q = *lamp + off - s;
                 let dist = q.length();
-                if self.hit(s, q / dist, dist - 0.02).is_none() {
+                if !self.bvh.occluded(s, q / dist, dist - 0.02) {
                     seen += 0.5;
                 }
             }
@@ -499,7 +499,7 @@ impl Ctx<'_> {
                 if cos_n <= 0.0 || cos_p <= 0.0 {
                     continue;
                 }
-                if self.hit(s, dir, dist - 0.02).is_none() {
+                if !self.bvh.occluded(s, dir, dist - 0.02) {
                     direct += pane.power * cos_n * cos_p / (d2 + DAY_SOFT);
                 }
             }

@@ -1,4 +1,7 @@
-//! One home generated from its seed (vlnverse preset).
+//! One home generated from its seed (vlnverse preset), and its light baked
+//! (`vlnverse_env::light::bake_fresh`: occlusion, lamp and daylight shadow rays per vertex).
+//!
+//! `cargo bench -p vlnverse-procgen --bench generate -- --warm-up-time 1 --measurement-time 5`
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
@@ -16,5 +19,20 @@ fn generate(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, generate);
+fn bake(c: &mut Criterion) {
+    let homes = HomeGenerator::from_preset(Preset::Vlnverse).expect("shipped preset is valid");
+    // The first 8 homes, baked in turn; `bake_fresh` bypasses the content cache.
+    let scenes: Vec<_> = (0..8)
+        .map(|i| homes.scene(i).expect("scene generates"))
+        .collect();
+    let mut i = 0;
+    c.bench_function("bake_light_one_vlnverse_home", |b| {
+        b.iter(|| {
+            i = (i + 1) % scenes.len();
+            black_box(vlnverse_env::light::bake_fresh(black_box(&scenes[i])))
+        })
+    });
+}
+
+criterion_group!(benches, generate, bake);
 criterion_main!(benches);
