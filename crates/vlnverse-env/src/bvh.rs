@@ -191,11 +191,39 @@ impl TriBvh {
     /// Nearest hit of `origin + t * dir` with `0 < t < t_max`: `(t, triangle index)`.
     #[inline]
     pub fn cast(&self, origin: Vec3, dir: Vec3, t_max: f32) -> Option<(f32, u32)> {
+        self.trace::<false>(origin, dir, t_max)
+            .map(|(t, i)| (t, self.ids[i]))
+    }
+
+    /// Whether `origin + t * dir` hits any triangle with `0 < t < t_max`: the same answer as
+    /// `cast(..).is_some()`, but it stops at the first hit found (shadow and occlusion rays).
+    #[inline]
+    pub fn occluded(&self, origin: Vec3, dir: Vec3, t_max: f32) -> bool {
+        self.trace::<true>(origin, dir, t_max).is_some()
+    }
+
+    /// Near-child-first traversal: the nearest hit `(t, slot)`, or with `FIRST` the first hit
+    /// found. Until that first hit both visit the same nodes, so they agree on whether any.
+    #[inline]
+    fn trace<const FIRST: bool>(
+        &self,
+        origin: Vec3,
+        dir: Vec3,
+        t_max: f32,
+    ) -> Option<(f32, usize)> {
         if self.nodes.is_empty() {
             return None;
         }
         let (origin, dir) = (Vec3A::from(origin), Vec3A::from(dir));
-        let inv = safe_inverse(dir);
+        // Avoid 0 * inf = NaN in the slab test for axis-parallel rays.
+        let safe = |x: f32| {
+            if x.abs() < 1e-20 {
+                1e-20f32.copysign(x)
+            } else {
+                x
+            }
+        };
+        let inv = Vec3A::new(1.0 / safe(dir.x), 1.0 / safe(dir.y), 1.0 / safe(dir.z));
         let mut best_t = t_max;
         let mut best = None;
         let mut stack = [0u32; 64];
@@ -208,6 +236,9 @@ impl TriBvh {
                 let s = n.start as usize;
                 for i in s..s + n.count as usize {
                     if let Some(t) = self.hit(i, origin, dir, best_t) {
+                        if FIRST {
+                            return Some((t, i));
+                        }
                         best_t = t;
                         best = Some(i);
                     }
@@ -242,7 +273,7 @@ impl TriBvh {
             // Pop the next node whose box is still nearer than the best hit.
             loop {
                 if sp == 0 {
-                    return best.map(|i| (best_t, self.ids[i]));
+                    return best.map(|i| (best_t, i));
                 }
                 sp -= 1;
                 let c = stack[sp] as usize;
@@ -251,63 +282,6 @@ impl TriBvh {
                     break;
                 }
             }
-        }
-    }
-
-    /// Whether `origin + t * dir` hits any triangle with `0 < t < t_max`: the same answer as
-    /// `cast(..).is_some()`, but it stops at the first hit found (shadow and occlusion rays).
-    #[inline]
-    pub fn occluded(&self, origin: Vec3, dir: Vec3, t_max: f32) -> bool {
-        if self.nodes.is_empty() {
-            return false;
-        }
-        let (origin, dir) = (Vec3A::from(origin), Vec3A::from(dir));
-        let inv = safe_inverse(dir);
-        let mut stack = [0u32; 64];
-        let mut sp = 0usize;
-        let mut node = 0usize;
-        if self.enter(node, origin, inv, t_max).is_none() {
-            return false;
-        }
-        loop {
-            let n = &self.nodes[node];
-            if n.count > 0 {
-                let s = n.start as usize;
-                if (s..s + n.count as usize).any(|i| self.hit(i, origin, dir, t_max).is_some()) {
-                    return true;
-                }
-            } else {
-                let (l, r) = (n.start as usize, n.start as usize + 1);
-                let (tl, tr) = (
-                    self.enter(l, origin, inv, t_max),
-                    self.enter(r, origin, inv, t_max),
-                );
-                match (tl, tr) {
-                    (Some(_), Some(_)) => {
-                        // Like `cast`: a node past 64 levels of pending siblings is dropped.
-                        if sp < stack.len() {
-                            stack[sp] = r as u32;
-                            sp += 1;
-                        }
-                        node = l;
-                        continue;
-                    }
-                    (Some(_), None) => {
-                        node = l;
-                        continue;
-                    }
-                    (None, Some(_)) => {
-                        node = r;
-                        continue;
-                    }
-                    (None, None) => {}
-                }
-            }
-            if sp == 0 {
-                return false;
-            }
-            sp -= 1;
-            node = stack[sp] as usize;
         }
     }
 
@@ -343,20 +317,6 @@ impl TriBvh {
         let t = e2.dot(q) * inv_det;
         (t > 0.0 && t < t_max).then_some(t)
     }
-}
-
-/// `1 / dir` per axis, with near-zero components kept off zero: avoids 0 * inf = NaN in the
-/// slab test for axis-parallel rays.
-#[inline]
-fn safe_inverse(dir: Vec3A) -> Vec3A {
-    let safe = |x: f32| {
-        if x.abs() < 1e-20 {
-            1e-20f32.copysign(x)
-        } else {
-            x
-        }
-    };
-    Vec3A::new(1.0 / safe(dir.x), 1.0 / safe(dir.y), 1.0 / safe(dir.z))
 }
 
 #[cfg(test)]
