@@ -325,21 +325,30 @@ mod tests {
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
+    /// A point with each coordinate uniform in `(-s, s)`.
+    fn random_point(rng: &mut ChaCha8Rng, s: f32) -> Vec3 {
+        Vec3::new(
+            rng.random_range(-s..s),
+            rng.random_range(-s..s),
+            rng.random_range(-s..s),
+        )
+    }
+
+    /// `n` triangles scattered in a 10 m cube, corners within `size` of their centre.
+    fn random_triangles(rng: &mut ChaCha8Rng, n: usize, size: f32) -> Vec<Vec3> {
+        let mut pos = Vec::new();
+        for _ in 0..n {
+            let c = random_point(rng, 5.0);
+            pos.extend([0; 3].map(|_| c + random_point(rng, size)));
+        }
+        pos
+    }
+
     #[test]
     fn bvh_finds_the_same_nearest_hit_as_brute_force() {
         let mut rng = ChaCha8Rng::seed_from_u64(11);
-        let mut r = |s: f32| {
-            Vec3::new(
-                rng.random_range(-s..s),
-                rng.random_range(-s..s),
-                rng.random_range(-s..s),
-            )
-        };
-        let mut pos = Vec::new();
-        for _ in 0..500 {
-            let c = r(5.0);
-            pos.extend([c + r(0.5), c + r(0.5), c + r(0.5)]);
-        }
+        let pos = random_triangles(&mut rng, 500, 0.5);
+        let mut r = |s: f32| random_point(&mut rng, s);
         let bvh = TriBvh::new(&pos);
         let all = TriBvh {
             nodes: vec![Node {
@@ -371,18 +380,8 @@ mod tests {
     #[test]
     fn occluded_answers_like_a_nearest_hit_within_reach() {
         let mut rng = ChaCha8Rng::seed_from_u64(12);
-        let mut r = |s: f32| {
-            Vec3::new(
-                rng.random_range(-s..s),
-                rng.random_range(-s..s),
-                rng.random_range(-s..s),
-            )
-        };
-        let mut pos = Vec::new();
-        for _ in 0..800 {
-            let c = r(5.0);
-            pos.extend([c + r(0.8), c + r(0.8), c + r(0.8)]);
-        }
+        let pos = random_triangles(&mut rng, 800, 0.8);
+        let mut r = |s: f32| random_point(&mut rng, s);
         let bvh = TriBvh::new(&pos);
         let (mut blocked, mut clear) = (0, 0);
         for k in 0..4000 {
