@@ -31,7 +31,7 @@ pub fn all() -> Vec<Case> {
     vec![
         Case {
             name: "scene",
-            what: "procedural homes (vlnverse preset): generation, occupancy maps, scene graph",
+            what: "procedural homes (vlnverse preset): generation, occupancy maps, scene graph, light bake",
             max_reps: 100,
             setup: scene,
         },
@@ -137,10 +137,26 @@ fn scene(scale: Scale) -> anyhow::Result<Repetition> {
         maps?;
         let (graph_s, graphs) = timed(|| scenes.iter().map(SceneGraph::build).collect::<Vec<_>>());
         std::hint::black_box(graphs);
+        // The bake spreads a home's parts over the rayon pool; `bake_fresh` skips the cache.
+        let (bake_s, baked) = timed(|| {
+            scenes
+                .iter()
+                .map(vlnverse_env::light::bake_fresh)
+                .collect::<Vec<_>>()
+        });
+        std::hint::black_box(baked);
+        let threads = rayon::current_num_threads();
         Ok(vec![
             Sample::time("scene/generate_home", gen_s, n, "home", detail.clone()),
             Sample::time("scene/occupancy_maps", maps_s, n, "home", detail.clone()),
             Sample::time("scene/scene_graph", graph_s, n, "home", detail.clone()),
+            Sample::time(
+                "scene/light_bake",
+                bake_s,
+                n,
+                "home",
+                format!("{n} vlnverse homes, {threads} threads"),
+            ),
         ])
     }))
 }
