@@ -28,7 +28,7 @@ pub enum ExportError {
     Task(#[from] vlnverse_task::TaskError),
     /// A dataset file could not be read (the message names the file and field).
     #[error(transparent)]
-    Dataset(#[from] vlnverse_score::ScoreError),
+    Dataset(#[from] vlnverse_score::DataError),
     /// A Parquet file could not be written.
     #[error("{path}: writing Parquet: {message}")]
     Parquet {

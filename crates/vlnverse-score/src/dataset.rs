@@ -12,7 +12,7 @@ use flate2::{read::GzDecoder, Compression, GzBuilder};
 use serde::Deserialize;
 
 use crate::episode::{Dataset, Episode, Split, Task};
-use crate::error::{Result, ScoreError};
+use crate::error::{DataError, Result};
 
 /// Compression level of split files (fixed so bytes do not depend on flate2 defaults).
 pub const GZIP_LEVEL: u32 = 6;
@@ -31,7 +31,7 @@ pub fn to_gzip_bytes(episodes: &[Episode]) -> Result<Vec<u8>> {
         episodes: &'a [Episode],
     }
     let json = serde_json::to_vec(&Borrowed { episodes })
-        .map_err(|e| ScoreError::invalid("episodes", "<episodes>", e.to_string()))?;
+        .map_err(|e| DataError::invalid("episodes", "<episodes>", e.to_string()))?;
     gzip(&json)
 }
 
@@ -43,22 +43,22 @@ pub fn gzip(data: &[u8]) -> Result<Vec<u8>> {
     );
     enc.write_all(data)
         .and_then(|_| enc.finish())
-        .map_err(|e| ScoreError::io("<memory>", e))
+        .map_err(|e| DataError::io("<memory>", e))
 }
 
 /// Write `bytes` to `path` atomically: a temporary file next to it, then a rename.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     let dir = path.parent().unwrap_or(Path::new("."));
-    std::fs::create_dir_all(dir).map_err(|e| ScoreError::io(dir, e))?;
+    std::fs::create_dir_all(dir).map_err(|e| DataError::io(dir, e))?;
     let name = path
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
     let tmp = dir.join(format!(".{name}.tmp{}", std::process::id()));
-    std::fs::write(&tmp, bytes).map_err(|e| ScoreError::io(&tmp, e))?;
+    std::fs::write(&tmp, bytes).map_err(|e| DataError::io(&tmp, e))?;
     std::fs::rename(&tmp, path).map_err(|e| {
         let _ = std::fs::remove_file(&tmp);
-        ScoreError::io(path, e)
+        DataError::io(path, e)
     })
 }
 
@@ -77,12 +77,12 @@ pub fn read_split(dir: &Path, task: Task, split: Split) -> Result<Vec<Episode>> 
 /// Read a split file (`.json.gz`, or plain `.json`), with errors naming the file, the episode
 /// index and the field.
 pub fn read_file(path: &Path) -> Result<Vec<Episode>> {
-    let raw = std::fs::read(path).map_err(|e| ScoreError::io(path, e))?;
+    let raw = std::fs::read(path).map_err(|e| DataError::io(path, e))?;
     let json = if raw.starts_with(&[0x1f, 0x8b]) {
         let mut out = Vec::with_capacity(raw.len() * 6);
         GzDecoder::new(&raw[..])
             .read_to_end(&mut out)
-            .map_err(|e| ScoreError::parse(path, "gzip stream", e))?;
+            .map_err(|e| DataError::parse(path, "gzip stream", e))?;
         out
     } else {
         raw
@@ -107,7 +107,7 @@ fn check_unique_ids(path: &Path, episodes: &[Episode]) -> Result<()> {
     let mut seen = std::collections::HashMap::with_capacity(episodes.len());
     for (i, e) in episodes.iter().enumerate() {
         if let Some(first) = seen.insert(e.episode_id, i) {
-            return Err(ScoreError::parse(
+            return Err(DataError::parse(
                 path,
                 format!("episodes[{i}].episode_id"),
                 format!(
@@ -144,11 +144,11 @@ fn syntax_hint(path: &Path, json: &[u8], e: &serde_json::Error) -> String {
     e.to_string()
 }
 
-fn locate_error(path: &Path, json: &[u8], first: serde_json::Error) -> ScoreError {
+fn locate_error(path: &Path, json: &[u8], first: serde_json::Error) -> DataError {
     let value: serde_json::Value = match serde_json::from_slice(json) {
         Ok(v) => v,
         Err(e) => {
-            return ScoreError::parse(
+            return DataError::parse(
                 path,
                 format!("line {} column {}", e.line(), e.column()),
                 syntax_hint(path, json, &e),
@@ -156,10 +156,10 @@ fn locate_error(path: &Path, json: &[u8], first: serde_json::Error) -> ScoreErro
         }
     };
     let Some(episodes) = value.get("episodes") else {
-        return ScoreError::parse(path, "top level", "missing field `episodes`");
+        return DataError::parse(path, "top level", "missing field `episodes`");
     };
     let Some(list) = episodes.as_array() else {
-        return ScoreError::parse(path, "episodes", "expected a list of episodes");
+        return DataError::parse(path, "episodes", "expected a list of episodes");
     };
     for (i, ep) in list.iter().enumerate() {
         if let Err(e) = Episode::deserialize_value(ep) {
@@ -167,10 +167,10 @@ fn locate_error(path: &Path, json: &[u8], first: serde_json::Error) -> ScoreErro
                 .get("episode_id")
                 .map(|v| format!(" (episode_id {v})"))
                 .unwrap_or_default();
-            return ScoreError::parse(path, format!("episodes[{i}]{id}"), e);
+            return DataError::parse(path, format!("episodes[{i}]{id}"), e);
         }
     }
-    ScoreError::parse(path, format!("line {}", first.line()), first)
+    DataError::parse(path, format!("line {}", first.line()), first)
 }
 
 impl Episode {

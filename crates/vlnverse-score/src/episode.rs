@@ -17,7 +17,7 @@ use std::str::FromStr;
 
 use serde::{Deserialize, Deserializer, Serialize};
 
-use crate::error::ScoreError;
+use crate::error::DataError;
 
 /// The five tasks of the benchmark.
 #[derive(
@@ -124,7 +124,7 @@ macro_rules! name_impls {
         }
 
         impl FromStr for $ty {
-            type Err = ScoreError;
+            type Err = DataError;
 
             fn from_str(s: &str) -> Result<Self, Self::Err> {
                 $ty::ALL
@@ -133,7 +133,7 @@ macro_rules! name_impls {
                     .find(|v| v.name() == s)
                     .ok_or_else(|| {
                         let names: Vec<&str> = $ty::ALL.iter().map(|v| v.name()).collect();
-                        ScoreError::invalid(
+                        DataError::invalid(
                             $what,
                             s,
                             format!("expected one of {}", names.join(", ")),

@@ -4,11 +4,11 @@
 use std::path::PathBuf;
 
 /// Result alias of the scoring crate.
-pub type Result<T, E = ScoreError> = std::result::Result<T, E>;
+pub type Result<T, E = DataError> = std::result::Result<T, E>;
 
 /// What went wrong while reading, writing or scoring task data.
 #[derive(Debug, thiserror::Error)]
-pub enum ScoreError {
+pub enum DataError {
     /// A file could not be read or written. The message already carries the OS error, so it is
     /// deliberately not also the error's `source()`: chain printers (anyhow's `{:#}`) would
     /// print it twice.
@@ -44,35 +44,35 @@ pub enum ScoreError {
     Env(#[from] vlnverse_env::EnvError),
 }
 
-impl ScoreError {
-    /// Shorthand for [`ScoreError::Io`].
+impl DataError {
+    /// Shorthand for [`DataError::Io`].
     pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
-        ScoreError::Io {
+        DataError::Io {
             path: path.into(),
             error: source,
         }
     }
 
-    /// Shorthand for [`ScoreError::Parse`].
+    /// Shorthand for [`DataError::Parse`].
     pub fn parse(
         path: impl Into<PathBuf>,
         location: impl Into<String>,
         message: impl ToString,
     ) -> Self {
-        ScoreError::Parse {
+        DataError::Parse {
             path: path.into(),
             location: location.into(),
             message: message.to_string(),
         }
     }
 
-    /// Shorthand for [`ScoreError::Invalid`].
+    /// Shorthand for [`DataError::Invalid`].
     pub fn invalid(
         field: impl Into<String>,
         value: impl ToString,
         reason: impl Into<String>,
     ) -> Self {
-        ScoreError::Invalid {
+        DataError::Invalid {
             field: field.into(),
             value: value.to_string(),
             reason: reason.into(),

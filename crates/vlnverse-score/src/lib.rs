@@ -6,6 +6,7 @@ pub mod error;
 pub mod lock;
 pub mod metrics;
 pub mod report;
+pub mod route;
 pub mod sample;
 pub mod score;
 pub mod trajectory;
@@ -16,7 +17,7 @@ pub use episode::{
     Dataset, Episode, EpisodeInfo, Goal, GroundedObject, Instruction, Role, Side, Split, Style,
     Task,
 };
-pub use error::{Result, ScoreError};
+pub use error::{DataError, Result};
 pub use lock::OutputLock;
 pub use metrics::{
     aggregate, score_all, score_episode, EpisodeMetrics, GoalDistance, GoalDistances,

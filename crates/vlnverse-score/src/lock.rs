@@ -7,7 +7,7 @@ use std::fs::{File, OpenOptions, TryLockError};
 use std::io::{Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 
-use crate::error::{Result, ScoreError};
+use crate::error::{DataError, Result};
 
 /// Name of the lock file inside an output folder (a dot-file: readers skip it).
 pub const LOCK_FILE: &str = ".lock";
@@ -23,7 +23,7 @@ impl OutputLock {
     /// Lock `dir` (created if missing) for `job` (e.g. `"evaluate"`), or fail naming the job
     /// that holds it.
     pub fn acquire(dir: &Path, job: &str) -> Result<Self> {
-        std::fs::create_dir_all(dir).map_err(|e| ScoreError::io(dir, e))?;
+        std::fs::create_dir_all(dir).map_err(|e| DataError::io(dir, e))?;
         let path = dir.join(LOCK_FILE);
         let mut file = OpenOptions::new()
             .read(true)
@@ -31,14 +31,14 @@ impl OutputLock {
             .create(true)
             .truncate(false)
             .open(&path)
-            .map_err(|e| ScoreError::io(&path, e))?;
+            .map_err(|e| DataError::io(&path, e))?;
         match file.try_lock() {
             Ok(()) => {}
             Err(TryLockError::WouldBlock) => {
                 let mut holder = String::new();
                 let _ = file.read_to_string(&mut holder);
                 let holder = holder.trim();
-                return Err(ScoreError::invalid(
+                return Err(DataError::invalid(
                     "out",
                     dir.display(),
                     format!(
@@ -52,7 +52,7 @@ impl OutputLock {
                     ),
                 ));
             }
-            Err(TryLockError::Error(e)) => return Err(ScoreError::io(&path, e)),
+            Err(TryLockError::Error(e)) => return Err(DataError::io(&path, e)),
         }
         let args: Vec<String> = std::env::args().collect();
         let who = format!(
@@ -63,7 +63,7 @@ impl OutputLock {
         file.set_len(0)
             .and_then(|_| file.seek(SeekFrom::Start(0)))
             .and_then(|_| file.write_all(who.as_bytes()))
-            .map_err(|e| ScoreError::io(&path, e))?;
+            .map_err(|e| DataError::io(&path, e))?;
         Ok(OutputLock { path, _file: file })
     }
 

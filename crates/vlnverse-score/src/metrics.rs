@@ -25,7 +25,7 @@ use std::sync::Arc;
 use serde::{Deserialize, Serialize};
 
 use crate::episode::{Episode, Split, Style, Task};
-use crate::error::{Result, ScoreError};
+use crate::error::{DataError, Result};
 use crate::trajectory::Trajectory;
 
 /// Settings of the metrics; defaults follow the paper and VLN-CE.
@@ -64,7 +64,7 @@ impl MetricsConfig {
     /// Check ranges; errors name the field.
     pub fn validate(&self) -> Result<()> {
         if !(self.success_distance.is_finite() && self.success_distance > 0.0) {
-            return Err(ScoreError::invalid(
+            return Err(DataError::invalid(
                 "success_distance",
                 self.success_distance,
                 "must be a positive number of metres",
@@ -72,18 +72,18 @@ impl MetricsConfig {
         }
         if let Some(s) = self.ndtw_spacing {
             if !(s.is_finite() && s > 0.0) {
-                return Err(ScoreError::invalid("ndtw_spacing", s, "must be positive"));
+                return Err(DataError::invalid("ndtw_spacing", s, "must be positive"));
             }
         }
         if self.stuck_window == 0 {
-            return Err(ScoreError::invalid(
+            return Err(DataError::invalid(
                 "stuck_window",
                 0,
                 "must be at least 1 step",
             ));
         }
         if !(self.stuck_distance >= 0.0 && self.stuck_angle_deg >= 0.0) {
-            return Err(ScoreError::invalid(
+            return Err(DataError::invalid(
                 "stuck_distance/stuck_angle_deg",
                 format!("{}/{}", self.stuck_distance, self.stuck_angle_deg),
                 "must not be negative",
@@ -361,7 +361,7 @@ pub fn check_starts(
     tolerance: f32,
 ) -> Result<()> {
     if !(tolerance.is_finite() && tolerance >= 0.0) {
-        return Err(ScoreError::invalid(
+        return Err(DataError::invalid(
             "start_tolerance",
             tolerance,
             "must be a non-negative number of metres",
@@ -373,7 +373,7 @@ pub fn check_starts(
         };
         let d = horizontal_dist(p, ep.start_position);
         if d.is_nan() || d > tolerance {
-            return Err(ScoreError::invalid(
+            return Err(DataError::invalid(
                 format!("episode {}: positions[0]", ep.episode_id),
                 format!("{p:?}"),
                 format!(
@@ -548,14 +548,14 @@ pub fn match_trajectories(
     let mut slots: Vec<Option<Trajectory>> = vec![None; episodes.len()];
     for t in trajectories {
         let Some(&i) = index.get(&t.episode_id) else {
-            return Err(ScoreError::invalid(
+            return Err(DataError::invalid(
                 "episode_id",
                 t.episode_id,
                 "no episode with this id in the split",
             ));
         };
         if slots[i].is_some() {
-            return Err(ScoreError::invalid(
+            return Err(DataError::invalid(
                 "episode_id",
                 t.episode_id,
                 "more than one trajectory for this episode",
@@ -571,7 +571,7 @@ pub fn match_trajectories(
         .collect();
     if !missing.is_empty() && !allow_missing {
         let shown: Vec<String> = missing.iter().take(5).map(u64::to_string).collect();
-        return Err(ScoreError::invalid(
+        return Err(DataError::invalid(
             "episode_id",
             shown.join(", "),
             format!(

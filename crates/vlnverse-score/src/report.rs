@@ -13,7 +13,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::dataset::write_atomic;
 use crate::episode::{Split, Task};
-use crate::error::{Result, ScoreError};
+use crate::error::{DataError, Result};
 use crate::metrics::{aggregate, aggregate_by, EpisodeMetrics, Summary};
 
 /// Content of `summary.json`.
@@ -211,9 +211,9 @@ pub fn markdown_report(run: &RunSummary) -> String {
 /// Write `summary.json`, `episodes.csv` and `report.md` into `dir` (created if needed), each
 /// atomically.
 pub fn write_run(dir: &Path, run: &RunSummary, ms: &[EpisodeMetrics]) -> Result<()> {
-    std::fs::create_dir_all(dir).map_err(|e| ScoreError::io(dir, e))?;
+    std::fs::create_dir_all(dir).map_err(|e| DataError::io(dir, e))?;
     let mut json = serde_json::to_string_pretty(run)
-        .map_err(|e| ScoreError::invalid("summary", &run.method, e.to_string()))?;
+        .map_err(|e| DataError::invalid("summary", &run.method, e.to_string()))?;
     json.push('\n');
     write_atomic(&dir.join("summary.json"), json.as_bytes())?;
     write_atomic(&dir.join("episodes.csv"), episodes_csv(ms).as_bytes())?;

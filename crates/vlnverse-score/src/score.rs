@@ -15,7 +15,7 @@ use vlnverse_env::geodesic::DistanceField;
 use vlnverse_env::occupancy::GridMap;
 
 use crate::episode::Episode;
-use crate::error::{Result, ScoreError};
+use crate::error::{DataError, Result};
 use crate::metrics::{
     score_episode, EpisodeMetrics, GoalDistance, GoalDistances, MetricsConfig, Nearest,
 };
@@ -57,7 +57,7 @@ pub fn score_on_maps(
     on_done: &(dyn Fn(usize) + Sync),
 ) -> Result<Vec<EpisodeMetrics>> {
     if episodes.len() != trajectories.len() {
-        return Err(ScoreError::invalid(
+        return Err(DataError::invalid(
             "trajectories",
             trajectories.len(),
             format!("expected one per episode ({})", episodes.len()),

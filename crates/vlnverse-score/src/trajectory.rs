@@ -17,7 +17,7 @@ use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value};
 
 use crate::dataset::write_atomic;
-use crate::error::{Result, ScoreError};
+use crate::error::{DataError, Result};
 
 /// Largest absolute coordinate (m) a trajectory position may have; anything farther is a unit
 /// or export error (millimetres, an uninitialised value), rejected when reading.
@@ -130,7 +130,7 @@ impl Trajectory {
 /// Read a trajectory file in either format (see the module doc). Errors name the file, the line
 /// (JSON lines) or episode key (VLN-CE), and the field.
 pub fn read_trajectories(path: &Path) -> Result<Vec<Trajectory>> {
-    let text = std::fs::read_to_string(path).map_err(|e| ScoreError::io(path, e))?;
+    let text = std::fs::read_to_string(path).map_err(|e| DataError::io(path, e))?;
     parse_trajectories(path, &text)
 }
 
@@ -151,7 +151,7 @@ pub fn parse_trajectories(path: &Path, text: &str) -> Result<Vec<Trajectory>> {
             continue;
         }
         let lineno = i + 1;
-        let err = |msg: String| ScoreError::parse(path, format!("line {lineno}"), msg);
+        let err = |msg: String| DataError::parse(path, format!("line {lineno}"), msg);
         let value: Value = serde_json::from_str(line).map_err(|e| err(e.to_string()))?;
         let Value::Object(obj) = value else {
             return Err(err("expected a JSON object".into()));
@@ -160,7 +160,7 @@ pub fn parse_trajectories(path: &Path, text: &str) -> Result<Vec<Trajectory>> {
         out.push(t);
     }
     if out.is_empty() {
-        return Err(ScoreError::parse(
+        return Err(DataError::parse(
             path,
             "top level",
             "no trajectories in the file (expected JSON lines, one trajectory per line, or a \
@@ -245,7 +245,7 @@ fn parse_vlnce(path: &Path, map: Map<String, Value>) -> Result<Vec<Trajectory>> 
     // Sorted by id so output order does not depend on the file's key order.
     let mut by_id: BTreeMap<u64, Trajectory> = BTreeMap::new();
     for (key, value) in map {
-        let err = |msg: String| ScoreError::parse(path, format!("episode `{key}`"), msg);
+        let err = |msg: String| DataError::parse(path, format!("episode `{key}`"), msg);
         let id = episode_id(&Value::String(key.clone())).map_err(err)?;
         let entries: Vec<Entry> = Vec::<Entry>::deserialize(&value).map_err(|e| {
             err(format!(
@@ -264,11 +264,11 @@ fn parse_vlnce(path: &Path, map: Map<String, Value>) -> Result<Vec<Trajectory>> 
         };
         // `validate` names the episode itself.
         t.validate()
-            .map_err(|msg| ScoreError::parse(path, "trajectory", msg))?;
+            .map_err(|msg| DataError::parse(path, "trajectory", msg))?;
         by_id.insert(id, t);
     }
     if by_id.is_empty() {
-        return Err(ScoreError::parse(
+        return Err(DataError::parse(
             path,
             "top level",
             "no trajectories in the file (an empty VLN-CE object)",

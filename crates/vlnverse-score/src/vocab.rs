@@ -8,7 +8,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use crate::episode::Episode;
-use crate::error::{Result, ScoreError};
+use crate::error::{DataError, Result};
 
 /// File name of the vocabulary in a dataset folder.
 pub const VOCAB_FILE: &str = "vocab.txt";
@@ -81,10 +81,10 @@ impl Vocab {
 
     /// Read `vocab.txt`.
     pub fn load(path: &Path) -> Result<Self> {
-        let text = std::fs::read_to_string(path).map_err(|e| ScoreError::io(path, e))?;
+        let text = std::fs::read_to_string(path).map_err(|e| DataError::io(path, e))?;
         let tokens: Vec<String> = text.lines().map(str::to_string).collect();
         if tokens.len() < 2 || tokens[0] != PAD || tokens[1] != UNK {
-            return Err(ScoreError::invalid(
+            return Err(DataError::invalid(
                 format!("{}: lines 1-2", path.display()),
                 tokens
                     .iter()

@@ -5,7 +5,7 @@ use std::path::Path;
 use vlnverse_score::dataset::{read_file, read_split, split_path, to_gzip_bytes, write_split};
 use vlnverse_score::trajectory::{parse_trajectories, read_trajectories, write_jsonl};
 use vlnverse_score::{
-    Episode, GroundedObject, Role, ScoreError, Side, Split, Style, Task, Trajectory,
+    DataError, Episode, GroundedObject, Role, Side, Split, Style, Task, Trajectory,
 };
 
 /// An episode as VLN-CE's R2R_VLNCE_v1-3 files write it (tokens included, no additions).
@@ -154,7 +154,7 @@ fn malformed_split_names_file_episode_and_field() {
     );
 
     let missing = read_split(dir.path(), Task::Fine, Split::Test).unwrap_err();
-    assert!(matches!(missing, ScoreError::Io { .. }));
+    assert!(matches!(missing, DataError::Io { .. }));
     assert!(missing.to_string().contains("fine/test/test.json.gz"));
 }
 

@@ -1,0 +1,526 @@
+//! `external`: a policy in another process (Python, PyTorch, ...) speaking JSON lines on its
+//! stdin/stdout; the protocol is in `docs/agents.md`. One process per worker thread, reused
+//! across episodes. Observations go as files in a private temporary folder (PNG for RGB, `.npy`
+//! for depth, semantic and instance images; overwritten every step) or inline as base64.
+
+use std::collections::VecDeque;
+use std::io::{BufRead, BufReader, Write};
+use std::path::PathBuf;
+use std::process::{Child, ChildStdin, ChildStdout, Command, Stdio};
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, Mutex};
+use std::thread::JoinHandle;
+
+use serde::{Deserialize, Serialize};
+use serde_json::{json, Map, Value};
+use vlnverse_sensors::{Frame, Observation};
+use vlnverse_sim::{Action, WaypointMode};
+
+use crate::agent::{Agent, AgentFactory, EpisodeInputs, StepInput};
+use crate::error::{Result, TaskError};
+
+/// How image observations travel to the external agent.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ObsEncoding {
+    /// Files in a temporary folder (`path` in the message).
+    #[default]
+    Files,
+    /// Inline base64 of the raw little-endian array (`data` in the message).
+    Base64,
+}
+
+/// Makes one [`ExternalAgent`] process per worker.
+pub struct ExternalFactory {
+    cmd: String,
+    encoding: ObsEncoding,
+}
+
+impl ExternalFactory {
+    /// Agents running `cmd` through `sh -c`, observations as files.
+    pub fn new(cmd: &str) -> Self {
+        ExternalFactory {
+            cmd: cmd.into(),
+            encoding: ObsEncoding::Files,
+        }
+    }
+
+    /// Choose how observations are sent.
+    pub fn with_encoding(mut self, encoding: ObsEncoding) -> Self {
+        self.encoding = encoding;
+        self
+    }
+}
+
+impl AgentFactory for ExternalFactory {
+    fn name(&self) -> String {
+        "external".into()
+    }
+    fn make(&self) -> Result<Box<dyn Agent>> {
+        Ok(Box::new(ExternalAgent::spawn(&self.cmd, self.encoding)?))
+    }
+    fn command(&self) -> Option<String> {
+        Some(self.cmd.clone())
+    }
+    /// A hash of the files the command names (its script, its checkpoint), so an edited
+    /// program is a different agent; `None` when the command names no existing file.
+    fn fingerprint(&self) -> Option<String> {
+        command_files_hash(&self.cmd)
+    }
+}
+
+/// FNV-1a 64 over the names and contents of the existing files among the command's words
+/// (stable across platforms and Rust versions, unlike `DefaultHasher`).
+pub fn command_files_hash(cmd: &str) -> Option<String> {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    let mut eat = |bytes: &[u8]| {
+        for &b in bytes {
+            h ^= b as u64;
+            h = h.wrapping_mul(0x0100_0000_01b3);
+        }
+    };
+    let mut files = 0;
+    for word in cmd.split_whitespace() {
+        let word = word.trim_matches(['"', '\'']);
+        let path = std::path::Path::new(word);
+        if !path.is_file() {
+            continue;
+        }
+        let Ok(bytes) = std::fs::read(path) else {
+            continue;
+        };
+        eat(word.as_bytes());
+        eat(&(bytes.len() as u64).to_le_bytes());
+        eat(&bytes);
+        files += 1;
+    }
+    (files > 0).then(|| format!("files {h:016x}"))
+}
+
+/// A running external agent.
+pub struct ExternalAgent {
+    cmd: String,
+    child: Child,
+    stdin: Option<ChildStdin>,
+    stdout: BufReader<ChildStdout>,
+    tmp: PathBuf,
+    encoding: ObsEncoding,
+    stderr_tail: Arc<Mutex<VecDeque<String>>>,
+    stderr_thread: Option<JoinHandle<()>>,
+    episode_id: u64,
+    step_size: f32,
+    turn_deg: f32,
+}
+
+static COUNTER: AtomicU64 = AtomicU64::new(0);
+
+/// Lines of the agent's stderr kept for error messages.
+pub const STDERR_TAIL_LINES: usize = 10;
+
+impl ExternalAgent {
+    /// Start `sh -c cmd` with piped stdin/stdout; its stderr is passed through to ours, and
+    /// the last [`STDERR_TAIL_LINES`] lines are kept for the error when the agent dies.
+    pub fn spawn(cmd: &str, encoding: ObsEncoding) -> Result<Self> {
+        let mut child = Command::new("sh")
+            .arg("-c")
+            .arg(cmd)
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .map_err(|e| TaskError::invalid("agent_cmd", cmd, e.to_string()))?;
+        let stderr_tail = Arc::new(Mutex::new(VecDeque::new()));
+        let stderr_thread = child.stderr.take().map(|err| {
+            let tail = stderr_tail.clone();
+            std::thread::spawn(move || {
+                for line in BufReader::new(err)
+                    .lines()
+                    .map_while(std::result::Result::ok)
+                {
+                    eprintln!("{line}");
+                    let mut t = tail
+                        .lock()
+                        .unwrap_or_else(std::sync::PoisonError::into_inner);
+                    if t.len() == STDERR_TAIL_LINES {
+                        t.pop_front();
+                    }
+                    t.push_back(line);
+                }
+            })
+        });
+        let stdin = child.stdin.take();
+        let stdout = child
+            .stdout
+            .take()
+            .map(BufReader::new)
+            .ok_or_else(|| TaskError::invalid("agent_cmd", cmd, "no stdout pipe"))?;
+        let tmp = std::env::temp_dir().join(format!(
+            "vlnverse-agent-{}-{}",
+            std::process::id(),
+            COUNTER.fetch_add(1, Ordering::Relaxed)
+        ));
+        std::fs::create_dir_all(&tmp).map_err(|e| TaskError::io(&tmp, e))?;
+        Ok(ExternalAgent {
+            cmd: cmd.into(),
+            child,
+            stdin,
+            stdout,
+            tmp,
+            encoding,
+            stderr_tail,
+            stderr_thread,
+            episode_id: 0,
+            step_size: 0.25,
+            turn_deg: 15.0,
+        })
+    }
+
+    fn err(&self, msg: impl Into<String>) -> TaskError {
+        TaskError::invalid(
+            "agent_cmd",
+            &self.cmd,
+            format!("episode {}: {}", self.episode_id, msg.into()),
+        )
+    }
+
+    /// The error of an agent that stopped talking: its exit status (waiting up to a second for
+    /// it) and the last lines of its stderr.
+    fn dead(&mut self, what: String) -> TaskError {
+        let mut status = None;
+        for _ in 0..50 {
+            if let Ok(Some(s)) = self.child.try_wait() {
+                status = Some(s);
+                break;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        }
+        // Once the process is gone its stderr ends; let the reader catch the last lines.
+        if let Some(t) = self.stderr_thread.take() {
+            for _ in 0..50 {
+                if t.is_finished() {
+                    break;
+                }
+                std::thread::sleep(std::time::Duration::from_millis(20));
+            }
+            if t.is_finished() {
+                let _ = t.join();
+            } else {
+                self.stderr_thread = Some(t);
+            }
+        }
+        let status = status.map_or_else(
+            || "it is still running".to_string(),
+            |s| format!("it exited with {s}"),
+        );
+        let tail: Vec<String> = self
+            .stderr_tail
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .iter()
+            .cloned()
+            .collect();
+        let stderr = if tail.is_empty() {
+            "; its stderr was empty".to_string()
+        } else {
+            format!("; last lines of its stderr:\n    {}", tail.join("\n    "))
+        };
+        self.err(format!("{what}: {status}{stderr}"))
+    }
+
+    fn send(&mut self, v: &Value) -> Result<()> {
+        let mut line = v.to_string();
+        line.push('\n');
+        let res = match self.stdin.as_mut() {
+            Some(s) => s.write_all(line.as_bytes()).and_then(|_| s.flush()),
+            None => Err(std::io::Error::other("stdin closed")),
+        };
+        res.map_err(|e| self.dead(format!("cannot write to the agent ({e})")))
+    }
+
+    fn receive(&mut self) -> Result<Value> {
+        let mut line = String::new();
+        loop {
+            line.clear();
+            let n = match self.stdout.read_line(&mut line) {
+                Ok(n) => n,
+                Err(e) => return Err(self.dead(format!("cannot read from the agent ({e})"))),
+            };
+            if n == 0 {
+                return Err(self.dead("the agent closed its output".into()));
+            }
+            if !line.trim().is_empty() {
+                break;
+            }
+        }
+        serde_json::from_str(line.trim())
+            .map_err(|e| self.err(format!("reply is not JSON ({e}): {}", line.trim())))
+    }
+
+    fn frame_entry(&self, name: &str, kind: &str, f: &Frame) -> Result<Value> {
+        let (w, h) = (f.width as usize, f.height as usize);
+        let (ext, dtype, shape, bytes): (&str, &str, Vec<usize>, Vec<u8>) = match kind {
+            "rgb" => ("png", "|u1", vec![h, w, 3], f.rgb.clone()),
+            "depth" => (
+                "npy",
+                "<f4",
+                vec![h, w],
+                f.depth.iter().flat_map(|d| d.to_le_bytes()).collect(),
+            ),
+            "semantic" => (
+                "npy",
+                "<u2",
+                vec![h, w],
+                f.semantic.iter().flat_map(|d| d.to_le_bytes()).collect(),
+            ),
+            _ => (
+                "npy",
+                "<u4",
+                vec![h, w],
+                f.instance.iter().flat_map(|d| d.to_le_bytes()).collect(),
+            ),
+        };
+        let mut v = json!({"kind": kind, "width": w, "height": h, "dtype": dtype, "shape": shape});
+        match self.encoding {
+            ObsEncoding::Base64 => {
+                v["encoding"] = json!("base64");
+                v["data"] = json!(base64(&bytes));
+            }
+            ObsEncoding::Files => {
+                let path = self.tmp.join(format!("{name}.{ext}"));
+                let data = if ext == "png" {
+                    let mut out = Vec::new();
+                    image::RgbImage::from_raw(f.width, f.height, bytes)
+                        .ok_or_else(|| self.err("rgb frame of the wrong size"))?
+                        .write_to(&mut std::io::Cursor::new(&mut out), image::ImageFormat::Png)
+                        .map_err(|e| self.err(e.to_string()))?;
+                    out
+                } else {
+                    npy(dtype, &shape, &bytes)
+                };
+                std::fs::write(&path, data).map_err(|e| TaskError::io(&path, e))?;
+                v["encoding"] = json!("file");
+                v["path"] = json!(path.display().to_string());
+            }
+        }
+        Ok(v)
+    }
+
+    fn observations(&self, step: &StepInput) -> Result<Value> {
+        let mut out = Map::new();
+        for (name, obs) in step.observations {
+            let v = match obs {
+                Observation::Rgb(f) => self.frame_entry(name, "rgb", f)?,
+                Observation::Depth(f) => self.frame_entry(name, "depth", f)?,
+                Observation::Semantic(f) => self.frame_entry(name, "semantic", f)?,
+                Observation::Instance(f) => self.frame_entry(name, "instance", f)?,
+                Observation::Panorama(frames) => {
+                    let mut views = Vec::new();
+                    for (i, f) in frames.iter().enumerate() {
+                        let mut view = Map::new();
+                        for kind in ["rgb", "depth", "semantic"] {
+                            let has = match kind {
+                                "rgb" => !f.rgb.is_empty(),
+                                "depth" => !f.depth.is_empty(),
+                                _ => !f.semantic.is_empty(),
+                            };
+                            if has {
+                                view.insert(
+                                    kind.into(),
+                                    self.frame_entry(&format!("{name}_{i}_{kind}"), kind, f)?,
+                                );
+                            }
+                        }
+                        views.push(Value::Object(view));
+                    }
+                    json!({"kind": "panorama", "views": views})
+                }
+                Observation::Lidar(scan) => {
+                    let ranges: Vec<Value> = scan
+                        .ranges
+                        .iter()
+                        .map(|r| if r.is_finite() { json!(r) } else { Value::Null })
+                        .collect();
+                    json!({"kind": "lidar", "beams": scan.beams, "channels": scan.channels, "ranges": ranges})
+                }
+                Observation::Pose(p) => {
+                    json!({"kind": "pose", "position": p.position, "rotation": p.rotation})
+                }
+                Observation::Compass(h) => json!({"kind": "compass", "value": h}),
+                Observation::Gps(g) => json!({"kind": "gps", "value": g}),
+                Observation::Collision(c) => json!({"kind": "collision", "collided": c.collided,
+                    "displacement": c.displacement, "count": c.count}),
+            };
+            out.insert(name.clone(), v);
+        }
+        Ok(Value::Object(out))
+    }
+
+    fn parse_action(&self, v: &Value) -> Result<Action> {
+        let name = v.get("action").and_then(Value::as_str).unwrap_or("");
+        let num = |k: &str| v.get(k).and_then(Value::as_f64).map(|x| x as f32);
+        let need = |k: &str| {
+            num(k).ok_or_else(|| self.err(format!("action `{name}` needs a number `{k}`: {v}")))
+        };
+        Ok(match name {
+            "stop" => Action::Stop,
+            "move_forward" => Action::MoveForward(num("distance").unwrap_or(self.step_size)),
+            "turn_left" => Action::TurnLeft(num("degrees").unwrap_or(self.turn_deg).to_radians()),
+            "turn_right" => Action::TurnRight(num("degrees").unwrap_or(self.turn_deg).to_radians()),
+            "look_up" => Action::LookUp,
+            "look_down" => Action::LookDown,
+            "velocity" => Action::Velocity {
+                v: need("v")?,
+                omega: need("omega")?,
+                duration: need("duration")?,
+            },
+            "waypoint" => Action::Waypoint {
+                x: need("x")?,
+                z: need("z")?,
+                mode: match v.get("mode").and_then(Value::as_str) {
+                    Some("telhop") | Some("tel_hop") => WaypointMode::TelHop,
+                    _ => WaypointMode::Drive,
+                },
+            },
+            _ => return Err(self.err(format!("unknown action in reply: {v}"))),
+        })
+    }
+}
+
+impl Agent for ExternalAgent {
+    fn reset(&mut self, i: &EpisodeInputs) -> Result<()> {
+        self.episode_id = i.episode_id;
+        self.step_size = i.agent.step_size;
+        self.turn_deg = i.agent.turn_angle_deg;
+        let msg = json!({
+            "type": "episode",
+            "episode_id": i.episode_id,
+            "scene_id": i.scene_id,
+            "task": i.task.name(),
+            "instruction": i.instruction,
+            "sub_instructions": i.sub_instructions,
+            "reference_image": i.reference_image.as_ref().map(|p| p.display().to_string()),
+            "action_space": i.action_space.name(),
+            "setting": i.setting.name(),
+            "step_size": i.agent.step_size,
+            "turn_angle_deg": i.agent.turn_angle_deg,
+            "success_distance": i.success_distance,
+            "max_steps": i.max_steps,
+            "oracle_budget": i.oracle_budget,
+            "seed": i.seed,
+        });
+        self.send(&msg)
+    }
+
+    fn act(&mut self, step: &mut StepInput) -> Result<Action> {
+        let msg = json!({
+            "type": "step",
+            "step": step.step,
+            "pose": {"position": step.pose.position, "yaw": step.pose.yaw()},
+            "collided": step.last.is_some_and(|o| o.collided),
+            "sub_goal": {"current": step.sub_goal.current, "total": step.sub_goal.total},
+            "oracle_left": step.oracle.as_ref().map(|o| o.remaining()),
+            "observations": self.observations(step)?,
+        });
+        self.send(&msg)?;
+        loop {
+            let reply = self.receive()?;
+            if reply.get("action").and_then(Value::as_str) == Some("ask") {
+                let q = reply.get("question").and_then(Value::as_str).unwrap_or("");
+                let answer = step.oracle.as_mut().and_then(|o| o.ask(q));
+                self.send(&json!({"type": "answer", "text": answer}))?;
+                continue;
+            }
+            return self.parse_action(&reply);
+        }
+    }
+
+    fn end_episode(&mut self) -> Result<()> {
+        let msg = json!({"type": "episode_end", "episode_id": self.episode_id});
+        self.send(&msg)
+    }
+}
+
+impl Drop for ExternalAgent {
+    fn drop(&mut self) {
+        drop(self.stdin.take());
+        // Give the process a moment to exit on EOF, then make sure it is gone.
+        for _ in 0..50 {
+            if matches!(self.child.try_wait(), Ok(Some(_))) {
+                break;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        }
+        if matches!(self.child.try_wait(), Ok(None)) {
+            let _ = self.child.kill();
+            let _ = self.child.wait();
+        }
+        if let Some(t) = self.stderr_thread.take() {
+            if t.is_finished() {
+                let _ = t.join();
+            }
+        }
+        let _ = std::fs::remove_dir_all(&self.tmp);
+    }
+}
+
+/// Standard base64 (RFC 4648, with padding).
+pub fn base64(data: &[u8]) -> String {
+    const T: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut s = String::with_capacity(data.len().div_ceil(3) * 4);
+    for c in data.chunks(3) {
+        let b = [c[0], *c.get(1).unwrap_or(&0), *c.get(2).unwrap_or(&0)];
+        let n = (b[0] as u32) << 16 | (b[1] as u32) << 8 | b[2] as u32;
+        for i in 0..4 {
+            if i <= c.len() {
+                s.push(T[(n >> (18 - 6 * i) & 63) as usize] as char);
+            } else {
+                s.push('=');
+            }
+        }
+    }
+    s
+}
+
+/// A `.npy` file (format 1.0) of a little-endian array.
+pub fn npy(dtype: &str, shape: &[usize], data: &[u8]) -> Vec<u8> {
+    let dims: Vec<String> = shape.iter().map(usize::to_string).collect();
+    let shape = if dims.len() == 1 {
+        format!("({},)", dims[0])
+    } else {
+        format!("({})", dims.join(", "))
+    };
+    let mut header = format!("{{'descr': '{dtype}', 'fortran_order': False, 'shape': {shape}, }}");
+    let total = 10 + header.len() + 1;
+    header.push_str(&" ".repeat((64 - total % 64) % 64));
+    header.push('\n');
+    let mut out = Vec::with_capacity(10 + header.len() + data.len());
+    out.extend_from_slice(b"\x93NUMPY\x01\x00");
+    out.extend_from_slice(&(header.len() as u16).to_le_bytes());
+    out.extend_from_slice(header.as_bytes());
+    out.extend_from_slice(data);
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn base64_matches_rfc4648_vectors() {
+        assert_eq!(base64(b""), "");
+        assert_eq!(base64(b"f"), "Zg==");
+        assert_eq!(base64(b"fo"), "Zm8=");
+        assert_eq!(base64(b"foo"), "Zm9v");
+        assert_eq!(base64(b"foobar"), "Zm9vYmFy");
+    }
+
+    #[test]
+    fn npy_header_is_aligned() {
+        let b = npy("<f4", &[2, 3], &[0u8; 24]);
+        assert_eq!(&b[..6], b"\x93NUMPY");
+        let hlen = u16::from_le_bytes([b[8], b[9]]) as usize;
+        assert_eq!((10 + hlen) % 64, 0);
+        assert_eq!(b.len(), 10 + hlen + 24);
+        assert!(String::from_utf8_lossy(&b[10..10 + hlen]).contains("'shape': (2, 3)"));
+    }
+}

@@ -1,0 +1,202 @@
+//! `oracle`: follows the geodesic shortest path to each goal (the upper bound of the table).
+//!
+//! Discrete space: turn toward the next waypoint of the goal's distance field until the heading
+//! is within half a turn step, then move forward. Waypoint space: one waypoint action per
+//! line-of-sight segment (a hop in Tel-Hop, a drive otherwise). Continuous space: velocity
+//! commands from a turn-then-drive controller ([`super::control::VelocityController`]) on the
+//! same geodesic path: it turns in place toward the next path corner, then drives at it,
+//! braking (within the acceleration limits) so it can turn at the corner, and keeps its speed
+//! through gentle corners and toward the goal. It stops once the geodesic
+//! distance to the goal is below `stop_within` (min(1 m, half the success distance)), so the
+//! stop lands safely inside the success radius; long-horizon episodes get one STOP per goal.
+
+use std::sync::Arc;
+
+use glam::Vec2;
+use vlnverse_env::geodesic::DistanceField;
+use vlnverse_sim::{Action, AgentConfig, WaypointMode};
+
+use super::control::{VelocityController, TURN_IN_PLACE};
+use super::{floor_point, wrap_angle, yaw_towards};
+use crate::agent::{Agent, EpisodeInputs, Privileged, StepInput};
+use crate::error::Result;
+use crate::protocol::{ActionSpace, Setting};
+
+/// The privileged shortest-path follower.
+#[derive(Default)]
+pub struct OracleAgent {
+    fields: Vec<Arc<DistanceField>>,
+    agent: AgentConfig,
+    space: ActionSpace,
+    setting: Setting,
+    stop_within: f32,
+    control: VelocityController,
+}
+
+impl Agent for OracleAgent {
+    fn set_truth(&mut self, truth: &Privileged) {
+        self.fields = truth.fields.to_vec();
+    }
+
+    fn reset(&mut self, inputs: &EpisodeInputs) -> Result<()> {
+        self.agent = inputs.agent.clone();
+        self.space = inputs.action_space;
+        self.setting = inputs.setting;
+        self.stop_within = (0.5 * inputs.success_distance).min(1.0);
+        self.control = VelocityController::new(&inputs.agent);
+        Ok(())
+    }
+
+    fn act(&mut self, step: &mut StepInput) -> Result<Action> {
+        let k = step.sub_goal.current as usize;
+        let Some(field) = self.fields.get(k).or(self.fields.last()).cloned() else {
+            return Ok(Action::Stop);
+        };
+        let p = floor_point(&step.pose);
+        let Some(d) = field.distance(p).meters() else {
+            return Ok(Action::Stop);
+        };
+        if d <= self.stop_within {
+            return Ok(Action::Stop);
+        }
+        if self.space == ActionSpace::Continuous {
+            return Ok(self.drive(&field, p, step.pose.yaw()));
+        }
+        let Some(mut w) = field.next_waypoint(p) else {
+            return Ok(Action::Stop);
+        };
+        if w.distance(p) < 0.05 {
+            // Standing on an anchor: look one further along the path.
+            if let Some(path) = field.path(p) {
+                if let Some(n) = path.points.iter().find(|q| q.distance(p) >= 0.05) {
+                    w = *n;
+                }
+            }
+        }
+        if self.space == ActionSpace::Waypoint {
+            let mode = if self.setting == Setting::Telhop {
+                WaypointMode::TelHop
+            } else {
+                WaypointMode::Drive
+            };
+            return Ok(Action::Waypoint {
+                x: w.x,
+                z: w.y,
+                mode,
+            });
+        }
+        let v: Vec2 = w - p;
+        let diff = wrap_angle(yaw_towards(v) - step.pose.yaw());
+        let turn = self.agent.turn_angle();
+        if diff.abs() > 0.5 * turn + 1e-4 {
+            return Ok(if diff > 0.0 {
+                Action::left(&self.agent)
+            } else {
+                Action::right(&self.agent)
+            });
+        }
+        Ok(Action::forward(&self.agent))
+    }
+}
+
+impl OracleAgent {
+    /// Continuous space: one velocity command toward the next corner of the geodesic path.
+    fn drive(&mut self, field: &DistanceField, p: Vec2, yaw: f32) -> Action {
+        let Some(path) = field.path(p) else {
+            return Action::Stop;
+        };
+        let mut ahead = path.points.iter().skip(1).filter(|q| q.distance(p) >= 0.05);
+        let Some(&corner) = ahead.next() else {
+            return Action::Stop;
+        };
+        let err = wrap_angle(yaw_towards(corner - p) - yaw);
+        // Speed allowed at the corner: full toward the goal, less the sharper the next bend.
+        let v_end = match ahead.next() {
+            None => self.agent.max_linear_speed,
+            Some(&next) => {
+                let bend = wrap_angle(yaw_towards(next - corner) - yaw_towards(corner - p)).abs();
+                self.agent.max_linear_speed * (1.0 - bend / TURN_IN_PLACE).max(0.0)
+            }
+        };
+        self.control.follow(err, corner.distance(p), v_end)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::agents::cues::heading;
+    use crate::agents::test_support::inputs;
+    use glam::Quat;
+    use vlnverse_env::occupancy::{CellState, GridMap};
+    use vlnverse_env::Pose;
+    use vlnverse_sensors::Observations;
+
+    /// 10 m x 10 m of free floor with an (already agent-dilated) wall at z in [-1.2, -0.8]
+    /// from x = -5 to x = 2.
+    fn walled_map() -> GridMap {
+        let mut m = GridMap::new(100, 100, 0.1, Vec2::new(-5.0, -5.0), CellState::Free).unwrap();
+        for col in 0..70 {
+            for row in 38..42 {
+                m.set(col, row, CellState::Occupied);
+            }
+        }
+        m
+    }
+
+    fn pose(p: Vec2, yaw: f32) -> Pose {
+        Pose {
+            position: [p.x, 0.0, p.y],
+            rotation: Quat::from_rotation_y(yaw).to_array(),
+        }
+    }
+
+    #[test]
+    fn continuous_oracle_drives_around_the_wall_within_the_limits() {
+        let map = walled_map();
+        let goal = Vec2::new(0.0, -3.0);
+        let mut oracle = OracleAgent {
+            fields: vec![Arc::new(DistanceField::new(&map, goal).unwrap())],
+            ..Default::default()
+        };
+        let ep = inputs(ActionSpace::Continuous);
+        let cfg = ep.agent.clone();
+        oracle.reset(&ep).unwrap();
+        // Replay the simulator's velocity ramp kinematically (no collisions).
+        let (mut p, mut yaw, mut v, mut w) = (Vec2::new(0.0, 1.0), 0.0f32, 0.0f32, 0.0f32);
+        let dt = crate::agents::control::MODEL_DT;
+        let obs = Observations::new();
+        let mut stopped = false;
+        for k in 0..200 {
+            let mut step = crate::agents::test_support::step_input(k, &obs, None);
+            step.pose = pose(p, yaw);
+            let a = oracle.act(&mut step).unwrap();
+            assert!(ActionSpace::Continuous.allows(&a), "{a:?}");
+            let Action::Velocity {
+                v: vc,
+                omega,
+                duration,
+            } = a
+            else {
+                stopped = true;
+                break;
+            };
+            assert!(vc.abs() <= cfg.max_linear_speed && omega.abs() <= cfg.max_angular_speed());
+            for _ in 0..(duration / dt).round() as u32 {
+                w += (omega - w).clamp(-cfg.max_angular_accel() * dt, cfg.max_angular_accel() * dt);
+                v += (vc - v).clamp(-cfg.max_linear_accel * dt, cfg.max_linear_accel * dt);
+                yaw += w * dt;
+                p += heading(yaw) * v * dt;
+                // The centre never enters the dilated wall (5 cm of corner cutting allowed).
+                let inside = p.x < 2.0 - 0.05 && (p.y - -1.0).abs() < 0.2 - 0.05;
+                assert!(!inside, "hit the wall at {p:?} on step {k}");
+            }
+        }
+        assert!(stopped, "never stopped");
+        assert!(
+            p.distance(goal) <= 1.2,
+            "stopped {} m from the goal",
+            p.distance(goal)
+        );
+    }
+}

@@ -1,0 +1,636 @@
+//! The evaluation runner: episodes of a split run in parallel (rayon), each through the one
+//! episode loop ([`run_episode`]); finished episodes are appended to the run's progress log,
+//! so an interrupted run resumes where it stopped. Every random choice is seeded per episode,
+//! so results do not depend on the thread count or on the order episodes finish in.
+//!
+//! [`evaluate`] runs today's defaults (the Rapier simulator, the configured renderer backend);
+//! [`evaluate_with`] takes factories for the simulator and the renderer, so a user's own
+//! backend runs under exactly the same rules.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+use rayon::prelude::*;
+use vlnverse_sensors::{create_renderer, Renderer, RigConfig, SensorRig};
+use vlnverse_sim::{RapierSimulator, SimConfig, Simulator};
+
+use crate::agent::{Agent, AgentFactory};
+pub use crate::episode_loop::{
+    action_name, check_episode, episode_seed, run_episode, DialogueHandle, EpisodeSettings,
+    NOT_UNDERSTOOD,
+};
+use crate::error::{Result, TaskError};
+use crate::plots;
+use crate::protocol::EvalConfig;
+use crate::resume::{self, EpisodeRecord, ProgressLog, PROGRESS_FILE, RUN_FILE};
+pub use crate::scene_context::{SceneCache, SceneContext};
+use vlnverse_score::dataset;
+use vlnverse_score::episode::{Episode, Split, Task};
+use vlnverse_score::report::{write_run, RunSummary};
+use vlnverse_score::sample::{sample_episodes, Sample};
+use vlnverse_score::trajectory::{write_jsonl, Trajectory};
+use vlnverse_score::OutputLock;
+
+/// What to evaluate and where the results go.
+#[derive(Debug, Clone)]
+pub struct EvalRequest {
+    /// Dataset folder (`<task>/<split>/<split>.json.gz`, `scenes/<scene_id>/`).
+    pub dataset: PathBuf,
+    /// Task.
+    pub task: Task,
+    /// Split.
+    pub split: Split,
+    /// Only the first N episodes of the split file.
+    pub episodes: Option<usize>,
+    /// A seeded random sample of the split spread over its scenes (the zero-shot protocol);
+    /// excludes `episodes`.
+    pub sample: Option<Sample>,
+    /// Worker threads (None: rayon's default, one per core).
+    pub threads: Option<usize>,
+    /// Run folder.
+    pub out: PathBuf,
+    /// Start over: delete an earlier run's files in `out` instead of resuming it.
+    pub fresh: bool,
+    /// The protocol.
+    pub config: EvalConfig,
+}
+
+/// The result of [`evaluate`].
+#[derive(Debug, Clone)]
+pub struct EvalOutcome {
+    /// `summary.json` content.
+    pub summary: RunSummary,
+    /// Per-episode records, in split-file order.
+    pub records: Vec<EpisodeRecord>,
+    /// Episodes taken from an earlier, interrupted run.
+    pub resumed: usize,
+    /// Agent actions run in this call (resumed episodes excluded).
+    pub steps_run: u64,
+}
+
+fn sim_err(what: &str, value: impl ToString, e: impl ToString) -> TaskError {
+    TaskError::invalid(what, value, e.to_string())
+}
+
+/// Scenes kept loaded per worker thread beyond the first (the cache holds `threads + this`).
+const SCENE_CACHE_SLACK: usize = 2;
+
+/// Files of a run folder that [`evaluate`] writes (`plots/` besides).
+pub const RUN_FILES: [&str; 6] = [
+    RUN_FILE,
+    PROGRESS_FILE,
+    "summary.json",
+    "episodes.csv",
+    "report.md",
+    "trajectories.jsonl",
+];
+
+/// One worker's simulator, rig and agent.
+struct Worker<S> {
+    sim: S,
+    rig: Option<SensorRig>,
+    agent: Box<dyn Agent>,
+}
+
+/// Makes a simulator for an evaluation's settings.
+pub trait SimulatorFactory: Sync {
+    /// The simulator type.
+    type Sim: Simulator;
+    /// A fresh simulator with these settings.
+    fn make(&self, cfg: &SimConfig) -> Result<Self::Sim>;
+}
+
+impl<S: Simulator, F: Fn(&SimConfig) -> Result<S> + Sync> SimulatorFactory for F {
+    type Sim = S;
+    fn make(&self, cfg: &SimConfig) -> Result<S> {
+        self(cfg)
+    }
+}
+
+/// Makes a renderer for an evaluation's rig.
+pub trait RendererFactory: Sync {
+    /// A fresh renderer for this rig.
+    fn make(&self, rig: &RigConfig) -> Result<Box<dyn Renderer>>;
+}
+
+impl<F: Fn(&RigConfig) -> Result<Box<dyn Renderer>> + Sync> RendererFactory for F {
+    fn make(&self, rig: &RigConfig) -> Result<Box<dyn Renderer>> {
+        self(rig)
+    }
+}
+
+/// The default simulator: [`RapierSimulator`].
+pub fn rapier_simulator(cfg: &SimConfig) -> Result<RapierSimulator> {
+    Ok(RapierSimulator::new(cfg.clone())?)
+}
+
+/// The default renderer: the backend the rig (or the protocol's override) names.
+pub fn configured_renderer(rig: &RigConfig) -> Result<Box<dyn Renderer>> {
+    Ok(create_renderer(rig.backend)?)
+}
+
+/// Everything an episode run needs that does not change between episodes.
+struct Shared<'a, SF: SimulatorFactory, RF> {
+    req: &'a EvalRequest,
+    factory: &'a dyn AgentFactory,
+    sims: &'a SF,
+    renderers: &'a RF,
+    sim_cfg: SimConfig,
+    rig_cfg: RigConfig,
+    settings: EpisodeSettings,
+    split_file: PathBuf,
+    /// Split-file index of each episode id (errors name both).
+    index: BTreeMap<u64, usize>,
+    scenes: SceneCache,
+    pool: Mutex<Vec<Worker<SF::Sim>>>,
+}
+
+impl<SF: SimulatorFactory, RF: RendererFactory> Shared<'_, SF, RF> {
+    fn take_worker(&self, scene: &str) -> Result<Worker<SF::Sim>> {
+        {
+            let mut pool = self
+                .pool
+                .lock()
+                .unwrap_or_else(std::sync::PoisonError::into_inner);
+            if let Some(i) = pool
+                .iter()
+                .position(|w| w.rig.as_ref().and_then(|r| r.scene_id()) == Some(scene))
+            {
+                return Ok(pool.swap_remove(i));
+            }
+            if let Some(w) = pool.pop() {
+                return Ok(w);
+            }
+        }
+        self.new_worker(self.factory.make()?)
+    }
+
+    /// A worker around `agent`: its simulator and, when rendering, its rig with the agent's
+    /// required sensors attached.
+    fn new_worker(&self, agent: Box<dyn Agent>) -> Result<Worker<SF::Sim>> {
+        let cfg = &self.req.config;
+        let sim = self
+            .sims
+            .make(&self.sim_cfg)
+            .map_err(|e| sim_err("agent_profile", &cfg.agent_profile, e))?;
+        let rig = if cfg.render {
+            let renderer = self
+                .renderers
+                .make(&self.rig_cfg)
+                .map_err(|e| sim_err("rig", &cfg.rig, e))?;
+            let mut rig = SensorRig::with_renderer(self.rig_cfg.clone(), renderer);
+            for spec in agent.required_sensors() {
+                if !rig.config().sensors.iter().any(|s| s.name() == spec.name()) {
+                    rig.attach(spec).map_err(|e| sim_err("rig", &cfg.rig, e))?;
+                }
+            }
+            Some(rig)
+        } else {
+            None
+        };
+        Ok(Worker { sim, rig, agent })
+    }
+
+    fn give_back(&self, w: Worker<SF::Sim>) {
+        self.pool
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .push(w);
+    }
+
+    /// Where an episode is, for errors: `FILE: episode ID (episodes[I])`.
+    fn locate(&self, ep: &Episode) -> String {
+        format!(
+            "{}: episode {} (episodes[{}])",
+            self.split_file.display(),
+            ep.episode_id,
+            self.index.get(&ep.episode_id).copied().unwrap_or(0)
+        )
+    }
+
+    fn run(&self, ep: &Episode, log: &ProgressLog) -> Result<EpisodeRecord> {
+        let ctx = self.scenes.get(&ep.scene_id).map_err(|e| {
+            TaskError::invalid(
+                format!("{}.scene_id", self.locate(ep)),
+                &ep.scene_id,
+                e.to_string(),
+            )
+        })?;
+        if let Err((field, value, why)) = check_episode(ep, &ctx) {
+            return Err(TaskError::invalid(
+                format!("{}.{field}", self.locate(ep)),
+                value,
+                why,
+            ));
+        }
+        let mut w = self.take_worker(&ep.scene_id)?;
+        let res = run_episode(
+            &mut w.sim,
+            w.rig.as_mut(),
+            w.agent.as_mut(),
+            ep,
+            &ctx,
+            &self.settings,
+        );
+        self.give_back(w);
+        let rec = res?;
+        log.append(&rec)?;
+        Ok(rec)
+    }
+}
+
+/// The simulator settings of a protocol.
+pub fn sim_config(cfg: &EvalConfig) -> Result<SimConfig> {
+    Ok(SimConfig {
+        agent: cfg.agent_config()?,
+        setting: cfg.setting.collision(),
+        seed: cfg.seed,
+        ..Default::default()
+    })
+}
+
+/// Evaluate the agents of `factory` on a split with the default layers (the Rapier simulator,
+/// the configured renderer); see [`evaluate_with`].
+pub fn evaluate(
+    req: &EvalRequest,
+    factory: &dyn AgentFactory,
+    on_episode: &(dyn Fn() + Sync),
+) -> Result<EvalOutcome> {
+    evaluate_with(
+        req,
+        factory,
+        &rapier_simulator,
+        &configured_renderer,
+        on_episode,
+    )
+}
+
+/// Evaluate the agents of `factory` on a split, with simulators from `sims` and renderers
+/// from `renderers` (one of each per worker thread); writes `summary.json`, `episodes.csv`,
+/// `report.md`, `trajectories.jsonl`, `progress.jsonl`, `run.json` and `plots/*.png` under
+/// `req.out`. Episodes already in `progress.jsonl` are kept, not re-run. `on_episode` is
+/// called once per finished episode (progress bars).
+///
+/// The folder is locked for the run (a second job on it is refused). Nothing is written
+/// before the inputs are checked, and a run that fails before its first episode finishes
+/// leaves the folder as it found it.
+pub fn evaluate_with<SF: SimulatorFactory, RF: RendererFactory>(
+    req: &EvalRequest,
+    factory: &dyn AgentFactory,
+    sims: &SF,
+    renderers: &RF,
+    on_episode: &(dyn Fn() + Sync),
+) -> Result<EvalOutcome> {
+    req.config.validate()?;
+    if req.episodes == Some(0) {
+        return Err(TaskError::invalid(
+            "episodes",
+            0,
+            "must be at least 1 (leave it out to run the whole split)",
+        ));
+    }
+    let split_file = dataset::split_path(&req.dataset, req.task, req.split);
+    let mut episodes = dataset::read_split(&req.dataset, req.task, req.split)?;
+    if episodes.is_empty() {
+        return Err(TaskError::invalid(
+            "episodes",
+            split_file.display(),
+            "the split has no episodes",
+        ));
+    }
+    let total_in_split = episodes.len();
+    episodes = select_episodes(req, episodes)?;
+    let sim_cfg = sim_config(&req.config)?;
+    let rig_cfg = req.config.rig_config()?;
+    let mut settings = EpisodeSettings::new(&req.config)?;
+    settings.privileged = factory.privileged();
+    settings.split = Some(req.split);
+    settings.reference_dir = split_file.parent().map(Path::to_path_buf);
+    // Make one agent, simulator and renderer before anything is written: a bad profile, rig
+    // or agent command fails here and leaves no folder behind.
+    let probe = factory.make()?;
+    if !req.config.render {
+        // An agent that looks would run blind.
+        let needs: Vec<String> = probe
+            .required_sensors()
+            .iter()
+            .map(|s| s.name().to_string())
+            .collect();
+        if !needs.is_empty() {
+            return Err(TaskError::invalid(
+                "render",
+                false,
+                format!(
+                    "agent `{}` looks at its sensors ({}) and would run blind without \
+                     rendering; drop --no-render / set `render = true`",
+                    factory.name(),
+                    needs.join(", ")
+                ),
+            ));
+        }
+    }
+    let identity = run_identity(req, factory)?;
+    let created = !req.out.exists();
+    let lock = OutputLock::acquire(&req.out, "evaluate")?;
+    let result = evaluate_locked(
+        req,
+        factory,
+        Shared {
+            req,
+            factory,
+            sims,
+            renderers,
+            sim_cfg,
+            rig_cfg,
+            settings,
+            index: episodes
+                .iter()
+                .enumerate()
+                .map(|(i, e)| (e.episode_id, i))
+                .collect(),
+            split_file,
+            scenes: SceneCache::new(
+                &req.dataset,
+                req.threads.unwrap_or_else(rayon::current_num_threads) + SCENE_CACHE_SLACK,
+            ),
+            pool: Mutex::new(Vec::new()),
+        },
+        probe,
+        &identity,
+        &episodes,
+        total_in_split,
+        on_episode,
+    );
+    if result.is_err() {
+        clean_failed_start(&req.out, created);
+    }
+    drop(lock);
+    if result.is_err() && created {
+        let _ = std::fs::remove_file(req.out.join(vlnverse_score::lock::LOCK_FILE));
+        let _ = std::fs::remove_dir(&req.out);
+    }
+    result
+}
+
+/// The episodes `req` asks for: the first `episodes`, a `sample`, or all.
+pub fn select_episodes(req: &EvalRequest, mut episodes: Vec<Episode>) -> Result<Vec<Episode>> {
+    match (req.episodes, req.sample) {
+        (Some(_), Some(_)) => Err(TaskError::invalid(
+            "sample",
+            "with episodes",
+            "choose one: the first N episodes (--episodes) or a seeded sample (--sample)",
+        )),
+        (_, Some(s)) if s.count == 0 => Err(TaskError::invalid(
+            "sample",
+            0,
+            "must be at least 1 (leave it out to run the whole split)",
+        )),
+        (Some(n), None) => {
+            episodes.truncate(n);
+            Ok(episodes)
+        }
+        (None, Some(s)) => Ok(sample_episodes(episodes, s)),
+        (None, None) => Ok(episodes),
+    }
+}
+
+/// After a failure: if no episode was recorded, remove what this call wrote (run.json and an
+/// empty progress log), so the folder is as it was.
+fn clean_failed_start(out: &Path, created: bool) {
+    let progress = out.join(PROGRESS_FILE);
+    let empty = std::fs::metadata(&progress).map_or(true, |m| m.len() == 0);
+    if !empty {
+        return;
+    }
+    let _ = std::fs::remove_file(&progress);
+    if created {
+        let _ = std::fs::remove_file(out.join(RUN_FILE));
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn evaluate_locked<SF: SimulatorFactory, RF: RendererFactory>(
+    req: &EvalRequest,
+    factory: &dyn AgentFactory,
+    shared: Shared<'_, SF, RF>,
+    probe: Box<dyn Agent>,
+    identity: &[(&'static str, serde_json::Value)],
+    episodes: &[Episode],
+    total_in_split: usize,
+    on_episode: &(dyn Fn() + Sync),
+) -> Result<EvalOutcome> {
+    let mut done = open_run(req, identity, total_in_split)?;
+    let progress_path = req.out.join(PROGRESS_FILE);
+    let todo: Vec<&Episode> = {
+        let mut v: Vec<&Episode> = episodes
+            .iter()
+            .filter(|e| !done.contains_key(&e.episode_id))
+            .collect();
+        // Scene order keeps each worker in one scene for long stretches, and the scene
+        // cache small.
+        v.sort_by(|a, b| a.scene_id.cmp(&b.scene_id));
+        v
+    };
+    let resumed = episodes.len() - todo.len();
+    let log = ProgressLog::open(&progress_path)?;
+    if !todo.is_empty() {
+        // The probe agent becomes the first worker, so nothing is made twice.
+        let w = shared.new_worker(probe)?;
+        shared.give_back(w);
+    }
+    let run = || -> Vec<Result<EpisodeRecord>> {
+        todo.par_iter()
+            .with_max_len(4)
+            .map(|ep| {
+                let r = shared.run(ep, &log);
+                on_episode();
+                r
+            })
+            .collect()
+    };
+    let results = match req.threads {
+        Some(k) => rayon::ThreadPoolBuilder::new()
+            .num_threads(k.max(1))
+            .build()
+            .map_err(|e| TaskError::invalid("threads", k, e.to_string()))?
+            .install(run),
+        None => run(),
+    };
+    let mut steps_run = 0;
+    for r in results {
+        let rec = r?;
+        steps_run += rec.trajectory.steps as u64;
+        done.insert(rec.episode_id, rec);
+    }
+    let (summary, records) = finish_run(req, &factory.name(), &shared.scenes, episodes, done)?;
+    Ok(EvalOutcome {
+        summary,
+        records,
+        resumed,
+        steps_run,
+    })
+}
+
+/// Make `req.out` ready for a run whose lock the caller holds: `--fresh` removes an earlier
+/// run's files, the run identity is checked against (or written to) `run.json`, and the
+/// episodes already finished there are returned (by id). A smaller `--episodes` than a
+/// finished run holds is refused rather than shrinking its summary.
+pub fn open_run(
+    req: &EvalRequest,
+    identity: &[(&str, serde_json::Value)],
+    total_in_split: usize,
+) -> Result<BTreeMap<u64, EpisodeRecord>> {
+    if req.fresh {
+        remove_run_files(&req.out)?;
+    }
+    resume::check_or_write_identity(&req.out, identity)?;
+    let progress_path = req.out.join(PROGRESS_FILE);
+    let done: BTreeMap<u64, EpisodeRecord> = resume::load_progress(&progress_path)?
+        .into_iter()
+        .map(|r| (r.episode_id, r))
+        .collect();
+    // A finished run's summary covers more episodes than asked for now: keep it.
+    if let Some(n) = req.episodes {
+        if n < total_in_split && done.len() > n && req.out.join("summary.json").exists() {
+            return Err(TaskError::invalid(
+                "episodes",
+                n,
+                format!(
+                    "{} already holds {} finished episodes; rewriting its summary with {n} \
+                     would lose them: leave --episodes out to rebuild the full summary, use \
+                     --fresh to start over, or choose another --out",
+                    req.out.display(),
+                    done.len()
+                ),
+            ));
+        }
+    }
+    Ok(done)
+}
+
+/// Write a run's results for `episodes` (in split order) from the finished records `done`:
+/// `summary.json`, `episodes.csv`, `report.md`, `trajectories.jsonl` and the plots.
+pub fn finish_run(
+    req: &EvalRequest,
+    agent_name: &str,
+    scenes: &SceneCache,
+    episodes: &[Episode],
+    mut done: BTreeMap<u64, EpisodeRecord>,
+) -> Result<(RunSummary, Vec<EpisodeRecord>)> {
+    let records: Vec<EpisodeRecord> = episodes
+        .iter()
+        .filter_map(|e| done.remove(&e.episode_id))
+        .collect();
+    let metrics: Vec<_> = records.iter().map(|r| r.metrics.clone()).collect();
+    let summary = RunSummary::new(
+        agent_name,
+        Some(req.config.setting.name()),
+        req.task,
+        req.split,
+        &metrics,
+    );
+    write_run(&req.out, &summary, &metrics)?;
+    let trajs: Vec<Trajectory> = records.iter().map(|r| r.trajectory.clone()).collect();
+    write_jsonl(&req.out.join("trajectories.jsonl"), &trajs)?;
+    write_plots(req, scenes, episodes, &records)?;
+    Ok((summary, records))
+}
+
+/// `--fresh`: delete an earlier run's files (and only those) from `out`.
+fn remove_run_files(out: &Path) -> Result<()> {
+    for f in RUN_FILES {
+        let p = out.join(f);
+        match std::fs::remove_file(&p) {
+            Ok(()) => {}
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+            Err(e) => return Err(TaskError::io(&p, e)),
+        }
+    }
+    let plots = out.join("plots");
+    if plots.is_dir() {
+        std::fs::remove_dir_all(&plots).map_err(|e| TaskError::io(&plots, e))?;
+    }
+    Ok(())
+}
+
+/// What makes a run's results what they are, in the order a mismatch is reported (the first
+/// differing key is named): `run.json` of the run folder. Besides the protocol's names and
+/// paths it records their contents (`agent_config`, `rig_config`), so an edited file is noticed. Thread count and episode count are
+/// left out (a resume may use other values).
+pub fn run_identity(
+    req: &EvalRequest,
+    factory: &dyn AgentFactory,
+) -> Result<Vec<(&'static str, serde_json::Value)>> {
+    use serde_json::{json, to_value};
+    let cfg = &req.config;
+    let value = |what: &str, v: std::result::Result<serde_json::Value, serde_json::Error>| {
+        v.map_err(|e| TaskError::invalid(what, "<config>", e.to_string()))
+    };
+    let rig_path = if cfg.rig.trim().is_empty() {
+        String::new()
+    } else {
+        cfg.resolve(&cfg.rig).display().to_string()
+    };
+    let mut identity = vec![
+        ("setting", json!(cfg.setting.name())),
+        ("task", json!(req.task.name())),
+        ("split", json!(req.split.name())),
+        ("dataset", json!(req.dataset.display().to_string())),
+        ("agent", json!(factory.name())),
+        ("agent_cmd", json!(factory.command())),
+        ("agent_fingerprint", json!(factory.fingerprint())),
+        ("action_space", json!(cfg.action_space.name())),
+        ("max_steps", json!(cfg.max_steps)),
+        ("success_distance", json!(cfg.success_distance)),
+        ("agent_profile", json!(cfg.agent_profile)),
+        ("rig", json!(rig_path)),
+        ("backend", value("backend", to_value(cfg.backend))?),
+        ("render", json!(cfg.render)),
+        (
+            "external_observations",
+            value("external_observations", to_value(cfg.external_observations))?,
+        ),
+        ("seed", json!(cfg.seed)),
+        // What the names and paths above resolve to, last: a profile or rig file edited
+        // between the runs.
+        (
+            "agent_config",
+            value("agent_profile", to_value(cfg.agent_config()?))?,
+        ),
+        ("rig_config", value("rig", to_value(cfg.rig_config()?))?),
+    ];
+    // Only when set, so runs made before these options existed still resume.
+    if let Some(sample) = req.sample {
+        identity.push(("sample", json!(sample)));
+    }
+    if let Some(llm) = &cfg.oracle_llm {
+        identity.push(("oracle_llm", value("oracle_llm", to_value(llm))?));
+    }
+    Ok(identity)
+}
+
+fn write_plots(
+    req: &EvalRequest,
+    scenes: &SceneCache,
+    episodes: &[Episode],
+    records: &[EpisodeRecord],
+) -> Result<()> {
+    let dir = req.out.join("plots");
+    for i in plots::sample_indices(records.len(), req.config.plots as usize) {
+        let rec = &records[i];
+        let Some(ep) = episodes.iter().find(|e| e.episode_id == rec.episode_id) else {
+            continue;
+        };
+        let ctx = scenes.get(&ep.scene_id)?;
+        let img = plots::plot_episode(
+            &ctx.scene,
+            Some(&ctx.navigable),
+            ep,
+            &rec.trajectory,
+            &rec.metrics,
+        );
+        plots::save_png(&dir.join(format!("episode_{}.png", ep.episode_id)), &img)?;
+    }
+    Ok(())
+}

@@ -1,0 +1,166 @@
+//! What an evaluation derives from one scene (navigable map, distance fields, scene graph, the
+//! simulator's prepared scene) and a bounded cache of them, so that memory stays flat in the
+//! number of scenes of a split.
+
+use std::collections::{BTreeMap, VecDeque};
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex, MutexGuard, OnceLock, PoisonError};
+
+use glam::Vec2;
+use vlnverse_env::geodesic::DistanceField;
+use vlnverse_env::occupancy::GridMap;
+use vlnverse_env::scene_graph::SceneGraph;
+use vlnverse_env::Scene;
+use vlnverse_sim::{PreparedScene, Simulator};
+
+use crate::error::{Result, TaskError};
+use vlnverse_score::score::navigable_map_path;
+
+/// Distance fields kept per scene (coarse styles share goals); the cache is cleared beyond it.
+const FIELD_CACHE: usize = 48;
+
+fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+/// A scene and what is derived from it, shared by the workers of an evaluation.
+pub struct SceneContext {
+    /// The scene.
+    pub scene: Arc<Scene>,
+    /// Its navigable (agent-dilated) map.
+    pub navigable: Arc<GridMap>,
+    graph: OnceLock<Arc<SceneGraph>>,
+    fields: Mutex<BTreeMap<(u32, u32), Arc<DistanceField>>>,
+    prepared: Mutex<Option<PreparedScene>>,
+}
+
+impl SceneContext {
+    /// A context for a scene and its navigable map (e.g. a scene built in memory).
+    pub fn new(scene: Scene, navigable: GridMap) -> Self {
+        SceneContext {
+            scene: Arc::new(scene),
+            navigable: Arc::new(navigable),
+            graph: OnceLock::new(),
+            fields: Mutex::new(BTreeMap::new()),
+            prepared: Mutex::new(None),
+        }
+    }
+
+    /// Load `dataset/scenes/<id>/` (the scene and its navigable map).
+    pub fn load(dataset: &Path, scene_id: &str) -> Result<Self> {
+        let dir = dataset.join("scenes").join(scene_id);
+        if !dir.is_dir() {
+            return Err(TaskError::invalid(
+                "scene_id",
+                scene_id,
+                format!("no scene folder {}", dir.display()),
+            ));
+        }
+        let scene = vlnverse_env::io::load_scene(&dir)?;
+        let navigable = GridMap::load_ros(navigable_map_path(dataset, scene_id))?;
+        Ok(SceneContext::new(scene, navigable))
+    }
+
+    /// The scene graph, built on first use (only dialogue episodes need it).
+    pub fn graph(&self) -> Arc<SceneGraph> {
+        self.graph
+            .get_or_init(|| Arc::new(SceneGraph::build(&self.scene)))
+            .clone()
+    }
+
+    /// The scene as `sim` prepares it ([`Simulator::prepare`]), built by the first caller and
+    /// shared by the others (all simulators of one evaluation have the same settings).
+    pub fn prepared<S: Simulator>(&self, sim: &S) -> Result<PreparedScene> {
+        let mut slot = lock(&self.prepared);
+        if let Some(p) = slot.as_ref() {
+            return Ok(p.clone());
+        }
+        let p = sim
+            .prepare(self.scene.clone())
+            .map_err(|e| TaskError::invalid("scene", &self.scene.id, e.to_string()))?;
+        *slot = Some(p.clone());
+        Ok(p)
+    }
+
+    /// The distance field to a goal point (cached).
+    pub fn field(&self, goal: [f32; 3]) -> Result<Arc<DistanceField>> {
+        let key = (goal[0].to_bits(), goal[2].to_bits());
+        if let Some(f) = lock(&self.fields).get(&key) {
+            return Ok(f.clone());
+        }
+        let f = Arc::new(DistanceField::new(
+            &self.navigable,
+            Vec2::new(goal[0], goal[2]),
+        )?);
+        let mut c = lock(&self.fields);
+        if c.len() >= FIELD_CACHE {
+            c.clear();
+        }
+        c.insert(key, f.clone());
+        Ok(f)
+    }
+}
+
+/// The scenes of a dataset, loaded on demand and kept in a least-recently-used cache of a
+/// fixed size. An evicted scene stays alive while an episode still runs in it and is loaded
+/// again if asked for later; evaluation visits episodes in scene order, so that is rare.
+pub struct SceneCache {
+    dataset: PathBuf,
+    capacity: usize,
+    /// Most recently used last.
+    entries: Mutex<VecDeque<(String, Arc<SceneContext>)>>,
+    loads: std::sync::atomic::AtomicUsize,
+}
+
+impl SceneCache {
+    /// A cache over `dataset/scenes/` holding at most `capacity` scenes (at least 1).
+    pub fn new(dataset: &Path, capacity: usize) -> Self {
+        SceneCache {
+            dataset: dataset.to_path_buf(),
+            capacity: capacity.max(1),
+            entries: Mutex::new(VecDeque::new()),
+            loads: std::sync::atomic::AtomicUsize::new(0),
+        }
+    }
+
+    /// The scene `id`, loaded if it is not cached.
+    pub fn get(&self, id: &str) -> Result<Arc<SceneContext>> {
+        {
+            let mut e = lock(&self.entries);
+            if let Some(i) = e.iter().position(|(k, _)| k == id) {
+                let hit = e.remove(i).expect("index from position");
+                let ctx = hit.1.clone();
+                e.push_back(hit);
+                return Ok(ctx);
+            }
+        }
+        // Loaded outside the lock: other scenes stay available meanwhile.
+        let ctx = Arc::new(SceneContext::load(&self.dataset, id)?);
+        self.loads
+            .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        let mut e = lock(&self.entries);
+        if let Some((_, c)) = e.iter().find(|(k, _)| k == id) {
+            return Ok(c.clone());
+        }
+        while e.len() >= self.capacity {
+            e.pop_front();
+        }
+        e.push_back((id.to_string(), ctx.clone()));
+        Ok(ctx)
+    }
+
+    /// Scenes held now.
+    pub fn len(&self) -> usize {
+        lock(&self.entries).len()
+    }
+
+    /// Whether no scene is held.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Scene loads so far (reloads after eviction included).
+    pub fn loads(&self) -> usize {
+        self.loads.load(std::sync::atomic::Ordering::Relaxed)
+    }
+}

@@ -1,0 +1,594 @@
+//! A batch of environments stepped together: what the Python package's Gymnasium environments
+//! (and any other driver that hands in actions one batch at a time) run on.
+//!
+//! Every environment drives its episodes through [`EpisodeState`], the same rules as
+//! [`crate::run_episode`], so a metric computed here equals the one `xtask evaluate`
+//! computes for the same actions. A step of the batch runs the environments on the rayon
+//! pool; results do not depend on the number of threads.
+//!
+//! - Episode order: [`EpisodeOrder::Eval`] hands out the split's episodes in file order (or a
+//!   given list) to whichever environment resets next, in environment order, so the first
+//!   `len` resets of the whole batch visit every episode exactly once; after that it starts
+//!   another pass (`StepInfo::pass`). [`EpisodeOrder::Train`] draws episodes uniformly with a
+//!   per-environment seeded generator.
+//! - Autoreset: none inside. An environment whose episode is over refuses further actions
+//!   until [`VecEnv::reset_env`] (the Python layer implements Gymnasium's next-step autoreset
+//!   on top: the action after the end resets).
+//! - The teacher: after every reset and step, the shortest-path follower (the `oracle` agent)
+//!   says what it would do next ([`StepInfo::expert_action`]).
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
+use vlnverse_sensors::{Observations, SensorRig};
+use vlnverse_sim::{Action, SimConfig, Simulator};
+
+use crate::agent::Agent;
+use crate::agents::oracle::OracleAgent;
+use crate::episode_loop::{check_episode, Applied, EpisodeSettings, EpisodeState};
+use crate::error::{Result, TaskError};
+use crate::protocol::EvalConfig;
+use crate::resume::EpisodeRecord;
+use crate::runner::{sim_config, RendererFactory, SimulatorFactory};
+use crate::scene_context::{SceneCache, SceneContext};
+use vlnverse_score::dataset;
+use vlnverse_score::episode::{Episode, Split, Task};
+
+/// How environments pick their next episode.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum EpisodeOrder {
+    /// Every episode once, in order, shared by all environments.
+    #[default]
+    Eval,
+    /// Uniform draws, seeded per environment.
+    Train,
+}
+
+/// Optional reward shaping. The default gives 1 at a successful STOP and 0 otherwise.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RewardConfig {
+    /// Reward per metre of geodesic progress toward the goal (0 = sparse).
+    pub progress: f32,
+    /// Reward for a successful STOP (within the success distance of the goal).
+    pub success: f32,
+    /// Penalty (subtracted) per noticeable collision.
+    pub collision: f32,
+}
+
+impl Default for RewardConfig {
+    fn default() -> Self {
+        RewardConfig {
+            progress: 0.0,
+            success: 1.0,
+            collision: 0.0,
+        }
+    }
+}
+
+impl RewardConfig {
+    /// The documented dense reward: 1 per metre of progress, 2.5 for success, 0.1 per
+    /// collision.
+    pub fn dense() -> Self {
+        RewardConfig {
+            progress: 1.0,
+            success: 2.5,
+            collision: 0.1,
+        }
+    }
+}
+
+/// What a vector environment runs.
+#[derive(Debug, Clone)]
+pub struct VecEnvConfig {
+    /// Dataset folder (`DIR/<task>/<split>/<split>.json.gz`, `DIR/scenes/`).
+    pub dataset: PathBuf,
+    /// Task.
+    pub task: Task,
+    /// Split.
+    pub split: Split,
+    /// The protocol: setting, action space, profile, rig, step limit, success distance, seed.
+    pub protocol: EvalConfig,
+    /// Environments in the batch (at least 1).
+    pub num_envs: usize,
+    /// Episode order.
+    pub order: EpisodeOrder,
+    /// Only these episode ids, in this order (e.g. what a resumed evaluation has left).
+    pub episode_ids: Option<Vec<u64>>,
+    /// Reward shaping.
+    pub reward: RewardConfig,
+}
+
+/// A driver's action for one environment.
+#[derive(Debug, Clone, PartialEq)]
+pub enum EnvAction {
+    /// A simulator action (or STOP).
+    Act(Action),
+    /// Dialogue: ask the oracle. Within the budget it costs no step and the agent does not
+    /// move; with the budget spent (or no oracle) it counts as a refused action (one step).
+    Ask(String),
+}
+
+/// What one environment reports after a reset or a step.
+#[derive(Debug, Clone)]
+pub struct StepInfo {
+    /// Episode id.
+    pub episode_id: u64,
+    /// Scene id.
+    pub scene_id: String,
+    /// Pass over the episode list this episode belongs to (0 = first; eval order only).
+    pub pass: u32,
+    /// Actions taken in the episode so far.
+    pub steps: u32,
+    /// Geodesic distance (m) to the current goal (NaN off the map).
+    pub distance_to_goal: f32,
+    /// The last action touched something.
+    pub collided: bool,
+    /// The last action was a noticeable collision (counted in CR).
+    pub noticeable: bool,
+    /// Noticeable collisions so far.
+    pub collisions: u32,
+    /// The simulator refused the last action (why).
+    pub refused: Option<String>,
+    /// Long-horizon: index of the sub-goal being pursued.
+    pub sub_goal: u32,
+    /// Dialogue: the oracle's answer to the last question (empty when none was asked).
+    pub oracle_answer: String,
+    /// Dialogue: questions left.
+    pub questions_left: u32,
+    /// The teacher's next action.
+    pub expert_action: Action,
+    /// Reward of the last action.
+    pub reward: f32,
+    /// The episode ended by STOP or a failure.
+    pub terminated: bool,
+    /// The episode hit the step limit.
+    pub truncated: bool,
+    /// When the episode is over: its trajectory and metrics.
+    pub record: Option<EpisodeRecord>,
+}
+
+/// One environment's observation and report.
+#[derive(Debug, Clone)]
+pub struct EnvStep {
+    /// The rig's readings (empty when rendering is off).
+    pub observations: Observations,
+    /// The episode now.
+    pub episode: Arc<Episode>,
+    /// Report.
+    pub info: StepInfo,
+    /// Base pose.
+    pub pose: vlnverse_env::Pose,
+    /// Start pose of the episode (GPS and compass are relative to it).
+    pub start: vlnverse_env::Pose,
+}
+
+struct Running {
+    episode: Arc<Episode>,
+    scene: Arc<SceneContext>,
+    state: EpisodeState,
+    pass: u32,
+}
+
+struct Slot<S> {
+    sim: S,
+    rig: Option<SensorRig>,
+    teacher: OracleAgent,
+    rng: ChaCha8Rng,
+    run: Option<Running>,
+}
+
+/// A batch of environments over one dataset split.
+pub struct VecEnv<S: Simulator> {
+    cfg: VecEnvConfig,
+    settings: EpisodeSettings,
+    split_file: PathBuf,
+    episodes: Vec<Arc<Episode>>,
+    scenes: SceneCache,
+    slots: Vec<Slot<S>>,
+    cursor: usize,
+}
+
+/// The default vector environment: Rapier physics and the rig's configured renderer.
+pub type RapierVecEnv = VecEnv<vlnverse_sim::RapierSimulator>;
+
+impl RapierVecEnv {
+    /// Environments with the default layers.
+    pub fn new(cfg: VecEnvConfig) -> Result<Self> {
+        VecEnv::with_layers(cfg, &crate::rapier_simulator, &crate::configured_renderer)
+    }
+}
+
+fn invalid(field: &str, value: impl ToString, why: impl Into<String>) -> TaskError {
+    TaskError::invalid(field, value, why.into())
+}
+
+impl<S: Simulator> VecEnv<S> {
+    /// Environments whose simulators and renderers come from the given factories.
+    pub fn with_layers<SF, RF>(cfg: VecEnvConfig, sims: &SF, renderers: &RF) -> Result<Self>
+    where
+        SF: SimulatorFactory<Sim = S>,
+        RF: RendererFactory,
+    {
+        cfg.protocol.validate()?;
+        if cfg.num_envs == 0 || cfg.num_envs > 4096 {
+            return Err(invalid("num_envs", cfg.num_envs, "must be in [1, 4096]"));
+        }
+        let split_file = dataset::split_path(&cfg.dataset, cfg.task, cfg.split);
+        let all = dataset::read_split(&cfg.dataset, cfg.task, cfg.split)?;
+        let episodes: Vec<Arc<Episode>> = match &cfg.episode_ids {
+            None => all.into_iter().map(Arc::new).collect(),
+            Some(ids) => {
+                let by_id: std::collections::BTreeMap<u64, Episode> =
+                    all.into_iter().map(|e| (e.episode_id, e)).collect();
+                ids.iter()
+                    .map(|id| {
+                        by_id.get(id).cloned().map(Arc::new).ok_or_else(|| {
+                            invalid(
+                                "episode_ids",
+                                id,
+                                format!("no such episode in {}", split_file.display()),
+                            )
+                        })
+                    })
+                    .collect::<Result<_>>()?
+            }
+        };
+        if episodes.is_empty() {
+            return Err(invalid(
+                "episodes",
+                split_file.display(),
+                "the split has no episodes",
+            ));
+        }
+        let sim_cfg: SimConfig = sim_config(&cfg.protocol)?;
+        let rig_cfg = cfg.protocol.rig_config()?;
+        let mut settings = EpisodeSettings::new(&cfg.protocol)?;
+        settings.split = Some(cfg.split);
+        settings.reference_dir = split_file.parent().map(Path::to_path_buf);
+        let mut slots = Vec::with_capacity(cfg.num_envs);
+        for i in 0..cfg.num_envs {
+            let sim = sims.make(&sim_cfg).map_err(|e| {
+                invalid("agent_profile", &cfg.protocol.agent_profile, e.to_string())
+            })?;
+            let rig = if cfg.protocol.render {
+                let r = renderers
+                    .make(&rig_cfg)
+                    .map_err(|e| invalid("rig", &cfg.protocol.rig, e.to_string()))?;
+                Some(SensorRig::with_renderer(rig_cfg.clone(), r))
+            } else {
+                None
+            };
+            slots.push(Slot {
+                sim,
+                rig,
+                teacher: OracleAgent::default(),
+                rng: ChaCha8Rng::seed_from_u64(crate::episode_loop::episode_seed(
+                    cfg.protocol.seed,
+                    i as u64,
+                )),
+                run: None,
+            });
+        }
+        let capacity = cfg.num_envs + 2;
+        Ok(VecEnv {
+            scenes: SceneCache::new(&cfg.dataset, capacity),
+            settings,
+            split_file,
+            episodes,
+            slots,
+            cursor: 0,
+            cfg,
+        })
+    }
+
+    /// Environments in the batch.
+    pub fn num_envs(&self) -> usize {
+        self.slots.len()
+    }
+
+    /// The episodes this batch draws from (in eval order).
+    pub fn episodes(&self) -> &[Arc<Episode>] {
+        &self.episodes
+    }
+
+    /// The configuration.
+    pub fn config(&self) -> &VecEnvConfig {
+        &self.cfg
+    }
+
+    /// The settings every episode runs under.
+    pub fn settings(&self) -> &EpisodeSettings {
+        &self.settings
+    }
+
+    /// The sensor rig of environment 0 (all are alike), when rendering.
+    pub fn rig(&self) -> Option<&SensorRig> {
+        self.slots.first().and_then(|s| s.rig.as_ref())
+    }
+
+    /// Reseed the per-environment episode draws (train order) and restart the eval order.
+    pub fn seed(&mut self, seed: u64) {
+        for (i, s) in self.slots.iter_mut().enumerate() {
+            s.rng = ChaCha8Rng::seed_from_u64(crate::episode_loop::episode_seed(seed, i as u64));
+        }
+        self.cursor = 0;
+    }
+
+    /// The next episode for environment `i`, and its pass.
+    fn next_episode(&mut self, i: usize) -> (Arc<Episode>, u32) {
+        let n = self.episodes.len();
+        match self.cfg.order {
+            EpisodeOrder::Eval => {
+                let k = self.cursor;
+                self.cursor += 1;
+                (self.episodes[k % n].clone(), (k / n) as u32)
+            }
+            EpisodeOrder::Train => {
+                let k = self.slots[i].rng.random_range(0..n);
+                (self.episodes[k].clone(), 0)
+            }
+        }
+    }
+
+    /// Reset every environment to its next episode.
+    pub fn reset_all(&mut self) -> Result<Vec<EnvStep>> {
+        let n = self.slots.len();
+        self.reset_all_into(vec![(); n], |_, ()| Ok(()))
+    }
+
+    /// [`reset_all`](Self::reset_all), handing environment `i`'s result and `outs[i]` to
+    /// `sink` inside the parallel step (see [`step_into`](Self::step_into)).
+    pub fn reset_all_into<T: Send>(
+        &mut self,
+        outs: Vec<T>,
+        sink: impl Fn(&EnvStep, T) -> Result<()> + Sync,
+    ) -> Result<Vec<EnvStep>> {
+        let work = (0..self.slots.len()).map(|i| (i, None)).collect();
+        self.run_batch(work, outs, sink)
+    }
+
+    /// Reset one environment to its next episode.
+    pub fn reset_env(&mut self, i: usize) -> Result<EnvStep> {
+        self.check_index(i)?;
+        let outs = vec![(); self.slots.len()];
+        Ok(self
+            .run_batch(vec![(i, None)], outs, |_, ()| Ok(()))?
+            .remove(0))
+    }
+
+    /// Step every environment: `actions[i]` for environment `i`; `None` resets that
+    /// environment instead (the next-step autoreset of a finished one).
+    pub fn step(&mut self, actions: Vec<Option<EnvAction>>) -> Result<Vec<EnvStep>> {
+        let n = self.slots.len();
+        self.step_into(actions, vec![(); n], |_, ()| Ok(()))
+    }
+
+    /// [`step`](Self::step), handing environment `i`'s result and `outs[i]` to `sink` on the
+    /// thread that stepped it, so per-environment work after the step (copying observations
+    /// into a caller's batched buffers) runs in parallel too. `outs` has one entry per
+    /// environment.
+    pub fn step_into<T: Send>(
+        &mut self,
+        actions: Vec<Option<EnvAction>>,
+        outs: Vec<T>,
+        sink: impl Fn(&EnvStep, T) -> Result<()> + Sync,
+    ) -> Result<Vec<EnvStep>> {
+        if actions.len() != self.slots.len() {
+            return Err(invalid(
+                "actions",
+                actions.len(),
+                format!("expected one action per environment ({})", self.slots.len()),
+            ));
+        }
+        self.run_batch(actions.into_iter().enumerate().collect(), outs, sink)
+    }
+
+    fn check_index(&self, i: usize) -> Result<()> {
+        if i >= self.slots.len() {
+            return Err(invalid(
+                "env",
+                i,
+                format!("there are {} environments", self.slots.len()),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Assign episodes (serially, in environment order, so the order is deterministic) and
+    /// load and check their scenes (errors name the episode), then run the resets and steps in
+    /// parallel.
+    fn run_batch<T: Send>(
+        &mut self,
+        work: Vec<(usize, Option<EnvAction>)>,
+        outs: Vec<T>,
+        sink: impl Fn(&EnvStep, T) -> Result<()> + Sync,
+    ) -> Result<Vec<EnvStep>> {
+        if outs.len() != self.slots.len() {
+            return Err(invalid(
+                "outs",
+                outs.len(),
+                format!("expected one per environment ({})", self.slots.len()),
+            ));
+        }
+        let mut jobs: Vec<Option<Job>> = (0..self.slots.len()).map(|_| None).collect();
+        for (i, a) in work {
+            jobs[i] = Some(match a {
+                Some(a) => Job::Step(a),
+                None => {
+                    let (ep, pass) = self.next_episode(i);
+                    let scene = self.load_checked(&ep)?;
+                    Job::Reset(ep, scene, pass)
+                }
+            });
+        }
+        let ctx = Ctx {
+            settings: &self.settings,
+            reward: self.cfg.reward,
+        };
+        let results: Vec<Option<Result<EnvStep>>> = self
+            .slots
+            .par_iter_mut()
+            .zip(jobs.into_par_iter().zip(outs.into_par_iter()))
+            .with_max_len(1)
+            .map(|(slot, (job, out))| {
+                job.map(|j| {
+                    let step = ctx.run(slot, j)?;
+                    sink(&step, out)?;
+                    Ok(step)
+                })
+            })
+            .collect();
+        results.into_iter().flatten().collect()
+    }
+
+    fn load_checked(&self, ep: &Episode) -> Result<Arc<SceneContext>> {
+        let locate = || format!("{}: episode {}", self.split_file.display(), ep.episode_id);
+        let ctx = self.scenes.get(&ep.scene_id).map_err(|e| {
+            invalid(
+                &format!("{}.scene_id", locate()),
+                &ep.scene_id,
+                e.to_string(),
+            )
+        })?;
+        if let Err((field, value, why)) = check_episode(ep, &ctx) {
+            return Err(invalid(&format!("{}.{field}", locate()), value, why));
+        }
+        Ok(ctx)
+    }
+}
+
+enum Job {
+    Reset(Arc<Episode>, Arc<SceneContext>, u32),
+    Step(EnvAction),
+}
+
+struct Ctx<'a> {
+    settings: &'a EpisodeSettings,
+    reward: RewardConfig,
+}
+
+impl Ctx<'_> {
+    fn run<S: Simulator>(&self, slot: &mut Slot<S>, job: Job) -> Result<EnvStep> {
+        let mut info_extra = Extra::default();
+        match job {
+            Job::Reset(ep, scene, pass) => {
+                let state = EpisodeState::begin(
+                    &mut slot.sim,
+                    slot.rig.as_mut(),
+                    &ep,
+                    &scene,
+                    self.settings,
+                )?;
+                slot.teacher.set_truth(&state.privileged(&ep));
+                slot.teacher.reset(&state.inputs)?;
+                slot.run = Some(Running {
+                    episode: ep,
+                    scene,
+                    state,
+                    pass,
+                });
+            }
+            Job::Step(action) => {
+                let Some(run) = slot.run.as_mut() else {
+                    return Err(invalid("env", "<not reset>", "reset before stepping"));
+                };
+                let before = run.state.distance_to_goal();
+                match action {
+                    EnvAction::Ask(q) if run.state.questions_left() > 0 => {
+                        info_extra.answer = run.state.ask(&q).unwrap_or_default();
+                    }
+                    EnvAction::Ask(_) => {
+                        // Nothing to ask: a refused action, one step.
+                        run.state
+                            .refuse("ask", "no questions left", &self.settings.config)?;
+                        info_extra.refused = Some("no questions left".into());
+                    }
+                    EnvAction::Act(a) => {
+                        match run.state.apply(&mut slot.sim, a, &self.settings.config)? {
+                            Applied::Refused(why) => info_extra.refused = Some(why),
+                            Applied::Stepped => {
+                                let out = run.state.last();
+                                info_extra.collided = out.is_some_and(|o| o.collided);
+                                info_extra.noticeable = out.is_some_and(|o| o.noticeable);
+                            }
+                            Applied::Stop { .. } => {}
+                        }
+                    }
+                }
+                let after = run.state.distance_to_goal();
+                if let (Some(b), Some(a)) = (before, after) {
+                    info_extra.progress = b - a;
+                }
+            }
+        }
+        let run = slot.run.as_mut().expect("reset above");
+        let observations = match slot.rig.as_mut() {
+            Some(rig) => run.state.observe(rig)?,
+            None => Observations::new(),
+        };
+        let state = &run.state;
+        let over = state.is_over();
+        let record = if over {
+            Some(state.finish(&run.episode, &run.scene, self.settings)?)
+        } else {
+            None
+        };
+        let expert_action = if over {
+            Action::Stop
+        } else {
+            slot.teacher.act(&mut state.step_input(&observations))?
+        };
+        let success = record.as_ref().is_some_and(|r| r.metrics.success);
+        let r = &self.reward;
+        let reward = r.progress * info_extra.progress
+            + if success && state.stopped() {
+                r.success
+            } else {
+                0.0
+            }
+            - if info_extra.noticeable {
+                r.collision
+            } else {
+                0.0
+            };
+        let terminated =
+            over && (state.stopped() || record.as_ref().is_some_and(|r| r.failure.is_some()));
+        Ok(EnvStep {
+            observations,
+            info: StepInfo {
+                episode_id: run.episode.episode_id,
+                scene_id: run.episode.scene_id.clone(),
+                pass: run.pass,
+                steps: state.steps(),
+                distance_to_goal: state.distance_to_goal().unwrap_or(f32::NAN),
+                collided: info_extra.collided,
+                noticeable: info_extra.noticeable,
+                collisions: state.collisions(),
+                refused: info_extra.refused,
+                sub_goal: state.sub_goal().current,
+                oracle_answer: info_extra.answer,
+                questions_left: state.questions_left(),
+                expert_action,
+                reward: if reward.is_finite() { reward } else { 0.0 },
+                terminated,
+                truncated: over && !terminated,
+                record,
+            },
+            pose: state.pose(),
+            start: state.inputs.start,
+            episode: run.episode.clone(),
+        })
+    }
+}
+
+#[derive(Default)]
+struct Extra {
+    answer: String,
+    refused: Option<String>,
+    collided: bool,
+    noticeable: bool,
+    progress: f32,
+}

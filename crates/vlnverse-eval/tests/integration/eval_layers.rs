@@ -1,0 +1,198 @@
+//! Swapping layers in an evaluation from outside the runner: a user's renderer and a user's
+//! simulator run through `evaluate_with` under the same episode loop as the defaults.
+
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Arc;
+
+use vlnverse_env::{Pose, Scene};
+use vlnverse_eval::agents::builtin;
+use vlnverse_eval::{
+    configured_renderer, evaluate, evaluate_with, rapier_simulator, EvalConfig, Setting,
+};
+use vlnverse_score::Task;
+use vlnverse_sensors::{Frame, Renderer, RigConfig, SceneMesh, View};
+use vlnverse_sim::{Action, PreparedScene, RapierSimulator, SimConfig, Simulator, StepOutcome};
+
+use crate::eval_support;
+
+/// Sees nothing: every pixel black, at the far plane, no object. Counts its frames.
+struct Blind {
+    frames: Arc<AtomicUsize>,
+}
+
+impl Renderer for Blind {
+    fn name(&self) -> &'static str {
+        "blind"
+    }
+    fn set_scene(&mut self, _mesh: Arc<SceneMesh>) -> vlnverse_sensors::Result<()> {
+        Ok(())
+    }
+    fn render(&mut self, views: &[View]) -> vlnverse_sensors::Result<Vec<Frame>> {
+        self.frames.fetch_add(views.len(), Ordering::Relaxed);
+        Ok(views
+            .iter()
+            .map(|v| {
+                let (w, h) = (v.camera.width, v.camera.height);
+                let n = (w * h) as usize;
+                Frame {
+                    width: w,
+                    height: h,
+                    rgb: if v.channels.rgb {
+                        vec![0; 3 * n]
+                    } else {
+                        vec![]
+                    },
+                    depth: if v.channels.depth {
+                        vec![v.camera.far; n]
+                    } else {
+                        vec![]
+                    },
+                    semantic: if v.channels.semantic {
+                        vec![0; n]
+                    } else {
+                        vec![]
+                    },
+                    instance: if v.channels.instance {
+                        vec![0; n]
+                    } else {
+                        vec![]
+                    },
+                }
+            })
+            .collect())
+    }
+}
+
+/// A simulator around another that scales every forward move (actuation bias).
+struct Perturbed<S> {
+    inner: S,
+    scale: f32,
+}
+
+impl<S: Simulator> Simulator for Perturbed<S> {
+    type Snapshot = S::Snapshot;
+    fn reset(&mut self, scene: &Scene, start: Pose) -> vlnverse_sim::Result<Pose> {
+        self.inner.reset(scene, start)
+    }
+    fn prepare(&self, scene: Arc<Scene>) -> vlnverse_sim::Result<PreparedScene> {
+        self.inner.prepare(scene)
+    }
+    fn reset_prepared(
+        &mut self,
+        prepared: &PreparedScene,
+        start: Pose,
+    ) -> vlnverse_sim::Result<Pose> {
+        self.inner.reset_prepared(prepared, start)
+    }
+    fn step(&mut self, action: Action) -> vlnverse_sim::Result<StepOutcome> {
+        let action = match action {
+            Action::MoveForward(d) if self.scale != 1.0 => Action::MoveForward(d * self.scale),
+            a => a,
+        };
+        self.inner.step(action)
+    }
+    fn pose(&self) -> Pose {
+        self.inner.pose()
+    }
+    fn camera_pose(&self) -> Pose {
+        self.inner.camera_pose()
+    }
+    fn snapshot(&self) -> Self::Snapshot {
+        self.inner.snapshot()
+    }
+    fn restore(&mut self, snapshot: &Self::Snapshot) {
+        self.inner.restore(snapshot)
+    }
+}
+
+fn perturbed(
+    scale: f32,
+) -> impl Fn(&SimConfig) -> vlnverse_eval::Result<Perturbed<RapierSimulator>> {
+    move |cfg| {
+        Ok(Perturbed {
+            inner: RapierSimulator::new(cfg.clone())?,
+            scale,
+        })
+    }
+}
+
+const RUN_FILES: [&str; 3] = ["summary.json", "episodes.csv", "trajectories.jsonl"];
+
+#[test]
+fn a_wrapped_simulator_and_a_blind_renderer_run_under_the_same_loop() {
+    let dir = tempfile::tempdir().unwrap();
+    eval_support::make_dataset(dir.path(), Task::Fine, 2, 4, 21);
+    let cfg = EvalConfig {
+        setting: Setting::Lenient,
+        rig: eval_support::small_rig(dir.path()),
+        plots: 0,
+        ..Default::default()
+    };
+    let oracle = builtin("oracle", None, &cfg).unwrap();
+    let req = |out: &str| eval_support::fine_test(dir.path(), out, &cfg, None, 2);
+
+    // The default path, and the same layers passed in explicitly.
+    let default = evaluate(&req("default"), &*oracle, &|| {}).unwrap();
+    evaluate_with(
+        &req("explicit"),
+        &*oracle,
+        &rapier_simulator,
+        &configured_renderer,
+        &|| {},
+    )
+    .unwrap();
+
+    // The wrapper with no perturbation, rendering with the blind renderer.
+    let frames = Arc::new(AtomicUsize::new(0));
+    let blind = {
+        let frames = frames.clone();
+        move |_rig: &RigConfig| -> vlnverse_eval::Result<Box<dyn Renderer>> {
+            Ok(Box::new(Blind {
+                frames: frames.clone(),
+            }))
+        }
+    };
+    let same = evaluate_with(&req("wrapped"), &*oracle, &perturbed(1.0), &blind, &|| {}).unwrap();
+    let steps: u64 = same.records.iter().map(|r| r.trajectory.steps as u64).sum();
+    // One observation per agent decision: before each action.
+    // One view per decision (rgb and depth share a camera, so one frame renders both).
+    assert_eq!(frames.load(Ordering::Relaxed) as u64, steps);
+    for out in ["explicit", "wrapped"] {
+        for f in RUN_FILES {
+            assert_eq!(
+                std::fs::read(dir.path().join("default").join(f)).unwrap(),
+                std::fs::read(dir.path().join(out).join(f)).unwrap(),
+                "{out}/{f} differs from the default path"
+            );
+        }
+    }
+
+    // Half-length forward moves: the oracle needs more steps, and the results say so.
+    let short = evaluate_with(&req("short"), &*oracle, &perturbed(0.5), &blind, &|| {}).unwrap();
+    let total = |o: &vlnverse_eval::EvalOutcome| -> u64 {
+        o.records.iter().map(|r| r.trajectory.steps as u64).sum()
+    };
+    assert!(
+        total(&short) > total(&default),
+        "{} steps with half moves vs {}",
+        total(&short),
+        total(&default)
+    );
+    // Every forward step moved at most half the step size.
+    let step = cfg.agent_config().unwrap().step_size;
+    for r in &short.records {
+        let t = &r.trajectory;
+        let acts = t.actions.as_ref().unwrap();
+        for (i, a) in acts.iter().enumerate() {
+            if a == "move_forward" && i + 1 < t.positions.len() {
+                let (p, q) = (t.positions[i], t.positions[i + 1]);
+                let d = ((q[0] - p[0]).powi(2) + (q[2] - p[2]).powi(2)).sqrt();
+                assert!(
+                    d <= 0.5 * step + 1e-3,
+                    "episode {}: moved {d}",
+                    t.episode_id
+                );
+            }
+        }
+    }
+}

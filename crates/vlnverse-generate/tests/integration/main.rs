@@ -1,0 +1,7 @@
+//! Integration tests of `vlnverse-generate`, linked into one test binary.
+
+mod generate_config;
+mod generate_dataset;
+mod generate_llm;
+mod generate_output;
+mod generate_skip;

@@ -1,0 +1,551 @@
+//! Descriptions of objects, rooms and openings for the template generator: class synonyms,
+//! colour shade, material, size and shape (from [`super::lexicon`]), a relation to a nearby
+//! object from the scene graph, and where the object stands in its room (corner, wall,
+//! middle, doorway). Every other object a description names is returned as grounding.
+
+use super::lexicon::{
+    class_names, class_uses, color_phrases, material_noun, material_words, room_names, shape_words,
+};
+use super::path::{env_side, footprint, rect_distance};
+use super::phrases::{self as ph, pick};
+use super::PathContext;
+use glam::Vec2;
+use rand::Rng;
+use rand_chacha::ChaCha8Rng;
+use vlnverse_env::scene_graph::{is_landmark, side_of_heading, Relation};
+use vlnverse_env::{Door, Room, RoomId, RoomType, Scene, SceneObject, SemanticClass as C};
+use vlnverse_score::episode::{GroundedObject, Role, Side};
+
+/// Where grounded references are seen from: a path segment (or the last point) and its
+/// heading, as `check_grounding` reads them.
+#[derive(Clone, Copy)]
+pub(crate) struct Viewpoint<'a> {
+    pub pts: &'a [Vec2],
+    pub headings: &'a [Vec2],
+    pub index: usize,
+}
+
+impl Viewpoint<'_> {
+    /// Distance from the viewpoint's segment to `o`'s footprint and the side of its centre
+    /// seen from the closest point (the first of the 2 cm samples at the least distance).
+    pub fn side_of(&self, o: &SceneObject) -> Option<(Side, f32)> {
+        let i = self.index;
+        let (a, b, h) = if i + 1 < self.pts.len() {
+            (self.pts[i], self.pts[i + 1], *self.headings.get(i)?)
+        } else {
+            (*self.pts.get(i)?, self.pts[i], *self.headings.last()?)
+        };
+        let (lo, hi) = footprint(o);
+        let steps = ((b - a).length() / 0.02).ceil().max(1.0) as usize;
+        let mut best = (f32::INFINITY, a);
+        for s in 0..=steps {
+            let p = a.lerp(b, s as f32 / steps as f32);
+            let d = rect_distance(p, lo, hi);
+            if d < best.0 {
+                best = (d, p);
+            }
+        }
+        let side = env_side(side_of_heading(best.1, h, (lo + hi) * 0.5));
+        Some((side, best.0))
+    }
+}
+
+/// Options of one object description.
+#[derive(Clone, Copy)]
+pub(crate) struct NpOptions {
+    /// Probability of naming the class by a synonym rather than its vocabulary name.
+    pub synonym: f64,
+    /// Probability of adding a relation to another object or a place in the room.
+    pub relation: f64,
+    /// Use the colour whenever the object has one.
+    pub force_color: bool,
+}
+
+/// "the tall dark brown wooden wardrobe next to the bed": the phrase and the grounding of every
+/// other object it names (role reference, seen from `view`; only objects within
+/// `max_ref_distance` of the viewpoint are named).
+pub(crate) fn object_np(
+    ctx: &PathContext<'_>,
+    o: &SceneObject,
+    view: Viewpoint<'_>,
+    opts: NpOptions,
+    max_ref_distance: f32,
+    rng: &mut ChaCha8Rng,
+) -> (String, Vec<GroundedObject>) {
+    let scene = ctx.scene;
+    let peers: Vec<&SceneObject> = ctx
+        .graph
+        .objects_of_class(o.class)
+        .iter()
+        .filter_map(|&id| scene.object(id))
+        .collect();
+    let ambiguous = peers.len() > 1;
+    let names = class_names(o.class);
+    let name = if rng.random_bool(opts.synonym) {
+        pick(rng, names)
+    } else {
+        names[0]
+    };
+    let mut adj: Vec<String> = Vec::new();
+    // Never an adjective the name already says ("the low-slung low table").
+    let shapes: Vec<&str> = shape_words(o, &peers)
+        .into_iter()
+        .filter(|a| !name.split(' ').any(|w| a.contains(w) || w.contains(a)))
+        .collect();
+    if !shapes.is_empty() && rng.random_bool(0.25) {
+        adj.push(pick(rng, &shapes).to_string());
+    }
+    // A plant's colour and material are its pot's.
+    if matches!(o.class, C::PottedPlant | C::SmallPlant) {
+        let colors = color_phrases(o);
+        let mut s = format!(
+            "the {}{name}",
+            adj.first().map(|a| format!("{a} ")).unwrap_or_default()
+        );
+        if !colors.is_empty() && (opts.force_color || ambiguous || rng.random_bool(0.45)) {
+            let c = &colors[rng.random_range(0..colors.len())];
+            let m = material_words(o).first().copied().unwrap_or("");
+            let pot = if m.is_empty() || rng.random_bool(0.5) {
+                format!("{c} pot")
+            } else {
+                format!("{c} {m} pot")
+            };
+            s = format!("{s} in {} {pot}", pick(rng, &["a", "the", "its"]));
+        }
+        let mut extra = Vec::new();
+        if rng.random_bool(opts.relation) {
+            if let Some(r) = relation_phrase(ctx, o, view, max_ref_distance, rng, &mut extra) {
+                s.push(' ');
+                s.push_str(&r);
+            }
+        }
+        return (s, extra);
+    }
+    let colors = color_phrases(o);
+    let color = !colors.is_empty() && (opts.force_color || ambiguous || rng.random_bool(0.35));
+    if color {
+        // The plain colour word half the time, a shade otherwise.
+        let c = if colors.len() == 1 || rng.random_bool(0.5) {
+            colors[0].clone()
+        } else {
+            colors[rng.random_range(1..colors.len())].clone()
+        };
+        adj.push(c);
+    }
+    let mats = material_words(o);
+    let mut material_after = None;
+    if !mats.is_empty() && rng.random_bool(0.2) {
+        let m = pick(rng, mats);
+        if rng.random_bool(0.3) {
+            material_after = Some(m);
+        } else if !adj.iter().any(|a| a == m) {
+            adj.push(m.to_string());
+        }
+    }
+    let mut s = String::from("the ");
+    for a in &adj {
+        s.push_str(a);
+        s.push(' ');
+    }
+    s.push_str(name);
+    if let Some(m) = material_after {
+        s.push_str(match rng.random_range(0..3) {
+            0 => " made of ",
+            1 => " in ",
+            _ => " of ",
+        });
+        s.push_str(material_noun(m));
+    }
+    let mut extra = Vec::new();
+    if rng.random_bool(opts.relation) {
+        if let Some(r) = relation_phrase(ctx, o, view, max_ref_distance, rng, &mut extra) {
+            s.push(' ');
+            s.push_str(&r);
+        }
+    } else if rng.random_bool(0.12) {
+        let uses = class_uses(o.class);
+        if !uses.is_empty() {
+            s.push(' ');
+            s.push_str(pick(rng, uses));
+        }
+    }
+    (s, extra)
+}
+
+/// A relation of `o` to another object ("next to the sofa", "on the desk", "with the lamp on
+/// it"), or to its room ("in the corner", "against the wall").
+fn relation_phrase(
+    ctx: &PathContext<'_>,
+    o: &SceneObject,
+    view: Viewpoint<'_>,
+    max_ref_distance: f32,
+    rng: &mut ChaCha8Rng,
+    extra: &mut Vec<GroundedObject>,
+) -> Option<String> {
+    let scene = ctx.scene;
+    let g = ctx.graph;
+    // Candidates: (kind, object). kind 0 support below, 1 object on top, 2 next to, 3 near.
+    let mut cands: Vec<(u8, &SceneObject)> = Vec::new();
+    if let Some(s) = o.supported_by.and_then(|s| scene.object(s)) {
+        cands.push((0, s));
+    }
+    for s in g
+        .supported(o.id)
+        .into_iter()
+        .filter_map(|s| scene.object(s))
+    {
+        if is_landmark(s) || s.bbox.size().max_element() > 0.2 {
+            cands.push((1, s));
+        }
+    }
+    for (kind, rel) in [(2u8, Relation::NextTo), (3, Relation::Near)] {
+        for (n, _) in g.neighbours(o.id, rel).into_iter().take(3) {
+            if let Some(x) = scene.object(n) {
+                if !x.is_structure() && x.class != o.class && is_landmark(x) {
+                    cands.push((kind, x));
+                }
+            }
+        }
+    }
+    // Only objects named unambiguously (unique class in the scene) and in view of the path.
+    cands.retain(|(_, x)| g.objects_of_class(x.class).len() == 1 && x.id != o.id);
+    let feature = room_feature(scene, o);
+    if cands.is_empty() || (feature.is_some() && rng.random_bool(0.35)) {
+        return feature.map(|f| pick(rng, f).to_string());
+    }
+    let (kind, x) = cands[rng.random_range(0..cands.len())];
+    let (side, d) = view.side_of(x)?;
+    if d > max_ref_distance {
+        return feature.map(|f| pick(rng, f).to_string());
+    }
+    let names = class_names(x.class);
+    let xn = format!(
+        "the {}",
+        if rng.random_bool(0.3) {
+            pick(rng, names)
+        } else {
+            names[0]
+        }
+    );
+    let phrase = match kind {
+        0 => fill1(
+            pick(
+                rng,
+                &[
+                    "on {x}",
+                    "sitting on {x}",
+                    "on top of {x}",
+                    "standing on {x}",
+                    "perched on {x}",
+                    "resting on {x}",
+                    "set on {x}",
+                    "placed on {x}",
+                    "atop {x}",
+                ],
+            ),
+            &xn,
+        ),
+        1 => fill1(
+            pick(
+                rng,
+                &[
+                    "with {x} on it",
+                    "with {x} on top",
+                    "that has {x} on it",
+                    "holding {x}",
+                    "topped by {x}",
+                    "with {x} sitting on it",
+                    "bearing {x}",
+                    "carrying {x}",
+                    "supporting {x}",
+                ],
+            ),
+            &xn,
+        ),
+        2 => fill1(
+            pick(
+                rng,
+                &[
+                    "next to {x}",
+                    "beside {x}",
+                    "by {x}",
+                    "just by {x}",
+                    "alongside {x}",
+                    "immediately beside {x}",
+                    "neighbouring {x}",
+                    "at the side of {x}",
+                    "sitting by {x}",
+                    "flanking {x}",
+                ],
+            ),
+            &xn,
+        ),
+        _ => fill1(
+            pick(
+                rng,
+                &[
+                    "near {x}",
+                    "close to {x}",
+                    "not far from {x}",
+                    "a little way from {x}",
+                    "a few steps from {x}",
+                    "in the vicinity of {x}",
+                    "not too far from {x}",
+                    "a short way from {x}",
+                    "within a few paces of {x}",
+                ],
+            ),
+            &xn,
+        ),
+    };
+    extra.push(GroundedObject {
+        object_id: x.id,
+        class: x.class.name().to_string(),
+        role: Role::Reference,
+        side: Some(side),
+        path_index: Some(view.index as u32),
+    });
+    Some(phrase)
+}
+
+fn fill1(t: &str, x: &str) -> String {
+    t.replace("{x}", x)
+}
+
+/// Where an object stands in its room: a corner, against a wall, by a doorway or in the
+/// middle (from the room polygon and the doors); `None` when it is none of these clearly.
+pub(crate) fn room_feature(scene: &Scene, o: &SceneObject) -> Option<&'static [&'static str]> {
+    let room = o.room.and_then(|r| scene.room(r))?;
+    let (lo, hi) = footprint(o);
+    if room.polygon.len() < 3 {
+        return None;
+    }
+    let corner = room
+        .polygon
+        .iter()
+        .map(|p| rect_distance(Vec2::from(*p), lo, hi))
+        .fold(f32::INFINITY, f32::min);
+    if corner < 0.4 {
+        return Some(ph::IN_CORNER);
+    }
+    if scene.doors.iter().any(|d| {
+        d.rooms.contains(&room.id)
+            && rect_distance(Vec2::new(d.position[0], d.position[2]), lo, hi) < 0.6
+    }) {
+        return Some(ph::BY_DOOR);
+    }
+    let wall = edge_distance(room, lo, hi);
+    if wall < 0.2 {
+        return Some(ph::AT_WALL);
+    }
+    if wall > 1.2 {
+        return Some(ph::MID_ROOM);
+    }
+    None
+}
+
+/// Least distance from the rectangle `[lo, hi]` to the room polygon's edges (sampled).
+fn edge_distance(room: &Room, lo: Vec2, hi: Vec2) -> f32 {
+    let n = room.polygon.len();
+    let mut best = f32::INFINITY;
+    for i in 0..n {
+        let a = Vec2::from(room.polygon[i]);
+        let b = Vec2::from(room.polygon[(i + 1) % n]);
+        let steps = ((b - a).length() / 0.1).ceil().max(1.0) as usize;
+        for s in 0..=steps {
+            best = best.min(rect_distance(a.lerp(b, s as f32 / steps as f32), lo, hi));
+        }
+    }
+    best
+}
+
+/// "the kitchen", now and then "the lounge" or "the big kitchen" (room names and sizes from
+/// the room's type and floor area).
+pub(crate) fn room_np(scene: &Scene, room: RoomId, synonym: f64, rng: &mut ChaCha8Rng) -> String {
+    let Some(r) = scene.room(room) else {
+        return "the room".into();
+    };
+    let names = room_names(r.kind);
+    let name = if rng.random_bool(synonym) {
+        pick(rng, names)
+    } else {
+        names[0]
+    };
+    let area = r.area();
+    let adj: &[&str] = if r.kind == RoomType::Hallway && area > 6.0 {
+        &["long", "narrow", "lengthy", "elongated"]
+    } else if area > 24.0 {
+        &[
+            "large",
+            "big",
+            "spacious",
+            "roomy",
+            "airy",
+            "good-sized",
+            "generous",
+        ]
+    } else if area < 8.0 {
+        &[
+            "small", "little", "compact", "tiny", "cramped", "snug", "poky", "modest",
+        ]
+    } else {
+        &[]
+    };
+    if !adj.is_empty() && rng.random_bool(0.2) {
+        format!("the {} {name}", pick(rng, adj))
+    } else {
+        format!("the {name}")
+    }
+}
+
+/// The opening a path crosses from room `a` into room `b` near `at`, described ("the
+/// doorway", "the open archway").
+pub(crate) fn door_np(
+    scene: &Scene,
+    a: RoomId,
+    b: RoomId,
+    at: Vec2,
+    rng: &mut ChaCha8Rng,
+) -> Option<String> {
+    let door: &Door = scene
+        .doors
+        .iter()
+        .filter(|d| d.rooms.contains(&a) && d.rooms.contains(&b))
+        .min_by(|x, y| {
+            let dx = Vec2::new(x.position[0], x.position[2]).distance(at);
+            let dy = Vec2::new(y.position[0], y.position[2]).distance(at);
+            dx.total_cmp(&dy).then(x.id.cmp(&y.id))
+        })?;
+    let bank: &[&str] = if door.open_plan {
+        &[
+            "the open archway",
+            "the wide opening",
+            "the open-plan gap",
+            "the archway",
+            "the gap in the wall",
+            "the big opening",
+            "the wide arch",
+            "the broad opening",
+            "the open gap between the rooms",
+        ]
+    } else if door.width < 0.85 {
+        &[
+            "the narrow doorway",
+            "the narrow door",
+            "the slim doorway",
+            "the tight doorway",
+            "the small doorway",
+            "the skinny doorway",
+        ]
+    } else if door.width > 1.1 {
+        &[
+            "the wide doorway",
+            "the broad doorway",
+            "the double doorway",
+            "the large doorway",
+            "the generous doorway",
+            "the extra-wide doorway",
+        ]
+    } else {
+        &[
+            "the doorway",
+            "the door",
+            "the entrance",
+            "the door opening",
+            "the open doorway",
+            "the gap",
+            "the opening",
+            "the way through",
+            "the door gap",
+            "the entryway",
+        ]
+    };
+    Some(pick(rng, bank).to_string())
+}
+
+/// The nearest corner or wall of the room holding `p`, seen facing `heading`: "in the corner",
+/// "in the far left corner", "by the wall on your right", or `None` in the open.
+pub(crate) fn end_place(
+    scene: &Scene,
+    room: Option<RoomId>,
+    p: Vec2,
+    heading: Vec2,
+    rng: &mut ChaCha8Rng,
+) -> Option<String> {
+    let r = room.and_then(|r| scene.room(r))?;
+    let n = r.polygon.len();
+    if n < 3 {
+        return None;
+    }
+    let (ci, cd) = r
+        .polygon
+        .iter()
+        .enumerate()
+        .map(|(i, q)| (i, Vec2::from(*q).distance(p)))
+        .min_by(|a, b| a.1.total_cmp(&b.1))?;
+    if cd < 1.0 {
+        let c = Vec2::from(r.polygon[ci]);
+        return Some(match env_side(side_of_heading(p, heading, c)) {
+            s @ (Side::Left | Side::Right) if rng.random_bool(0.6) => {
+                let w = super::path::side_word(s);
+                pick(
+                    rng,
+                    &[
+                        "in the {d} corner",
+                        "in the far {d} corner",
+                        "by the {d}-hand corner",
+                    ],
+                )
+                .replace("{d}", w)
+            }
+            _ => pick(
+                rng,
+                &["in the corner", "near the corner", "tucked in the corner"],
+            )
+            .to_string(),
+        });
+    }
+    let mut best = (f32::INFINITY, p);
+    for i in 0..n {
+        let a = Vec2::from(r.polygon[i]);
+        let b = Vec2::from(r.polygon[(i + 1) % n]);
+        let ab = b - a;
+        let t = ((p - a).dot(ab) / ab.length_squared().max(1e-9)).clamp(0.0, 1.0);
+        let q = a + ab * t;
+        let d = q.distance(p);
+        if d < best.0 {
+            best = (d, q);
+        }
+    }
+    if best.0 < 0.8 {
+        return Some(match env_side(side_of_heading(p, heading, best.1)) {
+            s @ (Side::Left | Side::Right) => {
+                let w = super::path::side_word(s);
+                pick(
+                    rng,
+                    &[
+                        "by the wall on your {d}",
+                        "close to the {d} wall",
+                        "against the wall to your {d}",
+                    ],
+                )
+                .replace("{d}", w)
+            }
+            Side::Ahead => pick(
+                rng,
+                &[
+                    "facing the wall",
+                    "in front of the far wall",
+                    "just before the wall ahead",
+                ],
+            )
+            .to_string(),
+            Side::Behind => pick(
+                rng,
+                &["with the wall behind you", "with your back to the wall"],
+            )
+            .to_string(),
+        });
+    }
+    None
+}

@@ -1,0 +1,1038 @@
+//! Fine-grained instructions of the template generator: the path is simplified into legs
+//! (turn, length, landmarks, room changes), then written by one of several writers (terse,
+//! plain, chatty, precise) who pick sentence plans per leg, leave things out and reorder them
+//! the way people do. Every object named is grounded.
+
+use super::describe::{door_np, end_place, object_np, room_np, NpOptions, Viewpoint};
+use super::lexicon::{number_word, ordinal_word};
+use super::path::{
+    classify_turn, direction_of_yaw, env_side, floor_points, footprint, rect_distance,
+    segment_headings, side_word, signed_turn_deg, visible, wall_rects, Turn,
+};
+use super::phrases::{self as ph, capitalize, fill, pick};
+use super::templates::TemplateConfig;
+use super::PathContext;
+use glam::{Vec2, Vec3};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use vlnverse_env::scene_graph::{is_landmark, rooms_along_path, side_of_heading, Landmark};
+use vlnverse_env::{RoomId, RoomType, SceneObject};
+use vlnverse_score::episode::{GroundedObject, Instruction, Role, Side};
+use vlnverse_score::{DataError, Result};
+
+/// Waypoints closer than this to the simplified line are dropped (m).
+const SIMPLIFY_TOLERANCE: f32 = 0.5;
+/// Legs shorter than this are folded into the next one (m).
+const MIN_LEG: f32 = 1.0;
+/// Objects a description names besides the landmark must be this close to the path (m).
+const MAX_REFERENCE_DISTANCE: f32 = 2.5;
+
+/// How an instruction's writer writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Writer {
+    /// Few words, distances and landmarks often left out.
+    Terse,
+    /// Plain directions.
+    Plain,
+    /// Openers, remarks and contractions.
+    Chatty,
+    /// Metres and degrees.
+    Precise,
+}
+
+impl Writer {
+    fn draw(rng: &mut ChaCha8Rng) -> Writer {
+        match rng.random_range(0..10) {
+            0..=2 => Writer::Terse,
+            3..=5 => Writer::Plain,
+            6 | 7 => Writer::Chatty,
+            _ => Writer::Precise,
+        }
+    }
+    /// Probability of giving a leg's distance.
+    fn distance(self) -> f64 {
+        match self {
+            Writer::Terse => 0.2,
+            Writer::Plain => 0.35,
+            Writer::Chatty => 0.3,
+            Writer::Precise => 0.75,
+        }
+    }
+    fn np(self) -> NpOptions {
+        NpOptions {
+            synonym: if self == Writer::Precise { 0.2 } else { 0.45 },
+            relation: match self {
+                Writer::Terse => 0.05,
+                Writer::Precise => 0.25,
+                _ => 0.15,
+            },
+            force_color: false,
+        }
+    }
+}
+
+/// A straight stretch of the path: segments `first..=last`, entered with `turn` (signed angle
+/// `angle` degrees, positive to the right).
+struct Leg {
+    first: usize,
+    last: usize,
+    turn: Turn,
+    angle: f32,
+    len: f32,
+}
+
+/// Kept vertex indices of the polyline (Douglas-Peucker), first and last always kept.
+fn simplify(pts: &[Vec2], tol: f32) -> Vec<usize> {
+    fn rec(pts: &[Vec2], a: usize, b: usize, tol: f32, keep: &mut Vec<usize>) {
+        if b <= a + 1 {
+            return;
+        }
+        let (pa, pb) = (pts[a], pts[b]);
+        let ab = pb - pa;
+        let mut best = (0.0f32, a);
+        for (i, &p) in pts.iter().enumerate().take(b).skip(a + 1) {
+            let t = ((p - pa).dot(ab) / ab.length_squared().max(1e-9)).clamp(0.0, 1.0);
+            let d = (pa + ab * t).distance(p);
+            if d > best.0 {
+                best = (d, i);
+            }
+        }
+        if best.0 > tol {
+            rec(pts, a, best.1, tol, keep);
+            keep.push(best.1);
+            rec(pts, best.1, b, tol, keep);
+        }
+    }
+    let n = pts.len();
+    let mut keep = vec![0];
+    rec(pts, 0, n - 1, tol, &mut keep);
+    keep.push(n - 1);
+    // Fold short legs into the next one.
+    let mut out = vec![0];
+    for &k in &keep[1..keep.len() - 1] {
+        let prev = pts[*out.last().unwrap_or(&0)];
+        if pts[k].distance(prev) >= MIN_LEG {
+            out.push(k);
+        }
+    }
+    out.push(n - 1);
+    out.dedup();
+    out
+}
+
+fn legs_of(pts: &[Vec2], start: Vec2, cfg: &TemplateConfig) -> Vec<Leg> {
+    let keep = simplify(pts, SIMPLIFY_TOLERANCE);
+    let mut legs: Vec<Leg> = Vec::new();
+    let mut prev = start;
+    for w in keep.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        let Some(h) = (pts[b] - pts[a]).try_normalize() else {
+            continue;
+        };
+        let turn = classify_turn(prev, h, &cfg.turns);
+        let len = pts[a].distance(pts[b]);
+        let angle = signed_turn_deg(prev, h);
+        prev = h;
+        match legs.last_mut() {
+            Some(l) if turn == Turn::Straight => {
+                l.last = b - 1;
+                l.len += len;
+            }
+            _ => legs.push(Leg {
+                first: a,
+                last: b - 1,
+                turn,
+                angle,
+                len,
+            }),
+        }
+    }
+    if legs.is_empty() {
+        legs.push(Leg {
+            first: 0,
+            last: pts.len().saturating_sub(2),
+            turn: Turn::Straight,
+            angle: 0.0,
+            len: pts
+                .first()
+                .zip(pts.last())
+                .map_or(0.0, |(a, b)| a.distance(*b)),
+        });
+    }
+    legs
+}
+
+/// A distance in one of the ways people give it.
+fn distance_phrase(d: f32, w: Writer, rng: &mut ChaCha8Rng) -> String {
+    if d < 1.25 {
+        return pick(rng, ph::DIST_SHORT).to_string();
+    }
+    let n = d.round().max(1.0) as u32;
+    let about = pick(rng, ph::ABOUT);
+    let form = if w == Writer::Precise {
+        rng.random_range(0..4)
+    } else {
+        rng.random_range(0..13)
+    };
+    match form {
+        0 | 1 => format!(
+            "{about} {}",
+            fill(pick(rng, ph::METRES), &[("n", &n.to_string())])
+        ),
+        2 => format!("{about} {} metres", number_word(n)),
+        3 if w == Writer::Precise => format!("{:.1} metres", d),
+        3 => {
+            let steps = (d / 0.75).round() as u32;
+            match rng.random_range(0..3) {
+                0 => format!("{about} {steps} steps"),
+                1 => format!("{} or {} steps", number_word(steps), number_word(steps + 1)),
+                _ => format!("{about} {} paces", number_word(steps)),
+            }
+        }
+        4 => format!(
+            "{about} {} feet",
+            ((d * 3.28 / 5.0).round() * 5.0).max(5.0) as u32
+        ),
+        5 => {
+            let frac = d - d.floor();
+            if frac > 0.2 && frac < 0.8 {
+                format!("{} and a half metres", number_word(d.floor() as u32))
+            } else if d < n as f32 {
+                format!("just under {} metres", number_word(n))
+            } else {
+                format!("just over {} metres", number_word(n))
+            }
+        }
+        6 => match n {
+            0..=2 => "a couple of metres".into(),
+            3 | 4 => pick(
+                rng,
+                &[
+                    "a few metres",
+                    "three or four metres",
+                    "a handful of metres",
+                ],
+            )
+            .into(),
+            5..=8 => pick(
+                rng,
+                &["several metres", "a good few metres", "quite a few metres"],
+            )
+            .into(),
+            _ => pick(
+                rng,
+                &[
+                    "a long way",
+                    "a fair distance",
+                    "quite some way",
+                    "a good long way",
+                ],
+            )
+            .into(),
+        },
+        7 => format!("a good {} metres", number_word(n)),
+        10 => format!(
+            "{about} {} yards",
+            number_word((d / 0.914).round().max(1.0) as u32)
+        ),
+        11 => {
+            let strides = (d / 0.8).round().max(1.0) as u32;
+            match (strides, rng.random_range(0..3)) {
+                (5..=7, 0) => "half a dozen strides".into(),
+                (11..=13, 0) => "a dozen or so strides".into(),
+                (_, 1) => format!("{} long strides", number_word(strides)),
+                _ => format!("{about} {strides} strides"),
+            }
+        }
+        12 => format!(
+            "{n} metres{}",
+            pick(
+                rng,
+                &[
+                    ", give or take",
+                    " or thereabouts",
+                    " at a guess",
+                    " or near enough",
+                ]
+            )
+        ),
+        _ => format!("{about} {n} metres"),
+    }
+}
+
+/// "turn left", "bear towards your two o'clock", "turn 90 degrees to the right".
+fn turn_clause(
+    turn: Turn,
+    angle: f32,
+    start: bool,
+    w: Writer,
+    rng: &mut ChaCha8Rng,
+) -> Option<String> {
+    match turn {
+        Turn::Straight => None,
+        Turn::Around => Some(pick(rng, ph::TURN_AROUND).to_string()),
+        Turn::Slight(s) => {
+            let dir = side_word(s);
+            if rng.random_bool(0.15) {
+                let k = ((angle.abs() / 30.0).round() as u32).clamp(1, 2);
+                let hour = if s == Side::Right { k } else { 12 - k };
+                let clock = if rng.random_bool(0.5) {
+                    number_word(hour)
+                } else {
+                    hour.to_string()
+                };
+                // The clock alone hides the side; the side is named with it.
+                let c = fill(pick(rng, ph::SLIGHT_CLOCK), &[("clock", &clock)]);
+                Some(format!("{c}, slightly {dir}"))
+            } else {
+                Some(fill(pick(rng, ph::SLIGHT_TURN), &[("dir", dir)]))
+            }
+        }
+        Turn::Turn(s) => {
+            let dir = side_word(s);
+            if w == Writer::Precise && rng.random_bool(0.5) {
+                let deg = ((angle.abs() / 15.0).round() * 15.0) as u32;
+                let deg = if rng.random_bool(0.5) {
+                    number_word(deg)
+                } else {
+                    deg.to_string()
+                };
+                Some(fill(
+                    pick(rng, ph::TURN_DEG),
+                    &[("dir", dir), ("deg", &deg)],
+                ))
+            } else {
+                let bank = if start { ph::START_TURN } else { ph::TURN };
+                Some(fill(pick(rng, bank), &[("dir", dir)]))
+            }
+        }
+    }
+}
+
+/// "walk forward about 3 metres", "stroll on slowly".
+fn move_clause(len: f32, w: Writer, landmark: bool, rng: &mut ChaCha8Rng) -> String {
+    if rng.random_bool(0.12) {
+        return pick(rng, ph::MOVE_WHOLE).to_string();
+    }
+    let verb = pick(rng, ph::MOVE_VERB);
+    let dir = if verb.contains("path") {
+        ""
+    } else {
+        match pick(rng, ph::ONWARD) {
+            // Not "press on on ahead".
+            d if verb.ends_with(" on") && (d == "on" || d.starts_with("on ")) => "ahead",
+            d => d,
+        }
+    };
+    let manner = if w == Writer::Terse || rng.random_bool(0.65) {
+        ""
+    } else {
+        pick(rng, ph::MANNER)
+    };
+    let mut s = verb.to_string();
+    for part in [dir, manner] {
+        if !part.is_empty() {
+            s.push(' ');
+            s.push_str(part);
+        }
+    }
+    // A landmark on the leg often stands in for its distance.
+    let p = if landmark { 0.5 } else { 1.0 } * w.distance();
+    if rng.random_bool(p) {
+        let d = distance_phrase(len, w, rng);
+        let join = if d.starts_with("a ") || rng.random_bool(0.5) {
+            " "
+        } else {
+            " for "
+        };
+        s.push_str(join);
+        s.push_str(&d);
+    }
+    s
+}
+
+fn grounded(o: &SceneObject, role: Role, side: Option<Side>, idx: usize) -> GroundedObject {
+    GroundedObject {
+        object_id: o.id,
+        class: o.class.name().to_string(),
+        role,
+        side,
+        path_index: Some(idx as u32),
+    }
+}
+
+pub(crate) fn check_path(path: &[[f32; 3]]) -> Result<()> {
+    if path.len() < 2 {
+        return Err(DataError::invalid(
+            "path",
+            format!("{} points", path.len()),
+            "a fine-grained instruction needs a path of at least two points",
+        ));
+    }
+    if let Some((i, p)) = path
+        .iter()
+        .enumerate()
+        .find(|(_, p)| !p.iter().all(|v| v.is_finite()))
+    {
+        return Err(DataError::invalid(
+            format!("path[{i}]"),
+            format!("{p:?}"),
+            "coordinates must be finite",
+        ));
+    }
+    Ok(())
+}
+
+/// The landmark-sized object closest to the goal within `end_object_distance`, in sight.
+fn end_object<'s>(
+    cfg: &TemplateConfig,
+    ctx: &PathContext<'s>,
+    end: Vec2,
+    walls: &[(Vec2, Vec2)],
+) -> Option<&'s SceneObject> {
+    let mut best: Option<(f32, &SceneObject)> = None;
+    for o in ctx.scene.objects.iter().filter(|o| is_landmark(o)) {
+        let (lo, hi) = footprint(o);
+        let d = rect_distance(end, lo, hi);
+        if d > cfg.end_object_distance {
+            continue;
+        }
+        let near = end.clamp(lo, hi);
+        let aim = match (end - near).try_normalize() {
+            Some(dir) if d > 0.15 => near + dir * 0.15,
+            _ => end,
+        };
+        if !visible(ctx.navigable, walls, end, aim, cfg.sight_slack) {
+            continue;
+        }
+        if best.is_none_or(|(bd, bo)| d < bd - 1e-6 || (d <= bd + 1e-6 && o.id < bo.id)) {
+            best = Some((d, o));
+        }
+    }
+    best.map(|(_, o)| o)
+}
+
+/// A landmark as written: its phrase and side.
+struct Named {
+    text: String,
+    side: Side,
+}
+
+/// A room change as written.
+fn room_change(
+    ctx: &PathContext<'_>,
+    from: RoomId,
+    to: RoomId,
+    at: Vec2,
+    syn: f64,
+    rng: &mut ChaCha8Rng,
+) -> String {
+    let scene = ctx.scene;
+    let from_np = room_np(scene, from, syn, rng);
+    // The room entered is always named by its type, so a reader can tell where they are.
+    let mut to_np = scene
+        .room(to)
+        .map(|r| format!("the {}", r.kind.words()))
+        .unwrap_or_else(|| "the next room".into());
+    let same = scene.room(from).map(|r| r.kind) == scene.room(to).map(|r| r.kind);
+    if same {
+        to_np = to_np.replacen(
+            "the ",
+            pick(rng, &["the next ", "another ", "the other "]),
+            1,
+        );
+    }
+    if scene.room(to).map(|r| r.kind) == Some(RoomType::Hallway) && rng.random_bool(0.3) {
+        return pick(
+            rng,
+            &[
+                "go out into {room}",
+                "step out into {room}",
+                "come out into {room}",
+            ],
+        )
+        .replace("{room}", &to_np);
+    }
+    let door = door_np(scene, from, to, at, rng);
+    match (rng.random_range(0..8), door) {
+        (0 | 1, Some(d)) => fill(
+            pick(rng, ph::THROUGH_DOOR),
+            &[("door", &d), ("room", &to_np)],
+        ),
+        (2, Some(d)) => fill(
+            pick(rng, ph::LEAVE_BY_DOOR),
+            &[("from", &from_np), ("door", &d), ("room", &to_np)],
+        ),
+        (3, _) => fill(
+            pick(rng, ph::ROOM_TO_ROOM),
+            &[("from", &from_np), ("room", &to_np)],
+        ),
+        (4, _) => format!(
+            "{} and {}",
+            fill(pick(rng, ph::LEAVE_ROOM), &[("room", &from_np)]),
+            fill(pick(rng, ph::ENTER_ROOM), &[("room", &to_np)])
+        ),
+        _ => fill(pick(rng, ph::ENTER_ROOM), &[("room", &to_np)]),
+    }
+}
+
+/// The room that walking on past the goal, straight ahead and in sight, leads into within 3 m
+/// ("the kitchen"), when it is another room of another type than the goal's.
+fn room_beyond(
+    ctx: &PathContext<'_>,
+    end: Vec2,
+    heading: Vec2,
+    walls: &[(Vec2, Vec2)],
+    slack: f32,
+) -> Option<String> {
+    let here = ctx.scene.room_at(end.x, end.y)?;
+    for k in 1..=4 {
+        let q = end + heading * (0.75 * k as f32);
+        let r = ctx.scene.room_at(q.x, q.y)?;
+        if r.id == here.id {
+            continue;
+        }
+        if r.kind == here.kind || !visible(ctx.navigable, walls, end, q, slack.min(0.2)) {
+            return None;
+        }
+        return Some(format!("the {}", r.kind.words()));
+    }
+    None
+}
+
+/// Join clauses with varied connectors.
+fn join(clauses: &[String], rng: &mut ChaCha8Rng) -> String {
+    let mut s = String::new();
+    for (i, c) in clauses.iter().enumerate() {
+        if i > 0 {
+            s.push_str(if i + 1 == clauses.len() || rng.random_bool(0.5) {
+                pick(rng, ph::AND)
+            } else {
+                ", "
+            });
+        }
+        s.push_str(c);
+    }
+    s
+}
+
+fn sentence(s: &str) -> String {
+    let s = s.trim();
+    let s = capitalize(s);
+    if s.ends_with(['.', '!', '?']) {
+        s
+    } else {
+        format!("{s}.")
+    }
+}
+
+/// The fine-grained instruction of `ctx.path` (see the module docs).
+pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Result<Instruction> {
+    check_path(ctx.path)?;
+    let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x6669_6e65);
+    let writer = Writer::draw(&mut rng);
+    let pts = floor_points(ctx.path);
+    let n = pts.len();
+    let headings = segment_headings(&pts);
+    let path3: Vec<Vec3> = ctx.path.iter().map(|p| Vec3::from(*p)).collect();
+    let walls = wall_rects(ctx.scene);
+    let legs = legs_of(&pts, direction_of_yaw(ctx.start_yaw), cfg);
+    let leg_of = |seg: usize| {
+        let seg = seg.min(n - 2);
+        legs.iter()
+            .position(|l| l.first <= seg && seg <= l.last)
+            .unwrap_or(legs.len() - 1)
+    };
+    let end = pts[n - 1];
+    let end_obj = end_object(cfg, ctx, end, &walls);
+    let landmarks = ctx.graph.landmarks_along_path(
+        ctx.scene,
+        &path3,
+        |a, b| visible(ctx.navigable, &walls, a, b, cfg.sight_slack),
+        cfg.landmark_distance,
+    );
+    let rooms = rooms_along_path(ctx.scene, &path3);
+    let np_opts = writer.np();
+    let room_syn = if writer == Writer::Precise { 0.15 } else { 0.4 };
+
+    let mut grounding = Vec::new();
+    let mut sentences: Vec<String> = Vec::new();
+    let chatty = writer == Writer::Chatty;
+    if rng.random_bool(if chatty { 0.5 } else { 0.06 }) {
+        sentences.push(pick(&mut rng, ph::OPEN).to_string());
+    }
+    let mut prefix = String::new();
+    // Some writers number their steps ("First, ...", "Step two: ...").
+    let numbered = matches!(writer, Writer::Plain | Writer::Precise) && rng.random_bool(0.12);
+    let number_form = pick(&mut rng, ph::NUMBERED);
+    let mut step_no = 0u32;
+    let start_p = if writer == Writer::Terse { 0.1 } else { 0.35 };
+    if let Some(&(_, r0)) = rooms.first() {
+        if rng.random_bool(start_p) {
+            let room = room_np(ctx.scene, r0, room_syn, &mut rng);
+            let s = fill(pick(&mut rng, ph::START_ROOM), &[("room", &room)]);
+            if s.ends_with(',') {
+                if !numbered {
+                    prefix = format!("{s} ");
+                }
+            } else if !s.is_empty() {
+                sentences.push(s);
+            }
+        }
+    }
+
+    // A landmark held back from the previous leg to open this leg's turn ("once you've
+    // passed the sofa, turn left").
+    let mut after: Option<String> = None;
+    // People name a handful of landmarks per route, not every one they pass.
+    let max_lm = match writer {
+        Writer::Precise => cfg.max_landmarks_per_leg,
+        _ => cfg.max_landmarks_per_leg.min(1),
+    };
+    let mut budget = if writer == Writer::Precise { 3 } else { 2 };
+    for (li, leg) in legs.iter().enumerate() {
+        // Landmarks of this leg: left / right / ahead, closest first, distinct classes.
+        let mut mine: Vec<&Landmark> = landmarks
+            .iter()
+            .filter(|l| leg_of(l.path_index) == li)
+            .filter(|l| Some(l.object) != end_obj.map(|o| o.id))
+            .filter(|l| !matches!(env_side(l.side), Side::Behind))
+            .collect();
+        mine.sort_by(|a, b| {
+            a.distance
+                .total_cmp(&b.distance)
+                .then(a.object.cmp(&b.object))
+        });
+        // A slight bend with nothing on it and no room change is often not mentioned at all.
+        let has_change = (1..rooms.len()).any(|k| leg_of(rooms[k].0) == li);
+        if mine.is_empty()
+            && !has_change
+            && matches!(leg.turn, Turn::Slight(_))
+            && li > 0
+            && li + 1 < legs.len()
+            && rng.random_bool(0.8)
+        {
+            continue;
+        }
+        let mut chosen: Vec<&Landmark> = Vec::new();
+        for l in mine {
+            if chosen.len() >= max_lm || budget == 0 {
+                break;
+            }
+            let Some(o) = ctx.scene.object(l.object) else {
+                continue;
+            };
+            if chosen.iter().any(|c| {
+                ctx.scene
+                    .object(c.object)
+                    .is_some_and(|x| x.class == o.class)
+            }) {
+                continue;
+            }
+            // People leave out landmarks now and then, never the only one.
+            if !chosen.is_empty() && rng.random_bool(0.3) {
+                continue;
+            }
+            chosen.push(l);
+            budget -= 1;
+        }
+        chosen.sort_by_key(|l| (l.path_index, l.object));
+        let mut named: Vec<Named> = Vec::new();
+        for l in &chosen {
+            let Some(o) = ctx.scene.object(l.object) else {
+                continue;
+            };
+            let side = env_side(l.side);
+            let view = Viewpoint {
+                pts: &pts,
+                headings: &headings,
+                index: l.path_index,
+            };
+            let (text, extra) = object_np(ctx, o, view, np_opts, MAX_REFERENCE_DISTANCE, &mut rng);
+            grounding.push(grounded(o, Role::Landmark, Some(side), l.path_index));
+            grounding.extend(extra);
+            named.push(Named { text, side });
+        }
+
+        let mut turn = turn_clause(leg.turn, leg.angle, li == 0, writer, &mut rng);
+        if let (Some(t), Some(a)) = (turn.as_mut(), after.take()) {
+            *t = format!("{a}, {t}");
+        }
+        // Hold back this leg's last lateral landmark for the next leg's turn.
+        let next_turns = legs
+            .get(li + 1)
+            .is_some_and(|l| matches!(l.turn, Turn::Turn(_) | Turn::Slight(_)));
+        if next_turns
+            && named.last().is_some_and(|m| m.side != Side::Ahead)
+            && rng.random_bool(0.25)
+        {
+            if let Some(m) = named.pop() {
+                after = Some(fill(pick(&mut rng, ph::AFTER_OBJ), &[("obj", &m.text)]));
+            }
+        }
+        let ks: Vec<usize> = (1..rooms.len())
+            .filter(|&k| leg_of(rooms[k].0) == li)
+            .collect();
+        // Several rooms crossed on one leg are often said in one go ("go through the bedroom
+        // into the office"); every room entered is still named by its type.
+        let changes: Vec<String> = if ks.len() >= 2 && rng.random_bool(0.7) {
+            let kind = |k: usize| {
+                ctx.scene
+                    .room(rooms[k].1)
+                    .map(|r| format!("the {}", r.kind.words()))
+                    .unwrap_or_else(|| "the next room".into())
+            };
+            let mids: Vec<String> = ks[..ks.len() - 1].iter().map(|&k| kind(k)).collect();
+            let last = kind(ks[ks.len() - 1]);
+            vec![fill(
+                pick(&mut rng, ph::THROUGH_ROOMS),
+                &[("mid", &mids.join(" and then ")), ("room", &last)],
+            )]
+        } else {
+            ks.iter()
+                .map(|&k| {
+                    let at = pts[rooms[k].0.min(n - 1)];
+                    room_change(ctx, rooms[k - 1].1, rooms[k].1, at, room_syn, &mut rng)
+                })
+                .collect()
+        };
+
+        let entered = (1..rooms.len())
+            .rev()
+            .find(|&k| leg_of(rooms[k].0) == li)
+            .map(|k| rooms[k].1);
+        let here = rooms
+            .iter()
+            .rev()
+            .find(|(s, _)| *s <= leg.first)
+            .map(|&(_, r)| r);
+        let here_kind = here.and_then(|r| ctx.scene.room(r)).map(|r| r.kind);
+        let mv = match here {
+            Some(r)
+                if changes.is_empty()
+                    && here_kind == Some(RoomType::Hallway)
+                    && rng.random_bool(0.35) =>
+            {
+                let hall = room_np(ctx.scene, r, room_syn, &mut rng);
+                fill(pick(&mut rng, ph::ALONG_HALL), &[("room", &hall)])
+            }
+            Some(r) if changes.is_empty() && leg.len > 2.5 && rng.random_bool(0.12) => {
+                let room = room_np(ctx.scene, r, room_syn, &mut rng);
+                fill(pick(&mut rng, ph::THROUGH_ROOM), &[("room", &room)])
+            }
+            _ => move_clause(leg.len, writer, !named.is_empty(), &mut rng),
+        };
+        let lm_clause = |m: &Named, rng: &mut ChaCha8Rng| {
+            if m.side == Side::Ahead {
+                fill(pick(rng, ph::TOWARDS), &[("obj", &m.text)])
+            } else {
+                let sp = fill(pick(rng, ph::SIDE), &[("dir", side_word(m.side))]);
+                fill(pick(rng, ph::PASS_SIDE), &[("obj", &m.text), ("side", &sp)])
+            }
+        };
+        let see_sentence = |m: &Named, rng: &mut ChaCha8Rng| {
+            if m.side == Side::Ahead {
+                format!("{} is ahead of you", m.text)
+            } else {
+                let sp = fill(pick(rng, ph::SIDE), &[("dir", side_word(m.side))]);
+                fill(pick(rng, ph::SEE_SIDE), &[("obj", &m.text), ("side", &sp)])
+            }
+        };
+
+        // A bare turn with nothing on the way is often all people say of a leg.
+        let bare = named.is_empty()
+            && changes.is_empty()
+            && turn.is_some()
+            && li + 1 < legs.len()
+            && (writer == Writer::Terse || rng.random_bool(if li >= 2 { 0.95 } else { 0.8 }));
+        // Sentence plans.
+        let mut out: Vec<String> = Vec::new();
+        let lateral_first = named.first().is_some_and(|m| m.side != Side::Ahead);
+        let ahead_last = named.last().is_some_and(|m| m.side == Side::Ahead);
+        // A leg into another room is often only its turn and the room change ("Turn left into
+        // the kitchen"), more so further along a long route.
+        let plan = if bare {
+            0
+        } else if !changes.is_empty() && rng.random_bool(if li >= 1 { 0.6 } else { 0.4 }) {
+            4
+        } else {
+            rng.random_range(0..6)
+        };
+        match plan {
+            // "With the sofa on your left, turn right and walk on."
+            1 if lateral_first => {
+                let m = &named[0];
+                let sp = fill(pick(&mut rng, ph::SIDE), &[("dir", side_word(m.side))]);
+                let head = fill(
+                    pick(&mut rng, ph::WITH_SIDE),
+                    &[("obj", &m.text), ("side", &sp)],
+                );
+                let mut cl: Vec<String> = turn.into_iter().collect();
+                cl.push(mv);
+                for m in &named[1..] {
+                    let c = lm_clause(m, &mut rng);
+                    let go = pick(&mut rng, &["continue", "keep going", "carry on", "go on"]);
+                    cl.push(format!("{go} {c}"));
+                }
+                cl.extend(changes);
+                out.push(format!("{head}, {}", join(&cl, &mut rng)));
+            }
+            // "Turn left and walk on until you reach the table."
+            2 if ahead_last || !changes.is_empty() => {
+                let mut cl: Vec<String> = turn.into_iter().collect();
+                let mut m2 = mv;
+                let k = named.len().saturating_sub(usize::from(ahead_last));
+                for m in &named[..k] {
+                    m2 = format!("{m2}, {}", lm_clause(m, &mut rng));
+                }
+                if ahead_last {
+                    let m = &named[named.len() - 1];
+                    m2 = format!(
+                        "{m2} {}",
+                        fill(pick(&mut rng, ph::UNTIL_OBJ), &[("obj", &m.text)])
+                    );
+                    cl.push(m2);
+                    cl.extend(changes);
+                } else {
+                    let mut ch = changes.into_iter();
+                    let first = ch.next().unwrap_or_default();
+                    cl.push(format!("{m2} until you {first}"));
+                    cl.extend(ch);
+                }
+                out.push(join(&cl, &mut rng));
+            }
+            // Short sentences: "Turn left. Walk on. You'll pass the sofa on your right."
+            3 => {
+                if let Some(t) = turn {
+                    out.push(t);
+                }
+                out.push(mv);
+                for m in &named {
+                    out.push(see_sentence(m, &mut rng));
+                }
+                out.extend(changes);
+                if let Some(r) = entered.and_then(|r| ctx.scene.room(r)) {
+                    if rng.random_bool(0.4) {
+                        let room = format!("the {}", r.kind.words());
+                        out.push(fill(pick(&mut rng, ph::NOW_IN), &[("room", &room)]));
+                    }
+                }
+            }
+            // Room first: "Turn right, go through the doorway into the kitchen, passing ..."
+            4 if !changes.is_empty() => {
+                let mut cl: Vec<String> = turn.into_iter().collect();
+                let mut ch = changes.into_iter();
+                let mut c0 = ch.next().unwrap_or_default();
+                for m in &named {
+                    c0 = format!("{c0}, {}", lm_clause(m, &mut rng));
+                }
+                cl.push(c0);
+                cl.extend(ch);
+                out.push(join(&cl, &mut rng));
+            }
+            // "Turn left and walk forward, passing the sofa on your left; continue past ..."
+            _ => {
+                let mut cl: Vec<String> = turn.into_iter().collect();
+                let mut m2 = mv;
+                if let Some(m) = named.first() {
+                    let c = lm_clause(m, &mut rng);
+                    let sep = if m.side == Side::Ahead { " " } else { ", " };
+                    m2 = format!("{m2}{sep}{c}");
+                }
+                if !bare {
+                    cl.push(m2);
+                }
+                for m in named.iter().skip(1) {
+                    if rng.random_bool(0.5) {
+                        cl.push(format!(
+                            "{} {}",
+                            pick(&mut rng, &["continue", "keep going", "carry on", "go on"]),
+                            lm_clause(m, &mut rng)
+                        ));
+                    } else {
+                        out.push(join(&cl, &mut rng));
+                        cl = vec![see_sentence(m, &mut rng)];
+                    }
+                }
+                cl.extend(changes);
+                out.push(join(&cl, &mut rng));
+            }
+        }
+        // Now and then a word on the size of the room just entered.
+        if let Some(r) = entered.and_then(|r| ctx.scene.room(r)) {
+            if writer != Writer::Terse && rng.random_bool(0.1) {
+                let area = r.area();
+                let bank = if r.kind == RoomType::Hallway {
+                    (area > 6.0).then_some(ph::HALL_LONG)
+                } else if area < 8.0 {
+                    Some(ph::ROOM_SMALL)
+                } else if area > 24.0 {
+                    Some(ph::ROOM_BIG)
+                } else {
+                    None
+                };
+                if let Some(b) = bank {
+                    out.push(pick(&mut rng, b).to_string());
+                }
+            }
+        }
+        for (k, s) in out.into_iter().enumerate() {
+            let mut s = s;
+            let ord = if numbered && k == 0 {
+                step_no += 1;
+                ordinal_word(step_no).filter(|_| step_no <= 10)
+            } else {
+                None
+            };
+            if let Some(o) = ord {
+                let form = if number_form.contains("ly") && step_no > 4 {
+                    "{ord}, "
+                } else {
+                    number_form
+                };
+                let head = fill(form, &[("ord", o), ("num", &number_word(step_no))]);
+                s = format!("{head}{s}");
+            } else if k == 0 && li > 0 {
+                s = format!("{}{s}", pick(&mut rng, ph::NEXT));
+            }
+            if k == 0 && !prefix.is_empty() {
+                s = format!("{}{}", std::mem::take(&mut prefix), s);
+            }
+            sentences.push(sentence(&s));
+        }
+        if chatty && rng.random_bool(0.25) {
+            sentences.push(pick(&mut rng, ph::ASIDE).to_string());
+        }
+    }
+
+    // The end point.
+    let last_room = rooms.last().map(|&(_, r)| r);
+    let end_heading = headings.last().copied().unwrap_or(Vec2::new(0.0, -1.0));
+    let mut stop = if let Some(o) = end_obj {
+        let (lo, hi) = footprint(o);
+        let side = Some(env_side(side_of_heading(end, end_heading, (lo + hi) * 0.5)));
+        let view = Viewpoint {
+            pts: &pts,
+            headings: &headings,
+            index: n - 1,
+        };
+        let (obj, extra) = object_np(ctx, o, view, np_opts, MAX_REFERENCE_DISTANCE, &mut rng);
+        grounding.push(grounded(o, Role::Target, side, n - 1));
+        grounding.extend(extra);
+        let mut s = fill(pick(&mut rng, ph::STOP_AT), &[("obj", &obj)]);
+        if let Some(sd @ (Side::Left | Side::Right)) = side {
+            if rng.random_bool(0.35) {
+                let sp = fill(pick(&mut rng, ph::SIDE), &[("dir", side_word(sd))]);
+                s = match rng.random_range(0..3) {
+                    0 => format!("{s}, which is {sp}"),
+                    1 => format!("{s}; it will be {sp}"),
+                    _ => format!("{s} ({sp})"),
+                };
+            }
+        }
+        s
+    } else if let Some(r) = last_room {
+        let room = room_np(ctx.scene, r, room_syn, &mut rng);
+        match end_place(ctx.scene, Some(r), end, end_heading, &mut rng) {
+            // "stop in the far left corner of the kitchen"; other places after a comma
+            // ("wait just inside the kitchen, with the wall behind you").
+            Some(w) if w.contains("corner") && rng.random_bool(0.6) => fill(
+                pick(&mut rng, ph::STOP_ROOM_WHERE),
+                &[("room", &room), ("where", &w)],
+            ),
+            Some(w) if rng.random_bool(0.6) => format!(
+                "{}, {w}",
+                fill(pick(&mut rng, ph::STOP_ROOM), &[("room", &room)])
+            ),
+            _ => fill(pick(&mut rng, ph::STOP_ROOM), &[("room", &room)]),
+        }
+    } else {
+        pick(&mut rng, ph::STOP).to_string()
+    };
+    stop = format!("{}{stop}", pick(&mut rng, ph::LAST));
+    if !prefix.is_empty() {
+        stop = format!("{prefix}{stop}");
+    }
+    sentences.push(sentence(&stop));
+    // Reassurances people add, only where they hold: a big end object, the only one of its
+    // class in the home, or the room that walking on past the goal would lead into.
+    if let Some(o) = end_obj {
+        let (lo, hi) = footprint(o);
+        let size = hi - lo;
+        let big = size.x * size.y > 1.0 || o.bbox.size().y > 1.6;
+        let only = ctx.graph.objects_of_class(o.class).len() == 1;
+        let p = if chatty { 0.4 } else { 0.15 };
+        if big && rng.random_bool(p) {
+            sentences.push(pick(&mut rng, ph::CANT_MISS).to_string());
+        } else if only && rng.random_bool(p) {
+            let name = o.class.words();
+            sentences.push(fill(pick(&mut rng, ph::ONLY_ONE), &[("name", &name)]));
+        }
+    }
+    if writer != Writer::Terse && rng.random_bool(0.3) {
+        if let Some(room) = room_beyond(ctx, end, end_heading, &walls, cfg.sight_slack) {
+            sentences.push(fill(pick(&mut rng, ph::OVERSHOOT), &[("room", &room)]));
+        }
+    }
+    if matches!(writer, Writer::Chatty | Writer::Plain) && rng.random_bool(0.08) {
+        // At an easy walking pace of about a metre a second.
+        let secs = pts.windows(2).map(|w| w[0].distance(w[1])).sum::<f32>();
+        let t = match secs {
+            s if s < 8.0 => "a few seconds".to_string(),
+            s if (25.0..35.0).contains(&s) => "about half a minute".to_string(),
+            s if s < 50.0 => format!(
+                "{} {} seconds",
+                pick(&mut rng, &["about", "roughly", "around"]),
+                number_word(((s / 5.0).round() * 5.0) as u32)
+            ),
+            s if s < 75.0 => "about a minute".to_string(),
+            _ => "a minute or two".to_string(),
+        };
+        sentences.push(fill(pick(&mut rng, ph::WALK_TIME), &[("t", &t)]));
+    }
+    if rng.random_bool(if chatty { 0.5 } else { 0.04 }) {
+        sentences.push(pick(&mut rng, ph::CLOSE).to_string());
+    }
+
+    Ok(Instruction {
+        instruction_text: sentences.join(" "),
+        instruction_tokens: None,
+        style: None,
+        grounding,
+        sub_instructions: Vec::new(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn simplify_keeps_corners_and_drops_zigzags() {
+        let pts: Vec<Vec2> = [
+            (0.0, 0.0),
+            (0.05, -1.0),
+            (0.0, -2.0),
+            (0.0, -5.0),
+            (3.0, -5.0),
+        ]
+        .iter()
+        .map(|&(x, z)| Vec2::new(x, z))
+        .collect();
+        assert_eq!(simplify(&pts, 0.3), vec![0, 3, 4]);
+    }
+
+    #[test]
+    fn distances_come_in_several_forms() {
+        let mut rng = ChaCha8Rng::seed_from_u64(1);
+        let forms: std::collections::BTreeSet<String> = (0..200)
+            .map(|_| distance_phrase(3.4, Writer::Plain, &mut rng))
+            .collect();
+        assert!(forms.len() > 20, "{forms:?}");
+        assert!(forms.iter().any(|f| f.contains("three")));
+        assert!(forms
+            .iter()
+            .any(|f| f.contains("steps") || f.contains("paces")));
+        assert!(forms.iter().any(|f| f.contains("feet")));
+    }
+}

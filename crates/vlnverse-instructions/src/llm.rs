@@ -1,0 +1,992 @@
+//! The optional LLM stage: an [`InstructionGenerator`] that rewrites another generator's
+//! (the templates') instructions through an OpenAI-compatible chat endpoint. Off by default.
+//!
+//! Three roles, each a system prompt of this module:
+//! - **describer** ([`DESCRIBER_PROMPT`]): rewrites a template instruction fluently from its
+//!   grounded facts (fine and coarse);
+//! - **verifier** ([`VERIFIER_PROMPT`]): checks a candidate against the facts and answers
+//!   `YES` or `NO` with a reason;
+//! - **synthesizer** ([`SYNTHESIZER_PROMPT`]): combines sub-instructions into one long-horizon
+//!   instruction.
+//!
+//! A candidate the verifier rejects (or a failed call) gives the template output back
+//! ([`OnReject::Fallback`], the default) or an error ([`OnReject::Error`]). The grounding
+//! metadata is always the template's: the describer is told to keep every fact.
+//!
+//! The describer also sees pictures when a frame source is attached ([`LlmGenerator::with_frames`];
+//! `generate` renders views along the path, or the goal view for coarse episodes), sent as
+//! `image_url` parts with PNG data URLs, the format vision models of OpenAI-compatible servers
+//! read. A candidate that passes the verifier must still pass [`check_candidate`]: every object
+//! class it names is grounded, on the side the facts give; otherwise it falls back too.
+//!
+//! Requests: `POST {base_url}/chat/completions` with `model`, `messages`, `temperature` (0 by
+//! default), `seed` and optionally `max_tokens`; the key, when `api_key_env` names an
+//! environment variable, goes in `Authorization: Bearer ...`. Plain `http://` endpoints work out
+//! of the box; `https://` needs the crate feature `llm-tls`. At most `max_concurrent` requests
+//! are in flight at once. With `cache_dir`, every reply is stored under the SHA-256 of the
+//! request (URL and body), so a rerun sends nothing it has sent before: the same bytes come
+//! back and an interrupted run resumes without paying twice. [`LlmGenerator::report`] counts
+//! calls, cache hits and fallbacks by reason.
+
+use super::{InstructionGenerator, PathContext};
+use serde::{Deserialize, Serialize};
+use sha2::{Digest, Sha256};
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Condvar, Mutex};
+use std::time::Duration;
+use vlnverse_env::ObjectId;
+use vlnverse_score::episode::{Instruction, Role, Side, Style};
+use vlnverse_score::{DataError, Result};
+
+/// System prompt of the describer role.
+pub const DESCRIBER_PROMPT: &str = "You are the describer of a navigation benchmark. A robot \
+walks through a home following an instruction. You get a draft instruction written from \
+templates and the list of facts it is grounded in: the objects it names, what role each plays \
+(landmark passed on the way, target to reach, reference that singles out the target) and on \
+which side of the robot each one is. Rewrite the draft so that it reads like a person wrote \
+it. Keep every object, every colour, every side (left, right, ahead), every turn, every room \
+and the end point exactly as given, in the same order. Do not add objects, rooms, colours or \
+distances that are not in the draft, and never mention ids or coordinates. Follow the \
+requested style. Reply with the instruction text only, no quotes, no preamble.";
+
+/// System prompt of the verifier role.
+pub const VERIFIER_PROMPT: &str = "You are the verifier of a navigation benchmark. You get the \
+facts an instruction must be grounded in (a reference instruction and the objects it names, \
+with their roles and sides) and a candidate instruction. Decide whether a robot following the \
+candidate would do the same as with the reference: the same objects, colours, sides, turns, \
+rooms and end point, nothing left out that is needed to find the target, and nothing named \
+that is not among the facts. Answer with YES or NO as the first word, then one short sentence \
+giving the reason.";
+
+/// System prompt of the synthesizer role.
+pub const SYNTHESIZER_PROMPT: &str = "You are the synthesizer of a navigation benchmark. You \
+get several short navigation sub-instructions that a robot must carry out one after another in \
+the same home. Combine them into a single instruction that keeps them in the given order \
+(signal the order with words such as first, then, after that, finally) and keeps every object, \
+colour, relation and room they mention. Add nothing new. Reply with the combined instruction \
+only.";
+
+/// What to do with a candidate the verifier rejects, or a call that fails.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum OnReject {
+    /// Return the template instruction (and log a warning).
+    #[default]
+    Fallback,
+    /// Return an error.
+    Error,
+}
+
+/// Settings of the LLM stage (`[instructions.llm]` in a generation config).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct LlmConfig {
+    /// Base URL of the OpenAI-compatible API, e.g. `http://127.0.0.1:8000/v1`.
+    pub base_url: String,
+    /// Model name sent with every request.
+    pub model: String,
+    /// Name of the environment variable holding the API key; none sends no key.
+    pub api_key_env: Option<String>,
+    /// Sampling temperature (0 for repeatable output).
+    pub temperature: f32,
+    /// Limit on the reply length, if any.
+    pub max_tokens: Option<u32>,
+    /// Timeout of one request in seconds.
+    pub timeout_s: f32,
+    /// Extra attempts after a failed request (transport error, HTTP 429 or 5xx).
+    pub retries: u32,
+    /// Wait before the first retry in milliseconds (doubled on each further retry).
+    pub retry_backoff_ms: u64,
+    /// Whether the verifier checks each candidate.
+    pub verify: bool,
+    /// What a rejection or a failed call gives.
+    pub on_reject: OnReject,
+    /// Requests in flight at once, over all worker threads.
+    pub max_concurrent: u32,
+    /// Pictures the describer gets: views along a fine path (start to end), the goal view for
+    /// coarse instructions; 0 sends text only.
+    pub frames: u32,
+    /// Folder of the reply cache (`generate` uses `<out>/.llm-cache` when unset); none: no
+    /// cache.
+    pub cache_dir: Option<PathBuf>,
+}
+
+impl Default for LlmConfig {
+    fn default() -> Self {
+        LlmConfig {
+            base_url: "http://127.0.0.1:8000/v1".into(),
+            model: "gpt-4o-mini".into(),
+            api_key_env: Some("OPENAI_API_KEY".into()),
+            temperature: 0.0,
+            max_tokens: Some(400),
+            timeout_s: 60.0,
+            retries: 2,
+            retry_backoff_ms: 500,
+            verify: true,
+            on_reject: OnReject::Fallback,
+            max_concurrent: 4,
+            frames: 3,
+            cache_dir: None,
+        }
+    }
+}
+
+impl LlmConfig {
+    /// Check the values; the error names the field.
+    pub fn validate(&self) -> Result<()> {
+        if !(self.base_url.starts_with("http://") || self.base_url.starts_with("https://")) {
+            return Err(DataError::invalid(
+                "llm.base_url",
+                &self.base_url,
+                "must start with http:// or https://",
+            ));
+        }
+        if self.base_url.starts_with("https://") && !cfg!(feature = "llm-tls") {
+            return Err(DataError::invalid(
+                "llm.base_url",
+                &self.base_url,
+                "https needs vlnverse-task built with the `llm-tls` feature",
+            ));
+        }
+        if self.model.trim().is_empty() {
+            return Err(DataError::invalid("llm.model", "\"\"", "must not be empty"));
+        }
+        if !(self.temperature.is_finite() && (0.0..=2.0).contains(&self.temperature)) {
+            return Err(DataError::invalid(
+                "llm.temperature",
+                self.temperature,
+                "must be in [0, 2]",
+            ));
+        }
+        if !(self.timeout_s.is_finite() && self.timeout_s > 0.0) {
+            return Err(DataError::invalid(
+                "llm.timeout_s",
+                self.timeout_s,
+                "must be > 0",
+            ));
+        }
+        if !(1..=256).contains(&self.max_concurrent) {
+            return Err(DataError::invalid(
+                "llm.max_concurrent",
+                self.max_concurrent,
+                "must be in [1, 256]",
+            ));
+        }
+        if self.frames > 8 {
+            return Err(DataError::invalid(
+                "llm.frames",
+                self.frames,
+                "must be in [0, 8]",
+            ));
+        }
+        Ok(())
+    }
+
+    /// The chat-completions URL.
+    pub fn url(&self) -> String {
+        format!("{}/chat/completions", self.base_url.trim_end_matches('/'))
+    }
+}
+
+/// One chat message.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct ChatMessage {
+    /// `system`, `user` or `assistant`.
+    pub role: String,
+    /// The text, or text and pictures.
+    pub content: Content,
+}
+
+/// What a message holds: plain text, or parts (text and images) for vision models.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum Content {
+    /// Plain text.
+    Text(String),
+    /// Text and image parts.
+    Parts(Vec<Part>),
+}
+
+/// One part of a multi-part message (the OpenAI chat format).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case")]
+pub enum Part {
+    /// Text.
+    Text {
+        /// The text.
+        text: String,
+    },
+    /// A picture, as a URL (here a `data:image/png;base64,...` URL).
+    ImageUrl {
+        /// The picture.
+        image_url: ImageUrl,
+    },
+}
+
+/// The URL of an image part.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct ImageUrl {
+    /// `data:` or `http(s):` URL.
+    pub url: String,
+}
+
+impl ChatMessage {
+    /// A system message.
+    pub fn system(content: impl Into<String>) -> Self {
+        ChatMessage {
+            role: "system".into(),
+            content: Content::Text(content.into()),
+        }
+    }
+
+    /// A user message.
+    pub fn user(content: impl Into<String>) -> Self {
+        ChatMessage {
+            role: "user".into(),
+            content: Content::Text(content.into()),
+        }
+    }
+
+    /// A user message with PNG pictures after the text (plain text when there are none).
+    pub fn user_with_images(text: impl Into<String>, pngs: &[Vec<u8>]) -> Self {
+        if pngs.is_empty() {
+            return Self::user(text);
+        }
+        let mut parts = vec![Part::Text { text: text.into() }];
+        parts.extend(pngs.iter().map(|png| Part::ImageUrl {
+            image_url: ImageUrl {
+                url: format!("data:image/png;base64,{}", base64(png)),
+            },
+        }));
+        ChatMessage {
+            role: "user".into(),
+            content: Content::Parts(parts),
+        }
+    }
+
+    /// The text of the message (the text parts joined).
+    pub fn text(&self) -> String {
+        match &self.content {
+            Content::Text(t) => t.clone(),
+            Content::Parts(p) => p
+                .iter()
+                .filter_map(|p| match p {
+                    Part::Text { text } => Some(text.as_str()),
+                    Part::ImageUrl { .. } => None,
+                })
+                .collect::<Vec<_>>()
+                .join("\n"),
+        }
+    }
+}
+
+/// Standard base64 with padding.
+pub fn base64(bytes: &[u8]) -> String {
+    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
+    for c in bytes.chunks(3) {
+        let n = (u32::from(c[0]) << 16)
+            | (u32::from(*c.get(1).unwrap_or(&0)) << 8)
+            | u32::from(*c.get(2).unwrap_or(&0));
+        for k in 0..4 {
+            if k <= c.len() {
+                out.push(A[(n >> (18 - 6 * k) & 63) as usize] as char);
+            } else {
+                out.push('=');
+            }
+        }
+    }
+    out
+}
+
+#[derive(Serialize)]
+struct ChatRequest<'a> {
+    model: &'a str,
+    messages: &'a [ChatMessage],
+    temperature: f32,
+    seed: u64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    max_tokens: Option<u32>,
+}
+
+/// A blocking client of an OpenAI-compatible chat endpoint.
+#[derive(Debug)]
+pub struct ChatClient {
+    config: LlmConfig,
+    agent: ureq::Agent,
+    gate: Gate,
+    sent: AtomicU64,
+    cached: AtomicU64,
+}
+
+/// A counting semaphore: at most `max` holders.
+#[derive(Debug)]
+struct Gate {
+    busy: Mutex<u32>,
+    free: Condvar,
+    max: u32,
+}
+
+impl Gate {
+    fn enter(&self) -> GateGuard<'_> {
+        let mut n = self.busy.lock().unwrap_or_else(|p| p.into_inner());
+        while *n >= self.max {
+            n = self.free.wait(n).unwrap_or_else(|p| p.into_inner());
+        }
+        *n += 1;
+        GateGuard(self)
+    }
+}
+
+struct GateGuard<'a>(&'a Gate);
+
+impl Drop for GateGuard<'_> {
+    fn drop(&mut self) {
+        let mut n = self.0.busy.lock().unwrap_or_else(|p| p.into_inner());
+        *n -= 1;
+        self.0.free.notify_one();
+    }
+}
+
+/// A cached reply on disk.
+#[derive(Serialize, Deserialize)]
+struct CacheEntry {
+    reply: String,
+}
+
+fn net_error(url: &str, e: impl std::fmt::Display) -> DataError {
+    DataError::io(PathBuf::from(url), std::io::Error::other(e.to_string()))
+}
+
+impl ChatClient {
+    /// A client for the configured endpoint (config checked).
+    pub fn new(config: LlmConfig) -> Result<Self> {
+        config.validate()?;
+        let agent: ureq::Agent = ureq::Agent::config_builder()
+            .timeout_global(Some(Duration::from_secs_f32(config.timeout_s)))
+            .http_status_as_error(false)
+            .build()
+            .into();
+        let gate = Gate {
+            busy: Mutex::new(0),
+            free: Condvar::new(),
+            max: config.max_concurrent.max(1),
+        };
+        Ok(ChatClient {
+            config,
+            agent,
+            gate,
+            sent: AtomicU64::new(0),
+            cached: AtomicU64::new(0),
+        })
+    }
+
+    /// Requests sent to the endpoint (retries not counted) and replies taken from the cache.
+    pub fn counts(&self) -> (u64, u64) {
+        (
+            self.sent.load(Ordering::Relaxed),
+            self.cached.load(Ordering::Relaxed),
+        )
+    }
+
+    /// The cache file of a request body, when caching.
+    fn cache_file(&self, url: &str, body: &str) -> Option<PathBuf> {
+        let dir = self.config.cache_dir.as_ref()?;
+        let mut h = Sha256::new();
+        h.update(url.as_bytes());
+        h.update(b"\n");
+        h.update(body.as_bytes());
+        let hex: String = h.finalize().iter().map(|b| format!("{b:02x}")).collect();
+        Some(dir.join(&hex[..2]).join(format!("{hex}.json")))
+    }
+
+    /// The settings.
+    pub fn config(&self) -> &LlmConfig {
+        &self.config
+    }
+
+    fn api_key(&self) -> Result<Option<String>> {
+        match &self.config.api_key_env {
+            None => Ok(None),
+            Some(var) => match std::env::var(var) {
+                Ok(k) => Ok(Some(k)),
+                Err(_) => Err(DataError::invalid(
+                    "llm.api_key_env",
+                    var,
+                    "the environment variable is not set (set it, or leave api_key_env out \
+                     for an endpoint without a key)",
+                )),
+            },
+        }
+    }
+
+    /// Send `messages` and return the reply text (`choices[0].message.content`), retrying
+    /// transport errors, HTTP 429 and 5xx.
+    pub fn chat(&self, messages: &[ChatMessage], seed: u64) -> Result<String> {
+        let url = self.config.url();
+        let key = self.api_key()?;
+        let body = serde_json::to_string(&ChatRequest {
+            model: &self.config.model,
+            messages,
+            temperature: self.config.temperature,
+            seed,
+            max_tokens: self.config.max_tokens,
+        })
+        .map_err(|e| net_error(&url, e))?;
+        let cache = self.cache_file(&url, &body);
+        if let Some(file) = &cache {
+            if let Ok(bytes) = std::fs::read(file) {
+                match serde_json::from_slice::<CacheEntry>(&bytes) {
+                    Ok(e) => {
+                        self.cached.fetch_add(1, Ordering::Relaxed);
+                        return Ok(e.reply);
+                    }
+                    // A damaged entry is asked again and rewritten.
+                    Err(e) => tracing::warn!(file = %file.display(), error = %e, "bad cache entry"),
+                }
+            }
+        }
+        let reply = self.send(&url, &body, key.as_deref())?;
+        if let Some(file) = &cache {
+            let entry = serde_json::to_vec(&CacheEntry {
+                reply: reply.clone(),
+            })
+            .map_err(|e| net_error(&url, e))?;
+            if let Some(dir) = file.parent() {
+                std::fs::create_dir_all(dir).map_err(|e| DataError::io(dir, e))?;
+            }
+            vlnverse_score::dataset::write_atomic(file, &entry)?;
+        }
+        Ok(reply)
+    }
+
+    /// One request with retries, within the concurrency limit.
+    fn send(&self, url: &str, body: &str, key: Option<&str>) -> Result<String> {
+        let _slot = self.gate.enter();
+        self.sent.fetch_add(1, Ordering::Relaxed);
+        let url = url.to_string();
+        let mut last_err = None;
+        for attempt in 0..=self.config.retries {
+            if attempt > 0 {
+                let wait = self.config.retry_backoff_ms << (attempt - 1).min(10);
+                std::thread::sleep(Duration::from_millis(wait));
+            }
+            let mut req = self
+                .agent
+                .post(&url)
+                .header("Content-Type", "application/json");
+            if let Some(k) = key {
+                req = req.header("Authorization", &format!("Bearer {k}"));
+            }
+            let mut resp = match req.send(body) {
+                Ok(r) => r,
+                Err(e) => {
+                    tracing::warn!(%url, attempt, error = %e, "LLM request failed");
+                    last_err = Some(net_error(&url, e));
+                    continue;
+                }
+            };
+            let status = resp.status().as_u16();
+            let text = match resp.body_mut().read_to_string() {
+                Ok(t) => t,
+                Err(e) => {
+                    last_err = Some(net_error(&url, e));
+                    continue;
+                }
+            };
+            if status == 429 || status >= 500 {
+                tracing::warn!(%url, attempt, status, "LLM endpoint busy or failing");
+                last_err = Some(net_error(&url, format!("HTTP {status}: {text}")));
+                continue;
+            }
+            if status != 200 {
+                return Err(net_error(&url, format!("HTTP {status}: {text}")));
+            }
+            return parse_reply(&url, &text);
+        }
+        Err(last_err.unwrap_or_else(|| net_error(&url, "no attempt made")))
+    }
+}
+
+fn parse_reply(url: &str, text: &str) -> Result<String> {
+    let v: serde_json::Value =
+        serde_json::from_str(text).map_err(|e| DataError::parse(url, "response body", e))?;
+    let content = v
+        .pointer("/choices/0/message/content")
+        .and_then(|c| c.as_str())
+        .ok_or_else(|| {
+            DataError::parse(
+                url,
+                "choices[0].message.content",
+                format!("missing or not a string in {}", truncate(text, 200)),
+            )
+        })?;
+    let content = content.trim().trim_matches('"').trim();
+    if content.is_empty() {
+        return Err(DataError::parse(
+            url,
+            "choices[0].message.content",
+            "empty reply",
+        ));
+    }
+    Ok(content.to_string())
+}
+
+fn truncate(s: &str, n: usize) -> String {
+    s.chars().take(n).collect()
+}
+
+/// The verifier's decision.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Verdict {
+    /// Whether the candidate was accepted.
+    pub accepted: bool,
+    /// The reason given.
+    pub reason: String,
+}
+
+/// Read a verifier reply: `YES` / `NO` as the first word (any case, punctuation ignored), the
+/// rest is the reason. Anything else counts as a rejection.
+pub fn parse_verdict(reply: &str) -> Verdict {
+    let t = reply.trim();
+    let first: String = t
+        .chars()
+        .take_while(|c| c.is_alphabetic())
+        .collect::<String>()
+        .to_uppercase();
+    let rest = t[first.len().min(t.len())..]
+        .trim_start_matches([',', '.', ':', ';', '-', ' '])
+        .trim()
+        .to_string();
+    match first.as_str() {
+        "YES" => Verdict {
+            accepted: true,
+            reason: rest,
+        },
+        "NO" => Verdict {
+            accepted: false,
+            reason: rest,
+        },
+        _ => Verdict {
+            accepted: false,
+            reason: format!("unreadable verdict: {}", truncate(t, 120)),
+        },
+    }
+}
+
+fn role_words(r: Role) -> &'static str {
+    match r {
+        Role::Landmark => "landmark passed on the way",
+        Role::Target => "target to reach",
+        Role::Reference => "reference that singles out the target",
+    }
+}
+
+fn side_words(s: Option<Side>) -> &'static str {
+    match s {
+        Some(Side::Left) => "on the left",
+        Some(Side::Right) => "on the right",
+        Some(Side::Ahead) => "ahead",
+        Some(Side::Behind) => "behind",
+        None => "side not stated",
+    }
+}
+
+fn style_words(s: Option<Style>) -> &'static str {
+    match s {
+        Some(Style::Formal) => "formal: complete sentences, precise and polite wording",
+        Some(Style::Natural) => "natural: the everyday wording of a person giving directions",
+        Some(Style::Casual) => "casual: short, informal, lower case, like a quick text message",
+        None => "plain, clear step-by-step directions",
+    }
+}
+
+/// The facts block given to the describer and the verifier: the template text, the style and
+/// every grounded object (class words, role, side, path point).
+pub fn facts(ins: &Instruction) -> String {
+    let mut s = format!(
+        "Reference instruction: {}\nStyle: {}\nObjects named:\n",
+        ins.instruction_text,
+        style_words(ins.style)
+    );
+    if ins.grounding.is_empty() {
+        s.push_str("- none\n");
+    }
+    for g in &ins.grounding {
+        s.push_str(&format!(
+            "- {} ({}, {}{})\n",
+            g.class.replace('_', " "),
+            role_words(g.role),
+            side_words(g.side),
+            g.path_index
+                .map(|i| format!(", at path point {i}"))
+                .unwrap_or_default()
+        ));
+    }
+    if !ins.sub_instructions.is_empty() {
+        s.push_str("Sub-instructions in order:\n");
+        for (i, t) in ins.sub_instructions.iter().enumerate() {
+            s.push_str(&format!("{}. {t}\n", i + 1));
+        }
+    }
+    s
+}
+
+/// Pictures for the describer: views along `ctx`'s path, or of the coarse `target`.
+pub type FrameSource =
+    dyn Fn(&PathContext<'_>, Option<ObjectId>, u32) -> Result<Vec<Vec<u8>>> + Send + Sync;
+
+/// Why a candidate was not used.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+enum Fallback {
+    /// The verifier answered NO (or something unreadable).
+    Rejected,
+    /// The candidate names a class that is not grounded, or puts one on the wrong side.
+    Ungrounded,
+    /// The request failed (after retries) or the reply was unreadable.
+    CallFailed,
+}
+
+impl Fallback {
+    fn name(self) -> &'static str {
+        match self {
+            Fallback::Rejected => "verifier_rejected",
+            Fallback::Ungrounded => "grounding_check_failed",
+            Fallback::CallFailed => "call_failed",
+        }
+    }
+}
+
+/// What the LLM stage did in one run ([`LlmGenerator::report`]).
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct LlmReport {
+    /// Instructions the stage was asked to rewrite.
+    pub instructions: u64,
+    /// Rewritten instructions kept.
+    pub accepted: u64,
+    /// Instructions that kept the template text, by reason (`verifier_rejected`,
+    /// `grounding_check_failed`, `call_failed`).
+    pub fallbacks: BTreeMap<String, u64>,
+    /// Requests sent to the endpoint.
+    pub requests: u64,
+    /// Replies read from the cache instead.
+    pub cache_hits: u64,
+}
+
+/// Check a candidate against the facts of `base`: every object class the candidate names
+/// (by its class words, e.g. "tv stand") must be grounded in `base` or named by its text,
+/// and a grounded landmark named in a sentence that gives one side (left or right) must
+/// stand on that side. Walls, floors, doors and other structure are room features, not
+/// objects, and are not checked. `Err` gives the first problem.
+pub fn check_candidate(base: &Instruction, candidate: &str) -> std::result::Result<(), String> {
+    use vlnverse_env::SemanticClass;
+    let lower = candidate.to_lowercase();
+    let base_text = base.instruction_text.to_lowercase();
+    let grounded: Vec<String> = base
+        .grounding
+        .iter()
+        .map(|g| g.class.replace('_', " "))
+        .collect();
+    // Longest names first, so "tv stand" is not also read as "tv".
+    let mut names: Vec<(String, SemanticClass)> = SemanticClass::ALL
+        .iter()
+        .filter(|c| !c.is_structure())
+        .map(|c| (c.words(), *c))
+        .collect();
+    names.sort_by(|a, b| b.0.len().cmp(&a.0.len()).then_with(|| a.0.cmp(&b.0)));
+    for sentence in lower.split(['.', ';', '!', '?']) {
+        let mut rest = format!(" {} ", sentence.replace(',', " "));
+        let sides: Vec<Side> = [("left", Side::Left), ("right", Side::Right)]
+            .into_iter()
+            .filter(|(w, _)| has_word(&rest, w))
+            .map(|(_, s)| s)
+            .collect();
+        for (words, _) in &names {
+            let pattern = format!(" {words} ");
+            let plural = format!(" {words}s ");
+            if !(rest.contains(&pattern) || rest.contains(&plural)) {
+                continue;
+            }
+            rest = rest.replace(&pattern, " ").replace(&plural, " ");
+            let known = grounded.iter().any(|g| g == words) || has_word(&base_text, words);
+            if !known {
+                return Err(format!("names a {words}, which the facts do not"));
+            }
+            if let [side] = sides.as_slice() {
+                let wrong = base.grounding.iter().any(|g| {
+                    g.class.replace('_', " ") == *words
+                        && matches!(g.side, Some(Side::Left | Side::Right))
+                        && g.side != Some(*side)
+                        && !base
+                            .grounding
+                            .iter()
+                            .any(|h| h.class.replace('_', " ") == *words && h.side == Some(*side))
+                });
+                if wrong {
+                    return Err(format!("puts the {words} on the wrong side"));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+fn has_word(text: &str, word: &str) -> bool {
+    text.split(|c: char| !c.is_alphanumeric() && c != '\'')
+        .collect::<Vec<_>>()
+        .windows(word.split(' ').count())
+        .any(|w| w.join(" ") == word)
+}
+
+/// An [`InstructionGenerator`] that rewrites the output of `inner` with an LLM (describer /
+/// synthesizer) and checks it (verifier, then [`check_candidate`]); see the module docs.
+pub struct LlmGenerator<G> {
+    inner: G,
+    client: ChatClient,
+    frames: Option<Box<FrameSource>>,
+    asked: AtomicU64,
+    accepted: AtomicU64,
+    fallbacks: Mutex<BTreeMap<Fallback, u64>>,
+}
+
+impl<G> std::fmt::Debug for LlmGenerator<G> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("LlmGenerator")
+            .field("client", &self.client)
+            .field("frames", &self.frames.is_some())
+            .finish()
+    }
+}
+
+impl<G: InstructionGenerator> LlmGenerator<G> {
+    /// Wrap `inner` (usually the [`super::TemplateGenerator`]).
+    pub fn new(inner: G, config: LlmConfig) -> Result<Self> {
+        Ok(LlmGenerator {
+            inner,
+            client: ChatClient::new(config)?,
+            frames: None,
+            asked: AtomicU64::new(0),
+            accepted: AtomicU64::new(0),
+            fallbacks: Mutex::new(BTreeMap::new()),
+        })
+    }
+
+    /// Give the describer pictures from `frames` (called with the configured `frames`
+    /// count; nothing is rendered when it is 0).
+    pub fn with_frames(mut self, frames: Box<FrameSource>) -> Self {
+        self.frames = Some(frames);
+        self
+    }
+
+    /// The wrapped generator.
+    pub fn inner(&self) -> &G {
+        &self.inner
+    }
+
+    /// The chat client.
+    pub fn client(&self) -> &ChatClient {
+        &self.client
+    }
+
+    /// What the stage did so far.
+    pub fn report(&self) -> LlmReport {
+        let (requests, cache_hits) = self.client.counts();
+        LlmReport {
+            instructions: self.asked.load(Ordering::Relaxed),
+            accepted: self.accepted.load(Ordering::Relaxed),
+            fallbacks: self
+                .fallbacks
+                .lock()
+                .unwrap_or_else(|p| p.into_inner())
+                .iter()
+                .map(|(k, v)| (k.name().to_string(), *v))
+                .collect(),
+            requests,
+            cache_hits,
+        }
+    }
+
+    /// Ask the verifier about `candidate` for the facts of `base`.
+    pub fn verify(&self, base: &Instruction, candidate: &str, seed: u64) -> Result<Verdict> {
+        let reply = self.client.chat(
+            &[
+                ChatMessage::system(VERIFIER_PROMPT),
+                ChatMessage::user(format!(
+                    "{}\nCandidate instruction: {candidate}\nIs the candidate faithful?",
+                    facts(base)
+                )),
+            ],
+            seed,
+        )?;
+        Ok(parse_verdict(&reply))
+    }
+
+    fn refine(
+        &self,
+        base: Instruction,
+        system: &str,
+        user: ChatMessage,
+        seed: u64,
+    ) -> Result<Instruction> {
+        self.asked.fetch_add(1, Ordering::Relaxed);
+        let policy = self.client.config.on_reject;
+        let attempt = (|| -> Result<std::result::Result<String, (Fallback, String)>> {
+            let candidate = self
+                .client
+                .chat(&[ChatMessage::system(system), user], seed)?;
+            if self.client.config.verify {
+                let v = self.verify(&base, &candidate, seed)?;
+                if !v.accepted {
+                    return Ok(Err((Fallback::Rejected, v.reason)));
+                }
+            }
+            if let Err(why) = check_candidate(&base, &candidate) {
+                return Ok(Err((Fallback::Ungrounded, why)));
+            }
+            Ok(Ok(candidate))
+        })();
+        let fell_back = |why: Fallback| {
+            *self
+                .fallbacks
+                .lock()
+                .unwrap_or_else(|p| p.into_inner())
+                .entry(why)
+                .or_default() += 1;
+        };
+        match (attempt, policy) {
+            (Ok(Ok(text)), _) => {
+                self.accepted.fetch_add(1, Ordering::Relaxed);
+                Ok(Instruction {
+                    instruction_text: text,
+                    ..base
+                })
+            }
+            (Ok(Err((why, reason))), OnReject::Fallback) => {
+                fell_back(why);
+                tracing::warn!(%reason, why = why.name(), "LLM instruction not used; keeping the template");
+                Ok(base)
+            }
+            (Ok(Err((why, reason))), OnReject::Error) => Err(DataError::invalid(
+                "llm.verifier",
+                truncate(&base.instruction_text, 80),
+                format!("candidate not used ({}): {reason}", why.name()),
+            )),
+            (Err(e), OnReject::Fallback) => {
+                fell_back(Fallback::CallFailed);
+                tracing::warn!(error = %e, "LLM call failed; keeping the template");
+                Ok(base)
+            }
+            (Err(e), OnReject::Error) => Err(e),
+        }
+    }
+
+    fn describe(
+        &self,
+        base: Instruction,
+        ctx: &PathContext<'_>,
+        target: Option<ObjectId>,
+        seed: u64,
+    ) -> Result<Instruction> {
+        let n = self.client.config.frames;
+        let pictures = match &self.frames {
+            Some(f) if n > 0 => f(ctx, target, n)?,
+            _ => Vec::new(),
+        };
+        let mut text = facts(&base);
+        if !pictures.is_empty() {
+            text.push_str(&format!(
+                "Pictures: {} view(s) {}.\n",
+                pictures.len(),
+                if target.is_some() {
+                    "from the end point, facing the target"
+                } else {
+                    "along the path, from the start to the end, facing the way the robot walks"
+                }
+            ));
+        }
+        text.push_str("Rewrite the reference instruction in the requested style.");
+        let user = ChatMessage::user_with_images(text, &pictures);
+        self.refine(base, DESCRIBER_PROMPT, user, seed)
+    }
+}
+
+impl<G: InstructionGenerator> InstructionGenerator for LlmGenerator<G> {
+    fn fine(&self, ctx: &PathContext<'_>, seed: u64) -> Result<Instruction> {
+        let base = self.inner.fine(ctx, seed)?;
+        self.describe(base, ctx, None, seed)
+    }
+
+    fn coarse(
+        &self,
+        ctx: &PathContext<'_>,
+        target: ObjectId,
+        style: Style,
+        seed: u64,
+    ) -> Result<Instruction> {
+        let base = self.inner.coarse(ctx, target, style, seed)?;
+        self.describe(base, ctx, Some(target), seed)
+    }
+
+    fn chain(&self, parts: &[Instruction], seed: u64) -> Result<Instruction> {
+        let base = self.inner.chain(parts, seed)?;
+        if parts.len() < 2 {
+            return Ok(base);
+        }
+        let mut user = String::from("Sub-instructions in order:\n");
+        for (i, p) in parts.iter().enumerate() {
+            user.push_str(&format!("{}. {}\n", i + 1, p.instruction_text));
+        }
+        user.push_str("Combine them into one instruction.");
+        self.refine(base, SYNTHESIZER_PROMPT, ChatMessage::user(user), seed)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use vlnverse_score::episode::GroundedObject;
+
+    #[test]
+    fn base64_matches_the_standard_alphabet_and_padding() {
+        assert_eq!(base64(b"Man"), "TWFu");
+        assert_eq!(base64(b"Ma"), "TWE=");
+        assert_eq!(base64(b"M"), "TQ==");
+        assert_eq!(base64(b""), "");
+        assert_eq!(base64(&[0xfb, 0xff]), "+/8=");
+    }
+
+    fn with(objects: &[(&str, Option<Side>)]) -> Instruction {
+        Instruction {
+            instruction_text: "Walk past the sofa and stop by the bed.".into(),
+            grounding: objects
+                .iter()
+                .enumerate()
+                .map(|(i, (class, side))| GroundedObject {
+                    object_id: i as u32,
+                    class: class.to_string(),
+                    role: Role::Landmark,
+                    side: *side,
+                    path_index: None,
+                })
+                .collect(),
+            ..Default::default()
+        }
+    }
+
+    #[test]
+    fn candidates_name_only_grounded_objects_on_their_side() {
+        let base = with(&[("sofa", Some(Side::Left)), ("tv_stand", Some(Side::Right))]);
+        let ok = "Keep the sofa on your left. The tv stand is on the right; stop at the wall.";
+        assert_eq!(check_candidate(&base, ok), Ok(()));
+        // "tv stand" is read as one name, not as a tv.
+        assert!(check_candidate(&base, "Go to the tv stand.").is_ok());
+        let err = check_candidate(&base, "Pass the piano, then the sofa.").unwrap_err();
+        assert!(err.contains("piano"), "{err}");
+        let err = check_candidate(&base, "Keep the sofa on your right.").unwrap_err();
+        assert!(err.contains("wrong side"), "{err}");
+        // Named by the reference text though not grounded (the bed): allowed.
+        assert!(check_candidate(&base, "Stop by the bed.").is_ok());
+    }
+}

@@ -1,0 +1,548 @@
+//! The default, template-based instruction generator.
+
+use super::lexicon::{class_uses, color_phrases, material_noun, material_words, shape_words};
+use super::path::{env_side, floor_points, footprint, segment_headings, TurnConfig};
+use super::phrases::{self as ph, capitalize, decapitalize, fill, pick};
+use super::{InstructionGenerator, PathContext};
+use glam::Vec2;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use serde::{Deserialize, Serialize};
+use vlnverse_env::scene_graph::{
+    side_of_heading, Mention, ReferringExpression, Relation, RoomMention,
+};
+use vlnverse_env::{ObjectId, SceneObject};
+use vlnverse_score::episode::{GroundedObject, Instruction, Role, Side, Style};
+use vlnverse_score::{DataError, Result};
+
+/// Settings of the [`TemplateGenerator`].
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct TemplateConfig {
+    /// Landmarks are objects whose footprint comes within this many metres of the path.
+    pub landmark_distance: f32,
+    /// At most this many landmarks are named per straight leg of the path.
+    pub max_landmarks_per_leg: usize,
+    /// The end point is described by the landmark-sized object closest to the goal within
+    /// this many metres (else by its room).
+    pub end_object_distance: f32,
+    /// The last metres of a sight line that may cross non-navigable cells (the navigable map is
+    /// dilated by the agent radius around the seen object itself).
+    pub sight_slack: f32,
+    /// Turn thresholds.
+    pub turns: TurnConfig,
+}
+
+impl Default for TemplateConfig {
+    fn default() -> Self {
+        TemplateConfig {
+            landmark_distance: 1.5,
+            max_landmarks_per_leg: 2,
+            end_object_distance: 1.5,
+            sight_slack: 0.4,
+            turns: TurnConfig::default(),
+        }
+    }
+}
+
+impl TemplateConfig {
+    /// Check the values; the error names the field.
+    pub fn validate(&self) -> Result<()> {
+        let pos = |field: &str, v: f32| {
+            if v.is_finite() && v >= 0.0 {
+                Ok(())
+            } else {
+                Err(DataError::invalid(
+                    format!("instructions.{field}"),
+                    v,
+                    "must be a finite number >= 0",
+                ))
+            }
+        };
+        pos("landmark_distance", self.landmark_distance)?;
+        pos("end_object_distance", self.end_object_distance)?;
+        pos("sight_slack", self.sight_slack)?;
+        let t = &self.turns;
+        if !(0.0 < t.slight_deg && t.slight_deg <= t.turn_deg && t.turn_deg <= t.around_deg)
+            || t.around_deg > 180.0
+        {
+            return Err(DataError::invalid(
+                "instructions.turns",
+                format!("{}/{}/{}", t.slight_deg, t.turn_deg, t.around_deg),
+                "need 0 < slight_deg <= turn_deg <= around_deg <= 180",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Deterministic, template-based generator grounded in the scene graph (the default).
+///
+/// The same context, target, style and seed always give the same instruction; every mentioned
+/// object is listed in [`Instruction::grounding`].
+#[derive(Clone, Debug, Default)]
+pub struct TemplateGenerator {
+    /// Settings.
+    pub config: TemplateConfig,
+}
+
+impl TemplateGenerator {
+    /// A generator with the given settings (checked).
+    pub fn new(config: TemplateConfig) -> Result<Self> {
+        config.validate()?;
+        Ok(TemplateGenerator { config })
+    }
+}
+
+/// Side of `center` seen from the end of the path, facing along the last segment.
+fn end_side(pts: &[Vec2], headings: &[Vec2], center: Vec2) -> Option<Side> {
+    let (p, h) = (pts.last()?, headings.last()?);
+    Some(env_side(side_of_heading(*p, *h, center)))
+}
+
+fn grounded(o: &SceneObject, role: Role, side: Option<Side>, idx: Option<usize>) -> GroundedObject {
+    GroundedObject {
+        object_id: o.id,
+        class: o.class.name().to_string(),
+        role,
+        side,
+        path_index: idx.map(|i| i as u32),
+    }
+}
+
+impl InstructionGenerator for TemplateGenerator {
+    fn fine(&self, ctx: &PathContext<'_>, seed: u64) -> Result<Instruction> {
+        super::fine::fine(&self.config, ctx, seed)
+    }
+
+    fn coarse(
+        &self,
+        ctx: &PathContext<'_>,
+        target: ObjectId,
+        style: Style,
+        seed: u64,
+    ) -> Result<Instruction> {
+        let expr = coarse_expression(ctx, target, style)?;
+        let salt = match style {
+            Style::Formal => 0x666f_726d,
+            Style::Natural => 0x6e61_7475,
+            Style::Casual => 0x6361_7375,
+        };
+        let mut rng = ChaCha8Rng::seed_from_u64(
+            seed ^ salt ^ u64::from(target).wrapping_mul(0x9E37_79B9_7F4A_7C15),
+        );
+        let words = |m: &Mention| format!("the {}", m.words());
+        // Size and shape words the geometry supports may precede the colour; the class keeps
+        // its vocabulary name (agents look for it) and the colour stays next to it.
+        let shape = ctx.scene.object(target).and_then(|o| {
+            let peers: Vec<&SceneObject> = ctx
+                .graph
+                .objects_of_class(o.class)
+                .iter()
+                .filter_map(|&id| ctx.scene.object(id))
+                .collect();
+            let w = shape_words(o, &peers);
+            (!w.is_empty() && rng.random_bool(0.3)).then(|| pick(&mut rng, &w).to_string())
+        });
+        let mut desc = String::from("the ");
+        if let Some(a) = &shape {
+            desc.push_str(a);
+            desc.push(' ');
+        }
+        if let Some(c) = &expr.color {
+            desc.push_str(c);
+            desc.push(' ');
+        }
+        desc.push_str(&expr.class.words());
+        let (sup_bank, next_bank, near_bank) = match style {
+            Style::Formal => (ph::FORMAL_SUP, ph::FORMAL_NEXT, ph::FORMAL_NEAR),
+            Style::Natural => (ph::NATURAL_SUP, ph::NATURAL_NEXT, ph::NATURAL_NEAR),
+            Style::Casual => (ph::CASUAL_SUP, ph::CASUAL_NEXT, ph::CASUAL_NEAR),
+        };
+        let sup = expr
+            .support
+            .as_ref()
+            .map(|m| fill(pick(&mut rng, sup_bank), &[("obj", &words(m))]))
+            .unwrap_or_default();
+        let rel = match (&expr.reference, expr.relation) {
+            (Some(m), Some(r)) => {
+                let bank = if r == Relation::NextTo {
+                    next_bank
+                } else {
+                    near_bank
+                };
+                fill(pick(&mut rng, bank), &[("obj", &words(m))])
+            }
+            _ => String::new(),
+        };
+        // The room, now and then with its size from the floor area ("the spacious kitchen").
+        let room = expr.room.map(|r| {
+            let area = ctx.scene.room(r.room).map_or(15.0, |x| x.area());
+            let size: &[&str] = if area > 24.0 {
+                &["large", "big", "spacious", "roomy", "sizeable"]
+            } else if area < 8.0 {
+                &["small", "little", "compact", "cosy", "snug"]
+            } else {
+                &[]
+            };
+            if !size.is_empty() && rng.random_bool(0.25) {
+                format!("the {} {}", pick(&mut rng, size), r.kind.words())
+            } else {
+                format!("the {}", r.kind.words())
+            }
+        });
+        // Now and then a remark on the target from what the scene model holds: its material,
+        // the shade of its colour, what its class is for, or where it stands in its room.
+        let remark = ctx
+            .scene
+            .object(target)
+            .filter(|_| rng.random_bool(0.35))
+            .and_then(|o| target_remark(ctx, o, &expr.class.words(), style, &mut rng))
+            .unwrap_or_default();
+        let text = match style {
+            Style::Formal => {
+                let rc = room
+                    .as_ref()
+                    .map(|r| fill(pick(&mut rng, ph::FORMAL_ROOM), &[("room", r)]))
+                    .unwrap_or_default();
+                let core = fill(
+                    pick(&mut rng, ph::FORMAL),
+                    &[("desc", &desc), ("sup", &sup), ("rel", &rel), ("room", &rc)],
+                );
+                format!(
+                    "{}{core}{remark}{}",
+                    pick(&mut rng, ph::FORMAL_OPEN),
+                    pick(&mut rng, ph::FORMAL_CLOSE)
+                )
+            }
+            Style::Natural => {
+                let core = match &room {
+                    Some(r) => fill(
+                        pick(&mut rng, ph::NATURAL_ROOM),
+                        &[("desc", &desc), ("sup", &sup), ("rel", &rel), ("room", r)],
+                    ),
+                    None => fill(
+                        pick(&mut rng, ph::NATURAL),
+                        &[("desc", &desc), ("sup", &sup), ("rel", &rel)],
+                    ),
+                };
+                let open = pick(&mut rng, ph::NATURAL_OPEN);
+                let core = if open.ends_with(", ") || open.ends_with(": ") {
+                    decapitalize(&core)
+                } else {
+                    core
+                };
+                let close = pick(&mut rng, ph::NATURAL_CLOSE);
+                let close = if !remark.is_empty() && close.starts_with(',') {
+                    "."
+                } else {
+                    close
+                };
+                format!("{open}{core}{remark}{close}")
+            }
+            Style::Casual => {
+                let rc = room
+                    .as_ref()
+                    .map(|r| fill(pick(&mut rng, ph::CASUAL_ROOM), &[("room", r)]))
+                    .unwrap_or_default();
+                let core = fill(
+                    pick(&mut rng, ph::CASUAL),
+                    &[("desc", &desc), ("sup", &sup), ("rel", &rel), ("room", &rc)],
+                );
+                format!(
+                    "{}{core}{remark}{}",
+                    pick(&mut rng, ph::CASUAL_OPEN),
+                    pick(&mut rng, ph::CASUAL_CLOSE)
+                )
+            }
+        };
+        let text = capitalize_sentence(&text, style);
+
+        // Grounding: seen from the end of the path, facing along its last segment.
+        let pts = floor_points(ctx.path);
+        let headings = segment_headings(&pts);
+        let idx = pts.len().checked_sub(1);
+        let mut grounding = Vec::new();
+        let mut push = |id: ObjectId, role: Role| {
+            if let Some(o) = ctx.scene.object(id) {
+                let (lo, hi) = footprint(o);
+                let side = if pts.len() >= 2 {
+                    end_side(&pts, &headings, (lo + hi) * 0.5)
+                } else {
+                    None
+                };
+                grounding.push(grounded(o, role, side, idx));
+            }
+        };
+        push(expr.target, Role::Target);
+        if let Some(m) = &expr.support {
+            push(m.object, Role::Reference);
+        }
+        if let Some(m) = &expr.reference {
+            push(m.object, Role::Reference);
+        }
+        Ok(Instruction {
+            instruction_text: text,
+            instruction_tokens: None,
+            style: Some(style),
+            grounding,
+            sub_instructions: Vec::new(),
+        })
+    }
+
+    fn chain(&self, parts: &[Instruction], seed: u64) -> Result<Instruction> {
+        chain_parts(parts, seed)
+    }
+}
+
+/// A remark on `o` in the style's register ("It is made of wood", " - kinda navy"), from its
+/// material, the shade of its colour, its class's use or its place in the room; `None` when the
+/// scene model holds none of these.
+fn target_remark(
+    ctx: &PathContext<'_>,
+    o: &SceneObject,
+    name: &str,
+    style: Style,
+    rng: &mut ChaCha8Rng,
+) -> Option<String> {
+    let (mat_b, shade_b, use_b, place_b) = match style {
+        Style::Formal => (
+            ph::FORMAL_MATERIAL,
+            ph::FORMAL_SHADE,
+            ph::FORMAL_USE,
+            ph::FORMAL_PLACE,
+        ),
+        Style::Natural => (
+            ph::NATURAL_MATERIAL,
+            ph::NATURAL_SHADE,
+            ph::NATURAL_USE,
+            ph::NATURAL_PLACE,
+        ),
+        Style::Casual => (
+            ph::CASUAL_MATERIAL,
+            ph::CASUAL_SHADE,
+            ph::CASUAL_USE,
+            ph::CASUAL_PLACE,
+        ),
+    };
+    let mats = material_words(o);
+    // Shades only: the plain colour word is already in the description when it is needed.
+    let shades: Vec<String> = color_phrases(o).into_iter().skip(1).collect();
+    let uses = class_uses(o.class);
+    let place = super::describe::room_feature(ctx.scene, o);
+    let mut kinds: Vec<u8> = Vec::new();
+    for (k, ok) in [
+        (0u8, !mats.is_empty()),
+        (1, !shades.is_empty()),
+        (2, !uses.is_empty()),
+        (3, place.is_some()),
+    ] {
+        if ok {
+            kinds.push(k);
+        }
+    }
+    if kinds.is_empty() {
+        return None;
+    }
+    Some(match kinds[rng.random_range(0..kinds.len())] {
+        0 => {
+            let a = pick(rng, mats);
+            fill(pick(rng, mat_b), &[("a", a), ("m", material_noun(a))])
+        }
+        1 => {
+            let c = &shades[rng.random_range(0..shades.len())];
+            fill(pick(rng, shade_b), &[("c", c)])
+        }
+        2 => fill(
+            pick(rng, use_b),
+            &[("use", pick(rng, uses)), ("name", name)],
+        ),
+        _ => fill(
+            pick(rng, place_b),
+            &[("f", pick(rng, place.unwrap_or(&[])))],
+        ),
+    })
+}
+
+fn capitalize_sentence(s: &str, style: Style) -> String {
+    match style {
+        Style::Casual => s.to_string(),
+        _ => capitalize(s),
+    }
+}
+
+/// A short description of `o` alone in the scene: its class, else colour + class; `None` when
+/// neither is unique.
+fn unique_mention(ctx: &PathContext<'_>, o: &SceneObject) -> Option<Mention> {
+    vlnverse_env::scene_graph::unique_mention(ctx.scene, ctx.graph, o)
+}
+
+/// The description a coarse instruction of `target` renders, unique within the scene: the scene
+/// graph's shortest referring expression, enriched per style so that it names the class, the
+/// colour and a relation to a reference object or room (formal: colour, support or reference
+/// object, room; natural: colour, room, support or reference; casual: colour, support or
+/// reference, else room). Every addition is checked with
+/// [`vlnverse_env::scene_graph::ReferringExpression::matches`]; the result always matches
+/// exactly `[target]`.
+pub fn coarse_expression(
+    ctx: &PathContext<'_>,
+    target: ObjectId,
+    style: Style,
+) -> Result<ReferringExpression> {
+    let expr = ctx
+        .graph
+        .referring_expression(ctx.scene, target)
+        .ok_or_else(|| {
+            DataError::invalid(
+                "target",
+                target,
+                format!(
+                    "scene `{}`: no description picks out this object alone (it is structure, \
+                     missing from the scene graph, or indistinguishable from another object)",
+                    ctx.scene.id
+                ),
+            )
+        })?;
+    let Some(obj) = ctx.scene.object(target) else {
+        return Ok(expr);
+    };
+    let unique = |e: &ReferringExpression| e.matches(ctx.scene, ctx.graph) == [target];
+    let mut e = expr;
+    let mut try_add = |e: &mut ReferringExpression, f: &dyn Fn(&mut ReferringExpression)| {
+        let mut c = e.clone();
+        f(&mut c);
+        if c != *e && unique(&c) {
+            *e = c;
+            true
+        } else {
+            false
+        }
+    };
+    if !obj.color.is_empty() {
+        try_add(&mut e, &|c| c.color = Some(obj.color.clone()));
+    }
+    let add_room = |c: &mut ReferringExpression| {
+        if let Some(r) = ctx.graph.room_of(target) {
+            if let Some(room) = ctx.scene.room(r) {
+                c.room = Some(RoomMention {
+                    room: r,
+                    kind: room.kind,
+                });
+            }
+        }
+    };
+    let add_support = |c: &mut ReferringExpression| {
+        if c.support.is_some() {
+            return;
+        }
+        let mut supports = ctx.graph.supports_of(target);
+        if let Some(s) = obj.supported_by {
+            supports.sort_by_key(|&x| x != s);
+        }
+        if let Some(s) = supports.first().and_then(|&s| ctx.scene.object(s)) {
+            c.support = Some(Mention {
+                object: s.id,
+                class: s.class,
+                color: None,
+            });
+        }
+    };
+    let add_reference = |c: &mut ReferringExpression| {
+        if c.reference.is_some() {
+            return;
+        }
+        let support = c.support.as_ref().map(|m| m.object);
+        for rel in [Relation::NextTo, Relation::Near] {
+            let mut ns = ctx.graph.neighbours(target, rel);
+            ns.sort_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
+            for (n, _) in ns {
+                let Some(o) = ctx.scene.object(n) else {
+                    continue;
+                };
+                if o.class == obj.class || o.is_structure() || Some(n) == support {
+                    continue;
+                }
+                if let Some(m) = unique_mention(ctx, o) {
+                    c.relation = Some(rel);
+                    c.reference = Some(m);
+                    return;
+                }
+            }
+        }
+    };
+    let relation = |e: &mut ReferringExpression,
+                    try_add: &mut dyn FnMut(
+        &mut ReferringExpression,
+        &dyn Fn(&mut ReferringExpression),
+    ) -> bool| {
+        if e.support.is_none() && e.reference.is_none() && !try_add(e, &add_support) {
+            try_add(e, &add_reference);
+        }
+    };
+    match style {
+        Style::Formal => {
+            relation(&mut e, &mut try_add);
+            try_add(&mut e, &add_room);
+        }
+        Style::Natural => {
+            try_add(&mut e, &add_room);
+            relation(&mut e, &mut try_add);
+        }
+        Style::Casual => {
+            relation(&mut e, &mut try_add);
+            if e.support.is_none() && e.reference.is_none() {
+                try_add(&mut e, &add_room);
+            }
+        }
+    }
+    Ok(e)
+}
+
+/// Join coarse sub-instructions in order: "First, ...; then ...; finally ...". The grounding of
+/// every part is kept as given (shift path indices with [`super::offset_grounding`] first when
+/// the parts' paths are concatenated); `sub_instructions` lists the parts' texts; the style is
+/// the parts' common style, if any.
+pub fn chain_parts(parts: &[Instruction], seed: u64) -> Result<Instruction> {
+    if parts.is_empty() {
+        return Err(DataError::invalid(
+            "parts",
+            0,
+            "a chained instruction needs at least one part",
+        ));
+    }
+    let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x6368_6169);
+    let subs: Vec<String> = parts.iter().map(|p| p.instruction_text.clone()).collect();
+    let style = parts[0]
+        .style
+        .filter(|s| parts.iter().all(|p| p.style == Some(*s)));
+    let text = if parts.len() == 1 {
+        subs[0].clone()
+    } else {
+        let mut pieces = Vec::new();
+        for (i, t) in subs.iter().enumerate() {
+            let t = t.trim().trim_end_matches(['.', '!']);
+            // "I" stays a capital.
+            let body = if t.starts_with("I ") || t.starts_with("I'") {
+                t.to_string()
+            } else {
+                decapitalize(t)
+            };
+            let opener = if i == 0 {
+                pick(&mut rng, ph::CHAIN_FIRST)
+            } else if i + 1 == subs.len() {
+                pick(&mut rng, ph::CHAIN_LAST)
+            } else {
+                pick(&mut rng, ph::CHAIN_MID)
+            };
+            pieces.push(format!("{opener}{body}"));
+        }
+        format!("{}.", pieces.join("; "))
+    };
+    Ok(Instruction {
+        instruction_text: text,
+        instruction_tokens: None,
+        style,
+        grounding: parts.iter().flat_map(|p| p.grounding.clone()).collect(),
+        sub_instructions: subs,
+    })
+}

@@ -1,0 +1,463 @@
+//! The template generator on the tiny preset's homes: determinism, grounding, turns, rooms,
+//! unique coarse descriptions, styles, variety and chaining.
+
+use crate::instructions_fixture;
+use vlnverse_score::route::env_side;
+
+use glam::Vec2;
+use instructions_fixture::{paths, worlds, Ctx, Sample, World};
+use std::collections::BTreeSet;
+use vlnverse_env::scene_graph::{rooms_along_path, side_of, yaw_from_direction};
+use vlnverse_env::{ObjectId, Scene};
+use vlnverse_instructions::{
+    check_grounding, coarse_expression, InstructionGenerator, PathContext, TemplateGenerator,
+};
+use vlnverse_score::{Instruction, Role, Side, Style};
+
+fn gen() -> TemplateGenerator {
+    TemplateGenerator::default()
+}
+
+/// Non-structure objects with a unique description, and a path from a random navigable point
+/// to the free point nearest to the object.
+fn coarse_cases(w: &World, seed: u64) -> Vec<(ObjectId, Sample)> {
+    let starts = paths(w, 40, seed);
+    let mut out = Vec::new();
+    for (k, o) in w
+        .scene
+        .objects
+        .iter()
+        .filter(|o| !o.is_structure())
+        .enumerate()
+    {
+        if w.graph.referring_expression(&w.scene, o.id).is_none() {
+            continue;
+        }
+        let c = o.bbox.center();
+        let Some(goal) = w.maps.navigable.nearest_free(Vec2::new(c.x, c.z), 2.0) else {
+            continue;
+        };
+        let start = &starts[k % starts.len()].path[0];
+        let Some(p) = vlnverse_env::geodesic::shortest_path(
+            &w.maps.navigable,
+            Vec2::new(start[0], start[2]),
+            goal,
+        )
+        .expect("finite") else {
+            continue;
+        };
+        if p.points.len() < 2 {
+            continue;
+        }
+        out.push((
+            o.id,
+            Sample {
+                path: p.points.iter().map(|q| [q.x, 0.0, q.y]).collect(),
+                start_yaw: 0.3 * k as f32,
+            },
+        ));
+    }
+    out
+}
+
+#[test]
+fn fine_same_seed_same_text_and_seeds_vary() {
+    let ws = worlds(2);
+    let g = gen();
+    let mut distinct = BTreeSet::new();
+    let mut total = 0;
+    for w in &ws {
+        for s in paths(w, 10, 1) {
+            let ctx = w.ctx(&s);
+            let a = g.fine(&ctx, 42).unwrap();
+            let b = g.fine(&ctx, 42).unwrap();
+            assert_eq!(a, b);
+            for seed in 0..4 {
+                distinct.insert(g.fine(&ctx, seed).unwrap().instruction_text);
+                total += 1;
+            }
+        }
+    }
+    // Different seeds give different wording for (nearly) every path.
+    assert!(
+        distinct.len() * 10 >= total * 9,
+        "{} of {total}",
+        distinct.len()
+    );
+}
+
+/// Independent side check with `side_of`: some point of segment `i` closest to the object
+/// (within 2 cm) sees the footprint centre on the stated side.
+fn side_holds(scene: &Scene, path: &[[f32; 3]], g: &vlnverse_score::GroundedObject) -> bool {
+    let o = scene.object(g.object_id).expect("object exists");
+    let (lo, hi) = (
+        Vec2::new(o.bbox.min[0], o.bbox.min[2]),
+        Vec2::new(o.bbox.max[0], o.bbox.max[2]),
+    );
+    let center = (lo + hi) * 0.5;
+    let pts: Vec<Vec2> = path.iter().map(|p| Vec2::new(p[0], p[2])).collect();
+    let i = g.path_index.expect("index") as usize;
+    let (a, b, dir) = if i + 1 < pts.len() {
+        (pts[i], pts[i + 1], pts[i + 1] - pts[i])
+    } else {
+        let n = pts.len();
+        (pts[i], pts[i], pts[n - 1] - pts[n - 2])
+    };
+    let yaw = yaw_from_direction(dir);
+    let cand: Vec<(Vec2, f32)> = (0..=200)
+        .map(|k| {
+            let p = a.lerp(b, k as f32 / 200.0);
+            (p, (p.clamp(lo, hi) - p).length())
+        })
+        .collect();
+    let dmin = cand.iter().map(|c| c.1).fold(f32::INFINITY, f32::min);
+    cand.iter()
+        .filter(|c| c.1 <= dmin + 0.025)
+        .any(|c| Some(env_side(side_of(c.0, yaw, center))) == g.side)
+}
+
+#[test]
+fn fine_grounding_exists_near_path_and_on_stated_side() {
+    let g = gen();
+    let mut landmarks = 0;
+    let mut lateral = 0;
+    for (wi, w) in worlds(5).iter().enumerate() {
+        for s in paths(w, 12, 10 + wi as u64) {
+            let ctx = w.ctx(&s);
+            let ins = g.fine(&ctx, 7).unwrap();
+            let problems = check_grounding(&ctx, &ins, 3.0);
+            assert!(
+                problems.is_empty(),
+                "{problems:?}\n{}",
+                ins.instruction_text
+            );
+            for gr in &ins.grounding {
+                assert!(w.scene.object(gr.object_id).is_some());
+                assert!(side_holds(&w.scene, &s.path, gr), "{gr:?}");
+                if gr.role == Role::Landmark {
+                    landmarks += 1;
+                    assert_ne!(gr.side, Some(Side::Behind));
+                    lateral += usize::from(matches!(gr.side, Some(Side::Left | Side::Right)));
+                    // The text names the landmark's class (by one of its names).
+                    let class = vlnverse_env::SemanticClass::from_name(&gr.class).unwrap();
+                    let names = vlnverse_instructions::lexicon::class_names(class);
+                    assert!(
+                        names.iter().any(|n| ins.instruction_text.contains(n)),
+                        "{names:?}: {}",
+                        ins.instruction_text
+                    );
+                }
+            }
+        }
+    }
+    assert!(landmarks >= 20, "only {landmarks} landmarks named");
+    assert!(lateral >= 10, "only {lateral} landmarks on a side");
+}
+
+#[test]
+fn fine_names_the_rooms_entered() {
+    let g = gen();
+    let mut transitions = 0;
+    for (wi, w) in worlds(5).iter().enumerate() {
+        for s in paths(w, 10, 100 + wi as u64) {
+            let path3: Vec<glam::Vec3> = s.path.iter().map(|p| glam::Vec3::from(*p)).collect();
+            let rooms = rooms_along_path(&w.scene, &path3);
+            let ins = g.fine(&w.ctx(&s), 3).unwrap();
+            for &(_, r) in rooms.iter().skip(1) {
+                transitions += 1;
+                let kind = w.scene.room(r).unwrap().kind.words();
+                assert!(
+                    ins.instruction_text.contains(&kind),
+                    "{kind}: {}",
+                    ins.instruction_text
+                );
+            }
+        }
+    }
+    assert!(transitions >= 10, "only {transitions} room changes sampled");
+}
+
+/// A path far outside the home: no landmark, no room, only turns.
+fn open_path(points: &[(f32, f32)], start_yaw: f32) -> Sample {
+    Sample {
+        path: points
+            .iter()
+            .map(|&(x, z)| [x + 500.0, 0.0, z + 500.0])
+            .collect(),
+        start_yaw,
+    }
+}
+
+#[test]
+fn fine_follows_the_turns_of_the_path() {
+    let w = &worlds(1)[0];
+    let g = gen();
+    // Facing -Z (yaw 0), walk 5 m along -Z, then turn towards +X: a right turn.
+    let right = open_path(&[(0.0, 0.0), (0.0, -5.0), (5.0, -5.0)], 0.0);
+    let left = open_path(&[(0.0, 0.0), (0.0, -5.0), (-5.0, -5.0)], 0.0);
+    let straight = open_path(&[(0.0, 0.0), (0.0, -5.0), (0.1, -10.0)], 0.0);
+    let behind = open_path(&[(0.0, 0.0), (0.0, 5.0)], 0.0);
+    for seed in 0..20 {
+        let r = g.fine(&w.ctx(&right), seed).unwrap();
+        assert!(
+            r.instruction_text.contains("right") && !r.instruction_text.contains("left"),
+            "{}",
+            r.instruction_text
+        );
+        assert!(r.grounding.is_empty());
+        let l = g.fine(&w.ctx(&left), seed).unwrap();
+        assert!(
+            l.instruction_text.contains("left") && !l.instruction_text.contains("right"),
+            "{}",
+            l.instruction_text
+        );
+        let s = g.fine(&w.ctx(&straight), seed).unwrap();
+        assert!(
+            !s.instruction_text.contains("left") && !s.instruction_text.contains("right"),
+            "{}",
+            s.instruction_text
+        );
+        let b = g
+            .fine(&w.ctx(&behind), seed)
+            .unwrap()
+            .instruction_text
+            .to_lowercase();
+        assert!(
+            ["around", "opposite", "u-turn", "turn back"]
+                .iter()
+                .any(|k| b.contains(k)),
+            "{b}"
+        );
+    }
+}
+
+#[test]
+fn coarse_descriptions_pick_out_exactly_the_target() {
+    let g = gen();
+    let mut checked = 0;
+    for (wi, w) in worlds(5).iter().enumerate() {
+        for (target, s) in coarse_cases(w, wi as u64) {
+            let ctx = w.ctx(&s);
+            let mut texts = BTreeSet::new();
+            for style in Style::ALL {
+                let expr = coarse_expression(&ctx, target, style).unwrap();
+                assert_eq!(
+                    expr.matches(&w.scene, &w.graph),
+                    vec![target],
+                    "{}",
+                    expr.text()
+                );
+                let ins = g.coarse(&ctx, target, style, 5).unwrap();
+                assert_eq!(ins.style, Some(style));
+                let t = &ins.instruction_text;
+                // Every part of the description is in the text.
+                assert!(t.contains(&expr.class.words()), "{t}");
+                if let Some(c) = &expr.color {
+                    assert!(t.contains(&format!("{c} {}", expr.class.words())), "{t}");
+                }
+                if let Some(m) = &expr.support {
+                    assert!(t.contains(&m.words()), "{t}");
+                }
+                if let Some(m) = &expr.reference {
+                    assert!(t.contains(&m.words()), "{t}");
+                }
+                if let Some(r) = &expr.room {
+                    assert!(t.contains(&r.kind.words()), "{t}");
+                }
+                // Grounding: the target (at the end of the path) and its reference objects.
+                assert_eq!(ins.grounding[0].object_id, target);
+                assert_eq!(ins.grounding[0].role, Role::Target);
+                let only_target = Instruction {
+                    grounding: ins.grounding[..1].to_vec(),
+                    ..ins.clone()
+                };
+                let p = check_grounding(&ctx, &only_target, 3.0);
+                assert!(p.is_empty(), "{p:?}");
+                let p = check_grounding(&ctx, &ins, 6.0);
+                assert!(p.is_empty(), "{p:?}");
+                texts.insert(t.clone());
+            }
+            assert_eq!(texts.len(), 3, "styles read alike: {texts:?}");
+            checked += 1;
+        }
+    }
+    assert!(checked >= 30, "only {checked} targets checked");
+}
+
+#[test]
+fn coarse_styles_have_their_own_register() {
+    let g = gen();
+    let w = &worlds(1)[0];
+    let cases = coarse_cases(w, 9);
+    assert!(!cases.is_empty());
+    for (target, s) in cases.iter().take(10) {
+        let ctx = w.ctx(s);
+        for seed in 0..5 {
+            let f = g
+                .coarse(&ctx, *target, Style::Formal, seed)
+                .unwrap()
+                .instruction_text;
+            let n = g
+                .coarse(&ctx, *target, Style::Natural, seed)
+                .unwrap()
+                .instruction_text;
+            let c = g
+                .coarse(&ctx, *target, Style::Casual, seed)
+                .unwrap()
+                .instruction_text;
+            assert!(f.starts_with(char::is_uppercase) && f.ends_with('.'), "{f}");
+            assert!(n.starts_with(char::is_uppercase) && n.ends_with('.'), "{n}");
+            assert!(
+                c.starts_with(char::is_lowercase) && !c.ends_with('.'),
+                "{c}"
+            );
+            assert_eq!(
+                g.coarse(&ctx, *target, Style::Casual, seed)
+                    .unwrap()
+                    .instruction_text,
+                c
+            );
+        }
+    }
+}
+
+fn sentences(text: &str) -> Vec<String> {
+    text.split(". ")
+        .map(|s| s.trim().trim_end_matches('.').to_string())
+        .filter(|s| !s.is_empty())
+        .collect()
+}
+
+#[test]
+fn instructions_do_not_read_alike() {
+    let g = gen();
+    let (mut fine_all, mut fine_distinct) = (0usize, BTreeSet::new());
+    let (mut coarse_all, mut coarse_distinct) = (0usize, BTreeSet::new());
+    for (wi, w) in worlds(5).iter().enumerate() {
+        for (k, s) in paths(w, 60, 1000 + wi as u64).iter().enumerate() {
+            let ins = g.fine(&w.ctx(s), k as u64).unwrap();
+            for sen in sentences(&ins.instruction_text) {
+                fine_all += 1;
+                fine_distinct.insert(sen);
+            }
+        }
+        for (k, (target, s)) in coarse_cases(w, 50 + wi as u64).iter().enumerate() {
+            for style in Style::ALL {
+                for seed in 0..3 {
+                    let ins = g
+                        .coarse(&w.ctx(s), *target, style, k as u64 * 7 + seed)
+                        .unwrap();
+                    coarse_all += 1;
+                    coarse_distinct.insert(ins.instruction_text);
+                }
+            }
+        }
+    }
+    let fr = fine_distinct.len() as f64 / fine_all as f64;
+    let cr = coarse_distinct.len() as f64 / coarse_all as f64;
+    eprintln!(
+        "fine: {} distinct of {fine_all} sentences ({fr:.2}); coarse: {} of {coarse_all} ({cr:.2})",
+        fine_distinct.len(),
+        coarse_distinct.len()
+    );
+    assert!(fine_all >= 300);
+    assert!(fr >= 0.8, "fine distinct-sentence ratio {fr:.2}");
+    assert!(cr >= 0.85, "coarse distinct ratio {cr:.2}");
+}
+
+#[test]
+fn chain_joins_parts_in_order() {
+    let g = gen();
+    let w = &worlds(1)[0];
+    let cases = coarse_cases(w, 3);
+    assert!(cases.len() >= 3);
+    let parts: Vec<Instruction> = cases[..3]
+        .iter()
+        .zip(Style::ALL)
+        .map(|((t, s), style)| g.coarse(&w.ctx(s), *t, style, 1).unwrap())
+        .collect();
+    let c = g.chain(&parts, 11).unwrap();
+    assert_eq!(c, g.chain(&parts, 11).unwrap());
+    let texts: Vec<String> = parts.iter().map(|p| p.instruction_text.clone()).collect();
+    assert_eq!(c.sub_instructions, texts);
+    assert_eq!(c.style, None, "mixed styles have no common style");
+    assert_eq!(
+        c.grounding.len(),
+        parts.iter().map(|p| p.grounding.len()).sum::<usize>()
+    );
+    // Each part appears, in order, lower-cased at its start and without its full stop.
+    let lower = c.instruction_text.to_lowercase();
+    let mut at = 0;
+    for t in &texts {
+        let body = t.trim_end_matches('.').to_lowercase();
+        let pos = lower[at..]
+            .find(&body)
+            .unwrap_or_else(|| panic!("{body} not in {lower}"));
+        at += pos + body.len();
+    }
+    assert!(
+        c.instruction_text.starts_with(char::is_uppercase) && c.instruction_text.ends_with('.')
+    );
+    let same: Vec<Instruction> = parts
+        .iter()
+        .take(2)
+        .map(|p| Instruction {
+            style: Some(Style::Formal),
+            ..p.clone()
+        })
+        .collect();
+    assert_eq!(g.chain(&same, 0).unwrap().style, Some(Style::Formal));
+    assert!(g.chain(&[], 0).is_err());
+}
+
+#[test]
+fn bad_inputs_give_clear_errors() {
+    let g = gen();
+    let w = &worlds(1)[0];
+    let one = Sample {
+        path: vec![[0.0, 0.0, 0.0]],
+        start_yaw: 0.0,
+    };
+    let e = g.fine(&w.ctx(&one), 0).unwrap_err().to_string();
+    assert!(e.contains("path") && e.contains("1 points"), "{e}");
+    let nan = Sample {
+        path: vec![[0.0, 0.0, 0.0], [f32::NAN, 0.0, 1.0]],
+        start_yaw: 0.0,
+    };
+    let e = g.fine(&w.ctx(&nan), 0).unwrap_err().to_string();
+    assert!(e.contains("path[1]"), "{e}");
+    let wall = w
+        .scene
+        .objects
+        .iter()
+        .find(|o| o.is_structure())
+        .unwrap()
+        .id;
+    let s = &paths(w, 1, 0)[0];
+    let e = g
+        .coarse(&w.ctx(s), wall, Style::Formal, 0)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("target") && e.contains(&wall.to_string()), "{e}");
+    let e = g
+        .coarse(&w.ctx(s), 999_999, Style::Formal, 0)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("999999"), "{e}");
+    let bad = vlnverse_instructions::TemplateConfig {
+        landmark_distance: -1.0,
+        ..Default::default()
+    };
+    let e = TemplateGenerator::new(bad).unwrap_err().to_string();
+    assert!(e.contains("landmark_distance"), "{e}");
+}
+
+#[test]
+fn path_context_is_copy_for_callers() {
+    // The pipeline builds one context per trajectory; it is a cheap copy.
+    let w = &worlds(1)[0];
+    let s = &paths(w, 1, 4)[0];
+    let ctx: PathContext<'_> = w.ctx(s);
+    let copy = ctx;
+    assert_eq!(gen().fine(&ctx, 1).unwrap(), gen().fine(&copy, 1).unwrap());
+}

@@ -1,0 +1,7 @@
+//! Integration tests of `vlnverse-instructions`, linked into one test binary.
+
+mod instructions_fixture;
+
+#[cfg(feature = "llm")]
+mod instructions_llm;
+mod instructions_template;
