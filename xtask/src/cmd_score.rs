@@ -6,12 +6,9 @@ use std::path::PathBuf;
 
 use crate::split_args::SplitArgs;
 use anyhow::Context as _;
-use vlnverse_task::metrics::{
-    check_starts, match_trajectories, score_all, GoalDistances, MetricsConfig,
-    DEFAULT_START_TOLERANCE,
-};
-use vlnverse_task::report::{write_run, RunSummary};
-use vlnverse_task::{dataset, score, trajectory};
+use vlnverse_score::metrics::{MetricsConfig, DEFAULT_START_TOLERANCE};
+use vlnverse_score::report::{write_run, RunSummary};
+use vlnverse_score::{score_with, trajectory, ScoreOptions};
 
 /// Arguments of `cargo xtask score`.
 #[derive(clap::Args, Debug)]
@@ -51,37 +48,35 @@ pub struct Args {
 
 /// Run the command.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let cfg = MetricsConfig {
-        success_distance: args.success_distance,
-        fail_on_collision: args.fail_on_collision,
-        ..Default::default()
+    let options = ScoreOptions {
+        metrics: MetricsConfig {
+            success_distance: args.success_distance,
+            fail_on_collision: args.fail_on_collision,
+            ..Default::default()
+        },
+        euclidean: args.euclidean,
+        allow_missing: args.allow_missing,
+        start_tolerance: args.start_tolerance,
     };
-    cfg.validate()?;
-    let episodes = dataset::read_split(&args.data.dataset, args.data.task, args.data.split)?;
     let trajectories = trajectory::read_trajectories(&args.trajectories)?;
-    let trajectories = match_trajectories(&episodes, trajectories, args.allow_missing)
-        .with_context(|| format!("matching {} to the episodes", args.trajectories.display()))?;
-    check_starts(&episodes, &trajectories, args.start_tolerance)
-        .with_context(|| format!("checking the starts of {}", args.trajectories.display()))?;
     tracing::info!(
-        "scoring {} episodes of {}/{}",
-        episodes.len(),
+        "scoring {} trajectories on {}/{}",
+        trajectories.len(),
         args.data.task,
         args.data.split
     );
-    let mut metrics = if args.euclidean {
-        score_all(&episodes, &trajectories, &GoalDistances::euclidean, &cfg)
-    } else {
-        let pb = crate::progress::bar(episodes.len() as u64, "scoring");
-        let m = score::score_on_maps(&args.data.dataset, &episodes, &trajectories, &cfg, &|n| {
-            pb.inc(n as u64)
-        })?;
-        pb.finish_and_clear();
-        m
-    };
-    for m in &mut metrics {
-        m.split = Some(args.data.split);
-    }
+    let pb = crate::progress::bar(trajectories.len() as u64, "scoring");
+    let scored = score_with(
+        &args.data.dataset,
+        args.data.task,
+        args.data.split,
+        trajectories,
+        &options,
+        &|n| pb.inc(n as u64),
+    )
+    .with_context(|| format!("scoring {}", args.trajectories.display()))?;
+    pb.finish_and_clear();
+    let metrics = scored.metrics;
     let method = args.method.clone().unwrap_or_else(|| {
         args.trajectories
             .file_stem()
@@ -113,7 +108,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use vlnverse_task::{Episode, EpisodeInfo, Goal, Split, Task};
+    use vlnverse_score::{dataset, Episode, EpisodeInfo, Goal, Split, Task};
 
     /// A fine test split under `dir` with one episode `id`: from the origin `length` metres
     /// along +X.

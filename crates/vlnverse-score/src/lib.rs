@@ -25,6 +25,6 @@ pub use metrics::{
 };
 pub use report::{write_run, RunSummary};
 pub use sample::{sample_episodes, Sample};
-pub use score::score_on_maps;
+pub use score::{score, score_on_maps, score_with, ScoreOptions, Scored};
 pub use trajectory::{read_trajectories, write_jsonl, Trajectory};
 pub use vocab::Vocab;

@@ -14,12 +14,108 @@ use rayon::prelude::*;
 use vlnverse_env::geodesic::DistanceField;
 use vlnverse_env::occupancy::GridMap;
 
-use crate::episode::Episode;
+use crate::episode::{Episode, Split, Task};
 use crate::error::{DataError, Result};
 use crate::metrics::{
-    score_episode, EpisodeMetrics, GoalDistance, GoalDistances, MetricsConfig, Nearest,
+    aggregate, check_starts, match_trajectories, score_all, score_episode, EpisodeMetrics,
+    GoalDistance, GoalDistances, MetricsConfig, Nearest, Summary, DEFAULT_START_TOLERANCE,
 };
 use crate::trajectory::Trajectory;
+
+/// How [`score_with`] scores; the default is the benchmark's protocol (geodesic distances on the
+/// navigable maps, every episode needs a trajectory, starts within
+/// [`DEFAULT_START_TOLERANCE`]).
+#[derive(Clone, Debug)]
+pub struct ScoreOptions {
+    /// Success distance, collision rule, ...
+    pub metrics: MetricsConfig,
+    /// Straight-line instead of geodesic distances (no navigable maps needed).
+    pub euclidean: bool,
+    /// Score episodes without a trajectory as failures instead of refusing the file.
+    pub allow_missing: bool,
+    /// How far (m, horizontally) a trajectory may start from its episode's start.
+    pub start_tolerance: f32,
+}
+
+impl Default for ScoreOptions {
+    fn default() -> Self {
+        ScoreOptions {
+            metrics: MetricsConfig::default(),
+            euclidean: false,
+            allow_missing: false,
+            start_tolerance: DEFAULT_START_TOLERANCE,
+        }
+    }
+}
+
+/// A scored split: one [`EpisodeMetrics`] per episode, in the split file's order (each tagged
+/// with the split), and their [`Summary`].
+#[derive(Clone, Debug)]
+#[non_exhaustive]
+pub struct Scored {
+    /// Per-episode metrics.
+    pub metrics: Vec<EpisodeMetrics>,
+    /// The split's aggregate.
+    pub summary: Summary,
+}
+
+/// Score `trajectories` (any order, one per episode) against `task`/`split` of the dataset in
+/// `dataset` with the benchmark's protocol: the one call behind `cargo xtask score`.
+///
+/// ```no_run
+/// use vlnverse_score::{read_trajectories, score, Split, Task};
+/// let trajectories = read_trajectories("runs/mine/trajectories.jsonl".as_ref())?;
+/// let scored = score("datasets/tiny".as_ref(), Task::Fine, Split::ValUnseen, trajectories)?;
+/// println!("SR {:.3}", scored.summary.sr);
+/// # Ok::<(), vlnverse_score::DataError>(())
+/// ```
+pub fn score(
+    dataset: &Path,
+    task: Task,
+    split: Split,
+    trajectories: Vec<Trajectory>,
+) -> Result<Scored> {
+    score_with(
+        dataset,
+        task,
+        split,
+        trajectories,
+        &ScoreOptions::default(),
+        &|_| {},
+    )
+}
+
+/// [`score`] with options; `on_done(n)` is called after each chunk of `n` scored episodes.
+pub fn score_with(
+    dataset: &Path,
+    task: Task,
+    split: Split,
+    trajectories: Vec<Trajectory>,
+    options: &ScoreOptions,
+    on_done: &(dyn Fn(usize) + Sync),
+) -> Result<Scored> {
+    options.metrics.validate()?;
+    let episodes = crate::dataset::read_split(dataset, task, split)?;
+    let trajectories = match_trajectories(&episodes, trajectories, options.allow_missing)?;
+    check_starts(&episodes, &trajectories, options.start_tolerance)?;
+    let mut metrics = if options.euclidean {
+        let m = score_all(
+            &episodes,
+            &trajectories,
+            &GoalDistances::euclidean,
+            &options.metrics,
+        );
+        on_done(m.len());
+        m
+    } else {
+        score_on_maps(dataset, &episodes, &trajectories, &options.metrics, on_done)?
+    };
+    for m in &mut metrics {
+        m.split = Some(split);
+    }
+    let summary = aggregate(&metrics);
+    Ok(Scored { metrics, summary })
+}
 
 /// Distinct goals whose distance fields are alive at once.
 pub const MAX_FIELDS_PER_CHUNK: usize = 32;

@@ -1,17 +1,29 @@
-//! The layers build alone: the scoring crate pulls no physics or graphics, every library crate
-//! packages (its default configs are inside it), and the sensor and task crates build without
-//! their optional backends.
+//! The layers build alone and point one way (docs/architecture.md): each crate's `cargo tree`
+//! holds none of what its layer must not compile, every library crate packages (its default
+//! configs are inside it), and optional backends stay out without their features.
 
 use std::path::Path;
 use std::process::Command;
 
-const LIBRARIES: [&str; 7] = [
+const LIBRARIES: [&str; 10] = [
     "vlnverse-env",
     "vlnverse-score",
     "vlnverse-sim",
     "vlnverse-sensors",
     "vlnverse-procgen",
     "vlnverse-import",
+    "vlnverse-instructions",
+    "vlnverse-generate",
+    "vlnverse-eval",
+    "vlnverse-task",
+];
+
+/// The task layer's crates: the layers below must not reach them.
+const TASK_LAYER: [&str; 5] = [
+    "vlnverse-score",
+    "vlnverse-instructions",
+    "vlnverse-generate",
+    "vlnverse-eval",
     "vlnverse-task",
 ];
 
@@ -40,21 +52,85 @@ fn deps(args: &[&str]) -> Vec<String> {
         .collect()
 }
 
+/// Fail when the `cargo tree` of `args` holds any of `forbidden`.
+fn assert_without(args: &[&str], forbidden: &[&str]) {
+    let d = deps(args);
+    assert!(d.len() > 1, "cargo tree {args:?} listed nothing: {d:?}");
+    for f in forbidden {
+        assert!(
+            !d.iter().any(|x| x == f),
+            "`cargo tree {}` pulls {f}, which docs/architecture.md keeps out of it",
+            args.join(" ")
+        );
+    }
+}
+
 #[test]
-fn the_scoring_crate_has_no_physics_or_graphics_dependency() {
-    let d = deps(&["-p", "vlnverse-score"]);
-    assert!(d.contains(&"serde_json".to_string()), "{d:?}");
-    for heavy in [
+fn the_scoring_crate_has_no_physics_graphics_or_http() {
+    assert!(deps(&["-p", "vlnverse-score"]).contains(&"serde_json".to_string()));
+    assert_without(
+        &["-p", "vlnverse-score"],
+        &[
+            "rapier3d",
+            "parry3d",
+            "wgpu",
+            "ureq",
+            "vlnverse-sim",
+            "vlnverse-sensors",
+        ],
+    );
+}
+
+#[test]
+fn instructions_compile_no_physics_renderer_or_other_task_crate() {
+    let heavy = [
         "rapier3d",
         "parry3d",
         "wgpu",
         "vlnverse-sim",
         "vlnverse-sensors",
+        "vlnverse-generate",
+        "vlnverse-eval",
+    ];
+    assert_without(&["-p", "vlnverse-instructions"], &heavy);
+    assert_without(
+        &["-p", "vlnverse-instructions", "--no-default-features"],
+        &["ureq"],
+    );
+}
+
+#[test]
+fn generation_compiles_no_physics_gpu_or_evaluation() {
+    assert_without(
+        &["-p", "vlnverse-generate"],
+        &["rapier3d", "wgpu", "vlnverse-sim", "vlnverse-eval"],
+    );
+    assert_without(
+        &["-p", "vlnverse-generate", "--no-default-features"],
+        &["ureq"],
+    );
+}
+
+#[test]
+fn evaluation_compiles_no_instruction_generator_or_http_client_by_default() {
+    assert_without(
+        &["-p", "vlnverse-eval"],
+        &["vlnverse-instructions", "vlnverse-generate", "ureq"],
+    );
+    // The LLM oracle brings the chat client, and only then.
+    let with = deps(&["-p", "vlnverse-eval", "--features", "llm-oracle"]);
+    assert!(with.iter().any(|x| x == "ureq"), "{with:?}");
+}
+
+#[test]
+fn lower_layers_know_nothing_of_tasks() {
+    for c in [
+        "vlnverse-env",
+        "vlnverse-sim",
+        "vlnverse-sensors",
+        "vlnverse-procgen",
     ] {
-        assert!(
-            !d.iter().any(|x| x == heavy),
-            "vlnverse-score depends on {heavy}"
-        );
+        assert_without(&["-p", c], &TASK_LAYER);
     }
 }
 
@@ -62,10 +138,10 @@ fn the_scoring_crate_has_no_physics_or_graphics_dependency() {
 fn optional_backends_stay_out_without_their_features() {
     let sensors = deps(&["-p", "vlnverse-sensors", "--no-default-features"]);
     assert!(!sensors.iter().any(|x| x == "wgpu"), "{sensors:?}");
-    let task = deps(&["-p", "vlnverse-task", "--no-default-features"]);
-    for opt in ["wgpu", "ureq"] {
-        assert!(!task.iter().any(|x| x == opt), "vlnverse-task pulls {opt}");
-    }
+    assert_without(
+        &["-p", "vlnverse-task", "--no-default-features"],
+        &["wgpu", "ureq"],
+    );
     let with = deps(&["-p", "vlnverse-task"]);
     assert!(with.iter().any(|x| x == "wgpu") && with.iter().any(|x| x == "ureq"));
 }
