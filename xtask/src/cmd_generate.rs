@@ -61,7 +61,7 @@ pub fn parse_shard(s: &str) -> anyhow::Result<(usize, usize)> {
     anyhow::ensure!(
         k < n,
         "--shard {s}: K counts from 0, so use {}",
-        vlnverse_task::generate::pipeline::shard_list(n)
+        vlnverse_task::generate::shard_list(n)
     );
     Ok((k, n))
 }

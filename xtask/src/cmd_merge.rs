@@ -22,7 +22,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let n = vlnverse_task::generate::merge(&args.out, &args.parts)?;
     let report = args
         .out
-        .join(vlnverse_task::generate::pipeline::REPORT_FILE);
+        .join(vlnverse_task::generate::REPORT_FILE);
     if let Ok(raw) = std::fs::read(&report) {
         if let Ok(r) = serde_json::from_slice::<vlnverse_task::generate::GenerationReport>(&raw) {
             for skip in &r.skipped {

@@ -24,7 +24,6 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::time::Instant;
 
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -1052,9 +1051,4 @@ impl SceneSource for FolderSource {
         s.id = self.scene_id(index);
         Ok(s)
     }
-}
-
-/// Wall-clock helper for callers that print a breakdown.
-pub fn elapsed_s(t: Instant) -> f64 {
-    t.elapsed().as_secs_f64()
 }

@@ -63,7 +63,7 @@ def main() -> None:
             r_async = rate(asy, max(a.steps // 4, 20), n)
             asy.close()
         cmd = [a.rust_exe] if a.rust_exe else [
-            "cargo", "run", "-q", "--release", "-p", "vlnverse-task", "--example",
+            "cargo", "run", "-q", "--release", "-p", "vlnverse-eval", "--example",
             "vec_env_rate", "--"]
         out = subprocess.run([*cmd, a.dataset, str(n), str(a.steps)], cwd=root, check=True,
                              capture_output=True, text=True).stdout

@@ -5,8 +5,8 @@ use std::collections::BTreeSet;
 use std::path::Path;
 
 use proptest::prelude::*;
-use vlnverse_generate::presets::episodes_per_trajectory;
-use vlnverse_generate::splits::{assign_scene_splits, plan, spread};
+use vlnverse_generate::episodes_per_trajectory;
+use vlnverse_generate::{assign_scene_splits, plan, spread};
 use vlnverse_generate::{GenerateConfig, GeneratePreset};
 use vlnverse_score::{Split, Task};
 

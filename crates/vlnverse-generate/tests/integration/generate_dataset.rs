@@ -12,7 +12,7 @@ use vlnverse_env::io::load_scene;
 use vlnverse_env::occupancy::{build_maps, OccupancyConfig, OccupancyMaps};
 use vlnverse_env::scene_graph::SceneGraph;
 use vlnverse_env::Scene;
-use vlnverse_generate::pipeline::{merge, part_path, run, RunOptions};
+use vlnverse_generate::{merge, part_path, run, RunOptions};
 use vlnverse_generate::{GeneratePreset, StageTimes};
 use vlnverse_instructions::{check_grounding, PathContext, TemplateGenerator};
 use vlnverse_procgen::{HomeGenerator, Preset};

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use vlnverse_env::occupancy::OccupancyConfig;
 use vlnverse_env::SceneSource;
-use vlnverse_generate::pipeline::{merge, part_path, run, RunOptions};
+use vlnverse_generate::{merge, part_path, run, RunOptions};
 use vlnverse_generate::{FolderSource, GenerateConfig, GeneratePreset, StageTimes};
 use vlnverse_instructions::TemplateGenerator;
 use vlnverse_procgen::{HomeGenerator, Preset};

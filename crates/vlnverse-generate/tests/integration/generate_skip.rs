@@ -8,10 +8,8 @@ use std::path::{Path, PathBuf};
 
 use vlnverse_env::occupancy::OccupancyConfig;
 use vlnverse_env::{Scene, SceneSource};
-use vlnverse_generate::pipeline::{
-    merge, run, GenerateSummary, GenerationReport, RunOptions, REPORT_FILE,
-};
-use vlnverse_generate::splits::{assign_scene_splits, plan};
+use vlnverse_generate::{assign_scene_splits, plan};
+use vlnverse_generate::{merge, run, GenerateSummary, GenerationReport, RunOptions, REPORT_FILE};
 use vlnverse_generate::{GeneratePreset, StageTimes};
 use vlnverse_instructions::TemplateGenerator;
 use vlnverse_procgen::{HomeGenerator, Preset};
