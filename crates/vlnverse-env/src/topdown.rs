@@ -617,27 +617,7 @@ pub fn render_topdown(
     navigable: Option<&GridMap>,
     opts: &TopdownOptions,
 ) -> Topdown {
-    // Extent: rooms and objects (ceilings excluded, they cover everything anyway).
-    let mut lo = Vec2::splat(f32::INFINITY);
-    let mut hi = Vec2::splat(f32::NEG_INFINITY);
-    for o in scene
-        .objects
-        .iter()
-        .filter(|o| o.class != SemanticClass::Ceiling)
-    {
-        if !o.bbox.is_empty() {
-            lo = lo.min(Vec2::new(o.bbox.min[0], o.bbox.min[2]));
-            hi = hi.max(Vec2::new(o.bbox.max[0], o.bbox.max[2]));
-        }
-    }
-    for p in scene.rooms.iter().flat_map(|r| &r.polygon) {
-        lo = lo.min(Vec2::from_array(*p));
-        hi = hi.max(Vec2::from_array(*p));
-    }
-    if !(lo.x <= hi.x && lo.y <= hi.y) {
-        lo = Vec2::ZERO;
-        hi = Vec2::ONE;
-    }
+    let (lo, hi) = scene_extent(scene);
     let extent = (hi - lo).max(Vec2::splat(0.5));
     let ppm = clamped_px_per_m(opts.px_per_m, opts.max_size, extent);
     let margin = opts.margin_px as f32;
@@ -649,15 +629,7 @@ pub fn render_topdown(
         origin_px: Vec2::new(margin, margin + title_h),
         px_per_m: ppm,
     };
-    // Classes present (legend), in vocabulary order.
-    let mut present: Vec<SemanticClass> = scene
-        .objects
-        .iter()
-        .map(|o| o.class)
-        .filter(|c| !matches!(c, SemanticClass::Floor | SemanticClass::Ceiling))
-        .collect();
-    present.sort_by_key(|c| c.id());
-    present.dedup();
+    let present = legend_classes(scene);
     let legend_w = if opts.legend {
         present
             .iter()
@@ -675,7 +647,6 @@ pub fn render_topdown(
     };
     let mut img = RgbImage::from_pixel(map_w + legend_w, map_h.max(legend_h), Rgb([250, 250, 248]));
 
-    // Rooms.
     for r in &scene.rooms {
         let px: Vec<Vec2> = r
             .polygon
@@ -684,17 +655,8 @@ pub fn render_topdown(
             .collect();
         fill_polygon(&mut img, &px, room_color(r.kind), 1.0);
     }
-    // Navigable area.
     if let Some(nav) = navigable {
-        let (w, h) = (img.width(), img.height());
-        for y in 0..h {
-            for x in 0..w {
-                let p = frame.to_world(Vec2::new(x as f32 + 0.5, y as f32 + 0.5));
-                if nav.is_free_at(p) {
-                    blend(&mut img, x as i64, y as i64, [96, 180, 110], 0.28);
-                }
-            }
-        }
+        shade_navigable(&mut img, &frame, nav);
     }
     // Objects, in layers: rugs, furniture, walls and frames, small objects.
     let mut objs: Vec<&SceneObject> = scene
@@ -703,21 +665,106 @@ pub fn render_topdown(
         .filter(|o| !matches!(o.class, SemanticClass::Floor | SemanticClass::Ceiling))
         .collect();
     objs.sort_by_key(|o| (draw_order(o), o.id));
-    // Mesh geometry is cut to the band the occupancy map looks at (rugs: from the floor).
+    draw_objects(&mut img, &frame, scene, &objs);
+    draw_doors(&mut img, &frame, scene);
+    // Labels skip places an earlier label took.
+    let mut placed: Vec<[i64; 4]> = Vec::new();
+    if opts.room_names {
+        draw_room_names(&mut img, &frame, scene, &objs, &mut placed);
+    }
+    if opts.labels {
+        draw_furniture_labels(&mut img, &frame, &objs, map_w, &mut placed);
+    }
+    if !opts.title.is_empty() {
+        draw_text(
+            &mut img,
+            margin as i64,
+            8,
+            &opts.title,
+            2,
+            [20, 20, 20],
+            false,
+        );
+    }
+    draw_scale_bar(&mut img, ppm, margin, map_w, map_h);
+    if opts.legend {
+        let origin = (map_w as i64 + 4, margin as i64 + title_h as i64);
+        draw_legend(&mut img, origin, &present, navigable.is_some());
+    }
+    Topdown { image: img, frame }
+}
+
+/// The floor extent `(min, max)` of rooms and objects (ceilings excluded, they cover
+/// everything anyway); a unit square for an empty scene.
+fn scene_extent(scene: &Scene) -> (Vec2, Vec2) {
+    let mut lo = Vec2::splat(f32::INFINITY);
+    let mut hi = Vec2::splat(f32::NEG_INFINITY);
+    for o in scene
+        .objects
+        .iter()
+        .filter(|o| o.class != SemanticClass::Ceiling)
+    {
+        if !o.bbox.is_empty() {
+            lo = lo.min(Vec2::new(o.bbox.min[0], o.bbox.min[2]));
+            hi = hi.max(Vec2::new(o.bbox.max[0], o.bbox.max[2]));
+        }
+    }
+    for p in scene.rooms.iter().flat_map(|r| &r.polygon) {
+        lo = lo.min(Vec2::from_array(*p));
+        hi = hi.max(Vec2::from_array(*p));
+    }
+    if !(lo.x <= hi.x && lo.y <= hi.y) {
+        return (Vec2::ZERO, Vec2::ONE);
+    }
+    (lo, hi)
+}
+
+/// Classes present in the scene (the legend's rows), in vocabulary order.
+fn legend_classes(scene: &Scene) -> Vec<SemanticClass> {
+    let mut present: Vec<SemanticClass> = scene
+        .objects
+        .iter()
+        .map(|o| o.class)
+        .filter(|c| !matches!(c, SemanticClass::Floor | SemanticClass::Ceiling))
+        .collect();
+    present.sort_by_key(|c| c.id());
+    present.dedup();
+    present
+}
+
+/// Tint the pixels whose centre is navigable.
+fn shade_navigable(img: &mut RgbImage, frame: &WorldToPixel, nav: &GridMap) {
+    let (w, h) = (img.width(), img.height());
+    for y in 0..h {
+        for x in 0..w {
+            let p = frame.to_world(Vec2::new(x as f32 + 0.5, y as f32 + 0.5));
+            if nav.is_free_at(p) {
+                blend(img, x as i64, y as i64, [96, 180, 110], 0.28);
+            }
+        }
+    }
+}
+
+/// Objects in draw order; mesh geometry is cut to the band the occupancy map looks at (rugs:
+/// from the floor).
+fn draw_objects(img: &mut RgbImage, frame: &WorldToPixel, scene: &Scene, objs: &[&SceneObject]) {
     let occ = OccupancyConfig::default();
     let band = [
         scene.floor_height + occ.floor_clearance,
         scene.floor_height + occ.agent_height,
     ];
-    for o in &objs {
+    for o in objs {
         let (alpha, band) = if o.class == SemanticClass::Rug {
             (0.45, [scene.floor_height - 0.05, band[1]])
         } else {
             (1.0, band)
         };
-        draw_object(&mut img, &frame, o, class_color(o.class), alpha, band);
+        draw_object(img, frame, o, class_color(o.class), alpha, band);
     }
-    // Doors: a coloured bar across the opening (dashed for open-plan connections).
+}
+
+/// Doors: a coloured bar across the opening (dashed for open-plan connections).
+fn draw_doors(img: &mut RgbImage, frame: &WorldToPixel, scene: &Scene) {
     for d in &scene.doors {
         let n = Vec2::from_array(d.normal).normalize_or(Vec2::X);
         let t = n.perp();
@@ -733,84 +780,91 @@ pub fn render_topdown(
             for k in (0..segs).step_by(2) {
                 let p0 = a + (b - a) * (k as f32 / segs as f32);
                 let p1 = a + (b - a) * ((k + 1) as f32 / segs as f32);
-                thick_line(&mut img, frame.to_pixel(p0), frame.to_pixel(p1), 3.0, color);
+                thick_line(img, frame.to_pixel(p0), frame.to_pixel(p1), 3.0, color);
             }
         } else {
-            thick_line(&mut img, frame.to_pixel(a), frame.to_pixel(b), 4.0, color);
+            thick_line(img, frame.to_pixel(a), frame.to_pixel(b), 4.0, color);
         }
     }
-    // Furniture labels (skipping ones that would overlap an earlier label).
-    let mut placed: Vec<[i64; 4]> = Vec::new();
-    if opts.room_names {
-        // Furniture footprints in pixels, to keep room names off them where possible.
-        let boxes: Vec<[f32; 4]> = objs
+}
+
+/// Room names, kept off the furniture where possible; their boxes go to `placed`.
+fn draw_room_names(
+    img: &mut RgbImage,
+    frame: &WorldToPixel,
+    scene: &Scene,
+    objs: &[&SceneObject],
+    placed: &mut Vec<[i64; 4]>,
+) {
+    let ppm = frame.px_per_m;
+    // Furniture footprints in pixels.
+    let boxes: Vec<[f32; 4]> = objs
+        .iter()
+        .filter(|o| matches!(o.class.kind(), ClassKind::Furniture | ClassKind::Small))
+        .map(|o| {
+            let a = frame.to_pixel(Vec2::new(o.bbox.min[0], o.bbox.min[2]));
+            let b = frame.to_pixel(Vec2::new(o.bbox.max[0], o.bbox.max[2]));
+            [a.x, a.y, b.x, b.y]
+        })
+        .collect();
+    for r in &scene.rooms {
+        let name = r.kind.words();
+        let room_w = r
+            .polygon
             .iter()
-            .filter(|o| matches!(o.class.kind(), ClassKind::Furniture | ClassKind::Small))
-            .map(|o| {
-                let a = frame.to_pixel(Vec2::new(o.bbox.min[0], o.bbox.min[2]));
-                let b = frame.to_pixel(Vec2::new(o.bbox.max[0], o.bbox.max[2]));
-                [a.x, a.y, b.x, b.y]
-            })
-            .collect();
-        for r in &scene.rooms {
-            let name = r.kind.words();
-            let room_w = r
-                .polygon
-                .iter()
-                .map(|p| p[0])
-                .fold(f32::NEG_INFINITY, f32::max)
-                - r.polygon.iter().map(|p| p[0]).fold(f32::INFINITY, f32::min);
-            // Large text unless it would spill out of a narrow room.
-            let scale = if text_width(&name, 2) as f32 <= room_w * ppm * 0.9 {
-                2
-            } else {
-                1
-            };
-            let (w, h) = (text_width(&name, scale) as i64, 8 * scale as i64);
-            let c = room_label_spot(r, &frame, w as f32, h as f32, &boxes);
-            let (x, y) = (c.x as i64 - w / 2, c.y as i64 - h / 2);
-            draw_text(&mut img, x, y, &name, scale, [30, 30, 30], true);
-            placed.push([x - 2, y - 2, x + w + 2, y + h + 2]);
-        }
+            .map(|p| p[0])
+            .fold(f32::NEG_INFINITY, f32::max)
+            - r.polygon.iter().map(|p| p[0]).fold(f32::INFINITY, f32::min);
+        // Large text unless it would spill out of a narrow room.
+        let scale = if text_width(&name, 2) as f32 <= room_w * ppm * 0.9 {
+            2
+        } else {
+            1
+        };
+        let (w, h) = (text_width(&name, scale) as i64, 8 * scale as i64);
+        let c = room_label_spot(r, frame, w as f32, h as f32, &boxes);
+        let (x, y) = (c.x as i64 - w / 2, c.y as i64 - h / 2);
+        draw_text(img, x, y, &name, scale, [30, 30, 30], true);
+        placed.push([x - 2, y - 2, x + w + 2, y + h + 2]);
     }
-    if opts.labels {
-        let mut furniture: Vec<&&SceneObject> = objs
+}
+
+/// Furniture labels, big objects first (they have room for theirs), skipping any that would
+/// overlap a label in `placed`.
+fn draw_furniture_labels(
+    img: &mut RgbImage,
+    frame: &WorldToPixel,
+    objs: &[&SceneObject],
+    map_w: u32,
+    placed: &mut Vec<[i64; 4]>,
+) {
+    let mut furniture: Vec<&&SceneObject> = objs
+        .iter()
+        .filter(|o| o.class.kind() == ClassKind::Furniture && o.class != SemanticClass::Rug)
+        .collect();
+    furniture.sort_by(|a, b| {
+        let area = |o: &SceneObject| o.bbox.size().x * o.bbox.size().z;
+        area(b).total_cmp(&area(a)).then(a.id.cmp(&b.id))
+    });
+    for o in furniture {
+        let c = frame.to_pixel(Vec2::new(o.bbox.center().x, o.bbox.center().z));
+        let name = o.class.words();
+        let w = text_width(&name, 1) as i64;
+        let x = (c.x as i64 - w / 2).clamp(2, (map_w as i64 - w - 2).max(2));
+        let y = c.y as i64 - 4;
+        let rect = [x - 1, y - 1, x + w + 1, y + 9];
+        let overlaps = placed
             .iter()
-            .filter(|o| o.class.kind() == ClassKind::Furniture && o.class != SemanticClass::Rug)
-            .collect();
-        // Big objects first: they have room for their label.
-        furniture.sort_by(|a, b| {
-            let area = |o: &SceneObject| o.bbox.size().x * o.bbox.size().z;
-            area(b).total_cmp(&area(a)).then(a.id.cmp(&b.id))
-        });
-        for o in furniture {
-            let c = frame.to_pixel(Vec2::new(o.bbox.center().x, o.bbox.center().z));
-            let name = o.class.words();
-            let w = text_width(&name, 1) as i64;
-            let x = (c.x as i64 - w / 2).clamp(2, (map_w as i64 - w - 2).max(2));
-            let y = c.y as i64 - 4;
-            let rect = [x - 1, y - 1, x + w + 1, y + 9];
-            let overlaps = placed
-                .iter()
-                .any(|p| rect[0] < p[2] && p[0] < rect[2] && rect[1] < p[3] && p[1] < rect[3]);
-            if !overlaps {
-                draw_text(&mut img, x, y, &name, 1, [20, 20, 20], true);
-                placed.push(rect);
-            }
+            .any(|p| rect[0] < p[2] && p[0] < rect[2] && rect[1] < p[3] && p[1] < rect[3]);
+        if !overlaps {
+            draw_text(img, x, y, &name, 1, [20, 20, 20], true);
+            placed.push(rect);
         }
     }
-    // Title, scale bar and axes note.
-    if !opts.title.is_empty() {
-        draw_text(
-            &mut img,
-            margin as i64,
-            8,
-            &opts.title,
-            2,
-            [20, 20, 20],
-            false,
-        );
-    }
+}
+
+/// The scale bar and the axes note along the bottom of the map.
+fn draw_scale_bar(img: &mut RgbImage, ppm: f32, margin: f32, map_w: u32, map_h: u32) {
     let bar_m = [0.5f32, 1.0, 2.0, 5.0, 10.0]
         .into_iter()
         .find(|m| m * ppm >= 60.0)
@@ -818,16 +872,10 @@ pub fn render_topdown(
     let y = (map_h - 16) as f32;
     let x0 = margin;
     let x1 = margin + bar_m * ppm;
-    thick_line(
-        &mut img,
-        Vec2::new(x0, y),
-        Vec2::new(x1, y),
-        3.0,
-        [20, 20, 20],
-    );
+    thick_line(img, Vec2::new(x0, y), Vec2::new(x1, y), 3.0, [20, 20, 20]);
     for x in [x0, x1] {
         thick_line(
-            &mut img,
+            img,
             Vec2::new(x, y - 5.0),
             Vec2::new(x, y + 5.0),
             2.0,
@@ -835,7 +883,7 @@ pub fn render_topdown(
         );
     }
     draw_text(
-        &mut img,
+        img,
         x1 as i64 + 8,
         y as i64 - 4,
         &format!("{bar_m} m"),
@@ -845,7 +893,7 @@ pub fn render_topdown(
     );
     let axes = "+x right, +z down";
     draw_text(
-        &mut img,
+        img,
         (map_w as i64 - margin as i64 - text_width(axes, 1) as i64).max(x1 as i64 + 60),
         y as i64 - 4,
         axes,
@@ -853,61 +901,56 @@ pub fn render_topdown(
         [90, 90, 90],
         false,
     );
-    // Legend.
-    if opts.legend {
-        let lx = map_w as i64 + 4;
-        let mut ly = margin as i64 + title_h as i64;
-        draw_text(&mut img, lx, ly, "classes", 1, [20, 20, 20], false);
-        ly += 16;
-        for c in &present {
-            let col = class_color(*c);
-            for yy in 0..10 {
-                for xx in 0..14 {
-                    let edge = yy == 0 || yy == 9 || xx == 0 || xx == 13;
-                    blend(
-                        &mut img,
-                        lx + xx,
-                        ly + yy,
-                        if edge { darker(col, 0.55) } else { col },
-                        1.0,
-                    );
-                }
-            }
-            draw_text(&mut img, lx + 20, ly + 1, c.name(), 1, [30, 30, 30], false);
-            ly += 14;
-        }
-        ly += 6;
-        if navigable.is_some() {
-            for yy in 0..10 {
-                for xx in 0..14 {
-                    blend(&mut img, lx + xx, ly + yy, [170, 210, 170], 1.0);
-                }
-            }
-            draw_text(
-                &mut img,
-                lx + 20,
-                ly + 1,
-                "navigable",
-                1,
-                [30, 30, 30],
-                false,
-            );
-            ly += 14;
-        }
-        for (label, col, dashed) in [
-            ("door", [230, 130, 30], false),
-            ("open plan", [90, 150, 220], true),
-        ] {
+}
+
+/// The legend at `(lx, ly)`: one swatch per class, the navigable tint, doors.
+fn draw_legend(
+    img: &mut RgbImage,
+    (lx, mut ly): (i64, i64),
+    present: &[SemanticClass],
+    navigable: bool,
+) {
+    draw_text(img, lx, ly, "classes", 1, [20, 20, 20], false);
+    ly += 16;
+    for c in present {
+        let col = class_color(*c);
+        for yy in 0..10 {
             for xx in 0..14 {
-                if !dashed || (xx / 4) % 2 == 0 {
-                    for yy in 3..7 {
-                        blend(&mut img, lx + xx, ly + yy, col, 1.0);
-                    }
+                let edge = yy == 0 || yy == 9 || xx == 0 || xx == 13;
+                blend(
+                    img,
+                    lx + xx,
+                    ly + yy,
+                    if edge { darker(col, 0.55) } else { col },
+                    1.0,
+                );
+            }
+        }
+        draw_text(img, lx + 20, ly + 1, c.name(), 1, [30, 30, 30], false);
+        ly += 14;
+    }
+    ly += 6;
+    if navigable {
+        for yy in 0..10 {
+            for xx in 0..14 {
+                blend(img, lx + xx, ly + yy, [170, 210, 170], 1.0);
+            }
+        }
+        draw_text(img, lx + 20, ly + 1, "navigable", 1, [30, 30, 30], false);
+        ly += 14;
+    }
+    for (label, col, dashed) in [
+        ("door", [230, 130, 30], false),
+        ("open plan", [90, 150, 220], true),
+    ] {
+        for xx in 0..14 {
+            if !dashed || (xx / 4) % 2 == 0 {
+                for yy in 3..7 {
+                    blend(img, lx + xx, ly + yy, col, 1.0);
                 }
             }
-            draw_text(&mut img, lx + 20, ly + 1, label, 1, [30, 30, 30], false);
-            ly += 14;
         }
+        draw_text(img, lx + 20, ly + 1, label, 1, [30, 30, 30], false);
+        ly += 14;
     }
-    Topdown { image: img, frame }
 }
