@@ -3,11 +3,9 @@
 //! the occupancy maps and the scene graph (`vlnverse_env::io::scene_bundle`), i.e. everything
 //! `cargo xtask import` computes before writing files.
 
-mod support;
-
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
-use support::aws_small_house;
+use vlnverse_testkit::real_scenes::aws_small_house;
 use vlnverse_env::io::scene_bundle;
 use vlnverse_import::import_scene;
 

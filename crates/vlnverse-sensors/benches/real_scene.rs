@@ -13,12 +13,13 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::collections::BTreeMap;
 use std::sync::Arc;
-use support::{backends, import_support::aws_small_house, rgbd};
+use support::{backends, rgbd};
 use vlnverse_env::io::scene_bundle;
 use vlnverse_env::occupancy::GridMap;
 use vlnverse_env::{Pose, Scene};
 use vlnverse_import::import_scene;
 use vlnverse_sensors::SceneMesh;
+use vlnverse_testkit::real_scenes::aws_small_house;
 
 /// Up to `per_room` seeded navigable poses in every room, random headings.
 fn room_poses(scene: &Scene, nav: &GridMap, per_room: usize) -> Vec<Pose> {

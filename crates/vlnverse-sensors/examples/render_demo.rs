@@ -1,74 +1,40 @@
-//! Render the demo home with the paper's rig and save the images as PNG files.
+//! Render the demo home with the `full` rig (every sensor type) and write the readings as
+//! files with [`vlnverse_sensors::output::write_rig`]: PNG images (depth as 16-bit
+//! millimetres), LiDAR `.npy` scans, `camera.json` and `sensors.json`.
 //!
-//! `cargo run -p vlnverse-sensors --example render_demo -- [auto|wgpu|raycast] [OUT_DIR]`
+//! `cargo run -p vlnverse-sensors --example render_demo -- [auto|wgpu|raster|raycast] [OUT_DIR]`
 
 use glam::Vec3;
 use vlnverse_sensors::demo::demo_scene;
-use vlnverse_sensors::frame::colorize_ids;
-use vlnverse_sensors::{AgentState, Backend, Observation, RigConfig, SensorRig};
+use vlnverse_sensors::output::{write_rig, RigCapture};
+use vlnverse_sensors::{AgentState, Backend, RigConfig, SensorRig};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
     let backend: Backend = args.next().as_deref().unwrap_or("auto").parse()?;
     let out = std::path::PathBuf::from(args.next().unwrap_or_else(|| "render_demo".into()));
-    std::fs::create_dir_all(&out)?;
-    let mut config: RigConfig = RigConfig::load(
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../configs/sensors/full.toml"),
-    )?;
+    // `configs/sensors/full.toml`, embedded in the crate.
+    let mut config = RigConfig::shipped("full")?;
     config.backend = backend;
     let mut rig = SensorRig::new(config)?;
     rig.set_scene(&demo_scene(0))?;
-    let obs = rig.observe(&AgentState::at(Vec3::new(3.8, 0.0, 4.2), 0.9))?;
-    for (name, o) in &obs {
-        match o {
-            Observation::Rgb(f) => image::save_buffer(
-                out.join(format!("{name}.png")),
-                &f.rgb,
-                f.width,
-                f.height,
-                image::ColorType::Rgb8,
-            )?,
-            Observation::Semantic(f) => {
-                let c = colorize_ids(f.semantic.iter().map(|&c| c as u32));
-                image::save_buffer(
-                    out.join(format!("{name}.png")),
-                    &c,
-                    f.width,
-                    f.height,
-                    image::ColorType::Rgb8,
-                )?
-            }
-            Observation::Depth(f) => {
-                let g: Vec<u8> = f.depth.iter().map(|d| (d / 10.0 * 255.0) as u8).collect();
-                image::save_buffer(
-                    out.join(format!("{name}.png")),
-                    &g,
-                    f.width,
-                    f.height,
-                    image::ColorType::L8,
-                )?
-            }
-            Observation::Lidar(s) => {
-                let hits = s.ranges.iter().filter(|r| r.is_finite()).count();
-                println!("{name}: {} x {} beams, {hits} returns", s.channels, s.beams);
-            }
-            Observation::Panorama(views) => println!("{name}: {} views", views.len()),
-            Observation::Instance(f) => {
-                let c = colorize_ids(f.instance.iter().copied());
-                image::save_buffer(
-                    out.join(format!("{name}.png")),
-                    &c,
-                    f.width,
-                    f.height,
-                    image::ColorType::Rgb8,
-                )?
-            }
-            other => println!("{name}: {other:?}"),
-        }
-    }
+    let (position, yaw) = (Vec3::new(3.8, 0.0, 4.2), 0.9f32);
+    let observations = rig.observe(&AgentState::at(position, yaw))?;
+    let files = write_rig(
+        &out,
+        &RigCapture {
+            config: rig.config(),
+            observations: &observations,
+            position,
+            yaw_deg: yaw.to_degrees(),
+            backend: &rig.backend_name(),
+        },
+    )?;
     println!(
-        "rendered with {}; images in {}",
+        "rendered {} sensors with {}; {} files in {}",
+        observations.len(),
         rig.backend_name(),
+        files.len(),
         out.display()
     );
     Ok(())

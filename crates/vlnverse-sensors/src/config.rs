@@ -543,7 +543,34 @@ impl Default for RigConfig {
     }
 }
 
+/// The rig configs shipped with the crate, by name: `configs/sensors/NAME.toml` of the crate
+/// (the repository's `configs/sensors/` links there), embedded so they load anywhere.
+pub const SHIPPED_RIGS: [(&str, &str); 4] = [
+    ("default", include_str!("../configs/sensors/default.toml")),
+    ("full", include_str!("../configs/sensors/full.toml")),
+    ("lidar", include_str!("../configs/sensors/lidar.toml")),
+    ("vlnce", include_str!("../configs/sensors/vlnce.toml")),
+];
+
 impl RigConfig {
+    /// A shipped rig config by name (see [`SHIPPED_RIGS`]): `default` (the paper's RGB-D rig),
+    /// `full` (every sensor type), `lidar`, `vlnce`. Errors list the names.
+    pub fn shipped(name: &str) -> Result<Self> {
+        let Some((_, text)) = SHIPPED_RIGS.iter().find(|(n, _)| *n == name) else {
+            let names: Vec<&str> = SHIPPED_RIGS.iter().map(|(n, _)| *n).collect();
+            return Err(SensorError::invalid(
+                "rig",
+                name,
+                format!("not a shipped rig (one of {})", names.join(", ")),
+            ));
+        };
+        let file = format!("configs/sensors/{name}.toml");
+        let c: RigConfig =
+            toml::from_str(text).map_err(|e| EnvError::parse(&file, e.to_string()))?;
+        c.validate().map_err(|e| e.in_file(&file))?;
+        Ok(c)
+    }
+
     /// Parse TOML and validate.
     pub fn from_toml_str(text: &str) -> Result<Self> {
         let c: RigConfig =
@@ -594,6 +621,20 @@ mod tests {
             SensorSpec::Depth(d) => assert_eq!((d.width, d.height, d.far), (256, 256, 10.0)),
             other => panic!("unexpected {other:?}"),
         }
+    }
+
+    #[test]
+    fn shipped_rigs_load_and_unknown_names_are_listed() {
+        for (name, _) in SHIPPED_RIGS {
+            let c = RigConfig::shipped(name).unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert!(!c.sensors.is_empty(), "{name}");
+        }
+        assert_eq!(
+            RigConfig::shipped("default").unwrap().sensors,
+            RigConfig::default().sensors
+        );
+        let e = RigConfig::shipped("nope").unwrap_err().to_string();
+        assert!(e.contains("nope") && e.contains("full"), "{e}");
     }
 
     #[test]

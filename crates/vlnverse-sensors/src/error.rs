@@ -31,6 +31,14 @@ pub enum SensorError {
     /// `render` was called before `set_scene`.
     #[error("no scene loaded: call `set_scene` first")]
     NoScene,
+    /// An observation could not be encoded or written to a file ([`crate::output`]).
+    #[error("writing {}: {message}", path.display())]
+    Write {
+        /// The file (or what was being encoded).
+        path: PathBuf,
+        /// What went wrong.
+        message: String,
+    },
 }
 
 impl SensorError {

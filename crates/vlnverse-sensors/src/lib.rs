@@ -10,6 +10,7 @@ pub mod frame;
 pub mod gpu;
 pub mod lidar;
 pub mod noise;
+pub mod output;
 pub mod raster;
 pub mod raycast;
 pub mod renderer;

@@ -3,5 +3,4 @@
 mod example;
 mod fixtures;
 mod real_scenes;
-mod textured_glb;
 mod textures;

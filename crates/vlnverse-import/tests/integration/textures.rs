@@ -1,7 +1,7 @@
 //! Imported base-colour textures: kept with their texture coordinates, written into and read
 //! back from the scene folder, and a broken image falling back to the factor colour.
 
-use crate::textured_glb::{self as fx, SIDE};
+use vlnverse_testkit::textured_glb::{self as fx, SIDE};
 use std::path::Path;
 use vlnverse_env::io::{load_scene, write_scene_dir, SCENE_GLB};
 use vlnverse_env::scene::MeshTexture;

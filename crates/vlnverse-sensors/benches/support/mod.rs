@@ -1,6 +1,7 @@
 //! Set-up shared by the sensor benches (`mod support;` in `render.rs`, `raster.rs` and
 //! `real_scene.rs`): seeded agent poses, the paper's RGB-D views and panorama, the backends
-//! that start here, thread pools, and the AWS small house from `../shared/scenes/`.
+//! that start here, thread pools. The AWS small house of `../shared/scenes/` comes from
+//! `vlnverse_testkit::real_scenes` (shared with the `vlnverse-import` bench).
 
 // Each bench uses a part of this module.
 #![allow(dead_code)]
@@ -12,10 +13,6 @@ use vlnverse_env::{Pose, Scene};
 use vlnverse_sensors::{
     CameraSpec, Channels, GpuRenderer, RasterRenderer, RaycastRenderer, Renderer, View,
 };
-
-/// The AWS small house and its import options (shared with the `vlnverse-import` bench).
-#[path = "../../../vlnverse-import/benches/support/mod.rs"]
-pub mod import_support;
 
 /// `n` seeded agent poses on the floor of a room, random headings, with the camera (1.25 m up)
 /// at least 15 cm outside every object's box.

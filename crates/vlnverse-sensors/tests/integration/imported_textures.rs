@@ -11,8 +11,7 @@ use vlnverse_sensors::{
     Camera, Channels, Frame, RasterRenderer, RaycastRenderer, Renderer, SceneMesh, View,
 };
 
-#[path = "../../../vlnverse-import/tests/integration/textured_glb.rs"]
-mod fx;
+use vlnverse_testkit::textured_glb as fx;
 
 fn textured_scene() -> Scene {
     let d = tempfile_dir();
@@ -131,7 +130,7 @@ fn imported_textures_appear_in_every_backend() {
                 channels: Channels::ALL,
             }])
             .unwrap()[0];
-        let (checked, distinct, far) = check_pixels(&scene, &cam, f, r.name());
+        let (checked, distinct, far) = check_pixels(&scene, &cam, f, &r.name());
         assert!(checked > 1000, "{}: {checked} pixels checked", r.name());
         assert!(
             distinct >= 32,

@@ -25,7 +25,7 @@ fn raycast_rig(sensors: Vec<SensorSpec>) -> SensorRig {
 
 #[test]
 fn shipped_configs_load_and_validate() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../configs/sensors");
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/sensors");
     let mut names: Vec<_> = std::fs::read_dir(&dir)
         .unwrap()
         .map(|e| e.unwrap().path())
@@ -44,6 +44,29 @@ fn shipped_configs_load_and_validate() {
         RigConfig::load(dir.join("default.toml")).unwrap().sensors,
         RigConfig::default().sensors
     );
+    // Every file is embedded (and nothing else), and the embedded text is the file's.
+    let embedded: Vec<&str> = vlnverse_sensors::config::SHIPPED_RIGS
+        .iter()
+        .map(|(n, _)| *n)
+        .collect();
+    let stems: Vec<String> = names
+        .iter()
+        .map(|p| p.file_stem().unwrap().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(stems, embedded);
+    for (name, text) in vlnverse_sensors::config::SHIPPED_RIGS {
+        let file = std::fs::read_to_string(dir.join(format!("{name}.toml"))).unwrap();
+        assert_eq!(file, text, "{name}");
+    }
+    // The repository's user-facing `configs/sensors/` (a link to the crate's folder, as for
+    // `configs/agent` and `configs/scenes`) holds the same files.
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../configs/sensors");
+    if root.exists() {
+        for (name, text) in vlnverse_sensors::config::SHIPPED_RIGS {
+            let file = std::fs::read_to_string(root.join(format!("{name}.toml"))).unwrap();
+            assert_eq!(file, text, "configs/sensors/{name}.toml");
+        }
+    }
 }
 
 #[test]

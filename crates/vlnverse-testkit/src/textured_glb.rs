@@ -1,8 +1,7 @@
-//! A small textured home written by the tests themselves (no shared scene has textures): a
-//! 4 m x 4 m floor quad and a 4 m x 2.5 m wall quad at `z = -2`, with texture coordinates and
-//! one embedded PNG base-colour texture whose texels all differ. Also included by the
-//! `vlnverse-sensors` tests (`#[path]`), so it only uses std and the `image` crate.
-#![allow(dead_code)]
+//! A small textured home built in memory (no shared scene has textures): a 4 m x 4 m floor
+//! quad and a 4 m x 2.5 m wall quad at `z = -2`, with texture coordinates and one embedded PNG
+//! base-colour texture whose texels all differ. Used by the `vlnverse-import` texture tests and
+//! the `vlnverse-sensors` imported-texture renders.
 
 /// Side of the checker texture in texels.
 pub const SIDE: u32 = 8;
@@ -37,7 +36,7 @@ pub fn png(w: u32, h: u32, texels: &[[u8; 3]]) -> Vec<u8> {
         h,
         image::ExtendedColorType::Rgb8,
     )
-    .unwrap();
+    .expect("an RGB8 PNG of matching size encodes into memory");
     out
 }
 
