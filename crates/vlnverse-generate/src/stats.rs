@@ -324,6 +324,19 @@ fn save_png(img: &RgbImage, path: &Path) -> Result<()> {
 /// A folder without episodes (no split files, or only empty ones) is an error saying so.
 pub fn write_stats(dir: &Path) -> Result<String> {
     let st = collect(dir)?;
+    refuse_empty(dir, &st)?;
+    let out = dir.join("stats");
+    write_plots(&st, &out)?;
+    let md = stats_markdown(dir, &st);
+    write_atomic(&out.join("stats.md"), md.as_bytes())?;
+    let json = serde_json::to_vec_pretty(&st)
+        .map_err(|e| DataError::invalid("stats", "<stats>", e.to_string()))?;
+    write_atomic(&out.join("stats.json"), &json)?;
+    Ok(md)
+}
+
+/// A dataset without episodes is an error that says why (a shard, an unfinished run, nothing).
+fn refuse_empty(dir: &Path, st: &DatasetStats) -> Result<()> {
     let episodes: usize = st.episodes.values().flat_map(|m| m.values()).sum();
     if episodes == 0 {
         let hint = if dir
@@ -352,7 +365,11 @@ pub fn write_stats(dir: &Path) -> Result<String> {
             ),
         ));
     }
-    let out = dir.join("stats");
+    Ok(())
+}
+
+/// The PNG charts under `out`.
+fn write_plots(st: &DatasetStats, out: &Path) -> Result<()> {
     let areas: Vec<f64> = st.navigable_m2.values().copied().collect();
     let (l, c) = histogram(&areas, 12);
     save_png(
@@ -423,6 +440,11 @@ pub fn write_stats(dir: &Path) -> Result<String> {
             &out.join("instruction_length_fine.png"),
         )?;
     }
+    Ok(())
+}
+
+/// `stats.md`: the quantities' distributions, episode counts, vocabulary and skeleton shares.
+fn stats_markdown(dir: &Path, st: &DatasetStats) -> String {
     let mut md = String::from("# Dataset statistics\n\n");
     md.push_str(&format!("Dataset: `{}`\n\n", dir.display()));
     md.push_str(
@@ -437,7 +459,7 @@ pub fn write_stats(dir: &Path) -> Result<String> {
     row(
         &mut md,
         "navigable area per scene (m^2)",
-        ValueStats::of(&areas),
+        ValueStats::of(&st.navigable_m2.values().copied().collect::<Vec<f64>>()),
     );
     let rooms: Vec<f64> = st.rooms.values().map(|&r| r as f64).collect();
     row(&mut md, "rooms per scene", ValueStats::of(&rooms));
@@ -490,11 +512,7 @@ pub fn write_stats(dir: &Path) -> Result<String> {
         "\nA skeleton is the instruction with object and room names, colours and numbers masked.\n",
     );
     md.push_str("\nPlots: `navigable_area.png`, `rooms.png`, `path_length.png`, `instruction_length.png`, `instruction_length_fine.png`.\n");
-    write_atomic(&out.join("stats.md"), md.as_bytes())?;
-    let json = serde_json::to_vec_pretty(&st)
-        .map_err(|e| DataError::invalid("stats", "<stats>", e.to_string()))?;
-    write_atomic(&out.join("stats.json"), &json)?;
-    Ok(md)
+    md
 }
 
 /// Markdown with `per_group` instructions drawn at random (seeded) from the dataset for each
