@@ -29,6 +29,8 @@
 //! calls, cache hits and fallbacks by reason.
 
 use super::{InstructionGenerator, PathContext};
+use base64::engine::general_purpose::STANDARD;
+use base64::Engine as _;
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 use std::collections::BTreeMap;
@@ -257,7 +259,7 @@ impl ChatMessage {
         let mut parts = vec![Part::Text { text: text.into() }];
         parts.extend(pngs.iter().map(|png| Part::ImageUrl {
             image_url: ImageUrl {
-                url: format!("data:image/png;base64,{}", base64(png)),
+                url: format!("data:image/png;base64,{}", STANDARD.encode(png)),
             },
         }));
         ChatMessage {
@@ -280,25 +282,6 @@ impl ChatMessage {
                 .join("\n"),
         }
     }
-}
-
-/// Standard base64 with padding.
-pub fn base64(bytes: &[u8]) -> String {
-    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
-    for c in bytes.chunks(3) {
-        let n = (u32::from(c[0]) << 16)
-            | (u32::from(*c.get(1).unwrap_or(&0)) << 8)
-            | u32::from(*c.get(2).unwrap_or(&0));
-        for k in 0..4 {
-            if k <= c.len() {
-                out.push(A[(n >> (18 - 6 * k) & 63) as usize] as char);
-            } else {
-                out.push('=');
-            }
-        }
-    }
-    out
 }
 
 #[derive(Serialize)]
@@ -949,12 +932,22 @@ mod tests {
     use vlnverse_score::episode::GroundedObject;
 
     #[test]
-    fn base64_matches_the_standard_alphabet_and_padding() {
-        assert_eq!(base64(b"Man"), "TWFu");
-        assert_eq!(base64(b"Ma"), "TWE=");
-        assert_eq!(base64(b"M"), "TQ==");
-        assert_eq!(base64(b""), "");
-        assert_eq!(base64(&[0xfb, 0xff]), "+/8=");
+    fn images_are_standard_base64_data_urls() {
+        let m = ChatMessage::user_with_images("look", &[vec![0xfb, 0xff], b"Man".to_vec()]);
+        let Content::Parts(parts) = &m.content else {
+            panic!("{m:?}")
+        };
+        let urls: Vec<&str> = parts
+            .iter()
+            .filter_map(|p| match p {
+                Part::ImageUrl { image_url } => Some(image_url.url.as_str()),
+                Part::Text { .. } => None,
+            })
+            .collect();
+        assert_eq!(
+            urls,
+            ["data:image/png;base64,+/8=", "data:image/png;base64,TWFu"]
+        );
     }
 
     fn with(objects: &[(&str, Option<Side>)]) -> Instruction {

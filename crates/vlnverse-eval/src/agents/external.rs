@@ -1,7 +1,8 @@
 //! `external`: a policy in another process (Python, PyTorch, ...) speaking JSON lines on its
 //! stdin/stdout; the protocol is in `docs/agents.md`. One process per worker thread, reused
 //! across episodes. Observations go as files in a private temporary folder (PNG for RGB, `.npy`
-//! for depth, semantic and instance images; overwritten every step) or inline as base64.
+//! for depth, semantic and instance images, written by `vlnverse_sensors::output`; overwritten
+//! every step) or inline as standard base64 of the raw little-endian array.
 
 use std::collections::VecDeque;
 use std::io::{BufRead, BufReader, Write};
@@ -11,9 +12,12 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
 
+use base64::engine::general_purpose::STANDARD;
+use base64::Engine as _;
 use serde::{Deserialize, Serialize};
 use serde_json::{json, Map, Value};
-use vlnverse_sensors::{Frame, Observation};
+use vlnverse_sensors::output::{self, NpyElement};
+use vlnverse_sensors::{Frame, Observation, Result as SensorResult};
 use vlnverse_sim::{Action, WaypointMode};
 
 use crate::agent::{Agent, AgentFactory, EpisodeInputs, StepInput};
@@ -258,49 +262,51 @@ impl ExternalAgent {
 
     fn frame_entry(&self, name: &str, kind: &str, f: &Frame) -> Result<Value> {
         let (w, h) = (f.width as usize, f.height as usize);
-        let (ext, dtype, shape, bytes): (&str, &str, Vec<usize>, Vec<u8>) = match kind {
-            "rgb" => ("png", "|u1", vec![h, w, 3], f.rgb.clone()),
-            "depth" => (
-                "npy",
-                "<f4",
-                vec![h, w],
-                f.depth.iter().flat_map(|d| d.to_le_bytes()).collect(),
-            ),
+        // A frame channel as `.npy` bytes (files) or its raw little-endian array (base64).
+        fn array<T: NpyElement>(data: &[T], shape: &[usize], npy: bool) -> SensorResult<Vec<u8>> {
+            if npy {
+                return output::npy(shape, data);
+            }
+            let mut raw = Vec::with_capacity(std::mem::size_of_val(data));
+            data.iter().for_each(|v| v.put_le(&mut raw));
+            Ok(raw)
+        }
+        let files = self.encoding == ObsEncoding::Files;
+        let hw = [h, w];
+        let (ext, dtype, shape, bytes) = match kind {
+            "rgb" => {
+                let shape = vec![h, w, 3];
+                let bytes = if files {
+                    output::rgb_png(f)
+                } else {
+                    array(&f.rgb, &shape, false)
+                };
+                ("png", u8::DESCR, shape, bytes)
+            }
+            "depth" => ("npy", f32::DESCR, hw.to_vec(), array(&f.depth, &hw, files)),
             "semantic" => (
                 "npy",
-                "<u2",
-                vec![h, w],
-                f.semantic.iter().flat_map(|d| d.to_le_bytes()).collect(),
+                u16::DESCR,
+                hw.to_vec(),
+                array(&f.semantic, &hw, files),
             ),
             _ => (
                 "npy",
-                "<u4",
-                vec![h, w],
-                f.instance.iter().flat_map(|d| d.to_le_bytes()).collect(),
+                u32::DESCR,
+                hw.to_vec(),
+                array(&f.instance, &hw, files),
             ),
         };
+        let bytes = bytes.map_err(|e| self.err(format!("observation `{name}` ({kind}): {e}")))?;
         let mut v = json!({"kind": kind, "width": w, "height": h, "dtype": dtype, "shape": shape});
-        match self.encoding {
-            ObsEncoding::Base64 => {
-                v["encoding"] = json!("base64");
-                v["data"] = json!(base64(&bytes));
-            }
-            ObsEncoding::Files => {
-                let path = self.tmp.join(format!("{name}.{ext}"));
-                let data = if ext == "png" {
-                    let mut out = Vec::new();
-                    image::RgbImage::from_raw(f.width, f.height, bytes)
-                        .ok_or_else(|| self.err("rgb frame of the wrong size"))?
-                        .write_to(&mut std::io::Cursor::new(&mut out), image::ImageFormat::Png)
-                        .map_err(|e| self.err(e.to_string()))?;
-                    out
-                } else {
-                    npy(dtype, &shape, &bytes)
-                };
-                std::fs::write(&path, data).map_err(|e| TaskError::io(&path, e))?;
-                v["encoding"] = json!("file");
-                v["path"] = json!(path.display().to_string());
-            }
+        if files {
+            let path = self.tmp.join(format!("{name}.{ext}"));
+            std::fs::write(&path, bytes).map_err(|e| TaskError::io(&path, e))?;
+            v["encoding"] = json!("file");
+            v["path"] = json!(path.display().to_string());
+        } else {
+            v["encoding"] = json!("base64");
+            v["data"] = json!(STANDARD.encode(&bytes));
         }
         Ok(v)
     }
@@ -463,64 +469,70 @@ impl Drop for ExternalAgent {
     }
 }
 
-/// Standard base64 (RFC 4648, with padding).
-pub fn base64(data: &[u8]) -> String {
-    const T: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut s = String::with_capacity(data.len().div_ceil(3) * 4);
-    for c in data.chunks(3) {
-        let b = [c[0], *c.get(1).unwrap_or(&0), *c.get(2).unwrap_or(&0)];
-        let n = (b[0] as u32) << 16 | (b[1] as u32) << 8 | b[2] as u32;
-        for i in 0..4 {
-            if i <= c.len() {
-                s.push(T[(n >> (18 - 6 * i) & 63) as usize] as char);
-            } else {
-                s.push('=');
-            }
-        }
-    }
-    s
-}
-
-/// A `.npy` file (format 1.0) of a little-endian array.
-pub fn npy(dtype: &str, shape: &[usize], data: &[u8]) -> Vec<u8> {
-    let dims: Vec<String> = shape.iter().map(usize::to_string).collect();
-    let shape = if dims.len() == 1 {
-        format!("({},)", dims[0])
-    } else {
-        format!("({})", dims.join(", "))
-    };
-    let mut header = format!("{{'descr': '{dtype}', 'fortran_order': False, 'shape': {shape}, }}");
-    let total = 10 + header.len() + 1;
-    header.push_str(&" ".repeat((64 - total % 64) % 64));
-    header.push('\n');
-    let mut out = Vec::with_capacity(10 + header.len() + data.len());
-    out.extend_from_slice(b"\x93NUMPY\x01\x00");
-    out.extend_from_slice(&(header.len() as u16).to_le_bytes());
-    out.extend_from_slice(header.as_bytes());
-    out.extend_from_slice(data);
-    out
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use vlnverse_sensors::Frame;
 
-    #[test]
-    fn base64_matches_rfc4648_vectors() {
-        assert_eq!(base64(b""), "");
-        assert_eq!(base64(b"f"), "Zg==");
-        assert_eq!(base64(b"fo"), "Zm8=");
-        assert_eq!(base64(b"foo"), "Zm9v");
-        assert_eq!(base64(b"foobar"), "Zm9vYmFy");
+    fn frame() -> Frame {
+        Frame {
+            width: 3,
+            height: 2,
+            rgb: (0..18).collect(),
+            depth: vec![0.5; 6],
+            semantic: vec![7; 6],
+            instance: vec![0x0102_0304; 6],
+        }
     }
 
+    fn agent(encoding: ObsEncoding) -> ExternalAgent {
+        ExternalAgent::spawn("cat > /dev/null", encoding).unwrap()
+    }
+
+    /// Files: RGB as PNG, the other channels as `.npy` with their dtype and `[h, w]` shape.
     #[test]
-    fn npy_header_is_aligned() {
-        let b = npy("<f4", &[2, 3], &[0u8; 24]);
+    fn file_observations_are_png_and_npy() {
+        let a = agent(ObsEncoding::Files);
+        let v = a.frame_entry("depth", "depth", &frame()).unwrap();
+        assert_eq!(
+            (v["dtype"].as_str(), v["encoding"].as_str()),
+            (Some("<f4"), Some("file"))
+        );
+        let b = std::fs::read(v["path"].as_str().unwrap()).unwrap();
         assert_eq!(&b[..6], b"\x93NUMPY");
         let hlen = u16::from_le_bytes([b[8], b[9]]) as usize;
         assert_eq!((10 + hlen) % 64, 0);
+        let header = String::from_utf8_lossy(&b[10..10 + hlen]);
+        assert!(
+            header.contains("'descr': '<f4'") && header.contains("'shape': (2, 3,)"),
+            "{header}"
+        );
         assert_eq!(b.len(), 10 + hlen + 24);
-        assert!(String::from_utf8_lossy(&b[10..10 + hlen]).contains("'shape': (2, 3)"));
+        let v = a.frame_entry("sem", "semantic", &frame()).unwrap();
+        let b = std::fs::read(v["path"].as_str().unwrap()).unwrap();
+        assert!(String::from_utf8_lossy(&b).contains("'<u2'"));
+        let v = a.frame_entry("rgb", "rgb", &frame()).unwrap();
+        let png = std::fs::read(v["path"].as_str().unwrap()).unwrap();
+        let img = image::load_from_memory(&png).unwrap().to_rgb8();
+        assert_eq!(img.as_raw(), &frame().rgb);
+    }
+
+    /// Base64: the standard alphabet with padding over the raw little-endian array.
+    #[test]
+    fn base64_observations_are_the_raw_little_endian_array() {
+        let a = agent(ObsEncoding::Base64);
+        let v = a.frame_entry("instance", "instance", &frame()).unwrap();
+        assert_eq!(v["encoding"], "base64");
+        assert_eq!(v["shape"], json!([2, 3]));
+        let raw = STANDARD.decode(v["data"].as_str().unwrap()).unwrap();
+        assert_eq!(raw, [4u8, 3, 2, 1].repeat(6));
+        let v = a.frame_entry("rgb", "rgb", &frame()).unwrap();
+        assert_eq!(v["dtype"], "|u1");
+        // 18 bytes: six groups of four characters, no padding.
+        assert_eq!(v["data"].as_str().unwrap().len(), 24);
+        assert_eq!(
+            STANDARD.decode(v["data"].as_str().unwrap()).unwrap(),
+            frame().rgb
+        );
     }
 }
