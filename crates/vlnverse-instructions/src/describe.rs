@@ -326,20 +326,20 @@ pub(crate) fn room_feature(scene: &Scene, o: &SceneObject) -> Option<&'static [&
         .map(|p| rect_distance(Vec2::from(*p), lo, hi))
         .fold(f32::INFINITY, f32::min);
     if corner < 0.4 {
-        return Some(ph::IN_CORNER);
+        return Some(ph::IN_CORNER.entries());
     }
     if scene.doors.iter().any(|d| {
         d.rooms.contains(&room.id)
             && rect_distance(Vec2::new(d.position[0], d.position[2]), lo, hi) < 0.6
     }) {
-        return Some(ph::BY_DOOR);
+        return Some(ph::BY_DOOR.entries());
     }
     let wall = edge_distance(room, lo, hi);
     if wall < 0.2 {
-        return Some(ph::AT_WALL);
+        return Some(ph::AT_WALL.entries());
     }
     if wall > 1.2 {
-        return Some(ph::MID_ROOM);
+        return Some(ph::MID_ROOM.entries());
     }
     None
 }

@@ -165,10 +165,10 @@ fn legs_of(pts: &[Vec2], start: Vec2, cfg: &TemplateConfig) -> Vec<Leg> {
 /// A distance in one of the ways people give it.
 fn distance_phrase(d: f32, w: Writer, rng: &mut ChaCha8Rng) -> String {
     if d < 1.25 {
-        return pick(rng, ph::DIST_SHORT).to_string();
+        return pick(rng, &ph::DIST_SHORT).to_string();
     }
     let n = d.round().max(1.0) as u32;
-    let about = pick(rng, ph::ABOUT);
+    let about = pick(rng, &ph::ABOUT);
     let form = if w == Writer::Precise {
         rng.random_range(0..4)
     } else {
@@ -177,7 +177,7 @@ fn distance_phrase(d: f32, w: Writer, rng: &mut ChaCha8Rng) -> String {
     match form {
         0 | 1 => format!(
             "{about} {}",
-            fill(pick(rng, ph::METRES), &[("n", &n.to_string())])
+            fill(pick(rng, &ph::METRES), &[("n", &n.to_string())])
         ),
         2 => format!("{about} {} metres", number_word(n)),
         3 if w == Writer::Precise => format!("{:.1} metres", d),
@@ -270,7 +270,7 @@ fn turn_clause(
 ) -> Option<String> {
     match turn {
         Turn::Straight => None,
-        Turn::Around => Some(pick(rng, ph::TURN_AROUND).to_string()),
+        Turn::Around => Some(pick(rng, &ph::TURN_AROUND).to_string()),
         Turn::Slight(s) => {
             let dir = side_word(s);
             if rng.random_bool(0.15) {
@@ -282,10 +282,10 @@ fn turn_clause(
                     hour.to_string()
                 };
                 // The clock alone hides the side; the side is named with it.
-                let c = fill(pick(rng, ph::SLIGHT_CLOCK), &[("clock", &clock)]);
+                let c = fill(pick(rng, &ph::SLIGHT_CLOCK), &[("clock", &clock)]);
                 Some(format!("{c}, slightly {dir}"))
             } else {
-                Some(fill(pick(rng, ph::SLIGHT_TURN), &[("dir", dir)]))
+                Some(fill(pick(rng, &ph::SLIGHT_TURN), &[("dir", dir)]))
             }
         }
         Turn::Turn(s) => {
@@ -298,12 +298,12 @@ fn turn_clause(
                     deg.to_string()
                 };
                 Some(fill(
-                    pick(rng, ph::TURN_DEG),
+                    pick(rng, &ph::TURN_DEG),
                     &[("dir", dir), ("deg", &deg)],
                 ))
             } else {
                 let bank = if start { ph::START_TURN } else { ph::TURN };
-                Some(fill(pick(rng, bank), &[("dir", dir)]))
+                Some(fill(pick(rng, &bank), &[("dir", dir)]))
             }
         }
     }
@@ -312,13 +312,13 @@ fn turn_clause(
 /// "walk forward about 3 metres", "stroll on slowly".
 fn move_clause(len: f32, w: Writer, landmark: bool, rng: &mut ChaCha8Rng) -> String {
     if rng.random_bool(0.12) {
-        return pick(rng, ph::MOVE_WHOLE).to_string();
+        return pick(rng, &ph::MOVE_WHOLE).to_string();
     }
-    let verb = pick(rng, ph::MOVE_VERB);
+    let verb = pick(rng, &ph::MOVE_VERB);
     let dir = if verb.contains("path") {
         ""
     } else {
-        match pick(rng, ph::ONWARD) {
+        match pick(rng, &ph::ONWARD) {
             // Not "press on on ahead".
             d if verb.ends_with(" on") && (d == "on" || d.starts_with("on ")) => "ahead",
             d => d,
@@ -327,7 +327,7 @@ fn move_clause(len: f32, w: Writer, landmark: bool, rng: &mut ChaCha8Rng) -> Str
     let manner = if w == Writer::Terse || rng.random_bool(0.65) {
         ""
     } else {
-        pick(rng, ph::MANNER)
+        pick(rng, &ph::MANNER)
     };
     let mut s = verb.to_string();
     for part in [dir, manner] {
@@ -456,23 +456,23 @@ fn room_change(
     let door = door_np(scene, from, to, at, rng);
     match (rng.random_range(0..8), door) {
         (0 | 1, Some(d)) => fill(
-            pick(rng, ph::THROUGH_DOOR),
+            pick(rng, &ph::THROUGH_DOOR),
             &[("door", &d), ("room", &to_np)],
         ),
         (2, Some(d)) => fill(
-            pick(rng, ph::LEAVE_BY_DOOR),
+            pick(rng, &ph::LEAVE_BY_DOOR),
             &[("from", &from_np), ("door", &d), ("room", &to_np)],
         ),
         (3, _) => fill(
-            pick(rng, ph::ROOM_TO_ROOM),
+            pick(rng, &ph::ROOM_TO_ROOM),
             &[("from", &from_np), ("room", &to_np)],
         ),
         (4, _) => format!(
             "{} and {}",
-            fill(pick(rng, ph::LEAVE_ROOM), &[("room", &from_np)]),
-            fill(pick(rng, ph::ENTER_ROOM), &[("room", &to_np)])
+            fill(pick(rng, &ph::LEAVE_ROOM), &[("room", &from_np)]),
+            fill(pick(rng, &ph::ENTER_ROOM), &[("room", &to_np)])
         ),
-        _ => fill(pick(rng, ph::ENTER_ROOM), &[("room", &to_np)]),
+        _ => fill(pick(rng, &ph::ENTER_ROOM), &[("room", &to_np)]),
     }
 }
 
@@ -506,7 +506,7 @@ fn join(clauses: &[String], rng: &mut ChaCha8Rng) -> String {
     for (i, c) in clauses.iter().enumerate() {
         if i > 0 {
             s.push_str(if i + 1 == clauses.len() || rng.random_bool(0.5) {
-                pick(rng, ph::AND)
+                pick(rng, &ph::AND)
             } else {
                 ", "
             });
@@ -559,18 +559,18 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
     let mut sentences: Vec<String> = Vec::new();
     let chatty = writer == Writer::Chatty;
     if rng.random_bool(if chatty { 0.5 } else { 0.06 }) {
-        sentences.push(pick(&mut rng, ph::OPEN).to_string());
+        sentences.push(pick(&mut rng, &ph::OPEN).to_string());
     }
     let mut prefix = String::new();
     // Some writers number their steps ("First, ...", "Step two: ...").
     let numbered = matches!(writer, Writer::Plain | Writer::Precise) && rng.random_bool(0.12);
-    let number_form = pick(&mut rng, ph::NUMBERED);
+    let number_form = pick(&mut rng, &ph::NUMBERED);
     let mut step_no = 0u32;
     let start_p = if writer == Writer::Terse { 0.1 } else { 0.35 };
     if let Some(&(_, r0)) = rooms.first() {
         if rng.random_bool(start_p) {
             let room = room_np(ctx.scene, r0, room_syn, &mut rng);
-            let s = fill(pick(&mut rng, ph::START_ROOM), &[("room", &room)]);
+            let s = fill(pick(&mut rng, &ph::START_ROOM), &[("room", &room)]);
             if s.ends_with(',') {
                 if !numbered {
                     prefix = format!("{s} ");
@@ -667,7 +667,7 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
             && rng.random_bool(0.25)
         {
             if let Some(m) = named.pop() {
-                after = Some(fill(pick(&mut rng, ph::AFTER_OBJ), &[("obj", &m.text)]));
+                after = Some(fill(pick(&mut rng, &ph::AFTER_OBJ), &[("obj", &m.text)]));
             }
         }
         let ks: Vec<usize> = (1..rooms.len())
@@ -685,7 +685,7 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
             let mids: Vec<String> = ks[..ks.len() - 1].iter().map(|&k| kind(k)).collect();
             let last = kind(ks[ks.len() - 1]);
             vec![fill(
-                pick(&mut rng, ph::THROUGH_ROOMS),
+                pick(&mut rng, &ph::THROUGH_ROOMS),
                 &[("mid", &mids.join(" and then ")), ("room", &last)],
             )]
         } else {
@@ -714,28 +714,31 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
                     && rng.random_bool(0.35) =>
             {
                 let hall = room_np(ctx.scene, r, room_syn, &mut rng);
-                fill(pick(&mut rng, ph::ALONG_HALL), &[("room", &hall)])
+                fill(pick(&mut rng, &ph::ALONG_HALL), &[("room", &hall)])
             }
             Some(r) if changes.is_empty() && leg.len > 2.5 && rng.random_bool(0.12) => {
                 let room = room_np(ctx.scene, r, room_syn, &mut rng);
-                fill(pick(&mut rng, ph::THROUGH_ROOM), &[("room", &room)])
+                fill(pick(&mut rng, &ph::THROUGH_ROOM), &[("room", &room)])
             }
             _ => move_clause(leg.len, writer, !named.is_empty(), &mut rng),
         };
         let lm_clause = |m: &Named, rng: &mut ChaCha8Rng| {
             if m.side == Side::Ahead {
-                fill(pick(rng, ph::TOWARDS), &[("obj", &m.text)])
+                fill(pick(rng, &ph::TOWARDS), &[("obj", &m.text)])
             } else {
-                let sp = fill(pick(rng, ph::SIDE), &[("dir", side_word(m.side))]);
-                fill(pick(rng, ph::PASS_SIDE), &[("obj", &m.text), ("side", &sp)])
+                let sp = fill(pick(rng, &ph::SIDE), &[("dir", side_word(m.side))]);
+                fill(
+                    pick(rng, &ph::PASS_SIDE),
+                    &[("obj", &m.text), ("side", &sp)],
+                )
             }
         };
         let see_sentence = |m: &Named, rng: &mut ChaCha8Rng| {
             if m.side == Side::Ahead {
                 format!("{} is ahead of you", m.text)
             } else {
-                let sp = fill(pick(rng, ph::SIDE), &[("dir", side_word(m.side))]);
-                fill(pick(rng, ph::SEE_SIDE), &[("obj", &m.text), ("side", &sp)])
+                let sp = fill(pick(rng, &ph::SIDE), &[("dir", side_word(m.side))]);
+                fill(pick(rng, &ph::SEE_SIDE), &[("obj", &m.text), ("side", &sp)])
             }
         };
 
@@ -762,9 +765,9 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
             // "With the sofa on your left, turn right and walk on."
             1 if lateral_first => {
                 let m = &named[0];
-                let sp = fill(pick(&mut rng, ph::SIDE), &[("dir", side_word(m.side))]);
+                let sp = fill(pick(&mut rng, &ph::SIDE), &[("dir", side_word(m.side))]);
                 let head = fill(
-                    pick(&mut rng, ph::WITH_SIDE),
+                    pick(&mut rng, &ph::WITH_SIDE),
                     &[("obj", &m.text), ("side", &sp)],
                 );
                 let mut cl: Vec<String> = turn.into_iter().collect();
@@ -789,7 +792,7 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
                     let m = &named[named.len() - 1];
                     m2 = format!(
                         "{m2} {}",
-                        fill(pick(&mut rng, ph::UNTIL_OBJ), &[("obj", &m.text)])
+                        fill(pick(&mut rng, &ph::UNTIL_OBJ), &[("obj", &m.text)])
                     );
                     cl.push(m2);
                     cl.extend(changes);
@@ -814,7 +817,7 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
                 if let Some(r) = entered.and_then(|r| ctx.scene.room(r)) {
                     if rng.random_bool(0.4) {
                         let room = format!("the {}", r.kind.words());
-                        out.push(fill(pick(&mut rng, ph::NOW_IN), &[("room", &room)]));
+                        out.push(fill(pick(&mut rng, &ph::NOW_IN), &[("room", &room)]));
                     }
                 }
             }
@@ -872,7 +875,7 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
                     None
                 };
                 if let Some(b) = bank {
-                    out.push(pick(&mut rng, b).to_string());
+                    out.push(pick(&mut rng, &b).to_string());
                 }
             }
         }
@@ -893,7 +896,7 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
                 let head = fill(form, &[("ord", o), ("num", &number_word(step_no))]);
                 s = format!("{head}{s}");
             } else if k == 0 && li > 0 {
-                s = format!("{}{s}", pick(&mut rng, ph::NEXT));
+                s = format!("{}{s}", pick(&mut rng, &ph::NEXT));
             }
             if k == 0 && !prefix.is_empty() {
                 s = format!("{}{}", std::mem::take(&mut prefix), s);
@@ -901,7 +904,7 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
             sentences.push(sentence(&s));
         }
         if chatty && rng.random_bool(0.25) {
-            sentences.push(pick(&mut rng, ph::ASIDE).to_string());
+            sentences.push(pick(&mut rng, &ph::ASIDE).to_string());
         }
     }
 
@@ -919,10 +922,10 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
         let (obj, extra) = object_np(ctx, o, view, np_opts, MAX_REFERENCE_DISTANCE, &mut rng);
         grounding.push(grounded(o, Role::Target, side, n - 1));
         grounding.extend(extra);
-        let mut s = fill(pick(&mut rng, ph::STOP_AT), &[("obj", &obj)]);
+        let mut s = fill(pick(&mut rng, &ph::STOP_AT), &[("obj", &obj)]);
         if let Some(sd @ (Side::Left | Side::Right)) = side {
             if rng.random_bool(0.35) {
-                let sp = fill(pick(&mut rng, ph::SIDE), &[("dir", side_word(sd))]);
+                let sp = fill(pick(&mut rng, &ph::SIDE), &[("dir", side_word(sd))]);
                 s = match rng.random_range(0..3) {
                     0 => format!("{s}, which is {sp}"),
                     1 => format!("{s}; it will be {sp}"),
@@ -937,19 +940,19 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
             // "stop in the far left corner of the kitchen"; other places after a comma
             // ("wait just inside the kitchen, with the wall behind you").
             Some(w) if w.contains("corner") && rng.random_bool(0.6) => fill(
-                pick(&mut rng, ph::STOP_ROOM_WHERE),
+                pick(&mut rng, &ph::STOP_ROOM_WHERE),
                 &[("room", &room), ("where", &w)],
             ),
             Some(w) if rng.random_bool(0.6) => format!(
                 "{}, {w}",
-                fill(pick(&mut rng, ph::STOP_ROOM), &[("room", &room)])
+                fill(pick(&mut rng, &ph::STOP_ROOM), &[("room", &room)])
             ),
-            _ => fill(pick(&mut rng, ph::STOP_ROOM), &[("room", &room)]),
+            _ => fill(pick(&mut rng, &ph::STOP_ROOM), &[("room", &room)]),
         }
     } else {
-        pick(&mut rng, ph::STOP).to_string()
+        pick(&mut rng, &ph::STOP).to_string()
     };
-    stop = format!("{}{stop}", pick(&mut rng, ph::LAST));
+    stop = format!("{}{stop}", pick(&mut rng, &ph::LAST));
     if !prefix.is_empty() {
         stop = format!("{prefix}{stop}");
     }
@@ -963,15 +966,15 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
         let only = ctx.graph.objects_of_class(o.class).len() == 1;
         let p = if chatty { 0.4 } else { 0.15 };
         if big && rng.random_bool(p) {
-            sentences.push(pick(&mut rng, ph::CANT_MISS).to_string());
+            sentences.push(pick(&mut rng, &ph::CANT_MISS).to_string());
         } else if only && rng.random_bool(p) {
             let name = o.class.words();
-            sentences.push(fill(pick(&mut rng, ph::ONLY_ONE), &[("name", &name)]));
+            sentences.push(fill(pick(&mut rng, &ph::ONLY_ONE), &[("name", &name)]));
         }
     }
     if writer != Writer::Terse && rng.random_bool(0.3) {
         if let Some(room) = room_beyond(ctx, end, end_heading, &walls, cfg.sight_slack) {
-            sentences.push(fill(pick(&mut rng, ph::OVERSHOOT), &[("room", &room)]));
+            sentences.push(fill(pick(&mut rng, &ph::OVERSHOOT), &[("room", &room)]));
         }
     }
     if matches!(writer, Writer::Chatty | Writer::Plain) && rng.random_bool(0.08) {
@@ -988,10 +991,10 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
             s if s < 75.0 => "about a minute".to_string(),
             _ => "a minute or two".to_string(),
         };
-        sentences.push(fill(pick(&mut rng, ph::WALK_TIME), &[("t", &t)]));
+        sentences.push(fill(pick(&mut rng, &ph::WALK_TIME), &[("t", &t)]));
     }
     if rng.random_bool(if chatty { 0.5 } else { 0.04 }) {
-        sentences.push(pick(&mut rng, ph::CLOSE).to_string());
+        sentences.push(pick(&mut rng, &ph::CLOSE).to_string());
     }
 
     Ok(Instruction {

@@ -162,7 +162,7 @@ impl InstructionGenerator for TemplateGenerator {
         let sup = expr
             .support
             .as_ref()
-            .map(|m| fill(pick(&mut rng, sup_bank), &[("obj", &words(m))]))
+            .map(|m| fill(pick(&mut rng, &sup_bank), &[("obj", &words(m))]))
             .unwrap_or_default();
         let rel = match (&expr.reference, expr.relation) {
             (Some(m), Some(r)) => {
@@ -171,7 +171,7 @@ impl InstructionGenerator for TemplateGenerator {
                 } else {
                     near_bank
                 };
-                fill(pick(&mut rng, bank), &[("obj", &words(m))])
+                fill(pick(&mut rng, &bank), &[("obj", &words(m))])
             }
             _ => String::new(),
         };
@@ -203,36 +203,36 @@ impl InstructionGenerator for TemplateGenerator {
             Style::Formal => {
                 let rc = room
                     .as_ref()
-                    .map(|r| fill(pick(&mut rng, ph::FORMAL_ROOM), &[("room", r)]))
+                    .map(|r| fill(pick(&mut rng, &ph::FORMAL_ROOM), &[("room", r)]))
                     .unwrap_or_default();
                 let core = fill(
-                    pick(&mut rng, ph::FORMAL),
+                    pick(&mut rng, &ph::FORMAL),
                     &[("desc", &desc), ("sup", &sup), ("rel", &rel), ("room", &rc)],
                 );
                 format!(
                     "{}{core}{remark}{}",
-                    pick(&mut rng, ph::FORMAL_OPEN),
-                    pick(&mut rng, ph::FORMAL_CLOSE)
+                    pick(&mut rng, &ph::FORMAL_OPEN),
+                    pick(&mut rng, &ph::FORMAL_CLOSE)
                 )
             }
             Style::Natural => {
                 let core = match &room {
                     Some(r) => fill(
-                        pick(&mut rng, ph::NATURAL_ROOM),
+                        pick(&mut rng, &ph::NATURAL_ROOM),
                         &[("desc", &desc), ("sup", &sup), ("rel", &rel), ("room", r)],
                     ),
                     None => fill(
-                        pick(&mut rng, ph::NATURAL),
+                        pick(&mut rng, &ph::NATURAL),
                         &[("desc", &desc), ("sup", &sup), ("rel", &rel)],
                     ),
                 };
-                let open = pick(&mut rng, ph::NATURAL_OPEN);
+                let open = pick(&mut rng, &ph::NATURAL_OPEN);
                 let core = if open.ends_with(", ") || open.ends_with(": ") {
                     decapitalize(&core)
                 } else {
                     core
                 };
-                let close = pick(&mut rng, ph::NATURAL_CLOSE);
+                let close = pick(&mut rng, &ph::NATURAL_CLOSE);
                 let close = if !remark.is_empty() && close.starts_with(',') {
                     "."
                 } else {
@@ -243,16 +243,16 @@ impl InstructionGenerator for TemplateGenerator {
             Style::Casual => {
                 let rc = room
                     .as_ref()
-                    .map(|r| fill(pick(&mut rng, ph::CASUAL_ROOM), &[("room", r)]))
+                    .map(|r| fill(pick(&mut rng, &ph::CASUAL_ROOM), &[("room", r)]))
                     .unwrap_or_default();
                 let core = fill(
-                    pick(&mut rng, ph::CASUAL),
+                    pick(&mut rng, &ph::CASUAL),
                     &[("desc", &desc), ("sup", &sup), ("rel", &rel), ("room", &rc)],
                 );
                 format!(
                     "{}{core}{remark}{}",
-                    pick(&mut rng, ph::CASUAL_OPEN),
-                    pick(&mut rng, ph::CASUAL_CLOSE)
+                    pick(&mut rng, &ph::CASUAL_OPEN),
+                    pick(&mut rng, &ph::CASUAL_CLOSE)
                 )
             }
         };
@@ -347,18 +347,18 @@ fn target_remark(
     Some(match kinds[rng.random_range(0..kinds.len())] {
         0 => {
             let a = pick(rng, mats);
-            fill(pick(rng, mat_b), &[("a", a), ("m", material_noun(a))])
+            fill(pick(rng, &mat_b), &[("a", a), ("m", material_noun(a))])
         }
         1 => {
             let c = &shades[rng.random_range(0..shades.len())];
-            fill(pick(rng, shade_b), &[("c", c)])
+            fill(pick(rng, &shade_b), &[("c", c)])
         }
         2 => fill(
-            pick(rng, use_b),
+            pick(rng, &use_b),
             &[("use", pick(rng, uses)), ("name", name)],
         ),
         _ => fill(
-            pick(rng, place_b),
+            pick(rng, &place_b),
             &[("f", pick(rng, place.unwrap_or(&[])))],
         ),
     })
@@ -528,11 +528,11 @@ pub fn chain_parts(parts: &[Instruction], seed: u64) -> Result<Instruction> {
                 decapitalize(t)
             };
             let opener = if i == 0 {
-                pick(&mut rng, ph::CHAIN_FIRST)
+                pick(&mut rng, &ph::CHAIN_FIRST)
             } else if i + 1 == subs.len() {
-                pick(&mut rng, ph::CHAIN_LAST)
+                pick(&mut rng, &ph::CHAIN_LAST)
             } else {
-                pick(&mut rng, ph::CHAIN_MID)
+                pick(&mut rng, &ph::CHAIN_MID)
             };
             pieces.push(format!("{opener}{body}"));
         }
