@@ -10,7 +10,7 @@ use std::time::Instant;
 use crate::split_args::SplitArgs;
 use vlnverse_sensors::Backend;
 use vlnverse_task::eval::agents::{builtin, Versioned};
-use vlnverse_task::eval::{evaluate, ActionSpace, EvalConfig, EvalRequest, Setting};
+use vlnverse_task::eval::{evaluate_with, ActionSpace, EvalConfig, EvalRequest, Layers, Setting};
 use vlnverse_task::sample::Sample;
 
 /// Arguments of `cargo xtask evaluate`.
@@ -153,20 +153,20 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         count,
         seed: cfg.seed,
     });
-    let req = EvalRequest {
-        dataset: args.data.dataset.clone(),
-        task: args.data.task,
-        split: args.data.split,
-        episodes: args.episodes,
-        sample,
-        threads: args.threads,
-        out: args.out.clone(),
-        fresh: args.fresh,
-        config: cfg,
-    };
+    let req = EvalRequest::new(
+        args.data.dataset.clone(),
+        args.data.task,
+        args.data.split,
+        args.out.clone(),
+    )
+    .episodes(args.episodes)
+    .sample(sample)
+    .threads(args.threads)
+    .fresh(args.fresh)
+    .config(cfg);
     let pb = crate::progress::bar(n as u64, "evaluating");
     let t0 = Instant::now();
-    let out = evaluate(&req, &*factory, &|| pb.inc(1))?;
+    let out = evaluate_with(&req, &*factory, Layers::default().on_episode(&|| pb.inc(1)))?;
     pb.finish_and_clear();
     let secs = t0.elapsed().as_secs_f64();
     let s = &out.summary.summary;

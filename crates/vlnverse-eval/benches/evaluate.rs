@@ -59,23 +59,20 @@ fn bench(c: &mut Criterion) {
             ..Default::default()
         };
         let factory = builtin("oracle", None, &cfg).unwrap();
-        let req = |cfg: &EvalConfig| EvalRequest {
-            dataset: dir.path().to_path_buf(),
-            task: Task::Fine,
-            split: Split::Test,
-            episodes: None,
-            sample: None,
-            threads: None,
-            out: dir
-                .path()
-                .join(format!("run{}", run.fetch_add(1, Ordering::Relaxed))),
-            fresh: false,
-            config: cfg.clone(),
+        let req = |cfg: &EvalConfig| {
+            EvalRequest::new(
+                dir.path().to_path_buf(),
+                Task::Fine,
+                Split::Test,
+                dir.path()
+                    .join(format!("run{}", run.fetch_add(1, Ordering::Relaxed))),
+            )
+            .config(cfg.clone())
         };
-        let steps = evaluate(&req(&cfg), &*factory, &|| {}).unwrap().steps_run;
+        let steps = evaluate(&req(&cfg), &*factory).unwrap().steps_run;
         g.throughput(Throughput::Elements(steps));
         g.bench_function(name, |b| {
-            b.iter(|| evaluate(&req(&cfg), &*factory, &|| {}).unwrap().steps_run)
+            b.iter(|| evaluate(&req(&cfg), &*factory).unwrap().steps_run)
         });
     }
     g.finish();

@@ -116,22 +116,16 @@ pub fn run(arg: Option<PathBuf>) -> Result<f64, Box<dyn std::error::Error>> {
                 .collect()
         })
         .collect();
-    let req = EvalRequest {
-        dataset: out.clone(),
-        task: Task::Fine,
-        split: Split::Test,
-        episodes: Some(1),
-        sample: None,
-        threads: Some(1),
-        out: out.join("run"),
-        fresh: true,
-        config: EvalConfig {
+    let req = EvalRequest::new(out.clone(), Task::Fine, Split::Test, out.join("run"))
+        .episodes(1)
+        .threads(1)
+        .fresh(true)
+        .config(EvalConfig {
             setting: Setting::Lenient,
             render: false,
             plots: 1,
             ..Default::default()
-        },
-    };
+        });
     let factory = FnFactory::new("path-follower", false, move || {
         Box::new(PathFollower {
             waypoints: paths[0].clone(),
@@ -141,7 +135,7 @@ pub fn run(arg: Option<PathBuf>) -> Result<f64, Box<dyn std::error::Error>> {
         }) as Box<dyn Agent>
     })
     .with_fingerprint("example v1");
-    let outcome = evaluate(&req, &factory, &|| {})?;
+    let outcome = evaluate(&req, &factory)?;
     let s = &outcome.summary.summary;
     println!(
         "{} on {} episode(s): SR {:.2}  SPL {:.2}  nDTW {:.2} -> {}",

@@ -31,8 +31,10 @@ use crate::error::Result;
 use crate::protocol::{ActionSpace, Setting};
 use vlnverse_score::episode::Task;
 
-/// What an agent is told once per episode (never the goal position or target id).
+/// What an agent is told once per episode (never the goal position or target id). More may
+/// be told in later versions, hence `#[non_exhaustive]`.
 #[derive(Debug, Clone)]
+#[non_exhaustive]
 pub struct EpisodeInputs {
     /// Episode id.
     pub episode_id: u64,

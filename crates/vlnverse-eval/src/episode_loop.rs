@@ -21,7 +21,7 @@ use glam::Vec2;
 use vlnverse_env::geodesic::DistanceField;
 use vlnverse_env::Pose;
 use vlnverse_sensors::{AgentState, CollisionInfo, Observations, SensorRig};
-use vlnverse_sim::{Action, AgentConfig, Simulator, StepOutcome};
+use vlnverse_sim::{Action, AgentConfig, Failure, Simulator, StepOutcome};
 
 use crate::agent::{Agent, EpisodeInputs, OracleHandle, Privileged, StepInput, SubGoalProgress};
 use crate::error::{Result, TaskError};
@@ -41,18 +41,72 @@ pub fn episode_seed(seed: u64, episode_id: u64) -> u64 {
     z ^ (z >> 31)
 }
 
-/// Short action name for trajectories.
-pub fn action_name(a: &Action) -> &'static str {
-    match a {
-        Action::Stop => "stop",
-        Action::MoveForward(_) => "move_forward",
-        Action::TurnLeft(_) => "turn_left",
-        Action::TurnRight(_) => "turn_right",
-        Action::LookUp => "look_up",
-        Action::LookDown => "look_down",
-        Action::Velocity { .. } => "velocity",
-        Action::Waypoint { .. } => "waypoint",
+/// What one step of a trajectory was: an [`Action`]'s kind, or a dialogue question. Written
+/// into trajectories by [`ActionKind::name`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum ActionKind {
+    /// [`Action::Stop`].
+    Stop,
+    /// [`Action::MoveForward`].
+    MoveForward,
+    /// [`Action::TurnLeft`].
+    TurnLeft,
+    /// [`Action::TurnRight`].
+    TurnRight,
+    /// [`Action::LookUp`].
+    LookUp,
+    /// [`Action::LookDown`].
+    LookDown,
+    /// [`Action::Velocity`].
+    Velocity,
+    /// [`Action::Waypoint`].
+    Waypoint,
+    /// A question to the dialogue oracle (a step when it cannot be asked: no budget left).
+    Ask,
+}
+
+impl ActionKind {
+    /// The name in trajectories (`"move_forward"`, `"ask"`...).
+    pub fn name(self) -> &'static str {
+        match self {
+            ActionKind::Stop => "stop",
+            ActionKind::MoveForward => "move_forward",
+            ActionKind::TurnLeft => "turn_left",
+            ActionKind::TurnRight => "turn_right",
+            ActionKind::LookUp => "look_up",
+            ActionKind::LookDown => "look_down",
+            ActionKind::Velocity => "velocity",
+            ActionKind::Waypoint => "waypoint",
+            ActionKind::Ask => "ask",
+        }
     }
+}
+
+impl From<&Action> for ActionKind {
+    fn from(a: &Action) -> Self {
+        match a {
+            Action::Stop => ActionKind::Stop,
+            Action::MoveForward(_) => ActionKind::MoveForward,
+            Action::TurnLeft(_) => ActionKind::TurnLeft,
+            Action::TurnRight(_) => ActionKind::TurnRight,
+            Action::LookUp => ActionKind::LookUp,
+            Action::LookDown => ActionKind::LookDown,
+            Action::Velocity { .. } => ActionKind::Velocity,
+            Action::Waypoint { .. } => ActionKind::Waypoint,
+        }
+    }
+}
+
+impl std::fmt::Display for ActionKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// Short action name for trajectories ([`ActionKind::name`]).
+pub fn action_name(a: &Action) -> &'static str {
+    ActionKind::from(a).name()
 }
 
 /// What every episode of an evaluation runs under, derived once from an [`EvalConfig`].
@@ -153,35 +207,94 @@ fn dialogue_oracle(
     }
 }
 
-/// Why an episode cannot be run in its scene: `(field, value, reason)`. Checked before the
-/// episode runs, so an impossible episode is refused instead of being scored as a failure.
-pub fn check_episode(
-    ep: &Episode,
-    scene: &SceneContext,
-) -> std::result::Result<(), (String, String, String)> {
+/// Why an episode cannot be run in its scene (see [`EpisodeCheckError`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum Unrunnable {
+    /// A coordinate is NaN or infinite.
+    #[error("not finite")]
+    NotFinite,
+    /// The start is not on the scene's floor.
+    #[error("y is {offset:.2} m from the scene's floor ({floor})")]
+    OffFloor {
+        /// Start height minus the floor height (m).
+        offset: f32,
+        /// The scene's floor height (m).
+        floor: f32,
+    },
+    /// Outside the scene's navigable map.
+    #[error("outside the scene's navigable map")]
+    OffMap,
+    /// A goal neither on nor near a navigable cell.
+    #[error("not on or near a navigable cell")]
+    NotNavigable,
+    /// A goal the start cannot reach on the navigable map.
+    #[error("unreachable from start_position on the navigable map")]
+    Unreachable,
+    /// The goal's distance field could not be built.
+    #[error("{0}")]
+    Field(String),
+}
+
+/// An episode that cannot be run in its scene: the episode field, its value and why.
+/// Checked before the episode runs ([`check_episode`]), so an impossible episode is refused
+/// instead of being scored as a failure.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("invalid `{field}` = {value}: {reason}")]
+#[non_exhaustive]
+pub struct EpisodeCheckError {
+    /// The episode's field (`start_position`, `goals`, `sub_goals[2]`).
+    pub field: String,
+    /// Its value as written.
+    pub value: String,
+    /// Why the episode cannot be run.
+    pub reason: Unrunnable,
+}
+
+impl EpisodeCheckError {
+    /// The error as a [`TaskError::Invalid`] whose field is `location.field` (`location`
+    /// names the episode: `FILE: episode 3 (episodes[2])`).
+    pub fn at(self, location: &str) -> TaskError {
+        TaskError::invalid(
+            format!("{location}.{}", self.field),
+            self.value,
+            self.reason.to_string(),
+        )
+    }
+}
+
+impl From<EpisodeCheckError> for TaskError {
+    fn from(e: EpisodeCheckError) -> Self {
+        TaskError::invalid(e.field, e.value, e.reason.to_string())
+    }
+}
+
+/// Check that `ep` can be run in `scene`: a finite start on the floor and on the navigable
+/// map, every goal on the map and reachable from the start.
+pub fn check_episode(ep: &Episode, scene: &SceneContext) -> Result<(), EpisodeCheckError> {
     let p = ep.start_position;
-    let bad = |field: &str, value: String, why: &str| Err((field.into(), value, why.into()));
+    let bad = |field: &str, value: String, reason: Unrunnable| {
+        Err(EpisodeCheckError {
+            field: field.into(),
+            value,
+            reason,
+        })
+    };
     if !p.iter().all(|v| v.is_finite()) || !ep.start_rotation.iter().all(|v| v.is_finite()) {
-        return bad("start_position", format!("{p:?}"), "not finite");
+        return bad("start_position", format!("{p:?}"), Unrunnable::NotFinite);
     }
     let floor = scene.scene.floor_height;
     if (p[1] - floor).abs() > 0.5 {
+        let offset = p[1] - floor;
         return bad(
             "start_position",
             format!("{p:?}"),
-            &format!(
-                "y is {:.2} m from the scene's floor ({floor})",
-                p[1] - floor
-            ),
+            Unrunnable::OffFloor { offset, floor },
         );
     }
     let map = &scene.navigable;
     if map.world_to_cell(Vec2::new(p[0], p[2])).is_none() {
-        return bad(
-            "start_position",
-            format!("{p:?}"),
-            "outside the scene's navigable map",
-        );
+        return bad("start_position", format!("{p:?}"), Unrunnable::OffMap);
     }
     for (i, g) in ep.goal_sequence().iter().enumerate() {
         let field_name = if ep.sub_goals.is_empty() {
@@ -191,33 +304,26 @@ pub fn check_episode(
         };
         let value = format!("{:?}", g.position);
         if !g.position.iter().all(|v| v.is_finite()) {
-            return bad(&field_name, value, "not finite");
+            return bad(&field_name, value, Unrunnable::NotFinite);
         }
         if map
             .world_to_cell(Vec2::new(g.position[0], g.position[2]))
             .is_none()
         {
-            return bad(&field_name, value, "outside the scene's navigable map");
+            return bad(&field_name, value, Unrunnable::OffMap);
         }
-        let field = scene
-            .field(g.position)
-            .map_err(|e| (field_name.clone(), value.clone(), e.to_string()))?;
+        let field = match scene.field(g.position) {
+            Ok(f) => f,
+            Err(e) => return bad(&field_name, value, Unrunnable::Field(e.to_string())),
+        };
         if field.goal().is_none() {
-            return bad(&field_name, value, "not on or near a navigable cell");
+            return bad(&field_name, value, Unrunnable::NotNavigable);
         }
         if GoalDistance::distance(&*field, p).is_none() {
-            return bad(
-                &field_name,
-                value,
-                "unreachable from start_position on the navigable map",
-            );
+            return bad(&field_name, value, Unrunnable::Unreachable);
         }
     }
     Ok(())
-}
-
-fn sim_err(what: &str, value: impl ToString, e: impl ToString) -> TaskError {
-    TaskError::invalid(what, value, e.to_string())
 }
 
 /// One episode in progress, driven step by step from outside: [`run_episode`] drives it with
@@ -234,14 +340,14 @@ pub struct EpisodeState {
     dialogue: Option<Box<dyn Oracle>>,
     positions: Vec<[f32; 3]>,
     headings: Vec<f32>,
-    actions: Vec<String>,
+    actions: Vec<ActionKind>,
     stops: Vec<u32>,
     steps: u32,
     collisions: u32,
     stopped: bool,
     over: bool,
     last: Option<StepOutcome>,
-    failure: Option<String>,
+    failure: Option<Failure>,
 }
 
 /// What [`EpisodeState::apply`] did with one action.
@@ -286,18 +392,10 @@ impl EpisodeState {
             position: ep.start_position,
             rotation: ep.start_rotation,
         };
-        let prepared = scene.prepared(&*sim)?;
-        let pose = sim.reset_prepared(&prepared, start).map_err(|e| {
-            sim_err(
-                &format!("episode {}: start_position", ep.episode_id),
-                format!("{:?}", ep.start_position),
-                e,
-            )
-        })?;
+        let pose = sim.reset(&scene.scene, start)?;
         if let Some(rig) = rig {
             if rig.scene_id() != Some(ep.scene_id.as_str()) {
-                rig.set_scene(&scene.scene)
-                    .map_err(|e| sim_err("scene", &ep.scene_id, e))?;
+                rig.set_scene(&scene.scene)?;
             }
             rig.reset(pose);
         }
@@ -438,8 +536,7 @@ impl EpisodeState {
 
     /// The rig's readings at this step.
     pub fn observe(&self, rig: &mut SensorRig) -> Result<Observations> {
-        rig.observe(&self.agent_state())
-            .map_err(|e| sim_err("rig", &self.inputs.scene_id, e))
+        Ok(rig.observe(&self.agent_state())?)
     }
 
     /// Dialogue episodes: ask the oracle (within the episode's budget; see [`OracleHandle`]).
@@ -476,7 +573,7 @@ impl EpisodeState {
             ));
         }
         self.steps += 1;
-        self.actions.push(action_name(&action).to_string());
+        self.actions.push(ActionKind::from(&action));
         let applied = if action == Action::Stop {
             if self.progress.current + 1 < self.progress.total {
                 // A long-horizon sub-goal declared reached; the episode goes on.
@@ -498,8 +595,7 @@ impl EpisodeState {
                         self.collisions += 1;
                     }
                     if let Some(f) = &out.failure {
-                        self.failure =
-                            Some(serde_json::to_string(f).unwrap_or_else(|_| format!("{f:?}")));
+                        self.failure = Some(f.clone());
                     }
                     self.over |= out.done;
                     self.last = Some(out);
@@ -517,12 +613,12 @@ impl EpisodeState {
         Ok(applied)
     }
 
-    /// An action that cannot be carried out (named `name` in the trajectory, e.g. a question
-    /// with no budget left): nothing moves, the step counts.
-    pub fn refuse(&mut self, name: &str, why: &str, cfg: &EvalConfig) -> Result<Applied> {
-        self.check_live(name)?;
+    /// An action that cannot be carried out (`kind` in the trajectory, e.g. a question with
+    /// no budget left: [`ActionKind::Ask`]): nothing moves, the step counts.
+    pub fn refuse(&mut self, kind: ActionKind, why: &str, cfg: &EvalConfig) -> Result<Applied> {
+        self.check_live(kind.name())?;
         self.steps += 1;
-        self.actions.push(name.to_string());
+        self.actions.push(kind);
         self.stand_still();
         self.end_if_limit(cfg);
         Ok(Applied::Refused(why.to_string()))
@@ -567,7 +663,7 @@ impl EpisodeState {
             collisions: self.collisions,
             steps: self.steps,
             stops: self.stops.clone(),
-            actions: Some(self.actions.clone()),
+            actions: Some(self.actions.iter().map(|a| a.name().to_string()).collect()),
         }
     }
 

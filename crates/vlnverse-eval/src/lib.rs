@@ -16,13 +16,16 @@ pub use agent::{
     Agent, AgentFactory, EpisodeInputs, OracleHandle, Privileged, StepInput, SubGoalProgress,
 };
 pub use agents::FnFactory;
-pub use episode_loop::{run_episode, Applied, EpisodeSettings, EpisodeState};
+pub use episode_loop::{
+    run_episode, ActionKind, Applied, EpisodeCheckError, EpisodeSettings, EpisodeState, Unrunnable,
+};
 pub use error::{Result, TaskError};
 pub use protocol::{ActionSpace, EvalConfig, Setting};
 pub use resume::EpisodeRecord;
 pub use runner::{
-    configured_renderer, evaluate, evaluate_with, rapier_simulator, EvalOutcome, EvalRequest,
-    RendererFactory, SimulatorFactory,
+    configured_renderer, evaluate, evaluate_with, rapier_simulator, DefaultRenderers,
+    DefaultSimulators, EvalOutcome, EvalRequest, LayerIdentity, Layers, RendererFactory,
+    SimulatorFactory,
 };
 pub use scene_context::{SceneCache, SceneContext};
 pub use vec_env::{

@@ -14,9 +14,11 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Result, TaskError};
 use vlnverse_score::metrics::EpisodeMetrics;
 use vlnverse_score::trajectory::Trajectory;
+use vlnverse_sim::Failure;
 
 /// One finished episode.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[non_exhaustive]
 pub struct EpisodeRecord {
     /// Episode id.
     pub episode_id: u64,
@@ -24,9 +26,54 @@ pub struct EpisodeRecord {
     pub trajectory: Trajectory,
     /// Its metrics.
     pub metrics: EpisodeMetrics,
-    /// Why the episode ended early, when it failed (Strict collision).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub failure: Option<String>,
+    /// Why the episode ended early, when it failed (Strict collision). Written as an object
+    /// (`{"type": "collision", "hit": [2]}`); runs written before held that object's JSON
+    /// text as a string, which is still read.
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "failure_then_or_now"
+    )]
+    pub failure: Option<Failure>,
+}
+
+impl EpisodeRecord {
+    /// A record of a finished episode.
+    pub fn new(
+        episode_id: u64,
+        trajectory: Trajectory,
+        metrics: EpisodeMetrics,
+        failure: Option<Failure>,
+    ) -> Self {
+        EpisodeRecord {
+            episode_id,
+            trajectory,
+            metrics,
+            failure,
+        }
+    }
+}
+
+/// A failure as written now (an object) or by older runs (its JSON text as a string).
+fn failure_then_or_now<'de, D: serde::Deserializer<'de>>(
+    d: D,
+) -> std::result::Result<Option<Failure>, D::Error> {
+    #[derive(Deserialize)]
+    #[serde(untagged)]
+    enum Either {
+        Now(Failure),
+        Then(String),
+    }
+    match Option::<Either>::deserialize(d)? {
+        None => Ok(None),
+        Some(Either::Now(f)) => Ok(Some(f)),
+        Some(Either::Then(text)) => serde_json::from_str(&text).map(Some).map_err(|e| {
+            serde::de::Error::custom(format!(
+                "`failure` {text:?} is not a failure this version knows ({e}); \
+                 rerun the folder with --fresh"
+            ))
+        }),
+    }
 }
 
 /// Name of the progress file in a run folder.
@@ -125,6 +172,16 @@ impl ProgressLog {
     }
 }
 
+/// Keys of `run.json` added after runs were first written: a `run.json` without one of them
+/// (a run made before) is not compared on it; one that has it is.
+pub const LATER_KEYS: [&str; 5] = [
+    "simulator",
+    "simulator_fingerprint",
+    "renderer",
+    "renderer_fingerprint",
+    "rig_fingerprint",
+];
+
 /// Write `run.json`, or check that the existing one describes the same run. `identity` lists
 /// the keys in the order they are compared; the error names the first key that differs, with
 /// the value now and the value in the file.
@@ -136,7 +193,10 @@ pub fn check_or_write_identity(dir: &Path, identity: &[(&str, serde_json::Value)
                 .map_err(|e| TaskError::parse(&path, format!("line {}", e.line()), e))?;
             let differing = identity
                 .iter()
-                .find(|(k, v)| old.get(*k) != Some(v))
+                .find(|(k, v)| match old.get(*k) {
+                    None => !LATER_KEYS.contains(k),
+                    Some(o) => o != v,
+                })
                 .map(|(k, v)| {
                     (
                         k.to_string(),
@@ -175,5 +235,43 @@ pub fn check_or_write_identity(dir: &Path, identity: &[(&str, serde_json::Value)
             Ok(vlnverse_score::dataset::write_atomic(&path, s.as_bytes())?)
         }
         Err(e) => Err(TaskError::io(&path, e)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The `failure` field of [`EpisodeRecord`] alone.
+    #[derive(Debug, Serialize, Deserialize)]
+    struct Only {
+        #[serde(
+            default,
+            skip_serializing_if = "Option::is_none",
+            deserialize_with = "failure_then_or_now"
+        )]
+        failure: Option<Failure>,
+    }
+
+    #[test]
+    fn failures_are_read_as_written_now_and_as_older_runs_wrote_them() {
+        let now = Failure::Collision { hit: vec![2, 5] };
+        let text = serde_json::to_string(&Only {
+            failure: Some(now.clone()),
+        })
+        .unwrap();
+        assert_eq!(text, r#"{"failure":{"type":"collision","hit":[2,5]}}"#);
+        let read = |t: &str| serde_json::from_str::<Only>(t).map(|o| o.failure);
+        assert_eq!(read(&text).unwrap(), Some(now.clone()));
+        // Older runs: the failure's JSON as a string.
+        let old = r#"{"failure":"{\"type\":\"collision\",\"hit\":[2,5]}"}"#;
+        assert_eq!(read(old).unwrap(), Some(now));
+        assert_eq!(read("{}").unwrap(), None);
+        assert_eq!(read(r#"{"failure":null}"#).unwrap(), None);
+        // One this version does not know: refused, saying how to go on.
+        let err = read(r#"{"failure":"{\"type\":\"fell\"}"}"#)
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("--fresh"), "{err}");
     }
 }

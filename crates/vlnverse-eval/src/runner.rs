@@ -4,8 +4,24 @@
 //! so results do not depend on the thread count or on the order episodes finish in.
 //!
 //! [`evaluate`] runs today's defaults (the Rapier simulator, the configured renderer backend);
-//! [`evaluate_with`] takes factories for the simulator and the renderer, so a user's own
-//! backend runs under exactly the same rules.
+//! [`evaluate_with`] takes [`Layers`]: factories for the simulator and the renderer (a user's
+//! own backend runs under exactly the same rules) and an optional progress callback.
+//!
+//! ```no_run
+//! use vlnverse_eval::{evaluate_with, rapier_simulator, EvalRequest, Layers};
+//! use vlnverse_score::{Split, Task};
+//!
+//! # fn main() -> vlnverse_eval::Result<()> {
+//! let req = EvalRequest::new("data/tiny", Task::Fine, Split::Test, "runs/x")
+//!     .episodes(10)
+//!     .threads(2);
+//! let agent = vlnverse_eval::agents::builtin("forward", None, &req.config)?;
+//! let layers = Layers::default()
+//!     .simulators(rapier_simulator)
+//!     .on_episode(&|| eprint!("."));
+//! let outcome = evaluate_with(&req, &*agent, layers)?;
+//! # Ok(()) }
+//! ```
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -17,8 +33,8 @@ use vlnverse_sim::{RapierSimulator, SimConfig, Simulator};
 
 use crate::agent::{Agent, AgentFactory};
 pub use crate::episode_loop::{
-    action_name, check_episode, episode_seed, run_episode, DialogueHandle, EpisodeSettings,
-    NOT_UNDERSTOOD,
+    action_name, check_episode, episode_seed, run_episode, ActionKind, DialogueHandle,
+    EpisodeCheckError, EpisodeSettings, Unrunnable, NOT_UNDERSTOOD,
 };
 use crate::error::{Result, TaskError};
 use crate::plots;
@@ -32,8 +48,10 @@ use vlnverse_score::sample::{sample_episodes, Sample};
 use vlnverse_score::trajectory::{write_jsonl, Trajectory};
 use vlnverse_score::OutputLock;
 
-/// What to evaluate and where the results go.
+/// What to evaluate and where the results go: [`EvalRequest::new`] and the chainable
+/// setters.
 #[derive(Debug, Clone)]
+#[non_exhaustive]
 pub struct EvalRequest {
     /// Dataset folder (`<task>/<split>/<split>.json.gz`, `scenes/<scene_id>/`).
     pub dataset: PathBuf,
@@ -56,6 +74,65 @@ pub struct EvalRequest {
     pub config: EvalConfig,
 }
 
+impl EvalRequest {
+    /// The whole split of `task` in `dataset`, written to `out`, under the default protocol,
+    /// on rayon's default threads, resuming what `out` holds.
+    pub fn new(
+        dataset: impl Into<PathBuf>,
+        task: Task,
+        split: Split,
+        out: impl Into<PathBuf>,
+    ) -> Self {
+        EvalRequest {
+            dataset: dataset.into(),
+            task,
+            split,
+            episodes: None,
+            sample: None,
+            threads: None,
+            out: out.into(),
+            fresh: false,
+            config: EvalConfig::default(),
+        }
+    }
+
+    /// Only the first `n` episodes of the split file (None: all).
+    pub fn episodes(mut self, n: impl Into<Option<usize>>) -> Self {
+        self.episodes = n.into();
+        self
+    }
+
+    /// A seeded random sample of the split (None: no sampling).
+    pub fn sample(mut self, sample: impl Into<Option<Sample>>) -> Self {
+        self.sample = sample.into();
+        self
+    }
+
+    /// Worker threads (None: one per core).
+    pub fn threads(mut self, n: impl Into<Option<usize>>) -> Self {
+        self.threads = n.into();
+        self
+    }
+
+    /// Delete an earlier run's files in `out` instead of resuming it.
+    pub fn fresh(mut self, fresh: bool) -> Self {
+        self.fresh = fresh;
+        self
+    }
+
+    /// The protocol.
+    pub fn config(mut self, config: EvalConfig) -> Self {
+        self.config = config;
+        self
+    }
+
+    /// Another run folder.
+    pub fn out(mut self, out: impl Into<PathBuf>) -> Self {
+        self.out = out.into();
+        self
+    }
+}
+
 /// The result of [`evaluate`].
 #[derive(Debug, Clone)]
 pub struct EvalOutcome {
@@ -67,10 +144,6 @@ pub struct EvalOutcome {
     pub resumed: usize,
     /// Agent actions run in this call (resumed episodes excluded).
     pub steps_run: u64,
-}
-
-fn sim_err(what: &str, value: impl ToString, e: impl ToString) -> TaskError {
-    TaskError::invalid(what, value, e.to_string())
 }
 
 /// Scenes kept loaded per worker thread beyond the first (the cache holds `threads + this`).
@@ -93,12 +166,19 @@ struct Worker<S> {
     agent: Box<dyn Agent>,
 }
 
-/// Makes a simulator for an evaluation's settings.
+/// Makes a simulator for an evaluation's settings. Closures `Fn(&SimConfig) ->
+/// Result<S>` are factories.
 pub trait SimulatorFactory: Sync {
     /// The simulator type.
     type Sim: Simulator;
     /// A fresh simulator with these settings.
     fn make(&self, cfg: &SimConfig) -> Result<Self::Sim>;
+    /// What the simulators are beyond their [`Simulator::name`] (a version, a hash of the
+    /// engine's files): recorded in `run.json`, and a resume with another is refused. `None`
+    /// (the default) records nothing beyond the name.
+    fn fingerprint(&self) -> Option<String> {
+        None
+    }
 }
 
 impl<S: Simulator, F: Fn(&SimConfig) -> Result<S> + Sync> SimulatorFactory for F {
@@ -108,10 +188,16 @@ impl<S: Simulator, F: Fn(&SimConfig) -> Result<S> + Sync> SimulatorFactory for F
     }
 }
 
-/// Makes a renderer for an evaluation's rig.
+/// Makes a renderer for an evaluation's rig. Closures `Fn(&RigConfig) ->
+/// Result<Box<dyn Renderer>>` are factories.
 pub trait RendererFactory: Sync {
     /// A fresh renderer for this rig.
     fn make(&self, rig: &RigConfig) -> Result<Box<dyn Renderer>>;
+    /// What the renderers are beyond their [`Renderer::name`]; see
+    /// [`SimulatorFactory::fingerprint`].
+    fn fingerprint(&self) -> Option<String> {
+        None
+    }
 }
 
 impl<F: Fn(&RigConfig) -> Result<Box<dyn Renderer>> + Sync> RendererFactory for F {
@@ -128,6 +214,130 @@ pub fn rapier_simulator(cfg: &SimConfig) -> Result<RapierSimulator> {
 /// The default renderer: the backend the rig (or the protocol's override) names.
 pub fn configured_renderer(rig: &RigConfig) -> Result<Box<dyn Renderer>> {
     Ok(create_renderer(rig.backend)?)
+}
+
+/// Type of [`rapier_simulator`], the default simulator factory of [`Layers`].
+pub type DefaultSimulators = fn(&SimConfig) -> Result<RapierSimulator>;
+/// Type of [`configured_renderer`], the default renderer factory of [`Layers`].
+pub type DefaultRenderers = fn(&RigConfig) -> Result<Box<dyn Renderer>>;
+
+/// The layers an evaluation runs on besides the agent, for [`evaluate_with`]: a simulator
+/// factory, a renderer factory (one of each per worker thread) and an optional callback called
+/// once per finished episode (progress bars). [`Layers::default`] is what [`evaluate`] uses;
+/// replace a part with the chainable setters.
+pub struct Layers<'a, SF = DefaultSimulators, RF = DefaultRenderers> {
+    /// Makes the simulators.
+    pub simulators: SF,
+    /// Makes the renderers (when the protocol renders).
+    pub renderers: RF,
+    /// Called once per finished episode.
+    pub on_episode: Option<&'a (dyn Fn() + Sync)>,
+}
+
+impl Default for Layers<'_> {
+    fn default() -> Self {
+        Layers {
+            simulators: rapier_simulator,
+            renderers: configured_renderer,
+            on_episode: None,
+        }
+    }
+}
+
+impl<SF, RF> std::fmt::Debug for Layers<'_, SF, RF> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Layers")
+            .field("on_episode", &self.on_episode.is_some())
+            .finish_non_exhaustive()
+    }
+}
+
+impl<'a, SF, RF> Layers<'a, SF, RF> {
+    /// Simulators from `simulators` instead.
+    pub fn simulators<S2: SimulatorFactory>(self, simulators: S2) -> Layers<'a, S2, RF> {
+        Layers {
+            simulators,
+            renderers: self.renderers,
+            on_episode: self.on_episode,
+        }
+    }
+
+    /// Renderers from `renderers` instead.
+    pub fn renderers<R2: RendererFactory>(self, renderers: R2) -> Layers<'a, SF, R2> {
+        Layers {
+            simulators: self.simulators,
+            renderers,
+            on_episode: self.on_episode,
+        }
+    }
+
+    /// Call `f` once per finished episode.
+    pub fn on_episode(mut self, f: &'a (dyn Fn() + Sync)) -> Self {
+        self.on_episode = Some(f);
+        self
+    }
+}
+
+/// What ran a run besides the agent, as `run.json` records it: the simulator, the renderer
+/// (none when the protocol does not render) and the sensor rig, each by name and fingerprint.
+#[derive(Debug, Clone, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct LayerIdentity {
+    /// [`Simulator::name`].
+    pub simulator: String,
+    /// [`SimulatorFactory::fingerprint`].
+    pub simulator_fingerprint: Option<String>,
+    /// [`Renderer::name`] (None without rendering).
+    pub renderer: Option<String>,
+    /// [`RendererFactory::fingerprint`].
+    pub renderer_fingerprint: Option<String>,
+    /// A hash of the rig as it runs (the agent's sensors attached), None without rendering.
+    pub rig_fingerprint: Option<String>,
+}
+
+impl LayerIdentity {
+    /// The identity of a simulator and a rig made by these factories.
+    pub fn of<S: Simulator>(
+        sim: &S,
+        sims: &impl SimulatorFactory,
+        rig: Option<&SensorRig>,
+        renderers: &impl RendererFactory,
+    ) -> Result<Self> {
+        Ok(LayerIdentity {
+            simulator: sim.name(),
+            simulator_fingerprint: sims.fingerprint(),
+            renderer: rig.map(SensorRig::backend_name),
+            renderer_fingerprint: rig.and_then(|_| renderers.fingerprint()),
+            rig_fingerprint: rig.map(|r| rig_fingerprint(r.config())).transpose()?,
+        })
+    }
+
+    /// The identity of the default layers ([`Layers::default`]) for `req`'s protocol: makes
+    /// one simulator and, when rendering, one renderer to ask their names (for runs whose
+    /// episodes are driven from outside, as Python's run folders).
+    pub fn of_defaults(req: &EvalRequest) -> Result<Self> {
+        let layers = Layers::default();
+        let sim = layers.simulators.make(&sim_config(&req.config)?)?;
+        let rig = if req.config.render {
+            let rig_cfg = req.config.rig_config()?;
+            Some(SensorRig::with_renderer(
+                rig_cfg.clone(),
+                layers.renderers.make(&rig_cfg)?,
+            ))
+        } else {
+            None
+        };
+        LayerIdentity::of(&sim, &layers.simulators, rig.as_ref(), &layers.renderers)
+    }
+}
+
+/// A stable hash (hex) of a rig's settings.
+fn rig_fingerprint(rig: &RigConfig) -> Result<String> {
+    let json = serde_json::to_vec(rig)
+        .map_err(|e| TaskError::invalid("rig", "<config>", e.to_string()))?;
+    let mut key = vlnverse_env::cache::ContentKey::new();
+    key.bytes(&json);
+    Ok(format!("{:016x}", key.finish()))
 }
 
 /// Everything an episode run needs that does not change between episodes.
@@ -169,20 +379,13 @@ impl<SF: SimulatorFactory, RF: RendererFactory> Shared<'_, SF, RF> {
     /// A worker around `agent`: its simulator and, when rendering, its rig with the agent's
     /// required sensors attached.
     fn new_worker(&self, agent: Box<dyn Agent>) -> Result<Worker<SF::Sim>> {
-        let cfg = &self.req.config;
-        let sim = self
-            .sims
-            .make(&self.sim_cfg)
-            .map_err(|e| sim_err("agent_profile", &cfg.agent_profile, e))?;
-        let rig = if cfg.render {
-            let renderer = self
-                .renderers
-                .make(&self.rig_cfg)
-                .map_err(|e| sim_err("rig", &cfg.rig, e))?;
+        let sim = self.sims.make(&self.sim_cfg)?;
+        let rig = if self.req.config.render {
+            let renderer = self.renderers.make(&self.rig_cfg)?;
             let mut rig = SensorRig::with_renderer(self.rig_cfg.clone(), renderer);
             for spec in agent.required_sensors() {
                 if !rig.config().sensors.iter().any(|s| s.name() == spec.name()) {
-                    rig.attach(spec).map_err(|e| sim_err("rig", &cfg.rig, e))?;
+                    rig.attach(spec)?;
                 }
             }
             Some(rig)
@@ -190,6 +393,32 @@ impl<SF: SimulatorFactory, RF: RendererFactory> Shared<'_, SF, RF> {
             None
         };
         Ok(Worker { sim, rig, agent })
+    }
+
+    /// The first worker, made before anything is written: an agent that looks at its
+    /// sensors is refused when rendering is off (it would run blind).
+    fn probe_worker(&self) -> Result<Worker<SF::Sim>> {
+        let agent = self.factory.make()?;
+        if !self.req.config.render {
+            let needs: Vec<String> = agent
+                .required_sensors()
+                .iter()
+                .map(|s| s.name().to_string())
+                .collect();
+            if !needs.is_empty() {
+                return Err(TaskError::invalid(
+                    "render",
+                    false,
+                    format!(
+                        "agent `{}` looks at its sensors ({}) and would run blind without \
+                         rendering; drop --no-render / set `render = true`",
+                        self.factory.name(),
+                        needs.join(", ")
+                    ),
+                ));
+            }
+        }
+        self.new_worker(agent)
     }
 
     fn give_back(&self, w: Worker<SF::Sim>) {
@@ -217,13 +446,7 @@ impl<SF: SimulatorFactory, RF: RendererFactory> Shared<'_, SF, RF> {
                 e.to_string(),
             )
         })?;
-        if let Err((field, value, why)) = check_episode(ep, &ctx) {
-            return Err(TaskError::invalid(
-                format!("{}.{field}", self.locate(ep)),
-                value,
-                why,
-            ));
-        }
+        check_episode(ep, &ctx).map_err(|e| e.at(&self.locate(ep)))?;
         let mut w = self.take_worker(&ep.scene_id)?;
         let res = run_episode(
             &mut w.sim,
@@ -251,26 +474,16 @@ pub fn sim_config(cfg: &EvalConfig) -> Result<SimConfig> {
 }
 
 /// Evaluate the agents of `factory` on a split with the default layers (the Rapier simulator,
-/// the configured renderer); see [`evaluate_with`].
-pub fn evaluate(
-    req: &EvalRequest,
-    factory: &dyn AgentFactory,
-    on_episode: &(dyn Fn() + Sync),
-) -> Result<EvalOutcome> {
-    evaluate_with(
-        req,
-        factory,
-        &rapier_simulator,
-        &configured_renderer,
-        on_episode,
-    )
+/// the configured renderer, no progress callback); see [`evaluate_with`].
+pub fn evaluate(req: &EvalRequest, factory: &dyn AgentFactory) -> Result<EvalOutcome> {
+    evaluate_with(req, factory, Layers::default())
 }
 
-/// Evaluate the agents of `factory` on a split, with simulators from `sims` and renderers
-/// from `renderers` (one of each per worker thread); writes `summary.json`, `episodes.csv`,
-/// `report.md`, `trajectories.jsonl`, `progress.jsonl`, `run.json` and `plots/*.png` under
-/// `req.out`. Episodes already in `progress.jsonl` are kept, not re-run. `on_episode` is
-/// called once per finished episode (progress bars).
+/// Evaluate the agents of `factory` on a split, with simulators and renderers from `layers`
+/// (one of each per worker thread); writes `summary.json`, `episodes.csv`, `report.md`,
+/// `trajectories.jsonl`, `progress.jsonl`, `run.json` and `plots/*.png` under `req.out`.
+/// Episodes already in `progress.jsonl` are kept, not re-run; a folder of a run made with
+/// another agent, simulator, renderer or rig is refused (`run.json`).
 ///
 /// The folder is locked for the run (a second job on it is refused). Nothing is written
 /// before the inputs are checked, and a run that fails before its first episode finishes
@@ -278,9 +491,7 @@ pub fn evaluate(
 pub fn evaluate_with<SF: SimulatorFactory, RF: RendererFactory>(
     req: &EvalRequest,
     factory: &dyn AgentFactory,
-    sims: &SF,
-    renderers: &RF,
-    on_episode: &(dyn Fn() + Sync),
+    layers: Layers<'_, SF, RF>,
 ) -> Result<EvalOutcome> {
     req.config.validate()?;
     if req.episodes == Some(0) {
@@ -301,66 +512,49 @@ pub fn evaluate_with<SF: SimulatorFactory, RF: RendererFactory>(
     }
     let total_in_split = episodes.len();
     episodes = select_episodes(req, episodes)?;
-    let sim_cfg = sim_config(&req.config)?;
-    let rig_cfg = req.config.rig_config()?;
     let mut settings = EpisodeSettings::new(&req.config)?;
     settings.privileged = factory.privileged();
     settings.split = Some(req.split);
     settings.reference_dir = split_file.parent().map(Path::to_path_buf);
-    // Make one agent, simulator and renderer before anything is written: a bad profile, rig
-    // or agent command fails here and leaves no folder behind.
-    let probe = factory.make()?;
-    if !req.config.render {
-        // An agent that looks would run blind.
-        let needs: Vec<String> = probe
-            .required_sensors()
+    let shared = Shared {
+        req,
+        factory,
+        sims: &layers.simulators,
+        renderers: &layers.renderers,
+        sim_cfg: sim_config(&req.config)?,
+        rig_cfg: req.config.rig_config()?,
+        settings,
+        index: episodes
             .iter()
-            .map(|s| s.name().to_string())
-            .collect();
-        if !needs.is_empty() {
-            return Err(TaskError::invalid(
-                "render",
-                false,
-                format!(
-                    "agent `{}` looks at its sensors ({}) and would run blind without \
-                     rendering; drop --no-render / set `render = true`",
-                    factory.name(),
-                    needs.join(", ")
-                ),
-            ));
-        }
-    }
-    let identity = run_identity(req, factory)?;
+            .enumerate()
+            .map(|(i, e)| (e.episode_id, i))
+            .collect(),
+        split_file,
+        scenes: SceneCache::new(
+            &req.dataset,
+            req.threads.unwrap_or_else(rayon::current_num_threads) + SCENE_CACHE_SLACK,
+        ),
+        pool: Mutex::new(Vec::new()),
+    };
+    // Make one agent, simulator and renderer before anything is written: a bad profile, rig
+    // or agent command fails here and leaves no folder behind; they become the first worker.
+    let probe = shared.probe_worker()?;
+    let layer_identity = LayerIdentity::of(
+        &probe.sim,
+        shared.sims,
+        probe.rig.as_ref(),
+        shared.renderers,
+    )?;
+    shared.give_back(probe);
+    let identity = run_identity(req, factory, &layer_identity)?;
     let created = !req.out.exists();
     let lock = OutputLock::acquire(&req.out, "evaluate")?;
     let result = evaluate_locked(
-        req,
-        factory,
-        Shared {
-            req,
-            factory,
-            sims,
-            renderers,
-            sim_cfg,
-            rig_cfg,
-            settings,
-            index: episodes
-                .iter()
-                .enumerate()
-                .map(|(i, e)| (e.episode_id, i))
-                .collect(),
-            split_file,
-            scenes: SceneCache::new(
-                &req.dataset,
-                req.threads.unwrap_or_else(rayon::current_num_threads) + SCENE_CACHE_SLACK,
-            ),
-            pool: Mutex::new(Vec::new()),
-        },
-        probe,
+        &shared,
         &identity,
         &episodes,
         total_in_split,
-        on_episode,
+        layers.on_episode,
     );
     if result.is_err() {
         clean_failed_start(&req.out, created);
@@ -409,19 +603,15 @@ fn clean_failed_start(out: &Path, created: bool) {
     }
 }
 
-#[allow(clippy::too_many_arguments)]
 fn evaluate_locked<SF: SimulatorFactory, RF: RendererFactory>(
-    req: &EvalRequest,
-    factory: &dyn AgentFactory,
-    shared: Shared<'_, SF, RF>,
-    probe: Box<dyn Agent>,
+    shared: &Shared<'_, SF, RF>,
     identity: &[(&'static str, serde_json::Value)],
     episodes: &[Episode],
     total_in_split: usize,
-    on_episode: &(dyn Fn() + Sync),
+    on_episode: Option<&(dyn Fn() + Sync)>,
 ) -> Result<EvalOutcome> {
+    let req = shared.req;
     let mut done = open_run(req, identity, total_in_split)?;
-    let progress_path = req.out.join(PROGRESS_FILE);
     let todo: Vec<&Episode> = {
         let mut v: Vec<&Episode> = episodes
             .iter()
@@ -433,18 +623,15 @@ fn evaluate_locked<SF: SimulatorFactory, RF: RendererFactory>(
         v
     };
     let resumed = episodes.len() - todo.len();
-    let log = ProgressLog::open(&progress_path)?;
-    if !todo.is_empty() {
-        // The probe agent becomes the first worker, so nothing is made twice.
-        let w = shared.new_worker(probe)?;
-        shared.give_back(w);
-    }
+    let log = ProgressLog::open(&req.out.join(PROGRESS_FILE))?;
     let run = || -> Vec<Result<EpisodeRecord>> {
         todo.par_iter()
             .with_max_len(4)
             .map(|ep| {
                 let r = shared.run(ep, &log);
-                on_episode();
+                if let Some(f) = on_episode {
+                    f();
+                }
                 r
             })
             .collect()
@@ -463,7 +650,8 @@ fn evaluate_locked<SF: SimulatorFactory, RF: RendererFactory>(
         steps_run += rec.trajectory.steps as u64;
         done.insert(rec.episode_id, rec);
     }
-    let (summary, records) = finish_run(req, &factory.name(), &shared.scenes, episodes, done)?;
+    let agent = shared.factory.name();
+    let (summary, records) = finish_run(req, &agent, &shared.scenes, episodes, done)?;
     Ok(EvalOutcome {
         summary,
         records,
@@ -556,11 +744,14 @@ fn remove_run_files(out: &Path) -> Result<()> {
 
 /// What makes a run's results what they are, in the order a mismatch is reported (the first
 /// differing key is named): `run.json` of the run folder. Besides the protocol's names and
-/// paths it records their contents (`agent_config`, `rig_config`), so an edited file is noticed. Thread count and episode count are
-/// left out (a resume may use other values).
+/// paths it records their contents (`agent_config`, `rig_config`), so an edited file is
+/// noticed, and the layers that ran it (`simulator`, `renderer`, `rig_fingerprint`: see
+/// [`LayerIdentity`]). Thread count and episode count are left out (a resume may use other
+/// values).
 pub fn run_identity(
     req: &EvalRequest,
     factory: &dyn AgentFactory,
+    layers: &LayerIdentity,
 ) -> Result<Vec<(&'static str, serde_json::Value)>> {
     use serde_json::{json, to_value};
     let cfg = &req.config;
@@ -599,6 +790,13 @@ pub fn run_identity(
             value("agent_profile", to_value(cfg.agent_config()?))?,
         ),
         ("rig_config", value("rig", to_value(cfg.rig_config()?))?),
+        // The layers that ran it, after the protocol that chose them (a protocol change is
+        // named by the protocol's key).
+        ("simulator", json!(layers.simulator)),
+        ("simulator_fingerprint", json!(layers.simulator_fingerprint)),
+        ("renderer", json!(layers.renderer)),
+        ("renderer_fingerprint", json!(layers.renderer_fingerprint)),
+        ("rig_fingerprint", json!(layers.rig_fingerprint)),
     ];
     // Only when set, so runs made before these options existed still resume.
     if let Some(sample) = req.sample {

@@ -1,5 +1,5 @@
-//! What an evaluation derives from one scene (navigable map, distance fields, scene graph, the
-//! simulator's prepared scene) and a bounded cache of them, so that memory stays flat in the
+//! What an evaluation derives from one scene (navigable map, distance fields, scene graph) and
+//! a bounded cache of them, so that memory stays flat in the
 //! number of scenes of a split.
 
 use std::collections::{BTreeMap, VecDeque};
@@ -11,7 +11,6 @@ use vlnverse_env::geodesic::DistanceField;
 use vlnverse_env::occupancy::GridMap;
 use vlnverse_env::scene_graph::SceneGraph;
 use vlnverse_env::Scene;
-use vlnverse_sim::{PreparedScene, Simulator};
 
 use crate::error::{Result, TaskError};
 use vlnverse_score::score::navigable_map_path;
@@ -31,7 +30,6 @@ pub struct SceneContext {
     pub navigable: Arc<GridMap>,
     graph: OnceLock<Arc<SceneGraph>>,
     fields: Mutex<BTreeMap<(u32, u32), Arc<DistanceField>>>,
-    prepared: Mutex<Option<PreparedScene>>,
 }
 
 impl SceneContext {
@@ -42,7 +40,6 @@ impl SceneContext {
             navigable: Arc::new(navigable),
             graph: OnceLock::new(),
             fields: Mutex::new(BTreeMap::new()),
-            prepared: Mutex::new(None),
         }
     }
 
@@ -66,20 +63,6 @@ impl SceneContext {
         self.graph
             .get_or_init(|| Arc::new(SceneGraph::build(&self.scene)))
             .clone()
-    }
-
-    /// The scene as `sim` prepares it ([`Simulator::prepare`]), built by the first caller and
-    /// shared by the others (all simulators of one evaluation have the same settings).
-    pub fn prepared<S: Simulator>(&self, sim: &S) -> Result<PreparedScene> {
-        let mut slot = lock(&self.prepared);
-        if let Some(p) = slot.as_ref() {
-            return Ok(p.clone());
-        }
-        let p = sim
-            .prepare(self.scene.clone())
-            .map_err(|e| TaskError::invalid("scene", &self.scene.id, e.to_string()))?;
-        *slot = Some(p.clone());
-        Ok(p)
     }
 
     /// The distance field to a goal point (cached).

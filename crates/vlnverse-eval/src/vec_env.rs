@@ -28,7 +28,7 @@ use vlnverse_sim::{Action, SimConfig, Simulator};
 
 use crate::agent::Agent;
 use crate::agents::oracle::OracleAgent;
-use crate::episode_loop::{check_episode, Applied, EpisodeSettings, EpisodeState};
+use crate::episode_loop::{check_episode, ActionKind, Applied, EpisodeSettings, EpisodeState};
 use crate::error::{Result, TaskError};
 use crate::protocol::EvalConfig;
 use crate::resume::EpisodeRecord;
@@ -250,14 +250,12 @@ impl<S: Simulator> VecEnv<S> {
         settings.reference_dir = split_file.parent().map(Path::to_path_buf);
         let mut slots = Vec::with_capacity(cfg.num_envs);
         for i in 0..cfg.num_envs {
-            let sim = sims.make(&sim_cfg).map_err(|e| {
-                invalid("agent_profile", &cfg.protocol.agent_profile, e.to_string())
-            })?;
+            let sim = sims.make(&sim_cfg)?;
             let rig = if cfg.protocol.render {
-                let r = renderers
-                    .make(&rig_cfg)
-                    .map_err(|e| invalid("rig", &cfg.protocol.rig, e.to_string()))?;
-                Some(SensorRig::with_renderer(rig_cfg.clone(), r))
+                Some(SensorRig::with_renderer(
+                    rig_cfg.clone(),
+                    renderers.make(&rig_cfg)?,
+                ))
             } else {
                 None
             };
@@ -453,9 +451,7 @@ impl<S: Simulator> VecEnv<S> {
                 e.to_string(),
             )
         })?;
-        if let Err((field, value, why)) = check_episode(ep, &ctx) {
-            return Err(invalid(&format!("{}.{field}", locate()), value, why));
-        }
+        check_episode(ep, &ctx).map_err(|e| e.at(&locate()))?;
         Ok(ctx)
     }
 }
@@ -502,8 +498,11 @@ impl Ctx<'_> {
                     }
                     EnvAction::Ask(_) => {
                         // Nothing to ask: a refused action, one step.
-                        run.state
-                            .refuse("ask", "no questions left", &self.settings.config)?;
+                        run.state.refuse(
+                            ActionKind::Ask,
+                            "no questions left",
+                            &self.settings.config,
+                        )?;
                         info_extra.refused = Some("no questions left".into());
                     }
                     EnvAction::Act(a) => {

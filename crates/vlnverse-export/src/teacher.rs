@@ -94,11 +94,11 @@ pub fn run(
     settings: &EpisodeSettings,
     mut on_step: impl FnMut(&Step<'_>) -> Result<()>,
 ) -> Result<Vec<i64>> {
-    if let Err((field, value, why)) = check_episode(ep, scene) {
+    if let Err(e) = check_episode(ep, scene) {
         return Err(ExportError::invalid(
-            &format!("episode {}.{field}", ep.episode_id),
-            value,
-            why,
+            &format!("episode {}.{}", ep.episode_id, e.field),
+            e.value,
+            e.reason.to_string(),
         ));
     }
     let mut state = EpisodeState::begin(&mut w.sim, w.rig.as_mut(), ep, scene, settings)?;

@@ -501,7 +501,8 @@ impl NativeVecEnv {
             d.set_item("max_angular_speed", a.max_angular_speed_deg.to_radians())?;
             d.set_item(
                 "renderer",
-                env.rig().map(|r| r.backend_name()).unwrap_or("none"),
+                env.rig()
+                    .map_or_else(|| "none".to_string(), |r| r.backend_name()),
             )?;
             d.set_item(
                 "episode_ids",

@@ -10,7 +10,7 @@ use vlnverse_task::dataset;
 use vlnverse_task::episode::{Episode, Split, Task};
 use vlnverse_task::eval::resume::{EpisodeRecord, ProgressLog, PROGRESS_FILE};
 use vlnverse_task::eval::runner::{finish_run, open_run, run_identity, select_episodes};
-use vlnverse_task::eval::{AgentFactory, EvalRequest, SceneCache};
+use vlnverse_task::eval::{AgentFactory, EvalRequest, LayerIdentity, SceneCache};
 use vlnverse_task::metrics::{check_starts, match_trajectories, MetricsConfig};
 use vlnverse_task::report::{write_run, RunSummary};
 use vlnverse_task::sample::Sample;
@@ -174,17 +174,11 @@ impl RunFolder {
                     "invalid episodes 0: must be at least 1 (leave it out for the whole split)",
                 ));
             }
-            let req = EvalRequest {
-                dataset: dataset.clone(),
-                task,
-                split,
-                episodes,
-                sample: sample.map(|count| Sample { count, seed }),
-                threads: None,
-                out: out.clone(),
-                fresh,
-                config,
-            };
+            let req = EvalRequest::new(dataset.clone(), task, split, out.clone())
+                .episodes(episodes)
+                .sample(sample.map(|count| Sample { count, seed }))
+                .fresh(fresh)
+                .config(config);
             let eps = dataset::read_split(&dataset, task, split).map_err(py_err)?;
             if eps.is_empty() {
                 return Err(py_err(format!(
@@ -198,7 +192,8 @@ impl RunFolder {
                 name: agent.clone(),
                 fingerprint: agent_fingerprint,
             };
-            let identity = run_identity(&req, &factory).map_err(py_err)?;
+            let layers = LayerIdentity::of_defaults(&req).map_err(py_err)?;
+            let identity = run_identity(&req, &factory, &layers).map_err(py_err)?;
             let lock = OutputLock::acquire(&out, "evaluate").map_err(py_err)?;
             let done = open_run(&req, &identity, total).map_err(py_err)?;
             let log = ProgressLog::open(&out.join(PROGRESS_FILE)).map_err(py_err)?;

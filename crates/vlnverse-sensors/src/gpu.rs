@@ -926,8 +926,8 @@ impl TileRows {
 }
 
 impl Renderer for GpuRenderer {
-    fn name(&self) -> &'static str {
-        "wgpu"
+    fn name(&self) -> String {
+        "wgpu".into()
     }
 
     fn set_scene(&mut self, mesh: Arc<SceneMesh>) -> Result<()> {

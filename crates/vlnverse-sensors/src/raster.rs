@@ -1405,8 +1405,8 @@ impl RasterRenderer {
 }
 
 impl Renderer for RasterRenderer {
-    fn name(&self) -> &'static str {
-        "raster"
+    fn name(&self) -> String {
+        "raster".into()
     }
 
     fn set_scene(&mut self, mesh: Arc<SceneMesh>) -> Result<()> {

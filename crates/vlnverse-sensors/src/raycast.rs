@@ -175,8 +175,8 @@ impl RaycastRenderer {
 }
 
 impl Renderer for RaycastRenderer {
-    fn name(&self) -> &'static str {
-        "raycast"
+    fn name(&self) -> String {
+        "raycast".into()
     }
 
     fn set_scene(&mut self, mesh: Arc<SceneMesh>) -> Result<()> {

@@ -9,7 +9,7 @@
 //! struct Blind;
 //!
 //! impl Renderer for Blind {
-//!     fn name(&self) -> &'static str { "blind" }
+//!     fn name(&self) -> String { "blind".into() }
 //!     fn set_scene(&mut self, _mesh: Arc<SceneMesh>) -> Result<()> { Ok(()) }
 //!     fn render(&mut self, views: &[View]) -> Result<Vec<Frame>> {
 //!         Ok(views.iter().map(|v| {
@@ -38,8 +38,10 @@ use std::sync::Arc;
 /// ([`crate::GpuRenderer`]), the CPU ray caster ([`crate::RaycastRenderer`]) and the CPU
 /// rasteriser ([`crate::RasterRenderer`]).
 pub trait Renderer: Send {
-    /// Short backend name for logs (`"wgpu"`, `"raycast"`, `"raster"`).
-    fn name(&self) -> &'static str;
+    /// What renders, for logs and a run's `run.json` (`"wgpu"`, `"raycast"`, `"raster"`; a
+    /// wrapper says what it wraps: `"blurred(raster)"`). A resume of a run made with another
+    /// name is refused.
+    fn name(&self) -> String;
 
     /// Prepare a scene once; later calls to [`Renderer::render`] show it.
     fn set_scene(&mut self, mesh: Arc<SceneMesh>) -> Result<()>;

@@ -119,7 +119,7 @@ impl SensorRig {
     }
 
     /// Name of the renderer backend in use.
-    pub fn backend_name(&self) -> &'static str {
+    pub fn backend_name(&self) -> String {
         self.renderer.name()
     }
 

@@ -3,6 +3,7 @@
 pub mod action;
 pub mod config;
 pub mod error;
+pub mod physics_cache;
 pub mod rapier_sim;
 pub mod simulator;
 pub mod vec_sim;
@@ -13,7 +14,8 @@ pub use config::{
     ActuationNoise, AgentConfig, AgentShape, CollisionSetting, DifferentialDrive, SimConfig,
 };
 pub use error::{Result, SimError};
+pub use physics_cache::PhysicsCache;
 pub use rapier_sim::{RapierSimulator, RapierSnapshot};
-pub use simulator::{Failure, Hop, PreparedScene, Simulator, StepOutcome};
+pub use simulator::{Failure, Hop, Simulator, StepOutcome};
 pub use vec_sim::VecSimulator;
 pub use world::PhysicsScene;

@@ -7,8 +7,9 @@
 
 use crate::config::{CollisionSetting, SimConfig};
 use crate::error::{Result, SimError};
-use crate::simulator::{Failure, Hop, PreparedScene, Simulator, StepOutcome};
-use crate::world::{check_agent, fingerprint, PhysicsScene, World, AGENT_QUERY};
+use crate::physics_cache::PhysicsCache;
+use crate::simulator::{Failure, Hop, Simulator, StepOutcome};
+use crate::world::{agent_key, check_agent, content_key, PhysicsScene, World, AGENT_QUERY};
 use crate::{Action, WaypointMode};
 use glam::{Quat, Vec2, Vec3};
 use rand::{Rng, SeedableRng};
@@ -45,10 +46,12 @@ struct AgentState {
     over: Option<String>,
 }
 
-/// Full state of a [`RapierSimulator`] (physics world included) at one moment.
+/// Full state of a [`RapierSimulator`] (physics world included) at one moment
+/// ([`RapierSimulator::snapshot`]).
 #[derive(Clone)]
 pub struct RapierSnapshot {
     scene: Option<Arc<PhysicsScene>>,
+    scene_key: Option<u64>,
     world: Option<World>,
     state: AgentState,
     rng: ChaCha8Rng,
@@ -64,8 +67,17 @@ impl std::fmt::Debug for RapierSnapshot {
 
 /// The rapier3d-based simulator. One instance is one environment; it is `Send`, and
 /// [`crate::VecSimulator`] runs many of them in parallel.
+///
+/// The physics world of a scene (its static colliders) comes from a [`PhysicsCache`] keyed by
+/// the scene's content, shared by every simulator made with the same cache (by default the
+/// process-wide one): [`Simulator::reset`] in a scene seen before builds nothing.
 pub struct RapierSimulator {
     cfg: SimConfig,
+    cache: Arc<PhysicsCache>,
+    /// [`agent_key`] of `cfg.agent`.
+    agent_key: u64,
+    /// [`content_key`] of the current scene.
+    scene_key: Option<u64>,
     pipeline: PhysicsPipeline,
     params: IntegrationParameters,
     scene: Option<Arc<PhysicsScene>>,
@@ -85,8 +97,14 @@ impl std::fmt::Debug for RapierSimulator {
 }
 
 impl RapierSimulator {
-    /// A simulator with these settings (validated here); call [`Simulator::reset`] next.
+    /// A simulator with these settings (validated here), sharing physics worlds through the
+    /// process-wide [`PhysicsCache::global`]; call [`Simulator::reset`] next.
     pub fn new(cfg: SimConfig) -> Result<Self> {
+        Self::with_cache(cfg, PhysicsCache::global())
+    }
+
+    /// [`Self::new`] sharing physics worlds through `cache` instead of the process-wide one.
+    pub fn with_cache(cfg: SimConfig, cache: Arc<PhysicsCache>) -> Result<Self> {
         cfg.validate()?;
         let params = IntegrationParameters {
             dt: cfg.physics_dt,
@@ -95,6 +113,9 @@ impl RapierSimulator {
         let hop_offsets = Arc::new(spiral(cfg.hop_radius, cfg.hop_resolution));
         Ok(RapierSimulator {
             rng: ChaCha8Rng::seed_from_u64(cfg.seed),
+            agent_key: agent_key(&cfg.agent),
+            cache,
+            scene_key: None,
             cfg,
             pipeline: PhysicsPipeline::new(),
             params,
@@ -115,6 +136,31 @@ impl RapierSimulator {
     /// The settings.
     pub fn config(&self) -> &SimConfig {
         &self.cfg
+    }
+
+    /// The cache this simulator takes its physics worlds from.
+    pub fn physics_cache(&self) -> &Arc<PhysicsCache> {
+        &self.cache
+    }
+
+    /// Capture the whole state (agent, moved furniture, noise generator).
+    pub fn snapshot(&self) -> RapierSnapshot {
+        RapierSnapshot {
+            scene: self.scene.clone(),
+            scene_key: self.scene_key,
+            world: self.world.clone(),
+            state: self.state.clone(),
+            rng: self.rng.clone(),
+        }
+    }
+
+    /// Return to a state captured by [`Self::snapshot`].
+    pub fn restore(&mut self, snapshot: &RapierSnapshot) {
+        self.scene = snapshot.scene.clone();
+        self.scene_key = snapshot.scene_key;
+        self.world = snapshot.world.clone();
+        self.state = snapshot.state.clone();
+        self.rng = snapshot.rng.clone();
     }
 
     /// The physics world of the current scene (share it with [`Self::reset_in`]).
@@ -139,6 +185,7 @@ impl RapierSimulator {
             });
         }
         self.world = Some(scene.world.clone());
+        self.scene_key = None;
         self.state = AgentState {
             base: p,
             yaw: wrap(yaw as f64),
@@ -499,38 +546,23 @@ impl RapierSimulator {
 }
 
 impl Simulator for RapierSimulator {
-    type Snapshot = RapierSnapshot;
+    fn name(&self) -> String {
+        "rapier".into()
+    }
 
     fn reset(
         &mut self,
         scene: &vlnverse_env::Scene,
         start: vlnverse_env::Pose,
     ) -> Result<vlnverse_env::Pose> {
-        let same = self
-            .scene
-            .as_ref()
-            .is_some_and(|s| s.fingerprint == fingerprint(scene));
-        let physics = match (&self.scene, same) {
-            (Some(s), true) => Arc::clone(s),
-            _ => Arc::new(PhysicsScene::build(scene, &self.cfg.agent)?),
+        let key = content_key(scene, self.agent_key);
+        let physics = match &self.scene {
+            Some(s) if self.scene_key == Some(key) => Arc::clone(s),
+            _ => self.cache.get(scene, &self.cfg.agent, self.agent_key)?,
         };
-        self.reset_in(physics, start)
-    }
-
-    fn prepare(&self, scene: Arc<vlnverse_env::Scene>) -> Result<PreparedScene> {
-        let physics = Arc::new(PhysicsScene::build(&scene, &self.cfg.agent)?);
-        Ok(PreparedScene::with_data(scene, physics))
-    }
-
-    fn reset_prepared(
-        &mut self,
-        prepared: &PreparedScene,
-        start: vlnverse_env::Pose,
-    ) -> Result<vlnverse_env::Pose> {
-        match prepared.data::<PhysicsScene>() {
-            Some(physics) => self.reset_in(physics, start),
-            None => self.reset(prepared.scene(), start),
-        }
+        self.reset_in(physics, start)?;
+        self.scene_key = Some(key);
+        Ok(self.pose())
     }
 
     fn step(&mut self, action: Action) -> Result<StepOutcome> {
@@ -620,22 +652,6 @@ impl Simulator for RapierSimulator {
             position: (self.state.base + up).to_array(),
             rotation: (self.quat() * Quat::from_rotation_x(self.state.pitch)).to_array(),
         }
-    }
-
-    fn snapshot(&self) -> RapierSnapshot {
-        RapierSnapshot {
-            scene: self.scene.clone(),
-            world: self.world.clone(),
-            state: self.state.clone(),
-            rng: self.rng.clone(),
-        }
-    }
-
-    fn restore(&mut self, snapshot: &RapierSnapshot) {
-        self.scene = snapshot.scene.clone();
-        self.world = snapshot.world.clone();
-        self.state = snapshot.state.clone();
-        self.rng = snapshot.rng.clone();
     }
 }
 

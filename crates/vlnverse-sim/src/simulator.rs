@@ -3,56 +3,10 @@
 
 use crate::{Action, Result};
 use serde::{Deserialize, Serialize};
-use std::any::Any;
-use std::sync::Arc;
 use vlnverse_env::{ObjectId, Pose, Scene};
 
-/// A scene made ready for simulation once ([`Simulator::prepare`]) and shared by every
-/// simulator that runs episodes in it. It holds the scene and, optionally, whatever the
-/// backend builds from it (Rapier: the static colliders), so a batch of environments or a
-/// pool of evaluation workers pays for that build once per scene.
-#[derive(Clone)]
-pub struct PreparedScene {
-    scene: Arc<Scene>,
-    data: Option<Arc<dyn Any + Send + Sync>>,
-}
-
-impl std::fmt::Debug for PreparedScene {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("PreparedScene")
-            .field("scene", &self.scene.id)
-            .field("data", &self.data.is_some())
-            .finish()
-    }
-}
-
-impl PreparedScene {
-    /// A scene with nothing prepared beyond itself (the default of [`Simulator::prepare`]).
-    pub fn new(scene: Arc<Scene>) -> Self {
-        PreparedScene { scene, data: None }
-    }
-
-    /// A scene with backend data built from it.
-    pub fn with_data(scene: Arc<Scene>, data: Arc<dyn Any + Send + Sync>) -> Self {
-        PreparedScene {
-            scene,
-            data: Some(data),
-        }
-    }
-
-    /// The scene.
-    pub fn scene(&self) -> &Arc<Scene> {
-        &self.scene
-    }
-
-    /// The backend data, if it is a `T` (a backend reads back only what it stored).
-    pub fn data<T: Any + Send + Sync>(&self) -> Option<Arc<T>> {
-        self.data.clone()?.downcast::<T>().ok()
-    }
-}
-
 /// Why an episode ended failed.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(tag = "type", rename_all = "snake_case")]
 pub enum Failure {
     /// Strict setting: a noticeable collision with these objects.
@@ -60,6 +14,15 @@ pub enum Failure {
         /// Objects hit (ids, ascending).
         hit: Vec<ObjectId>,
     },
+}
+
+impl std::fmt::Display for Failure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Failure::Collision { hit } if hit.is_empty() => f.write_str("noticeable collision"),
+            Failure::Collision { hit } => write!(f, "noticeable collision with objects {hit:?}"),
+        }
+    }
 }
 
 /// Result of a Tel-Hop (waypoint hop, or any move in the Tel-Hop setting).
@@ -128,28 +91,20 @@ pub struct StepOutcome {
 /// assert!((end.position[2] + 1.0).abs() < 1e-5); // yaw 0 looks along -Z
 /// ```
 pub trait Simulator: Send {
-    /// Everything needed to return to a moment of an episode.
-    type Snapshot: Clone + Send;
+    /// What this simulator is, for logs and a run's `run.json` (`"rapier"`; a wrapper says
+    /// what it wraps: `"noisy(rapier)"`). A resume of a run made with another name is refused.
+    fn name(&self) -> String;
 
     /// Start an episode in `scene` with the agent at `start` (its yaw is used; the
     /// position's y is the floor the agent stands on). Returns the start pose.
+    ///
+    /// Called once per episode: whatever a backend builds from a scene (Rapier: its static
+    /// colliders) it keeps and shares itself, keyed by the scene's content, so that episodes
+    /// in a scene seen before start without rebuilding it.
     fn reset(&mut self, scene: &Scene, start: Pose) -> Result<Pose>;
 
     /// Apply one action. Invalid actions give an error and change nothing.
     fn step(&mut self, action: Action) -> Result<StepOutcome>;
-
-    /// Build what episodes in `scene` share (static colliders, acceleration structures) once;
-    /// pass the result to [`Simulator::reset_prepared`] of any simulator with the same settings.
-    /// The default prepares nothing.
-    fn prepare(&self, scene: Arc<Scene>) -> Result<PreparedScene> {
-        Ok(PreparedScene::new(scene))
-    }
-
-    /// [`Simulator::reset`] in a scene made by [`Simulator::prepare`]. The default resets from
-    /// the scene itself; backends that prepare something override it to skip the rebuild.
-    fn reset_prepared(&mut self, prepared: &PreparedScene, start: Pose) -> Result<Pose> {
-        self.reset(prepared.scene(), start)
-    }
 
     /// Current agent base pose.
     fn pose(&self) -> Pose;
@@ -157,10 +112,4 @@ pub trait Simulator: Send {
     /// Current camera pose: the base pose raised to the sensor height and pitched by
     /// `LookUp` / `LookDown`.
     fn camera_pose(&self) -> Pose;
-
-    /// Capture the whole state (agent, moved furniture, noise generator).
-    fn snapshot(&self) -> Self::Snapshot;
-
-    /// Return to a captured state.
-    fn restore(&mut self, snapshot: &Self::Snapshot);
 }

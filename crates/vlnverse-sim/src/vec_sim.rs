@@ -4,13 +4,12 @@ use crate::error::{Result, SimError};
 use crate::simulator::{Simulator, StepOutcome};
 use crate::{Action, RapierSimulator, SimConfig};
 use rayon::prelude::*;
-use std::sync::Arc;
 use vlnverse_env::{Pose, Scene};
 
 /// A batch of simulators of any [`Simulator`] type (default [`RapierSimulator`]). Environments
-/// reset in the same scene share one [`crate::PreparedScene`] (Rapier: static colliders are
-/// built once); each environment steps on its own, so results are the same whatever the number
-/// of threads.
+/// reset in the same scene share what their backend builds from it (Rapier: the static
+/// colliders, through its [`crate::PhysicsCache`], are built once); each environment steps on
+/// its own, so results are the same whatever the number of threads.
 pub struct VecSimulator<S: Simulator = RapierSimulator> {
     envs: Vec<S>,
     pool: Option<rayon::ThreadPool>,
@@ -36,9 +35,8 @@ impl VecSimulator<RapierSimulator> {
 }
 
 impl<S: Simulator> VecSimulator<S> {
-    /// A batch of given environments (any backend; they should share their settings, since
-    /// [`Self::reset_all`] prepares the scene with the first), stepped on `threads` threads
-    /// (None: rayon's global pool).
+    /// A batch of given environments (any backend), stepped on `threads` threads (None:
+    /// rayon's global pool).
     pub fn from_envs(envs: Vec<S>, threads: Option<usize>) -> Result<Self> {
         let pool = match threads {
             Some(t) => Some(
@@ -72,18 +70,13 @@ impl<S: Simulator> VecSimulator<S> {
         &mut self.envs
     }
 
-    /// Reset every environment in `scene`, environment `i` at `starts[i]`; the scene is
-    /// prepared once ([`Simulator::prepare`]) and shared.
+    /// Reset every environment in `scene`, environment `i` at `starts[i]`.
     pub fn reset_all(&mut self, scene: &Scene, starts: &[Pose]) -> Result<Vec<Pose>> {
         self.check_len("starts", starts.len())?;
-        let Some(first) = self.envs.first() else {
-            return Ok(vec![]);
-        };
-        let prepared = first.prepare(Arc::new(scene.clone()))?;
         self.envs
             .iter_mut()
             .zip(starts)
-            .map(|(e, s)| e.reset_prepared(&prepared, *s))
+            .map(|(e, s)| e.reset(scene, *s))
             .collect()
     }
 

@@ -346,3 +346,79 @@ pub(crate) fn check_agent(t: &PhysicsScene, agent: &AgentConfig) -> Result<()> {
     }
     Ok(())
 }
+
+/// Vertices of a mesh part sampled into [`content_key`] (its sizes always are).
+const MESH_SAMPLES: usize = 64;
+
+/// What a physics world is built from, as a key for the shared cache
+/// ([`crate::PhysicsCache`]): [`fingerprint`] plus the floor height, object classes, every
+/// part's transform and shape (a mesh by its sizes and up to [`MESH_SAMPLES`] vertices, so a
+/// reset stays cheap for imported homes of millions of vertices) and the embodiment.
+///
+/// Kept apart from [`fingerprint`], which seeds the actuation noise: changing that would
+/// change the metrics of noisy runs.
+pub(crate) fn content_key(scene: &Scene, agent_key: u64) -> u64 {
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    (fingerprint(scene), agent_key).hash(&mut h);
+    scene.floor_height.to_bits().hash(&mut h);
+    for o in &scene.objects {
+        std::mem::discriminant(&o.class).hash(&mut h);
+        for part in &o.parts {
+            for v in part
+                .transform
+                .position
+                .iter()
+                .chain(&part.transform.rotation)
+            {
+                v.to_bits().hash(&mut h);
+            }
+            std::mem::discriminant(&part.shape).hash(&mut h);
+            let floats: &[f32] = match &part.shape {
+                Shape::Cuboid { half_extents, .. } => half_extents,
+                Shape::Cylinder {
+                    radius,
+                    half_height,
+                } => &[*radius, *half_height],
+                Shape::Sphere { radius } => &[*radius],
+                Shape::Mesh(m) => {
+                    (m.positions.len(), m.indices.len()).hash(&mut h);
+                    let stride = (m.positions.len() / MESH_SAMPLES).max(1);
+                    for p in m.positions.iter().step_by(stride) {
+                        p.map(f32::to_bits).hash(&mut h);
+                    }
+                    let stride = (m.indices.len() / MESH_SAMPLES).max(1);
+                    for t in m.indices.iter().step_by(stride) {
+                        t.hash(&mut h);
+                    }
+                    &[]
+                }
+            };
+            for v in floats {
+                v.to_bits().hash(&mut h);
+            }
+        }
+    }
+    h.finish()
+}
+
+/// A key of an embodiment (every field, floats by their exact text).
+pub(crate) fn agent_key(agent: &AgentConfig) -> u64 {
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    format!("{agent:?}").hash(&mut h);
+    h.finish()
+}
+
+/// Rough bytes of the physics world of `scene` (the cache's budget): a few hundred bytes per
+/// collider record, and a triangle mesh's vertices, triangles and BVH.
+pub(crate) fn approx_bytes(scene: &Scene) -> usize {
+    let mut bytes = 4096;
+    for o in &scene.objects {
+        for part in &o.parts {
+            bytes += 512;
+            if let Shape::Mesh(m) = &part.shape {
+                bytes += m.positions.len() * 12 + m.indices.len() * (12 + 64);
+            }
+        }
+    }
+    bytes
+}

@@ -342,7 +342,7 @@ fn state_json(app: &App, spec: &DriveSpec, step: &EnvStep, view: ViewKind, log: 
     });
     if let Some(rec) = &info.record {
         v["metrics"] = serde_json::to_value(&rec.metrics).unwrap_or(Value::Null);
-        v["failure"] = json!(rec.failure);
+        v["failure"] = json!(rec.failure.as_ref().map(ToString::to_string));
     }
     if app.cfg.teacher_hints {
         v["expert_key"] = json!(action_key(&info.expert_action));
@@ -489,7 +489,7 @@ fn drive(
                 "profile": spec.protocol.agent_profile,
                 "duration_s": started.elapsed().as_secs_f64(),
                 "metrics": rec.metrics,
-                "failure": rec.failure,
+                "failure": rec.failure.as_ref().map(ToString::to_string),
                 "trajectory": rec.trajectory,
             });
             let text = serde_json::to_string_pretty(&record).map_err(env_err)?;

@@ -10,24 +10,16 @@ use vlnverse_score::{Split, Task};
 use vlnverse_sensors::Backend;
 
 fn request(dir: &std::path::Path, out: &str, setting: Setting, space: ActionSpace) -> EvalRequest {
-    EvalRequest {
-        dataset: dir.to_path_buf(),
-        task: Task::Fine,
-        split: Split::Test,
-        episodes: None,
-        sample: None,
-        threads: Some(2),
-        out: dir.join(out),
-        fresh: false,
-        config: EvalConfig {
+    EvalRequest::new(dir.to_path_buf(), Task::Fine, Split::Test, dir.join(out))
+        .threads(2)
+        .config(EvalConfig {
             setting,
             action_space: space,
             backend: Some(Backend::Raycast),
             render: false,
             plots: 2,
             ..Default::default()
-        },
-    }
+        })
 }
 
 #[test]
@@ -48,7 +40,6 @@ fn oracle_succeeds_in_telhop_and_strict_is_reported() {
                 space,
             ),
             &*oracle,
-            &|| {},
         )
         .unwrap();
         let s = &out.summary.summary;
@@ -72,7 +63,6 @@ fn oracle_succeeds_in_telhop_and_strict_is_reported() {
     let out = evaluate(
         &request(dir.path(), "strict", Setting::Strict, ActionSpace::Discrete),
         &*oracle,
-        &|| {},
     )
     .unwrap();
     let s = &out.summary.summary;
@@ -94,7 +84,6 @@ fn baselines_fail_and_summary_is_the_mean_of_episodes() {
         let out = evaluate(
             &request(dir.path(), name, Setting::Lenient, ActionSpace::Discrete),
             &*f,
-            &|| {},
         )
         .unwrap();
         let s = &out.summary.summary;
@@ -164,8 +153,8 @@ fn results_do_not_depend_on_the_thread_count() {
     one.threads = Some(1);
     let mut two = request(dir.path(), "two", Setting::Lenient, ActionSpace::Discrete);
     two.threads = Some(2);
-    evaluate(&one, &*f, &|| {}).unwrap();
-    evaluate(&two, &*f, &|| {}).unwrap();
+    evaluate(&one, &*f).unwrap();
+    evaluate(&two, &*f).unwrap();
     for file in ["summary.json", "episodes.csv", "trajectories.jsonl"] {
         assert_eq!(
             std::fs::read(dir.path().join("one").join(file)).unwrap(),
@@ -188,18 +177,15 @@ fn semantic_agent_finds_named_objects_without_the_goal() {
     };
     let mut sr = Vec::new();
     for name in ["semantic", "random"] {
-        let req = EvalRequest {
-            dataset: dir.path().to_path_buf(),
-            task: Task::Coarse,
-            split: Split::Test,
-            episodes: None,
-            sample: None,
-            threads: Some(2),
-            out: dir.path().join(name),
-            fresh: false,
-            config: cfg.clone(),
-        };
-        let out = evaluate(&req, &*builtin(name, None, &cfg).unwrap(), &|| {}).unwrap();
+        let req = EvalRequest::new(
+            dir.path().to_path_buf(),
+            Task::Coarse,
+            Split::Test,
+            dir.path().join(name),
+        )
+        .threads(2)
+        .config(cfg.clone());
+        let out = evaluate(&req, &*builtin(name, None, &cfg).unwrap()).unwrap();
         let s = &out.summary.summary;
         eprintln!(
             "{name} coarse lenient: {} episodes SR {:.3} OSR {:.3} NE {:?} steps {:.1}",
@@ -230,7 +216,7 @@ fn continuous_space_oracle_succeeds_with_velocity_commands_and_baselines_stay_le
         let run = format!("{name}_{setting}_continuous");
         let req = request(dir.path(), &run, setting, ActionSpace::Continuous);
         // An action outside the space would stop the run with an error.
-        let out = evaluate(&req, &*f, &|| {}).unwrap();
+        let out = evaluate(&req, &*f).unwrap();
         let s = &out.summary.summary;
         eprintln!(
             "{name} {setting} continuous: SR {:.3} SPL {:.3} CR {:.4} steps {:.1}",

@@ -38,19 +38,16 @@ fn python_random_agent_drives_episodes_through_the_protocol() {
             ..Default::default()
         };
         let out_dir = dir.path().join(format!("{enc:?}"));
-        let req = EvalRequest {
-            dataset: dir.path().to_path_buf(),
-            task: Task::Fine,
-            split: Split::Test,
-            episodes: None,
-            sample: None,
-            threads: Some(2),
-            out: out_dir.clone(),
-            fresh: false,
-            config: cfg.clone(),
-        };
+        let req = EvalRequest::new(
+            dir.path().to_path_buf(),
+            Task::Fine,
+            Split::Test,
+            out_dir.clone(),
+        )
+        .threads(2)
+        .config(cfg.clone());
         let f = builtin("external", Some(&cmd), &cfg).unwrap();
-        let out = evaluate(&req, &*f, &|| {}).unwrap();
+        let out = evaluate(&req, &*f).unwrap();
         assert_eq!(out.records.len(), eps.len());
         for r in &out.records {
             let t = &r.trajectory;
@@ -77,7 +74,7 @@ fn python_random_agent_drives_episodes_through_the_protocol() {
     };
     let req = eval_support::fine_test(dir.path(), "broken", &cfg, Some(1), 1);
     let f = builtin("external", Some("echo not-json"), &cfg).unwrap();
-    let err = evaluate(&req, &*f, &|| {}).unwrap_err().to_string();
+    let err = evaluate(&req, &*f).unwrap_err().to_string();
     assert!(
         err.contains("echo not-json") && err.contains("episode"),
         "{err}"
@@ -97,7 +94,7 @@ fn an_agent_that_exits_early_reports_its_status_and_stderr() {
     let req = eval_support::fine_test(dir.path(), "dead", &cfg, None, 1);
     let cmd = "echo 'loading weights' >&2; echo 'CUDA out of memory' >&2; exit 3";
     let f = builtin("external", Some(cmd), &cfg).unwrap();
-    let err = evaluate(&req, &*f, &|| {}).unwrap_err().to_string();
+    let err = evaluate(&req, &*f).unwrap_err().to_string();
     assert!(
         err.contains("episode")
             && err.contains("exit status: 3")

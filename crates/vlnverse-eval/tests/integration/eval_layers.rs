@@ -7,11 +7,12 @@ use std::sync::Arc;
 use vlnverse_env::{Pose, Scene};
 use vlnverse_eval::agents::builtin;
 use vlnverse_eval::{
-    configured_renderer, evaluate, evaluate_with, rapier_simulator, EvalConfig, Setting,
+    configured_renderer, evaluate, evaluate_with, rapier_simulator, EvalConfig, Layers,
+    RendererFactory, Setting, SimulatorFactory,
 };
 use vlnverse_score::Task;
 use vlnverse_sensors::{Frame, Renderer, RigConfig, SceneMesh, View};
-use vlnverse_sim::{Action, PreparedScene, RapierSimulator, SimConfig, Simulator, StepOutcome};
+use vlnverse_sim::{Action, RapierSimulator, SimConfig, Simulator, StepOutcome};
 
 use crate::eval_support;
 
@@ -21,8 +22,8 @@ struct Blind {
 }
 
 impl Renderer for Blind {
-    fn name(&self) -> &'static str {
-        "blind"
+    fn name(&self) -> String {
+        "blind".into()
     }
     fn set_scene(&mut self, _mesh: Arc<SceneMesh>) -> vlnverse_sensors::Result<()> {
         Ok(())
@@ -70,19 +71,11 @@ struct Perturbed<S> {
 }
 
 impl<S: Simulator> Simulator for Perturbed<S> {
-    type Snapshot = S::Snapshot;
+    fn name(&self) -> String {
+        format!("perturbed({})", self.inner.name())
+    }
     fn reset(&mut self, scene: &Scene, start: Pose) -> vlnverse_sim::Result<Pose> {
         self.inner.reset(scene, start)
-    }
-    fn prepare(&self, scene: Arc<Scene>) -> vlnverse_sim::Result<PreparedScene> {
-        self.inner.prepare(scene)
-    }
-    fn reset_prepared(
-        &mut self,
-        prepared: &PreparedScene,
-        start: Pose,
-    ) -> vlnverse_sim::Result<Pose> {
-        self.inner.reset_prepared(prepared, start)
     }
     fn step(&mut self, action: Action) -> vlnverse_sim::Result<StepOutcome> {
         let action = match action {
@@ -97,12 +90,6 @@ impl<S: Simulator> Simulator for Perturbed<S> {
     fn camera_pose(&self) -> Pose {
         self.inner.camera_pose()
     }
-    fn snapshot(&self) -> Self::Snapshot {
-        self.inner.snapshot()
-    }
-    fn restore(&mut self, snapshot: &Self::Snapshot) {
-        self.inner.restore(snapshot)
-    }
 }
 
 fn perturbed(
@@ -114,6 +101,16 @@ fn perturbed(
             scale,
         })
     }
+}
+
+/// The perturbed simulator and a renderer factory as evaluation layers.
+fn wrapped<RF: RendererFactory>(
+    scale: f32,
+    renderers: RF,
+) -> Layers<'static, impl SimulatorFactory<Sim = Perturbed<RapierSimulator>>, RF> {
+    Layers::default()
+        .simulators(perturbed(scale))
+        .renderers(renderers)
 }
 
 const RUN_FILES: [&str; 3] = ["summary.json", "episodes.csv", "trajectories.jsonl"];
@@ -132,13 +129,13 @@ fn a_wrapped_simulator_and_a_blind_renderer_run_under_the_same_loop() {
     let req = |out: &str| eval_support::fine_test(dir.path(), out, &cfg, None, 2);
 
     // The default path, and the same layers passed in explicitly.
-    let default = evaluate(&req("default"), &*oracle, &|| {}).unwrap();
+    let default = evaluate(&req("default"), &*oracle).unwrap();
     evaluate_with(
         &req("explicit"),
         &*oracle,
-        &rapier_simulator,
-        &configured_renderer,
-        &|| {},
+        Layers::default()
+            .simulators(rapier_simulator)
+            .renderers(configured_renderer),
     )
     .unwrap();
 
@@ -152,7 +149,7 @@ fn a_wrapped_simulator_and_a_blind_renderer_run_under_the_same_loop() {
             }))
         }
     };
-    let same = evaluate_with(&req("wrapped"), &*oracle, &perturbed(1.0), &blind, &|| {}).unwrap();
+    let same = evaluate_with(&req("wrapped"), &*oracle, wrapped(1.0, blind.clone())).unwrap();
     let steps: u64 = same.records.iter().map(|r| r.trajectory.steps as u64).sum();
     // One observation per agent decision: before each action.
     // One view per decision (rgb and depth share a camera, so one frame renders both).
@@ -168,7 +165,7 @@ fn a_wrapped_simulator_and_a_blind_renderer_run_under_the_same_loop() {
     }
 
     // Half-length forward moves: the oracle needs more steps, and the results say so.
-    let short = evaluate_with(&req("short"), &*oracle, &perturbed(0.5), &blind, &|| {}).unwrap();
+    let short = evaluate_with(&req("short"), &*oracle, wrapped(0.5, blind.clone())).unwrap();
     let total = |o: &vlnverse_eval::EvalOutcome| -> u64 {
         o.records.iter().map(|r| r.trajectory.steps as u64).sum()
     };

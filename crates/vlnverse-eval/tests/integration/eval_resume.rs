@@ -19,12 +19,12 @@ fn a_truncated_run_resumes_and_keeps_finished_episodes() {
     };
     let req = |out: &str, n: Option<usize>| eval_support::fine_test(dir.path(), out, &cfg, n, 2);
     let f = builtin("random", None, &cfg).unwrap();
-    let full = evaluate(&req("full", None), &*f, &|| {}).unwrap();
+    let full = evaluate(&req("full", None), &*f).unwrap();
     assert_eq!(full.resumed, 0);
 
     // "Kill" a run: keep 5 finished lines and half of the 6th.
     let partial = dir.path().join("partial");
-    evaluate(&req("partial", None), &*f, &|| {}).unwrap();
+    evaluate(&req("partial", None), &*f).unwrap();
     let log = std::fs::read_to_string(partial.join("progress.jsonl")).unwrap();
     let lines: Vec<&str> = log.lines().collect();
     assert_eq!(lines.len(), eps.len());
@@ -36,7 +36,7 @@ fn a_truncated_run_resumes_and_keeps_finished_episodes() {
         std::fs::remove_file(partial.join(f)).unwrap();
     }
 
-    let resumed = evaluate(&req("partial", None), &*f, &|| {}).unwrap();
+    let resumed = evaluate(&req("partial", None), &*f).unwrap();
     assert_eq!(resumed.resumed, 5);
     assert_eq!(resumed.records.len(), eps.len());
     let log = std::fs::read_to_string(partial.join("progress.jsonl")).unwrap();
@@ -53,12 +53,12 @@ fn a_truncated_run_resumes_and_keeps_finished_episodes() {
         );
     }
     // Nothing left to do: a third call runs no step.
-    let again = evaluate(&req("partial", None), &*f, &|| {}).unwrap();
+    let again = evaluate(&req("partial", None), &*f).unwrap();
     assert_eq!((again.resumed, again.steps_run), (eps.len(), 0));
 
     // Another agent in the same folder is refused.
     let stop = builtin("stop", None, &cfg).unwrap();
-    let err = evaluate(&req("partial", None), &*stop, &|| {})
+    let err = evaluate(&req("partial", None), &*stop)
         .unwrap_err()
         .to_string();
     assert!(err.contains("run.json") && err.contains("agent"), "{err}");
@@ -109,14 +109,12 @@ fn a_resume_with_another_identity_is_refused_naming_the_key_and_both_values() {
     let req =
         |cfg: &EvalConfig, n: Option<usize>| eval_support::fine_test(dir.path(), "run", cfg, n, 1);
     let random = builtin("random", None, &strict).unwrap();
-    evaluate(&req(&strict, Some(1)), &*random, &|| {}).unwrap();
+    evaluate(&req(&strict, Some(1)), &*random).unwrap();
     // More episodes with the same identity is a resume, not another run.
-    evaluate(&req(&strict, None), &*random, &|| {}).unwrap();
+    evaluate(&req(&strict, None), &*random).unwrap();
 
     let refused = |cfg: &EvalConfig, f: &dyn vlnverse_eval::AgentFactory| {
-        evaluate(&req(cfg, None), f, &|| {})
-            .unwrap_err()
-            .to_string()
+        evaluate(&req(cfg, None), f).unwrap_err().to_string()
     };
     // Regression: a strict run resumed as telhop (whose file also changes the action space)
     // is refused on `setting`, the first key that differs.
@@ -182,11 +180,11 @@ fn external_runs_with_another_command_are_different_runs() {
     let stop_cmd =
         "while read l; do case \"$l\" in *'\"step\"'*) echo '{\"action\":\"stop\"}';; esac; done";
     let a = builtin("external", Some(stop_cmd), &cfg).unwrap();
-    let out = evaluate(&req, &*a, &|| {}).unwrap();
+    let out = evaluate(&req, &*a).unwrap();
     assert_eq!(out.records.len(), 1);
     let other = format!("{stop_cmd} # v2");
     let b = builtin("external", Some(&other), &cfg).unwrap();
-    let err = evaluate(&req, &*b, &|| {}).unwrap_err().to_string();
+    let err = evaluate(&req, &*b).unwrap_err().to_string();
     assert!(err.contains("`agent_cmd`") && err.contains("v2"), "{err}");
 }
 
@@ -201,7 +199,7 @@ fn zero_episodes_and_blind_looking_agents_are_refused() {
     };
     let req = |n: Option<usize>, out: &str| eval_support::fine_test(dir.path(), out, &cfg, n, 1);
     let random = builtin("random", None, &cfg).unwrap();
-    let err = evaluate(&req(Some(0), "zero"), &*random, &|| {})
+    let err = evaluate(&req(Some(0), "zero"), &*random)
         .unwrap_err()
         .to_string();
     assert!(
@@ -210,7 +208,7 @@ fn zero_episodes_and_blind_looking_agents_are_refused() {
     );
     // Regression: `--agent semantic --no-render` ran blind (SR 0) without a word.
     let semantic = builtin("semantic", None, &cfg).unwrap();
-    let err = evaluate(&req(None, "blind"), &*semantic, &|| {})
+    let err = evaluate(&req(None, "blind"), &*semantic)
         .unwrap_err()
         .to_string();
     assert!(
@@ -221,7 +219,7 @@ fn zero_episodes_and_blind_looking_agents_are_refused() {
     assert!(!dir.path().join("blind/run.json").exists());
     assert!(!dir.path().join("blind/progress.jsonl").exists());
     // Blind agents still run without rendering.
-    evaluate(&req(None, "random"), &*random, &|| {}).unwrap();
+    evaluate(&req(None, "random"), &*random).unwrap();
 }
 
 #[test]
@@ -259,7 +257,7 @@ fn a_run_with_the_full_rig_resumes() {
     };
     let req = |n: Option<usize>| eval_support::fine_test(dir.path(), "run", &cfg, n, 1);
     let random = builtin("random", None, &cfg).unwrap();
-    evaluate(&req(Some(1)), &*random, &|| {}).unwrap();
-    let out = evaluate(&req(None), &*random, &|| {}).unwrap();
+    evaluate(&req(Some(1)), &*random).unwrap();
+    let out = evaluate(&req(None), &*random).unwrap();
     assert_eq!(out.resumed, 1);
 }

@@ -55,10 +55,10 @@ fn a_resume_with_another_agent_fingerprint_is_refused_and_fresh_starts_over() {
         .with_fingerprint("checkpoint a1");
     let v2 = FnFactory::new("mine", false, || Box::new(Forward(5)) as Box<dyn Agent>)
         .with_fingerprint("checkpoint b2");
-    let first = evaluate(&req, &v1, &|| {}).unwrap();
+    let first = evaluate(&req, &v1).unwrap();
     assert_eq!(first.summary.method, "mine");
 
-    let err = evaluate(&req, &v2, &|| {}).unwrap_err().to_string();
+    let err = evaluate(&req, &v2).unwrap_err().to_string();
     assert!(
         err.contains("agent_fingerprint")
             && err.contains("checkpoint b2")
@@ -66,14 +66,11 @@ fn a_resume_with_another_agent_fingerprint_is_refused_and_fresh_starts_over() {
         "{err}"
     );
     // The same fingerprint resumes (nothing to do).
-    assert_eq!(evaluate(&req, &v1, &|| {}).unwrap().steps_run, 0);
+    assert_eq!(evaluate(&req, &v1).unwrap().steps_run, 0);
 
     // --fresh: the other agent's results replace the first.
-    let fresh = vlnverse_eval::EvalRequest {
-        fresh: true,
-        ..req.clone()
-    };
-    let second = evaluate(&fresh, &v2, &|| {}).unwrap();
+    let fresh = req.clone().fresh(true);
+    let second = evaluate(&fresh, &v2).unwrap();
     assert_eq!(second.resumed, 0);
     assert!(second.records.iter().all(|r| r.trajectory.steps == 6));
     let run = std::fs::read_to_string(dir.path().join("run/run.json")).unwrap();
@@ -103,7 +100,7 @@ fn a_second_job_on_a_locked_folder_is_refused_naming_the_first() {
     let req = eval_support::fine_test(dir.path(), "run", &cfg, None, 1);
     let held = OutputLock::acquire(&req.out, "evaluate").unwrap();
     let random = builtin("random", None, &cfg).unwrap();
-    let err = evaluate(&req, &*random, &|| {}).unwrap_err().to_string();
+    let err = evaluate(&req, &*random).unwrap_err().to_string();
     assert!(
         err.contains("another job") && err.contains(&format!("pid {}", std::process::id())),
         "{err}"
@@ -113,7 +110,7 @@ fn a_second_job_on_a_locked_folder_is_refused_naming_the_first() {
         "the refused job wrote nothing"
     );
     drop(held);
-    evaluate(&req, &*random, &|| {}).unwrap();
+    evaluate(&req, &*random).unwrap();
 }
 
 #[test]
@@ -150,7 +147,7 @@ fn impossible_episodes_are_refused_naming_file_episode_and_field() {
         edit(&mut bad[1]);
         dataset::write_split(dir.path(), Task::Fine, Split::Test, &bad).unwrap();
         let req = eval_support::fine_test(dir.path(), "run", &cfg, None, 1);
-        let err = evaluate(&req, &*random, &|| {}).unwrap_err().to_string();
+        let err = evaluate(&req, &*random).unwrap_err().to_string();
         let id = bad[1].episode_id;
         assert!(
             err.contains("test.json.gz")
@@ -178,7 +175,7 @@ fn duplicate_ids_and_empty_splits_are_refused() {
 
     eps[2].episode_id = eps[0].episode_id;
     dataset::write_split(dir.path(), Task::Fine, Split::Test, &eps).unwrap();
-    let err = evaluate(&req, &*random, &|| {}).unwrap_err().to_string();
+    let err = evaluate(&req, &*random).unwrap_err().to_string();
     assert!(
         err.contains("episodes[2].episode_id")
             && err.contains("used twice")
@@ -186,7 +183,7 @@ fn duplicate_ids_and_empty_splits_are_refused() {
         "{err}"
     );
     dataset::write_split(dir.path(), Task::Fine, Split::Test, &[]).unwrap();
-    let err = evaluate(&req, &*random, &|| {}).unwrap_err().to_string();
+    let err = evaluate(&req, &*random).unwrap_err().to_string();
     assert!(
         err.contains("no episodes") && err.contains("test.json.gz"),
         "{err}"
@@ -205,13 +202,13 @@ fn a_failure_before_the_first_episode_leaves_the_folder_as_it_was() {
         ..blind_lenient()
     };
     let req = eval_support::fine_test(dir.path(), "run", &bad_profile, None, 1);
-    let err = evaluate(&req, &*random, &|| {}).unwrap_err().to_string();
+    let err = evaluate(&req, &*random).unwrap_err().to_string();
     assert!(err.contains("no_such_robot"), "{err}");
     assert!(!req.out.exists());
     // A scene that does not load: the folder it made is removed again.
     std::fs::write(dir.path().join("scenes/tiny_000/scene.json"), "{").unwrap();
     let req = eval_support::fine_test(dir.path(), "run", &blind_lenient(), None, 1);
-    let err = evaluate(&req, &*random, &|| {}).unwrap_err().to_string();
+    let err = evaluate(&req, &*random).unwrap_err().to_string();
     assert!(err.contains("scene"), "{err}");
     assert!(!req.out.exists(), "left behind: {:?}", files_in(&req.out));
 }
@@ -225,14 +222,12 @@ fn fewer_episodes_on_a_finished_run_do_not_overwrite_its_summary() {
     evaluate(
         &eval_support::fine_test(dir.path(), "run", &cfg, None, 1),
         &*random,
-        &|| {},
     )
     .unwrap();
     let summary = std::fs::read(dir.path().join("run/summary.json")).unwrap();
     let err = evaluate(
         &eval_support::fine_test(dir.path(), "run", &cfg, Some(2), 1),
         &*random,
-        &|| {},
     )
     .unwrap_err()
     .to_string();
@@ -272,11 +267,11 @@ fn a_seeded_sample_spreads_over_scenes_and_is_part_of_the_run() {
     eval_support::make_dataset(dir.path(), Task::Fine, 3, 4, 9);
     let cfg = blind_lenient();
     let factory = FnFactory::new("fwd", false, || Box::new(Forward(1)) as Box<dyn Agent>);
-    let sampled = |out: &str, count: usize, seed: u64| vlnverse_eval::EvalRequest {
-        sample: Some(vlnverse_score::sample::Sample { count, seed }),
-        ..eval_support::fine_test(dir.path(), out, &cfg, None, 1)
+    let sampled = |out: &str, count: usize, seed: u64| {
+        eval_support::fine_test(dir.path(), out, &cfg, None, 1)
+            .sample(vlnverse_score::sample::Sample { count, seed })
     };
-    let a = evaluate(&sampled("a", 5, 7), &factory, &|| {}).unwrap();
+    let a = evaluate(&sampled("a", 5, 7), &factory).unwrap();
     assert_eq!(a.records.len(), 5);
     let all = dataset::read_split(dir.path(), Task::Fine, Split::Test).unwrap();
     let scene_of = |id: u64| &all.iter().find(|e| e.episode_id == id).unwrap().scene_id;
@@ -291,19 +286,16 @@ fn a_seeded_sample_spreads_over_scenes_and_is_part_of_the_run() {
     // The same seed draws the same episodes; another seed others.
     let ids =
         |o: &vlnverse_eval::EvalOutcome| o.records.iter().map(|r| r.episode_id).collect::<Vec<_>>();
-    let again = evaluate(&sampled("b", 5, 7), &factory, &|| {}).unwrap();
+    let again = evaluate(&sampled("b", 5, 7), &factory).unwrap();
     assert_eq!(ids(&a), ids(&again));
-    let other = evaluate(&sampled("c", 5, 8), &factory, &|| {}).unwrap();
+    let other = evaluate(&sampled("c", 5, 8), &factory).unwrap();
     assert_ne!(ids(&a), ids(&other));
     // The sample belongs to the run: resuming with another one is refused.
-    let err = evaluate(&sampled("a", 5, 8), &factory, &|| {}).unwrap_err();
+    let err = evaluate(&sampled("a", 5, 8), &factory).unwrap_err();
     assert!(err.to_string().contains("sample"), "{err}");
     // With --episodes it is refused, naming both.
-    let both = vlnverse_eval::EvalRequest {
-        episodes: Some(2),
-        ..sampled("d", 5, 7)
-    };
-    let err = evaluate(&both, &factory, &|| {}).unwrap_err();
+    let both = sampled("d", 5, 7).episodes(2);
+    let err = evaluate(&both, &factory).unwrap_err();
     assert!(err.to_string().contains("--sample"), "{err}");
     assert!(!dir.path().join("d").exists());
 }

@@ -15,17 +15,10 @@ pub fn fine_test(
     episodes: Option<usize>,
     threads: usize,
 ) -> EvalRequest {
-    EvalRequest {
-        dataset: dir.to_path_buf(),
-        task: Task::Fine,
-        split: Split::Test,
-        episodes,
-        sample: None,
-        threads: Some(threads),
-        out: dir.join(out),
-        fresh: false,
-        config: cfg.clone(),
-    }
+    EvalRequest::new(dir.to_path_buf(), Task::Fine, Split::Test, dir.join(out))
+        .episodes(episodes)
+        .threads(threads)
+        .config(cfg.clone())
 }
 
 /// A small, fast RGB-D rig on the ray caster (for tests that need pixels).

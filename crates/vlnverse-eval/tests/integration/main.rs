@@ -6,6 +6,7 @@ mod example;
 mod eval_agents;
 mod eval_dialogue;
 mod eval_external;
+mod eval_identity;
 mod eval_layers;
 mod eval_resume;
 mod eval_runs;

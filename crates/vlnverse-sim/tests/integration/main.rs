@@ -4,3 +4,4 @@ mod common;
 
 mod behaviour;
 mod generated_home;
+mod shared_worlds;

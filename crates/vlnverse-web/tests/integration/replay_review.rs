@@ -11,19 +11,12 @@ use crate::support::{config, make_dataset, Server};
 fn evaluate_oracle(dir: &std::path::Path) -> std::path::PathBuf {
     let cfg = EvalConfig::load(dir.join("protocols/telhop.toml")).unwrap();
     let out = dir.join("run-oracle");
-    let req = EvalRequest {
-        dataset: dir.to_path_buf(),
-        task: Task::Fine,
-        split: Split::ValUnseen,
-        episodes: None,
-        sample: None,
-        threads: Some(1),
-        out: out.clone(),
-        fresh: true,
-        config: cfg.clone(),
-    };
+    let req = EvalRequest::new(dir.to_path_buf(), Task::Fine, Split::ValUnseen, out.clone())
+        .threads(1)
+        .fresh(true)
+        .config(cfg.clone());
     let agent = builtin("oracle", None, &cfg).unwrap();
-    vlnverse_task::evaluate(&req, &*agent, &|| {}).unwrap();
+    vlnverse_task::evaluate(&req, &*agent).unwrap();
     out
 }
 
