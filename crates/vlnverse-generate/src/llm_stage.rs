@@ -114,8 +114,5 @@ pub fn write_report(out: &Path, report: &LlmReport) -> Result<()> {
         vlnverse_score::DataError::invalid("llm report", LLM_REPORT_FILE, e.to_string())
     })?;
     bytes.push(b'\n');
-    Ok(vlnverse_score::dataset::write_atomic(
-        &out.join(LLM_REPORT_FILE),
-        &bytes,
-    )?)
+    vlnverse_score::dataset::write_atomic(&out.join(LLM_REPORT_FILE), &bytes)
 }

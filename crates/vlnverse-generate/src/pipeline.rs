@@ -535,10 +535,10 @@ fn generate_scene(
             part.skipped = Some(u.reason);
         }
         times.time(Stage::Writing, || -> Result<()> {
-            Ok(write_atomic(
+            write_atomic(
                 &part_path(&opts.out, &scene.id, task),
                 &to_json(&part, "part")?,
-            )?)
+            )
         })?;
         parts_written.fetch_add(1, Ordering::SeqCst);
     }

@@ -316,7 +316,7 @@ fn fmt_value(v: f64) -> String {
 
 fn save_png(img: &RgbImage, path: &Path) -> Result<()> {
     let png = super::reference_image::encode_png(img.as_raw(), img.width(), img.height())?;
-    Ok(write_atomic(path, &png)?)
+    write_atomic(path, &png)
 }
 
 /// Write `DIR/stats/`: `navigable_area.png`, `rooms.png`, `path_length.png`,
