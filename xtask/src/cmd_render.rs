@@ -1,5 +1,6 @@
 //! `cargo xtask render`: read every sensor of a rig on an agent standing in a scene, once, and
-//! write one file per reading, named after the sensor (see docs/formats.md):
+//! write one file per reading, named after the sensor (see docs/formats.md; the writing is
+//! `vlnverse_sensors::output`):
 //!
 //! - RGB camera `NAME`: `NAME.png` (8-bit sRGB, noise applied as configured);
 //! - depth camera: `NAME.png` (16-bit, millimetres along the optical axis; pixels that see
@@ -27,12 +28,8 @@ use glam::{Vec2, Vec3};
 use std::path::{Path, PathBuf};
 use vlnverse_env::occupancy::{build_maps, CellState, GridMap, OccupancyConfig};
 use vlnverse_env::{Pose, Scene};
-use vlnverse_sensors::frame::colorize_ids;
-use vlnverse_sensors::lidar::{beam_azimuth, ring_elevation};
-use vlnverse_sensors::{
-    AgentState, Backend, Camera, CameraSpec, Frame, Intrinsics, LidarScan, LidarSpec, Observation,
-    RigConfig, SensorRig, SensorSpec,
-};
+use vlnverse_sensors::output::{write_rig, RigCapture};
+use vlnverse_sensors::{AgentState, Backend, Camera, CameraSpec, RigConfig, SensorRig, SensorSpec};
 
 /// Arguments of `cargo xtask render`.
 #[derive(clap::Args)]
@@ -72,18 +69,6 @@ fn parse_position(s: &str) -> anyhow::Result<Vec3> {
         "--position `{s}`: expected three finite numbers x,y,z"
     );
     Ok(Vec3::new(v[0], v[1], v[2]))
-}
-
-fn camera_json(name: &str, c: &Camera) -> serde_json::Value {
-    let i = Intrinsics::from(c);
-    serde_json::json!({
-        "sensor": name,
-        "width": i.width, "height": i.height,
-        "fx": i.fx, "fy": i.fy, "cx": i.cx, "cy": i.cy,
-        "hfov_deg": c.hfov.to_degrees(), "near": c.near, "far": c.far,
-        "position": c.position.to_array(),
-        "rotation": c.rotation.to_array(),
-    })
 }
 
 /// The rig of `render` without `--sensors`: the paper's RGB and depth cameras, and semantic and
@@ -253,7 +238,8 @@ pub fn position_warning(
 }
 
 /// Read every sensor of `config` once, for an agent at `position` looking `yaw_deg` degrees
-/// (counter-clockwise from -Z), and write the files to `out`. Returns the file names written.
+/// (counter-clockwise from -Z), and write the files to `out`
+/// ([`vlnverse_sensors::output::write_rig`]). Returns the file names written.
 pub fn render_rig(
     scene: &Scene,
     config: RigConfig,
@@ -266,251 +252,21 @@ pub fn render_rig(
     rig.set_scene(scene)?;
     rig.reset(base);
     let observations = rig.observe(&AgentState::at(position, yaw_deg.to_radians()))?;
-    let config = rig.config().clone();
-
-    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
-    let mut w = Writer {
+    let written = write_rig(
         out,
-        written: Vec::new(),
-    };
-    let mut cameras: Vec<serde_json::Value> = Vec::new();
-    let mut first_camera: Option<(String, Camera)> = None;
-    let mut readings = serde_json::Map::new();
-    for spec in &config.sensors {
-        let name = spec.name();
-        let Some(obs) = observations.get(name) else {
-            continue;
-        };
-        let mut note_camera = |n: &str, c: Camera| {
-            cameras.push(camera_json(n, &c));
-            if first_camera.is_none() {
-                first_camera = Some((n.to_string(), c));
-            }
-        };
-        match (spec, obs) {
-            (SensorSpec::Rgb(c), Observation::Rgb(f)) => {
-                note_camera(name, c.camera(&base));
-                w.rgb(&format!("{name}.png"), f)?;
-            }
-            (SensorSpec::Depth(c), Observation::Depth(f)) => {
-                note_camera(name, c.camera(&base));
-                let scale = if c.normalize { c.far } else { 1.0 };
-                w.depth(&format!("{name}.png"), f, scale)?;
-            }
-            (SensorSpec::Semantic(c), Observation::Semantic(f)) => {
-                note_camera(name, c.camera(&base));
-                let ids: Vec<u32> = f.semantic.iter().map(|&c| c as u32).collect();
-                w.ids(&format!("{name}.png"), f, ids)?;
-            }
-            (SensorSpec::Instance(c), Observation::Instance(f)) => {
-                note_camera(name, c.camera(&base));
-                w.ids(&format!("{name}.png"), f, f.instance.clone())?;
-            }
-            (SensorSpec::Panorama(p), Observation::Panorama(frames)) => {
-                let cam = p.camera.camera(&base);
-                for (k, f) in frames.iter().enumerate() {
-                    let view = format!("{name}_{k}");
-                    note_camera(&view, cam.yawed((k as f32 * p.step_deg).to_radians()));
-                    if !f.rgb.is_empty() {
-                        w.rgb(&format!("{view}_rgb.png"), f)?;
-                    }
-                    if !f.depth.is_empty() {
-                        w.depth(&format!("{view}_depth.png"), f, 1.0)?;
-                    }
-                    if !f.semantic.is_empty() {
-                        let ids: Vec<u32> = f.semantic.iter().map(|&c| c as u32).collect();
-                        w.ids(&format!("{view}_semantic.png"), f, ids)?;
-                    }
-                }
-            }
-            (SensorSpec::Lidar(l), Observation::Lidar(scan)) => {
-                w.npy(
-                    &format!("{name}.npy"),
-                    &[scan.channels as usize, scan.beams as usize],
-                    &scan.ranges,
-                )?;
-                w.lidar_png(&format!("{name}.png"), l, scan)?;
-                readings.insert(name.to_string(), lidar_json(name, l, scan));
-            }
-            (_, Observation::Pose(p)) => {
-                readings.insert(
-                    name.to_string(),
-                    serde_json::json!({
-                        "position": p.translation().to_array(),
-                        "rotation": p.quat().to_array(),
-                        "yaw_deg": p.yaw().to_degrees(),
-                    }),
-                );
-            }
-            (_, Observation::Compass(h)) => {
-                readings.insert(name.to_string(), serde_json::json!({ "heading_rad": h }));
-            }
-            (_, Observation::Gps(g)) => {
-                readings.insert(name.to_string(), serde_json::json!({ "position": g }));
-            }
-            (_, Observation::Collision(c)) => {
-                readings.insert(name.to_string(), serde_json::to_value(c)?);
-            }
-            (spec, _) => anyhow::bail!(
-                "sensor `{name}` ({}): unexpected observation kind",
-                spec.kind()
-            ),
-        }
-    }
-
-    if let Some((name, cam)) = &first_camera {
-        let mut json = camera_json(name, cam);
-        json["convention"] = serde_json::json!("camera looks along -Z, +Y up, +X right; rotation is the camera-to-world quaternion [x, y, z, w]; pixel (u, v) centre at (u + 0.5, v + 0.5), v = 0 top row");
-        json["depth_png"] =
-            serde_json::json!("uint16 millimetres along the optical axis, clipped at far");
-        json["agent_position"] = serde_json::json!(position.to_array());
-        json["agent_yaw_deg"] = serde_json::json!(yaw_deg);
-        json["backend"] = serde_json::json!(rig.backend_name());
-        json["cameras"] = cameras.into();
-        w.json("camera.json", &json)?;
-    }
-    let sensors = serde_json::json!({
-        "agent_position": position.to_array(),
-        "agent_yaw_deg": yaw_deg,
-        "backend": rig.backend_name(),
-        "seed": config.seed,
-        "sensors": config.sensors.iter().map(|s| serde_json::json!({"name": s.name(), "type": s.kind()})).collect::<Vec<_>>(),
-        "readings": readings,
-    });
-    w.json("sensors.json", &sensors)?;
-    Ok(w.written)
-}
-
-fn lidar_json(name: &str, l: &LidarSpec, scan: &LidarScan) -> serde_json::Value {
-    let finite = scan.ranges.iter().filter(|r| r.is_finite()).count();
-    serde_json::json!({
-        "file": format!("{name}.npy"),
-        "shape": [scan.channels, scan.beams],
-        "layout": "ranges[ring][beam] in metres, ring 0 highest; inf = no return within range_max, NaN = dropped return",
-        "azimuth_deg": (0..scan.beams).map(|i| beam_azimuth(l, i).to_degrees()).collect::<Vec<_>>(),
-        "elevation_deg": (0..scan.channels).map(|k| ring_elevation(l, k).to_degrees()).collect::<Vec<_>>(),
-        "range_min": l.range_min,
-        "range_max": l.range_max,
-        "returns": finite,
-        "sensor_position": scan.sensor_pose.translation().to_array(),
-        "sensor_rotation": scan.sensor_pose.quat().to_array(),
-    })
-}
-
-/// Writes files into the output folder and remembers their names.
-struct Writer<'a> {
-    out: &'a Path,
-    written: Vec<String>,
-}
-
-impl Writer<'_> {
-    fn path(&mut self, name: &str) -> PathBuf {
-        self.written.push(name.to_string());
-        self.out.join(name)
-    }
-
-    fn image(
-        &mut self,
-        name: &str,
-        r: impl FnOnce(&Path) -> image::ImageResult<()>,
-    ) -> anyhow::Result<()> {
-        let p = self.path(name);
-        r(&p).with_context(|| format!("writing {}", p.display()))
-    }
-
-    fn rgb(&mut self, name: &str, f: &Frame) -> anyhow::Result<()> {
-        self.image(name, |p| {
-            image::save_buffer(p, &f.rgb, f.width, f.height, image::ColorType::Rgb8)
-        })
-    }
-
-    /// 16-bit millimetres of `depth * scale` metres.
-    fn depth(&mut self, name: &str, f: &Frame, scale: f32) -> anyhow::Result<()> {
-        let mm: Vec<u16> = f
-            .depth
-            .iter()
-            .map(|d| (d * scale * 1000.0).round().clamp(0.0, 65535.0) as u16)
-            .collect();
-        let img = image::ImageBuffer::<image::Luma<u16>, _>::from_raw(f.width, f.height, mm)
-            .context("depth image size")?;
-        self.image(name, |p| img.save(p))
-    }
-
-    fn ids(&mut self, name: &str, f: &Frame, ids: Vec<u32>) -> anyhow::Result<()> {
-        let c = colorize_ids(ids);
-        self.image(name, |p| {
-            image::save_buffer(p, &c, f.width, f.height, image::ColorType::Rgb8)
-        })
-    }
-
-    /// A NumPy `.npy` (format 1.0) of little-endian float32.
-    fn npy(&mut self, name: &str, shape: &[usize], data: &[f32]) -> anyhow::Result<()> {
-        let dims: Vec<String> = shape.iter().map(|d| d.to_string()).collect();
-        let mut header = format!(
-            "{{'descr': '<f4', 'fortran_order': False, 'shape': ({},), }}",
-            dims.join(", ")
-        );
-        // Magic (6) + version (2) + length (2) + header + '\n', padded to a multiple of 64.
-        while (10 + header.len() + 1) % 64 != 0 {
-            header.push(' ');
-        }
-        header.push('\n');
-        let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
-        bytes.extend_from_slice(&(header.len() as u16).to_le_bytes());
-        bytes.extend_from_slice(header.as_bytes());
-        for v in data {
-            bytes.extend_from_slice(&v.to_le_bytes());
-        }
-        let p = self.path(name);
-        std::fs::write(&p, bytes).with_context(|| format!("writing {}", p.display()))
-    }
-
-    /// The scan from above in the sensor frame (forward up, left to the left), 256 x 256 pixels
-    /// spanning the farthest return around the sensor: returns in black, the sensor as a red
-    /// dot.
-    fn lidar_png(&mut self, name: &str, l: &LidarSpec, scan: &LidarScan) -> anyhow::Result<()> {
-        const SIZE: u32 = 256;
-        let mut img = image::RgbImage::from_pixel(SIZE, SIZE, image::Rgb([255, 255, 255]));
-        let half = SIZE as f32 / 2.0;
-        let mut points = Vec::with_capacity(scan.ranges.len());
-        for k in 0..scan.channels {
-            let elevation = ring_elevation(l, k);
-            for i in 0..scan.beams {
-                let r = scan.ranges[(k * scan.beams + i) as usize];
-                if r.is_finite() {
-                    // Azimuth counter-clockwise from forward (-Z): left is -X.
-                    let (a, horiz) = (beam_azimuth(l, i), r * elevation.cos());
-                    points.push((-a.sin() * horiz, -a.cos() * horiz));
-                }
-            }
-        }
-        let reach = points
-            .iter()
-            .map(|(x, z)| x.abs().max(z.abs()))
-            .fold(1.0f32, f32::max);
-        let scale = (half - 2.0) / reach;
-        for (x, z) in points {
-            let (px, py) = (half + x * scale, half + z * scale);
-            if px >= 0.0 && py >= 0.0 && px < SIZE as f32 && py < SIZE as f32 {
-                img.put_pixel(px as u32, py as u32, image::Rgb([0, 0, 0]));
-            }
-        }
-        for dy in -2i32..=2 {
-            for dx in -2i32..=2 {
-                if dx * dx + dy * dy <= 4 {
-                    let (x, y) = ((half as i32 + dx) as u32, (half as i32 + dy) as u32);
-                    img.put_pixel(x, y, image::Rgb([220, 30, 30]));
-                }
-            }
-        }
-        self.image(name, |p| img.save(p))
-    }
-
-    fn json(&mut self, name: &str, v: &serde_json::Value) -> anyhow::Result<()> {
-        let p = self.path(name);
-        std::fs::write(&p, serde_json::to_string_pretty(v)? + "\n")
-            .with_context(|| format!("writing {}", p.display()))
-    }
+        &RigCapture {
+            config: rig.config(),
+            observations: &observations,
+            position,
+            yaw_deg,
+            backend: &rig.backend_name(),
+        },
+    )?;
+    Ok(written
+        .iter()
+        .filter_map(|p| p.file_name())
+        .map(|n| n.to_string_lossy().into_owned())
+        .collect())
 }
 
 #[cfg(test)]
@@ -553,9 +309,9 @@ mod tests {
         (scene, at)
     }
 
-    fn config(file: &str, backend: Backend) -> RigConfig {
-        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../configs/sensors/");
-        let mut c = RigConfig::load(format!("{path}{file}")).unwrap();
+    /// A shipped rig (`configs/sensors/NAME.toml`) on `backend`.
+    fn config(name: &str, backend: Backend) -> RigConfig {
+        let mut c = RigConfig::shipped(name).unwrap();
         c.backend = backend;
         c
     }
@@ -607,7 +363,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let files = render_rig(
             &scene,
-            config("lidar.toml", Backend::Raycast),
+            config("lidar", Backend::Raycast),
             at,
             0.0,
             dir.path(),
@@ -644,14 +400,8 @@ mod tests {
     fn full_rig_writes_one_file_per_reading() {
         let (scene, at) = demo();
         let dir = tempfile::tempdir().unwrap();
-        let files = render_rig(
-            &scene,
-            config("full.toml", Backend::Raster),
-            at,
-            0.0,
-            dir.path(),
-        )
-        .unwrap();
+        let files =
+            render_rig(&scene, config("full", Backend::Raster), at, 0.0, dir.path()).unwrap();
         for f in [
             "rgb.png",
             "depth.png",
@@ -682,7 +432,7 @@ mod tests {
                 .unwrap();
         assert_eq!(cams["cameras"].as_array().unwrap().len(), 4 + 12);
         // The RGB noise of the config is applied: the image differs from a noiseless render.
-        let mut quiet = config("full.toml", Backend::Raster);
+        let mut quiet = config("full", Backend::Raster);
         quiet.sensors.retain(|s| s.kind() == "rgb");
         if let SensorSpec::Rgb(c) = &mut quiet.sensors[0] {
             c.noise = vlnverse_sensors::Noise::None;
