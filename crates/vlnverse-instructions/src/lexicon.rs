@@ -3,7 +3,12 @@
 //! numbers. Written for this project. Every word here is derived from data the scene model has
 //! (class, room type, colour word, part colours, material word, bounding box, part shapes).
 
+use std::sync::LazyLock;
+
+use serde::Deserialize;
 use vlnverse_env::{RoomType, SceneObject, SemanticClass as C, Shape};
+
+use crate::data::{expect_embedded, parse_toml, DataFileError};
 
 /// Names of a class, the vocabulary name first. Every name maps back to one class only
 /// ([`class_of_name`]), so a grounded object can be found in the text by any of them.
@@ -459,294 +464,145 @@ pub fn color_phrases(o: &SceneObject) -> Vec<String> {
     let Some(rgb) = main_rgb(o) else {
         return out;
     };
+    out.extend(shades_for(c, rgb).iter().cloned());
+    out
+}
+
+/// The colour file, as errors name it.
+const COLOURS_FILE: &str = "data/colours.toml";
+
+/// The shade rules of [`color_phrases`], parsed and checked once from `data/colours.toml`.
+static SHADE_RULES: LazyLock<Vec<ShadeRule>> = LazyLock::new(|| {
+    expect_embedded(parse_shade_rules(
+        COLOURS_FILE,
+        include_str!("../data/colours.toml"),
+    ))
+});
+
+/// `data/colours.toml`: the shade rules, in order.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ShadeFile {
+    rule: Vec<ShadeRule>,
+}
+
+/// One shade rule: when it holds (colour word and thresholds on the part's RGB), and the shades
+/// it gives, or sub-rules by colour. See the head of `data/colours.toml`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ShadeRule {
+    colour: Option<String>,
+    hi_above: Option<f32>,
+    hi_below: Option<f32>,
+    sat_above: Option<f32>,
+    green_below_red: Option<f32>,
+    #[serde(default)]
+    shades: Vec<String>,
+    #[serde(default)]
+    by_colour: Vec<ShadeRule>,
+}
+
+impl ShadeRule {
+    /// Whether the rule holds for colour word `colour` and linear RGB `rgb`.
+    fn holds(&self, colour: &str, rgb: [f32; 3], hi: f32, sat: f32) -> bool {
+        self.colour.as_deref().is_none_or(|c| c == colour)
+            && self.hi_above.is_none_or(|t| hi > t)
+            && self.hi_below.is_none_or(|t| hi < t)
+            && self.sat_above.is_none_or(|t| sat > t)
+            && self.green_below_red.is_none_or(|k| rgb[1] < k * rgb[0])
+    }
+}
+
+/// The shades offered beside colour word `colour` for a largest part of linear RGB `rgb`: those
+/// of the first rule that holds (or of its first sub-rule that holds); none when none holds.
+fn shades_for(colour: &str, rgb: [f32; 3]) -> &'static [String] {
     let hi = rgb.iter().copied().fold(0.0f32, f32::max);
     let lo = rgb.iter().copied().fold(1.0f32, f32::min);
     let sat = if hi > 0.0 { (hi - lo) / hi } else { 0.0 };
-    let mut add = |words: &[&str]| out.extend(words.iter().map(|w| w.to_string()));
-    match c {
-        "white" if hi > 0.89 => add(&[
-            "pure white",
-            "snow-white",
-            "stark white",
-            "chalk-white",
-            "milk-white",
-            "crisp white",
-            "gleaming white",
-        ]),
-        "white" if sat > 0.05 => add(&[
-            "off-white",
-            "creamy white",
-            "ivory",
-            "eggshell",
-            "cream",
-            "bone-white",
-            "vanilla",
-            "oyster-white",
-        ]),
-        "white" => add(&[
-            "whitish",
-            "pale",
-            "chalky",
-            "milky",
-            "clean white",
-            "frosty white",
-        ]),
-        "black" => add(&[
-            "jet-black",
-            "dark",
-            "ebony",
-            "pitch-black",
-            "inky",
-            "coal-black",
-            "sooty",
-            "raven-black",
-            "onyx",
-            "midnight-black",
-        ]),
-        "grey" if hi < 0.37 => add(&[
-            "dark grey",
-            "charcoal",
-            "charcoal-grey",
-            "slate-grey",
-            "gunmetal",
-            "graphite",
-            "storm-grey",
-            "smoky grey",
-            "iron-grey",
-        ]),
-        "grey" if hi > 0.5 => add(&[
-            "light grey",
-            "pale grey",
-            "greyish",
-            "dove-grey",
-            "pearl-grey",
-            "ash-grey",
-            "stone-grey",
-            "cloud-grey",
-            "silver-grey",
-        ]),
-        "grey" => add(&[
-            "mid-grey",
-            "grey-coloured",
-            "greyish",
-            "pewter",
-            "mouse-grey",
-            "medium grey",
-            "flint-grey",
-            "elephant-grey",
-            "battleship grey",
-        ]),
-        "silver" => add(&[
-            "silvery",
-            "steel-grey",
-            "silver-coloured",
-            "silvery-grey",
-            "metallic grey",
-            "platinum",
-            "aluminium-coloured",
-            "gleaming silver",
-        ]),
-        "gold" => add(&[
-            "golden",
-            "gold-coloured",
-            "brassy",
-            "gilt",
-            "gilded",
-            "brass-coloured",
-            "antique gold",
-            "burnished gold",
-            "honey-gold",
-        ]),
-        "wooden" => add(&[
-            "wood-coloured",
-            "honey-brown",
-            "warm brown",
-            "oak-toned",
-            "walnut-brown",
-            "teak-coloured",
-            "caramel",
-            "chestnut",
-            "amber-brown",
-            "natural wood",
-        ]),
-        "beige" => add(&[
-            "sandy",
-            "cream-coloured",
-            "light beige",
-            "tan",
-            "oatmeal",
-            "taupe",
-            "fawn",
-            "camel",
-            "biscuit-coloured",
-            "buff",
-            "stone-coloured",
-            "mushroom",
-            "parchment",
-        ]),
-        "pink" => add(&[
-            "pale pink",
-            "rosy",
-            "pinkish",
-            "rose-pink",
-            "dusky pink",
-            "blush",
-            "candy pink",
-            "raspberry",
-            "salmon",
-        ]),
-        "orange" if hi < 0.7 => add(&[
-            "burnt orange",
-            "rusty orange",
-            "orangey",
-            "terracotta",
-            "rust",
-            "copper",
-            "ginger",
-            "cinnamon",
-            "clay-coloured",
-        ]),
-        "orange" => add(&[
-            "deep orange",
-            "tangerine",
-            "orangey",
-            "pumpkin",
-            "marmalade",
-            "carrot-orange",
-            "flame-orange",
-            "amber",
-        ]),
-        _ if hi < 0.32 => add(match c {
-            "brown" => &[
-                "dark brown",
-                "chocolate-brown",
-                "deep brown",
-                "espresso",
-                "coffee-brown",
-                "mahogany",
-                "umber",
-                "cocoa",
-                "dark walnut",
-            ],
-            "green" => &[
-                "dark green",
-                "forest-green",
-                "deep green",
-                "bottle-green",
-                "pine-green",
-                "hunter green",
-            ],
-            "blue" => &[
-                "dark blue",
-                "navy",
-                "navy-blue",
-                "midnight-blue",
-                "ink-blue",
-            ],
-            "red" => &["dark red", "maroon", "wine-red", "oxblood", "burgundy"],
-            _ => &[],
-        }),
-        _ if hi < 0.56 => add(match c {
-            "red" => &[
-                "deep red",
-                "crimson",
-                "brick-red",
-                "reddish",
-                "burgundy",
-                "wine-coloured",
-                "cherry",
-                "ruby",
-                "claret",
-                "cranberry",
-            ],
-            "blue" => &[
-                "deep blue",
-                "dark blue",
-                "navy",
-                "bluish",
-                "indigo",
-                "sapphire",
-                "midnight-blue",
-                "denim",
-                "ultramarine",
-                "ink-blue",
-            ],
-            "green" => &[
-                "deep green",
-                "dark green",
-                "leafy green",
-                "greenish",
-                "emerald",
-                "bottle-green",
-                "pine-green",
-                "moss-green",
-                "fir-green",
-                "jade",
-                "racing green",
-            ],
-            "brown" => &[
-                "mid-brown",
-                "brownish",
-                "chestnut",
-                "tawny",
-                "hazel",
-                "russet",
-                "toffee-coloured",
-                "coffee-coloured",
-            ],
-            _ => &[],
-        }),
-        _ => add(match c {
-            "red" => &[
-                "vivid red",
-                "scarlet",
-                "reddish",
-                "rich red",
-                "cherry-red",
-                "tomato-red",
-                "poppy-red",
-                "postbox red",
-                "ruby-red",
-                "lipstick red",
-                "fire-engine red",
-            ],
-            "blue" => &[
-                "royal blue",
-                "mid-blue",
-                "bluish",
-                "cobalt",
-                "cobalt-blue",
-                "sapphire",
-                "ultramarine",
-                "electric blue",
-                "marine blue",
-            ],
-            "green" => &[
-                "mid-green",
-                "grass-green",
-                "greenish",
-                "apple-green",
-                "fern-green",
-                "leaf-green",
-            ],
-            "yellow" if rgb[1] < 0.66 * rgb[0] => &["mustard", "mustard-yellow", "ochre"],
-            "yellow" => &[
-                "golden yellow",
-                "sunny yellow",
-                "yellowish",
-                "lemon-yellow",
-                "canary-yellow",
-                "buttercup",
-                "saffron",
-                "sunflower-yellow",
-                "butter-yellow",
-                "egg-yolk yellow",
-            ],
-            "brown" => &["brownish", "light brown", "toffee", "nutmeg", "hazelnut"],
-            _ => &[],
-        }),
+    let Some(rule) = SHADE_RULES.iter().find(|r| r.holds(colour, rgb, hi, sat)) else {
+        return &[];
+    };
+    if rule.by_colour.is_empty() {
+        return &rule.shades;
     }
-    out
+    rule.by_colour
+        .iter()
+        .find(|r| r.holds(colour, rgb, hi, sat))
+        .map_or(&[], |r| &r.shades)
+}
+
+/// Parse and check a colour file: at least one rule; each with thresholds that are finite
+/// numbers (and hi / sat ones within 0..=1), a colour word that is not blank, and either
+/// shades or sub-rules by colour (which have shades and no sub-rules of their own); no shade
+/// blank, none listed twice in one rule.
+fn parse_shade_rules(file: &'static str, text: &str) -> Result<Vec<ShadeRule>, DataFileError> {
+    let rules = parse_toml::<ShadeFile>(file, text)?.rule;
+    if rules.is_empty() {
+        return Err(DataFileError::new(file, "", "no rules"));
+    }
+    for (i, r) in rules.iter().enumerate() {
+        let at = format!("rule {i}{}", colour_label(r));
+        check_shade_rule(file, &at, r)?;
+        match (r.shades.is_empty(), r.by_colour.is_empty()) {
+            (true, true) => {
+                return Err(DataFileError::new(file, at, "neither shades nor by_colour"))
+            }
+            (false, false) => {
+                return Err(DataFileError::new(file, at, "both shades and by_colour"))
+            }
+            _ => {}
+        }
+        for (j, sub) in r.by_colour.iter().enumerate() {
+            let at = format!("{at}, by_colour {j}{}", colour_label(sub));
+            check_shade_rule(file, &at, sub)?;
+            if !sub.by_colour.is_empty() {
+                return Err(DataFileError::new(file, at, "by_colour within by_colour"));
+            }
+            if sub.shades.is_empty() {
+                return Err(DataFileError::new(file, at, "no shades"));
+            }
+        }
+    }
+    Ok(rules)
+}
+
+/// " (white)" for a rule about "white", "" for a rule about any colour.
+fn colour_label(r: &ShadeRule) -> String {
+    r.colour
+        .as_ref()
+        .map(|c| format!(" ({c})"))
+        .unwrap_or_default()
+}
+
+/// The checks of one rule of a colour file, sub-rules apart.
+fn check_shade_rule(file: &'static str, at: &str, r: &ShadeRule) -> Result<(), DataFileError> {
+    let err = |msg: String| Err(DataFileError::new(file, at, msg));
+    if r.colour.as_deref().is_some_and(|c| c.trim().is_empty()) {
+        return err("a blank colour".into());
+    }
+    for (name, t) in [
+        ("hi_above", r.hi_above),
+        ("hi_below", r.hi_below),
+        ("sat_above", r.sat_above),
+    ] {
+        if t.is_some_and(|t| !(0.0..=1.0).contains(&t)) {
+            return err(format!("{name} must lie in 0..=1"));
+        }
+    }
+    if r.green_below_red
+        .is_some_and(|k| !k.is_finite() || k <= 0.0)
+    {
+        return err("green_below_red must be a positive number".into());
+    }
+    for (k, shade) in r.shades.iter().enumerate() {
+        if shade.trim().is_empty() {
+            return err(format!("shade {k} is blank"));
+        }
+        if r.shades[..k].contains(shade) {
+            return err(format!("shade {k} ({shade:?}) is listed twice"));
+        }
+    }
+    Ok(())
 }
 
 /// Material adjectives for an object's material word (what it is made of); empty when none
@@ -960,6 +816,46 @@ mod tests {
         for &k in RoomType::ALL {
             assert_eq!(room_names(k)[0], k.words());
         }
+    }
+
+    #[test]
+    fn the_embedded_colour_file_is_valid() {
+        if let Err(e) = parse_shade_rules(COLOURS_FILE, include_str!("../data/colours.toml")) {
+            panic!("{e}");
+        }
+    }
+
+    #[test]
+    fn shades_follow_the_rules_in_order() {
+        assert_eq!(shades_for("white", [0.95, 0.95, 0.95])[0], "pure white");
+        assert_eq!(shades_for("white", [0.8, 0.7, 0.6])[0], "off-white");
+        assert_eq!(shades_for("white", [0.8, 0.8, 0.8])[0], "whitish");
+        assert_eq!(shades_for("red", [0.2, 0.0, 0.0])[0], "dark red");
+        assert_eq!(shades_for("red", [0.5, 0.1, 0.1])[0], "deep red");
+        assert_eq!(shades_for("red", [0.9, 0.1, 0.1])[0], "vivid red");
+        assert_eq!(shades_for("yellow", [0.9, 0.5, 0.1])[0], "mustard");
+        assert_eq!(shades_for("yellow", [0.9, 0.8, 0.1])[0], "golden yellow");
+        // A dark band that has no shades for a colour ends the search: no shade, not a
+        // brighter band's.
+        assert!(shades_for("yellow", [0.3, 0.25, 0.0]).is_empty());
+        assert!(shades_for("purple", [0.5, 0.1, 0.5]).is_empty());
+    }
+
+    #[test]
+    fn bad_colour_files_name_the_file_and_rule() {
+        let err = |t: &str| parse_shade_rules("c.toml", t).unwrap_err().to_string();
+        let e = err("[[rule]]\ncolour = \"red\"\nhi_above = 2.0\nshades = [\"x\"]\n");
+        assert_eq!(e, "c.toml: rule 0 (red): hi_above must lie in 0..=1");
+        let e = err(
+            "[[rule]]\nshades = [\"x\"]\n[[rule]]\ncolour = \"red\"\nshades = [\"a\", \" \"]\n",
+        );
+        assert_eq!(e, "c.toml: rule 1 (red): shade 1 is blank");
+        let e =
+            err("[[rule]]\nhi_below = 0.3\n[[rule.by_colour]]\ncolour = \"red\"\nshades = []\n");
+        assert_eq!(e, "c.toml: rule 0, by_colour 0 (red): no shades");
+        let e = err("[[rule]]\ncolour = \"red\"\n");
+        assert_eq!(e, "c.toml: rule 0 (red): neither shades nor by_colour");
+        assert!(err("[[rule]]\nshade = [\"x\"]\n").starts_with("c.toml: not a valid table"));
     }
 
     #[test]
