@@ -5,9 +5,9 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
-use vlnverse_testkit::real_scenes::aws_small_house;
 use vlnverse_env::io::scene_bundle;
 use vlnverse_import::import_scene;
+use vlnverse_testkit::real_scenes::aws_small_house;
 
 fn bench(c: &mut Criterion) {
     let Some((file, opts)) = aws_small_house() else {

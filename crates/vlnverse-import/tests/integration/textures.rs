@@ -1,12 +1,12 @@
 //! Imported base-colour textures: kept with their texture coordinates, written into and read
 //! back from the scene folder, and a broken image falling back to the factor colour.
 
-use vlnverse_testkit::textured_glb::{self as fx, SIDE};
 use std::path::Path;
 use vlnverse_env::io::{load_scene, write_scene_dir, SCENE_GLB};
 use vlnverse_env::scene::MeshTexture;
 use vlnverse_env::{Scene, SceneObject, Shape};
 use vlnverse_import::{import_scene, ImportOptions};
+use vlnverse_testkit::textured_glb::{self as fx, SIDE};
 
 fn import(dir: &Path, glb: &[u8]) -> Scene {
     let path = dir.join("textured.glb");
