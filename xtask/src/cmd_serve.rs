@@ -39,6 +39,10 @@ pub struct Args {
     /// Show the teacher's next key while driving (tests, demonstrations; not for a human study).
     #[arg(long)]
     pub teacher_hints: bool,
+    /// Also answer requests for this host name (repeatable; `NAME` or `NAME:PORT`). Only
+    /// 127.0.0.1, localhost, [::1] and the bound address are answered otherwise (DNS rebinding).
+    #[arg(long = "allow-host", value_name = "NAME")]
+    pub allow_host: Vec<String>,
 }
 
 /// Run the command.
@@ -60,7 +64,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         ..ServerConfig::new(args.dataset)
     };
     let addr = SocketAddr::new(args.host, args.port);
-    vlnverse_web::run_server(cfg, addr, |bound| {
+    vlnverse_web::server::run_server_with(cfg, addr, &args.allow_host, |bound| {
         // The tests read this line to find the port.
         println!("vlnverse web app: open http://{bound}/  (Ctrl-C stops it)");
         use std::io::Write as _;

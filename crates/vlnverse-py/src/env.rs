@@ -1,7 +1,8 @@
 //! `NativeVecEnv`: a [`RapierVecEnv`] behind Python, with batched NumPy observation buffers.
 
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
+use std::sync::{Condvar, Mutex, MutexGuard};
+use std::thread::{self, ThreadId};
 
 use numpy::{
     PyArray1, PyArray2, PyArrayDyn, PyArrayMethods, PyReadwriteArrayDyn, PyUntypedArrayMethods,
@@ -29,10 +30,83 @@ struct Inner {
     vocab_source: String,
 }
 
+/// Who has the environments.
+enum Slot {
+    /// Free: the next call takes them.
+    Ready(Box<Inner>),
+    /// Taken by a call running on thread `owner`; `close` is set by a `close` that came
+    /// meanwhile, and the call then drops them when it hands them back.
+    Busy { owner: ThreadId, close: bool },
+    /// Released by `close`.
+    Closed,
+}
+
 /// A batch of VLN environments stepped natively (see the Python class `vlnverse.VectorEnv`).
+///
+/// One call at a time: a call takes the environments out of `slot` (leaving [`Slot::Busy`]),
+/// runs with the mutex *unlocked* (releasing the GIL for the heavy work), and puts them back.
+/// The mutex guards only those swaps, which never wait for the GIL, so a thread holding the
+/// GIL may lock it; waiting for a running call (`close`, the read-only calls) happens on
+/// `returned` with the GIL released. A `step` or `reset` that finds a call running raises
+/// instead of waiting.
 #[pyclass(module = "vlnverse._native")]
 pub struct NativeVecEnv {
-    inner: Mutex<Option<Inner>>,
+    slot: Mutex<Slot>,
+    /// Signalled whenever a call hands the environments back (or drops them on `close`).
+    returned: Condvar,
+}
+
+/// The environments taken out of the slot by one call; dropping it hands them back (or drops
+/// them, when a `close` came meanwhile), also when the call fails or panics.
+struct Lease<'a> {
+    env: &'a NativeVecEnv,
+    inner: Option<Box<Inner>>,
+}
+
+impl std::ops::Deref for Lease<'_> {
+    type Target = Inner;
+    fn deref(&self) -> &Inner {
+        self.inner
+            .as_deref()
+            .expect("a lease holds the environments")
+    }
+}
+
+impl std::ops::DerefMut for Lease<'_> {
+    fn deref_mut(&mut self) -> &mut Inner {
+        self.inner
+            .as_deref_mut()
+            .expect("a lease holds the environments")
+    }
+}
+
+impl Drop for Lease<'_> {
+    fn drop(&mut self) {
+        let Some(inner) = self.inner.take() else {
+            return;
+        };
+        let mut slot = self.env.lock();
+        let dropped = if matches!(*slot, Slot::Busy { close: true, .. }) {
+            *slot = Slot::Closed;
+            Some(inner)
+        } else {
+            *slot = Slot::Ready(inner);
+            None
+        };
+        drop(slot);
+        self.env.returned.notify_all();
+        // Dropped outside the mutex (it releases Python objects, which may run Python code).
+        drop(dropped);
+    }
+}
+
+/// What a call does when another call has the environments.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Busy {
+    /// Raise (`step`, `reset`: the caller would be racing the running call).
+    Raise,
+    /// Wait for it, with the GIL released (the read-only calls).
+    Wait,
 }
 
 /// The vocabulary beside the dataset, or one built from the task's training split.
@@ -460,22 +534,20 @@ impl NativeVecEnv {
             agent: env.settings().agent.clone(),
             ask: task == Task::Dialogue,
         };
-        Ok(NativeVecEnv {
-            inner: Mutex::new(Some(Inner {
-                env,
-                fields,
-                buffers,
-                codec,
-                vocab,
-                token_len: instruction_length,
-                vocab_source,
-            })),
-        })
+        Ok(NativeVecEnv::new_ready(Inner {
+            env,
+            fields,
+            buffers,
+            codec,
+            vocab,
+            token_len: instruction_length,
+            vocab_source,
+        }))
     }
 
     /// What the batch offers: observation fields, action space, sizes.
     fn spec<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        self.with(|inner| {
+        self.with(py, |inner| {
             let d = PyDict::new(py);
             let fields = PyList::empty(py);
             for f in &inner.fields {
@@ -518,7 +590,7 @@ impl NativeVecEnv {
     /// The observation buffers (one array per key, first axis = environment). They are
     /// overwritten in place by every `reset` and `step`.
     fn buffers<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        self.with(|inner| {
+        self.with(py, |inner| {
             let d = PyDict::new(py);
             for (f, b) in inner.fields.iter().zip(&inner.buffers) {
                 d.set_item(&f.key, b.bind(py))?;
@@ -528,15 +600,15 @@ impl NativeVecEnv {
     }
 
     /// The vocabulary's tokens (id = position).
-    fn vocab(&self) -> PyResult<Vec<String>> {
-        self.with(|inner| Ok(inner.vocab.tokens().to_vec()))
+    fn vocab(&self, py: Python<'_>) -> PyResult<Vec<String>> {
+        self.with(py, |inner| Ok(inner.vocab.tokens().to_vec()))
     }
 
     /// Reset every environment (with `seed`: reseed the episode draws and restart the eval
     /// order first). Returns the per-environment report.
     #[pyo3(signature = (seed = None))]
     fn reset<'py>(&self, py: Python<'py>, seed: Option<u64>) -> PyResult<Bound<'py, PyDict>> {
-        self.with_mut(|inner| {
+        self.with_mut(py, "reset", |inner| {
             if let Some(s) = seed {
                 inner.env.seed(s);
             }
@@ -554,7 +626,7 @@ impl NativeVecEnv {
         actions: &Bound<'py, PyAny>,
         reset_mask: Vec<bool>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        self.with_mut(|inner| {
+        self.with_mut(py, "step", |inner| {
             let n = inner.env.num_envs();
             if reset_mask.len() != n {
                 return Err(py_err(format!(
@@ -609,36 +681,126 @@ impl NativeVecEnv {
         })
     }
 
-    /// Release the environments (further calls raise).
-    fn close(&self) {
-        let mut g = self.inner.lock().unwrap_or_else(|p| p.into_inner());
-        *g = None;
+    /// Release the environments (further calls raise). A `step` or `reset` running in another
+    /// thread is waited for (with the GIL released); one running in this thread (close from a
+    /// finalizer) releases them when it returns.
+    fn close(&self, py: Python<'_>) {
+        let me = thread::current().id();
+        let mut slot = self.lock();
+        let wait = match &mut *slot {
+            Slot::Ready(_) => {
+                let Slot::Ready(inner) = std::mem::replace(&mut *slot, Slot::Closed) else {
+                    unreachable!("matched Ready")
+                };
+                drop(slot);
+                self.returned.notify_all();
+                // Dropped outside the mutex (it releases Python objects).
+                drop(inner);
+                return;
+            }
+            Slot::Busy { owner, close } => {
+                *close = true;
+                *owner != me
+            }
+            Slot::Closed => false,
+        };
+        drop(slot);
+        if wait {
+            py.detach(|| {
+                let mut slot = self.lock();
+                while !matches!(*slot, Slot::Closed) {
+                    slot = self.returned.wait(slot).unwrap_or_else(|p| p.into_inner());
+                }
+            });
+        }
     }
 
-    /// Whether `close` was called.
+    /// Whether `close` was called (the environments may still be finishing a call then).
     #[getter]
     fn closed(&self) -> bool {
-        self.inner
-            .lock()
-            .unwrap_or_else(|p| p.into_inner())
-            .is_none()
+        matches!(*self.lock(), Slot::Closed | Slot::Busy { close: true, .. })
     }
 }
 
 impl NativeVecEnv {
-    fn with<T>(&self, f: impl FnOnce(&Inner) -> PyResult<T>) -> PyResult<T> {
-        let g = self.inner.lock().unwrap_or_else(|p| p.into_inner());
-        match g.as_ref() {
-            Some(i) => f(i),
-            None => Err(py_err("the environment is closed")),
+    fn new_ready(inner: Inner) -> Self {
+        NativeVecEnv {
+            slot: Mutex::new(Slot::Ready(Box::new(inner))),
+            returned: Condvar::new(),
         }
     }
 
-    fn with_mut<T>(&self, f: impl FnOnce(&mut Inner) -> PyResult<T>) -> PyResult<T> {
-        let mut g = self.inner.lock().unwrap_or_else(|p| p.into_inner());
-        match g.as_mut() {
-            Some(i) => f(i),
-            None => Err(py_err("the environment is closed")),
+    /// The slot (a panic while it was locked leaves a consistent slot: every swap is whole).
+    fn lock(&self) -> MutexGuard<'_, Slot> {
+        self.slot.lock().unwrap_or_else(|p| p.into_inner())
+    }
+
+    /// Take the environments for one call (`what` names it in the errors).
+    fn lease(&self, py: Python<'_>, what: &str, busy: Busy) -> PyResult<Lease<'_>> {
+        let me = thread::current().id();
+        loop {
+            let mut slot = self.lock();
+            match &*slot {
+                Slot::Ready(_) => {
+                    let taken = std::mem::replace(
+                        &mut *slot,
+                        Slot::Busy {
+                            owner: me,
+                            close: false,
+                        },
+                    );
+                    let Slot::Ready(inner) = taken else {
+                        unreachable!("matched Ready")
+                    };
+                    return Ok(Lease {
+                        env: self,
+                        inner: Some(inner),
+                    });
+                }
+                Slot::Closed | Slot::Busy { close: true, .. } => {
+                    return Err(py_err("the environment is closed"));
+                }
+                Slot::Busy { owner, .. } if *owner == me || busy == Busy::Raise => {
+                    let whose = if *owner == me {
+                        "this thread"
+                    } else {
+                        "another thread"
+                    };
+                    return Err(py_err(format!(
+                        "{what}: another call (a step or reset) is in progress on this \
+                         environment in {whose}; a VectorEnv takes one call at a time \
+                         (use one VectorEnv per thread, or a lock)"
+                    )));
+                }
+                Slot::Busy { .. } => {
+                    drop(slot);
+                    // Wait for the running call with the GIL released (it may need the GIL
+                    // to finish), then try again.
+                    py.detach(|| {
+                        let mut slot = self.lock();
+                        while matches!(*slot, Slot::Busy { close: false, owner } if owner != me) {
+                            slot = self.returned.wait(slot).unwrap_or_else(|p| p.into_inner());
+                        }
+                    });
+                }
+            }
         }
+    }
+
+    /// A read-only call (waits for a running `step` or `reset` in another thread).
+    fn with<T>(&self, py: Python<'_>, f: impl FnOnce(&Inner) -> PyResult<T>) -> PyResult<T> {
+        let lease = self.lease(py, "read", Busy::Wait)?;
+        f(&lease)
+    }
+
+    /// A call that changes the environments (raises while another call runs).
+    fn with_mut<T>(
+        &self,
+        py: Python<'_>,
+        what: &str,
+        f: impl FnOnce(&mut Inner) -> PyResult<T>,
+    ) -> PyResult<T> {
+        let mut lease = self.lease(py, what, Busy::Raise)?;
+        f(&mut lease)
     }
 }

@@ -1,7 +1,12 @@
 //! The router: the page and its assets, the catalogue of the dataset, the three modes' APIs,
 //! and raw files of the dataset and runs (refused outside them).
+//!
+//! Every request must name this server in `Host` ([`AllowedHosts`]: a loopback name on the
+//! served port, or a name given with `--allow-host`), so a web page whose own name was rebound
+//! to 127.0.0.1 (DNS rebinding) can neither read nor write; requests that carry `Origin` (POSTs,
+//! WebSocket handshakes) must also come from a page of this server.
 
-use std::net::SocketAddr;
+use std::net::{IpAddr, SocketAddr};
 use std::sync::atomic::Ordering;
 use std::sync::Arc;
 
@@ -18,8 +23,104 @@ use crate::error::{ApiError, ApiResult};
 use crate::files::{content_type, resolve_inside};
 use crate::{assets, drive, replay, review};
 
-/// The app's routes over a shared state.
-pub fn router(app: Arc<App>) -> Router {
+/// The `Host` names the server answers: `127.0.0.1`, `localhost` and `[::1]` on the served
+/// port, the address it is bound to (when not a wildcard), and the names added with
+/// [`AllowedHosts::allow`] (`cargo xtask serve --allow-host NAME`). A request naming any other
+/// host is refused with 403: its page reached this server through a name rebound to it.
+#[derive(Debug, Clone)]
+pub struct AllowedHosts {
+    port: u16,
+    /// This machine's names (lower case): answered on the served port only.
+    local: Vec<String>,
+    /// Names added by the user (lower case, no port): answered on the served port or with no
+    /// port (a proxy in front of the app serving it on the default port).
+    names: Vec<String>,
+    /// `name:port` entries added by the user (lower case): answered exactly.
+    with_port: Vec<String>,
+}
+
+impl AllowedHosts {
+    /// The loopback names on `port`.
+    pub fn loopback(port: u16) -> Self {
+        AllowedHosts {
+            port,
+            local: vec!["127.0.0.1".into(), "localhost".into(), "[::1]".into()],
+            names: Vec::new(),
+            with_port: Vec::new(),
+        }
+    }
+
+    /// The loopback names and `addr`'s IP (unless it is `0.0.0.0` or `[::]`) on `addr`'s port.
+    pub fn for_addr(addr: SocketAddr) -> Self {
+        let mut hosts = Self::loopback(addr.port());
+        let ip = addr.ip();
+        if !ip.is_unspecified() && !ip.is_loopback() {
+            hosts.local.push(match ip {
+                IpAddr::V4(ip) => ip.to_string(),
+                IpAddr::V6(ip) => format!("[{ip}]"),
+            });
+        }
+        hosts
+    }
+
+    /// Also answer `name`: a host name or IP (`[...]` for IPv6) on the served port or with no
+    /// port, or `name:port` for exactly that.
+    pub fn allow(mut self, name: impl AsRef<str>) -> Self {
+        let name = name.as_ref().trim().to_ascii_lowercase();
+        if name.is_empty() {
+            return self;
+        }
+        match split_port(&name) {
+            (_, Some(_)) => self.with_port.push(name),
+            (_, None) => self.names.push(name),
+        }
+        self
+    }
+
+    /// The served port.
+    pub fn port(&self) -> u16 {
+        self.port
+    }
+
+    /// Whether a request with this `Host` header is answered.
+    pub fn admits(&self, host: &str) -> bool {
+        let host = host.trim().to_ascii_lowercase();
+        if self.with_port.contains(&host) {
+            return true;
+        }
+        let (name, port) = split_port(&host);
+        let port = match port {
+            Some(p) => match p.parse::<u16>() {
+                Ok(p) => Some(p),
+                Err(_) => return false,
+            },
+            None => None,
+        };
+        let served = port.unwrap_or(80) == self.port;
+        (served && self.local.iter().any(|n| n == name))
+            || ((served || port.is_none()) && self.names.iter().any(|n| n == name))
+    }
+}
+
+/// `host[:port]` or `[v6][:port]` split at the port (the port not parsed).
+fn split_port(host: &str) -> (&str, Option<&str>) {
+    if host.starts_with('[') {
+        return match host.find(']') {
+            Some(end) => {
+                let (name, rest) = host.split_at(end + 1);
+                (name, rest.strip_prefix(':'))
+            }
+            None => (host, None),
+        };
+    }
+    match host.rsplit_once(':') {
+        Some((name, port)) if !name.contains(':') => (name, Some(port)),
+        _ => (host, None),
+    }
+}
+
+/// The app's routes over a shared state, answering only requests whose `Host` is in `hosts`.
+pub fn router(app: Arc<App>, hosts: AllowedHosts) -> Router {
     Router::new()
         .route("/", get(|| async { asset("index.html") }))
         .route(
@@ -52,7 +153,43 @@ pub fn router(app: Arc<App>) -> Router {
         .route("/files/runs/{run}/{*path}", get(run_file))
         .fallback(|| async { ApiError::not_found("no such page or endpoint") })
         .layer(axum::middleware::from_fn(same_origin))
+        .layer(axum::middleware::from_fn(move |req, next| {
+            known_host(hosts.clone(), req, next)
+        }))
         .with_state(app)
+}
+
+/// Refuse requests whose `Host` is not one of this server's names (DNS rebinding: a page of
+/// `evil.example` whose name now resolves to 127.0.0.1 sends `Host: evil.example:PORT`, and its
+/// `Origin` matches that host, so only the host itself tells it apart).
+async fn known_host(
+    hosts: AllowedHosts,
+    req: axum::extract::Request,
+    next: axum::middleware::Next,
+) -> Response {
+    let host = req
+        .headers()
+        .get(header::HOST)
+        .map(|h| h.to_str().unwrap_or("(not text)"));
+    // An absolute request target (`GET http://name/ HTTP/1.1`) names the host too.
+    let target = req.uri().authority().map(|a| a.as_str());
+    let refused = match (host, target) {
+        (None, None) => Some("(none)".to_string()),
+        (h, t) => h
+            .into_iter()
+            .chain(t)
+            .find(|h| !hosts.admits(h))
+            .map(str::to_string),
+    };
+    if let Some(host) = refused {
+        return ApiError::forbidden(format!(
+            "requests for host `{host}` are refused: this server answers 127.0.0.1, localhost \
+             and [::1] on port {} (start it with `--allow-host NAME` to add a name)",
+            hosts.port()
+        ))
+        .into_response();
+    }
+    next.run(req).await
 }
 
 /// Refuse requests sent by pages of other sites: a browser names the page's origin in
@@ -241,28 +378,56 @@ async fn run_file(
     serve_file(&dir, &path).await
 }
 
-/// Serve on `listener` until `shutdown` resolves.
+/// Serve on `listener` until `shutdown` resolves, answering the loopback names (and the bound
+/// address) on the listener's port.
 pub async fn serve_on(
     app: Arc<App>,
     listener: tokio::net::TcpListener,
     shutdown: impl std::future::Future<Output = ()> + Send + 'static,
 ) -> std::io::Result<()> {
+    serve_on_with(app, listener, &[], shutdown).await
+}
+
+/// [`serve_on`], also answering the host names `allow_hosts` (see [`AllowedHosts::allow`]).
+pub async fn serve_on_with(
+    app: Arc<App>,
+    listener: tokio::net::TcpListener,
+    allow_hosts: &[String],
+    shutdown: impl std::future::Future<Output = ()> + Send + 'static,
+) -> std::io::Result<()> {
     use axum::serve::ListenerExt as _;
+    let hosts = allow_hosts
+        .iter()
+        .fold(AllowedHosts::for_addr(listener.local_addr()?), |h, n| {
+            h.allow(n)
+        });
     // A frame is a text message and a binary one: without TCP_NODELAY the second waits for
     // the client's delayed ACK (~40 ms), which capped a driver at ~20 frames/s.
     let listener = listener.tap_io(|tcp| {
         let _ = tcp.set_nodelay(true);
     });
-    axum::serve(listener, router(app))
+    axum::serve(listener, router(app, hosts))
         .with_graceful_shutdown(shutdown)
         .await
 }
 
 /// Bind `addr` and serve until Ctrl-C; `on_ready` gets the bound address (port 0 picks a free
-/// one) before the first request is taken.
+/// one) before the first request is taken. Only the loopback names and the bound address are
+/// answered ([`AllowedHosts::for_addr`]; [`run_server_with`] adds names).
 pub fn run_server(
     cfg: crate::ServerConfig,
     addr: SocketAddr,
+    on_ready: impl FnOnce(SocketAddr),
+) -> Result<(), String> {
+    run_server_with(cfg, addr, &[], on_ready)
+}
+
+/// [`run_server`], also answering the host names `allow_hosts` (`cargo xtask serve
+/// --allow-host`, see [`AllowedHosts::allow`]).
+pub fn run_server_with(
+    cfg: crate::ServerConfig,
+    addr: SocketAddr,
+    allow_hosts: &[String],
     on_ready: impl FnOnce(SocketAddr),
 ) -> Result<(), String> {
     let app = Arc::new(App::new(cfg)?);
@@ -278,7 +443,7 @@ pub fn run_server(
             .local_addr()
             .map_err(|e| format!("listening socket: {e}"))?;
         on_ready(bound);
-        serve_on(app, listener, async {
+        serve_on_with(app, listener, allow_hosts, async {
             let _ = tokio::signal::ctrl_c().await;
         })
         .await

@@ -3,6 +3,7 @@
 
 mod drive;
 mod example;
+mod hosts;
 mod http;
 mod replay_review;
 mod support;
