@@ -20,9 +20,7 @@ pub struct Args {
 pub fn run(args: Args) -> anyhow::Result<()> {
     let t = Instant::now();
     let n = vlnverse_task::generate::merge(&args.out, &args.parts)?;
-    let report = args
-        .out
-        .join(vlnverse_task::generate::REPORT_FILE);
+    let report = args.out.join(vlnverse_task::generate::REPORT_FILE);
     if let Ok(raw) = std::fs::read(&report) {
         if let Ok(r) = serde_json::from_slice::<vlnverse_task::generate::GenerationReport>(&raw) {
             for skip in &r.skipped {

@@ -3,7 +3,7 @@
 //! per renderer backend (`raycast`, and `auto` = wgpu on a GPU or lavapipe when present) and
 //! setting, plus the protocol without rendering.
 //!
-//! `cargo bench -p vlnverse-task --bench evaluate -- --warm-up-time 1 --measurement-time 3`
+//! `cargo bench -p vlnverse-eval --bench evaluate -- --warm-up-time 1 --measurement-time 3`
 
 use std::sync::atomic::{AtomicU64, Ordering};
 

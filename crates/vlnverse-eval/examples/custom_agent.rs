@@ -3,7 +3,7 @@
 //! hand-written agent that turns towards the reference path's next point and walks, and
 //! prints the metrics. Swap `PathFollower` for your policy.
 //!
-//! `cargo run -p vlnverse-task --example custom_agent [OUT_DIR]`
+//! `cargo run -p vlnverse-eval --example custom_agent [OUT_DIR]`
 
 use std::path::PathBuf;
 

@@ -1,7 +1,7 @@
 //! The Rust-only rate of a vector environment: `N` environments with the default RGB-D rig,
 //! every environment following the teacher's action, with next-step autoreset.
 //!
-//! `cargo run --release -p vlnverse-task --example vec_env_rate -- DATASET [N] [STEPS]`
+//! `cargo run --release -p vlnverse-eval --example vec_env_rate -- DATASET [N] [STEPS]`
 //! (the Python benchmark `crates/vlnverse-py/bench/bench_vec.py` compares against it).
 
 use std::path::PathBuf;

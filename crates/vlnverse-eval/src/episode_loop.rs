@@ -104,11 +104,6 @@ impl std::fmt::Display for ActionKind {
     }
 }
 
-/// Short action name for trajectories ([`ActionKind::name`]).
-pub fn action_name(a: &Action) -> &'static str {
-    ActionKind::from(a).name()
-}
-
 /// What every episode of an evaluation runs under, derived once from an [`EvalConfig`].
 #[derive(Debug, Clone)]
 pub struct EpisodeSettings {
@@ -201,7 +196,7 @@ fn dialogue_oracle(
             Err(TaskError::invalid(
                 "oracle_llm",
                 "<section>",
-                "this build has no LLM client (vlnverse-task feature `llm`)",
+                "this build has no LLM client (feature `llm-oracle` of vlnverse-eval, or `llm` of vlnverse-task)",
             ))
         }
     }

@@ -1,31 +1,32 @@
 #![doc = include_str!("../README.md")]
 
-pub mod agent;
+mod agent;
 pub mod agents;
-pub mod episode_loop;
-pub mod error;
+mod episode_loop;
+mod error;
 pub mod oracle;
-pub mod plots;
-pub mod protocol;
-pub mod resume;
-pub mod runner;
-pub mod scene_context;
-pub mod vec_env;
+mod plots;
+mod protocol;
+mod resume;
+mod runner;
+mod scene_context;
+mod vec_env;
 
 pub use agent::{
     Agent, AgentFactory, EpisodeInputs, OracleHandle, Privileged, StepInput, SubGoalProgress,
 };
 pub use agents::FnFactory;
 pub use episode_loop::{
-    run_episode, ActionKind, Applied, EpisodeCheckError, EpisodeSettings, EpisodeState, Unrunnable,
+    check_episode, run_episode, ActionKind, Applied, DialogueHandle, EpisodeCheckError,
+    EpisodeSettings, EpisodeState, Unrunnable, NOT_UNDERSTOOD,
 };
 pub use error::{Result, TaskError};
-pub use protocol::{ActionSpace, EvalConfig, Setting};
-pub use resume::EpisodeRecord;
+pub use protocol::{ActionSpace, EvalConfig, LlmSection, Setting};
+pub use resume::{EpisodeRecord, ProgressLog, LATER_KEYS, PROGRESS_FILE, RUN_FILE};
 pub use runner::{
-    configured_renderer, evaluate, evaluate_with, rapier_simulator, DefaultRenderers,
-    DefaultSimulators, EvalOutcome, EvalRequest, LayerIdentity, Layers, RendererFactory,
-    SimulatorFactory,
+    configured_renderer, evaluate, evaluate_with, finish_run, open_run, rapier_simulator,
+    run_identity, select_episodes, sim_config, DefaultRenderers, DefaultSimulators, EvalOutcome,
+    EvalRequest, LayerIdentity, Layers, RendererFactory, SimulatorFactory, RUN_FILES,
 };
 pub use scene_context::{SceneCache, SceneContext};
 pub use vec_env::{

@@ -200,7 +200,7 @@ pub struct EvalConfig {
     /// Top-down trajectory plots written per run.
     pub plots: u32,
     /// How the `external` agent receives images: `files` or `base64`.
-    pub external_observations: crate::agents::external::ObsEncoding,
+    pub external_observations: crate::agents::ObsEncoding,
     /// The dialogue oracle's answers rephrased by an LLM (`[oracle_llm]`: an OpenAI-compatible
     /// endpoint, the fields of `[instructions.llm]`); none (the default): the rule-based
     /// shortest-path oracle answers as it is.

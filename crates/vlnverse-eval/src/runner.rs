@@ -32,15 +32,12 @@ use vlnverse_sensors::{create_renderer, Renderer, RigConfig, SensorRig};
 use vlnverse_sim::{RapierSimulator, SimConfig, Simulator};
 
 use crate::agent::{Agent, AgentFactory};
-pub use crate::episode_loop::{
-    action_name, check_episode, episode_seed, run_episode, ActionKind, DialogueHandle,
-    EpisodeCheckError, EpisodeSettings, Unrunnable, NOT_UNDERSTOOD,
-};
+use crate::episode_loop::{check_episode, run_episode, EpisodeSettings};
 use crate::error::{Result, TaskError};
 use crate::plots;
 use crate::protocol::EvalConfig;
 use crate::resume::{self, EpisodeRecord, ProgressLog, PROGRESS_FILE, RUN_FILE};
-pub use crate::scene_context::{SceneCache, SceneContext};
+use crate::scene_context::SceneCache;
 use vlnverse_score::dataset;
 use vlnverse_score::episode::{Episode, Split, Task};
 use vlnverse_score::report::{write_run, RunSummary};

@@ -27,7 +27,7 @@ use vlnverse_sensors::{Observations, SensorRig};
 use vlnverse_sim::{Action, SimConfig, Simulator};
 
 use crate::agent::Agent;
-use crate::agents::oracle::OracleAgent;
+use crate::agents::OracleAgent;
 use crate::episode_loop::{check_episode, ActionKind, Applied, EpisodeSettings, EpisodeState};
 use crate::error::{Result, TaskError};
 use crate::protocol::EvalConfig;

@@ -16,13 +16,13 @@ use serde_json::json;
 use sha2::{Digest, Sha256};
 use vlnverse_sensors::{Observation, PanoramaSpec, RigConfig, SensorRig, SensorSpec};
 use vlnverse_task::dataset;
-use vlnverse_task::eval::runner::sim_config;
+use vlnverse_task::eval::sim_config;
 use vlnverse_task::eval::{
     configured_renderer, rapier_simulator, ActionSpace, EpisodeSettings, EvalConfig, SceneCache,
     Setting,
 };
 use vlnverse_task::vocab::{Vocab, VOCAB_FILE};
-use vlnverse_task::{Episode, Split, Task};
+use vlnverse_task::{Episode, OutputLock, Split, Task};
 
 use crate::error::{ExportError, Result};
 use crate::lerobot::{self, keys, DType, EpisodeMeta, Feature};
@@ -583,6 +583,115 @@ fn read_json<T: for<'de> Deserialize<'de>>(path: &Path) -> Option<T> {
 
 /// Export `req`'s episodes as a LeRobot dataset, reporting progress to `progress`.
 pub fn export(req: &ExportRequest, progress: &(dyn Fn(Progress) + Sync)) -> Result<ExportSummary> {
+    let (episodes, split_file) = load_episodes(req)?;
+    let mut protocol = EvalConfig::for_setting(req.setting);
+    protocol.action_space = ActionSpace::Discrete;
+    protocol.seed = req.seed;
+    protocol.render = true;
+    let rig = rig_config(&protocol, req.panorama)?;
+    let sensors = sensors(&rig)?;
+    let features = features(&sensors);
+    let mut settings = EpisodeSettings::new(&protocol)?;
+    settings.split = Some(req.split);
+    settings.reference_dir = split_file.parent().map(Path::to_path_buf);
+    let (vocab, vocab_source) = load_vocab(&req.dataset, req.task, req.split)?;
+    let (tasks, task_index) = task_strings(&episodes);
+
+    let identity = json!({
+        "format": "lerobot",
+        "revision": FORMAT_REVISION,
+        "task": req.task.to_string(),
+        "split": req.split.to_string(),
+        "episode_ids": episodes.iter().map(|e| e.episode_id).collect::<Vec<_>>(),
+        "split_sha256": sha256_file(&split_file)?,
+        "vocab": vocab_source,
+        "seed": req.seed,
+        "panorama": req.panorama,
+        "setting": req.setting.name(),
+        "max_steps": protocol.max_steps,
+        "agent_profile": protocol.agent_profile,
+        "rig": serde_json::to_value(&rig).unwrap_or_default(),
+    });
+    let fingerprint = format!("{:x}", Sha256::digest(identity.to_string().as_bytes()));
+
+    let (_lock, parts) = claim_output(req, &fingerprint, &identity)?;
+
+    let threads = req
+        .threads
+        .unwrap_or_else(rayon::current_num_threads)
+        .max(1);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| ExportError::invalid("threads", threads, e.to_string()))?;
+    let job = Job {
+        req,
+        settings,
+        protocol: protocol.clone(),
+        rig: rig.clone(),
+        sensors,
+        features: features.clone(),
+        scenes: SceneCache::new(&req.dataset, 2 * threads + 2),
+        workers: Mutex::new(Vec::new()),
+        fingerprint: fingerprint.clone(),
+        nanos: Default::default(),
+    };
+
+    // 1. Plan: the teacher's actions without rendering (cheap), for the frame layout.
+    let t0 = Instant::now();
+    let plan = plan_actions(&job, &pool, &episodes, &parts, progress)?;
+    let plan_s = t0.elapsed().as_secs_f64();
+    let (metas, total_frames) = episode_metas(req, &episodes, &plan, &task_index);
+
+    // 2. Render what is not finished yet.
+    let t1 = Instant::now();
+    let rendered = render_missing(
+        &job, &pool, &episodes, &metas, &plan, &vocab, &parts, progress,
+    )?;
+    let render_s = t1.elapsed().as_secs_f64();
+
+    // 3. Metadata.
+    let t2 = Instant::now();
+    progress(Progress {
+        phase: Phase::Assemble,
+        done: 0,
+        total: 1,
+        frames: rendered.frames,
+    });
+    write_metadata(
+        req,
+        &metas,
+        &features,
+        &rendered.parts,
+        &tasks,
+        total_frames,
+        &fingerprint,
+    )?;
+    let assemble_s = t2.elapsed().as_secs_f64();
+    progress(Progress {
+        phase: Phase::Assemble,
+        done: 1,
+        total: 1,
+        frames: rendered.frames,
+    });
+    Ok(ExportSummary {
+        out: req.out.clone(),
+        episodes: metas.len(),
+        frames: total_frames,
+        resumed: rendered.resumed,
+        rendered_frames: rendered.frames,
+        seconds: [plan_s, render_s, assemble_s],
+        render_breakdown: job
+            .nanos
+            .each_ref()
+            .map(|n| n.load(Ordering::Relaxed) as f64 * 1e-9),
+        data_bytes: rendered.parts.iter().map(|p| p.bytes).sum(),
+        threads,
+    })
+}
+
+/// The request's episodes, checked: at least one, from a split file that exists.
+fn load_episodes(req: &ExportRequest) -> Result<(Vec<Episode>, PathBuf)> {
     if req.episodes == Some(0) {
         return Err(ExportError::invalid(
             "episodes",
@@ -619,19 +728,11 @@ pub fn export(req: &ExportRequest, progress: &(dyn Fn(Progress) + Sync)) -> Resu
             "the split has no episodes",
         ));
     }
-    let mut protocol = EvalConfig::for_setting(req.setting);
-    protocol.action_space = ActionSpace::Discrete;
-    protocol.seed = req.seed;
-    protocol.render = true;
-    let rig = rig_config(&protocol, req.panorama)?;
-    let sensors = sensors(&rig)?;
-    let features = features(&sensors);
-    let mut settings = EpisodeSettings::new(&protocol)?;
-    settings.split = Some(req.split);
-    settings.reference_dir = split_file.parent().map(Path::to_path_buf);
-    let (vocab, vocab_source) = load_vocab(&req.dataset, req.task, req.split)?;
+    Ok((episodes, split_file))
+}
 
-    // Task strings, by first appearance.
+/// Task strings by first appearance, and each episode's index into them.
+fn task_strings(episodes: &[Episode]) -> (Vec<String>, Vec<usize>) {
     let mut tasks: Vec<String> = Vec::new();
     let mut task_of: HashMap<String, usize> = HashMap::new();
     let task_index: Vec<usize> = episodes
@@ -645,34 +746,25 @@ pub fn export(req: &ExportRequest, progress: &(dyn Fn(Progress) + Sync)) -> Resu
         })
         .collect();
 
-    let identity = json!({
-        "format": "lerobot",
-        "revision": FORMAT_REVISION,
-        "task": req.task.to_string(),
-        "split": req.split.to_string(),
-        "episode_ids": episodes.iter().map(|e| e.episode_id).collect::<Vec<_>>(),
-        "split_sha256": sha256_file(&split_file)?,
-        "vocab": vocab_source,
-        "seed": req.seed,
-        "panorama": req.panorama,
-        "setting": req.setting.name(),
-        "max_steps": protocol.max_steps,
-        "agent_profile": protocol.agent_profile,
-        "rig": serde_json::to_value(&rig).unwrap_or_default(),
-    });
-    let fingerprint = format!("{:x}", Sha256::digest(identity.to_string().as_bytes()));
+    (tasks, task_index)
+}
 
+/// Lock `req.out` and make sure it holds this request's export or nothing: returns the lock and
+/// the folder of the parts.
+fn claim_output(
+    req: &ExportRequest,
+    fingerprint: &str,
+    identity: &serde_json::Value,
+) -> Result<(OutputLock, PathBuf)> {
     mkdirs(&req.out)?;
-    let _lock = vlnverse_task::OutputLock::acquire(&req.out, "export").map_err(|e| {
-        ExportError::Output {
-            path: req.out.clone(),
-            reason: e.to_string(),
-        }
+    let lock = OutputLock::acquire(&req.out, "export").map_err(|e| ExportError::Output {
+        path: req.out.clone(),
+        reason: e.to_string(),
     })?;
     let parts = parts_dir(&req.out);
     let request_file = parts.join("request.json");
     match read_json::<serde_json::Value>(&request_file) {
-        Some(v) if v.get("fingerprint").and_then(|f| f.as_str()) == Some(fingerprint.as_str()) => {}
+        Some(v) if v.get("fingerprint").and_then(|f| f.as_str()) == Some(fingerprint) => {}
         Some(_) => {
             return Err(ExportError::Output {
                 path: req.out.clone(),
@@ -708,32 +800,22 @@ pub fn export(req: &ExportRequest, progress: &(dyn Fn(Progress) + Sync)) -> Resu
         }
     }
 
-    let threads = req
-        .threads
-        .unwrap_or_else(rayon::current_num_threads)
-        .max(1);
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map_err(|e| ExportError::invalid("threads", threads, e.to_string()))?;
-    let job = Job {
-        req,
-        settings,
-        protocol: protocol.clone(),
-        rig: rig.clone(),
-        sensors,
-        features: features.clone(),
-        scenes: SceneCache::new(&req.dataset, 2 * threads + 2),
-        workers: Mutex::new(Vec::new()),
-        fingerprint: fingerprint.clone(),
-        nanos: Default::default(),
-    };
+    Ok((lock, parts))
+}
 
-    // 1. Plan: the teacher's actions without rendering (cheap), for the frame layout.
-    let t0 = Instant::now();
+/// The teacher's actions of every episode, without rendering (cheap), for the frame layout;
+/// read back from `plan.json` when a previous run of the same request made it.
+fn plan_actions(
+    job: &Job,
+    pool: &rayon::ThreadPool,
+    episodes: &[Episode],
+    parts: &Path,
+    progress: &(dyn Fn(Progress) + Sync),
+) -> Result<Plan> {
+    let fingerprint = &job.fingerprint;
     let plan_file = parts.join("plan.json");
-    let plan = match read_json::<Plan>(&plan_file) {
-        Some(p) if p.fingerprint == fingerprint && p.actions.len() == episodes.len() => p,
+    Ok(match read_json::<Plan>(&plan_file) {
+        Some(p) if p.fingerprint == *fingerprint && p.actions.len() == episodes.len() => p,
         _ => {
             let done = AtomicUsize::new(0);
             let total = episodes.len();
@@ -767,9 +849,16 @@ pub fn export(req: &ExportRequest, progress: &(dyn Fn(Progress) + Sync)) -> Resu
             write_atomic(&plan_file, &serde_json::to_vec(&p).unwrap_or_default())?;
             p
         }
-    };
-    let plan_s = t0.elapsed().as_secs_f64();
+    })
+}
 
+/// Per-episode metadata, with each episode's first frame index; and the number of frames.
+fn episode_metas(
+    req: &ExportRequest,
+    episodes: &[Episode],
+    plan: &Plan,
+    task_index: &[usize],
+) -> (Vec<EpisodeMeta>, usize) {
     let mut metas = Vec::with_capacity(episodes.len());
     let mut from = 0;
     for (i, ep) in episodes.iter().enumerate() {
@@ -788,15 +877,35 @@ pub fn export(req: &ExportRequest, progress: &(dyn Fn(Progress) + Sync)) -> Resu
         });
         from += length;
     }
-    let total_frames = from;
 
-    // 2. Render what is not finished yet.
-    let t1 = Instant::now();
+    (metas, from)
+}
+
+/// Parts of the episodes, finished: those a previous run left and the ones rendered now.
+struct Rendered {
+    parts: Vec<Part>,
+    resumed: usize,
+    frames: u64,
+}
+
+/// Render the episodes that have no finished part yet, in parallel on `pool`.
+fn render_missing(
+    job: &Job,
+    pool: &rayon::ThreadPool,
+    episodes: &[Episode],
+    metas: &[EpisodeMeta],
+    plan: &Plan,
+    vocab: &Vocab,
+    parts: &Path,
+    progress: &(dyn Fn(Progress) + Sync),
+) -> Result<Rendered> {
+    let req = job.req;
+    let fingerprint = &job.fingerprint;
     let part_path = |i: usize| parts.join(format!("episode-{i:06}.json"));
     let mut parts_done: Vec<Option<Part>> = (0..episodes.len())
         .map(|i| {
             read_json::<Part>(&part_path(i)).filter(|p| {
-                p.fingerprint == fingerprint
+                p.fingerprint == *fingerprint
                     && p.length == metas[i].length
                     && req.out.join(lerobot::data_path(i)).is_file()
             })
@@ -843,38 +952,46 @@ pub fn export(req: &ExportRequest, progress: &(dyn Fn(Progress) + Sync)) -> Resu
         parts_done[i] = Some(p);
     }
     let parts_done: Vec<Part> = parts_done.into_iter().flatten().collect();
-    let render_s = t1.elapsed().as_secs_f64();
-
-    // 3. Metadata.
-    let t2 = Instant::now();
-    progress(Progress {
-        phase: Phase::Assemble,
-        done: 0,
-        total: 1,
+    Ok(Rendered {
+        parts: parts_done,
+        resumed,
         frames: frames.load(Ordering::Relaxed),
-    });
+    })
+}
+
+/// `meta/`: the episodes and tasks tables, statistics, our per-episode JSON lines and, last
+/// (its presence marks a complete dataset), `info.json`.
+fn write_metadata(
+    req: &ExportRequest,
+    metas: &[EpisodeMeta],
+    features: &[Feature],
+    parts_done: &[Part],
+    tasks: &[String],
+    total_frames: usize,
+    fingerprint: &str,
+) -> Result<()> {
     let meta_dir = req.out.join("meta");
     mkdirs(&meta_dir.join("episodes/chunk-000"))?;
     let episodes_file = meta_dir.join("episodes/chunk-000/file-000.parquet");
     let tmp = tmp_path(&episodes_file);
     let per_episode: Vec<BTreeMap<String, Stats>> =
         parts_done.iter().map(|p| p.stats.clone()).collect();
-    lerobot::episodes_table(&metas, &features, &per_episode).write(&tmp)?;
+    lerobot::episodes_table(metas, features, &per_episode).write(&tmp)?;
     std::fs::rename(&tmp, &episodes_file).map_err(|e| ExportError::io(&episodes_file, e))?;
     let tasks_file = meta_dir.join("tasks.parquet");
     let tmp = tmp_path(&tasks_file);
-    lerobot::tasks_table(&tasks).write(&tmp)?;
+    lerobot::tasks_table(tasks).write(&tmp)?;
     std::fs::rename(&tmp, &tasks_file).map_err(|e| ExportError::io(&tasks_file, e))?;
-    let stats = lerobot::stats_json(&features, &per_episode);
+    let stats = lerobot::stats_json(features, &per_episode);
     write_atomic(&meta_dir.join("stats.json"), &pretty(&stats))?;
     let mut jsonl = String::new();
-    for m in &metas {
+    for m in metas {
         jsonl.push_str(&serde_json::to_string(m).unwrap_or_default());
         jsonl.push('\n');
     }
     write_atomic(&meta_dir.join("vlnverse_episodes.jsonl"), jsonl.as_bytes())?;
     let info = lerobot::info_json(
-        &features,
+        features,
         metas.len(),
         total_frames,
         tasks.len(),
@@ -892,27 +1009,7 @@ pub fn export(req: &ExportRequest, progress: &(dyn Fn(Progress) + Sync)) -> Resu
     );
     // info.json last: its presence marks a complete dataset.
     write_atomic(&meta_dir.join("info.json"), &pretty(&info))?;
-    let assemble_s = t2.elapsed().as_secs_f64();
-    progress(Progress {
-        phase: Phase::Assemble,
-        done: 1,
-        total: 1,
-        frames: frames.load(Ordering::Relaxed),
-    });
-    Ok(ExportSummary {
-        out: req.out.clone(),
-        episodes: metas.len(),
-        frames: total_frames,
-        resumed,
-        rendered_frames: frames.load(Ordering::Relaxed),
-        seconds: [plan_s, render_s, assemble_s],
-        render_breakdown: job
-            .nanos
-            .each_ref()
-            .map(|n| n.load(Ordering::Relaxed) as f64 * 1e-9),
-        data_bytes: parts_done.iter().map(|p| p.bytes).sum(),
-        threads,
-    })
+    Ok(())
 }
 
 fn pretty(v: &serde_json::Value) -> Vec<u8> {

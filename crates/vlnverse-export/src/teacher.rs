@@ -10,10 +10,10 @@ use glam::{Quat, Vec3};
 use vlnverse_env::Pose;
 use vlnverse_sensors::{Observations, SensorRig};
 use vlnverse_sim::{Action, RapierSimulator};
-use vlnverse_task::eval::agent::Agent;
-use vlnverse_task::eval::agents::oracle::OracleAgent;
 use vlnverse_task::eval::agents::wrap_angle;
-use vlnverse_task::eval::episode_loop::check_episode;
+use vlnverse_task::eval::agents::OracleAgent;
+use vlnverse_task::eval::check_episode;
+use vlnverse_task::eval::Agent;
 use vlnverse_task::eval::{EpisodeSettings, EpisodeState, SceneContext};
 use vlnverse_task::Episode;
 

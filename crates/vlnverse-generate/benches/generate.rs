@@ -1,6 +1,6 @@
 //! Generation hot spots on one benchmark home (`vlnverse` preset, scene 0): target preparation,
 //! a distance field towards a target, a fine A* path, one reference image, and the tiny preset
-//! end to end. Run: `cargo bench -p vlnverse-task --bench generate -- --warm-up-time 1
+//! end to end. Run: `cargo bench -p vlnverse-generate --bench generate -- --warm-up-time 1
 //! --measurement-time 3`.
 
 use criterion::{criterion_group, criterion_main, Criterion};

@@ -359,7 +359,7 @@ impl GenerateConfig {
                 return Err(bad(
                     "instructions.llm".into(),
                     "a table".into(),
-                    "this build has no LLM stage (vlnverse-task feature `llm`)",
+                    "this build has no LLM stage (feature `llm` of vlnverse-generate)",
                 ));
             }
         }

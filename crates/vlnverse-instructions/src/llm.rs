@@ -149,7 +149,7 @@ impl LlmConfig {
             return Err(DataError::invalid(
                 "llm.base_url",
                 &self.base_url,
-                "https needs vlnverse-task built with the `llm-tls` feature",
+                "https needs the `llm-tls` feature (of vlnverse-instructions, vlnverse-generate or vlnverse-task)",
             ));
         }
         if self.model.trim().is_empty() {

@@ -37,7 +37,7 @@ const CURTAIN_ROOM: f32 = 0.75;
 /// Most windows in one room.
 const MAX_WINDOWS: usize = 2;
 /// Class of skirting boards. `floor`, not `wall`: instructions test sight lines against the
-/// footprints of all `wall` objects (`vlnverse-task`, `wall_rects`), and a board's strip along
+/// footprints of all `wall` objects (`vlnverse-instructions`, `wall_rects`), and a board's strip along
 /// a wall face cuts the sight line to furniture standing flush against the wall, which changes
 /// instructions. Floors are only covered area to the maps, and boards lie inside the room's
 /// floor.

@@ -8,7 +8,7 @@
 //!   lenient) or hopped to (Tel-Hop); `stop >= 0.5` stops.
 
 use vlnverse_sim::{Action, AgentConfig, WaypointMode};
-use vlnverse_task::eval::agents::control::CONTROL_PERIOD;
+use vlnverse_task::eval::agents::CONTROL_PERIOD;
 use vlnverse_task::eval::{ActionSpace, EnvAction, Setting};
 
 /// The question a discrete `ask` (id 6) puts to the oracle.

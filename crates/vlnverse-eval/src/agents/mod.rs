@@ -1,13 +1,21 @@
 //! Built-in agents: `oracle`, `random`, `forward`, `stop`, `semantic` and `external`.
 
-pub mod control;
-pub mod cues;
-pub mod external;
-pub mod forward;
-pub mod oracle;
-pub mod random;
-pub mod semantic;
-pub mod stop;
+mod control;
+mod cues;
+mod external;
+mod forward;
+mod oracle;
+mod random;
+mod semantic;
+mod stop;
+
+pub use control::{VelocityController, CONTROL_PERIOD, MODEL_DT, TURN_IN_PLACE};
+pub use external::{command_files_hash, ExternalAgent, ExternalFactory, ObsEncoding};
+pub use forward::ForwardAgent;
+pub use oracle::OracleAgent;
+pub use random::RandomAgent;
+pub use semantic::SemanticAgent;
+pub use stop::StopAgent;
 
 use glam::Vec2;
 

@@ -4,7 +4,7 @@
 use crate::eval_support;
 
 use std::sync::{Arc, Mutex};
-use vlnverse_eval::runner::NOT_UNDERSTOOD;
+use vlnverse_eval::NOT_UNDERSTOOD;
 use vlnverse_eval::{
     evaluate, Agent, AgentFactory, EpisodeInputs, EvalConfig, EvalRequest, StepInput,
 };

@@ -3,7 +3,7 @@
 use crate::eval_support;
 
 use vlnverse_eval::agents::builtin;
-use vlnverse_eval::agents::external::ObsEncoding;
+use vlnverse_eval::agents::ObsEncoding;
 use vlnverse_eval::{evaluate, EvalConfig, EvalRequest, Setting};
 use vlnverse_score::{Split, Task};
 

@@ -155,7 +155,7 @@ fn a_resume_with_another_identity_is_refused_naming_the_key_and_both_values() {
     let err = refused(&rig, &*random);
     assert!(err.contains("`rig`"), "{err}");
     let b64 = EvalConfig {
-        external_observations: vlnverse_eval::agents::external::ObsEncoding::Base64,
+        external_observations: vlnverse_eval::agents::ObsEncoding::Base64,
         ..strict.clone()
     };
     let err = refused(&b64, &*random);
