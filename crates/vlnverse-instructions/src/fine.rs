@@ -526,50 +526,154 @@ fn sentence(s: &str) -> String {
     }
 }
 
-/// The fine-grained instruction of `ctx.path` (see the module docs).
+/// The fine-grained instruction of `ctx.path` (see the module docs): an opening, then each leg
+/// in turn, then the stop and the remarks people add after it.
 pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Result<Instruction> {
     check_path(ctx.path)?;
     let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x6669_6e65);
     let writer = Writer::draw(&mut rng);
-    let pts = floor_points(ctx.path);
-    let n = pts.len();
-    let headings = segment_headings(&pts);
-    let path3: Vec<Vec3> = ctx.path.iter().map(|p| Vec3::from(*p)).collect();
-    let walls = wall_rects(ctx.scene);
-    let legs = legs_of(&pts, direction_of_yaw(ctx.start_yaw), cfg);
-    let leg_of = |seg: usize| {
-        let seg = seg.min(n - 2);
-        legs.iter()
-            .position(|l| l.first <= seg && seg <= l.last)
-            .unwrap_or(legs.len() - 1)
-    };
-    let end = pts[n - 1];
-    let end_obj = end_object(cfg, ctx, end, &walls);
-    let landmarks = ctx.graph.landmarks_along_path(
-        ctx.scene,
-        &path3,
-        |a, b| visible(ctx.navigable, &walls, a, b, cfg.sight_slack),
-        cfg.landmark_distance,
-    );
-    let rooms = rooms_along_path(ctx.scene, &path3);
-    let np_opts = writer.np();
-    let room_syn = if writer == Writer::Precise { 0.15 } else { 0.4 };
+    let route = Route::new(cfg, ctx, writer);
+    let mut draft = opening(&route, rng);
+    for li in 0..route.legs.len() {
+        leg_sentences(&route, li, &mut draft);
+    }
+    let stop = stop_sentence(&route, &mut draft);
+    draft.sentences.push(sentence(&stop));
+    closing_remarks(&route, &mut draft);
+    Ok(Instruction {
+        instruction_text: draft.sentences.join(" "),
+        instruction_tokens: None,
+        style: None,
+        grounding: draft.grounding,
+        sub_instructions: Vec::new(),
+    })
+}
 
-    let mut grounding = Vec::new();
+/// What an instruction describes, fixed before its first sentence: the path on the floor and
+/// its legs, the rooms and landmarks along it, the object at the goal, and how its writer names
+/// things.
+struct Route<'c, 's> {
+    cfg: &'c TemplateConfig,
+    ctx: &'c PathContext<'s>,
+    writer: Writer,
+    /// The path on the floor, and the heading of each segment.
+    pts: Vec<Vec2>,
+    headings: Vec<Vec2>,
+    walls: Vec<(Vec2, Vec2)>,
+    legs: Vec<Leg>,
+    /// The goal, and the object there worth naming.
+    end: Vec2,
+    end_obj: Option<&'s SceneObject>,
+    landmarks: Vec<Landmark>,
+    /// The rooms the path runs through: (first path index in the room, room).
+    rooms: Vec<(usize, RoomId)>,
+    np_opts: NpOptions,
+    /// How often a room goes by a synonym rather than its type's name.
+    room_syn: f64,
+}
+
+impl<'c, 's> Route<'c, 's> {
+    fn new(cfg: &'c TemplateConfig, ctx: &'c PathContext<'s>, writer: Writer) -> Self {
+        let pts = floor_points(ctx.path);
+        let headings = segment_headings(&pts);
+        let path3: Vec<Vec3> = ctx.path.iter().map(|p| Vec3::from(*p)).collect();
+        let walls = wall_rects(ctx.scene);
+        let legs = legs_of(&pts, direction_of_yaw(ctx.start_yaw), cfg);
+        let end = pts[pts.len() - 1];
+        let end_obj = end_object(cfg, ctx, end, &walls);
+        let landmarks = ctx.graph.landmarks_along_path(
+            ctx.scene,
+            &path3,
+            |a, b| visible(ctx.navigable, &walls, a, b, cfg.sight_slack),
+            cfg.landmark_distance,
+        );
+        let rooms = rooms_along_path(ctx.scene, &path3);
+        Route {
+            cfg,
+            ctx,
+            writer,
+            pts,
+            headings,
+            walls,
+            legs,
+            end,
+            end_obj,
+            landmarks,
+            rooms,
+            np_opts: writer.np(),
+            room_syn: if writer == Writer::Precise { 0.15 } else { 0.4 },
+        }
+    }
+
+    /// The number of path points.
+    fn n(&self) -> usize {
+        self.pts.len()
+    }
+
+    fn chatty(&self) -> bool {
+        self.writer == Writer::Chatty
+    }
+
+    /// The leg that path segment `seg` belongs to.
+    fn leg_of(&self, seg: usize) -> usize {
+        let seg = seg.min(self.n() - 2);
+        self.legs
+            .iter()
+            .position(|l| l.first <= seg && seg <= l.last)
+            .unwrap_or(self.legs.len() - 1)
+    }
+
+    /// The indices into [`Route::rooms`] of the rooms entered on leg `li`.
+    fn rooms_entered_on(&self, li: usize) -> impl DoubleEndedIterator<Item = usize> + '_ {
+        (1..self.rooms.len()).filter(move |&k| self.leg_of(self.rooms[k].0) == li)
+    }
+
+    /// How to describe an object seen from path point `index`.
+    fn view(&self, index: usize) -> Viewpoint<'_> {
+        Viewpoint {
+            pts: &self.pts,
+            headings: &self.headings,
+            index,
+        }
+    }
+}
+
+/// The instruction as it is written: the sentences so far, the objects they ground, and what
+/// carries over from one leg to the next.
+struct Draft {
+    rng: ChaCha8Rng,
+    grounding: Vec<GroundedObject>,
+    sentences: Vec<String>,
+    /// A start-room prefix ("From the kitchen, ") waiting for the next sentence.
+    prefix: String,
+    /// Whether the writer numbers the steps, in which form, and the last number used.
+    numbered: bool,
+    number_form: &'static str,
+    step_no: u32,
+    /// A landmark held back from the previous leg to open this leg's turn ("once you've passed
+    /// the sofa, turn left").
+    after: Option<String>,
+    /// How many more landmarks may be named (people name a handful per route, not every one
+    /// they pass).
+    budget: u32,
+}
+
+/// The start of the instruction: now and then an opener, whether the steps are numbered, and
+/// now and then the room the walk starts in.
+fn opening(route: &Route<'_, '_>, mut rng: ChaCha8Rng) -> Draft {
+    let writer = route.writer;
     let mut sentences: Vec<String> = Vec::new();
-    let chatty = writer == Writer::Chatty;
-    if rng.random_bool(if chatty { 0.5 } else { 0.06 }) {
+    if rng.random_bool(if route.chatty() { 0.5 } else { 0.06 }) {
         sentences.push(pick(&mut rng, &ph::OPEN).to_string());
     }
-    let mut prefix = String::new();
     // Some writers number their steps ("First, ...", "Step two: ...").
     let numbered = matches!(writer, Writer::Plain | Writer::Precise) && rng.random_bool(0.12);
     let number_form = pick(&mut rng, &ph::NUMBERED);
-    let mut step_no = 0u32;
+    let mut prefix = String::new();
     let start_p = if writer == Writer::Terse { 0.1 } else { 0.35 };
-    if let Some(&(_, r0)) = rooms.first() {
+    if let Some(&(_, r0)) = route.rooms.first() {
         if rng.random_bool(start_p) {
-            let room = room_np(ctx.scene, r0, room_syn, &mut rng);
+            let room = room_np(route.ctx.scene, r0, route.room_syn, &mut rng);
             let s = fill(pick(&mut rng, &ph::START_ROOM), &[("room", &room)]);
             if s.ends_with(',') {
                 if !numbered {
@@ -580,352 +684,510 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
             }
         }
     }
+    Draft {
+        rng,
+        grounding: Vec::new(),
+        sentences,
+        prefix,
+        numbered,
+        number_form,
+        step_no: 0,
+        after: None,
+        budget: if writer == Writer::Precise { 3 } else { 2 },
+    }
+}
 
-    // A landmark held back from the previous leg to open this leg's turn ("once you've
-    // passed the sofa, turn left").
-    let mut after: Option<String> = None;
-    // People name a handful of landmarks per route, not every one they pass.
-    let max_lm = match writer {
-        Writer::Precise => cfg.max_landmarks_per_leg,
-        _ => cfg.max_landmarks_per_leg.min(1),
+/// The sentences of leg `li`: its landmarks, turn, movement and room changes, in one of several
+/// sentence plans, then now and then a word on the room entered or an aside.
+fn leg_sentences(route: &Route<'_, '_>, li: usize, draft: &mut Draft) {
+    let leg = &route.legs[li];
+    let Some(chosen) = leg_landmarks(route, li, draft) else {
+        return;
     };
-    let mut budget = if writer == Writer::Precise { 3 } else { 2 };
-    for (li, leg) in legs.iter().enumerate() {
-        // Landmarks of this leg: left / right / ahead, closest first, distinct classes.
-        let mut mine: Vec<&Landmark> = landmarks
+    let mut named = name_landmarks(route, &chosen, draft);
+    let mut turn = turn_clause(leg.turn, leg.angle, li == 0, route.writer, &mut draft.rng);
+    if let (Some(t), Some(a)) = (turn.as_mut(), draft.after.take()) {
+        *t = format!("{a}, {t}");
+    }
+    hold_back_landmark(route, li, &mut named, draft);
+    let changes = room_changes(route, li, &mut draft.rng);
+    let entered = route
+        .rooms_entered_on(li)
+        .next_back()
+        .map(|k| route.rooms[k].1);
+    let mv = movement(route, leg, &changes, !named.is_empty(), &mut draft.rng);
+    let mut out = leg_plan(
+        route,
+        li,
+        turn,
+        mv,
+        &named,
+        changes,
+        entered,
+        &mut draft.rng,
+    );
+    out.extend(room_size_remark(route, entered, &mut draft.rng));
+    number_and_add(li, out, draft);
+    if route.chatty() && draft.rng.random_bool(0.25) {
+        draft
+            .sentences
+            .push(pick(&mut draft.rng, &ph::ASIDE).to_string());
+    }
+}
+
+/// The landmarks named on leg `li`: left / right / ahead of the path, closest first, of
+/// distinct classes, within the writer's limits, in path order. `None` when the leg is a slight
+/// bend with nothing on it, left out as people often do.
+fn leg_landmarks<'r>(
+    route: &'r Route<'_, '_>,
+    li: usize,
+    draft: &mut Draft,
+) -> Option<Vec<&'r Landmark>> {
+    let scene = route.ctx.scene;
+    let leg = &route.legs[li];
+    let mut mine: Vec<&Landmark> = route
+        .landmarks
+        .iter()
+        .filter(|l| route.leg_of(l.path_index) == li)
+        .filter(|l| Some(l.object) != route.end_obj.map(|o| o.id))
+        .filter(|l| !matches!(env_side(l.side), Side::Behind))
+        .collect();
+    mine.sort_by(|a, b| {
+        a.distance
+            .total_cmp(&b.distance)
+            .then(a.object.cmp(&b.object))
+    });
+    // A slight bend with nothing on it and no room change is often not mentioned at all.
+    let has_change = route.rooms_entered_on(li).next().is_some();
+    if mine.is_empty()
+        && !has_change
+        && matches!(leg.turn, Turn::Slight(_))
+        && li > 0
+        && li + 1 < route.legs.len()
+        && draft.rng.random_bool(0.8)
+    {
+        return None;
+    }
+    // People name a handful of landmarks per route, not every one they pass.
+    let max_lm = match route.writer {
+        Writer::Precise => route.cfg.max_landmarks_per_leg,
+        _ => route.cfg.max_landmarks_per_leg.min(1),
+    };
+    let mut chosen: Vec<&Landmark> = Vec::new();
+    for l in mine {
+        if chosen.len() >= max_lm || draft.budget == 0 {
+            break;
+        }
+        let Some(o) = scene.object(l.object) else {
+            continue;
+        };
+        if chosen
             .iter()
-            .filter(|l| leg_of(l.path_index) == li)
-            .filter(|l| Some(l.object) != end_obj.map(|o| o.id))
-            .filter(|l| !matches!(env_side(l.side), Side::Behind))
-            .collect();
-        mine.sort_by(|a, b| {
-            a.distance
-                .total_cmp(&b.distance)
-                .then(a.object.cmp(&b.object))
-        });
-        // A slight bend with nothing on it and no room change is often not mentioned at all.
-        let has_change = (1..rooms.len()).any(|k| leg_of(rooms[k].0) == li);
-        if mine.is_empty()
-            && !has_change
-            && matches!(leg.turn, Turn::Slight(_))
-            && li > 0
-            && li + 1 < legs.len()
-            && rng.random_bool(0.8)
+            .any(|c| scene.object(c.object).is_some_and(|x| x.class == o.class))
         {
             continue;
         }
-        let mut chosen: Vec<&Landmark> = Vec::new();
-        for l in mine {
-            if chosen.len() >= max_lm || budget == 0 {
-                break;
-            }
-            let Some(o) = ctx.scene.object(l.object) else {
-                continue;
-            };
-            if chosen.iter().any(|c| {
-                ctx.scene
-                    .object(c.object)
-                    .is_some_and(|x| x.class == o.class)
-            }) {
-                continue;
-            }
-            // People leave out landmarks now and then, never the only one.
-            if !chosen.is_empty() && rng.random_bool(0.3) {
-                continue;
-            }
-            chosen.push(l);
-            budget -= 1;
+        // People leave out landmarks now and then, never the only one.
+        if !chosen.is_empty() && draft.rng.random_bool(0.3) {
+            continue;
         }
-        chosen.sort_by_key(|l| (l.path_index, l.object));
-        let mut named: Vec<Named> = Vec::new();
-        for l in &chosen {
-            let Some(o) = ctx.scene.object(l.object) else {
-                continue;
-            };
-            let side = env_side(l.side);
-            let view = Viewpoint {
-                pts: &pts,
-                headings: &headings,
-                index: l.path_index,
-            };
-            let (text, extra) = object_np(ctx, o, view, np_opts, MAX_REFERENCE_DISTANCE, &mut rng);
-            grounding.push(grounded(o, Role::Landmark, Some(side), l.path_index));
-            grounding.extend(extra);
-            named.push(Named { text, side });
-        }
+        chosen.push(l);
+        draft.budget -= 1;
+    }
+    chosen.sort_by_key(|l| (l.path_index, l.object));
+    Some(chosen)
+}
 
-        let mut turn = turn_clause(leg.turn, leg.angle, li == 0, writer, &mut rng);
-        if let (Some(t), Some(a)) = (turn.as_mut(), after.take()) {
-            *t = format!("{a}, {t}");
-        }
-        // Hold back this leg's last lateral landmark for the next leg's turn.
-        let next_turns = legs
-            .get(li + 1)
-            .is_some_and(|l| matches!(l.turn, Turn::Turn(_) | Turn::Slight(_)));
-        if next_turns
-            && named.last().is_some_and(|m| m.side != Side::Ahead)
-            && rng.random_bool(0.25)
-        {
-            if let Some(m) = named.pop() {
-                after = Some(fill(pick(&mut rng, &ph::AFTER_OBJ), &[("obj", &m.text)]));
-            }
-        }
-        let ks: Vec<usize> = (1..rooms.len())
-            .filter(|&k| leg_of(rooms[k].0) == li)
-            .collect();
-        // Several rooms crossed on one leg are often said in one go ("go through the bedroom
-        // into the office"); every room entered is still named by its type.
-        let changes: Vec<String> = if ks.len() >= 2 && rng.random_bool(0.7) {
-            let kind = |k: usize| {
-                ctx.scene
-                    .room(rooms[k].1)
-                    .map(|r| format!("the {}", r.kind.words()))
-                    .unwrap_or_else(|| "the next room".into())
-            };
-            let mids: Vec<String> = ks[..ks.len() - 1].iter().map(|&k| kind(k)).collect();
-            let last = kind(ks[ks.len() - 1]);
-            vec![fill(
-                pick(&mut rng, &ph::THROUGH_ROOMS),
-                &[("mid", &mids.join(" and then ")), ("room", &last)],
-            )]
-        } else {
-            ks.iter()
-                .map(|&k| {
-                    let at = pts[rooms[k].0.min(n - 1)];
-                    room_change(ctx, rooms[k - 1].1, rooms[k].1, at, room_syn, &mut rng)
-                })
-                .collect()
+/// The phrases of the chosen landmarks, grounded.
+fn name_landmarks(route: &Route<'_, '_>, chosen: &[&Landmark], draft: &mut Draft) -> Vec<Named> {
+    let mut named: Vec<Named> = Vec::new();
+    for l in chosen {
+        let Some(o) = route.ctx.scene.object(l.object) else {
+            continue;
         };
+        let side = env_side(l.side);
+        let (text, extra) = object_np(
+            route.ctx,
+            o,
+            route.view(l.path_index),
+            route.np_opts,
+            MAX_REFERENCE_DISTANCE,
+            &mut draft.rng,
+        );
+        draft
+            .grounding
+            .push(grounded(o, Role::Landmark, Some(side), l.path_index));
+        draft.grounding.extend(extra);
+        named.push(Named { text, side });
+    }
+    named
+}
 
-        let entered = (1..rooms.len())
-            .rev()
-            .find(|&k| leg_of(rooms[k].0) == li)
-            .map(|k| rooms[k].1);
-        let here = rooms
-            .iter()
-            .rev()
-            .find(|(s, _)| *s <= leg.first)
-            .map(|&(_, r)| r);
-        let here_kind = here.and_then(|r| ctx.scene.room(r)).map(|r| r.kind);
-        let mv = match here {
-            Some(r)
-                if changes.is_empty()
-                    && here_kind == Some(RoomType::Hallway)
-                    && rng.random_bool(0.35) =>
-            {
-                let hall = room_np(ctx.scene, r, room_syn, &mut rng);
-                fill(pick(&mut rng, &ph::ALONG_HALL), &[("room", &hall)])
-            }
-            Some(r) if changes.is_empty() && leg.len > 2.5 && rng.random_bool(0.12) => {
-                let room = room_np(ctx.scene, r, room_syn, &mut rng);
-                fill(pick(&mut rng, &ph::THROUGH_ROOM), &[("room", &room)])
-            }
-            _ => move_clause(leg.len, writer, !named.is_empty(), &mut rng),
-        };
-        let lm_clause = |m: &Named, rng: &mut ChaCha8Rng| {
-            if m.side == Side::Ahead {
-                fill(pick(rng, &ph::TOWARDS), &[("obj", &m.text)])
-            } else {
-                let sp = fill(pick(rng, &ph::SIDE), &[("dir", side_word(m.side))]);
-                fill(
-                    pick(rng, &ph::PASS_SIDE),
-                    &[("obj", &m.text), ("side", &sp)],
-                )
-            }
-        };
-        let see_sentence = |m: &Named, rng: &mut ChaCha8Rng| {
-            if m.side == Side::Ahead {
-                format!("{} is ahead of you", m.text)
-            } else {
-                let sp = fill(pick(rng, &ph::SIDE), &[("dir", side_word(m.side))]);
-                fill(pick(rng, &ph::SEE_SIDE), &[("obj", &m.text), ("side", &sp)])
-            }
-        };
-
-        // A bare turn with nothing on the way is often all people say of a leg.
-        let bare = named.is_empty()
-            && changes.is_empty()
-            && turn.is_some()
-            && li + 1 < legs.len()
-            && (writer == Writer::Terse || rng.random_bool(if li >= 2 { 0.95 } else { 0.8 }));
-        // Sentence plans.
-        let mut out: Vec<String> = Vec::new();
-        let lateral_first = named.first().is_some_and(|m| m.side != Side::Ahead);
-        let ahead_last = named.last().is_some_and(|m| m.side == Side::Ahead);
-        // A leg into another room is often only its turn and the room change ("Turn left into
-        // the kitchen"), more so further along a long route.
-        let plan = if bare {
-            0
-        } else if !changes.is_empty() && rng.random_bool(if li >= 1 { 0.6 } else { 0.4 }) {
-            4
-        } else {
-            rng.random_range(0..6)
-        };
-        match plan {
-            // "With the sofa on your left, turn right and walk on."
-            1 if lateral_first => {
-                let m = &named[0];
-                let sp = fill(pick(&mut rng, &ph::SIDE), &[("dir", side_word(m.side))]);
-                let head = fill(
-                    pick(&mut rng, &ph::WITH_SIDE),
-                    &[("obj", &m.text), ("side", &sp)],
-                );
-                let mut cl: Vec<String> = turn.into_iter().collect();
-                cl.push(mv);
-                for m in &named[1..] {
-                    let c = lm_clause(m, &mut rng);
-                    let go = pick(&mut rng, &["continue", "keep going", "carry on", "go on"]);
-                    cl.push(format!("{go} {c}"));
-                }
-                cl.extend(changes);
-                out.push(format!("{head}, {}", join(&cl, &mut rng)));
-            }
-            // "Turn left and walk on until you reach the table."
-            2 if ahead_last || !changes.is_empty() => {
-                let mut cl: Vec<String> = turn.into_iter().collect();
-                let mut m2 = mv;
-                let k = named.len().saturating_sub(usize::from(ahead_last));
-                for m in &named[..k] {
-                    m2 = format!("{m2}, {}", lm_clause(m, &mut rng));
-                }
-                if ahead_last {
-                    let m = &named[named.len() - 1];
-                    m2 = format!(
-                        "{m2} {}",
-                        fill(pick(&mut rng, &ph::UNTIL_OBJ), &[("obj", &m.text)])
-                    );
-                    cl.push(m2);
-                    cl.extend(changes);
-                } else {
-                    let mut ch = changes.into_iter();
-                    let first = ch.next().unwrap_or_default();
-                    cl.push(format!("{m2} until you {first}"));
-                    cl.extend(ch);
-                }
-                out.push(join(&cl, &mut rng));
-            }
-            // Short sentences: "Turn left. Walk on. You'll pass the sofa on your right."
-            3 => {
-                if let Some(t) = turn {
-                    out.push(t);
-                }
-                out.push(mv);
-                for m in &named {
-                    out.push(see_sentence(m, &mut rng));
-                }
-                out.extend(changes);
-                if let Some(r) = entered.and_then(|r| ctx.scene.room(r)) {
-                    if rng.random_bool(0.4) {
-                        let room = format!("the {}", r.kind.words());
-                        out.push(fill(pick(&mut rng, &ph::NOW_IN), &[("room", &room)]));
-                    }
-                }
-            }
-            // Room first: "Turn right, go through the doorway into the kitchen, passing ..."
-            4 if !changes.is_empty() => {
-                let mut cl: Vec<String> = turn.into_iter().collect();
-                let mut ch = changes.into_iter();
-                let mut c0 = ch.next().unwrap_or_default();
-                for m in &named {
-                    c0 = format!("{c0}, {}", lm_clause(m, &mut rng));
-                }
-                cl.push(c0);
-                cl.extend(ch);
-                out.push(join(&cl, &mut rng));
-            }
-            // "Turn left and walk forward, passing the sofa on your left; continue past ..."
-            _ => {
-                let mut cl: Vec<String> = turn.into_iter().collect();
-                let mut m2 = mv;
-                if let Some(m) = named.first() {
-                    let c = lm_clause(m, &mut rng);
-                    let sep = if m.side == Side::Ahead { " " } else { ", " };
-                    m2 = format!("{m2}{sep}{c}");
-                }
-                if !bare {
-                    cl.push(m2);
-                }
-                for m in named.iter().skip(1) {
-                    if rng.random_bool(0.5) {
-                        cl.push(format!(
-                            "{} {}",
-                            pick(&mut rng, &["continue", "keep going", "carry on", "go on"]),
-                            lm_clause(m, &mut rng)
-                        ));
-                    } else {
-                        out.push(join(&cl, &mut rng));
-                        cl = vec![see_sentence(m, &mut rng)];
-                    }
-                }
-                cl.extend(changes);
-                out.push(join(&cl, &mut rng));
-            }
-        }
-        // Now and then a word on the size of the room just entered.
-        if let Some(r) = entered.and_then(|r| ctx.scene.room(r)) {
-            if writer != Writer::Terse && rng.random_bool(0.1) {
-                let area = r.area();
-                let bank = if r.kind == RoomType::Hallway {
-                    (area > 6.0).then_some(ph::HALL_LONG)
-                } else if area < 8.0 {
-                    Some(ph::ROOM_SMALL)
-                } else if area > 24.0 {
-                    Some(ph::ROOM_BIG)
-                } else {
-                    None
-                };
-                if let Some(b) = bank {
-                    out.push(pick(&mut rng, &b).to_string());
-                }
-            }
-        }
-        for (k, s) in out.into_iter().enumerate() {
-            let mut s = s;
-            let ord = if numbered && k == 0 {
-                step_no += 1;
-                ordinal_word(step_no).filter(|_| step_no <= 10)
-            } else {
-                None
-            };
-            if let Some(o) = ord {
-                let form = if number_form.contains("ly") && step_no > 4 {
-                    "{ord}, "
-                } else {
-                    number_form
-                };
-                let head = fill(form, &[("ord", o), ("num", &number_word(step_no))]);
-                s = format!("{head}{s}");
-            } else if k == 0 && li > 0 {
-                s = format!("{}{s}", pick(&mut rng, &ph::NEXT));
-            }
-            if k == 0 && !prefix.is_empty() {
-                s = format!("{}{}", std::mem::take(&mut prefix), s);
-            }
-            sentences.push(sentence(&s));
-        }
-        if chatty && rng.random_bool(0.25) {
-            sentences.push(pick(&mut rng, &ph::ASIDE).to_string());
+/// Now and then hold back this leg's last lateral landmark to open the next leg's turn.
+fn hold_back_landmark(route: &Route<'_, '_>, li: usize, named: &mut Vec<Named>, draft: &mut Draft) {
+    let next_turns = route
+        .legs
+        .get(li + 1)
+        .is_some_and(|l| matches!(l.turn, Turn::Turn(_) | Turn::Slight(_)));
+    if next_turns
+        && named.last().is_some_and(|m| m.side != Side::Ahead)
+        && draft.rng.random_bool(0.25)
+    {
+        if let Some(m) = named.pop() {
+            draft.after = Some(fill(
+                pick(&mut draft.rng, &ph::AFTER_OBJ),
+                &[("obj", &m.text)],
+            ));
         }
     }
+}
 
-    // The end point.
-    let last_room = rooms.last().map(|&(_, r)| r);
-    let end_heading = headings.last().copied().unwrap_or(Vec2::new(0.0, -1.0));
-    let mut stop = if let Some(o) = end_obj {
+/// The room changes of leg `li`. Several rooms crossed on one leg are often said in one go
+/// ("go through the bedroom into the office"); every room entered is still named by its type.
+fn room_changes(route: &Route<'_, '_>, li: usize, rng: &mut ChaCha8Rng) -> Vec<String> {
+    let ctx = route.ctx;
+    let rooms = &route.rooms;
+    let ks: Vec<usize> = route.rooms_entered_on(li).collect();
+    if ks.len() >= 2 && rng.random_bool(0.7) {
+        let kind = |k: usize| {
+            ctx.scene
+                .room(rooms[k].1)
+                .map(|r| format!("the {}", r.kind.words()))
+                .unwrap_or_else(|| "the next room".into())
+        };
+        let mids: Vec<String> = ks[..ks.len() - 1].iter().map(|&k| kind(k)).collect();
+        let last = kind(ks[ks.len() - 1]);
+        vec![fill(
+            pick(rng, &ph::THROUGH_ROOMS),
+            &[("mid", &mids.join(" and then ")), ("room", &last)],
+        )]
+    } else {
+        ks.iter()
+            .map(|&k| {
+                let at = route.pts[rooms[k].0.min(route.n() - 1)];
+                room_change(ctx, rooms[k - 1].1, rooms[k].1, at, route.room_syn, rng)
+            })
+            .collect()
+    }
+}
+
+/// The movement of a leg: along the hallway it starts in, through the room it stays in, or a
+/// plain movement clause.
+fn movement(
+    route: &Route<'_, '_>,
+    leg: &Leg,
+    changes: &[String],
+    landmark: bool,
+    rng: &mut ChaCha8Rng,
+) -> String {
+    let scene = route.ctx.scene;
+    let here = route
+        .rooms
+        .iter()
+        .rev()
+        .find(|(s, _)| *s <= leg.first)
+        .map(|&(_, r)| r);
+    let here_kind = here.and_then(|r| scene.room(r)).map(|r| r.kind);
+    match here {
+        Some(r)
+            if changes.is_empty()
+                && here_kind == Some(RoomType::Hallway)
+                && rng.random_bool(0.35) =>
+        {
+            let hall = room_np(scene, r, route.room_syn, rng);
+            fill(pick(rng, &ph::ALONG_HALL), &[("room", &hall)])
+        }
+        Some(r) if changes.is_empty() && leg.len > 2.5 && rng.random_bool(0.12) => {
+            let room = room_np(scene, r, route.room_syn, rng);
+            fill(pick(rng, &ph::THROUGH_ROOM), &[("room", &room)])
+        }
+        _ => move_clause(leg.len, route.writer, landmark, rng),
+    }
+}
+
+/// A landmark as a clause of a movement: "towards the lamp", "passing the sofa on your left".
+fn landmark_clause(m: &Named, rng: &mut ChaCha8Rng) -> String {
+    if m.side == Side::Ahead {
+        fill(pick(rng, &ph::TOWARDS), &[("obj", &m.text)])
+    } else {
+        let sp = fill(pick(rng, &ph::SIDE), &[("dir", side_word(m.side))]);
+        fill(
+            pick(rng, &ph::PASS_SIDE),
+            &[("obj", &m.text), ("side", &sp)],
+        )
+    }
+}
+
+/// A landmark as a sentence of its own: "you'll see the sofa on your right".
+fn see_sentence(m: &Named, rng: &mut ChaCha8Rng) -> String {
+    if m.side == Side::Ahead {
+        format!("{} is ahead of you", m.text)
+    } else {
+        let sp = fill(pick(rng, &ph::SIDE), &[("dir", side_word(m.side))]);
+        fill(pick(rng, &ph::SEE_SIDE), &[("obj", &m.text), ("side", &sp)])
+    }
+}
+
+/// "continue", "keep going", ...: walking on to the next landmark.
+const GO_ON: &[&str] = &["continue", "keep going", "carry on", "go on"];
+
+/// The sentences of a leg in one of several sentence plans, from its turn, movement, named
+/// landmarks and room changes.
+fn leg_plan(
+    route: &Route<'_, '_>,
+    li: usize,
+    turn: Option<String>,
+    mv: String,
+    named: &[Named],
+    changes: Vec<String>,
+    entered: Option<RoomId>,
+    rng: &mut ChaCha8Rng,
+) -> Vec<String> {
+    let writer = route.writer;
+    // A bare turn with nothing on the way is often all people say of a leg.
+    let bare = named.is_empty()
+        && changes.is_empty()
+        && turn.is_some()
+        && li + 1 < route.legs.len()
+        && (writer == Writer::Terse || rng.random_bool(if li >= 2 { 0.95 } else { 0.8 }));
+    let lateral_first = named.first().is_some_and(|m| m.side != Side::Ahead);
+    let ahead_last = named.last().is_some_and(|m| m.side == Side::Ahead);
+    // A leg into another room is often only its turn and the room change ("Turn left into
+    // the kitchen"), more so further along a long route.
+    let plan = if bare {
+        0
+    } else if !changes.is_empty() && rng.random_bool(if li >= 1 { 0.6 } else { 0.4 }) {
+        4
+    } else {
+        rng.random_range(0..6)
+    };
+    match plan {
+        1 if lateral_first => plan_with_side(turn, mv, named, changes, rng),
+        2 if ahead_last || !changes.is_empty() => {
+            plan_until(turn, mv, named, changes, ahead_last, rng)
+        }
+        3 => plan_short(route, turn, mv, named, changes, entered, rng),
+        4 if !changes.is_empty() => plan_room_first(turn, named, changes, rng),
+        _ => plan_walk_on(turn, mv, named, changes, bare, rng),
+    }
+}
+
+/// "With the sofa on your left, turn right and walk on."
+fn plan_with_side(
+    turn: Option<String>,
+    mv: String,
+    named: &[Named],
+    changes: Vec<String>,
+    rng: &mut ChaCha8Rng,
+) -> Vec<String> {
+    let m = &named[0];
+    let sp = fill(pick(rng, &ph::SIDE), &[("dir", side_word(m.side))]);
+    let head = fill(
+        pick(rng, &ph::WITH_SIDE),
+        &[("obj", &m.text), ("side", &sp)],
+    );
+    let mut cl: Vec<String> = turn.into_iter().collect();
+    cl.push(mv);
+    for m in &named[1..] {
+        let c = landmark_clause(m, rng);
+        let go = pick(rng, GO_ON);
+        cl.push(format!("{go} {c}"));
+    }
+    cl.extend(changes);
+    vec![format!("{head}, {}", join(&cl, rng))]
+}
+
+/// "Turn left and walk on until you reach the table." (or until the room change).
+fn plan_until(
+    turn: Option<String>,
+    mv: String,
+    named: &[Named],
+    changes: Vec<String>,
+    ahead_last: bool,
+    rng: &mut ChaCha8Rng,
+) -> Vec<String> {
+    let mut cl: Vec<String> = turn.into_iter().collect();
+    let mut m2 = mv;
+    let k = named.len().saturating_sub(usize::from(ahead_last));
+    for m in &named[..k] {
+        m2 = format!("{m2}, {}", landmark_clause(m, rng));
+    }
+    if ahead_last {
+        let m = &named[named.len() - 1];
+        m2 = format!(
+            "{m2} {}",
+            fill(pick(rng, &ph::UNTIL_OBJ), &[("obj", &m.text)])
+        );
+        cl.push(m2);
+        cl.extend(changes);
+    } else {
+        let mut ch = changes.into_iter();
+        let first = ch.next().unwrap_or_default();
+        cl.push(format!("{m2} until you {first}"));
+        cl.extend(ch);
+    }
+    vec![join(&cl, rng)]
+}
+
+/// Short sentences: "Turn left. Walk on. You'll pass the sofa on your right." Now and then
+/// the room entered ("You are now in the kitchen").
+fn plan_short(
+    route: &Route<'_, '_>,
+    turn: Option<String>,
+    mv: String,
+    named: &[Named],
+    changes: Vec<String>,
+    entered: Option<RoomId>,
+    rng: &mut ChaCha8Rng,
+) -> Vec<String> {
+    let mut out: Vec<String> = turn.into_iter().collect();
+    out.push(mv);
+    for m in named {
+        out.push(see_sentence(m, rng));
+    }
+    out.extend(changes);
+    if let Some(r) = entered.and_then(|r| route.ctx.scene.room(r)) {
+        if rng.random_bool(0.4) {
+            let room = format!("the {}", r.kind.words());
+            out.push(fill(pick(rng, &ph::NOW_IN), &[("room", &room)]));
+        }
+    }
+    out
+}
+
+/// Room first: "Turn right, go through the doorway into the kitchen, passing ..."
+fn plan_room_first(
+    turn: Option<String>,
+    named: &[Named],
+    changes: Vec<String>,
+    rng: &mut ChaCha8Rng,
+) -> Vec<String> {
+    let mut cl: Vec<String> = turn.into_iter().collect();
+    let mut ch = changes.into_iter();
+    let mut c0 = ch.next().unwrap_or_default();
+    for m in named {
+        c0 = format!("{c0}, {}", landmark_clause(m, rng));
+    }
+    cl.push(c0);
+    cl.extend(ch);
+    vec![join(&cl, rng)]
+}
+
+/// "Turn left and walk forward, passing the sofa on your left; continue past ..." (a bare
+/// turn alone when `bare`).
+fn plan_walk_on(
+    turn: Option<String>,
+    mv: String,
+    named: &[Named],
+    changes: Vec<String>,
+    bare: bool,
+    rng: &mut ChaCha8Rng,
+) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut cl: Vec<String> = turn.into_iter().collect();
+    let mut m2 = mv;
+    if let Some(m) = named.first() {
+        let c = landmark_clause(m, rng);
+        let sep = if m.side == Side::Ahead { " " } else { ", " };
+        m2 = format!("{m2}{sep}{c}");
+    }
+    if !bare {
+        cl.push(m2);
+    }
+    for m in named.iter().skip(1) {
+        if rng.random_bool(0.5) {
+            cl.push(format!("{} {}", pick(rng, GO_ON), landmark_clause(m, rng)));
+        } else {
+            out.push(join(&cl, rng));
+            cl = vec![see_sentence(m, rng)];
+        }
+    }
+    cl.extend(changes);
+    out.push(join(&cl, rng));
+    out
+}
+
+/// Now and then a word on the size of the room just entered.
+fn room_size_remark(
+    route: &Route<'_, '_>,
+    entered: Option<RoomId>,
+    rng: &mut ChaCha8Rng,
+) -> Option<String> {
+    let r = entered.and_then(|r| route.ctx.scene.room(r))?;
+    if route.writer == Writer::Terse || !rng.random_bool(0.1) {
+        return None;
+    }
+    let area = r.area();
+    let bank = if r.kind == RoomType::Hallway {
+        (area > 6.0).then_some(ph::HALL_LONG)
+    } else if area < 8.0 {
+        Some(ph::ROOM_SMALL)
+    } else if area > 24.0 {
+        Some(ph::ROOM_BIG)
+    } else {
+        None
+    };
+    bank.map(|b| pick(rng, &b).to_string())
+}
+
+/// Add a leg's sentences: the first numbered ("Second, ...") or opened ("Next, ...") and
+/// taking the start-room prefix if one is waiting.
+fn number_and_add(li: usize, out: Vec<String>, draft: &mut Draft) {
+    for (k, s) in out.into_iter().enumerate() {
+        let mut s = s;
+        let ord = if draft.numbered && k == 0 {
+            draft.step_no += 1;
+            ordinal_word(draft.step_no).filter(|_| draft.step_no <= 10)
+        } else {
+            None
+        };
+        if let Some(o) = ord {
+            let form = if draft.number_form.contains("ly") && draft.step_no > 4 {
+                "{ord}, "
+            } else {
+                draft.number_form
+            };
+            let head = fill(form, &[("ord", o), ("num", &number_word(draft.step_no))]);
+            s = format!("{head}{s}");
+        } else if k == 0 && li > 0 {
+            s = format!("{}{s}", pick(&mut draft.rng, &ph::NEXT));
+        }
+        if k == 0 && !draft.prefix.is_empty() {
+            s = format!("{}{}", std::mem::take(&mut draft.prefix), s);
+        }
+        draft.sentences.push(sentence(&s));
+    }
+}
+
+/// The stop: at the object at the goal (and its side), or in the last room (and where in it),
+/// or a plain stop; opened by a last-step word and taking a waiting start-room prefix.
+fn stop_sentence(route: &Route<'_, '_>, draft: &mut Draft) -> String {
+    let ctx = route.ctx;
+    let (end, n) = (route.end, route.n());
+    let rng = &mut draft.rng;
+    let last_room = route.rooms.last().map(|&(_, r)| r);
+    let end_heading = route
+        .headings
+        .last()
+        .copied()
+        .unwrap_or(Vec2::new(0.0, -1.0));
+    let mut stop = if let Some(o) = route.end_obj {
         let (lo, hi) = footprint(o);
         let side = Some(env_side(side_of_heading(end, end_heading, (lo + hi) * 0.5)));
-        let view = Viewpoint {
-            pts: &pts,
-            headings: &headings,
-            index: n - 1,
-        };
-        let (obj, extra) = object_np(ctx, o, view, np_opts, MAX_REFERENCE_DISTANCE, &mut rng);
-        grounding.push(grounded(o, Role::Target, side, n - 1));
-        grounding.extend(extra);
-        let mut s = fill(pick(&mut rng, &ph::STOP_AT), &[("obj", &obj)]);
+        let (obj, extra) = object_np(
+            ctx,
+            o,
+            route.view(n - 1),
+            route.np_opts,
+            MAX_REFERENCE_DISTANCE,
+            rng,
+        );
+        draft.grounding.push(grounded(o, Role::Target, side, n - 1));
+        draft.grounding.extend(extra);
+        let mut s = fill(pick(rng, &ph::STOP_AT), &[("obj", &obj)]);
         if let Some(sd @ (Side::Left | Side::Right)) = side {
             if rng.random_bool(0.35) {
-                let sp = fill(pick(&mut rng, &ph::SIDE), &[("dir", side_word(sd))]);
+                let sp = fill(pick(rng, &ph::SIDE), &[("dir", side_word(sd))]);
                 s = match rng.random_range(0..3) {
                     0 => format!("{s}, which is {sp}"),
                     1 => format!("{s}; it will be {sp}"),
@@ -935,75 +1197,90 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
         }
         s
     } else if let Some(r) = last_room {
-        let room = room_np(ctx.scene, r, room_syn, &mut rng);
-        match end_place(ctx.scene, Some(r), end, end_heading, &mut rng) {
+        let room = room_np(ctx.scene, r, route.room_syn, rng);
+        match end_place(ctx.scene, Some(r), end, end_heading, rng) {
             // "stop in the far left corner of the kitchen"; other places after a comma
             // ("wait just inside the kitchen, with the wall behind you").
             Some(w) if w.contains("corner") && rng.random_bool(0.6) => fill(
-                pick(&mut rng, &ph::STOP_ROOM_WHERE),
+                pick(rng, &ph::STOP_ROOM_WHERE),
                 &[("room", &room), ("where", &w)],
             ),
             Some(w) if rng.random_bool(0.6) => format!(
                 "{}, {w}",
-                fill(pick(&mut rng, &ph::STOP_ROOM), &[("room", &room)])
+                fill(pick(rng, &ph::STOP_ROOM), &[("room", &room)])
             ),
-            _ => fill(pick(&mut rng, &ph::STOP_ROOM), &[("room", &room)]),
+            _ => fill(pick(rng, &ph::STOP_ROOM), &[("room", &room)]),
         }
     } else {
-        pick(&mut rng, &ph::STOP).to_string()
+        pick(rng, &ph::STOP).to_string()
     };
-    stop = format!("{}{stop}", pick(&mut rng, &ph::LAST));
-    if !prefix.is_empty() {
-        stop = format!("{prefix}{stop}");
+    stop = format!("{}{stop}", pick(rng, &ph::LAST));
+    if !draft.prefix.is_empty() {
+        stop = format!("{}{stop}", draft.prefix);
     }
-    sentences.push(sentence(&stop));
-    // Reassurances people add, only where they hold: a big end object, the only one of its
-    // class in the home, or the room that walking on past the goal would lead into.
-    if let Some(o) = end_obj {
+    stop
+}
+
+/// Remarks people add after the stop, only where they hold: a big end object, the only one of
+/// its class in the home, the room that walking on past the goal would lead into, how long the
+/// walk takes; and now and then a closer.
+fn closing_remarks(route: &Route<'_, '_>, draft: &mut Draft) {
+    let (ctx, writer, chatty) = (route.ctx, route.writer, route.chatty());
+    let rng = &mut draft.rng;
+    let sentences = &mut draft.sentences;
+    let end_heading = route
+        .headings
+        .last()
+        .copied()
+        .unwrap_or(Vec2::new(0.0, -1.0));
+    if let Some(o) = route.end_obj {
         let (lo, hi) = footprint(o);
         let size = hi - lo;
         let big = size.x * size.y > 1.0 || o.bbox.size().y > 1.6;
         let only = ctx.graph.objects_of_class(o.class).len() == 1;
         let p = if chatty { 0.4 } else { 0.15 };
         if big && rng.random_bool(p) {
-            sentences.push(pick(&mut rng, &ph::CANT_MISS).to_string());
+            sentences.push(pick(rng, &ph::CANT_MISS).to_string());
         } else if only && rng.random_bool(p) {
             let name = o.class.words();
-            sentences.push(fill(pick(&mut rng, &ph::ONLY_ONE), &[("name", &name)]));
+            sentences.push(fill(pick(rng, &ph::ONLY_ONE), &[("name", &name)]));
         }
     }
     if writer != Writer::Terse && rng.random_bool(0.3) {
-        if let Some(room) = room_beyond(ctx, end, end_heading, &walls, cfg.sight_slack) {
-            sentences.push(fill(pick(&mut rng, &ph::OVERSHOOT), &[("room", &room)]));
+        if let Some(room) = room_beyond(
+            ctx,
+            route.end,
+            end_heading,
+            &route.walls,
+            route.cfg.sight_slack,
+        ) {
+            sentences.push(fill(pick(rng, &ph::OVERSHOOT), &[("room", &room)]));
         }
     }
     if matches!(writer, Writer::Chatty | Writer::Plain) && rng.random_bool(0.08) {
-        // At an easy walking pace of about a metre a second.
-        let secs = pts.windows(2).map(|w| w[0].distance(w[1])).sum::<f32>();
-        let t = match secs {
-            s if s < 8.0 => "a few seconds".to_string(),
-            s if (25.0..35.0).contains(&s) => "about half a minute".to_string(),
-            s if s < 50.0 => format!(
-                "{} {} seconds",
-                pick(&mut rng, &["about", "roughly", "around"]),
-                number_word(((s / 5.0).round() * 5.0) as u32)
-            ),
-            s if s < 75.0 => "about a minute".to_string(),
-            _ => "a minute or two".to_string(),
-        };
-        sentences.push(fill(pick(&mut rng, &ph::WALK_TIME), &[("t", &t)]));
+        let t = walk_time(&route.pts, rng);
+        sentences.push(fill(pick(rng, &ph::WALK_TIME), &[("t", &t)]));
     }
     if rng.random_bool(if chatty { 0.5 } else { 0.04 }) {
-        sentences.push(pick(&mut rng, &ph::CLOSE).to_string());
+        sentences.push(pick(rng, &ph::CLOSE).to_string());
     }
+}
 
-    Ok(Instruction {
-        instruction_text: sentences.join(" "),
-        instruction_tokens: None,
-        style: None,
-        grounding,
-        sub_instructions: Vec::new(),
-    })
+/// How long walking the path takes at an easy pace of about a metre a second ("about twenty
+/// seconds", "a minute or two").
+fn walk_time(pts: &[Vec2], rng: &mut ChaCha8Rng) -> String {
+    let secs = pts.windows(2).map(|w| w[0].distance(w[1])).sum::<f32>();
+    match secs {
+        s if s < 8.0 => "a few seconds".to_string(),
+        s if (25.0..35.0).contains(&s) => "about half a minute".to_string(),
+        s if s < 50.0 => format!(
+            "{} {} seconds",
+            pick(rng, &["about", "roughly", "around"]),
+            number_word(((s / 5.0).round() * 5.0) as u32)
+        ),
+        s if s < 75.0 => "about a minute".to_string(),
+        _ => "a minute or two".to_string(),
+    }
 }
 
 #[cfg(test)]

@@ -3,6 +3,7 @@
 //! numbers. Written for this project. Every word here is derived from data the scene model has
 //! (class, room type, colour word, part colours, material word, bounding box, part shapes).
 
+use std::collections::BTreeMap;
 use std::sync::LazyLock;
 
 use serde::Deserialize;
@@ -13,124 +14,7 @@ use crate::data::{expect_embedded, parse_toml, DataFileError};
 /// Names of a class, the vocabulary name first. Every name maps back to one class only
 /// ([`class_of_name`]), so a grounded object can be found in the text by any of them.
 pub fn class_names(class: C) -> &'static [&'static str] {
-    match class {
-        C::Bed => &["bed"],
-        C::Nightstand => &[
-            "nightstand",
-            "bedside table",
-            "night table",
-            "bedside cabinet",
-        ],
-        C::Wardrobe => &["wardrobe", "armoire", "clothes cupboard"],
-        C::Dresser => &["dresser", "chest of drawers"],
-        C::Toilet => &["toilet", "loo", "water closet", "lavatory"],
-        C::Sink => &["sink", "basin", "washbasin", "handbasin", "hand basin"],
-        C::Bathtub => &["bathtub", "bath", "tub"],
-        C::Shower => &["shower", "shower stall", "shower cubicle"],
-        C::Mirror => &["mirror", "looking glass"],
-        C::Fridge => &["fridge", "refrigerator", "icebox", "fridge freezer"],
-        C::Counter => &[
-            "counter",
-            "worktop",
-            "countertop",
-            "work surface",
-            "kitchen counter",
-        ],
-        C::Stove => &["stove", "cooker", "oven", "range cooker", "hob", "cooktop"],
-        C::Dishwasher => &["dishwasher", "dish washer"],
-        C::KitchenCabinet => &["kitchen cabinet", "kitchen cupboard", "kitchen unit"],
-        C::Sofa => &["sofa", "couch", "settee"],
-        C::Armchair => &[
-            "armchair",
-            "easy chair",
-            "reading chair",
-            "club chair",
-            "lounge chair",
-        ],
-        C::Tv => &["tv", "television", "telly", "tv set", "flat-screen tv"],
-        C::TvStand => &[
-            "tv stand",
-            "tv unit",
-            "media console",
-            "entertainment unit",
-            "television stand",
-        ],
-        C::CoffeeTable => &["coffee table", "low table", "cocktail table"],
-        C::DiningTable => &["dining table", "dinner table", "kitchen table"],
-        C::Chair => &["chair", "seat"],
-        C::Desk => &[
-            "desk",
-            "writing desk",
-            "work desk",
-            "workstation",
-            "writing table",
-        ],
-        C::OfficeChair => &[
-            "office chair",
-            "desk chair",
-            "swivel chair",
-            "computer chair",
-            "task chair",
-        ],
-        C::Bookshelf => &["bookshelf", "bookcase", "book shelf", "shelving unit"],
-        C::PottedPlant => &[
-            "potted plant",
-            "plant",
-            "houseplant",
-            "indoor plant",
-            "pot plant",
-        ],
-        C::FloorLamp => &["floor lamp", "standing lamp", "lamp", "standard lamp"],
-        C::Rug => &["rug", "carpet", "mat"],
-        C::Cabinet => &["cabinet", "cupboard", "sideboard", "storage cabinet"],
-        C::SideTable => &["side table", "end table", "small table", "occasional table"],
-        C::ShoeRack => &["shoe rack", "shoe stand", "shoe shelf"],
-        C::CoatRack => &["coat rack", "coat stand", "hat stand"],
-        C::WashingMachine => &["washing machine", "washer", "laundry machine"],
-        C::Piano => &["piano", "upright piano"],
-        C::Bench => &["bench"],
-        C::Stool => &["stool", "footstool"],
-        C::TrashCan => &[
-            "trash can",
-            "bin",
-            "rubbish bin",
-            "wastebasket",
-            "garbage can",
-        ],
-        C::Cup => &["cup", "teacup"],
-        C::Mug => &["mug", "coffee mug"],
-        C::Book => &["book", "hardback", "volume"],
-        C::Laptop => &["laptop", "notebook computer", "laptop computer"],
-        C::Vase => &["vase", "flower vase"],
-        C::Bowl => &["bowl"],
-        C::Bottle => &["bottle"],
-        C::Clock => &["clock"],
-        C::TableLamp => &["table lamp", "desk lamp", "bedside lamp"],
-        C::SmallPlant => &["small plant", "little plant", "plant pot", "succulent"],
-        C::Monitor => &["monitor", "computer screen", "display"],
-        C::Keyboard => &["keyboard"],
-        C::Remote => &["remote", "remote control", "tv remote"],
-        C::Pillow => &["pillow", "cushion"],
-        C::Toaster => &["toaster"],
-        C::Kettle => &["kettle"],
-        C::Microwave => &["microwave", "microwave oven"],
-        C::Candle => &["candle"],
-        C::PictureFrame => &[
-            "picture frame",
-            "photo frame",
-            "framed picture",
-            "framed photo",
-        ],
-        C::Towel => &["towel", "hand towel"],
-        C::SoapDispenser => &["soap dispenser", "soap pump"],
-        C::Plate => &["plate", "dinner plate"],
-        C::Wall => &["wall"],
-        C::Floor => &["floor"],
-        C::Ceiling => &["ceiling"],
-        C::DoorFrame => &["door frame", "doorframe"],
-        C::Window => &["window"],
-        C::Unknown => &["unknown", "object", "thing"],
-    }
+    &CLASS_WORDS[class_index(class)].0
 }
 
 /// The classes whose names include `name` (for checks: a synonym names one class, or a class
@@ -189,258 +73,94 @@ pub fn room_names(kind: RoomType) -> &'static [&'static str] {
 /// What objects of a class are for, as a phrase after the name ("the kettle for boiling
 /// water"): true of every object of the class, so it never claims more than the class does.
 pub fn class_uses(class: C) -> &'static [&'static str] {
-    match class {
-        C::Bed => &[
-            "where someone sleeps",
-            "you would sleep in",
-            "made up for the night",
-            "where you'd have a nap",
-            "someone sleeps in",
-        ],
-        C::Nightstand => &[
-            "beside the sleeping area",
-            "for keeping things at night",
-            "handy at bedtime",
-            "for an alarm and reading glasses",
-        ],
-        C::Wardrobe => &[
-            "for hanging clothes",
-            "where clothing is stored",
-            "full of hangers",
-            "where outfits are kept",
-            "for coats and dresses",
-        ],
-        C::Dresser => &[
-            "full of drawers",
-            "for folded clothing",
-            "where socks and jumpers go",
-            "for storing garments",
-        ],
-        C::Toilet => &["you'd flush", "with the lid and seat", "with a lid"],
-        C::Sink => &[
-            "for washing hands",
-            "with the tap",
-            "with a faucet",
-            "where you'd rinse your hands",
-            "for brushing teeth",
-        ],
-        C::Bathtub => &[
-            "for bathing",
-            "you could soak in",
-            "for a long soak",
-            "you'd fill for a bath",
-        ],
-        C::Shower => &[
-            "for washing",
-            "you'd rinse off in",
-            "with the showerhead",
-            "for a quick wash",
-        ],
-        C::Mirror => &[
-            "you can see yourself in",
-            "showing your reflection",
-            "that reflects the room",
-            "for checking your appearance",
-        ],
-        C::Fridge => &[
-            "where food is kept cold",
-            "for chilled groceries",
-            "that keeps the milk cool",
-            "for fresh produce",
-        ],
-        C::Counter => &[
-            "for preparing meals",
-            "where food gets chopped",
-            "for kneading dough",
-            "where ingredients are laid out",
-        ],
-        C::Stove => &[
-            "for cooking",
-            "where meals are cooked",
-            "for boiling and frying",
-            "for frying and simmering",
-        ],
-        C::Dishwasher => &[
-            "for dirty dishes",
-            "that cleans crockery",
-            "for cutlery and glasses",
-            "that washes up",
-        ],
-        C::KitchenCabinet => &[
-            "for pots and pans",
-            "where crockery lives",
-            "for tins and jars",
-            "for kitchen supplies",
-        ],
-        C::Sofa => &[
-            "for lounging",
-            "people relax on",
-            "for curling up on",
-            "where guests sit",
-            "for lazy evenings",
-        ],
-        C::Armchair => &[
-            "for one person",
-            "made for reading in",
-            "for putting your feet up",
-            "for a quiet sit-down",
-        ],
-        C::Tv => &[
-            "for watching shows",
-            "for films and programmes",
-            "for the news and sport",
-            "for streaming series",
-        ],
-        C::TvStand => &[
-            "that holds the screen",
-            "under the screen",
-            "supporting the set",
-            "where the set sits",
-        ],
-        C::CoffeeTable => &["for drinks and magazines", "for snacks and board games"],
-        C::DiningTable => &[
-            "where meals are eaten",
-            "for family dinners",
-            "for breakfast and supper",
-            "where people gather to eat",
-        ],
-        C::Chair => &["for sitting", "to sit down on", "with a backrest"],
-        C::Desk => &[
-            "where someone works",
-            "for studying",
-            "for paperwork",
-            "where homework gets done",
-            "for writing letters",
-        ],
-        C::OfficeChair => &[
-            "on wheels",
-            "that swivels",
-            "on castors",
-            "with adjustable height",
-        ],
-        C::Bookshelf => &[
-            "for books",
-            "holding reading material",
-            "for novels",
-            "for paperbacks",
-            "for a reading collection",
-        ],
-        C::PottedPlant => &[
-            "with green leaves",
-            "with foliage",
-            "that needs watering",
-            "with leafy fronds",
-        ],
-        C::FloorLamp => &[
-            "that lights the room",
-            "giving off light",
-            "for evening light",
-            "casting a warm glow",
-        ],
-        C::Rug => &[
-            "underfoot",
-            "covering part of the floor",
-            "softening the floor",
-        ],
-        C::Cabinet => &[
-            "for storage",
-            "with doors",
-            "for odds and ends",
-            "where things are tidied away",
-        ],
-        C::SideTable => &[
-            "for setting things down",
-            "handy for a drink",
-            "for resting a glass on",
-        ],
-        C::ShoeRack => &[
-            "for footwear",
-            "where shoes go",
-            "for boots and trainers",
-            "where slippers are lined up",
-        ],
-        C::CoatRack => &[
-            "for jackets",
-            "where coats hang",
-            "with hooks for scarves",
-            "for hats and umbrellas",
-        ],
-        C::WashingMachine => &[
-            "for laundry",
-            "that washes clothes",
-            "for a wash cycle",
-            "that spins the washing",
-        ],
-        C::Piano => &[
-            "with the keys",
-            "for making music",
-            "for practising scales",
-            "for playing tunes",
-        ],
-        C::Bench => &[
-            "for sitting on",
-            "for pulling boots on",
-            "with room for two",
-        ],
-        C::Stool => &[
-            "without a back",
-            "for perching on",
-            "with no backrest",
-            "for a quick perch",
-        ],
-        C::TrashCan => &[
-            "for rubbish",
-            "where waste goes",
-            "for scraps and wrappers",
-            "for litter",
-        ],
-        C::Cup | C::Mug => &[
-            "for hot drinks",
-            "for tea or coffee",
-            "for a cuppa",
-            "for cocoa",
-        ],
-        C::Laptop => &[
-            "for browsing",
-            "for emails",
-            "for video calls",
-            "for typing up documents",
-        ],
-        C::Vase => &[
-            "for flowers",
-            "for holding blooms",
-            "for a bouquet",
-            "for cut stems",
-        ],
-        C::Clock => &[
-            "that tells the time",
-            "showing the hour",
-            "ticking away",
-            "keeping time",
-        ],
-        C::TableLamp => &["for reading light", "with a shade", "for soft lighting"],
-        C::Monitor => &["for the computer", "for spreadsheets", "for gaming"],
-        C::Toaster => &["for bread", "for toast", "with the slots", "for crumpets"],
-        C::Kettle => &["for boiling water", "for brewing tea", "that whistles"],
-        C::Microwave => &[
-            "for reheating food",
-            "for heating meals",
-            "for warming soup",
-            "for defrosting",
-        ],
-        C::Towel => &["for drying off", "for drying your hands", "after a wash"],
-        C::SoapDispenser => &["for soap", "for handwash", "with a pump"],
-        C::Candle => &["for candlelight", "with a wick", "for a cosy evening"],
-        C::Bowl => &["for cereal", "for soup or salad"],
-        C::Plate => &["for dinner", "for a meal"],
-        C::Bottle => &["with a cap", "for drinks"],
-        C::Keyboard => &["for typing", "with the keys"],
-        C::Remote => &["for changing channels", "for the volume"],
-        C::Pillow => &["for resting your head", "plumped up"],
-        C::PictureFrame => &["holding a photograph", "with a print inside"],
-        C::Book => &["for reading", "for a quiet read"],
-        _ => &[],
+    &CLASS_WORDS[class_index(class)].1
+}
+
+/// The class words file, as errors name it.
+const CLASSES_FILE: &str = "data/classes.toml";
+
+/// `data/classes.toml`: names and uses by class vocabulary name.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ClassFile {
+    class_names: BTreeMap<String, Vec<String>>,
+    class_uses: BTreeMap<String, Vec<String>>,
+}
+
+/// The names and uses of each class, by position in `C::ALL`, parsed and checked once.
+static CLASS_WORDS_OWNED: LazyLock<Vec<(Vec<String>, Vec<String>)>> = LazyLock::new(|| {
+    expect_embedded(parse_class_words(
+        CLASSES_FILE,
+        include_str!("../data/classes.toml"),
+    ))
+});
+
+/// [`CLASS_WORDS_OWNED`] as string slices.
+static CLASS_WORDS: LazyLock<Vec<(Vec<&'static str>, Vec<&'static str>)>> = LazyLock::new(|| {
+    let strs = |v: &'static Vec<String>| v.iter().map(String::as_str).collect();
+    CLASS_WORDS_OWNED
+        .iter()
+        .map(|(names, uses)| (strs(names), strs(uses)))
+        .collect()
+});
+
+/// The position of a class in `C::ALL`.
+fn class_index(class: C) -> usize {
+    C::ALL
+        .iter()
+        .position(|&c| c == class)
+        .expect("C::ALL holds every class")
+}
+
+/// Parse and check a class words file: every key a class's vocabulary name, every class named
+/// (a class without uses has none), no list empty, no word blank or listed twice in one list.
+fn parse_class_words(
+    file: &'static str,
+    text: &str,
+) -> Result<Vec<(Vec<String>, Vec<String>)>, DataFileError> {
+    let f: ClassFile = parse_toml(file, text)?;
+    for (table, map) in [
+        ("class_names", &f.class_names),
+        ("class_uses", &f.class_uses),
+    ] {
+        for (key, words) in map {
+            let at = format!("{table}.{key}");
+            if C::from_name(key).is_none() {
+                return Err(DataFileError::new(file, at, "no such class"));
+            }
+            if words.is_empty() {
+                return Err(DataFileError::new(
+                    file,
+                    at,
+                    "empty (leave the class out instead)",
+                ));
+            }
+            for (i, w) in words.iter().enumerate() {
+                if w.trim().is_empty() {
+                    return Err(DataFileError::new(file, at, format!("entry {i} is blank")));
+                }
+                if words[..i].contains(w) {
+                    return Err(DataFileError::new(
+                        file,
+                        at,
+                        format!("entry {i} ({w:?}) is listed twice"),
+                    ));
+                }
+            }
+        }
     }
+    C::ALL
+        .iter()
+        .map(|c| {
+            let names = f.class_names.get(c.name()).cloned().ok_or_else(|| {
+                DataFileError::new(file, format!("class_names.{}", c.name()), "missing")
+            })?;
+            Ok((
+                names,
+                f.class_uses.get(c.name()).cloned().unwrap_or_default(),
+            ))
+        })
+        .collect()
 }
 
 /// The main colour of an object as linear RGB: the colour of its largest part.
@@ -856,6 +576,34 @@ mod tests {
         let e = err("[[rule]]\ncolour = \"red\"\n");
         assert_eq!(e, "c.toml: rule 0 (red): neither shades nor by_colour");
         assert!(err("[[rule]]\nshade = [\"x\"]\n").starts_with("c.toml: not a valid table"));
+    }
+
+    #[test]
+    fn the_embedded_class_file_is_valid() {
+        if let Err(e) = parse_class_words(CLASSES_FILE, include_str!("../data/classes.toml")) {
+            panic!("{e}");
+        }
+        assert_eq!(class_uses(C::Cup), class_uses(C::Mug));
+        assert!(class_uses(C::Wall).is_empty());
+    }
+
+    #[test]
+    fn bad_class_files_name_the_file_and_class() {
+        let err = |t: &str| parse_class_words("w.toml", t).unwrap_err().to_string();
+        let e = err("[class_names]\nsofaa = [\"sofa\"]\n[class_uses]\n");
+        assert_eq!(e, "w.toml: class_names.sofaa: no such class");
+        let e = err("[class_names]\nsofa = [\"sofa\", \"sofa\"]\n[class_uses]\n");
+        assert_eq!(
+            e,
+            "w.toml: class_names.sofa: entry 1 (\"sofa\") is listed twice"
+        );
+        let e = err("[class_names]\n[class_uses]\nsofa = [\" \"]\n");
+        assert_eq!(e, "w.toml: class_uses.sofa: entry 0 is blank");
+        let e = err("[class_names]\n[class_uses]\n");
+        assert!(
+            e.starts_with("w.toml: class_names.") && e.ends_with(": missing"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -131,66 +131,9 @@ impl InstructionGenerator for TemplateGenerator {
         let mut rng = ChaCha8Rng::seed_from_u64(
             seed ^ salt ^ u64::from(target).wrapping_mul(0x9E37_79B9_7F4A_7C15),
         );
-        let words = |m: &Mention| format!("the {}", m.words());
-        // Size and shape words the geometry supports may precede the colour; the class keeps
-        // its vocabulary name (agents look for it) and the colour stays next to it.
-        let shape = ctx.scene.object(target).and_then(|o| {
-            let peers: Vec<&SceneObject> = ctx
-                .graph
-                .objects_of_class(o.class)
-                .iter()
-                .filter_map(|&id| ctx.scene.object(id))
-                .collect();
-            let w = shape_words(o, &peers);
-            (!w.is_empty() && rng.random_bool(0.3)).then(|| pick(&mut rng, &w).to_string())
-        });
-        let mut desc = String::from("the ");
-        if let Some(a) = &shape {
-            desc.push_str(a);
-            desc.push(' ');
-        }
-        if let Some(c) = &expr.color {
-            desc.push_str(c);
-            desc.push(' ');
-        }
-        desc.push_str(&expr.class.words());
-        let (sup_bank, next_bank, near_bank) = match style {
-            Style::Formal => (ph::FORMAL_SUP, ph::FORMAL_NEXT, ph::FORMAL_NEAR),
-            Style::Natural => (ph::NATURAL_SUP, ph::NATURAL_NEXT, ph::NATURAL_NEAR),
-            Style::Casual => (ph::CASUAL_SUP, ph::CASUAL_NEXT, ph::CASUAL_NEAR),
-        };
-        let sup = expr
-            .support
-            .as_ref()
-            .map(|m| fill(pick(&mut rng, &sup_bank), &[("obj", &words(m))]))
-            .unwrap_or_default();
-        let rel = match (&expr.reference, expr.relation) {
-            (Some(m), Some(r)) => {
-                let bank = if r == Relation::NextTo {
-                    next_bank
-                } else {
-                    near_bank
-                };
-                fill(pick(&mut rng, &bank), &[("obj", &words(m))])
-            }
-            _ => String::new(),
-        };
-        // The room, now and then with its size from the floor area ("the spacious kitchen").
-        let room = expr.room.map(|r| {
-            let area = ctx.scene.room(r.room).map_or(15.0, |x| x.area());
-            let size: &[&str] = if area > 24.0 {
-                &["large", "big", "spacious", "roomy", "sizeable"]
-            } else if area < 8.0 {
-                &["small", "little", "compact", "cosy", "snug"]
-            } else {
-                &[]
-            };
-            if !size.is_empty() && rng.random_bool(0.25) {
-                format!("the {} {}", pick(&mut rng, size), r.kind.words())
-            } else {
-                format!("the {}", r.kind.words())
-            }
-        });
+        let desc = coarse_description(ctx, target, &expr, &mut rng);
+        let (sup, rel) = coarse_relations(&expr, style, &mut rng);
+        let room = coarse_room(ctx, &expr, &mut rng);
         // Now and then a remark on the target from what the scene model holds: its material,
         // the shade of its colour, what its class is for, or where it stands in its room.
         let remark = ctx
@@ -199,93 +142,19 @@ impl InstructionGenerator for TemplateGenerator {
             .filter(|_| rng.random_bool(0.35))
             .and_then(|o| target_remark(ctx, o, &expr.class.words(), style, &mut rng))
             .unwrap_or_default();
-        let text = match style {
-            Style::Formal => {
-                let rc = room
-                    .as_ref()
-                    .map(|r| fill(pick(&mut rng, &ph::FORMAL_ROOM), &[("room", r)]))
-                    .unwrap_or_default();
-                let core = fill(
-                    pick(&mut rng, &ph::FORMAL),
-                    &[("desc", &desc), ("sup", &sup), ("rel", &rel), ("room", &rc)],
-                );
-                format!(
-                    "{}{core}{remark}{}",
-                    pick(&mut rng, &ph::FORMAL_OPEN),
-                    pick(&mut rng, &ph::FORMAL_CLOSE)
-                )
-            }
-            Style::Natural => {
-                let core = match &room {
-                    Some(r) => fill(
-                        pick(&mut rng, &ph::NATURAL_ROOM),
-                        &[("desc", &desc), ("sup", &sup), ("rel", &rel), ("room", r)],
-                    ),
-                    None => fill(
-                        pick(&mut rng, &ph::NATURAL),
-                        &[("desc", &desc), ("sup", &sup), ("rel", &rel)],
-                    ),
-                };
-                let open = pick(&mut rng, &ph::NATURAL_OPEN);
-                let core = if open.ends_with(", ") || open.ends_with(": ") {
-                    decapitalize(&core)
-                } else {
-                    core
-                };
-                let close = pick(&mut rng, &ph::NATURAL_CLOSE);
-                let close = if !remark.is_empty() && close.starts_with(',') {
-                    "."
-                } else {
-                    close
-                };
-                format!("{open}{core}{remark}{close}")
-            }
-            Style::Casual => {
-                let rc = room
-                    .as_ref()
-                    .map(|r| fill(pick(&mut rng, &ph::CASUAL_ROOM), &[("room", r)]))
-                    .unwrap_or_default();
-                let core = fill(
-                    pick(&mut rng, &ph::CASUAL),
-                    &[("desc", &desc), ("sup", &sup), ("rel", &rel), ("room", &rc)],
-                );
-                format!(
-                    "{}{core}{remark}{}",
-                    pick(&mut rng, &ph::CASUAL_OPEN),
-                    pick(&mut rng, &ph::CASUAL_CLOSE)
-                )
-            }
+        let parts = CoarseParts {
+            desc,
+            sup,
+            rel,
+            room,
+            remark,
         };
-        let text = capitalize_sentence(&text, style);
-
-        // Grounding: seen from the end of the path, facing along its last segment.
-        let pts = floor_points(ctx.path);
-        let headings = segment_headings(&pts);
-        let idx = pts.len().checked_sub(1);
-        let mut grounding = Vec::new();
-        let mut push = |id: ObjectId, role: Role| {
-            if let Some(o) = ctx.scene.object(id) {
-                let (lo, hi) = footprint(o);
-                let side = if pts.len() >= 2 {
-                    end_side(&pts, &headings, (lo + hi) * 0.5)
-                } else {
-                    None
-                };
-                grounding.push(grounded(o, role, side, idx));
-            }
-        };
-        push(expr.target, Role::Target);
-        if let Some(m) = &expr.support {
-            push(m.object, Role::Reference);
-        }
-        if let Some(m) = &expr.reference {
-            push(m.object, Role::Reference);
-        }
+        let text = capitalize_sentence(&coarse_sentence(style, &parts, &mut rng), style);
         Ok(Instruction {
             instruction_text: text,
             instruction_tokens: None,
             style: Some(style),
-            grounding,
+            grounding: coarse_grounding(ctx, &expr),
             sub_instructions: Vec::new(),
         })
     }
@@ -293,6 +162,203 @@ impl InstructionGenerator for TemplateGenerator {
     fn chain(&self, parts: &[Instruction], seed: u64) -> Result<Instruction> {
         chain_parts(parts, seed)
     }
+}
+
+/// The pieces of a coarse instruction before they are put in a sentence.
+struct CoarseParts {
+    /// The target: "the tall dark red sofa".
+    desc: String,
+    /// What it stands on (" on the rug"), or "".
+    sup: String,
+    /// Its relation to a reference object (" next to the lamp"), or "".
+    rel: String,
+    /// Its room ("the spacious kitchen").
+    room: Option<String>,
+    /// A remark on the target (". It is made of wood"), or "".
+    remark: String,
+}
+
+/// "the " and a mention's words.
+fn mention_words(m: &Mention) -> String {
+    format!("the {}", m.words())
+}
+
+/// The target described: size and shape words the geometry supports may precede the colour;
+/// the class keeps its vocabulary name (agents look for it) and the colour stays next to it.
+fn coarse_description(
+    ctx: &PathContext<'_>,
+    target: ObjectId,
+    expr: &ReferringExpression,
+    rng: &mut ChaCha8Rng,
+) -> String {
+    let shape = ctx.scene.object(target).and_then(|o| {
+        let peers: Vec<&SceneObject> = ctx
+            .graph
+            .objects_of_class(o.class)
+            .iter()
+            .filter_map(|&id| ctx.scene.object(id))
+            .collect();
+        let w = shape_words(o, &peers);
+        (!w.is_empty() && rng.random_bool(0.3)).then(|| pick(rng, &w).to_string())
+    });
+    let mut desc = String::from("the ");
+    if let Some(a) = &shape {
+        desc.push_str(a);
+        desc.push(' ');
+    }
+    if let Some(c) = &expr.color {
+        desc.push_str(c);
+        desc.push(' ');
+    }
+    desc.push_str(&expr.class.words());
+    desc
+}
+
+/// What the target stands on, and its relation to the reference object, in the style's
+/// phrases (each "" when the expression has none).
+fn coarse_relations(
+    expr: &ReferringExpression,
+    style: Style,
+    rng: &mut ChaCha8Rng,
+) -> (String, String) {
+    let (sup_bank, next_bank, near_bank) = match style {
+        Style::Formal => (ph::FORMAL_SUP, ph::FORMAL_NEXT, ph::FORMAL_NEAR),
+        Style::Natural => (ph::NATURAL_SUP, ph::NATURAL_NEXT, ph::NATURAL_NEAR),
+        Style::Casual => (ph::CASUAL_SUP, ph::CASUAL_NEXT, ph::CASUAL_NEAR),
+    };
+    let sup = expr
+        .support
+        .as_ref()
+        .map(|m| fill(pick(rng, &sup_bank), &[("obj", &mention_words(m))]))
+        .unwrap_or_default();
+    let rel = match (&expr.reference, expr.relation) {
+        (Some(m), Some(r)) => {
+            let bank = if r == Relation::NextTo {
+                next_bank
+            } else {
+                near_bank
+            };
+            fill(pick(rng, &bank), &[("obj", &mention_words(m))])
+        }
+        _ => String::new(),
+    };
+    (sup, rel)
+}
+
+/// The target's room, now and then with its size from the floor area ("the spacious kitchen").
+fn coarse_room(
+    ctx: &PathContext<'_>,
+    expr: &ReferringExpression,
+    rng: &mut ChaCha8Rng,
+) -> Option<String> {
+    expr.room.map(|r| {
+        let area = ctx.scene.room(r.room).map_or(15.0, |x| x.area());
+        let size: &[&str] = if area > 24.0 {
+            &["large", "big", "spacious", "roomy", "sizeable"]
+        } else if area < 8.0 {
+            &["small", "little", "compact", "cosy", "snug"]
+        } else {
+            &[]
+        };
+        if !size.is_empty() && rng.random_bool(0.25) {
+            format!("the {} {}", pick(rng, size), r.kind.words())
+        } else {
+            format!("the {}", r.kind.words())
+        }
+    })
+}
+
+/// The coarse sentence in the style's register: an opener, the core sentence (with the room
+/// where the style's core has one), the remark and a closer.
+fn coarse_sentence(style: Style, p: &CoarseParts, rng: &mut ChaCha8Rng) -> String {
+    let (desc, sup, rel, remark) = (&p.desc, &p.sup, &p.rel, &p.remark);
+    match style {
+        Style::Formal => {
+            let rc = p
+                .room
+                .as_ref()
+                .map(|r| fill(pick(rng, &ph::FORMAL_ROOM), &[("room", r)]))
+                .unwrap_or_default();
+            let core = fill(
+                pick(rng, &ph::FORMAL),
+                &[("desc", desc), ("sup", sup), ("rel", rel), ("room", &rc)],
+            );
+            format!(
+                "{}{core}{remark}{}",
+                pick(rng, &ph::FORMAL_OPEN),
+                pick(rng, &ph::FORMAL_CLOSE)
+            )
+        }
+        Style::Natural => {
+            let core = match &p.room {
+                Some(r) => fill(
+                    pick(rng, &ph::NATURAL_ROOM),
+                    &[("desc", desc), ("sup", sup), ("rel", rel), ("room", r)],
+                ),
+                None => fill(
+                    pick(rng, &ph::NATURAL),
+                    &[("desc", desc), ("sup", sup), ("rel", rel)],
+                ),
+            };
+            let open = pick(rng, &ph::NATURAL_OPEN);
+            let core = if open.ends_with(", ") || open.ends_with(": ") {
+                decapitalize(&core)
+            } else {
+                core
+            };
+            let close = pick(rng, &ph::NATURAL_CLOSE);
+            let close = if !remark.is_empty() && close.starts_with(',') {
+                "."
+            } else {
+                close
+            };
+            format!("{open}{core}{remark}{close}")
+        }
+        Style::Casual => {
+            let rc = p
+                .room
+                .as_ref()
+                .map(|r| fill(pick(rng, &ph::CASUAL_ROOM), &[("room", r)]))
+                .unwrap_or_default();
+            let core = fill(
+                pick(rng, &ph::CASUAL),
+                &[("desc", desc), ("sup", sup), ("rel", rel), ("room", &rc)],
+            );
+            format!(
+                "{}{core}{remark}{}",
+                pick(rng, &ph::CASUAL_OPEN),
+                pick(rng, &ph::CASUAL_CLOSE)
+            )
+        }
+    }
+}
+
+/// The grounding of a coarse instruction: the target, what it stands on and its reference
+/// object, seen from the end of the path, facing along its last segment.
+fn coarse_grounding(ctx: &PathContext<'_>, expr: &ReferringExpression) -> Vec<GroundedObject> {
+    let pts = floor_points(ctx.path);
+    let headings = segment_headings(&pts);
+    let idx = pts.len().checked_sub(1);
+    let mut grounding = Vec::new();
+    let mut push = |id: ObjectId, role: Role| {
+        if let Some(o) = ctx.scene.object(id) {
+            let (lo, hi) = footprint(o);
+            let side = if pts.len() >= 2 {
+                end_side(&pts, &headings, (lo + hi) * 0.5)
+            } else {
+                None
+            };
+            grounding.push(grounded(o, role, side, idx));
+        }
+    };
+    push(expr.target, Role::Target);
+    if let Some(m) = &expr.support {
+        push(m.object, Role::Reference);
+    }
+    if let Some(m) = &expr.reference {
+        push(m.object, Role::Reference);
+    }
+    grounding
 }
 
 /// A remark on `o` in the style's register ("It is made of wood", " - kinda navy"), from its
