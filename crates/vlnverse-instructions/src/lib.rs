@@ -5,10 +5,12 @@
 //! The default generator is deterministic and template-based, grounded in the scene graph; an
 //! optional LLM-backed stage implements the same trait. See `docs/instructions.md`.
 //!
-//! - [`TemplateGenerator`] (`templates.rs`, phrase banks in `phrases.rs`): fine-grained
+//! - [`TemplateGenerator`] (`templates.rs`; phrase banks in `data/phrases.toml`, loaded and
+//!   checked by `phrases.rs`): fine-grained
 //!   instructions (`fine.rs`) follow the path's legs, turns, room changes and landmarks,
 //!   written by one of several writers with varied sentence plans; objects, rooms and openings
-//!   are described in `describe.rs` with the words of [`lexicon`]; coarse ones render the scene
+//!   are described in `describe.rs` with the words of [`lexicon`] (class names and uses in
+//!   `data/classes.toml`, colour shades in `data/colours.toml`); coarse ones render the scene
 //!   graph's unique referring expression in three styles; [`chain_parts`] joins
 //!   sub-instructions.
 //! - [`check_grounding`]: mechanical check of an instruction's grounding metadata.
