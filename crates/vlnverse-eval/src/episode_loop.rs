@@ -247,7 +247,7 @@ pub struct EpisodeCheckError {
 }
 
 impl EpisodeCheckError {
-    /// The error as a [`TaskError::Invalid`] whose field is `location.field` (`location`
+    /// The error as a [`TaskError::invalid`] data error whose field is `location.field` (`location`
     /// names the episode: `FILE: episode 3 (episodes[2])`).
     pub fn at(self, location: &str) -> TaskError {
         TaskError::invalid(

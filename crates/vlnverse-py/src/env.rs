@@ -273,11 +273,11 @@ impl Inner {
                 .then(|| vocab.encode(&s.episode.instruction.instruction_text, token_len));
             for (f, row) in fields.iter().zip(env_rows.drain(..)) {
                 layout::write(f, s, tokens.as_deref(), row).map_err(|e| {
-                    vlnverse_task::TaskError::Invalid {
-                        field: format!("observations.{}", f.key),
-                        value: s.info.episode_id.to_string(),
-                        reason: e,
-                    }
+                    vlnverse_task::TaskError::invalid(
+                        format!("observations.{}", f.key),
+                        s.info.episode_id,
+                        e,
+                    )
                 })?;
             }
             Ok(())
