@@ -1,4 +1,5 @@
-//! Dialogue oracle throughput on a tiny-preset home: one "which way" question (one A* query).
+//! Dialogue oracle throughput on a tiny-preset home: one "which way" question (one A* query)
+//! between the ends of a sampled path.
 //!
 //! `cargo bench -p vlnverse-eval --bench oracle -- --warm-up-time 1 --measurement-time 3`
 
@@ -6,28 +7,18 @@ use std::sync::Arc;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use glam::Vec2;
-use vlnverse_env::occupancy::{build_maps, OccupancyConfig};
-use vlnverse_env::scene_graph::SceneGraph;
-use vlnverse_env::SceneSource;
 use vlnverse_eval::oracle::{Oracle, OracleConfig, OracleQuery, ShortestPathOracle};
-use vlnverse_procgen::{HomeGenerator, Preset};
+use vlnverse_testkit::homes::{paths, worlds};
 
 fn bench(c: &mut Criterion) {
-    let scene = HomeGenerator::from_preset(Preset::Tiny)
-        .and_then(|h| h.scene(0))
-        .expect("tiny scene");
-    let maps = build_maps(&scene, &OccupancyConfig::default()).expect("maps");
-    let graph = SceneGraph::build(&scene);
-    let free: Vec<Vec2> = maps
-        .navigable
-        .free_cells()
-        .map(|(c, r)| maps.navigable.cell_center(c, r))
-        .collect();
-    let (a, b) = (free[0], free[free.len() - 1]);
+    let w = worlds(1).pop().expect("a tiny home");
+    let path = paths(&w, 1, 0).remove(0).path;
+    let (a, b) = (path[0], path[path.len() - 1]);
+    let (a, b) = (Vec2::new(a[0], a[2]), Vec2::new(b[0], b[2]));
     let (scene, graph, nav) = (
-        Arc::new(scene.clone()),
-        Arc::new(graph.clone()),
-        Arc::new(maps.navigable.clone()),
+        Arc::new(w.scene),
+        Arc::new(w.graph),
+        Arc::new(w.maps.navigable),
     );
     c.bench_function("oracle which-way", |bch| {
         bch.iter(|| {

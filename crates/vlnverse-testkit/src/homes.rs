@@ -77,8 +77,7 @@ pub fn paths(w: &World, count: usize, seed: u64) -> Vec<Sample> {
     out
 }
 
-/// Goal target: the non-structure object whose footprint is closest to the path's end (for
-/// coarse tests), if it has a unique description.
+/// Yaw of the heading from `a` to `b`.
 pub fn yaw_along(a: Vec2, b: Vec2) -> f32 {
     yaw_from_direction(b - a)
 }
