@@ -45,6 +45,7 @@ pub use pipeline::{
 pub use presets::{
     episodes_per_trajectory, GenerateConfig, GeneratePreset, ImageConfig, InstructionsConfig,
     LlmSection, SamplingConfig, SceneSplits, SplitCounts, TaskConfig, TasksConfig,
+    MAX_EPISODES_PER_SPLIT, MAX_SCENES,
 };
 pub use reference_image::{ReferenceRenderer, MAX_PITCH};
 pub use request::{GenerateRequest, PreparedRun};

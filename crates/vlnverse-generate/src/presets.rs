@@ -271,6 +271,13 @@ pub struct GenerateConfig {
     pub instructions: InstructionsConfig,
 }
 
+/// Most scenes a generation config may ask for, all splits together (the `vlnverse` preset has
+/// 263): a bound that keeps a mistyped count an error instead of an allocation that fails.
+pub const MAX_SCENES: usize = 100_000;
+
+/// Most episodes one task's split may ask for (the `vlnverse` preset's largest has 11,895).
+pub const MAX_EPISODES_PER_SPLIT: usize = 1_000_000;
+
 /// The `[instructions.llm]` section: an OpenAI-compatible endpoint and how to use it.
 #[cfg(feature = "llm")]
 pub type LlmSection = vlnverse_instructions::llm::LlmConfig;
@@ -363,6 +370,27 @@ impl GenerateConfig {
                 ));
             }
         }
+        let sp = &self.splits;
+        for (name, n) in [
+            ("train", sp.train),
+            ("val_unseen", sp.val_unseen),
+            ("test", sp.test),
+        ] {
+            if n > MAX_SCENES {
+                return Err(bad(
+                    format!("splits.{name}"),
+                    n.to_string(),
+                    &format!("at most {MAX_SCENES} scenes"),
+                ));
+            }
+        }
+        if self.splits.total() > MAX_SCENES {
+            return Err(bad(
+                "splits".into(),
+                format!("{} scenes", self.splits.total()),
+                &format!("at most {MAX_SCENES} scenes in all"),
+            ));
+        }
         if self.splits.total() == 0 {
             return Err(bad(
                 "splits".into(),
@@ -448,6 +476,13 @@ impl GenerateConfig {
                 let e = t.episodes.get(split);
                 let n = t.scenes.get(split);
                 let field = |what: &str| format!("tasks.{}.{what}.{}", task.name(), split.name());
+                if e > MAX_EPISODES_PER_SPLIT {
+                    return Err(bad(
+                        field("episodes"),
+                        e.to_string(),
+                        &format!("at most {MAX_EPISODES_PER_SPLIT} episodes per task and split"),
+                    ));
+                }
                 if !e.is_multiple_of(per) {
                     return Err(bad(
                         field("episodes"),

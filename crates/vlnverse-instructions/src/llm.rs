@@ -162,11 +162,25 @@ impl LlmConfig {
                 "must be in [0, 2]",
             ));
         }
-        if !(self.timeout_s.is_finite() && self.timeout_s > 0.0) {
+        if !(self.timeout_s.is_finite() && self.timeout_s > 0.0 && self.timeout_s <= 3600.0) {
             return Err(DataError::invalid(
                 "llm.timeout_s",
                 self.timeout_s,
-                "must be > 0",
+                "must be in (0, 3600] seconds",
+            ));
+        }
+        if self.retries > 10 {
+            return Err(DataError::invalid(
+                "llm.retries",
+                self.retries,
+                "must be in [0, 10]",
+            ));
+        }
+        if self.retry_backoff_ms > 60_000 {
+            return Err(DataError::invalid(
+                "llm.retry_backoff_ms",
+                self.retry_backoff_ms,
+                "must be in [0, 60000] milliseconds",
             ));
         }
         if !(1..=256).contains(&self.max_concurrent) {
@@ -930,6 +944,46 @@ impl<G: InstructionGenerator> InstructionGenerator for LlmGenerator<G> {
 mod tests {
     use super::*;
     use vlnverse_score::episode::GroundedObject;
+
+    #[test]
+    fn unbounded_timeouts_and_retries_are_refused_by_name() {
+        let ok = LlmConfig::default();
+        assert!(ok.validate().is_ok(), "{:?}", ok.validate());
+        let cases = [
+            (
+                LlmConfig {
+                    timeout_s: 1e20,
+                    ..ok.clone()
+                },
+                "llm.timeout_s",
+            ),
+            (
+                LlmConfig {
+                    timeout_s: 0.0,
+                    ..ok.clone()
+                },
+                "llm.timeout_s",
+            ),
+            (
+                LlmConfig {
+                    retries: 1_000_000_000,
+                    ..ok.clone()
+                },
+                "llm.retries",
+            ),
+            (
+                LlmConfig {
+                    retry_backoff_ms: 1_000_000_000_000_000,
+                    ..ok.clone()
+                },
+                "llm.retry_backoff_ms",
+            ),
+        ];
+        for (cfg, field) in cases {
+            let e = cfg.validate().expect_err(field).to_string();
+            assert!(e.contains(field), "{e}");
+        }
+    }
 
     #[test]
     fn images_are_standard_base64_data_urls() {

@@ -153,6 +153,22 @@ fn edit(from: &str, to: &str) -> String {
 }
 
 #[test]
+fn huge_counts_are_refused_before_anything_is_allocated() {
+    let e = err_of(&edit(
+        "train = 11895, val_seen = 1269",
+        "train = 1000000000, val_seen = 1269",
+    ));
+    assert!(
+        e.contains("bad.toml")
+            && e.contains("tasks.coarse.episodes.train")
+            && e.contains("1000000000"),
+        "{e}"
+    );
+    let e = err_of(&edit("train = 177\n", "train = 9000000000000000000\n"));
+    assert!(e.contains("splits.train") && e.contains("at most"), "{e}");
+}
+
+#[test]
 fn bad_configs_name_file_field_and_value() {
     let e = err_of(&edit("min_length = 5.0", "min_length = -2.0"));
     assert!(
