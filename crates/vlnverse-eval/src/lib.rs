@@ -26,7 +26,7 @@ pub use resume::{EpisodeRecord, ProgressLog, LATER_KEYS, PROGRESS_FILE, RUN_FILE
 pub use runner::{
     configured_renderer, evaluate, evaluate_with, finish_run, open_run, rapier_simulator,
     run_identity, select_episodes, sim_config, DefaultRenderers, DefaultSimulators, EvalOutcome,
-    EvalRequest, LayerIdentity, Layers, RendererFactory, SimulatorFactory, RUN_FILES,
+    EvalRequest, LayerIdentity, Layers, RendererFactory, SimulatorFactory, MAX_THREADS, RUN_FILES,
 };
 pub use scene_context::{SceneCache, SceneContext};
 pub use vec_env::{

@@ -143,6 +143,10 @@ pub struct EvalOutcome {
     pub steps_run: u64,
 }
 
+/// Most worker threads a run may ask for: each holds a simulator, a renderer and an agent, so a
+/// mistyped count is refused instead of spawning threads without end.
+pub const MAX_THREADS: usize = 1024;
+
 /// Scenes kept loaded per worker thread beyond the first (the cache holds `threads + this`).
 const SCENE_CACHE_SLACK: usize = 2;
 
@@ -496,6 +500,13 @@ pub fn evaluate_with<SF: SimulatorFactory, RF: RendererFactory>(
             "episodes",
             0,
             "must be at least 1 (leave it out to run the whole split)",
+        ));
+    }
+    if let Some(n) = req.threads.filter(|n| !(1..=MAX_THREADS).contains(n)) {
+        return Err(TaskError::invalid(
+            "threads",
+            n,
+            format!("must be in [1, {MAX_THREADS}] (leave it out for one per core)"),
         ));
     }
     let split_file = dataset::split_path(&req.dataset, req.task, req.split);

@@ -93,6 +93,23 @@ fn a_resume_with_another_agent_fingerprint_is_refused_and_fresh_starts_over() {
 }
 
 #[test]
+fn an_absurd_thread_count_is_refused_before_any_thread_or_file() {
+    let dir = tempfile::tempdir().unwrap();
+    eval_support::make_dataset(dir.path(), Task::Fine, 1, 2, 4);
+    let cfg = blind_lenient();
+    let random = builtin("random", None, &cfg).unwrap();
+    for n in [0, vlnverse_eval::MAX_THREADS + 1, 100_000] {
+        let req = eval_support::fine_test(dir.path(), "run", &cfg, None, n);
+        let err = evaluate(&req, &*random).unwrap_err().to_string();
+        assert!(
+            err.contains("threads") && err.contains(&n.to_string()),
+            "{err}"
+        );
+        assert!(!req.out.exists(), "{} was made", req.out.display());
+    }
+}
+
+#[test]
 fn a_second_job_on_a_locked_folder_is_refused_naming_the_first() {
     let dir = tempfile::tempdir().unwrap();
     eval_support::make_dataset(dir.path(), Task::Fine, 1, 2, 4);
