@@ -95,6 +95,7 @@ pub fn from_json_bytes(path: &Path, json: &[u8]) -> Result<Vec<Episode>> {
     match serde_json::from_slice::<Dataset>(json) {
         Ok(d) => {
             check_unique_ids(path, &d.episodes)?;
+            check_paths_stay_inside(path, &d.episodes)?;
             Ok(d.episodes)
         }
         // Slow path only on failure: find which episode and field is wrong.
@@ -114,6 +115,38 @@ fn check_unique_ids(path: &Path, episodes: &[Episode]) -> Result<()> {
                     "episode_id {} is used twice (also by episodes[{first}]); ids must be unique",
                     e.episode_id
                 ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// `scene_id` and `reference_image` name places inside the dataset folder: an absolute path or
+/// a `..` would load scenes or read images from anywhere on the machine.
+fn check_paths_stay_inside(path: &Path, episodes: &[Episode]) -> Result<()> {
+    use std::path::Component;
+    let escapes = |p: &str| {
+        Path::new(p)
+            .components()
+            .any(|c| !matches!(c, Component::Normal(_) | Component::CurDir))
+    };
+    for (i, e) in episodes.iter().enumerate() {
+        if escapes(&e.scene_id) {
+            return Err(DataError::parse(
+                path,
+                format!("episodes[{i}].scene_id"),
+                format!(
+                    "{:?} is not a scene folder name inside the dataset (no absolute path, \
+                     no `..`)",
+                    e.scene_id
+                ),
+            ));
+        }
+        if let Some(r) = e.reference_image.as_deref().filter(|r| escapes(r)) {
+            return Err(DataError::parse(
+                path,
+                format!("episodes[{i}].reference_image"),
+                format!("{r:?} must be a path relative to the split's folder, without `..`"),
             ));
         }
     }

@@ -589,12 +589,20 @@ impl RigConfig {
         Ok(c)
     }
 
-    /// Check every sensor and that names are unique.
+    /// Check every sensor and that names are unique plain names (they become file names).
     pub fn validate(&self) -> Result<()> {
         let mut names = std::collections::BTreeSet::new();
         for (i, s) in self.sensors.iter().enumerate() {
             let f = format!("sensors[{i}]");
             s.validate(&f)?;
+            let plain = |c: char| c.is_ascii_alphanumeric() || c == '_' || c == '-';
+            if !s.name().chars().all(plain) || s.name().len() > 64 {
+                return Err(SensorError::invalid(
+                    format!("{f}.name"),
+                    format!("{:?}", s.name()),
+                    "letters, digits, `_` and `-` only, at most 64 (it names files)",
+                ));
+            }
             if !names.insert(s.name()) {
                 return Err(SensorError::invalid(
                     format!("{f}.name"),
@@ -610,6 +618,18 @@ impl RigConfig {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn sensor_names_that_would_leave_the_output_folder_are_refused() {
+        for bad in ["../x", "/tmp/x", "a/b", "rgb.png"] {
+            let text = format!(
+                "[[sensors]]\ntype = \"rgb\"\nname = {bad:?}\nwidth = 8\nheight = 8\nhfov_deg = 90.0\n"
+            );
+            let c: RigConfig = toml::from_str(&text).unwrap();
+            let e = c.validate().unwrap_err().to_string();
+            assert!(e.contains("sensors[0].name") && e.contains(bad), "{e}");
+        }
+    }
 
     #[test]
     fn default_is_the_papers_rig_and_round_trips() {

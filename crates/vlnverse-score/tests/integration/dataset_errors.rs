@@ -62,6 +62,40 @@ fn a_repeated_episode_id_names_both_indices() {
     );
 }
 
+#[test]
+fn scene_ids_and_reference_images_that_leave_the_dataset_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("test.json.gz");
+    let read = |e: Episode| {
+        std::fs::write(&path, to_gzip_bytes(&[episode(1), e]).unwrap()).unwrap();
+        read_file(&path).map(|_| ()).map_err(|e| e.to_string())
+    };
+    for bad in ["/etc", "../other_dataset/scenes/home", "home/../../x"] {
+        let err = read(Episode {
+            scene_id: bad.into(),
+            ..episode(2)
+        })
+        .unwrap_err();
+        assert!(
+            err.contains("episodes[1].scene_id") && err.contains(bad),
+            "{err}"
+        );
+    }
+    let err = read(Episode {
+        reference_image: Some("../../secret.png".into()),
+        ..episode(2)
+    })
+    .unwrap_err();
+    assert!(err.contains("episodes[1].reference_image"), "{err}");
+    // Nested ids (VLN-CE's `mp3d/ID/ID.glb`) and plain relative images stay readable.
+    read(Episode {
+        scene_id: "mp3d/17DRP5sb8fy/17DRP5sb8fy.glb".into(),
+        reference_image: Some("images/2.png".into()),
+        ..episode(2)
+    })
+    .unwrap();
+}
+
 /// The plain JSON of a split (what the gzip holds).
 fn flate2_free_json(episodes: &[Episode]) -> Vec<u8> {
     serde_json::to_vec(&vlnverse_score::Dataset {
