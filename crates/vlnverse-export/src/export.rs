@@ -756,26 +756,43 @@ fn claim_output(
     fingerprint: &str,
     identity: &serde_json::Value,
 ) -> Result<(OutputLock, PathBuf)> {
+    let parts = parts_dir(&req.out);
+    let request_file = parts.join("request.json");
+    // Refuse a folder of something else before touching it (no lock file is left there), and
+    // again under the lock, where no other job can change it meanwhile.
+    if req.out.is_dir() {
+        check_output_holds(&req.out, &request_file, fingerprint)?;
+    }
     mkdirs(&req.out)?;
     let lock = OutputLock::acquire(&req.out, "export").map_err(|e| ExportError::Output {
         path: req.out.clone(),
         reason: e.to_string(),
     })?;
-    let parts = parts_dir(&req.out);
-    let request_file = parts.join("request.json");
-    match read_json::<serde_json::Value>(&request_file) {
-        Some(v) if v.get("fingerprint").and_then(|f| f.as_str()) == Some(fingerprint) => {}
-        Some(_) => {
-            return Err(ExportError::Output {
-                path: req.out.clone(),
-                reason: "holds an export of another request (dataset split, episodes, seed, \
-                         setting or panorama differ); choose another --out or delete it"
-                    .into(),
-            })
-        }
+    if !check_output_holds(&req.out, &request_file, fingerprint)? {
+        mkdirs(&parts)?;
+        write_atomic(
+            &request_file,
+            &serde_json::to_vec_pretty(&json!({"fingerprint": fingerprint, "request": identity}))
+                .unwrap_or_default(),
+        )?;
+    }
+    Ok((lock, parts))
+}
+
+/// Whether `out` holds this request's export (true) or nothing yet (false); an error when it
+/// holds another request's export or anything else.
+fn check_output_holds(out: &Path, request_file: &Path, fingerprint: &str) -> Result<bool> {
+    match read_json::<serde_json::Value>(request_file) {
+        Some(v) if v.get("fingerprint").and_then(|f| f.as_str()) == Some(fingerprint) => Ok(true),
+        Some(_) => Err(ExportError::Output {
+            path: out.to_path_buf(),
+            reason: "holds an export of another request (dataset split, episodes, seed, \
+                     setting or panorama differ); choose another --out or delete it"
+                .into(),
+        }),
         None => {
-            let foreign = std::fs::read_dir(&req.out)
-                .map_err(|e| ExportError::io(&req.out, e))?
+            let foreign = std::fs::read_dir(out)
+                .map_err(|e| ExportError::io(out, e))?
                 .filter_map(|e| e.ok())
                 .any(|e| {
                     let n = e.file_name();
@@ -783,24 +800,15 @@ fn claim_output(
                 });
             if foreign {
                 return Err(ExportError::Output {
-                    path: req.out.clone(),
+                    path: out.to_path_buf(),
                     reason: "is not empty and holds no export of this command; choose an \
                              empty or new folder"
                         .into(),
                 });
             }
-            mkdirs(&parts)?;
-            write_atomic(
-                &request_file,
-                &serde_json::to_vec_pretty(
-                    &json!({"fingerprint": fingerprint, "request": identity}),
-                )
-                .unwrap_or_default(),
-            )?;
+            Ok(false)
         }
     }
-
-    Ok((lock, parts))
 }
 
 /// The teacher's actions of every episode, without rendering (cheap), for the frame layout;

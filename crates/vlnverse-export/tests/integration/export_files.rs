@@ -138,6 +138,12 @@ fn refuses_bad_requests_with_clear_errors() {
     let e = export(&request(&foreign, 1), &|_| {}).unwrap_err();
     assert!(matches!(e, ExportError::Output { .. }), "{e}");
     assert!(foreign.join("notes.txt").is_file());
+    // The refused folder is left as it was: no lock file, no parts folder.
+    let left: Vec<_> = std::fs::read_dir(&foreign)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(left, vec![std::ffi::OsString::from("notes.txt")]);
     // Zero episodes.
     let mut req = request(&tmp.path().join("d"), 1);
     req.episodes = Some(0);
