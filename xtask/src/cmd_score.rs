@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use crate::split_args::SplitArgs;
 use anyhow::Context as _;
 use vlnverse_score::metrics::{MetricsConfig, DEFAULT_START_TOLERANCE};
-use vlnverse_score::report::{write_run, RunSummary};
+use vlnverse_score::report::write_run;
 use vlnverse_score::{score_with, trajectory, ScoreOptions};
 
 /// Arguments of `cargo xtask score`.
@@ -76,21 +76,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     )
     .with_context(|| format!("scoring {}", args.trajectories.display()))?;
     pb.finish_and_clear();
-    let metrics = scored.metrics;
     let method = args.method.clone().unwrap_or_else(|| {
         args.trajectories
             .file_stem()
             .map(|s| s.to_string_lossy().into_owned())
             .unwrap_or_else(|| "trajectories".into())
     });
-    let run = RunSummary::new(
-        &method,
-        args.setting.as_deref(),
-        args.data.task,
-        args.data.split,
-        &metrics,
-    );
-    write_run(&args.out, &run, &metrics)?;
+    let run = scored.run_summary(&method, args.setting.as_deref());
+    write_run(&args.out, &run, &scored.metrics)?;
     let s = &run.summary;
     println!(
         "{} episodes: SR {:.2}%  SPL {:.2}%  NE {}  nDTW {:.2}%  ({} unreachable) -> {}",

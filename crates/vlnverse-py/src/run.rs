@@ -11,10 +11,11 @@ use vlnverse_task::episode::{Episode, Split, Task};
 use vlnverse_task::eval::{finish_run, open_run, run_identity, select_episodes};
 use vlnverse_task::eval::{AgentFactory, EvalRequest, LayerIdentity, SceneCache};
 use vlnverse_task::eval::{EpisodeRecord, ProgressLog, PROGRESS_FILE};
-use vlnverse_task::metrics::{check_starts, match_trajectories, MetricsConfig};
-use vlnverse_task::report::{write_run, RunSummary};
+use vlnverse_task::metrics::MetricsConfig;
+use vlnverse_task::report::write_run;
 use vlnverse_task::sample::Sample;
-use vlnverse_task::{score as scoring, trajectory, OutputLock};
+use vlnverse_task::score::{score_with, ScoreOptions};
+use vlnverse_task::{trajectory, OutputLock};
 
 use crate::{guarded, parse, py_err};
 
@@ -49,34 +50,26 @@ pub fn score(
     let (task, split): (Task, Split) = (parse("task", task)?, parse("split", split)?);
     py.detach(|| {
         guarded("score", || {
-            let cfg = MetricsConfig {
-                success_distance,
-                fail_on_collision,
+            let options = ScoreOptions {
+                metrics: MetricsConfig {
+                    success_distance,
+                    fail_on_collision,
+                    ..Default::default()
+                },
+                allow_missing,
                 ..Default::default()
             };
-            cfg.validate().map_err(py_err)?;
-            let episodes = dataset::read_split(&dataset, task, split).map_err(py_err)?;
             let trajs = trajectory::read_trajectories(&trajectories).map_err(py_err)?;
-            let trajs = match_trajectories(&episodes, trajs, allow_missing).map_err(py_err)?;
-            check_starts(
-                &episodes,
-                &trajs,
-                vlnverse_task::metrics::DEFAULT_START_TOLERANCE,
-            )
-            .map_err(py_err)?;
-            let mut metrics = scoring::score_on_maps(&dataset, &episodes, &trajs, &cfg, &|_| {})
-                .map_err(py_err)?;
-            for m in &mut metrics {
-                m.split = Some(split);
-            }
+            let scored =
+                score_with(&dataset, task, split, trajs, &options, &|_| {}).map_err(py_err)?;
             let name = method.unwrap_or_else(|| {
                 trajectories
                     .file_stem()
                     .map(|s| s.to_string_lossy().into_owned())
                     .unwrap_or_else(|| "trajectories".into())
             });
-            let run = RunSummary::new(&name, None, task, split, &metrics);
-            write_run(&out, &run, &metrics).map_err(py_err)?;
+            let run = scored.run_summary(&name, None);
+            write_run(&out, &run, &scored.metrics).map_err(py_err)?;
             serde_json::to_string(&run).map_err(py_err)
         })
     })

@@ -45,12 +45,25 @@ impl RunSummary {
         split: Split,
         ms: &[EpisodeMetrics],
     ) -> Self {
+        Self::with_summary(method, setting, task, split, aggregate(ms), ms)
+    }
+
+    /// [`RunSummary::new`] with the metrics' summary already aggregated (as
+    /// [`crate::Scored`] holds it).
+    pub fn with_summary(
+        method: &str,
+        setting: Option<&str>,
+        task: Task,
+        split: Split,
+        summary: Summary,
+        ms: &[EpisodeMetrics],
+    ) -> Self {
         RunSummary {
             method: method.to_string(),
             setting: setting.map(str::to_string),
             task,
             split,
-            summary: aggregate(ms),
+            summary,
             by_style: aggregate_by(ms, |m| m.style.map(|s| s.to_string())),
         }
     }

@@ -20,6 +20,7 @@ use crate::metrics::{
     aggregate, check_starts, match_trajectories, score_all, score_episode, EpisodeMetrics,
     GoalDistance, GoalDistances, MetricsConfig, Nearest, Summary, DEFAULT_START_TOLERANCE,
 };
+use crate::report::RunSummary;
 use crate::trajectory::Trajectory;
 
 /// How [`score_with`] scores; the default is the benchmark's protocol (geodesic distances on the
@@ -53,10 +54,28 @@ impl Default for ScoreOptions {
 #[derive(Clone, Debug)]
 #[non_exhaustive]
 pub struct Scored {
+    /// The task scored.
+    pub task: Task,
+    /// The split scored.
+    pub split: Split,
     /// Per-episode metrics.
     pub metrics: Vec<EpisodeMetrics>,
     /// The split's aggregate.
     pub summary: Summary,
+}
+
+impl Scored {
+    /// `summary.json`'s content for this split, under the row label `method` (and `setting`).
+    pub fn run_summary(&self, method: &str, setting: Option<&str>) -> RunSummary {
+        RunSummary::with_summary(
+            method,
+            setting,
+            self.task,
+            self.split,
+            self.summary.clone(),
+            &self.metrics,
+        )
+    }
 }
 
 /// Score `trajectories` (any order, one per episode) against `task`/`split` of the dataset in
@@ -114,7 +133,12 @@ pub fn score_with(
         m.split = Some(split);
     }
     let summary = aggregate(&metrics);
-    Ok(Scored { metrics, summary })
+    Ok(Scored {
+        task,
+        split,
+        metrics,
+        summary,
+    })
 }
 
 /// Distinct goals whose distance fields are alive at once.
