@@ -2,10 +2,10 @@
 //! of a process builds a scene's static colliders once, whoever calls it (an evaluation's
 //! workers, a batch of environments, a user's wrapper that only forwards `reset`).
 
-use std::collections::HashMap;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard, OnceLock, PoisonError};
 
+use vlnverse_env::cache::ByteLru;
 use vlnverse_env::Scene;
 
 use crate::config::AgentConfig;
@@ -21,22 +21,14 @@ pub const DEFAULT_BUDGET_MB: usize = 512;
 
 /// One key's world: built by the first caller while the others of the same key wait (a build
 /// never enters rayon, so waiting cannot deadlock a pool), other keys go on meanwhile.
-type Slot = Arc<Mutex<Option<Arc<PhysicsScene>>>>;
-
-#[derive(Default)]
-struct Entries {
-    /// Key -> (slot, bytes, last use).
-    map: HashMap<u64, (Slot, usize, u64)>,
-    used: usize,
-    clock: u64,
-}
+type Slot = Mutex<Option<Arc<PhysicsScene>>>;
 
 /// Physics worlds keyed by the content they were built from (scene and embodiment), least
-/// recently used dropped past a byte budget (the newest is always kept). A world still in use
-/// by a simulator stays alive after it leaves the cache.
+/// recently used dropped past a byte budget (the newest is always kept: the slots live in a
+/// [`ByteLru`]). A world still in use by a simulator stays alive after it leaves the cache.
 pub struct PhysicsCache {
     budget: usize,
-    entries: Mutex<Entries>,
+    slots: Mutex<ByteLru<Slot>>,
     builds: AtomicU64,
     hits: AtomicU64,
 }
@@ -60,7 +52,9 @@ impl PhysicsCache {
     pub fn new(budget_bytes: usize) -> Self {
         PhysicsCache {
             budget: budget_bytes,
-            entries: Mutex::new(Entries::default()),
+            // ByteLru keeps nothing at budget 0; this cache keeps the newest world whatever
+            // the budget, so that equal scenes reset one after the other share it.
+            slots: Mutex::new(ByteLru::new(budget_bytes.max(1))),
             builds: AtomicU64::new(0),
             hits: AtomicU64::new(0),
         }
@@ -89,24 +83,15 @@ impl PhysicsCache {
     ) -> Result<Arc<PhysicsScene>> {
         let key = content_key(scene, agent_key);
         let slot = {
-            let mut e = lock(&self.entries);
-            e.clock += 1;
-            let now = e.clock;
-            let bytes = approx_bytes(scene);
-            let slot = match e.map.get_mut(&key) {
-                Some(entry) => {
-                    entry.2 = now;
-                    entry.0.clone()
-                }
+            let mut slots = lock(&self.slots);
+            match slots.get(key) {
+                Some(slot) => slot,
                 None => {
-                    let slot: Slot = Arc::default();
-                    e.map.insert(key, (slot.clone(), bytes, now));
-                    e.used += bytes;
-                    evict(&mut e, self.budget, key);
+                    let slot = Arc::new(Slot::default());
+                    slots.insert(key, slot.clone(), approx_bytes(scene));
                     slot
                 }
-            };
-            slot
+            }
         };
         let mut world = lock(&slot);
         if let Some(w) = world.as_ref() {
@@ -131,28 +116,12 @@ impl PhysicsCache {
 
     /// Worlds kept now.
     pub fn len(&self) -> usize {
-        lock(&self.entries).map.len()
+        lock(&self.slots).len()
     }
 
     /// Whether no world is kept.
     pub fn is_empty(&self) -> bool {
         self.len() == 0
-    }
-}
-
-/// Drop the least recently used worlds (never `keep`) while over the budget.
-fn evict(e: &mut Entries, budget: usize, keep: u64) {
-    while e.used > budget {
-        let oldest = e
-            .map
-            .iter()
-            .filter(|(k, _)| **k != keep)
-            .min_by_key(|(_, v)| v.2)
-            .map(|(k, _)| *k);
-        let Some(k) = oldest else { break };
-        if let Some((_, bytes, _)) = e.map.remove(&k) {
-            e.used -= bytes;
-        }
     }
 }
 
