@@ -646,7 +646,7 @@ fn evaluate_locked<SF: SimulatorFactory, RF: RendererFactory>(
     };
     let results = match req.threads {
         Some(k) => rayon::ThreadPoolBuilder::new()
-            .num_threads(k.max(1))
+            .num_threads(k)
             .build()
             .map_err(|e| TaskError::invalid("threads", k, e.to_string()))?
             .install(run),

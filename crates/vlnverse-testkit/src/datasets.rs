@@ -8,11 +8,26 @@ use glam::{Vec2, Vec3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use vlnverse_env::geodesic::shortest_path;
-use vlnverse_env::io::write_scene_bundle;
+use vlnverse_env::io::{write_scene_bundle, SceneBundle};
 use vlnverse_env::occupancy::OccupancyConfig;
 use vlnverse_env::Pose;
 use vlnverse_procgen::{HomeGenerator, Preset};
 use vlnverse_score::{dataset, Episode, EpisodeInfo, Goal, Instruction, Split, Task};
+
+/// Home `s` of a dataset made from `seed` (`tiny_<s>`), written under `dir/scenes`, with the
+/// centres of its navigable cells.
+fn tiny_home(dir: &Path, gen: &HomeGenerator, seed: u64, s: usize) -> (SceneBundle, Vec<Vec2>) {
+    let id = format!("tiny_{s:03}");
+    let scene = gen.generate(seed.wrapping_add(s as u64), &id).unwrap();
+    let (bundle, _) =
+        write_scene_bundle(dir.join("scenes"), scene, &OccupancyConfig::default()).unwrap();
+    let nav = &bundle.maps.navigable;
+    let free = nav
+        .free_cells()
+        .map(|(c, r)| nav.cell_center(c, r))
+        .collect();
+    (bundle, free)
+}
 
 /// Write `scenes` tiny homes and `per_scene` episodes each (test split of `task`) under `dir`.
 pub fn make_dataset(
@@ -26,15 +41,8 @@ pub fn make_dataset(
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut episodes = Vec::new();
     for s in 0..scenes {
-        let id = format!("tiny_{s:03}");
-        let scene = gen.generate(seed.wrapping_add(s as u64), &id).unwrap();
-        let (bundle, _) =
-            write_scene_bundle(dir.join("scenes"), scene, &OccupancyConfig::default()).unwrap();
+        let (bundle, free) = tiny_home(dir, &gen, seed, s);
         let nav = &bundle.maps.navigable;
-        let free: Vec<Vec2> = nav
-            .free_cells()
-            .map(|(c, r)| nav.cell_center(c, r))
-            .collect();
         let y = bundle.scene.floor_height;
         let mut made = 0;
         let mut tries = 0;
@@ -75,15 +83,8 @@ pub fn make_object_dataset(dir: &Path, scenes: usize, per_scene: usize, seed: u6
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut episodes = Vec::new();
     for s in 0..scenes {
-        let id = format!("tiny_{s:03}");
-        let scene = gen.generate(seed.wrapping_add(s as u64), &id).unwrap();
-        let (bundle, _) =
-            write_scene_bundle(dir.join("scenes"), scene, &OccupancyConfig::default()).unwrap();
+        let (bundle, free) = tiny_home(dir, &gen, seed, s);
         let nav = &bundle.maps.navigable;
-        let free: Vec<Vec2> = nav
-            .free_cells()
-            .map(|(c, r)| nav.cell_center(c, r))
-            .collect();
         let y = bundle.scene.floor_height;
         let objects: Vec<_> = bundle
             .scene
