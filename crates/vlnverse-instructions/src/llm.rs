@@ -347,10 +347,36 @@ impl Drop for GateGuard<'_> {
     }
 }
 
-/// A cached reply on disk.
+/// A cached reply on disk (with the token counts the endpoint reported, when it did).
 #[derive(Serialize, Deserialize)]
 struct CacheEntry {
     reply: String,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    usage: Option<Usage>,
+}
+
+/// Token counts of one reply, as the endpoint's `usage` object gives them.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Usage {
+    /// Tokens of the request.
+    pub prompt_tokens: u64,
+    /// Tokens of the reply.
+    pub completion_tokens: u64,
+}
+
+/// A reply with what it cost ([`ChatClient::chat_detailed`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ChatReply {
+    /// `choices[0].message.content`, trimmed.
+    pub text: String,
+    /// Token counts, when the endpoint reported them (kept in the cache with the reply).
+    pub usage: Option<Usage>,
+    /// Whether the reply came from the cache (nothing was sent).
+    pub cached: bool,
+    /// HTTP attempts made (0 from the cache; more than 1 when failures were retried).
+    pub attempts: u32,
+    /// Wall time of the request with its retries (0 from the cache).
+    pub latency: Duration,
 }
 
 fn net_error(url: &str, e: impl std::fmt::Display) -> DataError {
@@ -422,6 +448,12 @@ impl ChatClient {
     /// Send `messages` and return the reply text (`choices[0].message.content`), retrying
     /// transport errors, HTTP 429 and 5xx.
     pub fn chat(&self, messages: &[ChatMessage], seed: u64) -> Result<String> {
+        self.chat_detailed(messages, seed).map(|r| r.text)
+    }
+
+    /// [`ChatClient::chat`] with the reply's token counts, attempts, latency and whether it
+    /// came from the cache.
+    pub fn chat_detailed(&self, messages: &[ChatMessage], seed: u64) -> Result<ChatReply> {
         let url = self.config.url();
         let key = self.api_key()?;
         let body = serde_json::to_string(&ChatRequest {
@@ -438,7 +470,13 @@ impl ChatClient {
                 match serde_json::from_slice::<CacheEntry>(&bytes) {
                     Ok(e) => {
                         self.cached.fetch_add(1, Ordering::Relaxed);
-                        return Ok(e.reply);
+                        return Ok(ChatReply {
+                            text: e.reply,
+                            usage: e.usage,
+                            cached: true,
+                            attempts: 0,
+                            latency: Duration::ZERO,
+                        });
                     }
                     // A damaged entry is asked again and rewritten.
                     Err(e) => tracing::warn!(file = %file.display(), error = %e, "bad cache entry"),
@@ -448,7 +486,8 @@ impl ChatClient {
         let reply = self.send(&url, &body, key.as_deref())?;
         if let Some(file) = &cache {
             let entry = serde_json::to_vec(&CacheEntry {
-                reply: reply.clone(),
+                reply: reply.text.clone(),
+                usage: reply.usage,
             })
             .map_err(|e| net_error(&url, e))?;
             if let Some(dir) = file.parent() {
@@ -460,9 +499,10 @@ impl ChatClient {
     }
 
     /// One request with retries, within the concurrency limit.
-    fn send(&self, url: &str, body: &str, key: Option<&str>) -> Result<String> {
+    fn send(&self, url: &str, body: &str, key: Option<&str>) -> Result<ChatReply> {
         let _slot = self.gate.enter();
         self.sent.fetch_add(1, Ordering::Relaxed);
+        let started = std::time::Instant::now();
         let url = url.to_string();
         let mut last_err = None;
         for attempt in 0..=self.config.retries {
@@ -501,13 +541,20 @@ impl ChatClient {
             if status != 200 {
                 return Err(net_error(&url, format!("HTTP {status}: {text}")));
             }
-            return parse_reply(&url, &text);
+            let (text, usage) = parse_reply(&url, &text)?;
+            return Ok(ChatReply {
+                text,
+                usage,
+                cached: false,
+                attempts: attempt + 1,
+                latency: started.elapsed(),
+            });
         }
         Err(last_err.unwrap_or_else(|| net_error(&url, "no attempt made")))
     }
 }
 
-fn parse_reply(url: &str, text: &str) -> Result<String> {
+fn parse_reply(url: &str, text: &str) -> Result<(String, Option<Usage>)> {
     let v: serde_json::Value =
         serde_json::from_str(text).map_err(|e| DataError::parse(url, "response body", e))?;
     let content = v
@@ -528,7 +575,10 @@ fn parse_reply(url: &str, text: &str) -> Result<String> {
             "empty reply",
         ));
     }
-    Ok(content.to_string())
+    let usage = v
+        .get("usage")
+        .and_then(|u| serde_json::from_value::<Usage>(u.clone()).ok());
+    Ok((content.to_string(), usage))
 }
 
 fn truncate(s: &str, n: usize) -> String {
