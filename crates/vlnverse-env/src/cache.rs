@@ -84,6 +84,15 @@ impl<T> ByteLru<T> {
         Some(v)
     }
 
+    /// The most recently used value for which `pred` holds, now the most recently used.
+    pub fn find(&mut self, pred: impl Fn(&T) -> bool) -> Option<Arc<T>> {
+        let i = self.entries.iter().rposition(|e| pred(&e.1))?;
+        let e = self.entries.remove(i);
+        let v = e.1.clone();
+        self.entries.push(e);
+        Some(v)
+    }
+
     /// Keep `value` (of `bytes` bytes) under `key`, dropping the least recently used entries
     /// past the budget.
     pub fn insert(&mut self, key: u64, value: Arc<T>, bytes: usize) {

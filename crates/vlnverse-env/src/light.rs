@@ -20,10 +20,11 @@
 //! Other scenes (imported houses, hand-made fixtures) get the old directional look per vertex,
 //! which costs nothing.
 //!
-//! A scene is baked more than once: its `scene.glb` is written, then the renderer is prepared,
-//! and a training run loads each home again and again. So [`bake`] keeps results in a
-//! process-wide cache keyed by the scene's content ([`crate::cache`], 256 MB unless
-//! `VLNVERSE_LIGHT_CACHE_MB` says otherwise); a hit returns the same bytes as a fresh bake.
+//! A scene is baked once, when its `scene.glb` is written; loading a scene folder reads the
+//! light back from there ([`crate::io::load_scene`], [`remember`]) instead of baking again.
+//! [`bake`] keeps results in a process-wide cache keyed by the scene's content
+//! ([`crate::cache`], 256 MB unless `VLNVERSE_LIGHT_CACHE_MB` says otherwise); a hit returns
+//! the same bytes as a fresh bake.
 
 use crate::bvh::TriBvh;
 use crate::cache;
@@ -249,16 +250,48 @@ fn cache() -> &'static cache::SharedLru<BakedLight> {
     C.get_or_init(|| cache::shared_lru(cache::budget_from_env(CACHE_MB_VAR, CACHE_MB)))
 }
 
-/// A 64-bit key of everything the bake reads: the triangulated parts and the lamps.
-fn content_key(parts: &[crate::geometry::TriMesh], lights: &Lights) -> u64 {
+/// A 64-bit key of everything the bake reads: what every part is triangulated from (shape,
+/// pose, cell size) and the lights. Made from the scene's few numbers per part, not from the
+/// triangulation, so a cache hit costs next to nothing.
+fn content_key(scene: &Scene, lights: &Lights) -> u64 {
     let mut k = cache::ContentKey::new();
-    for m in parts {
-        k.u32(m.positions.len() as u32);
-        for p in m.positions.iter().chain(&m.normals) {
-            k.f32s(p);
-        }
-        for t in &m.indices {
-            t.iter().for_each(|i| k.u32(*i));
+    k.u32(scene.objects.len() as u32);
+    for o in &scene.objects {
+        k.f32(cell_of(scene, o).unwrap_or(-1.0));
+        k.f32s(&o.pose.position);
+        k.f32s(&o.pose.rotation);
+        k.u32(o.parts.len() as u32);
+        for p in &o.parts {
+            k.f32s(&p.transform.position);
+            k.f32s(&p.transform.rotation);
+            match &p.shape {
+                crate::Shape::Cuboid {
+                    half_extents,
+                    bevel,
+                } => {
+                    k.u32(0);
+                    k.f32s(half_extents);
+                    k.f32(*bevel);
+                }
+                crate::Shape::Cylinder {
+                    radius,
+                    half_height,
+                } => {
+                    k.u32(1);
+                    k.f32s(&[*radius, *half_height]);
+                }
+                crate::Shape::Sphere { radius } => {
+                    k.u32(2);
+                    k.f32(*radius);
+                }
+                crate::Shape::Mesh(m) => {
+                    k.u32(3);
+                    k.u32(m.positions.len() as u32);
+                    m.positions.iter().for_each(|v| k.f32s(v));
+                    k.u32(m.indices.len() as u32);
+                    m.indices.iter().flatten().for_each(|i| k.u32(*i));
+                }
+            }
         }
     }
     for l in &lights.lamps {
@@ -298,22 +331,42 @@ fn lights(scene: &Scene) -> Lights {
 }
 
 /// Bake the light of a scene (see the module docs); the same result as a fresh bake, taken
-/// from the cache when this scene was baked a moment ago.
+/// from the cache when this scene was baked (or its light loaded, [`remember`]) a moment ago.
 pub fn bake(scene: &Scene) -> Arc<BakedLight> {
-    let parts = bake_meshes(scene);
     let lights = lights(scene);
-    let key = content_key(&parts, &lights);
+    let key = content_key(scene, &lights);
     cache::get_or_insert(
         cache(),
         key,
-        || bake_uncached(parts, &lights),
+        || bake_uncached(bake_meshes(scene), &lights),
         BakedLight::bytes,
     )
+}
+
+/// Keep light already baked for `scene` (e.g. read back from its `scene.glb`,
+/// [`crate::io::glb::read_baked_light`]) so that [`bake`] returns it instead of baking again.
+/// The given light replaces what the cache held for this scene.
+pub fn remember(scene: &Scene, light: BakedLight) -> Arc<BakedLight> {
+    let key = content_key(scene, &lights(scene));
+    let (bytes, light) = (light.bytes(), Arc::new(light));
+    if let Ok(mut c) = cache().lock() {
+        c.insert(key, light.clone(), bytes);
+    }
+    light
 }
 
 /// [`bake`] without the cache: always computes (tests compare the two, and thread counts).
 pub fn bake_fresh(scene: &Scene) -> BakedLight {
     bake_uncached(bake_meshes(scene), &lights(scene))
+}
+
+/// The light colour [`bake`] gives a scene ([`BakedLight::tint`]).
+pub(crate) fn tint_of(scene: &Scene) -> [f32; 3] {
+    if lamps(scene).is_empty() && panes(scene).is_empty() {
+        [1.0; 3]
+    } else {
+        LAMP_TINT
+    }
 }
 
 fn bake_uncached(parts: Vec<crate::geometry::TriMesh>, lights: &Lights) -> BakedLight {

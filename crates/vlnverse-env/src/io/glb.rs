@@ -535,6 +535,90 @@ pub fn write_glb_with(scene: &Scene, light: &BakedLight) -> Vec<u8> {
     glb_container(&json_bytes, &bin.data)
 }
 
+/// The baked light a `scene.glb` written by [`write_glb_with`] holds as `COLOR_0`, back in the
+/// per-part form of [`crate::light::bake`] (object order, then part order; the light colour
+/// from [`crate::light::is_lit`]), so that loading a scene does not bake it again. `Ok(None)`
+/// when the file's primitives do not fit the scene's parts (a file of another scene, or not
+/// written by this writer): the caller then bakes. Errors only for a file that is not glTF.
+pub fn read_baked_light(scene: &Scene, bytes: &[u8], path: &Path) -> Result<Option<BakedLight>> {
+    let gltf = gltf::Gltf::from_slice(bytes)
+        .map_err(|e| EnvError::parse(path, format!("not a valid glTF 2.0 binary: {e}")))?;
+    let blob = gltf.blob.as_deref();
+    let get = |b: gltf::Buffer<'_>| match b.source() {
+        gltf::buffer::Source::Bin => blob,
+        gltf::buffer::Source::Uri(_) => None,
+    };
+    let colours = |p: &gltf::Primitive<'_>| -> Option<Vec<[u8; 3]>> {
+        let c = p.reader(get).read_colors(0)?.into_rgba_u8();
+        Some(c.map(|[r, g, b, _]| [r, g, b]).collect())
+    };
+    let nodes: Vec<gltf::Node<'_>> = gltf.nodes().collect();
+    let meshes: Vec<gltf::Mesh<'_>> = gltf.meshes().collect();
+    let n_parts: usize = scene.objects.iter().map(|o| o.parts.len()).sum();
+    let mut parts: Vec<Vec<[u8; 3]>> = Vec::with_capacity(n_parts);
+    for (i, o) in scene.objects.iter().enumerate() {
+        let Some(node) = nodes.get(i) else {
+            return Ok(None);
+        };
+        let cell = cell_of(scene, o);
+        // Parts grouped by colour in order of first appearance, as the writer groups them
+        // (one surface per object); each group is one primitive unless it has no triangles.
+        let first = parts.len();
+        let mut groups: Vec<([u32; 3], Vec<(usize, usize, bool)>)> = Vec::new();
+        for p in &o.parts {
+            let k = parts.len();
+            if let Shape::Mesh(m) = &p.shape {
+                let light = m
+                    .glb_mesh
+                    .and_then(|g| meshes.get(g as usize))
+                    .and_then(|g| g.primitives().next())
+                    .and_then(|p| colours(&p));
+                let tri = mesh_with_normals(&m.positions, &m.indices);
+                match light {
+                    Some(l) if l.len() == tri.positions.len() => parts.push(l),
+                    _ if tri.indices.is_empty() => parts.push(Vec::new()),
+                    _ => return Ok(None),
+                }
+                continue;
+            }
+            let tri = triangulate_cells(&p.shape, cell);
+            let key = p.color.map(f32::to_bits);
+            let g = match groups.iter().position(|g| g.0 == key) {
+                Some(g) => g,
+                None => {
+                    groups.push((key, Vec::new()));
+                    groups.len() - 1
+                }
+            };
+            let drawn = !tri.indices.is_empty();
+            groups[g].1.push((k, tri.positions.len(), drawn));
+            parts.push(Vec::new());
+        }
+        let mut prims = node.mesh().into_iter().flat_map(|m| m.primitives());
+        for (_, members) in groups.iter().filter(|g| g.1.iter().any(|m| m.2)) {
+            let Some(light) = prims.next().and_then(|p| colours(&p)) else {
+                return Ok(None);
+            };
+            if light.len() != members.iter().map(|m| m.1).sum::<usize>() {
+                return Ok(None);
+            }
+            let mut at = 0;
+            for &(k, n, _) in members {
+                parts[k] = light[at..at + n].to_vec();
+                at += n;
+            }
+        }
+        if prims.next().is_some() {
+            return Ok(None);
+        }
+        debug_assert_eq!(parts.len() - first, o.parts.len());
+    }
+    Ok(Some(BakedLight {
+        parts,
+        tint: crate::light::tint_of(scene),
+    }))
+}
+
 /// A binary glTF container: the header, the JSON chunk (padded with spaces) and, when `bin`
 /// is not empty, the BIN chunk (padded with zeros).
 pub fn glb_container(json: &[u8], bin: &[u8]) -> Vec<u8> {

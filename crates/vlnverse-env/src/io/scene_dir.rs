@@ -2,7 +2,9 @@
 //! written atomically (a temporary folder renamed into place) so an interrupted job never leaves
 //! a folder that looks complete.
 
-use super::glb::{assign_glb_mesh_indices, read_glb_bytes, restore_mesh_parts, write_glb};
+use super::glb::{
+    assign_glb_mesh_indices, read_baked_light, read_glb_bytes, restore_mesh_parts, write_glb,
+};
 use super::json::{scene_from_json, scene_to_json};
 use crate::error::{EnvError, Result};
 use crate::scene::{Scene, Shape};
@@ -140,7 +142,8 @@ fn check_glb_header(bytes: &[u8], path: &Path) -> Result<()> {
     Ok(())
 }
 
-/// Load a scene folder: `scene.json` plus the vertex data of mesh parts from `scene.glb`.
+/// Load a scene folder: `scene.json` plus the vertex data of mesh parts from `scene.glb`, whose
+/// baked light is handed to [`crate::light::remember`] (procedural homes).
 /// Errors name the file and what is wrong (missing file, corrupt `.glb`, invalid JSON with its
 /// line and column, wrong `format_version`).
 pub fn load_scene(dir: impl AsRef<Path>) -> Result<Scene> {
@@ -159,6 +162,13 @@ pub fn load_scene(dir: impl AsRef<Path>) -> Result<Scene> {
     if has_mesh {
         let contents = read_glb_bytes(&glb, &glb_path)?;
         restore_mesh_parts(&mut scene, &contents, &glb_path)?;
+    }
+    // The light baked at generation: kept for the renderers, so they do not bake it again. A
+    // file whose light does not fit (or does not parse) leaves them to bake, as before.
+    if crate::light::is_lit(&scene) {
+        if let Ok(Some(light)) = read_baked_light(&scene, &glb, &glb_path) {
+            crate::light::remember(&scene, light);
+        }
     }
     Ok(scene)
 }

@@ -1,5 +1,6 @@
 //! Integration tests of `vlnverse-procgen`, linked into one test binary (one link, shared fixtures).
 
+mod baked_light_file;
 mod decor;
 mod homes;
 mod look;
