@@ -174,7 +174,8 @@ impl ProgressLog {
 
 /// Keys of `run.json` added after runs were first written: a `run.json` without one of them
 /// (a run made before) is not compared on it; one that has it is.
-pub const LATER_KEYS: [&str; 5] = [
+pub const LATER_KEYS: [&str; 6] = [
+    "benchmark_version",
     "simulator",
     "simulator_fingerprint",
     "renderer",

@@ -772,6 +772,11 @@ pub fn run_identity(
         cfg.resolve(&cfg.rig).display().to_string()
     };
     let mut identity = vec![
+        // First: a run of another benchmark version is another benchmark.
+        (
+            "benchmark_version",
+            json!(vlnverse_score::BENCHMARK_VERSION),
+        ),
         ("setting", json!(cfg.setting.name())),
         ("task", json!(req.task.name())),
         ("split", json!(req.split.name())),

@@ -3,7 +3,8 @@
 //! language is (distinct words; the largest share of a task's instructions that one sentence
 //! skeleton covers). Written as PNG charts (drawn here with the env crate's 8x8 font, no
 //! plotting crate) and a markdown summary; [`samples_markdown`] draws seeded random
-//! instructions per task and style for reading.
+//! instructions per task and style for reading; [`naturalness`] measures the wording against
+//! human instructions (`xtask stats --reference`).
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
@@ -17,6 +18,9 @@ use vlnverse_env::topdown::{draw_text, text_width};
 use vlnverse_score::dataset::{read_split, split_path, write_atomic};
 use vlnverse_score::episode::{Role, Split, Task};
 use vlnverse_score::{DataError, Result};
+
+mod naturalness;
+pub use naturalness::{naturalness, GroupNaturalness, Naturalness};
 
 /// Summary numbers of a list of values.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
@@ -81,6 +85,9 @@ pub struct DatasetStats {
     pub skeleton_share: BTreeMap<String, (f64, String)>,
     /// Per task: distinct skeletons.
     pub skeletons: BTreeMap<String, usize>,
+    /// Perplexity and OOV share against human instructions, when a reference was given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub naturalness: Option<Naturalness>,
 }
 
 /// Words that [`skeleton`] masks: object class and room names (every name the template
@@ -323,11 +330,21 @@ fn save_png(img: &RgbImage, path: &Path) -> Result<()> {
 /// `instruction_length.png`, `stats.json` and `stats.md`; returns the markdown.
 /// A folder without episodes (no split files, or only empty ones) is an error saying so.
 pub fn write_stats(dir: &Path) -> Result<String> {
-    let st = collect(dir)?;
+    write_stats_with(dir, None)
+}
+
+/// [`write_stats`], with the naturalness figures (from [`naturalness`]) added to `stats.md`
+/// and `stats.json` when given.
+pub fn write_stats_with(dir: &Path, naturalness: Option<&Naturalness>) -> Result<String> {
+    let mut st = collect(dir)?;
     refuse_empty(dir, &st)?;
+    st.naturalness = naturalness.cloned();
     let out = dir.join("stats");
     write_plots(&st, &out)?;
-    let md = stats_markdown(dir, &st);
+    let mut md = stats_markdown(dir, &st);
+    if let Some(n) = naturalness {
+        md.push_str(&n.markdown());
+    }
     write_atomic(&out.join("stats.md"), md.as_bytes())?;
     let json = serde_json::to_vec_pretty(&st)
         .map_err(|e| DataError::invalid("stats", "<stats>", e.to_string()))?;

@@ -34,6 +34,10 @@ pub struct RunSummary {
     /// The same per instruction style (coarse-grained tasks).
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub by_style: BTreeMap<String, Summary>,
+    /// [`crate::BENCHMARK_VERSION`] of the code that scored the run (absent in runs scored
+    /// before it existed).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub benchmark_version: Option<String>,
 }
 
 impl RunSummary {
@@ -65,6 +69,7 @@ impl RunSummary {
             split,
             summary,
             by_style: aggregate_by(ms, |m| m.style.map(|s| s.to_string())),
+            benchmark_version: Some(crate::BENCHMARK_VERSION.to_string()),
         }
     }
 }
@@ -232,4 +237,68 @@ pub fn write_run(dir: &Path, run: &RunSummary, ms: &[EpisodeMetrics]) -> Result<
     write_atomic(&dir.join("episodes.csv"), episodes_csv(ms).as_bytes())?;
     write_atomic(&dir.join("report.md"), markdown_report(run).as_bytes())?;
     Ok(())
+}
+
+/// The benchmark version a run folder records (`run.json`, else `summary.json`): `None` when it
+/// holds neither file or neither can be read, `Some(None)` for a run made before the version
+/// was recorded.
+pub fn recorded_version(dir: &Path) -> Option<Option<String>> {
+    ["run.json", "summary.json"].iter().find_map(|f| {
+        let bytes = std::fs::read(dir.join(f)).ok()?;
+        let v: serde_json::Value = serde_json::from_slice(&bytes).ok()?;
+        Some(
+            v.get("benchmark_version")
+                .and_then(|b| b.as_str())
+                .map(str::to_string),
+        )
+    })
+}
+
+/// A warning when the run in `dir` was made at another benchmark version than this code's
+/// [`crate::BENCHMARK_VERSION`] (its figures are not comparable with a run of this version).
+pub fn version_warning(dir: &Path) -> Option<String> {
+    let now = crate::BENCHMARK_VERSION;
+    match recorded_version(dir)? {
+        Some(v) if v == now => None,
+        Some(v) => Some(format!(
+            "{}: the run was made at benchmark version {v}, this is version {now}: its results \
+             are not comparable with runs of this version",
+            dir.display()
+        )),
+        None => Some(format!(
+            "{}: the run records no benchmark version (made before version 1), this is version \
+             {now}: its results are not comparable with runs of this version",
+            dir.display()
+        )),
+    }
+}
+
+#[cfg(test)]
+mod version_tests {
+    use super::*;
+
+    #[test]
+    fn runs_of_another_or_no_version_are_flagged() {
+        let d = tempfile::tempdir().unwrap();
+        assert_eq!(version_warning(d.path()), None);
+        let write = |json: &str| std::fs::write(d.path().join("summary.json"), json).unwrap();
+        write(&format!(
+            r#"{{"benchmark_version": "{}"}}"#,
+            crate::BENCHMARK_VERSION
+        ));
+        assert_eq!(version_warning(d.path()), None);
+        write(r#"{"benchmark_version": "0.9"}"#);
+        let w = version_warning(d.path()).unwrap();
+        assert!(w.contains("version 0.9"), "{w}");
+        write(r#"{"method": "cma"}"#);
+        let w = version_warning(d.path()).unwrap();
+        assert!(w.contains("no benchmark version"), "{w}");
+        // run.json is read first.
+        std::fs::write(
+            d.path().join("run.json"),
+            format!(r#"{{"benchmark_version": "{}"}}"#, crate::BENCHMARK_VERSION),
+        )
+        .unwrap();
+        assert_eq!(version_warning(d.path()), None);
+    }
 }

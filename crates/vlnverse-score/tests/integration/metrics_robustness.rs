@@ -124,6 +124,7 @@ fn report_cr_column_is_labelled_as_percent() {
             ..Default::default()
         },
         by_style: Default::default(),
+        benchmark_version: None,
     };
     let md = markdown_report(&run);
     assert!(md.contains("CR (%)↓"), "{md}");
