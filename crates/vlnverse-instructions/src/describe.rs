@@ -149,11 +149,7 @@ pub(crate) fn object_np(
     }
     s.push_str(name);
     if let Some(m) = material_after {
-        s.push_str(match rng.random_range(0..3) {
-            0 => " made of ",
-            1 => " in ",
-            _ => " of ",
-        });
+        s.push_str(" made of ");
         s.push_str(material_noun(m));
     }
     let mut extra = Vec::new();
@@ -227,77 +223,13 @@ fn relation_phrase(
             names[0]
         }
     );
-    let phrase = match kind {
-        0 => fill1(
-            pick(
-                rng,
-                &[
-                    "on {x}",
-                    "sitting on {x}",
-                    "on top of {x}",
-                    "standing on {x}",
-                    "perched on {x}",
-                    "resting on {x}",
-                    "set on {x}",
-                    "placed on {x}",
-                    "atop {x}",
-                ],
-            ),
-            &xn,
-        ),
-        1 => fill1(
-            pick(
-                rng,
-                &[
-                    "with {x} on it",
-                    "with {x} on top",
-                    "that has {x} on it",
-                    "holding {x}",
-                    "topped by {x}",
-                    "with {x} sitting on it",
-                    "bearing {x}",
-                    "carrying {x}",
-                    "supporting {x}",
-                ],
-            ),
-            &xn,
-        ),
-        2 => fill1(
-            pick(
-                rng,
-                &[
-                    "next to {x}",
-                    "beside {x}",
-                    "by {x}",
-                    "just by {x}",
-                    "alongside {x}",
-                    "immediately beside {x}",
-                    "neighbouring {x}",
-                    "at the side of {x}",
-                    "sitting by {x}",
-                    "flanking {x}",
-                ],
-            ),
-            &xn,
-        ),
-        _ => fill1(
-            pick(
-                rng,
-                &[
-                    "near {x}",
-                    "close to {x}",
-                    "not far from {x}",
-                    "a little way from {x}",
-                    "a few steps from {x}",
-                    "in the vicinity of {x}",
-                    "not too far from {x}",
-                    "a short way from {x}",
-                    "within a few paces of {x}",
-                ],
-            ),
-            &xn,
-        ),
+    let bank: &[&str] = match kind {
+        0 => &["on {x}", "on top of {x}", "sitting on {x}"],
+        1 => &["with {x} on it", "with {x} on top"],
+        2 => &["next to {x}", "beside {x}", "by {x}"],
+        _ => &["near {x}", "close to {x}", "not far from {x}"],
     };
+    let phrase = fill1(pick(rng, bank), &xn);
     extra.push(GroundedObject {
         object_id: x.id,
         class: x.class.name().to_string(),
@@ -373,21 +305,11 @@ pub(crate) fn room_np(scene: &Scene, room: RoomId, synonym: f64, rng: &mut ChaCh
     };
     let area = r.area();
     let adj: &[&str] = if r.kind == RoomType::Hallway && area > 6.0 {
-        &["long", "narrow", "lengthy", "elongated"]
+        &["long", "narrow"]
     } else if area > 24.0 {
-        &[
-            "large",
-            "big",
-            "spacious",
-            "roomy",
-            "airy",
-            "good-sized",
-            "generous",
-        ]
+        &["large", "big"]
     } else if area < 8.0 {
-        &[
-            "small", "little", "compact", "tiny", "cramped", "snug", "poky", "modest",
-        ]
+        &["small", "little"]
     } else {
         &[]
     };
@@ -418,46 +340,21 @@ pub(crate) fn door_np(
         })?;
     let bank: &[&str] = if door.open_plan {
         &[
+            "the archway",
             "the open archway",
             "the wide opening",
-            "the open-plan gap",
-            "the archway",
-            "the gap in the wall",
-            "the big opening",
-            "the wide arch",
-            "the broad opening",
-            "the open gap between the rooms",
+            "the opening",
         ]
     } else if door.width < 0.85 {
-        &[
-            "the narrow doorway",
-            "the narrow door",
-            "the slim doorway",
-            "the tight doorway",
-            "the small doorway",
-            "the skinny doorway",
-        ]
+        &["the narrow doorway", "the narrow door", "the small doorway"]
     } else if door.width > 1.1 {
-        &[
-            "the wide doorway",
-            "the broad doorway",
-            "the double doorway",
-            "the large doorway",
-            "the generous doorway",
-            "the extra-wide doorway",
-        ]
+        &["the wide doorway", "the large doorway", "the wide door"]
     } else {
         &[
             "the doorway",
             "the door",
-            "the entrance",
-            "the door opening",
+            "the open door",
             "the open doorway",
-            "the gap",
-            "the opening",
-            "the way through",
-            "the door gap",
-            "the entryway",
         ]
     };
     Some(pick(rng, bank).to_string())
@@ -488,21 +385,9 @@ pub(crate) fn end_place(
         return Some(match env_side(side_of_heading(p, heading, c)) {
             s @ (Side::Left | Side::Right) if rng.random_bool(0.6) => {
                 let w = super::path::side_word(s);
-                pick(
-                    rng,
-                    &[
-                        "in the {d} corner",
-                        "in the far {d} corner",
-                        "by the {d}-hand corner",
-                    ],
-                )
-                .replace("{d}", w)
+                pick(rng, &["in the {d} corner", "in the far {d} corner"]).replace("{d}", w)
             }
-            _ => pick(
-                rng,
-                &["in the corner", "near the corner", "tucked in the corner"],
-            )
-            .to_string(),
+            _ => pick(rng, &["in the corner", "near the corner"]).to_string(),
         });
     }
     let mut best = (f32::INFINITY, p);
@@ -523,28 +408,12 @@ pub(crate) fn end_place(
                 let w = super::path::side_word(s);
                 pick(
                     rng,
-                    &[
-                        "by the wall on your {d}",
-                        "close to the {d} wall",
-                        "against the wall to your {d}",
-                    ],
+                    &["by the wall on your {d}", "next to the wall on your {d}"],
                 )
                 .replace("{d}", w)
             }
-            Side::Ahead => pick(
-                rng,
-                &[
-                    "facing the wall",
-                    "in front of the far wall",
-                    "just before the wall ahead",
-                ],
-            )
-            .to_string(),
-            Side::Behind => pick(
-                rng,
-                &["with the wall behind you", "with your back to the wall"],
-            )
-            .to_string(),
+            Side::Ahead => pick(rng, &["facing the wall", "in front of the wall"]).to_string(),
+            Side::Behind => "with the wall behind you".to_string(),
         });
     }
     None

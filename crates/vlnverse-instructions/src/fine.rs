@@ -60,7 +60,7 @@ impl Writer {
     }
     fn np(self) -> NpOptions {
         NpOptions {
-            synonym: if self == Writer::Precise { 0.2 } else { 0.45 },
+            synonym: if self == Writer::Precise { 0.2 } else { 0.3 },
             relation: match self {
                 Writer::Terse => 0.05,
                 Writer::Precise => 0.25,
@@ -162,101 +162,38 @@ fn legs_of(pts: &[Vec2], start: Vec2, cfg: &TemplateConfig) -> Vec<Leg> {
     legs
 }
 
-/// A distance in one of the ways people give it.
+/// A distance in one of the ways people give it: metres, steps or feet, a number or a word.
 fn distance_phrase(d: f32, w: Writer, rng: &mut ChaCha8Rng) -> String {
     if d < 1.25 {
         return pick(rng, &ph::DIST_SHORT).to_string();
     }
     let n = d.round().max(1.0) as u32;
+    let steps = (d / 0.75).round().max(2.0) as u32;
     let about = pick(rng, &ph::ABOUT);
     let form = if w == Writer::Precise {
-        rng.random_range(0..4)
+        rng.random_range(0..3)
     } else {
-        rng.random_range(0..13)
+        rng.random_range(0..8)
     };
     match form {
-        0 | 1 => format!(
+        0 => format!(
             "{about} {}",
             fill(pick(rng, &ph::METRES), &[("n", &n.to_string())])
         ),
-        2 => format!("{about} {} metres", number_word(n)),
-        3 if w == Writer::Precise => format!("{:.1} metres", d),
-        3 => {
-            let steps = (d / 0.75).round() as u32;
-            match rng.random_range(0..3) {
-                0 => format!("{about} {steps} steps"),
-                1 => format!("{} or {} steps", number_word(steps), number_word(steps + 1)),
-                _ => format!("{about} {} paces", number_word(steps)),
-            }
-        }
-        4 => format!(
+        1 => format!("{about} {} metres", number_word(n)),
+        2 if w == Writer::Precise => format!("{d:.1} metres"),
+        2 | 3 => format!("{about} {} steps", number_word(steps)),
+        4 => format!("{} or {} steps", number_word(steps), number_word(steps + 1)),
+        5 => match n {
+            0..=2 => "a couple of metres".into(),
+            3 | 4 => "a few metres".into(),
+            _ => "several metres".into(),
+        },
+        6 => format!(
             "{about} {} feet",
             ((d * 3.28 / 5.0).round() * 5.0).max(5.0) as u32
         ),
-        5 => {
-            let frac = d - d.floor();
-            if frac > 0.2 && frac < 0.8 {
-                format!("{} and a half metres", number_word(d.floor() as u32))
-            } else if d < n as f32 {
-                format!("just under {} metres", number_word(n))
-            } else {
-                format!("just over {} metres", number_word(n))
-            }
-        }
-        6 => match n {
-            0..=2 => "a couple of metres".into(),
-            3 | 4 => pick(
-                rng,
-                &[
-                    "a few metres",
-                    "three or four metres",
-                    "a handful of metres",
-                ],
-            )
-            .into(),
-            5..=8 => pick(
-                rng,
-                &["several metres", "a good few metres", "quite a few metres"],
-            )
-            .into(),
-            _ => pick(
-                rng,
-                &[
-                    "a long way",
-                    "a fair distance",
-                    "quite some way",
-                    "a good long way",
-                ],
-            )
-            .into(),
-        },
-        7 => format!("a good {} metres", number_word(n)),
-        10 => format!(
-            "{about} {} yards",
-            number_word((d / 0.914).round().max(1.0) as u32)
-        ),
-        11 => {
-            let strides = (d / 0.8).round().max(1.0) as u32;
-            match (strides, rng.random_range(0..3)) {
-                (5..=7, 0) => "half a dozen strides".into(),
-                (11..=13, 0) => "a dozen or so strides".into(),
-                (_, 1) => format!("{} long strides", number_word(strides)),
-                _ => format!("{about} {strides} strides"),
-            }
-        }
-        12 => format!(
-            "{n} metres{}",
-            pick(
-                rng,
-                &[
-                    ", give or take",
-                    " or thereabouts",
-                    " at a guess",
-                    " or near enough",
-                ]
-            )
-        ),
-        _ => format!("{about} {n} metres"),
+        _ => format!("{about} {steps} steps"),
     }
 }
 
@@ -273,7 +210,7 @@ fn turn_clause(
         Turn::Around => Some(pick(rng, &ph::TURN_AROUND).to_string()),
         Turn::Slight(s) => {
             let dir = side_word(s);
-            if rng.random_bool(0.15) {
+            if rng.random_bool(0.05) {
                 let k = ((angle.abs() / 30.0).round() as u32).clamp(1, 2);
                 let hour = if s == Side::Right { k } else { 12 - k };
                 let clock = if rng.random_bool(0.5) {
@@ -290,7 +227,7 @@ fn turn_clause(
         }
         Turn::Turn(s) => {
             let dir = side_word(s);
-            if w == Writer::Precise && rng.random_bool(0.5) {
+            if w == Writer::Precise && rng.random_bool(0.3) {
                 let deg = ((angle.abs() / 15.0).round() * 15.0) as u32;
                 let deg = if rng.random_bool(0.5) {
                     number_word(deg)
@@ -315,14 +252,11 @@ fn move_clause(len: f32, w: Writer, landmark: bool, rng: &mut ChaCha8Rng) -> Str
         return pick(rng, &ph::MOVE_WHOLE).to_string();
     }
     let verb = pick(rng, &ph::MOVE_VERB);
-    let dir = if verb.contains("path") {
+    // "walk on" takes no direction word ("walk on straight on").
+    let dir = if verb.ends_with(" on") {
         ""
     } else {
-        match pick(rng, &ph::ONWARD) {
-            // Not "press on on ahead".
-            d if verb.ends_with(" on") && (d == "on" || d.starts_with("on ")) => "ahead",
-            d => d,
-        }
+        pick(rng, &ph::ONWARD)
     };
     let manner = if w == Writer::Terse || rng.random_bool(0.65) {
         ""
@@ -436,22 +370,11 @@ fn room_change(
         .unwrap_or_else(|| "the next room".into());
     let same = scene.room(from).map(|r| r.kind) == scene.room(to).map(|r| r.kind);
     if same {
-        to_np = to_np.replacen(
-            "the ",
-            pick(rng, &["the next ", "another ", "the other "]),
-            1,
-        );
+        to_np = to_np.replacen("the ", pick(rng, &["the next ", "the other "]), 1);
     }
     if scene.room(to).map(|r| r.kind) == Some(RoomType::Hallway) && rng.random_bool(0.3) {
-        return pick(
-            rng,
-            &[
-                "go out into {room}",
-                "step out into {room}",
-                "come out into {room}",
-            ],
-        )
-        .replace("{room}", &to_np);
+        return pick(rng, &["go out into {room}", "walk out into {room}"])
+            .replace("{room}", &to_np);
     }
     let door = door_np(scene, from, to, at, rng);
     match (rng.random_range(0..8), door) {
@@ -663,14 +586,14 @@ struct Draft {
 fn opening(route: &Route<'_, '_>, mut rng: ChaCha8Rng) -> Draft {
     let writer = route.writer;
     let mut sentences: Vec<String> = Vec::new();
-    if rng.random_bool(if route.chatty() { 0.5 } else { 0.06 }) {
+    if rng.random_bool(if route.chatty() { 0.15 } else { 0.02 }) {
         sentences.push(pick(&mut rng, &ph::OPEN).to_string());
     }
     // Some writers number their steps ("First, ...", "Step two: ...").
-    let numbered = matches!(writer, Writer::Plain | Writer::Precise) && rng.random_bool(0.12);
+    let numbered = matches!(writer, Writer::Plain | Writer::Precise) && rng.random_bool(0.06);
     let number_form = pick(&mut rng, &ph::NUMBERED);
     let mut prefix = String::new();
-    let start_p = if writer == Writer::Terse { 0.1 } else { 0.35 };
+    let start_p = if writer == Writer::Terse { 0.05 } else { 0.2 };
     if let Some(&(_, r0)) = route.rooms.first() {
         if rng.random_bool(start_p) {
             let room = room_np(route.ctx.scene, r0, route.room_syn, &mut rng);
@@ -728,7 +651,7 @@ fn leg_sentences(route: &Route<'_, '_>, li: usize, draft: &mut Draft) {
     );
     out.extend(room_size_remark(route, entered, &mut draft.rng));
     number_and_add(li, out, draft);
-    if route.chatty() && draft.rng.random_bool(0.25) {
+    if route.chatty() && draft.rng.random_bool(0.08) {
         draft
             .sentences
             .push(pick(&mut draft.rng, &ph::ASIDE).to_string());
@@ -929,7 +852,7 @@ fn see_sentence(m: &Named, rng: &mut ChaCha8Rng) -> String {
 }
 
 /// "continue", "keep going", ...: walking on to the next landmark.
-const GO_ON: &[&str] = &["continue", "keep going", "carry on", "go on"];
+const GO_ON: &[&str] = &["continue", "keep going", "keep walking", "walk on"];
 
 /// The sentences of a leg in one of several sentence plans, from its turn, movement, named
 /// landmarks and room changes.
@@ -1047,7 +970,7 @@ fn plan_short(
     }
     out.extend(changes);
     if let Some(r) = entered.and_then(|r| route.ctx.scene.room(r)) {
-        if rng.random_bool(0.4) {
+        if rng.random_bool(0.25) {
             let room = format!("the {}", r.kind.words());
             out.push(fill(pick(rng, &ph::NOW_IN), &[("room", &room)]));
         }
@@ -1114,7 +1037,7 @@ fn room_size_remark(
     rng: &mut ChaCha8Rng,
 ) -> Option<String> {
     let r = entered.and_then(|r| route.ctx.scene.room(r))?;
-    if route.writer == Writer::Terse || !rng.random_bool(0.1) {
+    if route.writer == Writer::Terse || !rng.random_bool(0.05) {
         return None;
     }
     let area = r.area();
@@ -1188,10 +1111,9 @@ fn stop_sentence(route: &Route<'_, '_>, draft: &mut Draft) -> String {
         if let Some(sd @ (Side::Left | Side::Right)) = side {
             if rng.random_bool(0.35) {
                 let sp = fill(pick(rng, &ph::SIDE), &[("dir", side_word(sd))]);
-                s = match rng.random_range(0..3) {
+                s = match rng.random_range(0..2) {
                     0 => format!("{s}, which is {sp}"),
-                    1 => format!("{s}; it will be {sp}"),
-                    _ => format!("{s} ({sp})"),
+                    _ => format!("{s}. It will be {sp}"),
                 };
             }
         }
@@ -1238,7 +1160,7 @@ fn closing_remarks(route: &Route<'_, '_>, draft: &mut Draft) {
         let size = hi - lo;
         let big = size.x * size.y > 1.0 || o.bbox.size().y > 1.6;
         let only = ctx.graph.objects_of_class(o.class).len() == 1;
-        let p = if chatty { 0.4 } else { 0.15 };
+        let p = if chatty { 0.2 } else { 0.06 };
         if big && rng.random_bool(p) {
             sentences.push(pick(rng, &ph::CANT_MISS).to_string());
         } else if only && rng.random_bool(p) {
@@ -1246,7 +1168,7 @@ fn closing_remarks(route: &Route<'_, '_>, draft: &mut Draft) {
             sentences.push(fill(pick(rng, &ph::ONLY_ONE), &[("name", &name)]));
         }
     }
-    if writer != Writer::Terse && rng.random_bool(0.3) {
+    if writer != Writer::Terse && rng.random_bool(0.12) {
         if let Some(room) = room_beyond(
             ctx,
             route.end,
@@ -1257,11 +1179,11 @@ fn closing_remarks(route: &Route<'_, '_>, draft: &mut Draft) {
             sentences.push(fill(pick(rng, &ph::OVERSHOOT), &[("room", &room)]));
         }
     }
-    if matches!(writer, Writer::Chatty | Writer::Plain) && rng.random_bool(0.08) {
+    if matches!(writer, Writer::Chatty | Writer::Plain) && rng.random_bool(0.03) {
         let t = walk_time(&route.pts, rng);
         sentences.push(fill(pick(rng, &ph::WALK_TIME), &[("t", &t)]));
     }
-    if rng.random_bool(if chatty { 0.5 } else { 0.04 }) {
+    if rng.random_bool(if chatty { 0.15 } else { 0.02 }) {
         sentences.push(pick(rng, &ph::CLOSE).to_string());
     }
 }
@@ -1308,11 +1230,9 @@ mod tests {
         let forms: std::collections::BTreeSet<String> = (0..200)
             .map(|_| distance_phrase(3.4, Writer::Plain, &mut rng))
             .collect();
-        assert!(forms.len() > 20, "{forms:?}");
+        assert!(forms.len() > 12, "{forms:?}");
         assert!(forms.iter().any(|f| f.contains("three")));
-        assert!(forms
-            .iter()
-            .any(|f| f.contains("steps") || f.contains("paces")));
+        assert!(forms.iter().any(|f| f.contains("steps")));
         assert!(forms.iter().any(|f| f.contains("feet")));
     }
 }

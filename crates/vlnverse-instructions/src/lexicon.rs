@@ -30,43 +30,17 @@ pub fn class_of_name(name: &str) -> Vec<C> {
 /// Names of a room type, the vocabulary name first.
 pub fn room_names(kind: RoomType) -> &'static [&'static str] {
     match kind {
-        RoomType::LivingRoom => &[
-            "living room",
-            "lounge",
-            "sitting room",
-            "family room",
-            "front room",
-            "living area",
-            "den",
-        ],
-        RoomType::Kitchen => &["kitchen", "kitchen area"],
-        RoomType::DiningRoom => &["dining room", "dining area", "dining space"],
-        RoomType::Bedroom => &["bedroom", "sleeping room", "sleeping quarters"],
-        RoomType::Bathroom => &["bathroom", "washroom", "restroom"],
-        RoomType::Hallway => &["hallway", "hall", "corridor", "passage", "passageway"],
-        RoomType::Office => &["office", "study", "home office", "workroom", "office space"],
-        RoomType::LaundryRoom => &["laundry room", "utility room", "laundry", "laundry area"],
-        RoomType::Closet => &[
-            "closet",
-            "storage room",
-            "box room",
-            "storeroom",
-            "walk-in closet",
-        ],
-        RoomType::Gym => &[
-            "gym",
-            "home gym",
-            "workout room",
-            "exercise room",
-            "fitness room",
-        ],
-        RoomType::Room => &[
-            "room",
-            "spare room",
-            "empty room",
-            "extra room",
-            "unused room",
-        ],
+        RoomType::LivingRoom => &["living room", "lounge", "family room", "sitting room"],
+        RoomType::Kitchen => &["kitchen"],
+        RoomType::DiningRoom => &["dining room", "dining area"],
+        RoomType::Bedroom => &["bedroom"],
+        RoomType::Bathroom => &["bathroom", "restroom"],
+        RoomType::Hallway => &["hallway", "hall", "corridor"],
+        RoomType::Office => &["office", "study"],
+        RoomType::LaundryRoom => &["laundry room", "laundry"],
+        RoomType::Closet => &["closet", "storage room"],
+        RoomType::Gym => &["gym", "exercise room", "workout room"],
+        RoomType::Room => &["room", "spare room", "empty room"],
     }
 }
 
@@ -330,24 +304,16 @@ fn check_shade_rule(file: &'static str, at: &str, r: &ShadeRule) -> Result<(), D
 pub fn material_words(o: &SceneObject) -> &'static [&'static str] {
     let upholstered = matches!(o.class, C::Sofa | C::Armchair | C::OfficeChair | C::Bench);
     match o.material.as_str() {
-        "wood" if o.color != "wooden" => &["wooden", "wood", "timber", "wood-built"],
-        "fabric" if upholstered => &[
-            "fabric",
-            "upholstered",
-            "cloth-covered",
-            "padded",
-            "cushioned",
-            "plush",
-            "fabric-covered",
-        ],
-        "fabric" => &["fabric", "cloth", "woven", "textile", "soft"],
-        "leather" => &["leather", "leather-covered", "leather-upholstered", "hide"],
-        "metal" => &["metal", "metallic", "steel", "metal-bodied", "shiny metal"],
-        "plastic" => &["plastic", "moulded plastic", "synthetic"],
-        "ceramic" => &["ceramic", "china", "porcelain", "glazed"],
-        "glass" => &["glass", "glassy", "translucent"],
-        "wax" => &["wax", "waxy"],
-        "paper" => &["paper", "paperback", "soft-cover"],
+        "wood" if o.color != "wooden" => &["wooden", "wood"],
+        "fabric" if upholstered => &["fabric", "cloth", "padded", "upholstered"],
+        "fabric" => &["fabric", "cloth"],
+        "leather" => &["leather"],
+        "metal" => &["metal", "metallic"],
+        "plastic" => &["plastic"],
+        "ceramic" => &["ceramic", "porcelain"],
+        "glass" => &["glass"],
+        "wax" => &["wax"],
+        "paper" => &["paper"],
         _ => &[],
     }
 }
@@ -355,16 +321,10 @@ pub fn material_words(o: &SceneObject) -> &'static [&'static str] {
 /// The plain material noun behind a material adjective ("made of wood").
 pub fn material_noun(word: &str) -> &str {
     match word {
-        "wooden" | "timber" | "wood-built" => "wood",
-        "upholstered" | "cloth-covered" | "cloth" | "padded" | "cushioned" | "plush"
-        | "fabric-covered" | "woven" | "textile" | "soft" => "fabric",
-        "leather-covered" | "leather-upholstered" | "hide" => "leather",
-        "metallic" | "steel" | "metal-bodied" | "shiny metal" => "metal",
-        "moulded plastic" | "synthetic" => "plastic",
-        "china" | "porcelain" | "glazed" => "ceramic",
-        "glassy" | "translucent" => "glass",
-        "waxy" => "wax",
-        "paperback" | "soft-cover" => "paper",
+        "wooden" => "wood",
+        "cloth" | "padded" | "upholstered" => "fabric",
+        "metallic" => "metal",
+        "porcelain" => "ceramic",
         other => other,
     }
 }
@@ -377,37 +337,26 @@ pub fn shape_words(o: &SceneObject, peers: &[&SceneObject]) -> Vec<&'static str>
     let mut out = Vec::new();
     let furniture = o.class.kind() == vlnverse_env::ClassKind::Furniture;
     if furniture && h > 1.5 {
-        out.extend([
-            "tall",
-            "towering",
-            "high",
-            "lofty",
-            "full-height",
-            "head-high",
-        ]);
-    } else if furniture && h > 1.15 {
-        out.extend(["chest-high", "chest-height", "fairly tall"]);
+        out.push("tall");
     } else if furniture && (0.75..=1.05).contains(&h) && w > 0.5 {
-        out.extend(["waist-high", "waist-height", "hip-height"]);
+        out.push("waist-high");
     } else if furniture && h < 0.55 && w > 0.5 {
-        out.extend(["low", "low-slung", "squat", "knee-high", "ground-hugging"]);
+        out.push("low");
     }
     if furniture && w > 1.8 {
-        out.extend(["long", "wide", "broad", "sprawling", "lengthy", "expansive"]);
+        out.extend(["long", "wide"]);
     } else if furniture && d > 0.0 && w / d > 2.5 && w > 0.8 {
-        out.extend(["long", "narrow", "slim", "slender", "elongated", "thin"]);
+        out.extend(["long", "narrow"]);
     } else if furniture && (w - d).abs() < 0.1 * w && w > 0.5 {
-        out.extend(["square", "boxy", "squarish", "chunky"]);
+        out.push("square");
     } else if furniture && d > 0.0 && w / d > 1.3 && w > 0.5 {
-        out.extend(["rectangular", "oblong"]);
+        out.push("rectangular");
     }
-    // Sizes people name for beds and sofas, from the width across.
+    // Sizes people name for beds, from the width across.
     match o.class {
-        C::Bed if d > 1.7 => out.extend(["king-size", "king-sized"]),
-        C::Bed if d > 1.3 => out.extend(["double", "double-sized"]),
-        C::Bed if d > 0.5 && d < 1.1 => out.extend(["single", "narrow single"]),
-        C::Sofa if w > 2.1 => out.extend(["three-seater", "three-seat"]),
-        C::Sofa if w > 1.3 => out.extend(["two-seater", "two-seat"]),
+        C::Bed if d > 1.7 => out.push("king-size"),
+        C::Bed if d > 1.3 => out.push("double"),
+        C::Bed if d > 0.5 && d < 1.1 => out.push("single"),
         _ => {}
     }
     let largest = o.parts.iter().max_by(|a, b| {
@@ -415,22 +364,8 @@ pub fn shape_words(o: &SceneObject, peers: &[&SceneObject]) -> Vec<&'static str>
             .nominal_volume()
             .total_cmp(&b.shape.nominal_volume())
     });
-    match largest.map(|p| &p.shape) {
-        Some(Shape::Cylinder { .. }) => {
-            out.extend(["round", "circular", "cylindrical", "drum-shaped", "tubular"])
-        }
-        Some(Shape::Sphere { .. }) => out.extend([
-            "round",
-            "rounded",
-            "ball-shaped",
-            "globe-shaped",
-            "spherical",
-            "bulbous",
-        ]),
-        Some(Shape::Cuboid { .. }) if furniture => {
-            out.extend(["straight-edged", "angular", "square-cornered"])
-        }
-        _ => {}
+    if let Some(Shape::Cylinder { .. } | Shape::Sphere { .. }) = largest.map(|p| &p.shape) {
+        out.push("round");
     }
     // Bulk against the other objects of its class, when there are any.
     let vol = |x: &SceneObject| {
@@ -445,28 +380,9 @@ pub fn shape_words(o: &SceneObject, peers: &[&SceneObject]) -> Vec<&'static str>
     if !others.is_empty() {
         let v = vol(o);
         if others.iter().all(|&x| v > 1.3 * x) {
-            out.extend([
-                "large",
-                "big",
-                "bigger",
-                "larger",
-                "sizeable",
-                "hefty",
-                "bulky",
-                "substantial",
-                "oversized",
-            ]);
+            out.extend(["large", "big", "bigger", "larger"]);
         } else if others.iter().all(|&x| v * 1.3 < x) {
-            out.extend([
-                "small",
-                "little",
-                "smaller",
-                "compact",
-                "petite",
-                "dinky",
-                "modest",
-                "diminutive",
-            ]);
+            out.extend(["small", "little", "smaller"]);
         }
     }
     out
@@ -547,14 +463,14 @@ mod tests {
 
     #[test]
     fn shades_follow_the_rules_in_order() {
-        assert_eq!(shades_for("white", [0.95, 0.95, 0.95])[0], "pure white");
+        assert_eq!(shades_for("white", [0.95, 0.95, 0.95])[0], "bright white");
         assert_eq!(shades_for("white", [0.8, 0.7, 0.6])[0], "off-white");
-        assert_eq!(shades_for("white", [0.8, 0.8, 0.8])[0], "whitish");
+        assert_eq!(shades_for("white", [0.8, 0.8, 0.8])[0], "plain white");
         assert_eq!(shades_for("red", [0.2, 0.0, 0.0])[0], "dark red");
         assert_eq!(shades_for("red", [0.5, 0.1, 0.1])[0], "deep red");
-        assert_eq!(shades_for("red", [0.9, 0.1, 0.1])[0], "vivid red");
+        assert_eq!(shades_for("red", [0.9, 0.1, 0.1])[0], "bright red");
         assert_eq!(shades_for("yellow", [0.9, 0.5, 0.1])[0], "mustard");
-        assert_eq!(shades_for("yellow", [0.9, 0.8, 0.1])[0], "golden yellow");
+        assert_eq!(shades_for("yellow", [0.9, 0.8, 0.1])[0], "bright yellow");
         // A dark band that has no shades for a colour ends the search: no shade, not a
         // brighter band's.
         assert!(shades_for("yellow", [0.3, 0.25, 0.0]).is_empty());

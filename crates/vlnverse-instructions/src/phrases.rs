@@ -398,24 +398,24 @@ mod tests {
             "{e}"
         );
         let e = error_of(&edited(
-            "    \"swivel {dir}\",\n",
-            "    \"swivel {dir} to the left\",\n",
+            "    \"turn {dir} first\",\n",
+            "    \"turn {dir} first to the left\",\n",
         ));
         assert!(
-            e.contains("bank `start_turn`, entry 12") && e.contains("side"),
+            e.contains("bank `start_turn`, entry 5") && e.contains("side"),
             "{e}"
         );
         let e = error_of(&edited(
-            "    \"spin around\",\n",
-            "    \"spin around\",\n    \"  \",\n",
+            "    \"turn around and face the other way\",\n",
+            "    \"turn around and face the other way\",\n    \"  \",\n",
         ));
         assert!(
             e.contains("bank `turn_around`, entry 3") && e.contains("spaces"),
             "{e}"
         );
         let e = error_of(&edited(
-            "    \"spin around\",\n",
-            "    \"spin around\",\n    \"\",\n",
+            "    \"turn around and face the other way\",\n",
+            "    \"turn around and face the other way\",\n    \"\",\n",
         ));
         assert!(
             e.contains("bank `turn_around`, entry 3") && e.contains("empty"),

@@ -139,7 +139,7 @@ impl InstructionGenerator for TemplateGenerator {
         let remark = ctx
             .scene
             .object(target)
-            .filter(|_| rng.random_bool(0.35))
+            .filter(|_| rng.random_bool(0.2))
             .and_then(|o| target_remark(ctx, o, &expr.class.words(), style, &mut rng))
             .unwrap_or_default();
         let parts = CoarseParts {
@@ -254,9 +254,9 @@ fn coarse_room(
     expr.room.map(|r| {
         let area = ctx.scene.room(r.room).map_or(15.0, |x| x.area());
         let size: &[&str] = if area > 24.0 {
-            &["large", "big", "spacious", "roomy", "sizeable"]
+            &["large", "big"]
         } else if area < 8.0 {
-            &["small", "little", "compact", "cosy", "snug"]
+            &["small", "little"]
         } else {
             &[]
         };
@@ -564,10 +564,13 @@ pub fn coarse_expression(
     Ok(e)
 }
 
-/// Join coarse sub-instructions in order: "First, ...; then ...; finally ...". The grounding of
-/// every part is kept as given (shift path indices with [`super::offset_grounding`] first when
-/// the parts' paths are concatenated); `sub_instructions` lists the parts' texts; the style is
-/// the parts' common style, if any.
+/// Join coarse sub-instructions in order: "First, go to ... Then ... Finally, ...", one sentence
+/// per part (casual parts: one lower-case line, "first go to ..., then ..."). A part's opener
+/// ("Okay, ", "Your task is as follows. ") is left out, as the chain opens each part itself.
+/// The grounding of every part is kept as given (shift path indices with
+/// [`super::offset_grounding`] first when the parts' paths are concatenated);
+/// `sub_instructions` lists the parts' texts as they stand in the chain (without openers); the
+/// style is the parts' common style, if any.
 pub fn chain_parts(parts: &[Instruction], seed: u64) -> Result<Instruction> {
     if parts.is_empty() {
         return Err(DataError::invalid(
@@ -577,16 +580,31 @@ pub fn chain_parts(parts: &[Instruction], seed: u64) -> Result<Instruction> {
         ));
     }
     let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x6368_6169);
-    let subs: Vec<String> = parts.iter().map(|p| p.instruction_text.clone()).collect();
     let style = parts[0]
         .style
         .filter(|s| parts.iter().all(|p| p.style == Some(*s)));
+    let casual = style == Some(Style::Casual);
+    let subs: Vec<String> = if parts.len() == 1 {
+        vec![parts[0].instruction_text.clone()]
+    } else {
+        parts
+            .iter()
+            .map(|p| {
+                let t = without_opener(p.instruction_text.trim());
+                if p.style == Some(Style::Casual) {
+                    t.to_string()
+                } else {
+                    capitalize(t)
+                }
+            })
+            .collect()
+    };
     let text = if parts.len() == 1 {
         subs[0].clone()
     } else {
         let mut pieces = Vec::new();
         for (i, t) in subs.iter().enumerate() {
-            let t = t.trim().trim_end_matches(['.', '!']);
+            let t = t.trim_end_matches(['.', '!']);
             // "I" stays a capital.
             let body = if t.starts_with("I ") || t.starts_with("I'") {
                 t.to_string()
@@ -600,9 +618,13 @@ pub fn chain_parts(parts: &[Instruction], seed: u64) -> Result<Instruction> {
             } else {
                 pick(&mut rng, &ph::CHAIN_MID)
             };
-            pieces.push(format!("{opener}{body}"));
+            pieces.push(if casual {
+                decapitalize(&format!("{opener}{body}"))
+            } else {
+                format!("{}.", capitalize(&format!("{opener}{body}")))
+            });
         }
-        format!("{}.", pieces.join("; "))
+        pieces.join(if casual { ", " } else { " " })
     };
     Ok(Instruction {
         instruction_text: text,
@@ -611,4 +633,14 @@ pub fn chain_parts(parts: &[Instruction], seed: u64) -> Result<Instruction> {
         grounding: parts.iter().flat_map(|p| p.grounding.clone()).collect(),
         sub_instructions: subs,
     })
+}
+
+/// `t` without the coarse opener it starts with, if any (and if something follows it).
+fn without_opener(t: &str) -> &str {
+    [ph::FORMAL_OPEN, ph::NATURAL_OPEN, ph::CASUAL_OPEN]
+        .iter()
+        .flat_map(|b| b.iter())
+        .filter(|o| !o.trim().is_empty())
+        .find_map(|o| t.strip_prefix(o).filter(|r| !r.trim().is_empty()))
+        .unwrap_or(t)
 }

