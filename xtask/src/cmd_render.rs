@@ -94,6 +94,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         config.backend = b.parse::<Backend>()?;
     }
     if let Some(size) = args.top_down {
+        check_top_down_size(size)?;
         let scene = vlnverse_env::io::load_scene(&args.scene)
             .with_context(|| format!("loading scene {}", args.scene.display()))?;
         std::fs::create_dir_all(&args.out)
@@ -122,14 +123,20 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// The top-down picture's size, checked before anything is loaded or written.
+fn check_top_down_size(size: u32) -> anyhow::Result<()> {
+    anyhow::ensure!(
+        (16..=4096).contains(&size),
+        "--top-down {size}: must be 16 to 4096 pixels"
+    );
+    Ok(())
+}
+
 /// The home seen from 40 m above its centre, looking straight down, without its ceilings.
 pub fn top_down(scene: &Scene, size: u32) -> anyhow::Result<image::RgbImage> {
     use std::sync::Arc;
     use vlnverse_sensors::{Channels, RasterRenderer, Renderer, SceneMesh, View};
-    anyhow::ensure!(
-        (16..=4096).contains(&size),
-        "--top-down {size}: 16 to 4096 pixels"
-    );
+    check_top_down_size(size)?;
     let full = SceneMesh::new(scene)?;
     let ceiling = vlnverse_env::SemanticClass::Ceiling.id();
     let mut mesh = SceneMesh {
@@ -272,6 +279,27 @@ pub fn render_rig(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_bad_top_down_size_is_refused_before_the_folder_is_made() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("top");
+        for size in [0, 15, 4097] {
+            let err = run(Args {
+                scene: dir.path().join("no_scene"),
+                position: None,
+                top_down: Some(size),
+                yaw: 0.0,
+                sensors: None,
+                backend: None,
+                out: out.clone(),
+            })
+            .unwrap_err()
+            .to_string();
+            assert!(err.contains(&format!("--top-down {size}")), "{err}");
+            assert!(!out.exists(), "{size}: {out:?} was made");
+        }
+    }
 
     /// Off the map, in a wall and beside a wall are each named with the position; the centre
     /// of the home is not.

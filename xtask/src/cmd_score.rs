@@ -44,10 +44,42 @@ pub struct Args {
     /// start position; raise it for real robots whose start pose is only roughly the episode's.
     #[arg(long, default_value_t = DEFAULT_START_TOLERANCE)]
     pub start_tolerance: f32,
+    /// Overwrite a `summary.json` in `--out` that an earlier `score` did not write.
+    #[arg(long)]
+    pub force: bool,
+}
+
+/// Written beside `summary.json` by `score`: marks the folder as score's own, so a later
+/// score may replace its files.
+const SCORE_FILE: &str = "score.json";
+
+/// Files of an evaluation's run folder: a score written among them would mix two runs.
+const EVALUATION_FILES: [&str; 3] = ["run.json", "progress.jsonl", "trajectories.jsonl"];
+
+/// Refuse an `--out` that holds something score must not overwrite: an evaluation (running or
+/// finished), or a `summary.json` of something else (unless `--force`).
+fn check_out(out: &std::path::Path, force: bool) -> anyhow::Result<()> {
+    vlnverse_score::lock::check_is_folder(out)?;
+    vlnverse_score::lock::refuse_dataset_folder(out)?;
+    if let Some(f) = EVALUATION_FILES.iter().find(|f| out.join(f).exists()) {
+        anyhow::bail!(
+            "--out {}: holds an evaluation's run ({f}); score into a folder of its own",
+            out.display()
+        );
+    }
+    if !force && out.join("summary.json").exists() && !out.join(SCORE_FILE).exists() {
+        anyhow::bail!(
+            "--out {}: holds a summary.json that score did not write; choose another folder, \
+             or --force to overwrite it",
+            out.display()
+        );
+    }
+    Ok(())
 }
 
 /// Run the command.
 pub fn run(args: Args) -> anyhow::Result<()> {
+    check_out(&args.out, args.force)?;
     let options = ScoreOptions {
         metrics: MetricsConfig {
             success_distance: args.success_distance,
@@ -91,6 +123,19 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             .unwrap_or_else(|| "trajectories".into())
     });
     let run = scored.run_summary(&method, args.setting.as_deref());
+    // Checked again under the lock: an evaluation may have started meanwhile.
+    let _lock = vlnverse_score::OutputLock::acquire(&args.out, "score")?;
+    check_out(&args.out, args.force)?;
+    let marker = serde_json::json!({
+        "trajectories": args.trajectories.display().to_string(),
+        "dataset": args.data.dataset.display().to_string(),
+        "task": args.data.task.name(),
+        "split": args.data.split.name(),
+    });
+    vlnverse_score::dataset::write_atomic(
+        &args.out.join(SCORE_FILE),
+        format!("{marker:#}\n").as_bytes(),
+    )?;
     write_run(&args.out, &run, &scored.metrics)?;
     let s = &run.summary;
     println!(
@@ -125,6 +170,10 @@ mod tests {
                 object_id: None,
             }],
             reference_path: vec![[0.0, 0.0, 0.0], goal],
+            instruction: vlnverse_score::Instruction {
+                instruction_text: "Walk ahead.".into(),
+                ..Default::default()
+            },
             info: EpisodeInfo {
                 geodesic_distance: length,
                 ..Default::default()
@@ -159,6 +208,7 @@ mod tests {
             success_distance: 3.0,
             euclidean: true,
             start_tolerance: DEFAULT_START_TOLERANCE,
+            force: false,
         };
         let out = dir.path().join("run");
         run(args(traj, out.clone())).unwrap();
@@ -208,6 +258,85 @@ mod tests {
     }
 
     #[test]
+    fn score_never_writes_into_an_evaluation_or_over_a_summary_of_something_else() {
+        let dir = tempfile::tempdir().unwrap();
+        straight_episode(dir.path(), 5, 2.0);
+        let traj = dir.path().join("robot.jsonl");
+        std::fs::write(
+            &traj,
+            "{\"episode_id\": 5, \"positions\": [[0,0,0],[2,0,0]], \"stopped\": true}\n",
+        )
+        .unwrap();
+        let args = |out: PathBuf, force: bool| Args {
+            data: SplitArgs {
+                dataset: dir.path().to_path_buf(),
+                task: Task::Fine,
+                split: Split::Test,
+            },
+            trajectories: traj.clone(),
+            out,
+            method: None,
+            setting: None,
+            allow_missing: false,
+            fail_on_collision: false,
+            success_distance: 3.0,
+            euclidean: true,
+            start_tolerance: DEFAULT_START_TOLERANCE,
+            force,
+        };
+        let listing = |d: &std::path::Path| {
+            let mut v: Vec<String> = std::fs::read_dir(d)
+                .unwrap()
+                .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+                .collect();
+            v.sort();
+            v
+        };
+        // An evaluation's folder (finished: run.json and trajectories), even with --force.
+        let eval = dir.path().join("eval");
+        std::fs::create_dir(&eval).unwrap();
+        std::fs::write(eval.join("run.json"), "{}").unwrap();
+        std::fs::write(eval.join("trajectories.jsonl"), "").unwrap();
+        let before = listing(&eval);
+        for force in [false, true] {
+            let err = format!("{:#}", run(args(eval.clone(), force)).unwrap_err());
+            assert!(
+                err.contains("evaluation") && err.contains("run.json"),
+                "{err}"
+            );
+        }
+        assert_eq!(listing(&eval), before, "nothing was added");
+        // An evaluation still writing holds the lock.
+        let busy = dir.path().join("busy");
+        let _held = vlnverse_score::OutputLock::acquire(&busy, "evaluate").unwrap();
+        let err = format!("{:#}", run(args(busy.clone(), false)).unwrap_err());
+        assert!(err.contains("another job"), "{err}");
+        assert!(!busy.join("summary.json").exists());
+        // Someone else's summary.json is kept unless --force.
+        let other = dir.path().join("other");
+        std::fs::create_dir(&other).unwrap();
+        std::fs::write(other.join("summary.json"), "mine").unwrap();
+        let err = format!("{:#}", run(args(other.clone(), false)).unwrap_err());
+        assert!(err.contains("--force"), "{err}");
+        assert_eq!(std::fs::read(other.join("summary.json")).unwrap(), b"mine");
+        run(args(other.clone(), true)).unwrap();
+        assert_ne!(std::fs::read(other.join("summary.json")).unwrap(), b"mine");
+        // Score's own folder is rescored without --force.
+        let own = dir.path().join("own");
+        run(args(own.clone(), false)).unwrap();
+        run(args(own.clone(), false)).unwrap();
+        assert!(own.join(SCORE_FILE).is_file());
+        // A dataset folder, and a file, are refused in words.
+        let err = format!(
+            "{:#}",
+            run(args(dir.path().to_path_buf(), true)).unwrap_err()
+        );
+        assert!(err.contains("dataset folder"), "{err}");
+        let err = format!("{:#}", run(args(traj.clone(), false)).unwrap_err());
+        assert!(err.contains("is a file, not a folder"), "{err}");
+    }
+
+    #[test]
     fn score_refuses_trajectories_away_from_the_start_or_absurdly_far() {
         let dir = tempfile::tempdir().unwrap();
         straight_episode(dir.path(), 1, 5.0);
@@ -230,6 +359,7 @@ mod tests {
                 success_distance: 3.0,
                 euclidean: true,
                 start_tolerance: tol,
+                force: false,
             }
         };
         // Regression: a position 1e9 m away made nDTW resampling loop forever.

@@ -229,6 +229,9 @@ pub enum Unrunnable {
     /// The goal's distance field could not be built.
     #[error("{0}")]
     Field(String),
+    /// An object id the scene does not have.
+    #[error("the scene has no object with this id")]
+    NoSuchObject,
 }
 
 /// An episode that cannot be run in its scene: the episode field, its value and why.
@@ -265,7 +268,7 @@ impl From<EpisodeCheckError> for TaskError {
 }
 
 /// Check that `ep` can be run in `scene`: a finite start on the floor and on the navigable
-/// map, every goal on the map and reachable from the start.
+/// map, the objects it names in the scene, every goal on the map and reachable from the start.
 pub fn check_episode(ep: &Episode, scene: &SceneContext) -> Result<(), EpisodeCheckError> {
     let p = ep.start_position;
     let bad = |field: &str, value: String, reason: Unrunnable| {
@@ -290,6 +293,24 @@ pub fn check_episode(ep: &Episode, scene: &SceneContext) -> Result<(), EpisodeCh
     let map = &scene.navigable;
     if map.world_to_cell(Vec2::new(p[0], p[2])).is_none() {
         return bad("start_position", format!("{p:?}"), Unrunnable::OffMap);
+    }
+    let objects =
+        ep.target_object_id
+            .map(|id| ("target_object_id".to_string(), id))
+            .into_iter()
+            .chain(
+                ep.goals.iter().enumerate().filter_map(|(i, g)| {
+                    g.object_id.map(|id| (format!("goals[{i}].object_id"), id))
+                }),
+            )
+            .chain(ep.sub_goals.iter().enumerate().filter_map(|(i, g)| {
+                g.object_id
+                    .map(|id| (format!("sub_goals[{i}].object_id"), id))
+            }));
+    for (field, id) in objects {
+        if scene.scene.object(id).is_none() {
+            return bad(&field, id.to_string(), Unrunnable::NoSuchObject);
+        }
     }
     for (i, g) in ep.goal_sequence().iter().enumerate() {
         let field_name = if ep.sub_goals.is_empty() {

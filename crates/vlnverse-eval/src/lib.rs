@@ -24,11 +24,13 @@ pub use error::{Result, TaskError};
 pub use protocol::{ActionSpace, EvalConfig, LlmSection, Setting};
 pub use resume::{EpisodeRecord, ProgressLog, LATER_KEYS, PROGRESS_FILE, RUN_FILE};
 pub use runner::{
-    configured_renderer, evaluate, evaluate_with, finish_run, open_run, rapier_simulator,
-    run_identity, select_episodes, sim_config, DefaultRenderers, DefaultSimulators, EvalOutcome,
-    EvalRequest, LayerIdentity, Layers, RendererFactory, SimulatorFactory, MAX_THREADS, RUN_FILES,
+    check_run_folder, check_split, configured_renderer, evaluate, evaluate_with, finish_run,
+    open_run, rapier_simulator, run_identity, select_episodes, sim_config, split_fingerprint,
+    DefaultRenderers, DefaultSimulators, EvalOutcome, EvalRequest, LayerIdentity, Layers,
+    RendererFactory, SimulatorFactory, MAX_THREADS, RUN_FILES,
 };
 pub use scene_context::{SceneCache, SceneContext};
 pub use vec_env::{
     EnvAction, EnvStep, EpisodeOrder, RapierVecEnv, RewardConfig, StepInfo, VecEnv, VecEnvConfig,
+    MAX_ENVS,
 };

@@ -12,6 +12,7 @@
 //! seed = 0                    # per-episode seeds derive from it
 //! plots = 6                   # top-down trajectory PNGs per run
 //! external_observations = "files"   # files | base64 (external agents)
+//! external_timeout_s = 60.0           # (0, 86400]: longest wait for one reply of an external agent
 //! ```
 
 use std::fmt;
@@ -201,6 +202,10 @@ pub struct EvalConfig {
     pub plots: u32,
     /// How the `external` agent receives images: `files` or `base64`.
     pub external_observations: crate::agents::ObsEncoding,
+    /// Seconds the `external` agent may take to answer one message, in (0, 86400]; past it the
+    /// agent is stopped and the run fails naming the command and the step (a hung agent would
+    /// otherwise hang the evaluation).
+    pub external_timeout_s: f64,
     /// The dialogue oracle's answers rephrased by an LLM (`[oracle_llm]`: an OpenAI-compatible
     /// endpoint, the fields of `[instructions.llm]`); none (the default): the rule-based
     /// shortest-path oracle answers as it is.
@@ -225,6 +230,7 @@ impl Default for EvalConfig {
             seed: 0,
             plots: 6,
             external_observations: Default::default(),
+            external_timeout_s: crate::agents::DEFAULT_EXTERNAL_TIMEOUT_S,
             oracle_llm: None,
             base_dir: None,
         }
@@ -304,6 +310,13 @@ impl EvalConfig {
                 "agent_profile",
                 "\"\"",
                 "name a profile or an agent TOML file",
+            ));
+        }
+        if !(self.external_timeout_s > 0.0 && self.external_timeout_s <= 86_400.0) {
+            return Err(TaskError::invalid(
+                "external_timeout_s",
+                self.external_timeout_s,
+                "must be in (0, 86400] seconds",
             ));
         }
         if self.plots > 10_000 {

@@ -174,13 +174,14 @@ impl ProgressLog {
 
 /// Keys of `run.json` added after runs were first written: a `run.json` without one of them
 /// (a run made before) is not compared on it; one that has it is.
-pub const LATER_KEYS: [&str; 6] = [
+pub const LATER_KEYS: [&str; 7] = [
     "benchmark_version",
     "simulator",
     "simulator_fingerprint",
     "renderer",
     "renderer_fingerprint",
     "rig_fingerprint",
+    "split_fingerprint",
 ];
 
 /// Write `run.json`, or check that the existing one describes the same run. `identity` lists

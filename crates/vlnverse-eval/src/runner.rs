@@ -464,6 +464,68 @@ impl<SF: SimulatorFactory, RF: RendererFactory> Shared<'_, SF, RF> {
     }
 }
 
+/// A stable hash (hex) of a split's episodes: `run.json` records it, so a resume after the
+/// split file was edited (other goals, starts or instructions) is refused instead of mixing
+/// old and new episodes in one run.
+pub fn split_fingerprint(episodes: &[Episode]) -> Result<String> {
+    let json = serde_json::to_vec(episodes)
+        .map_err(|e| TaskError::invalid("episodes", "<split>", e.to_string()))?;
+    let mut key = vlnverse_env::cache::ContentKey::new();
+    key.bytes(&json);
+    Ok(format!("{:016x}", key.finish()))
+}
+
+/// Check every episode of `episodes` in its scene ([`check_episode`]) before anything is
+/// written, so an impossible episode late in a split fails the run at its start instead of
+/// leaving a half-made run folder. Scenes come from `scenes` (one at a time per thread, in
+/// scene order); the first bad episode in split order is reported, naming `split_file`.
+pub fn check_split(split_file: &Path, episodes: &[Episode], scenes: &SceneCache) -> Result<()> {
+    let mut order: Vec<usize> = (0..episodes.len()).collect();
+    order.sort_by(|&a, &b| episodes[a].scene_id.cmp(&episodes[b].scene_id));
+    let errors: Vec<(usize, TaskError)> = order
+        .par_iter()
+        .with_max_len(8)
+        .filter_map(|&i| {
+            let ep = &episodes[i];
+            let at = format!(
+                "{}: episode {} (episodes[{i}])",
+                split_file.display(),
+                ep.episode_id
+            );
+            let checked = scenes
+                .get(&ep.scene_id)
+                .map_err(|e| {
+                    TaskError::invalid(format!("{at}.scene_id"), &ep.scene_id, e.to_string())
+                })
+                .and_then(|ctx| check_episode(ep, &ctx).map_err(|e| e.at(&at)));
+            checked.err().map(|e| (i, e))
+        })
+        .collect();
+    match errors.into_iter().min_by_key(|(i, _)| *i) {
+        Some((_, e)) => Err(e),
+        None => Ok(()),
+    }
+}
+
+/// A run folder is a folder (made if missing) and not a dataset's folder, whose files the
+/// run's would mix with.
+pub fn check_run_folder(out: &Path) -> Result<()> {
+    vlnverse_score::lock::check_is_folder(out)?;
+    Ok(vlnverse_score::lock::refuse_dataset_folder(out)?)
+}
+
+/// Run `f` on a pool of `threads` threads (rayon's global pool when None).
+fn in_pool<T: Send>(threads: Option<usize>, f: impl FnOnce() -> T + Send) -> Result<T> {
+    match threads {
+        Some(k) => Ok(rayon::ThreadPoolBuilder::new()
+            .num_threads(k)
+            .build()
+            .map_err(|e| TaskError::invalid("threads", k, e.to_string()))?
+            .install(f)),
+        None => Ok(f()),
+    }
+}
+
 /// The simulator settings of a protocol.
 pub fn sim_config(cfg: &EvalConfig) -> Result<SimConfig> {
     Ok(SimConfig {
@@ -509,6 +571,7 @@ pub fn evaluate_with<SF: SimulatorFactory, RF: RendererFactory>(
             format!("must be in [1, {MAX_THREADS}] (leave it out for one per core)"),
         ));
     }
+    check_run_folder(&req.out)?;
     let split_file = dataset::split_path(&req.dataset, req.task, req.split);
     let mut episodes = dataset::read_split(&req.dataset, req.task, req.split)?;
     if episodes.is_empty() {
@@ -519,6 +582,7 @@ pub fn evaluate_with<SF: SimulatorFactory, RF: RendererFactory>(
         ));
     }
     let total_in_split = episodes.len();
+    let fingerprint = split_fingerprint(&episodes)?;
     episodes = select_episodes(req, episodes)?;
     let mut settings = EpisodeSettings::new(&req.config)?;
     settings.privileged = factory.privileged();
@@ -554,7 +618,10 @@ pub fn evaluate_with<SF: SimulatorFactory, RF: RendererFactory>(
         shared.renderers,
     )?;
     shared.give_back(probe);
-    let identity = run_identity(req, factory, &layer_identity)?;
+    in_pool(req.threads, || {
+        check_split(&shared.split_file, &episodes, &shared.scenes)
+    })??;
+    let identity = run_identity(req, factory, &layer_identity, &fingerprint)?;
     let created = !req.out.exists();
     let lock = OutputLock::acquire(&req.out, "evaluate")?;
     let result = evaluate_locked(
@@ -644,14 +711,7 @@ fn evaluate_locked<SF: SimulatorFactory, RF: RendererFactory>(
             })
             .collect()
     };
-    let results = match req.threads {
-        Some(k) => rayon::ThreadPoolBuilder::new()
-            .num_threads(k)
-            .build()
-            .map_err(|e| TaskError::invalid("threads", k, e.to_string()))?
-            .install(run),
-        None => run(),
-    };
+    let results = in_pool(req.threads, run)?;
     let mut steps_run = 0;
     for r in results {
         let rec = r?;
@@ -754,12 +814,14 @@ fn remove_run_files(out: &Path) -> Result<()> {
 /// differing key is named): `run.json` of the run folder. Besides the protocol's names and
 /// paths it records their contents (`agent_config`, `rig_config`), so an edited file is
 /// noticed, and the layers that ran it (`simulator`, `renderer`, `rig_fingerprint`: see
-/// [`LayerIdentity`]). Thread count and episode count are left out (a resume may use other
-/// values).
+/// [`LayerIdentity`]), and `split`, the [`split_fingerprint`] of the whole split file (not of
+/// the episodes selected, so a resume may run more of it). Thread count and episode count are
+/// left out (a resume may use other values).
 pub fn run_identity(
     req: &EvalRequest,
     factory: &dyn AgentFactory,
     layers: &LayerIdentity,
+    split: &str,
 ) -> Result<Vec<(&'static str, serde_json::Value)>> {
     use serde_json::{json, to_value};
     let cfg = &req.config;
@@ -810,6 +872,8 @@ pub fn run_identity(
         ("renderer", json!(layers.renderer)),
         ("renderer_fingerprint", json!(layers.renderer_fingerprint)),
         ("rig_fingerprint", json!(layers.rig_fingerprint)),
+        // What the split file held, last: the same run of an edited split.
+        ("split_fingerprint", json!(split)),
     ];
     // Only when set, so runs made before these options existed still resume.
     if let Some(sample) = req.sample {

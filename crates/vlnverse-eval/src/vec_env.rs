@@ -201,6 +201,10 @@ impl RapierVecEnv {
     }
 }
 
+/// Most environments one [`VecEnv`] holds: each has a simulator and a renderer (1024 rendering
+/// ones took 3.5 GB), so a mistyped count is refused.
+pub const MAX_ENVS: usize = 256;
+
 fn invalid(field: &str, value: impl ToString, why: impl Into<String>) -> TaskError {
     TaskError::invalid(field, value, why.into())
 }
@@ -213,8 +217,12 @@ impl<S: Simulator> VecEnv<S> {
         RF: RendererFactory,
     {
         cfg.protocol.validate()?;
-        if cfg.num_envs == 0 || cfg.num_envs > 4096 {
-            return Err(invalid("num_envs", cfg.num_envs, "must be in [1, 4096]"));
+        if cfg.num_envs == 0 || cfg.num_envs > MAX_ENVS {
+            return Err(invalid(
+                "num_envs",
+                cfg.num_envs,
+                format!("must be in [1, {MAX_ENVS}]"),
+            ));
         }
         let split_file = dataset::split_path(&cfg.dataset, cfg.task, cfg.split);
         let all = dataset::read_split(&cfg.dataset, cfg.task, cfg.split)?;

@@ -16,7 +16,7 @@ use serde_json::json;
 use sha2::{Digest, Sha256};
 use vlnverse_sensors::{Observation, PanoramaSpec, RigConfig, SensorRig, SensorSpec};
 use vlnverse_task::dataset;
-use vlnverse_task::eval::sim_config;
+use vlnverse_task::eval::{check_split, sim_config, MAX_THREADS};
 use vlnverse_task::eval::{
     configured_renderer, rapier_simulator, ActionSpace, EpisodeSettings, EvalConfig, SceneCache,
     Setting,
@@ -614,8 +614,6 @@ pub fn export(req: &ExportRequest, progress: &(dyn Fn(Progress) + Sync)) -> Resu
     });
     let fingerprint = format!("{:x}", Sha256::digest(identity.to_string().as_bytes()));
 
-    let (_lock, parts) = claim_output(req, &fingerprint, &identity)?;
-
     let threads = req
         .threads
         .unwrap_or_else(rayon::current_num_threads)
@@ -624,6 +622,12 @@ pub fn export(req: &ExportRequest, progress: &(dyn Fn(Progress) + Sync)) -> Resu
         .num_threads(threads)
         .build()
         .map_err(|e| ExportError::invalid("threads", threads, e.to_string()))?;
+    let scenes = SceneCache::new(&req.dataset, 2 * threads + 2);
+    // Every episode is checked in its scene before the output folder is touched.
+    pool.install(|| check_split(&split_file, &episodes, &scenes))?;
+
+    let (_lock, parts) = claim_output(req, &fingerprint, &identity)?;
+
     let job = Job {
         req,
         settings,
@@ -631,7 +635,7 @@ pub fn export(req: &ExportRequest, progress: &(dyn Fn(Progress) + Sync)) -> Resu
         rig: rig.clone(),
         sensors,
         features: features.clone(),
-        scenes: SceneCache::new(&req.dataset, 2 * threads + 2),
+        scenes,
         workers: Mutex::new(Vec::new()),
         fingerprint: fingerprint.clone(),
         nanos: Default::default(),
@@ -699,8 +703,12 @@ fn load_episodes(req: &ExportRequest) -> Result<(Vec<Episode>, PathBuf)> {
             "must be at least 1 (leave it out for the whole split)",
         ));
     }
-    if req.threads == Some(0) {
-        return Err(ExportError::invalid("threads", 0, "must be at least 1"));
+    if let Some(n) = req.threads.filter(|n| !(1..=MAX_THREADS).contains(n)) {
+        return Err(ExportError::invalid(
+            "threads",
+            n,
+            format!("must be in [1, {MAX_THREADS}] (leave it out for one per core)"),
+        ));
     }
     if !req.dataset.is_dir() {
         return Err(ExportError::invalid(

@@ -8,7 +8,8 @@ use std::sync::Mutex;
 use pyo3::prelude::*;
 use vlnverse_task::dataset;
 use vlnverse_task::episode::{Episode, Split, Task};
-use vlnverse_task::eval::{finish_run, open_run, run_identity, select_episodes};
+use vlnverse_task::eval::split_fingerprint;
+use vlnverse_task::eval::{check_split, finish_run, open_run, run_identity, select_episodes};
 use vlnverse_task::eval::{AgentFactory, EvalRequest, LayerIdentity, SceneCache};
 use vlnverse_task::eval::{EpisodeRecord, ProgressLog, PROGRESS_FILE};
 use vlnverse_task::metrics::MetricsConfig;
@@ -180,13 +181,18 @@ impl RunFolder {
                 )));
             }
             let total = eps.len();
+            let split_key = split_fingerprint(&eps).map_err(py_err)?;
             let eps = select_episodes(&req, eps).map_err(py_err)?;
+            // Every episode checked in its scene before run.json or a lock is written.
+            let split_file = dataset::split_path(&dataset, task, split);
+            check_split(&split_file, &eps, &SceneCache::new(&dataset, 4)).map_err(py_err)?;
             let factory = PythonAgent {
                 name: agent.clone(),
                 fingerprint: agent_fingerprint,
             };
             let layers = LayerIdentity::of_defaults(&req).map_err(py_err)?;
-            let identity = run_identity(&req, &factory, &layers).map_err(py_err)?;
+            let identity = run_identity(&req, &factory, &layers, &split_key).map_err(py_err)?;
+            vlnverse_task::eval::check_run_folder(&out).map_err(py_err)?;
             let lock = OutputLock::acquire(&out, "evaluate").map_err(py_err)?;
             let done = open_run(&req, &identity, total).map_err(py_err)?;
             let log = ProgressLog::open(&out.join(PROGRESS_FILE)).map_err(py_err)?;

@@ -71,14 +71,36 @@ pub fn write_split(dir: &Path, task: Task, split: Split, episodes: &[Episode]) -
 
 /// Read the split file of `task`/`split` under `dir`.
 pub fn read_split(dir: &Path, task: Task, split: Split) -> Result<Vec<Episode>> {
-    read_file(&split_path(dir, task, split))
+    let path = split_path(dir, task, split);
+    let episodes = read_file(&path)?;
+    check_task(&path, task, &episodes)?;
+    Ok(episodes)
+}
+
+/// Every episode of `task`'s split file says it is of `task` (an episode of another task would
+/// be run and scored by the wrong rules).
+pub fn check_task(path: &Path, task: Task, episodes: &[Episode]) -> Result<()> {
+    match episodes.iter().position(|e| e.task != task) {
+        Some(i) => Err(DataError::parse(
+            path,
+            format!("episodes[{i}].task"),
+            format!(
+                "{:?} in a split file of task {:?} (episode_id {})",
+                episodes[i].task.name(),
+                task.name(),
+                episodes[i].episode_id
+            ),
+        )),
+        None => Ok(()),
+    }
 }
 
 /// Read a split file (`.json.gz`, or plain `.json`), with errors naming the file, the episode
 /// index and the field.
 pub fn read_file(path: &Path) -> Result<Vec<Episode>> {
     let raw = std::fs::read(path).map_err(|e| DataError::io(path, e))?;
-    let json = if raw.starts_with(&[0x1f, 0x8b]) {
+    let gzipped = raw.starts_with(&[0x1f, 0x8b]);
+    let json = if gzipped {
         let mut out = Vec::with_capacity(raw.len() * 6);
         GzDecoder::new(&raw[..])
             .read_to_end(&mut out)
@@ -87,19 +109,34 @@ pub fn read_file(path: &Path) -> Result<Vec<Episode>> {
     } else {
         raw
     };
-    from_json_bytes(path, &json)
+    parse_episodes(path, &json, gzipped)
 }
 
 /// Parse the JSON of a split file; `path` only names the source in errors.
 pub fn from_json_bytes(path: &Path, json: &[u8]) -> Result<Vec<Episode>> {
+    parse_episodes(path, json, false)
+}
+
+/// [`from_json_bytes`] for JSON that came out of a gzip stream when `gzipped` (then a syntax
+/// error is about the JSON inside, not about the compression).
+fn parse_episodes(path: &Path, json: &[u8], gzipped: bool) -> Result<Vec<Episode>> {
     match serde_json::from_slice::<Dataset>(json) {
         Ok(d) => {
             check_unique_ids(path, &d.episodes)?;
             check_paths_stay_inside(path, &d.episodes)?;
+            for (i, e) in d.episodes.iter().enumerate() {
+                check_fields(e).map_err(|(field, msg)| {
+                    DataError::parse(
+                        path,
+                        format!("episodes[{i}].{field} (episode_id {})", e.episode_id),
+                        msg,
+                    )
+                })?;
+            }
             Ok(d.episodes)
         }
         // Slow path only on failure: find which episode and field is wrong.
-        Err(first) => Err(locate_error(path, json, first)),
+        Err(first) => Err(locate_error(path, json, gzipped, first)),
     }
 }
 
@@ -117,6 +154,71 @@ fn check_unique_ids(path: &Path, episodes: &[Episode]) -> Result<()> {
                 ),
             ));
         }
+    }
+    Ok(())
+}
+
+/// How far a start rotation may be from a unit quaternion about +Y (in each of `|q| - 1`, `x`
+/// and `z`): a float32 round trip stays far inside it; a tilted or unnormalised one does not.
+pub const ROTATION_TOLERANCE: f32 = 1e-3;
+
+/// The values of one episode that no scene is needed to judge: `Err((field, why))`.
+/// Checked when a split file is read, so a malformed episode is refused by name instead of
+/// being run or scored silently.
+pub fn check_fields(e: &Episode) -> std::result::Result<(), (String, String)> {
+    let bad = |field: &str, msg: String| Err((field.to_string(), msg));
+    if e.instruction.instruction_text.trim().is_empty() {
+        return bad(
+            "instruction.instruction_text",
+            "is empty; every episode needs an instruction".into(),
+        );
+    }
+    let q = e.start_rotation;
+    let norm = q.iter().map(|v| v * v).sum::<f32>().sqrt();
+    if !q.iter().all(|v| v.is_finite())
+        || (norm - 1.0).abs() > ROTATION_TOLERANCE
+        || q[0].abs() > ROTATION_TOLERANCE
+        || q[2].abs() > ROTATION_TOLERANCE
+    {
+        return bad(
+            "start_rotation",
+            format!(
+                "{q:?} is not a unit quaternion [x, y, z, w] about the vertical axis \
+                 (x and z 0, length 1, within {ROTATION_TOLERANCE}); the agent stands upright"
+            ),
+        );
+    }
+    if e.goals.is_empty() {
+        return bad("goals", "is empty; an episode needs a goal".into());
+    }
+    for (name, goals) in [("goals", &e.goals), ("sub_goals", &e.sub_goals)] {
+        for (j, g) in goals.iter().enumerate() {
+            if !(g.radius.is_finite() && g.radius > 0.0) {
+                return bad(
+                    &format!("{name}[{j}].radius"),
+                    format!("{} must be a positive number of metres", g.radius),
+                );
+            }
+        }
+    }
+    if e.task == Task::LongHorizon && e.sub_goals.is_empty() {
+        return bad(
+            "sub_goals",
+            "is empty; a long-horizon episode lists its goals in order".into(),
+        );
+    }
+    let d = e.info.geodesic_distance;
+    if !(d.is_finite() && d >= 0.0) {
+        return bad(
+            "info.geodesic_distance",
+            format!("{d} must be a finite distance >= 0 (metres)"),
+        );
+    }
+    if e.reference_path.is_empty() {
+        return bad(
+            "reference_path",
+            "is empty; it runs from the start to the goal, both included".into(),
+        );
     }
     Ok(())
 }
@@ -155,9 +257,9 @@ fn check_paths_stay_inside(path: &Path, episodes: &[Episode]) -> Result<()> {
 
 /// A hint for JSON that is not JSON: a split file that should have been gzip, or `NaN` /
 /// `Infinity`, which JSON has no spelling for.
-fn syntax_hint(path: &Path, json: &[u8], e: &serde_json::Error) -> String {
+fn syntax_hint(path: &Path, json: &[u8], gzipped: bool, e: &serde_json::Error) -> String {
     let name = path.to_string_lossy();
-    if name.ends_with(".gz") {
+    if name.ends_with(".gz") && !gzipped {
         return format!(
             "{e} (the file ends in .gz but is not gzip-compressed, and not valid JSON either)"
         );
@@ -177,14 +279,14 @@ fn syntax_hint(path: &Path, json: &[u8], e: &serde_json::Error) -> String {
     e.to_string()
 }
 
-fn locate_error(path: &Path, json: &[u8], first: serde_json::Error) -> DataError {
+fn locate_error(path: &Path, json: &[u8], gzipped: bool, first: serde_json::Error) -> DataError {
     let value: serde_json::Value = match serde_json::from_slice(json) {
         Ok(v) => v,
         Err(e) => {
             return DataError::parse(
                 path,
                 format!("line {} column {}", e.line(), e.column()),
-                syntax_hint(path, json, &e),
+                syntax_hint(path, json, gzipped, &e),
             )
         }
     };

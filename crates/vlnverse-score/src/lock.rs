@@ -23,6 +23,7 @@ impl OutputLock {
     /// Lock `dir` (created if missing) for `job` (e.g. `"evaluate"`), or fail naming the job
     /// that holds it.
     pub fn acquire(dir: &Path, job: &str) -> Result<Self> {
+        check_is_folder(dir)?;
         std::fs::create_dir_all(dir).map_err(|e| DataError::io(dir, e))?;
         let path = dir.join(LOCK_FILE);
         let mut file = OpenOptions::new()
@@ -71,4 +72,36 @@ impl OutputLock {
     pub fn path(&self) -> &Path {
         &self.path
     }
+}
+
+/// `--out` names a folder (made if missing): a file there is refused in words, not with the
+/// operating system's "File exists".
+pub fn check_is_folder(dir: &Path) -> Result<()> {
+    match std::fs::metadata(dir) {
+        Ok(m) if !m.is_dir() => Err(DataError::invalid(
+            "out",
+            dir.display(),
+            "is a file, not a folder; name a folder (it is made if missing)",
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// Refuse to write a job's results into a dataset folder (one with `scenes/` or a
+/// `<task>/<split>/<split>.json.gz`): its files would mix with the dataset's.
+pub fn refuse_dataset_folder(dir: &Path) -> Result<()> {
+    let holds_split = crate::episode::Task::ALL.iter().any(|&t| {
+        crate::episode::Split::ALL
+            .iter()
+            .any(|&s| crate::dataset::split_path(dir, t, s).is_file())
+    });
+    if dir.join("scenes").is_dir() || holds_split {
+        return Err(DataError::invalid(
+            "out",
+            dir.display(),
+            "is a dataset folder (it holds scenes/ or split files); write results into a \
+             folder of their own",
+        ));
+    }
+    Ok(())
 }

@@ -152,7 +152,7 @@ pub fn parse_trajectories(path: &Path, text: &str) -> Result<Vec<Trajectory>> {
         }
         let lineno = i + 1;
         let err = |msg: String| DataError::parse(path, format!("line {lineno}"), msg);
-        let value: Value = serde_json::from_str(line).map_err(|e| err(e.to_string()))?;
+        let value: Value = serde_json::from_str(line).map_err(|e| err(json_hint(line, &e)))?;
         let Value::Object(obj) = value else {
             return Err(err("expected a JSON object".into()));
         };
@@ -168,6 +168,28 @@ pub fn parse_trajectories(path: &Path, text: &str) -> Result<Vec<Trajectory>> {
         ));
     }
     Ok(out)
+}
+
+/// A JSON syntax error, with a hint when the text near it spells NaN or Infinity (what Python's
+/// `json.dumps` writes for a float that is not finite; JSON has no such numbers).
+fn json_hint(line: &str, e: &serde_json::Error) -> String {
+    let col = e.column().saturating_sub(1).min(line.len());
+    let from = (0..=col.saturating_sub(30))
+        .rev()
+        .find(|&i| line.is_char_boundary(i))
+        .unwrap_or(0);
+    let to = (col + 10..=line.len())
+        .find(|&i| line.is_char_boundary(i))
+        .unwrap_or(line.len());
+    let near = &line[from..to];
+    if ["NaN", "Infinity"].iter().any(|w| near.contains(w)) {
+        return format!(
+            "{e}: NaN and Infinity are not JSON numbers (near `{}`); a position must be \
+             finite (Python: check the values before json.dumps, or use allow_nan=False)",
+            near.trim()
+        );
+    }
+    e.to_string()
 }
 
 fn field<T: serde::de::DeserializeOwned>(

@@ -9,8 +9,10 @@ use std::io::{BufRead, BufReader, Write};
 use std::path::PathBuf;
 use std::process::{Child, ChildStdin, ChildStdout, Command, Stdio};
 use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::mpsc::{Receiver, RecvTimeoutError};
 use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
+use std::time::Duration;
 
 use base64::engine::general_purpose::STANDARD;
 use base64::Engine as _;
@@ -34,24 +36,37 @@ pub enum ObsEncoding {
     Base64,
 }
 
+/// Seconds an external agent may take to answer one message unless the protocol says
+/// otherwise (`external_timeout_s`).
+pub const DEFAULT_EXTERNAL_TIMEOUT_S: f64 = 60.0;
+
 /// Makes one [`ExternalAgent`] process per worker.
 pub struct ExternalFactory {
     cmd: String,
     encoding: ObsEncoding,
+    timeout: Duration,
 }
 
 impl ExternalFactory {
-    /// Agents running `cmd` through `sh -c`, observations as files.
+    /// Agents running `cmd` through `sh -c`, observations as files, replies awaited
+    /// [`DEFAULT_EXTERNAL_TIMEOUT_S`].
     pub fn new(cmd: &str) -> Self {
         ExternalFactory {
             cmd: cmd.into(),
             encoding: ObsEncoding::Files,
+            timeout: Duration::from_secs_f64(DEFAULT_EXTERNAL_TIMEOUT_S),
         }
     }
 
     /// Choose how observations are sent.
     pub fn with_encoding(mut self, encoding: ObsEncoding) -> Self {
         self.encoding = encoding;
+        self
+    }
+
+    /// How long to wait for one reply before the agent is stopped and the run fails.
+    pub fn with_timeout(mut self, timeout: Duration) -> Self {
+        self.timeout = timeout;
         self
     }
 }
@@ -61,7 +76,9 @@ impl AgentFactory for ExternalFactory {
         "external".into()
     }
     fn make(&self) -> Result<Box<dyn Agent>> {
-        Ok(Box::new(ExternalAgent::spawn(&self.cmd, self.encoding)?))
+        let mut agent = ExternalAgent::spawn(&self.cmd, self.encoding)?;
+        agent.timeout = self.timeout;
+        Ok(Box::new(agent))
     }
     fn command(&self) -> Option<String> {
         Some(self.cmd.clone())
@@ -101,12 +118,37 @@ pub fn command_files_hash(cmd: &str) -> Option<String> {
     (files > 0).then(|| format!("files {h:016x}"))
 }
 
+/// A thread that sends each line of `out` (without its newline) until it ends.
+fn read_lines(mut out: BufReader<ChildStdout>) -> Receiver<std::io::Result<String>> {
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || loop {
+        let mut line = String::new();
+        match out.read_line(&mut line) {
+            Ok(0) => break,
+            Ok(_) => {
+                if tx.send(Ok(line)).is_err() {
+                    break;
+                }
+            }
+            Err(e) => {
+                let _ = tx.send(Err(e));
+                break;
+            }
+        }
+    });
+    rx
+}
+
 /// A running external agent.
 pub struct ExternalAgent {
     cmd: String,
     child: Child,
     stdin: Option<ChildStdin>,
-    stdout: BufReader<ChildStdout>,
+    /// Lines of the agent's stdout, read by a thread so a reply can be awaited with a timeout.
+    replies: Receiver<std::io::Result<String>>,
+    timeout: Duration,
+    /// Step of the message last sent (for errors).
+    step: Option<u32>,
     tmp: PathBuf,
     encoding: ObsEncoding,
     stderr_tail: Arc<Mutex<VecDeque<String>>>,
@@ -158,6 +200,7 @@ impl ExternalAgent {
             .take()
             .map(BufReader::new)
             .ok_or_else(|| TaskError::invalid("agent_cmd", cmd, "no stdout pipe"))?;
+        let replies = read_lines(stdout);
         let tmp = std::env::temp_dir().join(format!(
             "vlnverse-agent-{}-{}",
             std::process::id(),
@@ -168,7 +211,9 @@ impl ExternalAgent {
             cmd: cmd.into(),
             child,
             stdin,
-            stdout,
+            replies,
+            timeout: Duration::from_secs_f64(DEFAULT_EXTERNAL_TIMEOUT_S),
+            step: None,
             tmp,
             encoding,
             stderr_tail,
@@ -180,10 +225,11 @@ impl ExternalAgent {
     }
 
     fn err(&self, msg: impl Into<String>) -> TaskError {
+        let step = self.step.map(|s| format!(", step {s}")).unwrap_or_default();
         TaskError::invalid(
             "agent_cmd",
             &self.cmd,
-            format!("episode {}: {}", self.episode_id, msg.into()),
+            format!("episode {}{step}: {}", self.episode_id, msg.into()),
         )
     }
 
@@ -242,20 +288,26 @@ impl ExternalAgent {
     }
 
     fn receive(&mut self) -> Result<Value> {
-        let mut line = String::new();
-        loop {
-            line.clear();
-            let n = match self.stdout.read_line(&mut line) {
-                Ok(n) => n,
-                Err(e) => return Err(self.dead(format!("cannot read from the agent ({e})"))),
-            };
-            if n == 0 {
-                return Err(self.dead("the agent closed its output".into()));
+        let line = loop {
+            match self.replies.recv_timeout(self.timeout) {
+                Ok(Ok(line)) if line.trim().is_empty() => continue,
+                Ok(Ok(line)) => break line,
+                Ok(Err(e)) => {
+                    return Err(self.dead(format!("cannot read from the agent ({e})")));
+                }
+                Err(RecvTimeoutError::Disconnected) => {
+                    return Err(self.dead("the agent closed its output".into()));
+                }
+                Err(RecvTimeoutError::Timeout) => {
+                    // A hung agent is stopped, so the run ends instead of waiting forever.
+                    let _ = self.child.kill();
+                    return Err(self.err(format!(
+                        "no reply within {:.1} s (external_timeout_s); the agent was stopped",
+                        self.timeout.as_secs_f64()
+                    )));
+                }
             }
-            if !line.trim().is_empty() {
-                break;
-            }
-        }
+        };
         serde_json::from_str(line.trim())
             .map_err(|e| self.err(format!("reply is not JSON ({e}): {}", line.trim())))
     }
@@ -395,6 +447,7 @@ impl ExternalAgent {
 impl Agent for ExternalAgent {
     fn reset(&mut self, i: &EpisodeInputs) -> Result<()> {
         self.episode_id = i.episode_id;
+        self.step = None;
         self.step_size = i.agent.step_size;
         self.turn_deg = i.agent.turn_angle_deg;
         let msg = json!({
@@ -418,6 +471,7 @@ impl Agent for ExternalAgent {
     }
 
     fn act(&mut self, step: &mut StepInput) -> Result<Action> {
+        self.step = Some(step.step);
         let msg = json!({
             "type": "step",
             "step": step.step,

@@ -10,7 +10,9 @@ mod semantic;
 mod stop;
 
 pub use control::{VelocityController, CONTROL_PERIOD, MODEL_DT, TURN_IN_PLACE};
-pub use external::{command_files_hash, ExternalAgent, ExternalFactory, ObsEncoding};
+pub use external::{
+    command_files_hash, ExternalAgent, ExternalFactory, ObsEncoding, DEFAULT_EXTERNAL_TIMEOUT_S,
+};
 pub use forward::ForwardAgent;
 pub use oracle::OracleAgent;
 pub use random::RandomAgent;
@@ -145,7 +147,11 @@ pub fn builtin(
                     "the external agent needs a command (--agent-cmd \"python3 examples/python/random_agent.py\")",
                 ));
             };
-            Box::new(external::ExternalFactory::new(cmd).with_encoding(cfg.external_observations))
+            Box::new(
+                external::ExternalFactory::new(cmd)
+                    .with_encoding(cfg.external_observations)
+                    .with_timeout(std::time::Duration::from_secs_f64(cfg.external_timeout_s)),
+            )
         }
         _ => {
             return Err(TaskError::invalid(

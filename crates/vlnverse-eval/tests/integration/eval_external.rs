@@ -103,3 +103,36 @@ fn an_agent_that_exits_early_reports_its_status_and_stderr() {
         "{err}"
     );
 }
+
+#[test]
+fn an_agent_that_never_replies_is_stopped_after_the_timeout_naming_command_and_step() {
+    let dir = tempfile::tempdir().unwrap();
+    eval_support::make_dataset(dir.path(), Task::Fine, 1, 1, 21);
+    let cfg = EvalConfig {
+        plots: 0,
+        render: false,
+        external_timeout_s: 0.5,
+        ..Default::default()
+    };
+    let req = eval_support::fine_test(dir.path(), "hung", &cfg, None, 1);
+    // Reads every message and answers none.
+    let cmd = "cat > /dev/null";
+    let f = builtin("external", Some(cmd), &cfg).unwrap();
+    let err = evaluate(&req, &*f).unwrap_err().to_string();
+    assert!(
+        err.contains(cmd)
+            && err.contains("step 0")
+            && err.contains("no reply within 0.5 s")
+            && err.contains("external_timeout_s"),
+        "{err}"
+    );
+    // Out of range is refused before anything runs.
+    for bad in [0.0, -1.0, f64::NAN, 1e12] {
+        let cfg = EvalConfig {
+            external_timeout_s: bad,
+            ..cfg.clone()
+        };
+        let err = cfg.validate().unwrap_err().to_string();
+        assert!(err.contains("external_timeout_s"), "{err}");
+    }
+}

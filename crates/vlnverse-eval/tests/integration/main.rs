@@ -10,6 +10,7 @@ mod eval_identity;
 mod eval_layers;
 mod eval_resume;
 mod eval_runs;
+mod eval_split_checks;
 #[cfg(feature = "llm-oracle")]
 mod oracle_llm;
 mod oracle_shortest_path;
