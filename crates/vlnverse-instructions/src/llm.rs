@@ -120,7 +120,7 @@ impl Default for LlmConfig {
         LlmConfig {
             base_url: "http://127.0.0.1:8000/v1".into(),
             model: "gpt-4o-mini".into(),
-            api_key_env: Some("OPENAI_API_KEY".into()),
+            api_key_env: None,
             temperature: 0.0,
             max_tokens: Some(400),
             timeout_s: 60.0,
@@ -144,6 +144,23 @@ impl LlmConfig {
                 &self.base_url,
                 "must start with http:// or https://",
             ));
+        }
+        match self.base_url.parse::<ureq::http::Uri>() {
+            Ok(uri) if uri.host().is_some_and(|h| !h.is_empty()) => {}
+            Ok(_) => {
+                return Err(DataError::invalid(
+                    "llm.base_url",
+                    &self.base_url,
+                    "names no host (expected e.g. http://127.0.0.1:8000/v1)",
+                ))
+            }
+            Err(e) => {
+                return Err(DataError::invalid(
+                    "llm.base_url",
+                    &self.base_url,
+                    format!("is not a URL ({e})"),
+                ))
+            }
         }
         if self.base_url.starts_with("https://") && !cfg!(feature = "llm-tls") {
             return Err(DataError::invalid(
@@ -379,14 +396,39 @@ pub struct ChatReply {
     pub latency: Duration,
 }
 
+/// Make `dir` and write (then remove) a probe file in it.
+fn check_writable(dir: &std::path::Path) -> std::io::Result<()> {
+    std::fs::create_dir_all(dir)?;
+    let probe = dir.join(format!(".probe{}", std::process::id()));
+    std::fs::write(&probe, b"")?;
+    std::fs::remove_file(&probe)
+}
+
 fn net_error(url: &str, e: impl std::fmt::Display) -> DataError {
     DataError::io(PathBuf::from(url), std::io::Error::other(e.to_string()))
 }
 
 impl ChatClient {
-    /// A client for the configured endpoint (config checked).
+    /// A client for the configured endpoint. Everything that can be checked without a request
+    /// is checked here, before any work: the values, that a named key variable is set, and
+    /// that the cache folder can be written (replies would otherwise be paid for and lost).
     pub fn new(config: LlmConfig) -> Result<Self> {
         config.validate()?;
+        if let Some(var) = &config.api_key_env {
+            if std::env::var_os(var).is_none() {
+                return Err(DataError::invalid(
+                    "llm.api_key_env",
+                    var,
+                    "the environment variable is not set (set it, or leave api_key_env out \
+                     for an endpoint without a key)",
+                ));
+            }
+        }
+        if let Some(dir) = &config.cache_dir {
+            check_writable(dir).map_err(|e| {
+                DataError::invalid("llm.cache_dir", dir.display(), format!("cannot be written: {e}"))
+            })?;
+        }
         let agent: ureq::Agent = ureq::Agent::config_builder()
             .timeout_global(Some(Duration::from_secs_f32(config.timeout_s)))
             .http_status_as_error(false)
@@ -729,6 +771,7 @@ pub struct LlmReport {
 /// objects, and are not checked. `Err` gives the first problem.
 pub fn check_candidate(base: &Instruction, candidate: &str) -> std::result::Result<(), String> {
     use vlnverse_env::SemanticClass;
+    check_text(&base.instruction_text, candidate)?;
     let lower = candidate.to_lowercase();
     let base_text = base.instruction_text.to_lowercase();
     let grounded: Vec<String> = base
@@ -780,11 +823,64 @@ pub fn check_candidate(base: &Instruction, candidate: &str) -> std::result::Resu
     Ok(())
 }
 
+/// Longest rewrite accepted, relative to the template text it rewrites: fluent wording may
+/// grow a text, but not by an order of magnitude.
+pub const MAX_GROWTH: usize = 3;
+/// Characters a rewrite may always have beyond [`MAX_GROWTH`] times the original (short
+/// originals).
+pub const LENGTH_SLACK: usize = 200;
+
+/// A rewrite is plain text of a sensible length: not empty, no control characters (NUL, escape
+/// sequences) or bidirectional overrides (U+202A..U+202E, U+2066..U+2069, which reorder what
+/// a reader sees), at most [`MAX_GROWTH`] times the original plus [`LENGTH_SLACK`] characters.
+pub fn check_text(original: &str, candidate: &str) -> std::result::Result<(), String> {
+    if candidate.trim().is_empty() {
+        return Err("is empty".into());
+    }
+    if let Some(c) = candidate.chars().find(|&c| {
+        (c.is_control() && c != '\n')
+            || ('\u{202a}'..='\u{202e}').contains(&c)
+            || ('\u{2066}'..='\u{2069}').contains(&c)
+            || c == '\u{200e}'
+            || c == '\u{200f}'
+    }) {
+        return Err(format!("holds the control character U+{:04X}", c as u32));
+    }
+    let (n, max) = (
+        candidate.chars().count(),
+        original.chars().count() * MAX_GROWTH + LENGTH_SLACK,
+    );
+    if n > max {
+        return Err(format!(
+            "is {n} characters long, more than {max} ({MAX_GROWTH} times the original's plus \
+             {LENGTH_SLACK})"
+        ));
+    }
+    Ok(())
+}
+
 fn has_word(text: &str, word: &str) -> bool {
     text.split(|c: char| !c.is_alphanumeric() && c != '\'')
         .collect::<Vec<_>>()
         .windows(word.split(' ').count())
         .any(|w| w.join(" ") == word)
+}
+
+/// Field of the error that stops a run under `on_reject = "error"` ([`stops_the_run`]).
+const STOP_FIELD: &str = "llm.on_reject";
+
+fn stopped_error(why: String) -> DataError {
+    DataError::invalid(
+        STOP_FIELD,
+        "\"error\"",
+        format!("{why}; generation stops (on_reject = \"fallback\" keeps the template text instead)"),
+    )
+}
+
+/// Whether `e` is the LLM stage's stop under `on_reject = "error"`: a generator must end the
+/// run with it rather than treat it as one more unusable sample and try again.
+pub fn stops_the_run(e: &DataError) -> bool {
+    matches!(e, DataError::Invalid { field, .. } if field == STOP_FIELD)
 }
 
 /// An [`InstructionGenerator`] that rewrites the output of `inner` with an LLM (describer /
@@ -796,6 +892,8 @@ pub struct LlmGenerator<G> {
     asked: AtomicU64,
     accepted: AtomicU64,
     fallbacks: Mutex<BTreeMap<Fallback, u64>>,
+    /// Set by the first error under [`OnReject::Error`]: later calls send nothing.
+    stopped: std::sync::atomic::AtomicBool,
 }
 
 impl<G> std::fmt::Debug for LlmGenerator<G> {
@@ -817,6 +915,7 @@ impl<G: InstructionGenerator> LlmGenerator<G> {
             asked: AtomicU64::new(0),
             accepted: AtomicU64::new(0),
             fallbacks: Mutex::new(BTreeMap::new()),
+            stopped: std::sync::atomic::AtomicBool::new(false),
         })
     }
 
@@ -877,8 +976,13 @@ impl<G: InstructionGenerator> LlmGenerator<G> {
         user: ChatMessage,
         seed: u64,
     ) -> Result<Instruction> {
-        self.asked.fetch_add(1, Ordering::Relaxed);
         let policy = self.client.config.on_reject;
+        if self.stopped.load(Ordering::Relaxed) {
+            return Err(stopped_error(
+                "an earlier instruction was not used (on_reject = \"error\")".into(),
+            ));
+        }
+        self.asked.fetch_add(1, Ordering::Relaxed);
         let attempt = (|| -> Result<std::result::Result<String, (Fallback, String)>> {
             let candidate = self
                 .client
@@ -915,17 +1019,23 @@ impl<G: InstructionGenerator> LlmGenerator<G> {
                 tracing::warn!(%reason, why = why.name(), "LLM instruction not used; keeping the template");
                 Ok(base)
             }
-            (Ok(Err((why, reason))), OnReject::Error) => Err(DataError::invalid(
-                "llm.verifier",
-                truncate(&base.instruction_text, 80),
-                format!("candidate not used ({}): {reason}", why.name()),
-            )),
+            (Ok(Err((why, reason))), OnReject::Error) => {
+                self.stopped.store(true, Ordering::Relaxed);
+                Err(stopped_error(format!(
+                    "the rewrite of {:?} was not used ({}): {reason}",
+                    truncate(&base.instruction_text, 80),
+                    why.name()
+                )))
+            }
             (Err(e), OnReject::Fallback) => {
                 fell_back(Fallback::CallFailed);
                 tracing::warn!(error = %e, "LLM call failed; keeping the template");
                 Ok(base)
             }
-            (Err(e), OnReject::Error) => Err(e),
+            (Err(e), OnReject::Error) => {
+                self.stopped.store(true, Ordering::Relaxed);
+                Err(stopped_error(format!("the LLM call failed: {e}")))
+            }
         }
     }
 
@@ -994,6 +1104,80 @@ impl<G: InstructionGenerator> InstructionGenerator for LlmGenerator<G> {
 mod tests {
     use super::*;
     use vlnverse_score::episode::GroundedObject;
+
+    #[test]
+    fn no_api_key_env_sends_no_key_and_a_missing_key_variable_is_refused_up_front() {
+        let (url, seen) = vlnverse_testkit::llm_stub::stub(vec![(200, "Go.".into())]);
+        let client = ChatClient::new(LlmConfig {
+            base_url: url.clone(),
+            ..LlmConfig::default()
+        })
+        .unwrap();
+        assert_eq!(client.chat(&[ChatMessage::user("hi")], 0).unwrap(), "Go.");
+        assert_eq!(seen.lock().unwrap()[0].authorization, None);
+        let err = ChatClient::new(LlmConfig {
+            base_url: url,
+            api_key_env: Some("VLNVERSE_TEST_SURELY_UNSET_KEY".into()),
+            ..LlmConfig::default()
+        })
+        .unwrap_err()
+        .to_string();
+        assert!(
+            err.contains("llm.api_key_env") && err.contains("VLNVERSE_TEST_SURELY_UNSET_KEY"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn a_malformed_base_url_and_an_unwritable_cache_are_refused_by_name() {
+        for bad in ["http://[::1", "http://", "http:// spaced/v1"] {
+            let err = LlmConfig {
+                base_url: bad.into(),
+                ..LlmConfig::default()
+            }
+            .validate()
+            .unwrap_err()
+            .to_string();
+            assert!(err.contains("llm.base_url") && err.contains(bad), "{err}");
+        }
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("a_file");
+        std::fs::write(&file, "").unwrap();
+        let err = ChatClient::new(LlmConfig {
+            cache_dir: Some(file.join("cache")),
+            ..LlmConfig::default()
+        })
+        .unwrap_err()
+        .to_string();
+        assert!(err.contains("llm.cache_dir") && err.contains("a_file"), "{err}");
+        // A writable one is made and left empty.
+        let cache = dir.path().join("cache");
+        ChatClient::new(LlmConfig {
+            cache_dir: Some(cache.clone()),
+            ..LlmConfig::default()
+        })
+        .unwrap();
+        assert_eq!(std::fs::read_dir(&cache).unwrap().count(), 0);
+    }
+
+    #[test]
+    fn rewrites_with_control_characters_or_far_too_long_are_refused() {
+        let base = with(&[("sofa", Some(Side::Left))]);
+        let ok = "Pass the sofa on your left and stop by the door.";
+        assert_eq!(check_candidate(&base, ok), Ok(()));
+        for (bad, why) in [
+            ("Pass the sofa\u{0} on your left.", "U+0000"),
+            ("Pass the \u{202e}tfel ruoy no afos.", "U+202E"),
+            ("Pass the sofa.\u{1b}[2J", "U+001B"),
+            ("   ", "empty"),
+        ] {
+            let err = check_candidate(&base, bad).unwrap_err();
+            assert!(err.contains(why), "{bad:?}: {err}");
+        }
+        let long = "Walk on. ".repeat(65_536 / 9);
+        let err = check_candidate(&base, &long).unwrap_err();
+        assert!(err.contains("characters long"), "{err}");
+    }
 
     #[test]
     fn unbounded_timeouts_and_retries_are_refused_by_name() {

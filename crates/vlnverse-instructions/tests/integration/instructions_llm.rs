@@ -228,16 +228,18 @@ fn config_and_verdict_errors_are_clear() {
     .unwrap_err()
     .to_string();
     assert!(e.contains("llm.model"), "{e}");
-    // A named key variable that is not set.
-    let w = &worlds(1)[0];
-    let s = &paths(w, 1, 25)[0];
+    // A named key variable that is not set: refused when the stage is made, before any work.
     let cfg = LlmConfig {
         on_reject: OnReject::Error,
         ..config("http://127.0.0.1:1/v1", Some("VLNVERSE_TEST_LLM_KEY_UNSET"))
     };
-    let g = LlmGenerator::new(TemplateGenerator::default(), cfg).unwrap();
-    let e = g.fine(&w.ctx(s), 0).unwrap_err().to_string();
-    assert!(e.contains("VLNVERSE_TEST_LLM_KEY_UNSET"), "{e}");
+    let e = LlmGenerator::new(TemplateGenerator::default(), cfg)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("llm.api_key_env") && e.contains("VLNVERSE_TEST_LLM_KEY_UNSET"),
+        "{e}"
+    );
 
     assert!(parse_verdict("YES").accepted);
     assert!(parse_verdict("yes, it matches").accepted);
