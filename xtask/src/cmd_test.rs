@@ -1,11 +1,14 @@
 //! `cargo xtask test`: every test of the project, Rust and Python, in one command.
 //!
-//! 1. `cargo test --workspace` (the test profile: optimised dependencies, quick to build);
+//! 1. `cargo test --workspace` (the test profile: optimised dependencies, quick to build),
+//!    then `cargo xtask results --check --ci` (the docs' result tables made on `tiny`);
 //! 2. a virtual environment in `.venv/` with the Python test tools
 //!    (`crates/vlnverse-py/requirements-dev.txt`), the `vlnverse` package built into it by
 //!    maturin, and a `tiny` dataset under `target/py-test-data/`;
-//! 3. for each Python suite (the package, the LeRobot export check, the baselines, the browser
-//!    tests): its packages, ruff and mypy; then one pytest over all their tests.
+//! 3. for each Python suite (the package, the LeRobot export check, the baselines, the
+//!    hostile-input table of `tests/hostile/`, the browser tests): its packages, ruff and mypy;
+//!    then one pytest over all their tests (the hostile suite's outcome counts show in its
+//!    warnings summary).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -79,6 +82,15 @@ const SUITES: &[Suite] = &[
         tests: "tests",
     },
     Suite {
+        name: "hostile inputs",
+        dir: "tests/hostile",
+        requirements: None,
+        editable: false,
+        lint: &["."],
+        typed: None,
+        tests: ".",
+    },
+    Suite {
         name: "web (browser)",
         dir: "crates/vlnverse-web/browser-tests",
         requirements: Some("requirements.txt"),
@@ -117,6 +129,16 @@ pub fn run_tests(args: Args) -> anyhow::Result<()> {
             Command::new(&cargo)
                 .current_dir(&root)
                 .args(["test", "--workspace"]),
+        )?;
+    }
+    if !args.python_only {
+        // The docs' tables on `tiny` (configs/results.toml, `ci = true`) as HEAD makes them.
+        let exe = std::env::current_exe().context("locating the xtask binary")?;
+        run(
+            "cargo xtask results --check --ci (the docs' tiny tables)",
+            Command::new(&exe)
+                .current_dir(&root)
+                .args(["results", "--check", "--ci"]),
         )?;
     }
     if args.rust_only {

@@ -10,6 +10,7 @@ mod cmd_generate;
 mod cmd_import;
 mod cmd_merge;
 mod cmd_render;
+mod cmd_results;
 mod cmd_review;
 mod cmd_scene_info;
 mod cmd_scenes;
@@ -57,6 +58,8 @@ enum Command {
     Review(cmd_review::Args),
     /// Serve the web app: drive episodes, replay runs, review generated instructions.
     Serve(cmd_serve::Args),
+    /// Regenerate the docs' deterministic result tables (`--check`: fail where they differ).
+    Results(cmd_results::Args),
     /// Run the benchmarks that print figures (scenes, geodesic, physics, rendering, metrics).
     Bench(cmd_bench::Args),
     /// Run every test: Rust (cargo test) and Python (the vlnverse package, pytest).
@@ -88,6 +91,7 @@ fn main() {
         Command::Export(a) => cmd_export::run(a),
         Command::Review(a) => cmd_review::run(a),
         Command::Serve(a) => cmd_serve::run(a),
+        Command::Results(a) => cmd_results::run(a),
         Command::Bench(a) => cmd_bench::run(a),
         Command::Test(a) => cmd_test::run_tests(a),
     };
