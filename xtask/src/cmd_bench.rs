@@ -47,6 +47,11 @@ pub enum Kind {
         /// What is counted.
         unit: &'static str,
     },
+    /// Bytes per `item` (memory held; lower is better).
+    Size {
+        /// What one measured item is (`home`, ...).
+        per: &'static str,
+    },
 }
 
 /// One figure from one repetition of a case.
@@ -69,6 +74,16 @@ impl Sample {
             name: name.into(),
             value: seconds / items.max(1) as f64,
             kind: Kind::Time { per },
+            detail,
+        }
+    }
+
+    /// Bytes per item: `bytes` held by `items` items.
+    pub fn size(name: &str, bytes: usize, items: usize, per: &'static str, detail: String) -> Self {
+        Sample {
+            name: name.into(),
+            value: bytes as f64 / items.max(1) as f64,
+            kind: Kind::Size { per },
             detail,
         }
     }
@@ -244,13 +259,16 @@ pub fn format_value(v: f64, kind: Kind) -> String {
     match kind {
         Kind::Time { per } => format!("{}/{per}", duration(v)),
         Kind::Rate { unit } => format!("{} {unit}/s", si(v).trim_end()),
+        Kind::Size { per } => format!("{}B/{per}", si(v)),
     }
 }
 
 fn print_row(f: &Figure) {
     let range = match f.kind {
         Kind::Time { .. } => format!("{} .. {}", duration(f.min), duration(f.max)),
-        Kind::Rate { .. } => format!("{} .. {}", si(f.min).trim_end(), si(f.max).trim_end()),
+        Kind::Rate { .. } | Kind::Size { .. } => {
+            format!("{} .. {}", si(f.min).trim_end(), si(f.max).trim_end())
+        }
     };
     println!(
         "{:<27} {:>20}  {:>22}  {}",

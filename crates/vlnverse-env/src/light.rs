@@ -146,13 +146,13 @@ pub struct BakedLight {
 }
 
 impl BakedLight {
-    /// Bytes held (for the cache's budget).
+    /// Bytes held (allocated; for the cache's budget).
     pub fn bytes(&self) -> usize {
         std::mem::size_of::<Self>()
             + self
                 .parts
                 .iter()
-                .map(|p| std::mem::size_of_val(p.as_slice()) + std::mem::size_of::<Vec<u8>>())
+                .map(|p| p.capacity() * 3 + std::mem::size_of::<Vec<u8>>())
                 .sum::<usize>()
     }
 }

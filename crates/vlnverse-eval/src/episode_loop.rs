@@ -411,7 +411,7 @@ impl EpisodeState {
         let pose = sim.reset(&scene.scene, start)?;
         if let Some(rig) = rig {
             if rig.scene_id() != Some(ep.scene_id.as_str()) {
-                rig.set_scene(&scene.scene)?;
+                rig.set_mesh(scene.mesh()?)?;
             }
             rig.reset(pose);
         }

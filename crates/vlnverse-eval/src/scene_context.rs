@@ -11,6 +11,7 @@ use vlnverse_env::geodesic::DistanceField;
 use vlnverse_env::occupancy::GridMap;
 use vlnverse_env::scene_graph::SceneGraph;
 use vlnverse_env::Scene;
+use vlnverse_sensors::SceneMesh;
 
 use crate::error::{Result, TaskError};
 use vlnverse_score::score::navigable_map_path;
@@ -29,6 +30,7 @@ pub struct SceneContext {
     /// Its navigable (agent-dilated) map.
     pub navigable: Arc<GridMap>,
     graph: OnceLock<Arc<SceneGraph>>,
+    mesh: OnceLock<Arc<SceneMesh>>,
     fields: Mutex<BTreeMap<(u32, u32), Arc<DistanceField>>>,
 }
 
@@ -39,6 +41,7 @@ impl SceneContext {
             scene: Arc::new(scene),
             navigable: Arc::new(navigable),
             graph: OnceLock::new(),
+            mesh: OnceLock::new(),
             fields: Mutex::new(BTreeMap::new()),
         }
     }
@@ -63,6 +66,16 @@ impl SceneContext {
         self.graph
             .get_or_init(|| Arc::new(SceneGraph::build(&self.scene)))
             .clone()
+    }
+
+    /// The scene prepared for rendering, built on first use and shared by every environment
+    /// that shows this scene (two asking at once may both build it; one is kept).
+    pub fn mesh(&self) -> Result<Arc<SceneMesh>> {
+        if let Some(m) = self.mesh.get() {
+            return Ok(m.clone());
+        }
+        let m = Arc::new(SceneMesh::new(&self.scene)?);
+        Ok(self.mesh.get_or_init(|| m).clone())
     }
 
     /// The distance field to a goal point (cached).

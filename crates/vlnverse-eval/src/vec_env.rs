@@ -10,20 +10,23 @@
 //!   given list) to whichever environment resets next, in environment order, so the first
 //!   `len` resets of the whole batch visit every episode exactly once; after that it starts
 //!   another pass (`StepInfo::pass`). [`EpisodeOrder::Train`] draws episodes uniformly with a
-//!   per-environment seeded generator.
+//!   per-environment seeded generator, one episode ahead: the home of each environment's next
+//!   episode is read and prepared for the renderer on a thread of its own while the batch
+//!   steps, so a reset rarely waits for a home (the draws, and so the episodes, are the same).
 //! - Autoreset: none inside. An environment whose episode is over refuses further actions
 //!   until [`VecEnv::reset_env`] (the Python layer implements Gymnasium's next-step autoreset
 //!   on top: the action after the end resets).
 //! - The teacher: after every reset and step, the shortest-path follower (the `oracle` agent)
 //!   says what it would do next ([`StepInfo::expert_action`]).
 
+use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
+use std::sync::{mpsc, Arc};
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
-use vlnverse_sensors::{Observations, SensorRig};
+use vlnverse_sensors::{Observations, SceneMesh, SensorRig};
 use vlnverse_sim::{Action, SimConfig, Simulator};
 
 use crate::agent::Agent;
@@ -177,6 +180,8 @@ struct Slot<S> {
     rig: Option<SensorRig>,
     teacher: OracleAgent,
     rng: ChaCha8Rng,
+    /// Train order: episodes drawn from `rng` but not yet begun, oldest first.
+    ahead: VecDeque<Arc<Episode>>,
     run: Option<Running>,
 }
 
@@ -186,9 +191,59 @@ pub struct VecEnv<S: Simulator> {
     settings: EpisodeSettings,
     split_file: PathBuf,
     episodes: Vec<Arc<Episode>>,
-    scenes: SceneCache,
+    scenes: Arc<SceneCache>,
     slots: Vec<Slot<S>>,
     cursor: usize,
+    /// Train order: prepares the homes of drawn episodes in the background.
+    prefetch: Option<Prefetch>,
+}
+
+/// Episodes drawn ahead per environment in train order (their homes are prepared meanwhile).
+const AHEAD: usize = 1;
+
+/// A thread that loads the homes of episodes drawn ahead into the scene cache and prepares
+/// them for the renderer ([`SensorRig::scene_preparer`]). What it prepares is only cached:
+/// results never depend on it, and its errors show when an environment loads the home itself.
+struct Prefetch {
+    tx: Option<mpsc::Sender<String>>,
+    worker: Option<std::thread::JoinHandle<()>>,
+}
+
+impl Prefetch {
+    fn start(scenes: Arc<SceneCache>, prepare: Option<fn(Arc<SceneMesh>)>) -> Option<Self> {
+        let (tx, rx) = mpsc::channel::<String>();
+        let worker = std::thread::Builder::new()
+            .name("vlnverse-prefetch".into())
+            .spawn(move || {
+                for id in rx {
+                    let Ok(ctx) = scenes.get(&id) else { continue };
+                    if let (Some(prepare), Ok(mesh)) = (prepare, ctx.mesh()) {
+                        prepare(mesh);
+                    }
+                }
+            })
+            .ok()?;
+        Some(Prefetch {
+            tx: Some(tx),
+            worker: Some(worker),
+        })
+    }
+
+    fn request(&self, scene_id: &str) {
+        if let Some(tx) = &self.tx {
+            let _ = tx.send(scene_id.to_string());
+        }
+    }
+}
+
+impl Drop for Prefetch {
+    fn drop(&mut self) {
+        // Closing the channel ends the thread after the home it is preparing.
+        self.tx = None;
+        if let Some(w) = self.worker.take() {
+            let _ = w.join();
+        }
+    }
 }
 
 /// The default vector environment: Rapier physics and the rig's configured renderer.
@@ -275,17 +330,31 @@ impl<S: Simulator> VecEnv<S> {
                     cfg.protocol.seed,
                     i as u64,
                 )),
+                ahead: VecDeque::new(),
                 run: None,
             });
         }
-        let capacity = cfg.num_envs + 2;
+        let train = cfg.order == EpisodeOrder::Train;
+        // Room for the homes shown and, in train order, those prepared ahead.
+        let capacity = cfg.num_envs * if train { 1 + AHEAD } else { 1 } + 2;
+        let scenes = Arc::new(SceneCache::new(&cfg.dataset, capacity));
+        let prepare = slots
+            .first()
+            .and_then(|s| s.rig.as_ref())
+            .and_then(SensorRig::scene_preparer);
+        let prefetch = if train {
+            Prefetch::start(scenes.clone(), prepare)
+        } else {
+            None
+        };
         Ok(VecEnv {
-            scenes: SceneCache::new(&cfg.dataset, capacity),
+            scenes,
             settings,
             split_file,
             episodes,
             slots,
             cursor: 0,
+            prefetch,
             cfg,
         })
     }
@@ -319,6 +388,7 @@ impl<S: Simulator> VecEnv<S> {
     pub fn seed(&mut self, seed: u64) {
         for (i, s) in self.slots.iter_mut().enumerate() {
             s.rng = ChaCha8Rng::seed_from_u64(crate::episode_loop::episode_seed(seed, i as u64));
+            s.ahead.clear();
         }
         self.cursor = 0;
     }
@@ -333,8 +403,17 @@ impl<S: Simulator> VecEnv<S> {
                 (self.episodes[k % n].clone(), (k / n) as u32)
             }
             EpisodeOrder::Train => {
-                let k = self.slots[i].rng.random_range(0..n);
-                (self.episodes[k].clone(), 0)
+                let slot = &mut self.slots[i];
+                while slot.ahead.len() <= AHEAD {
+                    let ep = self.episodes[slot.rng.random_range(0..n)].clone();
+                    // The first draw is begun now; later ones are prepared meanwhile.
+                    if let (Some(p), false) = (&self.prefetch, slot.ahead.is_empty()) {
+                        p.request(&ep.scene_id);
+                    }
+                    slot.ahead.push_back(ep);
+                }
+                let ep = slot.ahead.pop_front().expect("drawn above");
+                (ep, 0)
             }
         }
     }

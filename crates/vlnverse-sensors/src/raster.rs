@@ -138,10 +138,12 @@ pub struct RasterScene {
     /// Unit geometric normal per draw triangle (as [`SceneMesh::normal`]).
     normal: Vec<Vec3>,
     objects: Vec<ObjInfo>,
-    /// Reused depth and id buffers of views that do not return them (saves page faults).
-    spare_z: Mutex<Vec<Vec<f32>>>,
-    spare_ids: Mutex<Vec<Vec<u32>>>,
 }
+
+/// Reused depth and id buffers of views that do not return them (saves page faults), shared
+/// by every prepared scene so that scenes kept in the cache hold none.
+static SPARE_Z: Mutex<Vec<Vec<f32>>> = Mutex::new(Vec::new());
+static SPARE_IDS: Mutex<Vec<Vec<u32>>> = Mutex::new(Vec::new());
 
 /// Take a buffer from a pool (or a new one) holding `n` copies of `v`.
 fn take<T: Copy>(pool: &Mutex<Vec<Vec<T>>>, n: usize, v: T) -> Vec<T> {
@@ -447,13 +449,15 @@ impl RasterScene {
             })
             .collect();
         let class = |t: usize| mesh.class(mesh.object[t]);
+        let mut tag_class = Vec::with_capacity(2 * n_tri + 1);
+        tag_class.push(0);
+        tag_class.extend((0..n_tri).flat_map(|t| [class(t); 2]));
+        let mut tag_object = Vec::with_capacity(2 * n_tri + 1);
+        tag_object.push(0);
+        tag_object.extend((0..n_tri).flat_map(|t| [mesh.object[t]; 2]));
         RasterScene {
-            tag_class: std::iter::once(0)
-                .chain((0..n_tri).flat_map(|t| [class(t); 2]))
-                .collect(),
-            tag_object: std::iter::once(0)
-                .chain((0..n_tri).flat_map(|t| [mesh.object[t]; 2]))
-                .collect(),
+            tag_class,
+            tag_object,
             look,
             texels,
             draw,
@@ -461,8 +465,6 @@ impl RasterScene {
             mesh,
             normal,
             objects,
-            spare_z: Mutex::new(Vec::new()),
-            spare_ids: Mutex::new(Vec::new()),
         }
     }
 
@@ -481,22 +483,25 @@ impl RasterScene {
         self.draw.texels.len()
     }
 
-    /// Bytes held: drawn triangles, looks, face textures, images and the mesh.
+    /// Bytes held (allocated, not only used): drawn triangles, looks, face textures, images
+    /// and the mesh.
     pub fn bytes(&self) -> usize {
-        use std::mem::size_of_val;
+        use crate::scene_mesh::held;
         let d = &self.draw;
-        self.mesh.bytes()
-            + size_of_val(d.pos.as_slice())
-            + size_of_val(d.src.as_slice())
-            + size_of_val(d.face.as_slice())
-            + d.texels.len()
-            + self.texels.len()
-            + size_of_val(self.image_texels.as_slice())
-            + size_of_val(self.look.as_slice())
-            + size_of_val(self.normal.as_slice())
-            + size_of_val(self.objects.as_slice())
-            + size_of_val(self.tag_class.as_slice())
-            + size_of_val(self.tag_object.as_slice())
+        std::mem::size_of::<Self>()
+            + self.mesh.bytes()
+            + held(&d.pos)
+            + held(&d.src)
+            + held(&d.face)
+            + held(&d.objects)
+            + held(&d.texels)
+            + held(&self.texels)
+            + held(&self.image_texels)
+            + held(&self.look)
+            + held(&self.normal)
+            + held(&self.objects)
+            + held(&self.tag_class)
+            + held(&self.tag_object)
     }
 
     /// [`RasterScene::new`], shared: a mesh prepared a moment ago (same
@@ -508,6 +513,12 @@ impl RasterScene {
         let cache = CACHE.get_or_init(|| {
             cache::shared_lru(cache::budget_from_env(SCENE_CACHE_MB_VAR, SCENE_CACHE_MB))
         });
+        // The very mesh a kept scene was prepared from (environments sharing one loaded home):
+        // no need to hash it. A kept scene holds its mesh, so the pointer cannot be reused.
+        let same = |s: &RasterScene| Arc::ptr_eq(&s.mesh, &mesh);
+        if let Some(hit) = cache.lock().ok().and_then(|mut c| c.find(same)) {
+            return hit;
+        }
         let key = mesh.content_key();
         cache::get_or_insert(cache, key, || RasterScene::new(mesh), RasterScene::bytes)
     }
@@ -531,12 +542,12 @@ impl RasterScene {
         let mut zbuf = if ch.depth {
             vec![inv_far; n]
         } else {
-            take(&self.spare_z, n, inv_far)
+            take(&SPARE_Z, n, inv_far)
         };
         let mut ids = match (ids_needed, ch.instance) {
             (false, _) => Vec::new(),
             (true, true) => vec![0u32; n],
-            (true, false) => take(&self.spare_ids, n, 0),
+            (true, false) => take(&SPARE_IDS, n, 0),
         };
         let mut rgb = if ch.rgb { vec![0u8; 3 * n] } else { Vec::new() };
         let mut sem = if ch.semantic {
@@ -571,14 +582,14 @@ impl RasterScene {
         let depth = if ch.depth {
             zbuf
         } else {
-            give(&self.spare_z, zbuf);
+            give(&SPARE_Z, zbuf);
             Vec::new()
         };
         let instance = if ch.instance {
             ids
         } else {
             if ids_needed {
-                give(&self.spare_ids, ids);
+                give(&SPARE_IDS, ids);
             }
             Vec::new()
         };
@@ -988,10 +999,10 @@ impl RasterScene {
                     }
                     Kind::Image { w: iw, h: ih } => repeating(iw, ih, s.tex),
                     Kind::Face { w: fw, h: fh } => {
-                        // Face textures are padded to a power of two: a masked index needs no
-                        // bounds check (and every face's texels lie inside).
-                        let mask = self.draw.texels.len().saturating_sub(1);
-                        let all = &self.draw.texels[..=mask];
+                        // A clamped index needs no bounds check (every face's texels lie
+                        // inside, so the clamp never changes one).
+                        let all = &self.draw.texels[..];
+                        let last = all.len().saturating_sub(1);
                         // Coordinates clamped into the face texture (rounding at its edges).
                         let (umax, vmax) = (fw as f32 - 0.5, fh as f32 - 0.5);
                         for ((i, iz), j) in index[..n].iter_mut().zip(&zr[x..e]).zip(&lanes[..n]) {
@@ -1003,7 +1014,7 @@ impl RasterScene {
                             *i = s.tex + tv * fw + tu;
                         }
                         for (l, i) in light[..n].iter_mut().zip(&index[..n]) {
-                            *l = all[*i as usize & mask] as f32;
+                            *l = all[(*i as usize).min(last)] as f32;
                         }
                     }
                 }
@@ -1412,6 +1423,10 @@ impl Renderer for RasterRenderer {
     fn set_scene(&mut self, mesh: Arc<SceneMesh>) -> Result<()> {
         self.scene = Some(RasterScene::shared(mesh));
         Ok(())
+    }
+
+    fn scene_preparer(&self) -> Option<fn(Arc<SceneMesh>)> {
+        Some(|mesh| drop(RasterScene::shared(mesh)))
     }
 
     fn render(&mut self, views: &[View]) -> Result<Vec<Frame>> {

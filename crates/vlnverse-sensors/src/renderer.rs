@@ -49,6 +49,14 @@ pub trait Renderer: Send {
     /// Render a batch of views of the current scene (one frame per view, in order). Each frame
     /// holds the channels its view asked for, laid out as documented in [`crate::frame`].
     fn render(&mut self, views: &[View]) -> Result<Vec<Frame>>;
+
+    /// A function that prepares a scene ahead of [`Renderer::set_scene`], from any thread,
+    /// for backends that keep prepared scenes in a process-wide cache (a training run's
+    /// environments prepare their next homes while they step); `None` (the default) when
+    /// there is nothing to prepare ahead.
+    fn scene_preparer(&self) -> Option<fn(Arc<SceneMesh>)> {
+        None
+    }
 }
 
 /// Log which backend renders and why: at `info` the first time in a process, at `debug` after

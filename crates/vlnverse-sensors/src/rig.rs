@@ -125,14 +125,26 @@ impl SensorRig {
 
     /// Load a scene into the renderer (and the ray caster, when a LiDAR needs it).
     pub fn set_scene(&mut self, scene: &Scene) -> Result<()> {
+        self.set_mesh(Arc::new(SceneMesh::new(scene)?))
+    }
+
+    /// [`SensorRig::set_scene`] with the scene already prepared as a mesh (shared by
+    /// environments that show the same home).
+    pub fn set_mesh(&mut self, mesh: Arc<SceneMesh>) -> Result<()> {
         self.scene_id = None;
-        let mesh = Arc::new(SceneMesh::new(scene)?);
         self.renderer.set_scene(mesh.clone())?;
         self.raycaster = None;
+        let id = mesh.scene_id.clone();
         self.mesh = Some(mesh);
         self.ensure_raycaster()?;
-        self.scene_id = Some(scene.id.clone());
+        self.scene_id = Some(id);
         Ok(())
+    }
+
+    /// What prepares a scene for this rig's renderer ahead of time, from any thread
+    /// ([`Renderer::scene_preparer`]).
+    pub fn scene_preparer(&self) -> Option<fn(Arc<SceneMesh>)> {
+        self.renderer.scene_preparer()
     }
 
     /// Id of the scene loaded by the last successful [`SensorRig::set_scene`] (callers skip

@@ -25,6 +25,11 @@ use vlnverse_env::material::{box_uv, surface_of, Surface, TEX_SIZE};
 use vlnverse_env::scene::MeshTexture;
 use vlnverse_env::{Aabb, Scene, Shape};
 
+/// Bytes a vector has allocated.
+pub(crate) fn held<T>(v: &Vec<T>) -> usize {
+    v.capacity() * std::mem::size_of::<T>()
+}
+
 /// Gamma of the encoded output (as [`crate::shading::encode`]).
 const GAMMA: f32 = 1.0 / 2.2;
 
@@ -147,20 +152,18 @@ impl SceneMesh {
         k.finish()
     }
 
-    /// Bytes held by the mesh (for cache budgets).
+    /// Bytes held by the mesh (allocated, for cache budgets).
     pub fn bytes(&self) -> usize {
-        use std::mem::size_of_val;
-        size_of_val(self.positions.as_slice())
-            + size_of_val(self.object.as_slice())
-            + size_of_val(self.color.as_slice())
-            + size_of_val(self.objects.as_slice())
-            + size_of_val(self.class_of.as_slice())
-            + size_of_val(self.look.as_slice())
-            + self
-                .images
-                .iter()
-                .map(|im| size_of_val(im.texels.as_slice()))
-                .sum::<usize>()
+        std::mem::size_of::<Self>()
+            + self.scene_id.capacity()
+            + held(&self.positions)
+            + held(&self.object)
+            + held(&self.color)
+            + held(&self.objects)
+            + held(&self.class_of)
+            + held(&self.look)
+            + held(&self.images)
+            + self.images.iter().map(|im| held(&im.texels)).sum::<usize>()
     }
 
     /// Triangulate a scene (with the shared [`vlnverse_env::geometry`] code) and bake its light
@@ -283,6 +286,12 @@ impl SceneMesh {
                 }
             }
         }
+        // Cut faces made more triangles than the scene's count: give back the spare room.
+        m.positions.shrink_to_fit();
+        m.object.shrink_to_fit();
+        m.color.shrink_to_fit();
+        m.objects.shrink_to_fit();
+        m.look.shrink_to_fit();
         if m.object.is_empty() {
             return Err(SensorError::Scene {
                 scene: scene.id.clone(),

@@ -67,6 +67,18 @@ pub fn all() -> Vec<Case> {
             setup: metrics,
         },
         Case {
+            name: "home_switch",
+            what: "a vlnverse home loaded from its folder and prepared for the CPU rasteriser (first visit), and the bytes it holds",
+            max_reps: 20,
+            setup: home_switch,
+        },
+        Case {
+            name: "vec_env",
+            what: "8 environments in train order, teacher actions, RGB-D: tiny (5 homes), and the train split of VLNVERSE_BENCH_DATASET when set (a generated vlnverse dataset)",
+            max_reps: 5,
+            setup: vec_env,
+        },
+        Case {
             name: "generate",
             what: "the tiny preset dataset end to end (all five tasks, files in a temp folder)",
             max_reps: 3,
@@ -443,5 +455,150 @@ fn generate(_scale: Scale) -> anyhow::Result<Repetition> {
                 detail,
             ),
         ])
+    }))
+}
+
+/// Homes of the `vlnverse` preset written to a temporary folder (removed when dropped).
+struct HomeFolders {
+    root: PathBuf,
+    dirs: Vec<PathBuf>,
+}
+
+impl Drop for HomeFolders {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.root);
+    }
+}
+
+fn home_switch(scale: Scale) -> anyhow::Result<Repetition> {
+    let n = scale.pick(4, 2);
+    let root = std::env::temp_dir().join(format!("vlnverse-bench-homes-{}", std::process::id()));
+    let homes = HomeGenerator::from_preset(Preset::Vlnverse)?;
+    let dirs = (0..n)
+        .map(|i| {
+            Ok(vlnverse_env::io::write_scene_dir(
+                &root,
+                &homes.scene(i)?,
+                &[],
+            )?)
+        })
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    let folders = HomeFolders { root, dirs };
+    let detail = format!("{n} vlnverse homes: scene folder read, mesh, prepared scene");
+    Ok(Box::new(move || {
+        let (mut secs, mut bytes) = (0.0, 0);
+        for d in &folders.dirs {
+            let (s, prepared) = timed(|| -> anyhow::Result<_> {
+                let scene = vlnverse_env::io::load_scene(d)?;
+                let mesh = Arc::new(SceneMesh::new(&scene)?);
+                Ok((scene, vlnverse_sensors::RasterScene::new(mesh)))
+            });
+            let (scene, prepared) = prepared?;
+            secs += s;
+            bytes += prepared.bytes() + vlnverse_env::light::bake(&scene).bytes();
+        }
+        let n = folders.dirs.len();
+        Ok(vec![
+            Sample::time("home_switch/first_visit", secs, n, "home", detail.clone()),
+            Sample::size(
+                "home_switch/renderer_bytes",
+                bytes,
+                n,
+                "home",
+                detail.clone(),
+            ),
+        ])
+    }))
+}
+
+/// Environment steps and seconds of 8 environments in train order over `dataset`'s train
+/// split (fine task), teacher actions, the default RGB-D rig: `steps` batches after 20 of
+/// warm-up.
+fn vec_env_rate(dataset: &std::path::Path, seed: u64, steps: usize) -> anyhow::Result<(f64, f64)> {
+    use vlnverse_task::eval::{EnvAction, EpisodeOrder, EvalConfig, RapierVecEnv, VecEnvConfig};
+    let mut protocol = EvalConfig::for_setting(vlnverse_task::eval::Setting::Telhop);
+    protocol.action_space = vlnverse_task::eval::ActionSpace::Discrete;
+    protocol.seed = seed;
+    let n = 8;
+    let mut env = RapierVecEnv::new(VecEnvConfig {
+        dataset: dataset.to_path_buf(),
+        task: Task::Fine,
+        split: vlnverse_task::Split::Train,
+        protocol,
+        num_envs: n,
+        order: EpisodeOrder::Train,
+        episode_ids: None,
+        reward: Default::default(),
+    })?;
+    let mut last = env.reset_all()?;
+    let mut t0 = Instant::now();
+    for k in 0..steps + 20 {
+        if k == 20 {
+            t0 = Instant::now();
+        }
+        let actions = last
+            .iter()
+            .map(|s| {
+                let over = s.info.terminated || s.info.truncated;
+                (!over).then_some(EnvAction::Act(s.info.expert_action))
+            })
+            .collect();
+        last = env.step(actions)?;
+    }
+    Ok(((n * steps) as f64, t0.elapsed().as_secs_f64()))
+}
+
+fn vec_env(scale: Scale) -> anyhow::Result<Repetition> {
+    let steps = scale.pick(250, 40);
+    // The tiny preset, generated here; a many-home dataset only when named (generating the
+    // vlnverse preset takes minutes).
+    let tiny: PathBuf =
+        std::env::temp_dir().join(format!("vlnverse-bench-vec-env-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&tiny);
+    run_pipeline(
+        &HomeGenerator::from_preset(Preset::Tiny)?,
+        &GeneratePreset::Tiny.config()?,
+        &RunOptions {
+            out: tiny.clone(),
+            tasks: vec![Task::Fine],
+            shard: (0, 1),
+            occupancy: OccupancyConfig::default(),
+        },
+        &TemplateGenerator::default(),
+        &StageTimes::default(),
+        &|_| {},
+    )
+    .with_context(|| format!("generating the tiny preset into {}", tiny.display()))?;
+    let many = std::env::var_os("VLNVERSE_BENCH_DATASET").map(PathBuf::from);
+    let folders = HomeFolders {
+        root: tiny.clone(),
+        dirs: Vec::new(),
+    };
+    let mut rep = 0u64;
+    Ok(Box::new(move || {
+        let _keep = &folders;
+        rep += 1;
+        let detail = format!("8 envs, {steps} batches after 20, fine train split, seed {rep}");
+        // Alternated in one repetition: tiny, then the many-home dataset.
+        let (n, secs) = vec_env_rate(&tiny, rep, steps)?;
+        let mut out = vec![Sample::rate(
+            "vec_env/tiny_train",
+            n,
+            secs,
+            "steps",
+            detail.clone(),
+        )];
+        if let Some(d) = &many {
+            let (n, secs) = vec_env_rate(d, rep, steps)
+                .with_context(|| format!("VLNVERSE_BENCH_DATASET={}", d.display()))?;
+            out.push(Sample::rate(
+                "vec_env/dataset_train",
+                n,
+                secs,
+                "steps",
+                format!("{detail}, {}", d.display()),
+            ));
+        }
+        Ok(out)
     }))
 }

@@ -14,3 +14,4 @@ mod eval_split_checks;
 #[cfg(feature = "llm-oracle")]
 mod oracle_llm;
 mod oracle_shortest_path;
+mod vec_env_train;

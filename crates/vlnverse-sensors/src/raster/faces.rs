@@ -39,7 +39,7 @@ pub(crate) struct DrawMesh {
     pub face: Vec<Option<(FaceTexture, [[f32; 2]; 3])>>,
     /// Draw triangle range and box of each mesh object (same order).
     pub objects: Vec<(usize, usize, Aabb)>,
-    /// Every face texture, one after the other (then zeros up to a power of two).
+    /// Every face texture, one after the other (at least one byte).
     pub texels: Vec<u8>,
 }
 
@@ -133,9 +133,14 @@ pub(crate) fn build(mesh: &SceneMesh, luma: &[u8]) -> DrawMesh {
         }
         d.objects.push((first, d.src.len() - first, o.bbox));
     }
-    // A power-of-two length lets the resolve mask its indices instead of checking them.
-    let n = d.texels.len().max(1).next_power_of_two();
-    d.texels.resize(n, 0);
+    // Never empty, so the resolve can clamp its indices to the last texel.
+    if d.texels.is_empty() {
+        d.texels.push(0);
+    }
+    d.texels.shrink_to_fit();
+    d.pos.shrink_to_fit();
+    d.src.shrink_to_fit();
+    d.face.shrink_to_fit();
     d
 }
 
