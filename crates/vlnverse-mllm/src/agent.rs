@@ -293,7 +293,7 @@ impl MllmAgent {
             let img = ep.map.render(cfg.map_size);
             imgs.push(encode(&img, cfg.image_format, cfg.jpeg_quality)?);
             words.push(format!(
-                "last, the map of the explored area ({:.2} m per pixel)",
+                "last, the map of the explored area ({:.3} m per pixel)",
                 ep.map.metres_per_pixel(cfg.map_size)
             ));
         }

@@ -52,10 +52,22 @@ impl Steps {
 /// Read a reply; `None` when it names no action.
 pub fn parse_reply(reply: &str, steps: &Steps) -> Option<Decision> {
     let answer = answer_part(reply);
-    if let Some(d) = parse_json(answer, steps) {
-        return Some(d);
+    match json_action(answer) {
+        // A JSON answer is read as JSON only: a bad one is not guessed from its words.
+        Some(v) => parse_json(&v, steps),
+        None => parse_phrase(answer, steps),
     }
-    parse_phrase(answer, steps)
+}
+
+/// The JSON object of a reply, when it has an `action` key.
+fn json_action(text: &str) -> Option<serde_json::Value> {
+    let start = text.find('{')?;
+    let end = text.rfind('}')?;
+    if end <= start {
+        return None;
+    }
+    let v: serde_json::Value = serde_json::from_str(&text[start..=end]).ok()?;
+    v.get("action").is_some().then_some(v)
 }
 
 /// The part of the reply that holds the action: after the last `Action:` label when there is
@@ -68,13 +80,7 @@ fn answer_part(reply: &str) -> &str {
     }
 }
 
-fn parse_json(text: &str, steps: &Steps) -> Option<Decision> {
-    let start = text.find('{')?;
-    let end = text.rfind('}')?;
-    if end <= start {
-        return None;
-    }
-    let v: serde_json::Value = serde_json::from_str(&text[start..=end]).ok()?;
+fn parse_json(v: &serde_json::Value, steps: &Steps) -> Option<Decision> {
     let name = v
         .get("action")?
         .as_str()?

@@ -186,7 +186,7 @@ mod tests {
                 let s = system(&cfg, task, 0.25, 15.0);
                 assert!(s.contains("25 cm") && s.contains("15 degrees"), "{s}");
                 assert!(!s.contains('{') || s.contains("JSON"), "{s}");
-                assert_eq!(s.contains("ask:"), task == Task::Dialogue, "{task:?}");
+                assert_eq!(s.contains("- ask:"), task == Task::Dialogue, "{task:?}");
                 seen.insert(s);
             }
         }

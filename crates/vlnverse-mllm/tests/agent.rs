@@ -306,20 +306,25 @@ fn the_map_grows_with_what_the_agent_has_seen_and_never_shows_the_rest() {
     assert_eq!(first[0].dimensions(), (4 * 48 + 6, 48));
     assert_eq!(first[1].dimensions(), (96, 96));
     assert!(user_text(&seen[0].0).contains("m per pixel"));
-    // Before turning, a quarter of the circle is known; unknown grey remains in both maps,
-    // and the map after a full look around knows more floor than the first.
-    let known = |img: &image::RgbImage| {
-        img.pixels()
+    // Unknown grey remains in both maps, and after a full look around the map knows more
+    // floor (in square metres: the map is rescaled as it grows) than before turning.
+    let area = |body: &serde_json::Value, img: &image::RgbImage| {
+        let text = user_text(body);
+        let mpp: f64 = text
+            .split(" m per pixel")
+            .next()
+            .and_then(|t| t.rsplit('(').next())
+            .and_then(|t| t.parse().ok())
+            .unwrap_or_else(|| panic!("no scale in {text}"));
+        let free = img
+            .pixels()
             .filter(|p| p.0 == vlnverse_mllm::map::FREE_RGB)
-            .count()
+            .count();
+        free as f64 * mpp * mpp
     };
     assert!(grey(&first[1]) > 0 && grey(&last[1]) > 0);
-    assert!(
-        known(&last[1]) > known(&first[1]),
-        "{} vs {}",
-        known(&last[1]),
-        known(&first[1])
-    );
+    let (before, after) = (area(&seen[0].0, &first[1]), area(&seen[3].0, &last[1]));
+    assert!(after > 1.5 * before, "{after} m2 vs {before} m2");
 }
 
 #[test]
