@@ -350,8 +350,10 @@ impl SceneTaskContext<'_> {
         let ins = self.times.time(Stage::Instructions, || {
             self.instructions.fine(&self.ctx(&path3, start_yaw), seed)
         });
-        let Ok(ins) = ins else {
-            return Ok(Err(Reject::Instruction));
+        let ins = match ins {
+            Ok(i) => i,
+            Err(e) if stops_the_run(&e) => return Err(e),
+            Err(_) => return Ok(Err(Reject::Instruction)),
         };
         let goal = self.goal(*path.points.last().unwrap_or(&Vec2::ZERO), None);
         Ok(Ok(vec![self.base_episode(
@@ -402,8 +404,10 @@ impl SceneTaskContext<'_> {
                 self.instructions
                     .coarse(&ctx, spot.object, style, derive_seed(seed, &[j as u64]))
             });
-            let Ok(ins) = ins else {
-                return Ok(Err(Reject::Instruction));
+            let ins = match ins {
+                Ok(i) => i,
+                Err(e) if stops_the_run(&e) => return Err(e),
+                Err(_) => return Ok(Err(Reject::Instruction)),
             };
             let goal = self.goal(spot.goal, Some(spot.object));
             let mut ep = self.base_episode(share.task, &path, start_yaw, goal, ins);
@@ -501,8 +505,10 @@ impl SceneTaskContext<'_> {
                     derive_seed(seed, &[i as u64]),
                 )
             });
-            let Ok(mut ins) = ins else {
-                return Ok(Err(Reject::Instruction));
+            let mut ins = match ins {
+                Ok(i) => i,
+                Err(e) if stops_the_run(&e) => return Err(e),
+                Err(_) => return Ok(Err(Reject::Instruction)),
             };
             offset_grounding(&mut ins, offset);
             parts.push(ins);
@@ -520,8 +526,10 @@ impl SceneTaskContext<'_> {
         let chained = self.times.time(Stage::Instructions, || {
             self.instructions.chain(&parts, derive_seed(seed, &[99]))
         });
-        let Ok(ins) = chained else {
-            return Ok(Err(Reject::Instruction));
+        let ins = match chained {
+            Ok(i) => i,
+            Err(e) if stops_the_run(&e) => return Err(e),
+            Err(_) => return Ok(Err(Reject::Instruction)),
         };
         let path = SampledPath { points, length };
         let last = legs[legs.len() - 1].0;
@@ -540,5 +548,19 @@ impl SceneTaskContext<'_> {
                 .collect::<Vec<f64>>()),
         );
         Ok(Ok(vec![ep]))
+    }
+}
+
+/// An instruction error that must end the run (the LLM stage under `on_reject = "error"`), not
+/// count as one more unusable sample.
+fn stops_the_run(e: &vlnverse_score::DataError) -> bool {
+    #[cfg(feature = "llm")]
+    {
+        vlnverse_instructions::llm::stops_the_run(e)
+    }
+    #[cfg(not(feature = "llm"))]
+    {
+        let _ = e;
+        false
     }
 }

@@ -278,6 +278,18 @@ pub const MAX_SCENES: usize = 100_000;
 /// Most episodes one task's split may ask for (the `vlnverse` preset's largest has 11,895).
 pub const MAX_EPISODES_PER_SPLIT: usize = 1_000_000;
 
+/// Most sampling attempts per trajectory (`sampling.max_attempts`).
+pub const MAX_ATTEMPTS: u32 = 1_000_000;
+/// Most target objects considered per scene (`sampling.max_targets`).
+pub const MAX_TARGETS: usize = 100_000;
+/// Longest distance a config may give (path lengths, goal distances), in metres: far beyond
+/// any home, short of the values that only a typo gives.
+pub const MAX_METRES: f32 = 1000.0;
+/// Most sub-tasks of a long-horizon episode.
+pub const MAX_SUB_TASKS: usize = 10;
+/// Most oracle questions per dialogue episode.
+pub const MAX_ORACLE_BUDGET: u32 = 1000;
+
 /// The `[instructions.llm]` section: an OpenAI-compatible endpoint and how to use it.
 #[cfg(feature = "llm")]
 pub type LlmSection = vlnverse_instructions::llm::LlmConfig;
@@ -399,18 +411,28 @@ impl GenerateConfig {
             ));
         }
         let s = &self.sampling;
-        if s.max_attempts == 0 {
+        if !(1..=MAX_ATTEMPTS).contains(&s.max_attempts) {
             return Err(bad(
                 "sampling.max_attempts".into(),
-                "0".into(),
-                "must be at least 1",
+                s.max_attempts.to_string(),
+                &format!("must be in [1, {MAX_ATTEMPTS}]"),
             ));
         }
-        if !(s.goal_max_distance.is_finite() && s.goal_max_distance > 0.0) {
+        if s.max_targets > MAX_TARGETS {
+            return Err(bad(
+                "sampling.max_targets".into(),
+                s.max_targets.to_string(),
+                &format!("must be in [0, {MAX_TARGETS}] (0: all)"),
+            ));
+        }
+        if !(s.goal_max_distance.is_finite()
+            && s.goal_max_distance > 0.0
+            && s.goal_max_distance <= MAX_METRES)
+        {
             return Err(bad(
                 "sampling.goal_max_distance".into(),
                 s.goal_max_distance.to_string(),
-                "must be a positive distance in metres",
+                &format!("must be a distance in (0, {MAX_METRES}] metres"),
             ));
         }
         if !(s.goal_min_distance.is_finite()
@@ -438,11 +460,11 @@ impl GenerateConfig {
                 "must be between 1 and 179 degrees",
             ));
         }
-        if !(im.camera_height.is_finite() && im.camera_height > 0.0) {
+        if !(im.camera_height.is_finite() && im.camera_height > 0.0 && im.camera_height <= 10.0) {
             return Err(bad(
                 "image.camera_height".into(),
                 im.camera_height.to_string(),
-                "must be positive",
+                "must be in (0, 10] metres",
             ));
         }
         for task in Task::ALL {
@@ -455,20 +477,31 @@ impl GenerateConfig {
                     "must be a non-negative length in metres",
                 ));
             }
-            if !(t.max_length.is_finite() && t.max_length > t.min_length) {
+            if !(t.max_length.is_finite() && t.max_length > t.min_length)
+                || t.max_length > MAX_METRES
+            {
                 return Err(bad(
                     f("max_length"),
                     t.max_length.to_string(),
-                    "must be finite and greater than min_length",
+                    &format!("must be greater than min_length and at most {MAX_METRES} metres"),
                 ));
             }
             if task == Task::LongHorizon
-                && !(t.sub_tasks_min >= 2 && t.sub_tasks_min <= t.sub_tasks_max)
+                && !(t.sub_tasks_min >= 2
+                    && t.sub_tasks_min <= t.sub_tasks_max
+                    && t.sub_tasks_max <= MAX_SUB_TASKS)
             {
                 return Err(bad(
                     f("sub_tasks_min"),
                     format!("{}..{}", t.sub_tasks_min, t.sub_tasks_max),
-                    "need 2 <= sub_tasks_min <= sub_tasks_max",
+                    &format!("need 2 <= sub_tasks_min <= sub_tasks_max <= {MAX_SUB_TASKS}"),
+                ));
+            }
+            if t.oracle_budget > MAX_ORACLE_BUDGET {
+                return Err(bad(
+                    f("oracle_budget"),
+                    t.oracle_budget.to_string(),
+                    &format!("must be in [0, {MAX_ORACLE_BUDGET}] questions"),
                 ));
             }
             let per = episodes_per_trajectory(task);

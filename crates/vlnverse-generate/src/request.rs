@@ -153,7 +153,8 @@ impl PreparedRun {
             let g = llm_stage::llm_generator(llm, self.config.image, &self.options.out)?;
             let summary = self.run_with(&g, times, on_scene);
             let report = g.report();
-            if report.instructions > 0 {
+            // A failed run leaves no report (what it counted was not kept).
+            if report.instructions > 0 && summary.is_ok() {
                 llm_stage::write_report(&self.options.out, &report)?;
             }
             return summary;

@@ -169,6 +169,55 @@ fn huge_counts_are_refused_before_anything_is_allocated() {
 }
 
 #[test]
+fn absurd_and_non_finite_values_are_refused_by_name() {
+    for (from, to, field) in [
+        (
+            "max_attempts = 400",
+            "max_attempts = 0",
+            "sampling.max_attempts",
+        ),
+        (
+            "max_attempts = 400",
+            "max_attempts = 4000000000",
+            "sampling.max_attempts",
+        ),
+        (
+            "max_length = 20.0",
+            "max_length = 1e30",
+            "tasks.fine.max_length",
+        ),
+        (
+            "max_length = 20.0",
+            "max_length = inf",
+            "tasks.fine.max_length",
+        ),
+        (
+            "camera_height = 1.25",
+            "camera_height = nan",
+            "image.camera_height",
+        ),
+        (
+            "camera_height = 1.25",
+            "camera_height = 500.0",
+            "image.camera_height",
+        ),
+        (
+            "oracle_budget = 5",
+            "oracle_budget = 4000000",
+            "tasks.dialogue.oracle_budget",
+        ),
+        (
+            "sub_tasks_max = 3",
+            "sub_tasks_max = 50",
+            "tasks.long_horizon.sub_tasks_min",
+        ),
+    ] {
+        let e = err_of(&edit(from, to));
+        assert!(e.contains("bad.toml") && e.contains(field), "{to}: {e}");
+    }
+}
+
+#[test]
 fn bad_configs_name_file_field_and_value() {
     let e = err_of(&edit("min_length = 5.0", "min_length = -2.0"));
     assert!(

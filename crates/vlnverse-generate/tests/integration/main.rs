@@ -3,5 +3,6 @@
 mod generate_config;
 mod generate_dataset;
 mod generate_llm;
+mod generate_llm_stop;
 mod generate_output;
 mod generate_skip;
