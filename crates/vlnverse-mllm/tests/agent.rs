@@ -357,3 +357,31 @@ fn questions_go_to_the_oracle_within_the_budget() {
     let sys = seen[0].0["messages"][0]["content"].as_str().unwrap();
     assert!(sys.contains("ask:"));
 }
+
+#[test]
+fn visual_reference_episodes_send_the_reference_picture_first() {
+    let dir = tempfile::tempdir().unwrap();
+    data(dir.path(), Task::VisualReference, 1, 0);
+    let reference =
+        image::RgbImage::from_fn(40, 30, |x, y| image::Rgb([x as u8 * 5, y as u8 * 7, 200]));
+    reference
+        .save(dir.path().join("visual_reference/test/goal.png"))
+        .unwrap();
+    let mut eps = dataset::read_split(dir.path(), Task::VisualReference, Split::Test).unwrap();
+    for e in &mut eps {
+        e.reference_image = Some("goal.png".into());
+    }
+    dataset::write_split(dir.path(), Task::VisualReference, Split::Test, &eps).unwrap();
+    let server = ScriptedServer::start(Script::sequence(&["stop"]), 0).unwrap();
+    let f = MllmFactory::new(config(&server.url, None)).unwrap();
+    run(
+        &request(dir.path(), Task::VisualReference, "run", 1, 10),
+        &f,
+    );
+    let seen = log(&server);
+    let pics = pictures(&seen[0].0);
+    assert_eq!(pics.len(), 2);
+    assert_eq!(pics[0], reference, "the reference picture, unchanged (PNG)");
+    assert_eq!(pics[1].dimensions(), (48, 48));
+    assert!(user_text(&seen[0].0).contains("reference picture taken at the goal"));
+}
