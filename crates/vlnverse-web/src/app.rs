@@ -4,10 +4,11 @@ use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, AtomicUsize};
 use std::sync::{Arc, Mutex, MutexGuard};
+use std::time::Duration;
 
 use vlnverse_sensors::{Backend, SensorRig};
 use vlnverse_task::eval::{ActionSpace, EvalConfig, SceneCache, SceneContext, Setting};
-use vlnverse_task::{dataset, Episode, Split, Task, Trajectory};
+use vlnverse_task::{dataset, Episode, OutputLock, Split, Task, Trajectory};
 
 use crate::error::{ApiError, ApiResult};
 use crate::review::ReviewFile;
@@ -37,10 +38,16 @@ pub struct ServerConfig {
     pub jpeg_quality: u8,
     /// Interval of the drive log's rows (ms); the paper logs every 50 ms.
     pub log_interval_ms: u64,
+    /// Longest wait for a request's headers; a connection that has not sent them by then is
+    /// closed (a client holding half-sent headers must not hold a connection for ever).
+    pub header_timeout: Duration,
+    /// Connections served at once; further ones wait in the listen queue until one closes.
+    pub max_connections: usize,
 }
 
 impl ServerConfig {
-    /// Defaults for a dataset: drive logs under `runs/web`, 16 drivers, quality 85, 50 ms rows.
+    /// Defaults for a dataset: drive logs under `runs/web`, 16 drivers, quality 85, 50 ms rows,
+    /// 10 s for a request's headers, 256 connections at once.
     pub fn new(dataset: impl Into<PathBuf>) -> Self {
         ServerConfig {
             dataset: dataset.into(),
@@ -53,6 +60,8 @@ impl ServerConfig {
             max_drivers: 16,
             jpeg_quality: 85,
             log_interval_ms: 50,
+            header_timeout: Duration::from_secs(10),
+            max_connections: 256,
         }
     }
 }
@@ -92,6 +101,44 @@ pub struct App {
     pub traj_lock: Mutex<()>,
     /// Trajectories of each run, read once.
     run_trajs: Mutex<HashMap<usize, Arc<BTreeMap<u64, Trajectory>>>>,
+    /// The output folder's lock (and the review file's folder's, when elsewhere): one server
+    /// writes drive logs and review decisions there at a time.
+    _locks: Vec<OutputLock>,
+}
+
+/// Remove the temporary files a killed server left beside `file` (`.NAME.tmpPID`, written by
+/// the atomic rewrite of `NAME`); the caller holds the folder's lock, so no live writer owns
+/// them. Nothing else is touched.
+pub fn remove_stale_temp_files(file: &Path) {
+    let (Some(dir), Some(name)) = (file.parent(), file.file_name()) else {
+        return;
+    };
+    let dir = if dir.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        dir
+    };
+    let prefix = format!(".{}.tmp", name.to_string_lossy());
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for e in entries.flatten() {
+        let n = e.file_name();
+        let n = n.to_string_lossy();
+        let ours = n
+            .strip_prefix(&prefix)
+            .is_some_and(|pid| !pid.is_empty() && pid.bytes().all(|b| b.is_ascii_digit()));
+        if ours && e.file_type().is_ok_and(|t| t.is_file()) {
+            match std::fs::remove_file(e.path()) {
+                Ok(()) => {
+                    tracing::info!(file = %e.path().display(), "removed a stale temporary file")
+                }
+                Err(err) => {
+                    tracing::warn!(file = %e.path().display(), error = %err, "cannot remove a stale temporary file")
+                }
+            }
+        }
+    }
 }
 
 /// Lock a mutex; a poisoned one (a panicking holder) is still usable: every value behind these
@@ -142,6 +189,23 @@ impl App {
             .review_file
             .clone()
             .unwrap_or_else(|| out.join("review.json"));
+        // One server per output: a second one on the same folder would overwrite the first's
+        // review decisions with its own copy of the file.
+        let mut locks =
+            vec![OutputLock::acquire(&out, "serve").map_err(|e| format!("--out: {e}"))?];
+        let review_dir = review_path
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .map(Path::to_path_buf)
+            .unwrap_or_else(|| PathBuf::from("."));
+        let same = review_dir.canonicalize().is_ok_and(|d| d == out);
+        if !same {
+            locks.push(
+                OutputLock::acquire(&review_dir, "serve")
+                    .map_err(|e| format!("--review-file: {e}"))?,
+            );
+        }
+        remove_stale_temp_files(&review_path);
         let review = ReviewFile::open(&review_path, &dataset).map_err(|e| e.to_string())?;
         Ok(App {
             scenes: SceneCache::new(&dataset, 4),
@@ -155,6 +219,7 @@ impl App {
             drive_seq: AtomicU64::new(0),
             traj_lock: Mutex::new(()),
             run_trajs: Mutex::new(HashMap::new()),
+            _locks: locks,
             cfg,
         })
     }

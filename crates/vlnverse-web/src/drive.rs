@@ -187,6 +187,14 @@ async fn session(app: Arc<App>, mut socket: WebSocket, spec: DriveSpec, slot: Dr
                         }
                     }
                 },
+                Some(Ok(Message::Binary(b))) => {
+                    let msg = json!({"type": "error", "error": format!(
+                        "binary messages are not read ({} bytes received); send JSON text such as {{\"key\": \"w\"}}, {{\"ask\": \"...\"}} or {{\"view\": \"depth\"}}",
+                        b.len())});
+                    if socket.send(Message::Text(msg.to_string().into())).await.is_err() {
+                        break;
+                    }
+                }
                 Some(Ok(Message::Close(_))) | None | Some(Err(_)) => break,
                 Some(Ok(_)) => {}
             },

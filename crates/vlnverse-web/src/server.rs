@@ -156,7 +156,49 @@ pub fn router(app: Arc<App>, hosts: AllowedHosts) -> Router {
         .layer(axum::middleware::from_fn(move |req, next| {
             known_host(hosts.clone(), req, next)
         }))
+        .layer(axum::middleware::from_fn(json_errors))
         .with_state(app)
+}
+
+/// Every error is the documented JSON `{"error": "..."}`: the answers that axum's extractors
+/// and router give on their own (a path or query that does not parse, a WebSocket request
+/// without its upgrade headers, a wrong method) are plain text or empty, and are rewritten
+/// here with their status and headers kept.
+async fn json_errors(req: axum::extract::Request, next: axum::middleware::Next) -> Response {
+    let resp = next.run(req).await;
+    let status = resp.status();
+    if !(status.is_client_error() || status.is_server_error()) {
+        return resp;
+    }
+    let is_json = resp
+        .headers()
+        .get(header::CONTENT_TYPE)
+        .and_then(|v| v.to_str().ok())
+        .is_some_and(|t| t.starts_with("application/json"));
+    if is_json {
+        return resp;
+    }
+    let (mut parts, body) = resp.into_parts();
+    let bytes = axum::body::to_bytes(body, 64 * 1024)
+        .await
+        .unwrap_or_default();
+    let text = String::from_utf8_lossy(&bytes).trim().to_string();
+    let message = if text.is_empty() {
+        format!(
+            "{} {}",
+            status.as_u16(),
+            status.canonical_reason().unwrap_or("error")
+        )
+    } else {
+        text
+    };
+    let body = serde_json::to_vec(&json!({ "error": message })).unwrap_or_default();
+    parts.headers.remove(header::CONTENT_LENGTH);
+    parts.headers.insert(
+        header::CONTENT_TYPE,
+        header::HeaderValue::from_static("application/json"),
+    );
+    Response::from_parts(parts, axum::body::Body::from(body))
 }
 
 /// Refuse requests whose `Host` is not one of this server's names (DNS rebinding: a page of
@@ -389,26 +431,92 @@ pub async fn serve_on(
 }
 
 /// [`serve_on`], also answering the host names `allow_hosts` (see [`AllowedHosts::allow`]).
+///
+/// Each connection must send a request's headers within `header_timeout` of the
+/// configuration or is closed, and at most `max_connections` are served at once (further
+/// ones wait in the listen queue), so clients that open connections and send headers slowly
+/// cannot hold the server.
 pub async fn serve_on_with(
     app: Arc<App>,
     listener: tokio::net::TcpListener,
     allow_hosts: &[String],
     shutdown: impl std::future::Future<Output = ()> + Send + 'static,
 ) -> std::io::Result<()> {
-    use axum::serve::ListenerExt as _;
+    use hyper_util::rt::{TokioIo, TokioTimer};
+    use hyper_util::service::TowerToHyperService;
+
     let hosts = allow_hosts
         .iter()
         .fold(AllowedHosts::for_addr(listener.local_addr()?), |h, n| {
             h.allow(n)
         });
-    // A frame is a text message and a binary one: without TCP_NODELAY the second waits for
-    // the client's delayed ACK (~40 ms), which capped a driver at ~20 frames/s.
-    let listener = listener.tap_io(|tcp| {
+    let header_timeout = app.cfg.header_timeout;
+    let slots = Arc::new(tokio::sync::Semaphore::new(app.cfg.max_connections.max(1)));
+    let router = router(app, hosts);
+    // `stop` tells connections to finish (graceful shutdown); `done` closes when the last
+    // connection task has ended.
+    let (stop_tx, stop_rx) = tokio::sync::watch::channel(());
+    let (done_tx, done_rx) = tokio::sync::watch::channel(());
+    let mut shutdown = std::pin::pin!(shutdown);
+    loop {
+        let slot = tokio::select! {
+            s = slots.clone().acquire_owned() => match s {
+                Ok(s) => s,
+                Err(_) => break,
+            },
+            _ = &mut shutdown => break,
+        };
+        let tcp = tokio::select! {
+            r = listener.accept() => match r {
+                Ok((tcp, _)) => tcp,
+                Err(e) => {
+                    // Out of file descriptors and the like: wait instead of spinning.
+                    tracing::warn!(error = %e, "accept failed");
+                    tokio::time::sleep(std::time::Duration::from_millis(100)).await;
+                    continue;
+                }
+            },
+            _ = &mut shutdown => break,
+        };
+        // A frame is a text message and a binary one: without TCP_NODELAY the second waits
+        // for the client's delayed ACK (~40 ms), which capped a driver at ~20 frames/s.
         let _ = tcp.set_nodelay(true);
-    });
-    axum::serve(listener, router(app, hosts))
-        .with_graceful_shutdown(shutdown)
-        .await
+        let service = TowerToHyperService::new(router.clone());
+        let mut stop_rx = stop_rx.clone();
+        let done_rx = done_rx.clone();
+        tokio::spawn(async move {
+            let mut builder = hyper::server::conn::http1::Builder::new();
+            builder
+                .timer(TokioTimer::new())
+                .header_read_timeout(header_timeout);
+            let conn = builder
+                .serve_connection(TokioIo::new(tcp), service)
+                .with_upgrades();
+            let mut conn = std::pin::pin!(conn);
+            let mut stopping = false;
+            loop {
+                tokio::select! {
+                    r = conn.as_mut() => {
+                        if let Err(e) = r {
+                            tracing::debug!(error = %e, "connection ended with an error");
+                        }
+                        break;
+                    }
+                    _ = stop_rx.changed(), if !stopping => {
+                        stopping = true;
+                        conn.as_mut().graceful_shutdown();
+                    }
+                }
+            }
+            drop(slot);
+            drop(done_rx);
+        });
+    }
+    drop(listener);
+    drop(stop_tx);
+    drop(done_rx);
+    done_tx.closed().await;
+    Ok(())
 }
 
 /// Bind `addr` and serve until Ctrl-C; `on_ready` gets the bound address (port 0 picks a free

@@ -5,5 +5,6 @@ mod drive;
 mod example;
 mod hosts;
 mod http;
+mod limits;
 mod replay_review;
 mod support;

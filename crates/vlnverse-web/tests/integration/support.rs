@@ -156,6 +156,11 @@ impl Server {
         (s, serde_json::from_slice(&b).unwrap_or(Value::Null))
     }
 
+    /// Any method and body, exactly as written: (status, body).
+    pub async fn raw(&self, method: &str, path: &str, body: Option<String>) -> (u16, Vec<u8>) {
+        self.request(method, path, body).await
+    }
+
     async fn request(&self, method: &str, path: &str, body: Option<String>) -> (u16, Vec<u8>) {
         let mut s = tokio::net::TcpStream::connect(self.addr).await.unwrap();
         let body = body.unwrap_or_default();
