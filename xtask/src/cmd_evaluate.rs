@@ -19,7 +19,7 @@ pub struct Args {
     /// Dataset, task and split.
     #[command(flatten)]
     pub data: SplitArgs,
-    /// Agent: oracle, random, forward, stop, semantic or external.
+    /// Agent: oracle, random, forward, stop, semantic, external or http.
     #[arg(long)]
     pub agent: String,
     /// Setting: strict, telhop or lenient (picks `configs/eval/<setting>.toml` unless --config).
@@ -53,6 +53,20 @@ pub struct Args {
     /// Shell command of the external agent.
     #[arg(long)]
     pub agent_cmd: Option<String>,
+    /// `--agent http`: base URL of the agent server (the original VLNVerse agent-server
+    /// protocol: /agent/init, /agent/NAME/reset, /agent/NAME/step).
+    #[arg(long)]
+    pub agent_url: Option<String>,
+    /// `--agent http`: the agent's name on the server (`model_name` of init).
+    #[arg(long, default_value = "default")]
+    pub agent_name: String,
+    /// `--agent http`: JSON file with more `agent_config` fields for init (`ckpt_path`,
+    /// `model_settings`, ...).
+    #[arg(long)]
+    pub agent_init: Option<PathBuf>,
+    /// `--agent http`: seconds to wait for one step's reply before the run stops.
+    #[arg(long, default_value_t = 60.0)]
+    pub agent_timeout: f64,
     /// Action space override: discrete, continuous (velocity commands) or waypoint.
     #[arg(long)]
     pub action_space: Option<ActionSpace>,
@@ -138,10 +152,45 @@ fn config(args: &Args) -> anyhow::Result<EvalConfig> {
     Ok(cfg)
 }
 
+/// The `--agent http` factory from its flags.
+fn http_factory(args: &Args) -> anyhow::Result<Box<dyn vlnverse_task::eval::AgentFactory>> {
+    let Some(url) = &args.agent_url else {
+        anyhow::bail!("--agent http needs --agent-url http://HOST:PORT (the agent server)");
+    };
+    let mut cfg = vlnverse_agent_http::HttpAgentConfig::new(url.as_str(), args.agent_name.as_str());
+    if let Some(file) = &args.agent_init {
+        let text = std::fs::read_to_string(file)
+            .with_context(|| format!("--agent-init {}", file.display()))?;
+        match serde_json::from_str(&text) {
+            Ok(serde_json::Value::Object(m)) => cfg.agent_config = m,
+            Ok(_) => anyhow::bail!("--agent-init {}: expected a JSON object", file.display()),
+            Err(e) => anyhow::bail!("--agent-init {}: {e}", file.display()),
+        }
+    }
+    let t = args.agent_timeout;
+    anyhow::ensure!(
+        t.is_finite() && t > 0.0 && t <= 3600.0,
+        "--agent-timeout {t}: expected seconds in (0, 3600]"
+    );
+    cfg.step_timeout = std::time::Duration::from_secs_f64(t);
+    Ok(Box::new(vlnverse_agent_http::HttpFactory::new(cfg)?))
+}
+
 /// Run the command.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let cfg = config(&args)?;
-    let mut factory = builtin(&args.agent, args.agent_cmd.as_deref(), &cfg)?;
+    let mut threads = args.threads;
+    let mut factory = if args.agent == "http" {
+        // The server keeps one agent per name: one worker.
+        anyhow::ensure!(
+            threads.is_none_or(|t| t == 1),
+            "--agent http runs on one worker thread (the agent server keeps one agent per name); drop --threads or pass --threads 1"
+        );
+        threads = Some(1);
+        http_factory(&args)?
+    } else {
+        builtin(&args.agent, args.agent_cmd.as_deref(), &cfg)?
+    };
     if let Some(v) = &args.agent_version {
         factory = Box::new(Versioned::new(factory, v));
     }
@@ -161,7 +210,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     )
     .episodes(args.episodes)
     .sample(sample)
-    .threads(args.threads)
+    .threads(threads)
     .fresh(args.fresh)
     .config(cfg);
     let pb = crate::progress::bar(n as u64, "evaluating");
@@ -213,6 +262,10 @@ mod tests {
             oracle_config: None,
             threads: None,
             agent_cmd: None,
+            agent_url: None,
+            agent_name: "default".into(),
+            agent_init: None,
+            agent_timeout: 60.0,
             action_space: Some(ActionSpace::Continuous),
             backend: Some("raster".into()),
             no_render: true,

@@ -5,7 +5,7 @@
 use std::path::Path;
 use std::process::Command;
 
-const LIBRARIES: [&str; 10] = [
+const LIBRARIES: [&str; 11] = [
     "vlnverse-env",
     "vlnverse-score",
     "vlnverse-sim",
@@ -16,6 +16,7 @@ const LIBRARIES: [&str; 10] = [
     "vlnverse-generate",
     "vlnverse-eval",
     "vlnverse-task",
+    "vlnverse-agent-http",
 ];
 
 /// The task layer's crates: the layers below must not reach them.
@@ -120,6 +121,18 @@ fn evaluation_compiles_no_instruction_generator_or_http_client_by_default() {
     // The LLM oracle brings the chat client, and only then.
     let with = deps(&["-p", "vlnverse-eval", "--features", "llm-oracle"]);
     assert!(with.iter().any(|x| x == "ureq"), "{with:?}");
+}
+
+#[test]
+fn the_http_agent_brings_its_http_client_but_no_gpu_backend_or_generator() {
+    let d = deps(&["-p", "vlnverse-agent-http"]);
+    assert!(d.iter().any(|x| x == "ureq"), "{d:?}");
+    assert_without(
+        &["-p", "vlnverse-agent-http"],
+        &["wgpu", "vlnverse-generate", "vlnverse-instructions"],
+    );
+    // Evaluation does not reach the client (the client depends on it, not the other way).
+    assert_without(&["-p", "vlnverse-eval"], &["vlnverse-agent-http"]);
 }
 
 #[test]
