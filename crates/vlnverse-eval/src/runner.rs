@@ -699,7 +699,9 @@ fn evaluate_locked<SF: SimulatorFactory, RF: RendererFactory>(
     };
     let resumed = episodes.len() - todo.len();
     let log = ProgressLog::open(&req.out.join(PROGRESS_FILE))?;
-    let run = || -> Vec<Result<EpisodeRecord>> {
+    // The first failure stops the run (no further episodes start): a broken agent or
+    // simulator would otherwise fail, or wait out its timeout, once per remaining episode.
+    let run = || -> Result<Vec<EpisodeRecord>> {
         todo.par_iter()
             .with_max_len(4)
             .map(|ep| {
@@ -711,10 +713,9 @@ fn evaluate_locked<SF: SimulatorFactory, RF: RendererFactory>(
             })
             .collect()
     };
-    let results = in_pool(req.threads, run)?;
+    let results = in_pool(req.threads, run)??;
     let mut steps_run = 0;
-    for r in results {
-        let rec = r?;
+    for rec in results {
         steps_run += rec.trajectory.steps as u64;
         done.insert(rec.episode_id, rec);
     }
