@@ -13,13 +13,16 @@ use vlnverse_task::eval::agents::{builtin, Versioned};
 use vlnverse_task::eval::{evaluate_with, ActionSpace, EvalConfig, EvalRequest, Layers, Setting};
 use vlnverse_task::sample::Sample;
 
+#[path = "cmd_evaluate_mllm.rs"]
+mod mllm;
+
 /// Arguments of `cargo xtask evaluate`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// Dataset, task and split.
     #[command(flatten)]
     pub data: SplitArgs,
-    /// Agent: oracle, random, forward, stop, semantic, external or http.
+    /// Agent: oracle, random, forward, stop, semantic, external, http or mllm.
     #[arg(long)]
     pub agent: String,
     /// Setting: strict, telhop or lenient (picks `configs/eval/<setting>.toml` unless --config).
@@ -53,6 +56,19 @@ pub struct Args {
     /// Shell command of the external agent.
     #[arg(long)]
     pub agent_cmd: Option<String>,
+    /// `--agent mllm`: base URL of the OpenAI-compatible endpoint (overrides the config's).
+    #[arg(long)]
+    pub mllm_endpoint: Option<String>,
+    /// `--agent mllm`: model name sent with each request (overrides the config's).
+    #[arg(long)]
+    pub mllm_model: Option<String>,
+    /// `--agent mllm`: the agent's TOML config (docs/mllm.md).
+    #[arg(long)]
+    pub agent_config: Option<PathBuf>,
+    /// `--agent mllm`: print the requests of one episode and the token estimate of a
+    /// `--sample` run (200 episodes by default); sends nothing.
+    #[arg(long)]
+    pub mllm_dry_run: bool,
     /// `--agent http`: base URL of the agent server (the original VLNVerse agent-server
     /// protocol: /agent/init, /agent/NAME/reset, /agent/NAME/step).
     #[arg(long)]
@@ -179,6 +195,9 @@ fn http_factory(args: &Args) -> anyhow::Result<Box<dyn vlnverse_task::eval::Agen
 /// Run the command.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let cfg = config(&args)?;
+    if args.agent == "mllm" {
+        return mllm::run(&args, cfg);
+    }
     let mut threads = args.threads;
     let mut factory = if args.agent == "http" {
         // The server keeps one agent per name: one worker.
@@ -262,6 +281,10 @@ mod tests {
             oracle_config: None,
             threads: None,
             agent_cmd: None,
+            mllm_endpoint: None,
+            mllm_model: None,
+            agent_config: None,
+            mllm_dry_run: false,
             agent_url: None,
             agent_name: "default".into(),
             agent_init: None,

@@ -5,7 +5,7 @@
 use std::path::Path;
 use std::process::Command;
 
-const LIBRARIES: [&str; 11] = [
+const LIBRARIES: [&str; 12] = [
     "vlnverse-env",
     "vlnverse-score",
     "vlnverse-sim",
@@ -16,6 +16,7 @@ const LIBRARIES: [&str; 11] = [
     "vlnverse-generate",
     "vlnverse-eval",
     "vlnverse-task",
+    "vlnverse-mllm",
     "vlnverse-agent-http",
 ];
 
@@ -121,6 +122,15 @@ fn evaluation_compiles_no_instruction_generator_or_http_client_by_default() {
     // The LLM oracle brings the chat client, and only then.
     let with = deps(&["-p", "vlnverse-eval", "--features", "llm-oracle"]);
     assert!(with.iter().any(|x| x == "ureq"), "{with:?}");
+}
+
+#[test]
+fn the_mllm_agent_brings_its_http_client_but_no_gpu_backend() {
+    let d = deps(&["-p", "vlnverse-mllm"]);
+    assert!(d.iter().any(|x| x == "ureq"), "{d:?}");
+    assert_without(&["-p", "vlnverse-mllm"], &["wgpu", "vlnverse-generate"]);
+    // Evaluation does not reach the agent (the agent depends on it, not the other way).
+    assert_without(&["-p", "vlnverse-eval"], &["vlnverse-mllm"]);
 }
 
 #[test]
