@@ -5,8 +5,10 @@
 //! 2. a virtual environment in `.venv/` with the Python test tools
 //!    (`crates/vlnverse-py/requirements-dev.txt`), the `vlnverse` package built into it by
 //!    maturin, and a `tiny` dataset under `target/py-test-data/`;
-//! 3. for each Python suite (the package, the LeRobot export check, the baselines, the browser
-//!    tests): its packages, ruff and mypy; then one pytest over all their tests.
+//! 3. for each Python suite (the package, the LeRobot export check, the baselines, the
+//!    hostile-input table of `tests/hostile/`, the browser tests): its packages, ruff and mypy;
+//!    then one pytest over all their tests (the hostile suite's outcome counts show in its
+//!    warnings summary).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -78,6 +80,15 @@ const SUITES: &[Suite] = &[
         lint: &["."],
         typed: Some("vlnverse_baselines"),
         tests: "tests",
+    },
+    Suite {
+        name: "hostile inputs",
+        dir: "tests/hostile",
+        requirements: None,
+        editable: false,
+        lint: &["."],
+        typed: None,
+        tests: ".",
     },
     Suite {
         name: "web (browser)",

@@ -44,7 +44,7 @@ class VLNEnv(gymnasium.Env):
     ) -> tuple[dict[str, Any], dict[str, Any]]:
         """Start the next episode (``seed`` restarts the episode order / draws)."""
         super().reset(seed=seed)
-        obs, infos = self._vec.reset(seed=seed)
+        obs, infos = self._vec.reset(seed=seed, options=options)
         self._over = False
         return self._one(obs), self._one_info(infos)
 

@@ -58,7 +58,7 @@ def evaluate(
     ``fresh=True`` starts over.
     Returns ``summary.json`` as a dict."""
     agent_name = name or getattr(agent, "name", None) or type(agent).__name__
-    num_envs = check.check_int("num_envs", num_envs, 1, 4096)
+    num_envs = check.check_int("num_envs", num_envs, 1, check.MAX_NUM_ENVS)
     folder, protocol = open_run_folder(
         str(agent_name), version, dataset=dataset, task=task, split=split, out=out,
         episodes=episodes, sample=sample, fresh=fresh, setting=setting,
@@ -95,12 +95,15 @@ def open_run_folder(
     protocol: dict[str, Any] = dict(
         setting=check.check_choice("setting", setting, check.SETTINGS),
         action_space=check.check_choice("action_space", action_space, check.ACTION_SPACES),
-        profile=profile,
+        profile=check.check_str("profile", profile),
         sensors=None if sensors is None else check.check_path("sensors", sensors),
-        seed=seed,
-        max_steps=max_steps,
-        success_distance=success_distance,
-        render=render,
+        seed=check.check_int("seed", seed, 0, check.MAX_SEED),
+        max_steps=(None if max_steps is None
+                   else check.check_int("max_steps", max_steps, 1, check.MAX_STEPS)),
+        success_distance=(None if success_distance is None
+                          else check.check_float("success_distance", success_distance,
+                                                 0.0, 1000.0)),
+        render=bool(render),
     )
     folder = RunFolder(
         check.check_path("out", out),

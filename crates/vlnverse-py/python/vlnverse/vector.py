@@ -87,17 +87,21 @@ class VectorEnv(GymVectorEnv):
             check.check_path("dataset", dataset),
             check.check_choice("task", task, check.TASKS),
             check.check_choice("split", split, check.SPLITS),
-            num_envs=check.check_int("num_envs", num_envs, 1, 4096),
+            num_envs=check.check_int("num_envs", num_envs, 1, check.MAX_NUM_ENVS),
             setting=check.check_choice("setting", setting, check.SETTINGS),
             action_space=check.check_choice("action_space", action_space, check.ACTION_SPACES),
-            profile=profile,
+            profile=check.check_str("profile", profile),
             sensors=None if sensors is None else check.check_path("sensors", sensors),
             mode=check.check_choice("mode", mode, check.MODES),
-            seed=check.check_int("seed", seed, 0),
-            max_steps=None if max_steps is None else check.check_int("max_steps", max_steps, 1),
-            success_distance=success_distance,
+            seed=check.check_int("seed", seed, 0, check.MAX_SEED),
+            max_steps=(None if max_steps is None
+                       else check.check_int("max_steps", max_steps, 1, check.MAX_STEPS)),
+            success_distance=(None if success_distance is None
+                              else check.check_float("success_distance", success_distance,
+                                                     0.0, 1000.0)),
             reward=check.check_choice("reward", reward, ("sparse", "dense")),
-            episode_ids=episode_ids,
+            episode_ids=(None if episode_ids is None
+                         else check.check_ids("episode_ids", episode_ids)),
             render=bool(render),
             normalize_depth=bool(normalize_depth),
             instruction_length=check.check_int("instruction_length", instruction_length, 1, 4096),
@@ -128,10 +132,14 @@ class VectorEnv(GymVectorEnv):
         """Reset every environment to its next episode; ``seed`` reseeds the episode draws
         (and restarts the eval order); a list gives the first element (environment ``i``
         uses ``seed + i``-derived draws)."""
+        if options:
+            raise VLNVerseError(
+                f"reset: unknown options {sorted(map(str, options))}; reset takes none"
+            )
         if isinstance(seed, (list, tuple)):
             seed = seed[0] if seed else None
         if seed is not None:
-            seed = check.check_int("seed", seed, 0)
+            seed = check.check_int("seed", seed, 0, check.MAX_SEED)
             self._seed = seed
         super().reset(seed=seed)
         raw = self._live().reset(seed)

@@ -1,0 +1,322 @@
+"""The table of hostile inputs (see ``_hostile_cases``)."""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import subprocess
+import time
+from pathlib import Path
+from typing import Any, Callable
+
+from _hostile_cases import ROOT, Case, Ctx, listing, run, xtask
+
+Eps = list[dict[str, Any]]
+TINY_TOML = ROOT / "crates/vlnverse-generate/configs/generate/tiny.toml"
+
+
+def evaluate(d: Path, out: Path, *extra: str, task: str = "fine", split: str = "test",
+             agent: str = "forward") -> list[str]:
+    return ["evaluate", "--dataset", str(d), "--task", task, "--split", split,
+            "--agent", agent, "--setting", "lenient", "--no-render", "--threads", "1",
+            "--out", str(out), *extra]
+
+
+def bad_episode(name: str, spoil: Callable[[dict[str, Any]], None], expect: tuple[str, ...],
+                task: str = "fine") -> Case:
+    """An evaluation of a split whose last episode is spoilt: refused, no run folder made."""
+    def cli(c: Ctx) -> list[str]:
+        d = c.spoil(task, "test", lambda eps: spoil(eps[-1]))
+        return evaluate(d, c.work / "out", task=task)
+    return Case(f"episode_{name}", cli=cli, expect=expect, watch=lambda c: c.work / "out")
+
+
+def spoilt_split(name: str, how: Callable[[Eps], None], expect: tuple[str, ...],
+                 raw: Callable[[str], str] | None = None) -> Case:
+    def cli(c: Ctx) -> list[str]:
+        return evaluate(c.spoil("fine", "test", how, raw), c.work / "out")
+    return Case(f"split_{name}", cli=cli, expect=expect, watch=lambda c: c.work / "out")
+
+
+def set_(key: str, value: Any) -> Callable[[dict[str, Any]], None]:
+    def f(e: dict[str, Any]) -> None:
+        e[key] = value
+    return f
+
+
+def protocol(c: Ctx, text: str) -> str:
+    p = c.work / "protocol.toml"
+    p.write_text(f'setting = "lenient"\nrender = false\nplots = 0\n{text}\n')
+    return str(p)
+
+
+def eval_config(name: str, text: str, expect: tuple[str, ...],
+                agent: str = "forward", extra: tuple[str, ...] = ()) -> Case:
+    def cli(c: Ctx) -> list[str]:
+        return evaluate(c.dataset(), c.work / "out", "--config", protocol(c, text), *extra,
+                        agent=agent)
+    return Case(f"protocol_{name}", cli=cli, expect=expect, watch=lambda c: c.work / "out")
+
+
+def gen_config(name: str, edit: Callable[[str], str], expect: tuple[str, ...]) -> Case:
+    def cli(c: Ctx) -> list[str]:
+        cfg = c.work / "gen.toml"
+        cfg.write_text(edit(TINY_TOML.read_text()))
+        return ["generate", "--config", str(cfg), "--out", str(c.work / "out")]
+    return Case(f"generate_{name}", cli=cli, expect=expect, watch=lambda c: c.work / "out")
+
+
+def llm(text: str) -> Callable[[str], str]:
+    return lambda t: (f'{t}\n[instructions.llm]\nbase_url = "http://127.0.0.1:9/v1"\n'
+                      f'model = "m"\nframes = 0\n{text}\n')
+
+
+def score(c: Ctx, out: Path, traj: str = '{"episode_id": 1, "positions": [[0,0,0]], '
+          '"stopped": true}\n') -> list[str]:
+    t = c.work / "traj.jsonl"
+    t.write_text(traj)
+    return ["score", "--dataset", str(c.dataset()), "--task", "fine", "--split", "test",
+            "--trajectories", str(t), "--out", str(out)]
+
+
+def folder_with(c: Ctx, name: str, files: dict[str, str]) -> Path:
+    d = c.work / name
+    d.mkdir(parents=True, exist_ok=True)
+    for f, text in files.items():
+        (d / f).write_text(text)
+    return d
+
+
+def py_env(kwargs: str, then: str = "") -> Callable[[Ctx], str]:
+    return lambda c: (f"env = vlnverse.make_vec({str(c.dataset())!r}, 'fine', 'test', "
+                      f"render=False, {kwargs})\n{then}")
+
+
+PY_AGENT = """
+class Forward:
+    name = "forward"
+    def reset(self):
+        pass
+    def act(self, obs, infos):
+        import numpy as np
+        return np.ones(len(obs["instruction"]), dtype=np.int64)
+"""
+
+
+def py_evaluate(out: str, spoil: bool = False) -> Callable[[Ctx], str]:
+    def code(c: Ctx) -> str:
+        d = c.spoil("fine", "test", lambda eps: eps[-1].update(start_position=[500, 0, 500])) \
+            if spoil else c.dataset()
+        o = d if out == "dataset" else c.work / out
+        return (PY_AGENT + f"vlnverse.evaluate(Forward(), dataset={str(d)!r}, task='fine', "
+                f"split='test', out={str(o)!r}, render=False, progress=False)")
+    return code
+
+
+# -- cases with their own check ----------------------------------------------------------
+
+
+def kill_and_resume(c: Ctx, case: Case) -> tuple[str, str]:
+    """An evaluation killed (SIGKILL) mid-run resumes to the end with nothing half-written."""
+    out = c.work / "out"
+    cmd = [*xtask(), *evaluate(c.dataset(), out, split="train")]
+    p = subprocess.Popen(cmd, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                         start_new_session=True)
+    time.sleep(1.5)
+    os.killpg(p.pid, signal.SIGKILL)
+    p.wait()
+    rc, text = run(cmd, case.timeout, ROOT)
+    if rc is None:
+        return "hang", text[-300:]
+    if rc != 0:
+        return ("crash" if rc == 101 or rc < 0 else "unclear"), text[-300:]
+    left = [f for f in listing(out) or [] if ".tmp" in f]
+    summary = json.loads((out / "summary.json").read_text())
+    if left or summary.get("episodes") != 24:
+        return "partial", f"left {left}, summary {summary.get('episodes')} episodes"
+    return "clear", "resumed to 24 episodes, no temporary files"
+
+
+def concurrent_evaluations(c: Ctx, case: Case) -> tuple[str, str]:
+    """A second evaluation into a folder another one is writing is refused by the lock."""
+    out = c.work / "out"
+    cfg = protocol(c, "external_timeout_s = 30.0")
+    first = [*xtask(), *evaluate(c.dataset(), out, "--config", cfg, "--agent-cmd", "sleep 60",
+                                 agent="external")]
+    p = subprocess.Popen(first, cwd=ROOT, stdout=subprocess.DEVNULL,
+                         stderr=subprocess.DEVNULL, start_new_session=True)
+    try:
+        for _ in range(100):
+            if (out / "run.json").exists():
+                break
+            time.sleep(0.1)
+        before = listing(out)
+        rc, text = run([*xtask(), *evaluate(c.dataset(), out)], case.timeout, ROOT)
+        after = listing(out)
+    finally:
+        os.killpg(p.pid, signal.SIGKILL)
+        p.wait()
+    from _hostile_cases import classify
+    return classify(case, rc, text, before, after), text.strip()[-300:]
+
+
+def edited_split_resume(c: Ctx, case: Case) -> tuple[str, str]:
+    """A resume after the split's goals moved is refused, naming split_fingerprint."""
+    out = c.work / "out"
+    d = c.dataset()
+    rc, text = run([*xtask(), *evaluate(d, out, "--episodes", "1")], case.timeout, ROOT)
+    if rc != 0:
+        return "unclear", f"the first run failed: {text[-300:]}"
+
+    def move(eps: Eps) -> None:
+        eps[2]["goals"] = eps[1]["goals"]
+    c.spoil("fine", "test", move)
+    before = listing(out)
+    rc, text = run([*xtask(), *evaluate(d, out)], case.timeout, ROOT)
+    from _hostile_cases import classify
+    return classify(case, rc, text, before, listing(out)), text.strip()[-300:]
+
+
+def _first_scene(c: Ctx) -> str:
+    return str(sorted((c.tiny / "scenes").iterdir())[0])
+
+
+CASES: list[Case] = [
+    # Episodes that cannot be right, each the last of its split.
+    bad_episode("empty_instruction",
+                lambda e: e["instruction"].update(instruction_text=""), ("instruction_text",)),
+    bad_episode("negative_geodesic",
+                lambda e: e["info"].update(geodesic_distance=-5), ("geodesic_distance", "-5")),
+    bad_episode("empty_reference_path", set_("reference_path", []), ("reference_path",)),
+    bad_episode("zero_rotation", set_("start_rotation", [0, 0, 0, 0]), ("start_rotation",)),
+    bad_episode("long_rotation", set_("start_rotation", [0, 0, 0, 2]), ("start_rotation",)),
+    bad_episode("tilted_rotation", set_("start_rotation", [0.5, 0, 0, 0.866]),
+                ("start_rotation",)),
+    bad_episode("negative_radius", lambda e: e["goals"][0].update(radius=-1), ("radius", "-1")),
+    bad_episode("no_goals", set_("goals", []), ("goals",)),
+    bad_episode("other_task", set_("task", "coarse"), ("task", "coarse")),
+    bad_episode("long_horizon_without_sub_goals", set_("sub_goals", []), ("sub_goals",),
+                task="long_horizon"),
+    bad_episode("unknown_target_object", set_("target_object_id", 999999),
+                ("target_object_id", "999999"), task="coarse"),
+    bad_episode("start_off_the_map", set_("start_position", [500.0, 0.0, 500.0]),
+                ("start_position", "navigable map")),
+    bad_episode("goal_off_the_map", lambda e: e["goals"][0].update(position=[-500, 0, 3]),
+                ("goals", "navigable map")),
+    bad_episode("start_in_the_air", lambda e: e["start_position"].__setitem__(1, 5.0),
+                ("start_position", "floor")),
+    bad_episode("scene_outside_the_dataset", set_("scene_id", "../../etc"), ("scene_id",)),
+    bad_episode("absolute_scene", set_("scene_id", "/etc"), ("scene_id",)),
+    bad_episode("missing_scene", set_("scene_id", "no_such_home"), ("scene_id", "no_such_home")),
+    bad_episode("string_episode_id", set_("episode_id", "seven"), ("episode_id",)),
+    # Split files.
+    spoilt_split("repeated_id", lambda eps: eps[-1].update(episode_id=eps[0]["episode_id"]),
+                 ("used twice",)),
+    spoilt_split("empty", lambda eps: eps.clear(), ("no episodes",)),
+    spoilt_split("nan_in_gzip", lambda eps: None, ("nan", "geodesic_distance"),
+                 raw=lambda t: t.replace('"geodesic_distance": ', '"geodesic_distance": NaN, '
+                                         '"x": ', 1)),
+    Case("split_not_gzip", expect=("not gzip",), watch=lambda c: c.work / "out",
+         cli=lambda c: (
+             (c.dataset() / "fine/test/test.json.gz").write_text("hello"),
+             evaluate(c.dataset(), c.work / "out"))[1]),
+    # Command-line values.
+    Case("evaluate_threads_100000", expect=("threads", "100000"), watch=lambda c: c.work / "out",
+         cli=lambda c: [*evaluate(c.dataset(), c.work / "out")[:-4], "--threads", "100000",
+                        "--out", str(c.work / "out")]),
+    Case("evaluate_episodes_0", expect=("episodes",), watch=lambda c: c.work / "out",
+         cli=lambda c: evaluate(c.dataset(), c.work / "out", "--episodes", "0")),
+    Case("evaluate_unknown_agent", expect=("agent", "nobody"), watch=lambda c: c.work / "out",
+         cli=lambda c: evaluate(c.dataset(), c.work / "out", agent="nobody")),
+    Case("evaluate_out_is_the_dataset", expect=("dataset folder",), watch=lambda c: c.dataset(),
+         cli=lambda c: evaluate(c.dataset(), c.dataset())),
+    Case("evaluate_out_is_a_file", expect=("is a file",), watch=lambda c: c.work / "f",
+         setup=lambda c: (c.work / "f").write_text("x"),
+         cli=lambda c: evaluate(c.dataset(), c.work / "f")),
+    Case("export_threads_100000", expect=("threads", "100000"), watch=lambda c: c.work / "out",
+         cli=lambda c: ["export", "--dataset", str(c.dataset()), "--task", "fine", "--split",
+                        "test", "--threads", "100000", "--out", str(c.work / "out")]),
+    Case("export_impossible_episode", expect=("start_position",),
+         watch=lambda c: c.work / "out",
+         cli=lambda c: ["export", "--dataset", str(c.spoil(
+             "fine", "test", lambda eps: eps[-1].update(start_position=[500, 0, 500]))),
+             "--task", "fine", "--split", "test", "--out", str(c.work / "out")]),
+    Case("render_top_down_0", expect=("--top-down 0",), watch=lambda c: c.work / "out",
+         cli=lambda c: ["render", "--scene", _first_scene(c), "--top-down", "0",
+                        "--out", str(c.work / "out")]),
+    # Protocol files.
+    eval_config("success_distance_nan", "success_distance = nan", ("success_distance",)),
+    eval_config("max_steps_0", "max_steps = 0", ("max_steps",)),
+    eval_config("external_timeout_huge", "external_timeout_s = 1e12", ("external_timeout_s",)),
+    eval_config("unknown_key", "speed = 3", ("speed",)),
+    eval_config("external_agent_never_replies", "external_timeout_s = 1.0",
+                ("no reply within", "cat > /dev/null", "step 0"), agent="external",
+                extra=("--agent-cmd", "cat > /dev/null")),
+    eval_config("external_agent_exits", "",
+                ("exit status: 3",), agent="external", extra=("--agent-cmd", "exit 3")),
+    # Generation configs.
+    gen_config("a_billion_episodes",
+               lambda t: t.replace("episodes = { train = 24,", "episodes = { train = 1000000000,"),
+               ("episodes", "1000000000")),
+    gen_config("max_attempts_0", lambda t: t.replace("max_attempts = 400", "max_attempts = 0"),
+               ("max_attempts",)),
+    gen_config("max_length_1e30", lambda t: t.replace("max_length = 20.0", "max_length = 1e30", 1),
+               ("max_length",)),
+    gen_config("camera_height_nan", lambda t: t.replace("camera_height = 1.25",
+                                                        "camera_height = nan"),
+               ("camera_height",)),
+    gen_config("llm_timeout_1e20", llm("timeout_s = 1e20"), ("timeout_s",)),
+    gen_config("llm_retries_1e9", llm("retries = 1000000000\nretry_backoff_ms = 1000000000000000"),
+               ("retries",)),
+    gen_config("llm_base_url_broken", lambda t: llm("")(t).replace(
+        "http://127.0.0.1:9/v1", "http://[::1"), ("base_url",)),
+    gen_config("llm_key_variable_unset", llm('api_key_env = "VLNVERSE_HOSTILE_UNSET_KEY"'),
+               ("api_key_env", "VLNVERSE_HOSTILE_UNSET_KEY")),
+    Case("generate_llm_cache_unwritable", expect=("cache_dir",), watch=lambda c: c.work / "out",
+         setup=lambda c: (c.work / "file").write_text("x"),
+         cli=lambda c: ((c.work / "gen.toml").write_text(
+             llm(f'cache_dir = "{c.work / "file" / "cache"}"')(TINY_TOML.read_text())),
+             ["generate", "--config", str(c.work / "gen.toml"), "--out",
+              str(c.work / "out")])[1]),
+    # Scoring.
+    Case("score_into_a_finished_evaluation", expect=("evaluation", "run.json"),
+         watch=lambda c: c.work / "eval",
+         setup=lambda c: folder_with(c, "eval", {"run.json": "{}", "trajectories.jsonl": ""}),
+         cli=lambda c: score(c, c.work / "eval")),
+    Case("score_over_another_summary", expect=("summary.json", "--force"),
+         watch=lambda c: c.work / "other",
+         setup=lambda c: folder_with(c, "other", {"summary.json": "{}"}),
+         cli=lambda c: score(c, c.work / "other")),
+    Case("score_into_the_dataset", expect=("dataset folder",), watch=lambda c: c.dataset(),
+         cli=lambda c: score(c, c.dataset())),
+    Case("score_nan_trajectory", expect=("nan", "line 1"), watch=lambda c: c.work / "out",
+         cli=lambda c: score(c, c.work / "out", '{"episode_id": 1, "positions": [[NaN,0,0]], '
+                                                '"stopped": true}\n')),
+    Case("score_unknown_episode", expect=("99999",), watch=lambda c: c.work / "out",
+         cli=lambda c: score(c, c.work / "out", '{"episode_id": 99999, "positions": '
+                                                '[[0,0,0]], "stopped": true}\n')),
+    # Python calls.
+    Case("python_make_vec_4096", py=py_env("num_envs=4096"), expect=("num_envs", "4096")),
+    Case("python_seed_2_70", py=py_env("seed=2**70"), expect=("seed",)),
+    Case("python_max_steps_1e12", py=py_env("max_steps=10**12"), expect=("max_steps",)),
+    Case("python_episode_ids_negative", py=py_env("episode_ids=[-1]"),
+         expect=("episode_ids", "-1")),
+    Case("python_episode_ids_repeated", py=py_env("episode_ids=[1, 1, 1]"),
+         expect=("episode_ids", "repeats")),
+    Case("python_profile_5", py=py_env("profile=5"), expect=("profile",)),
+    Case("python_success_distance_text", py=py_env("success_distance='far'"),
+         expect=("success_distance",)),
+    Case("python_unknown_reset_option", py=py_env("", "env.reset(options={'teleport': 1})"),
+         expect=("teleport",)),
+    Case("python_evaluate_into_the_dataset", py=py_evaluate("dataset"),
+         expect=("dataset folder",), watch=lambda c: c.dataset()),
+    Case("python_evaluate_impossible_episode", py=py_evaluate("out", spoil=True),
+         expect=("start_position",), watch=lambda c: c.work / "out"),
+    # Kills and concurrent jobs.
+    Case("kill_then_resume", custom=kill_and_resume, timeout=120),
+    Case("two_evaluations_on_one_folder", custom=concurrent_evaluations,
+         expect=("another job",)),
+    Case("resume_of_an_edited_split", custom=edited_split_resume,
+         expect=("split_fingerprint",)),
+]
