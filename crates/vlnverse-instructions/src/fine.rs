@@ -189,10 +189,7 @@ fn distance_phrase(d: f32, w: Writer, rng: &mut ChaCha8Rng) -> String {
             3 | 4 => "a few metres".into(),
             _ => "several metres".into(),
         },
-        6 => format!(
-            "{about} {} feet",
-            ((d * 3.28 / 5.0).round() * 5.0).max(5.0) as u32
-        ),
+        6 => format!("{about} {} feet", (d * 3.28).round().max(4.0) as u32),
         _ => format!("{about} {steps} steps"),
     }
 }
@@ -377,12 +374,13 @@ fn room_change(
             .replace("{room}", &to_np);
     }
     let door = door_np(scene, from, to, at, rng);
-    match (rng.random_range(0..8), door) {
+    // Mostly just the room entered, as people say it ("go into the kitchen").
+    match (rng.random_range(0..12), door) {
         (0 | 1, Some(d)) => fill(
             pick(rng, &ph::THROUGH_DOOR),
             &[("door", &d), ("room", &to_np)],
         ),
-        (2, Some(d)) => fill(
+        (2, Some(d)) if rng.random_bool(0.5) => fill(
             pick(rng, &ph::LEAVE_BY_DOOR),
             &[("from", &from_np), ("door", &d), ("room", &to_np)],
         ),
@@ -616,7 +614,7 @@ fn opening(route: &Route<'_, '_>, mut rng: ChaCha8Rng) -> Draft {
         number_form,
         step_no: 0,
         after: None,
-        budget: if writer == Writer::Precise { 3 } else { 2 },
+        budget: 2,
     }
 }
 
@@ -628,7 +626,17 @@ fn leg_sentences(route: &Route<'_, '_>, li: usize, draft: &mut Draft) {
         return;
     };
     let mut named = name_landmarks(route, &chosen, draft);
-    let mut turn = turn_clause(leg.turn, leg.angle, li == 0, route.writer, &mut draft.rng);
+    // A slight bend on the way into another room or past a landmark often goes unsaid.
+    let unsaid = matches!(leg.turn, Turn::Slight(_))
+        && li > 0
+        && draft.after.is_none()
+        && (!named.is_empty() || route.rooms_entered_on(li).next().is_some())
+        && draft.rng.random_bool(0.5);
+    let mut turn = if unsaid {
+        None
+    } else {
+        turn_clause(leg.turn, leg.angle, li == 0, route.writer, &mut draft.rng)
+    };
     if let (Some(t), Some(a)) = (turn.as_mut(), draft.after.take()) {
         *t = format!("{a}, {t}");
     }

@@ -338,8 +338,6 @@ pub fn shape_words(o: &SceneObject, peers: &[&SceneObject]) -> Vec<&'static str>
     let furniture = o.class.kind() == vlnverse_env::ClassKind::Furniture;
     if furniture && h > 1.5 {
         out.push("tall");
-    } else if furniture && (0.75..=1.05).contains(&h) && w > 0.5 {
-        out.push("waist-high");
     } else if furniture && h < 0.55 && w > 0.5 {
         out.push("low");
     }

@@ -164,6 +164,7 @@ banks! {
     CHAIN_FIRST = chain_first,
     CHAIN_MID = chain_mid,
     CHAIN_LAST = chain_last,
+    CHAIN_CASUAL = chain_casual,
 }
 
 /// A bank as written in the data file.

@@ -611,6 +611,16 @@ pub fn chain_parts(parts: &[Instruction], seed: u64) -> Result<Instruction> {
             } else {
                 decapitalize(t)
             };
+            if casual {
+                // One line: "go to ..., then ... and then ...".
+                let join = if i == 0 {
+                    ""
+                } else {
+                    pick(&mut rng, &ph::CHAIN_CASUAL)
+                };
+                pieces.push(format!("{join}{body}"));
+                continue;
+            }
             let opener = if i == 0 {
                 pick(&mut rng, &ph::CHAIN_FIRST)
             } else if i + 1 == subs.len() {
@@ -618,13 +628,9 @@ pub fn chain_parts(parts: &[Instruction], seed: u64) -> Result<Instruction> {
             } else {
                 pick(&mut rng, &ph::CHAIN_MID)
             };
-            pieces.push(if casual {
-                decapitalize(&format!("{opener}{body}"))
-            } else {
-                format!("{}.", capitalize(&format!("{opener}{body}")))
-            });
+            pieces.push(format!("{}.", capitalize(&format!("{opener}{body}"))));
         }
-        pieces.join(if casual { ", " } else { " " })
+        pieces.join(if casual { "" } else { " " })
     };
     Ok(Instruction {
         instruction_text: text,

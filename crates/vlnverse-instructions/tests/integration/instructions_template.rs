@@ -416,6 +416,25 @@ fn chain_joins_parts_in_order() {
         .collect();
     assert_eq!(g.chain(&same, 0).unwrap().style, Some(Style::Formal));
     assert!(g.chain(&[], 0).is_err());
+    // Casual parts make one lower-case line without a full stop, the parts in order.
+    let casual: Vec<Instruction> = cases[..3]
+        .iter()
+        .map(|(t, s)| g.coarse(&w.ctx(s), *t, Style::Casual, 4).unwrap())
+        .collect();
+    let c = g.chain(&casual, 5).unwrap();
+    assert_eq!(c.style, Some(Style::Casual));
+    let t = &c.instruction_text;
+    assert!(
+        t.starts_with(char::is_lowercase) && !t.ends_with('.'),
+        "{t}"
+    );
+    let mut at = 0;
+    for s in &c.sub_instructions {
+        let pos = t[at..]
+            .find(s.as_str())
+            .unwrap_or_else(|| panic!("{s} not in {t}"));
+        at += pos + s.len();
+    }
 }
 
 #[test]
