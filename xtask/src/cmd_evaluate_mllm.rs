@@ -137,7 +137,7 @@ pub fn dry_run(args: &Args, eval: EvalConfig) -> anyhow::Result<()> {
         t.calls, t.prompt_tokens, t.completion_tokens
     );
     println!(
-        "estimate for --sample {count} ({} episodes): about {moves} decisions if each reply is one primitive along the reference path -> about {:.1} M tokens; at most {cap} decisions (the step limit) -> at most {:.1} M tokens",
+        "estimate for --sample {count} ({} episodes): about {moves} decisions if each reply is one primitive along the reference path -> about {:.1} M tokens; at most {cap} decisions (the step limit) -> about {:.1} M tokens",
         sampled.len(),
         moves as f64 * per_call / 1e6,
         cap as f64 * per_call / 1e6
