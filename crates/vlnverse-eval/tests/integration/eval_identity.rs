@@ -223,3 +223,33 @@ fn colliders_are_built_once_per_scene_for_a_whole_evaluation() {
         out.records.len()
     );
 }
+
+#[test]
+fn a_run_of_another_benchmark_version_is_not_resumed() {
+    let dir = tempfile::tempdir().unwrap();
+    eval_support::make_dataset(dir.path(), Task::Fine, 1, 2, 3);
+    let cfg = blind_lenient();
+    let agent = builtin("forward", None, &cfg).unwrap();
+    let req = eval_support::fine_test(dir.path(), "run", &cfg, Some(1), 1);
+    let first = evaluate(&req, &*agent).unwrap();
+    assert_eq!(
+        first.summary.benchmark_version.as_deref(),
+        Some(vlnverse_score::BENCHMARK_VERSION)
+    );
+    let path = dir.path().join("run/run.json");
+    let mut run: serde_json::Map<String, serde_json::Value> =
+        serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    assert_eq!(
+        run.insert("benchmark_version".into(), "0.9".into()),
+        Some(vlnverse_score::BENCHMARK_VERSION.into())
+    );
+    std::fs::write(&path, serde_json::to_vec_pretty(&run).unwrap()).unwrap();
+    let err = evaluate(
+        &eval_support::fine_test(dir.path(), "run", &cfg, None, 1),
+        &*agent,
+    )
+    .unwrap_err()
+    .to_string();
+    let now = format!("\"{}\"", vlnverse_score::BENCHMARK_VERSION);
+    assert_refused_on(&err, "benchmark_version", &now, "\"0.9\"");
+}
