@@ -537,6 +537,34 @@ mod tests {
         }
     }
 
+    /// A dataset whose every instruction is "Walk to the goal." against a reference that lacks
+    /// "goal": one word in four is OOV, and the held-out part is every tenth line.
+    #[test]
+    fn a_dataset_is_scored_per_task_against_the_held_out_lines() {
+        let d = tempfile::tempdir().unwrap();
+        let eps = vlnverse_testkit::datasets::make_dataset(d.path(), Task::Fine, 1, 3, 5);
+        let reference = d.path().join("human.txt");
+        let lines: Vec<String> = (0..20)
+            .map(|i| format!("walk to the door {i} and stop. turn left at the sofa"))
+            .collect();
+        std::fs::write(&reference, lines.join("\n")).unwrap();
+        let n = naturalness(d.path(), &reference, None).unwrap();
+        assert_eq!((n.fit_instructions, n.human.instructions), (18, 2));
+        assert_eq!(n.groups.len(), 1);
+        let fine = &n.groups[0];
+        assert_eq!((fine.task.as_str(), fine.style.as_str()), ("fine", "all"));
+        assert_eq!(fine.instructions, eps.len());
+        assert_eq!(fine.words, 4 * eps.len() as u64);
+        assert!((fine.oov_share - 0.25).abs() < 1e-12, "{}", fine.oov_share);
+        assert_eq!(fine.top_oov, vec![("goal".to_string(), eps.len() as u64)]);
+        assert!(fine.perplexity.is_finite() && fine.ratio > 1.0, "{fine:?}");
+        assert!(
+            n.markdown().contains("| fine | 3 | 12 |"),
+            "{}",
+            n.markdown()
+        );
+    }
+
     #[test]
     fn a_reference_without_rare_words_is_refused() {
         let err = BigramModel::fit(["go left", "go left"], None).unwrap_err();
