@@ -242,15 +242,15 @@ pub struct HttpAgent {
     cfg: HttpAgentConfig,
     /// The name the server answered `init` with (the routes use it).
     name: String,
-    init_http: ureq::Agent,
-    step_http: ureq::Agent,
+    /// One client, so every request reuses one kept-alive connection (a server that serves
+    /// one connection at a time would never read a second one).
+    http: ureq::Agent,
     episode: EpisodeStart,
     live: Option<Arc<AtomicBool>>,
 }
 
-fn http_agent(timeout: Duration) -> ureq::Agent {
+fn http_agent() -> ureq::Agent {
     ureq::Agent::config_builder()
-        .timeout_global(Some(timeout))
         .http_status_as_error(false)
         .build()
         .into()
@@ -270,8 +270,7 @@ impl HttpAgent {
         cfg.validate()?;
         let mut agent = HttpAgent {
             name: cfg.agent_name.clone(),
-            init_http: http_agent(cfg.init_timeout),
-            step_http: http_agent(cfg.step_timeout),
+            http: http_agent(),
             cfg,
             episode: EpisodeStart::default(),
             live: None,
@@ -302,11 +301,12 @@ impl HttpAgent {
     /// POST `body` to `route` with bounded retries; the reply's JSON object.
     fn post(&self, route: &str, body: &str, init: bool) -> Result<Json> {
         let url = format!("{}{route}", self.cfg.base());
-        let (http, timeout) = if init {
-            (&self.init_http, self.cfg.init_timeout)
+        let timeout = if init {
+            self.cfg.init_timeout
         } else {
-            (&self.step_http, self.cfg.step_timeout)
+            self.cfg.step_timeout
         };
+        let http = &self.http;
         let mut wait = self.cfg.retry_backoff;
         let mut attempt = 0;
         loop {
@@ -339,6 +339,9 @@ impl HttpAgent {
         let sent = http
             .post(url)
             .header("Content-Type", "application/json")
+            .config()
+            .timeout_global(Some(timeout))
+            .build()
             .send(body);
         let mut resp = match sent {
             Ok(r) => r,

@@ -401,3 +401,34 @@ fn the_factory_keeps_one_agent_alive() {
     drop(a);
     assert!(f.make().is_ok());
 }
+
+#[test]
+fn every_request_goes_over_one_kept_alive_connection() {
+    // A server that serves one connection at a time (Python's plain HTTPServer, for one):
+    // a client that opened a second connection would wait on it for ever.
+    let listener = TcpListener::bind("127.0.0.1:0").unwrap();
+    let url = format!("http://{}", listener.local_addr().unwrap());
+    let log = Arc::new(Mutex::new(Vec::new()));
+    let seen = log.clone();
+    std::thread::spawn(move || {
+        let counts = Mutex::new(BTreeMap::new());
+        for stream in listener.incoming().flatten() {
+            let script = |path: &str, _: usize| match path {
+                "/agent/init" => Reply::Status(201, r#"{"agent_name": "walker"}"#.into()),
+                "/agent/walker/reset" => Reply::Status(200, "{}".into()),
+                _ => Reply::Status(200, r#"{"action": [[2]]}"#.into()),
+            };
+            connection(stream, &log, &script, &counts);
+        }
+    });
+    let mut agent = HttpAgent::connect(config(&url)).unwrap();
+    agent.begin(inputs(ActionSpace::Discrete)).unwrap();
+    let obs = observations();
+    for n in 0..3 {
+        assert_eq!(
+            agent.step(&step(&obs, n)).unwrap(),
+            Action::TurnLeft(15f32.to_radians())
+        );
+    }
+    assert_eq!(seen.lock().unwrap().len(), 5);
+}
