@@ -19,6 +19,7 @@ mod actions;
 mod env;
 mod generate;
 mod layout;
+mod mllm;
 mod run;
 
 create_exception!(
@@ -113,5 +114,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run::score, m)?)?;
     m.add_function(wrap_pyfunction!(generate::generate, m)?)?;
     m.add_function(wrap_pyfunction!(generate::merge, m)?)?;
+    m.add_function(wrap_pyfunction!(mllm::evaluate_mllm, m)?)?;
     Ok(())
 }

@@ -102,3 +102,27 @@ def generate(
     on_scene: Callable[[int, int], None] | None = None,
 ) -> dict[str, Any]: ...
 def merge(out: _Path, parts: list[_Path]) -> int: ...
+def evaluate_mllm(
+    dataset: _Path,
+    task: str,
+    split: str,
+    out: _Path,
+    *,
+    endpoint: str,
+    model: str,
+    config_path: _Path | None = None,
+    config_json: str | None = None,
+    setting: str = "telhop",
+    action_space: str = "discrete",
+    profile: str = "vlnverse",
+    sensors: _Path | None = None,
+    seed: int = 0,
+    max_steps: int | None = None,
+    success_distance: float | None = None,
+    episodes: int | None = None,
+    sample: int | None = None,
+    threads: int | None = None,
+    version: str | None = None,
+    fresh: bool = False,
+    render: bool = True,
+) -> str: ...

@@ -57,6 +57,15 @@ def evaluate(
     ``out`` are kept, a run with another agent ``name`` / ``version`` or protocol is refused,
     ``fresh=True`` starts over.
     Returns ``summary.json`` as a dict."""
+    native = getattr(agent, "_evaluate_native", None)
+    if native is not None:
+        # Agents that run inside the native evaluator (MLLMAgent): the same run folder.
+        result: dict[str, Any] = native(
+            dataset=dataset, task=task, split=split, setting=setting, out=out,
+            num_envs=num_envs, action_space=action_space, sensors=sensors, profile=profile,
+            seed=seed, max_steps=max_steps, success_distance=success_distance,
+            episodes=episodes, sample=sample, version=version, fresh=fresh, render=render)
+        return result
     agent_name = name or getattr(agent, "name", None) or type(agent).__name__
     num_envs = check.check_int("num_envs", num_envs, 1, check.MAX_NUM_ENVS)
     folder, protocol = open_run_folder(
