@@ -43,7 +43,8 @@ use vlnverse_env::Aabb;
 mod faces;
 
 /// Megabytes of prepared scenes kept by [`RasterScene::shared`] unless [`SCENE_CACHE_MB_VAR`]
-/// says otherwise (a generated home takes 6 to 12 MB).
+/// says otherwise (a generated `vlnverse` home holds about 5 MB, mesh included:
+/// `cargo xtask bench --filter home_switch`).
 pub const SCENE_CACHE_MB: usize = 256;
 /// Environment variable with the megabytes of prepared scenes kept by [`RasterScene::shared`]
 /// (0: none).
