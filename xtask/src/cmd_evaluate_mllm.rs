@@ -49,7 +49,7 @@ pub fn factory(args: &Args, eval: &EvalConfig) -> anyhow::Result<MllmFactory> {
         Some(p) => format!("--agent-config {}", p.display()),
         None => "--mllm-endpoint / --mllm-model".into(),
     };
-    Ok(MllmFactory::new(cfg).with_context(|| what)?)
+    MllmFactory::new(cfg).with_context(|| what)
 }
 
 /// After the run: `mllm.jsonl` and the totals in `summary.json`; prints the traffic.

@@ -49,7 +49,7 @@ enum Command {
     /// Statistics and plots of a generated dataset.
     Stats(cmd_stats::Args),
     /// Evaluate an agent on a dataset split.
-    Evaluate(cmd_evaluate::Args),
+    Evaluate(Box<cmd_evaluate::Args>),
     /// Score trajectories recorded elsewhere with the benchmark's metrics.
     Score(cmd_score::Args),
     /// Export observations along teacher trajectories as an offline dataset (LeRobot layout).
@@ -86,7 +86,7 @@ fn main() {
         Command::Generate(a) => cmd_generate::run(a),
         Command::Merge(a) => cmd_merge::run(a),
         Command::Stats(a) => cmd_stats::run(a),
-        Command::Evaluate(a) => cmd_evaluate::run(a),
+        Command::Evaluate(a) => cmd_evaluate::run(*a),
         Command::Score(a) => cmd_score::run(a),
         Command::Export(a) => cmd_export::run(a),
         Command::Review(a) => cmd_review::run(a),
