@@ -6,6 +6,7 @@ use std::path::PathBuf;
 
 use crate::split_args::SplitArgs;
 use anyhow::Context as _;
+use vlnverse_score::lock::{check_score_folder, write_score_file};
 use vlnverse_score::metrics::{MetricsConfig, DEFAULT_START_TOLERANCE};
 use vlnverse_score::report::write_run;
 use vlnverse_score::{score_with, trajectory, ScoreOptions};
@@ -49,37 +50,9 @@ pub struct Args {
     pub force: bool,
 }
 
-/// Written beside `summary.json` by `score`: marks the folder as score's own, so a later
-/// score may replace its files.
-const SCORE_FILE: &str = "score.json";
-
-/// Files of an evaluation's run folder: a score written among them would mix two runs.
-const EVALUATION_FILES: [&str; 3] = ["run.json", "progress.jsonl", "trajectories.jsonl"];
-
-/// Refuse an `--out` that holds something score must not overwrite: an evaluation (running or
-/// finished), or a `summary.json` of something else (unless `--force`).
-fn check_out(out: &std::path::Path, force: bool) -> anyhow::Result<()> {
-    vlnverse_score::lock::check_is_folder(out)?;
-    vlnverse_score::lock::refuse_dataset_folder(out)?;
-    if let Some(f) = EVALUATION_FILES.iter().find(|f| out.join(f).exists()) {
-        anyhow::bail!(
-            "--out {}: holds an evaluation's run ({f}); score into a folder of its own",
-            out.display()
-        );
-    }
-    if !force && out.join("summary.json").exists() && !out.join(SCORE_FILE).exists() {
-        anyhow::bail!(
-            "--out {}: holds a summary.json that score did not write; choose another folder, \
-             or --force to overwrite it",
-            out.display()
-        );
-    }
-    Ok(())
-}
-
 /// Run the command.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    check_out(&args.out, args.force)?;
+    check_score_folder(&args.out, args.force)?;
     let options = ScoreOptions {
         metrics: MetricsConfig {
             success_distance: args.success_distance,
@@ -125,16 +98,13 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let run = scored.run_summary(&method, args.setting.as_deref());
     // Checked again under the lock: an evaluation may have started meanwhile.
     let _lock = vlnverse_score::OutputLock::acquire(&args.out, "score")?;
-    check_out(&args.out, args.force)?;
-    let marker = serde_json::json!({
-        "trajectories": args.trajectories.display().to_string(),
-        "dataset": args.data.dataset.display().to_string(),
-        "task": args.data.task.name(),
-        "split": args.data.split.name(),
-    });
-    vlnverse_score::dataset::write_atomic(
-        &args.out.join(SCORE_FILE),
-        format!("{marker:#}\n").as_bytes(),
+    check_score_folder(&args.out, args.force)?;
+    write_score_file(
+        &args.out,
+        &args.trajectories,
+        &args.data.dataset,
+        args.data.task,
+        args.data.split,
     )?;
     write_run(&args.out, &run, &scored.metrics)?;
     let s = &run.summary;
@@ -325,7 +295,7 @@ mod tests {
         let own = dir.path().join("own");
         run(args(own.clone(), false)).unwrap();
         run(args(own.clone(), false)).unwrap();
-        assert!(own.join(SCORE_FILE).is_file());
+        assert!(own.join(vlnverse_score::lock::SCORE_FILE).is_file());
         // A dataset folder, and a file, are refused in words.
         let err = format!(
             "{:#}",

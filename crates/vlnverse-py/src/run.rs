@@ -12,6 +12,7 @@ use vlnverse_task::eval::split_fingerprint;
 use vlnverse_task::eval::{check_split, finish_run, open_run, run_identity, select_episodes};
 use vlnverse_task::eval::{AgentFactory, EvalRequest, LayerIdentity, SceneCache};
 use vlnverse_task::eval::{EpisodeRecord, ProgressLog, PROGRESS_FILE};
+use vlnverse_task::lock;
 use vlnverse_task::metrics::MetricsConfig;
 use vlnverse_task::report::write_run;
 use vlnverse_task::sample::Sample;
@@ -34,7 +35,7 @@ pub fn load_episodes(dataset: PathBuf, task: &str, split: &str) -> PyResult<Stri
 /// under `out` and returns `summary.json`'s text.
 #[pyfunction]
 #[pyo3(signature = (dataset, task, split, trajectories, out, *, success_distance = 3.0,
-    fail_on_collision = false, allow_missing = false, method = None))]
+    fail_on_collision = false, allow_missing = false, method = None, force = false))]
 #[allow(clippy::too_many_arguments)]
 pub fn score(
     py: Python<'_>,
@@ -47,10 +48,13 @@ pub fn score(
     fail_on_collision: bool,
     allow_missing: bool,
     method: Option<String>,
+    force: bool,
 ) -> PyResult<String> {
     let (task, split): (Task, Split) = (parse("task", task)?, parse("split", split)?);
     py.detach(|| {
         guarded("score", || {
+            // The same folder rules as `cargo xtask score`.
+            lock::check_score_folder(&out, force).map_err(py_err)?;
             let options = ScoreOptions {
                 metrics: MetricsConfig {
                     success_distance,
@@ -70,6 +74,9 @@ pub fn score(
                     .unwrap_or_else(|| "trajectories".into())
             });
             let run = scored.run_summary(&name, None);
+            let _lock = OutputLock::acquire(&out, "score").map_err(py_err)?;
+            lock::check_score_folder(&out, force).map_err(py_err)?;
+            lock::write_score_file(&out, &trajectories, &dataset, task, split).map_err(py_err)?;
             write_run(&out, &run, &scored.metrics).map_err(py_err)?;
             serde_json::to_string(&run).map_err(py_err)
         })

@@ -105,3 +105,49 @@ pub fn refuse_dataset_folder(dir: &Path) -> Result<()> {
     }
     Ok(())
 }
+
+/// Written beside `summary.json` by `score`: marks the folder as score's own, so a later
+/// score may replace its files.
+pub const SCORE_FILE: &str = "score.json";
+
+/// Files of an evaluation's run folder: a score written among them would mix two runs.
+const EVALUATION_FILES: [&str; 3] = ["run.json", "progress.jsonl", "trajectories.jsonl"];
+
+/// Refuse an `out` that `score` must not write into: a file, a dataset folder, an evaluation's
+/// run (finished or running; `force` does not change that), or a `summary.json` that no score
+/// wrote (no [`SCORE_FILE`] beside it) unless `force`.
+pub fn check_score_folder(out: &Path, force: bool) -> Result<()> {
+    check_is_folder(out)?;
+    refuse_dataset_folder(out)?;
+    let refuse = |why: String| Err(DataError::invalid("out", out.display(), why));
+    if let Some(f) = EVALUATION_FILES.iter().find(|f| out.join(f).exists()) {
+        return refuse(format!(
+            "holds an evaluation's run ({f}); score into a folder of its own"
+        ));
+    }
+    if !force && out.join("summary.json").exists() && !out.join(SCORE_FILE).exists() {
+        return refuse(
+            "holds a summary.json that score did not write; choose another folder, or \
+             --force (Python: force=True) to overwrite it"
+                .into(),
+        );
+    }
+    Ok(())
+}
+
+/// Write [`SCORE_FILE`] into `out`: what was scored.
+pub fn write_score_file(
+    out: &Path,
+    trajectories: &Path,
+    dataset: &Path,
+    task: crate::episode::Task,
+    split: crate::episode::Split,
+) -> Result<()> {
+    let marker = serde_json::json!({
+        "trajectories": trajectories.display().to_string(),
+        "dataset": dataset.display().to_string(),
+        "task": task.name(),
+        "split": split.name(),
+    });
+    crate::dataset::write_atomic(&out.join(SCORE_FILE), format!("{marker:#}\n").as_bytes())
+}

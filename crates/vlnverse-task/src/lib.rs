@@ -6,7 +6,7 @@ pub use vlnverse_generate as generate;
 pub use vlnverse_instructions as instructions;
 
 pub use vlnverse_score::{
-    dataset, episode, metrics, report, route, sample, score, trajectory, vocab,
+    dataset, episode, lock, metrics, report, route, sample, score, trajectory, vocab,
 };
 
 pub use vlnverse_eval::{

@@ -88,6 +88,7 @@ def score(
     fail_on_collision: bool = False,
     allow_missing: bool = False,
     method: str | None = None,
+    force: bool = False,
 ) -> str: ...
 def generate(
     out: _Path,

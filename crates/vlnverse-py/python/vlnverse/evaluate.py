@@ -174,14 +174,17 @@ def load_episodes(dataset: PathLike, task: str, split: str) -> list[dict[str, An
 
 def score(dataset: PathLike, task: str, split: str, trajectories: PathLike, out: PathLike, *,
           success_distance: float = 3.0, fail_on_collision: bool = False,
-          allow_missing: bool = False, method: str | None = None) -> dict[str, Any]:
-    """Score a trajectory file like ``cargo xtask score``; returns ``summary.json``."""
+          allow_missing: bool = False, method: str | None = None,
+          force: bool = False) -> dict[str, Any]:
+    """Score a trajectory file like ``cargo xtask score``; returns ``summary.json``. ``out``
+    may not hold an evaluation, nor a ``summary.json`` that no score wrote (unless
+    ``force=True``)."""
     text = _score(check.check_path("dataset", dataset),
                   check.check_choice("task", task, check.TASKS),
                   check.check_choice("split", split, check.SPLITS),
                   check.check_path("trajectories", trajectories), check.check_path("out", out),
                   success_distance=success_distance, fail_on_collision=fail_on_collision,
-                  allow_missing=allow_missing, method=method)
+                  allow_missing=allow_missing, method=method, force=bool(force))
     summary: dict[str, Any] = json.loads(text)
     return summary
 
