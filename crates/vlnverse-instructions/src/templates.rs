@@ -283,11 +283,9 @@ fn coarse_sentence(style: Style, p: &CoarseParts, rng: &mut ChaCha8Rng) -> Strin
                 pick(rng, &ph::FORMAL),
                 &[("desc", desc), ("sup", sup), ("rel", rel), ("room", &rc)],
             );
-            format!(
-                "{}{core}{remark}{}",
-                pick(rng, &ph::FORMAL_OPEN),
-                pick(rng, &ph::FORMAL_CLOSE)
-            )
+            let open = pick(rng, &ph::FORMAL_OPEN);
+            let close = closer(&core, pick(rng, &ph::FORMAL_CLOSE), ".");
+            format!("{open}{core}{remark}{close}")
         }
         Style::Natural => {
             let core = match &p.room {
@@ -306,7 +304,7 @@ fn coarse_sentence(style: Style, p: &CoarseParts, rng: &mut ChaCha8Rng) -> Strin
             } else {
                 core
             };
-            let close = pick(rng, &ph::NATURAL_CLOSE);
+            let close = closer(&core, pick(rng, &ph::NATURAL_CLOSE), ".");
             let close = if !remark.is_empty() && close.starts_with(',') {
                 "."
             } else {
@@ -324,12 +322,24 @@ fn coarse_sentence(style: Style, p: &CoarseParts, rng: &mut ChaCha8Rng) -> Strin
                 pick(rng, &ph::CASUAL),
                 &[("desc", desc), ("sup", sup), ("rel", rel), ("room", &rc)],
             );
-            format!(
-                "{}{core}{remark}{}",
-                pick(rng, &ph::CASUAL_OPEN),
-                pick(rng, &ph::CASUAL_CLOSE)
-            )
+            let open = pick(rng, &ph::CASUAL_OPEN);
+            let close = closer(&core, pick(rng, &ph::CASUAL_CLOSE), "");
+            format!("{open}{core}{remark}{close}")
         }
+    }
+}
+
+/// `close`, or `plain` when both it and the core sentence say to stop or wait ("Find the desk
+/// and stop there. Stop when you get there.").
+fn closer<'a>(core: &str, close: &'a str, plain: &'a str) -> &'a str {
+    let halts = |s: &str| {
+        let s = s.to_lowercase();
+        ["stop", "wait", "remain"].iter().any(|w| s.contains(w))
+    };
+    if halts(core) && halts(close) {
+        plain
+    } else {
+        close
     }
 }
 
@@ -649,4 +659,21 @@ fn without_opener(t: &str) -> &str {
         .filter(|o| !o.trim().is_empty())
         .find_map(|o| t.strip_prefix(o).filter(|r| !r.trim().is_empty()))
         .unwrap_or(t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_closer_does_not_repeat_the_stop() {
+        let core = "Find the desk and stop there";
+        assert_eq!(closer(core, ". Stop when you get there.", "."), ".");
+        assert_eq!(closer(core, ". Thanks.", "."), ". Thanks.");
+        assert_eq!(
+            closer("Go to the desk", ". Wait there.", "."),
+            ". Wait there."
+        );
+        assert_eq!(closer("wait by the desk", " and wait there", ""), "");
+    }
 }
