@@ -426,7 +426,11 @@ impl ChatClient {
         }
         if let Some(dir) = &config.cache_dir {
             check_writable(dir).map_err(|e| {
-                DataError::invalid("llm.cache_dir", dir.display(), format!("cannot be written: {e}"))
+                DataError::invalid(
+                    "llm.cache_dir",
+                    dir.display(),
+                    format!("cannot be written: {e}"),
+                )
             })?;
         }
         let agent: ureq::Agent = ureq::Agent::config_builder()
@@ -873,7 +877,9 @@ fn stopped_error(why: String) -> DataError {
     DataError::invalid(
         STOP_FIELD,
         "\"error\"",
-        format!("{why}; generation stops (on_reject = \"fallback\" keeps the template text instead)"),
+        format!(
+            "{why}; generation stops (on_reject = \"fallback\" keeps the template text instead)"
+        ),
     )
 }
 
@@ -1149,7 +1155,10 @@ mod tests {
         })
         .unwrap_err()
         .to_string();
-        assert!(err.contains("llm.cache_dir") && err.contains("a_file"), "{err}");
+        assert!(
+            err.contains("llm.cache_dir") && err.contains("a_file"),
+            "{err}"
+        );
         // A writable one is made and left empty.
         let cache = dir.path().join("cache");
         ChatClient::new(LlmConfig {
