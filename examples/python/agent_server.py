@@ -44,6 +44,7 @@ import inspect
 import io
 import json
 import pickle
+import socket
 import sys
 import threading
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
@@ -227,6 +228,12 @@ def make_handler(server: AgentServer, quiet: bool) -> type[BaseHTTPRequestHandle
     class Handler(BaseHTTPRequestHandler):
         # Keep-alive: the client sends every step over one connection.
         protocol_version = "HTTP/1.1"
+
+        def setup(self) -> None:
+            super().setup()
+            # Replies are small: without TCP_NODELAY each waits for the client's delayed ACK
+            # (about 40 ms a step).
+            self.connection.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
 
         def _reply(self, status: int, payload: dict[str, Any]) -> None:
             data = json.dumps(payload).encode()
