@@ -22,6 +22,8 @@ fn server() -> String {
     std::thread::spawn(move || {
         for stream in listener.incoming().flatten() {
             std::thread::spawn(move || {
+                // One write per reply and no Nagle: the client's delayed ACK must not be timed.
+                let _ = stream.set_nodelay(true);
                 let mut out = stream.try_clone().unwrap();
                 let mut r = BufReader::new(stream);
                 loop {
@@ -53,9 +55,7 @@ fn server() -> String {
                         "HTTP/1.1 200 OK\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n",
                         reply.len()
                     );
-                    if out.write_all(head.as_bytes()).is_err()
-                        || out.write_all(reply.as_bytes()).is_err()
-                    {
+                    if out.write_all(format!("{head}{reply}").as_bytes()).is_err() {
                         return;
                     }
                 }
