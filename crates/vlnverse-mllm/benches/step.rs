@@ -56,6 +56,8 @@ fn bench(c: &mut Criterion) {
         ("text_current_png", History::Text, View::Current),
         ("map_current_png", History::Map, View::Current),
         ("map_panorama4_png", History::Map, View::Panorama4),
+        // The map alone, no camera picture: the cost of the map and its encoding.
+        ("map_none_png", History::Map, View::None),
     ];
     for (name, history, view) in cases {
         let cfg = MllmConfig {
