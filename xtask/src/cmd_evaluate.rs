@@ -307,6 +307,32 @@ mod tests {
     }
 
     #[test]
+    fn http_agent_flags_are_checked_before_anything_runs() {
+        let http = |url: Option<&str>, threads: Option<usize>, timeout: f64| Args {
+            agent: "http".into(),
+            agent_url: url.map(str::to_string),
+            threads,
+            agent_timeout: timeout,
+            ..args(None, Setting::Lenient)
+        };
+        let err = format!("{:#}", run(http(None, None, 60.0)).unwrap_err());
+        assert!(err.contains("--agent-url"), "{err}");
+        let url = Some("http://127.0.0.1:9");
+        let err = format!("{:#}", run(http(url, Some(2), 60.0)).unwrap_err());
+        assert!(err.contains("--threads 1"), "{err}");
+        let err = format!("{:#}", run(http(url, None, 0.0)).unwrap_err());
+        assert!(err.contains("--agent-timeout"), "{err}");
+        let err = format!(
+            "{:#}",
+            run(http(Some("ftp://x:1"), None, 60.0)).unwrap_err()
+        );
+        assert!(
+            err.contains("agent_url") && err.contains("ftp://x:1"),
+            "{err}"
+        );
+    }
+
+    #[test]
     fn protocol_file_and_flags_combine() {
         let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../configs/eval");
         let cfg = config(&args(Some(root.join("telhop.toml")), Setting::Telhop)).unwrap();
