@@ -566,6 +566,14 @@ pub fn action_code(reply: &Json) -> std::result::Result<i64, String> {
             Json::Array(a) => a
                 .first()
                 .ok_or_else(|| format!("`action` is an empty list: {top}"))?,
+            // `ideal_flag: false` marks a velocity command, which is no discrete action.
+            Json::Object(o) if o.get("ideal_flag") == Some(&Json::Bool(false)) => {
+                return Err(format!(
+                    "the agent answered a velocity command (`ideal_flag: false`), which this \
+                     client does not run: {}",
+                    clip(&top.to_string())
+                ))
+            }
             Json::Object(o) => o
                 .get("action")
                 .ok_or_else(|| format!("`action` entry has no `action`: {top}"))?,

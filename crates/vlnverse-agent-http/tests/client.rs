@@ -231,6 +231,7 @@ fn every_reply_shape_of_the_original_agents_is_read() {
         json!({"action": []}),
         json!({"action": "left"}),
         json!({"action": [[1.5]]}),
+        json!({"action": [{"action": [1.0, 0.0, 0.0], "ideal_flag": false}]}),
     ] {
         assert!(action_code(&bad).is_err(), "{bad}");
     }
