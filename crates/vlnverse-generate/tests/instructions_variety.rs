@@ -117,9 +117,10 @@ fn tiny_preset_instructions_are_grounded_varied_and_human_length() {
             share * 100.0
         );
     }
-    // The tiny preset alone (before this generator: about 250 words).
+    // The tiny preset alone, in the plain register of people giving directions (321 words when
+    // the slang and rare synonyms were taken out; about 250 before the lexicon existed).
     assert!(
-        st.word_vocabulary >= 600,
+        st.word_vocabulary >= 280,
         "only {} distinct words",
         st.word_vocabulary
     );
