@@ -153,19 +153,12 @@ mod tests {
         dataset::write_split(dir, Task::Fine, Split::Test, &[ep]).unwrap();
     }
 
-    #[test]
-    fn score_writes_the_run_files_and_names_bad_input() {
-        let dir = tempfile::tempdir().unwrap();
-        straight_episode(dir.path(), 5, 2.0);
-        let traj = dir.path().join("robot.jsonl");
-        std::fs::write(
-            &traj,
-            "{\"episode_id\": 5, \"positions\": [[0,0,0],[1,0,0],[2,0,0]], \"stopped\": true}\n",
-        )
-        .unwrap();
-        let args = |trajectories: PathBuf, out: PathBuf| Args {
+    /// Arguments scoring `trajectories` on the fine test split of `dataset` into `out`, with
+    /// the CLI's defaults (Euclidean success at 3 m, as `straight_episode` has no maps).
+    fn score_args(dataset: &std::path::Path, trajectories: PathBuf, out: PathBuf) -> Args {
+        Args {
             data: SplitArgs {
-                dataset: dir.path().to_path_buf(),
+                dataset: dataset.to_path_buf(),
                 task: Task::Fine,
                 split: Split::Test,
             },
@@ -179,7 +172,20 @@ mod tests {
             euclidean: true,
             start_tolerance: DEFAULT_START_TOLERANCE,
             force: false,
-        };
+        }
+    }
+
+    #[test]
+    fn score_writes_the_run_files_and_names_bad_input() {
+        let dir = tempfile::tempdir().unwrap();
+        straight_episode(dir.path(), 5, 2.0);
+        let traj = dir.path().join("robot.jsonl");
+        std::fs::write(
+            &traj,
+            "{\"episode_id\": 5, \"positions\": [[0,0,0],[1,0,0],[2,0,0]], \"stopped\": true}\n",
+        )
+        .unwrap();
+        let args = |trajectories: PathBuf, out: PathBuf| score_args(dir.path(), trajectories, out);
         let out = dir.path().join("run");
         run(args(traj, out.clone())).unwrap();
         let summary: serde_json::Value =
@@ -238,21 +244,8 @@ mod tests {
         )
         .unwrap();
         let args = |out: PathBuf, force: bool| Args {
-            data: SplitArgs {
-                dataset: dir.path().to_path_buf(),
-                task: Task::Fine,
-                split: Split::Test,
-            },
-            trajectories: traj.clone(),
-            out,
-            method: None,
-            setting: None,
-            allow_missing: false,
-            fail_on_collision: false,
-            success_distance: 3.0,
-            euclidean: true,
-            start_tolerance: DEFAULT_START_TOLERANCE,
             force,
+            ..score_args(dir.path(), traj.clone(), out)
         };
         let listing = |d: &std::path::Path| {
             let mut v: Vec<String> = std::fs::read_dir(d)
@@ -315,21 +308,8 @@ mod tests {
             let traj = dir.path().join(name);
             std::fs::write(&traj, line).unwrap();
             Args {
-                data: SplitArgs {
-                    dataset: dir.path().to_path_buf(),
-                    task: Task::Fine,
-                    split: Split::Test,
-                },
-                trajectories: traj,
-                out: out.clone(),
-                method: None,
-                setting: None,
-                allow_missing: false,
-                fail_on_collision: false,
-                success_distance: 3.0,
-                euclidean: true,
                 start_tolerance: tol,
-                force: false,
+                ..score_args(dir.path(), traj, out.clone())
             }
         };
         // Regression: a position 1e9 m away made nDTW resampling loop forever.
