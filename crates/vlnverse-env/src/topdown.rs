@@ -111,6 +111,8 @@ pub fn room_color(kind: RoomType) -> [u8; 3] {
         RoomType::Closet => [236, 232, 214],
         RoomType::Gym => [250, 214, 226],
         RoomType::Room => [234, 234, 234],
+        RoomType::EntranceHall => [226, 220, 240],
+        RoomType::Balcony => [214, 236, 240],
     }
 }
 

@@ -166,6 +166,7 @@ vocabulary! {
         SoapDispenser = (62, "soap_dispenser", Small),
         Plate = (63, "plate", Small),
         Unknown = (64, "unknown", Unknown),
+        Door = (65, "door", Furniture),
     }
 }
 
@@ -200,6 +201,8 @@ vocabulary! {
         Closet = (9, "closet", Structure),
         Gym = (10, "gym", Structure),
         Room = (11, "room", Structure),
+        EntranceHall = (12, "entrance_hall", Structure),
+        Balcony = (13, "balcony", Structure),
     }
 }
 

@@ -37,6 +37,7 @@ pub fn class_defaults(class: SemanticClass) -> (f32, f32, &'static str) {
         C::Book => (0.8, 0.6, "paper"),
         C::Clock | C::Remote | C::Candle => (0.5, 0.5, "plastic"),
         C::Toaster | C::Kettle | C::Microwave => (3.0, 0.5, "metal"),
+        C::Door => (20.0, 0.5, "wood"),
         C::Unknown => (10.0, 0.5, "unknown"),
     }
 }

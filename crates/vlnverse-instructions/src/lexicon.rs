@@ -41,6 +41,8 @@ pub fn room_names(kind: RoomType) -> &'static [&'static str] {
         RoomType::Closet => &["closet", "storage room"],
         RoomType::Gym => &["gym", "exercise room", "workout room"],
         RoomType::Room => &["room", "spare room", "empty room"],
+        RoomType::EntranceHall => &["entrance hall", "entryway", "front hall"],
+        RoomType::Balcony => &["balcony"],
     }
 }
 

@@ -122,6 +122,11 @@ pub struct DoorsConfig {
     pub corner_margin: f32,
     /// Depth of the free box kept on both sides of every opening (m).
     pub clearance: f32,
+    /// Whether doorways (not open-plan openings) get a hinged door leaf with a handle.
+    pub leaves: bool,
+    /// Probability that a door is closed; a door is only closed where every room stays
+    /// reachable without it (closed doors block the agent and the navigable map).
+    pub closed_probability: f32,
 }
 
 /// Furniture and small objects.
@@ -219,6 +224,8 @@ impl Default for DoorsConfig {
             open_plan_width_max: 3.0,
             corner_margin: 0.25,
             clearance: 1.0,
+            leaves: true,
+            closed_probability: 0.3,
         }
     }
 }
@@ -450,6 +457,7 @@ impl ProcgenConfig {
         positive("doors.frame_width", d.frame_width)?;
         probability("doors.extra_door_probability", d.extra_door_probability)?;
         probability("doors.open_plan_probability", d.open_plan_probability)?;
+        probability("doors.closed_probability", d.closed_probability)?;
         check(
             d.open_plan_width_min.is_finite() && d.open_plan_width_min >= d.width_min,
             "doors.open_plan_width_min",
