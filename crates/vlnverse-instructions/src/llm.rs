@@ -33,7 +33,7 @@ use base64::engine::general_purpose::STANDARD;
 use base64::Engine as _;
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Condvar, Mutex};
@@ -825,7 +825,130 @@ pub fn check_candidate(base: &Instruction, candidate: &str) -> std::result::Resu
             }
         }
     }
-    Ok(())
+    check_vocabulary(base, candidate)
+}
+
+/// The direction words file, as errors name it.
+const REWRITE_WORDS_FILE: &str = "data/rewrite_words.toml";
+
+/// Words any rewrite may use: the direction words of `data/rewrite_words.toml` and every word
+/// of this crate's class, colour and phrase data and room names.
+static KNOWN_WORDS: std::sync::LazyLock<BTreeSet<String>> = std::sync::LazyLock::new(|| {
+    let mut set = BTreeSet::new();
+    let files = [
+        (
+            REWRITE_WORDS_FILE,
+            include_str!("../data/rewrite_words.toml"),
+        ),
+        ("data/classes.toml", include_str!("../data/classes.toml")),
+        ("data/colours.toml", include_str!("../data/colours.toml")),
+        ("data/phrases.toml", include_str!("../data/phrases.toml")),
+    ];
+    for (file, text) in files {
+        let value: toml::Value = crate::data::expect_embedded(crate::data::parse_toml(file, text));
+        let mut strings = Vec::new();
+        collect_strings(&value, &mut strings);
+        for s in strings {
+            set.extend(words(&strip_placeholders(s)));
+        }
+    }
+    for kind in vlnverse_env::RoomType::ALL {
+        for name in crate::lexicon::room_names(*kind) {
+            set.extend(words(name));
+        }
+    }
+    for class in vlnverse_env::SemanticClass::ALL {
+        set.extend(words(&class.name().replace('_', " ")));
+    }
+    set
+});
+
+fn collect_strings<'a>(v: &'a toml::Value, out: &mut Vec<&'a str>) {
+    match v {
+        toml::Value::String(s) => out.push(s),
+        toml::Value::Array(a) => a.iter().for_each(|x| collect_strings(x, out)),
+        toml::Value::Table(t) => t.values().for_each(|x| collect_strings(x, out)),
+        _ => {}
+    }
+}
+
+/// `s` without its `{placeholder}`s, which the code fills.
+fn strip_placeholders(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    let mut depth = 0usize;
+    for c in s.chars() {
+        match c {
+            '{' => depth += 1,
+            '}' => depth = depth.saturating_sub(1),
+            _ if depth == 0 => out.push(c),
+            _ => {}
+        }
+    }
+    out
+}
+
+/// The lower-case words of `text`: runs of letters, split at apostrophes too ("you'll" is
+/// "you" and "ll") and at hyphens ("off-white"); digits and punctuation separate words.
+fn words(text: &str) -> Vec<String> {
+    text.to_lowercase()
+        .split(|c: char| !c.is_alphabetic())
+        .filter(|w| !w.is_empty())
+        .map(str::to_string)
+        .collect()
+}
+
+/// Whether `word` or a plain form of it (without a plural, past, -ing or -ly ending) is in
+/// `set`.
+fn knows(set: &BTreeSet<String>, word: &str) -> bool {
+    if set.contains(word) {
+        return true;
+    }
+    let mut forms: Vec<String> = Vec::new();
+    let cut = |suffix: &str| word.strip_suffix(suffix).filter(|b| b.len() >= 2);
+    if let Some(b) = cut("ies").or_else(|| cut("ied")).or_else(|| cut("ily")) {
+        forms.push(format!("{b}y"));
+    }
+    for suffix in ["s", "es", "ly"] {
+        forms.extend(cut(suffix).map(str::to_string));
+    }
+    for suffix in ["ing", "ed"] {
+        if let Some(b) = cut(suffix) {
+            forms.push(b.to_string());
+            forms.push(format!("{b}e"));
+            // "stopped", "stepping": one of a doubled last consonant.
+            let mut cs = b.chars().rev();
+            if let (Some(x), Some(y)) = (cs.next(), cs.next()) {
+                if x == y {
+                    forms.push(b[..b.len() - x.len_utf8()].to_string());
+                }
+            }
+        }
+    }
+    forms.iter().any(|f| set.contains(f))
+}
+
+/// Every word of `candidate` must be known: in the text `base` rewrites (or its
+/// sub-instructions), a word of its grounded classes, or one of [`KNOWN_WORDS`]. A word found
+/// nowhere most likely names something the facts do not hold ("spaceship"). Single letters
+/// ("u-turn", "L-shaped") pass.
+fn check_vocabulary(base: &Instruction, candidate: &str) -> std::result::Result<(), String> {
+    let mut facts: BTreeSet<String> = words(&base.instruction_text).into_iter().collect();
+    for t in &base.sub_instructions {
+        facts.extend(words(t));
+    }
+    for g in &base.grounding {
+        facts.extend(words(&g.class.replace('_', " ")));
+    }
+    match words(candidate)
+        .into_iter()
+        .find(|w| w.chars().count() > 1 && !knows(&facts, w) && !knows(&KNOWN_WORDS, w))
+    {
+        Some(w) => Err(format!(
+            "uses the word {w:?}, which is neither in the facts nor an ordinary direction word \
+             ({REWRITE_WORDS_FILE})"
+        )),
+        None => Ok(()),
+    }
 }
 
 /// Longest rewrite accepted, relative to the template text it rewrites: fluent wording may
@@ -1279,5 +1402,103 @@ mod tests {
         assert!(err.contains("wrong side"), "{err}");
         // Named by the reference text though not grounded (the bed): allowed.
         assert!(check_candidate(&base, "Stop by the bed.").is_ok());
+    }
+
+    /// A template-like instruction and the objects it grounds, for paraphrase checks.
+    fn route() -> Instruction {
+        Instruction {
+            instruction_text: "Walk out of the bedroom and turn left into the hallway. Go past \
+                the bookshelf on your right and stop next to the red sofa in the living room."
+                .into(),
+            ..with(&[("bookshelf", Some(Side::Right)), ("sofa", None)])
+        }
+    }
+
+    #[test]
+    fn realistic_paraphrases_pass_the_vocabulary_check() {
+        let base = route();
+        for ok in [
+            "Leave the bedroom and take a left into the hallway. Walk past the bookshelf on \
+             your right, then stop beside the red sofa in the living room.",
+            "Exit the bedroom, turn left down the corridor, pass the bookcase on your right and \
+             come to a halt next to the red couch in the lounge.",
+            "Head out of the bedroom and go left into the hall. Keep the bookshelf on your right \
+             as you pass it, and stop when you reach the red sofa in the living room.",
+            "From the bedroom, turn left into the hallway. Continue past the bookshelf to your \
+             right and wait by the red sofa.",
+            "Please exit the bedroom and turn to your left, entering the hallway. Proceed past \
+             the bookshelf, which will be on your right-hand side, and stop next to the red \
+             sofa in the living room.",
+            "get out of the bedroom, hang a left into the hallway, walk by the bookshelf on the \
+             right and stop at the red sofa in the living room",
+            "Walk out of the bedroom, then turn left. Go along the hallway past the bookshelf on \
+             your right. You'll find the red sofa in the living room; stop right next to it.",
+            "Step out of the bedroom and make a left turn into the hallway. After passing the \
+             bookshelf on your right, stop near the red sofa in the living room.",
+            "Once you leave the bedroom, turn left and follow the hallway. The bookshelf should \
+             be on your right as you walk by. Your destination is the red sofa in the living \
+             room.",
+            "Turn left after leaving the bedroom and walk down the hallway, passing the \
+             bookshelf on your right. Stop once you're next to the red sofa in the living room.",
+            "Go out of the bedroom and turn left into the hallway. Walk straight past the \
+             bookshelf on your right and stop by the red sofa, which is in the living room.",
+            "Leave the bedroom by turning left into the hallway; go past the bookshelf on the \
+             right, and you will see the red sofa in the living room. Stop beside it.",
+            "out of the bedroom, left into the hall, past the bookshelf on ur right, stop at the \
+             red sofa in the living room",
+            "First, exit the bedroom and turn left into the hallway. Next, walk past the \
+             bookshelf, keeping it on your right. Finally, stop when you are next to the red \
+             sofa in the living room.",
+        ] {
+            assert_eq!(check_candidate(&base, ok), Ok(()), "{ok}");
+        }
+    }
+
+    #[test]
+    fn made_up_objects_are_refused_by_name() {
+        let base = route();
+        for (bad, word) in [
+            (
+                "Leave the bedroom, turn left and walk past the spaceship to the red sofa.",
+                "spaceship",
+            ),
+            (
+                "Turn left into the hallway, pass the dragon on your right and stop by the sofa.",
+                "dragon",
+            ),
+            (
+                "Walk out of the bedroom and stop next to the blue submarine in the hallway.",
+                "submarine",
+            ),
+            // Plural and possessive forms of an unknown word are no better.
+            ("Pass the dragons' bookshelf on your right.", "dragons"),
+        ] {
+            let err = check_candidate(&base, bad).unwrap_err();
+            assert!(err.contains(&format!("{word:?}")), "{bad}: {err}");
+        }
+        // A word is known through the text it rewrites, even one no list has.
+        let base = Instruction {
+            instruction_text: "Stop by the spaceship.".into(),
+            ..with(&[])
+        };
+        assert_eq!(check_candidate(&base, "Go to the spaceship and stop."), Ok(()));
+    }
+
+    #[test]
+    fn direction_words_are_single_lower_case_words() {
+        let v: toml::Value = toml::from_str(include_str!("../data/rewrite_words.toml")).unwrap();
+        let mut strings = Vec::new();
+        collect_strings(&v, &mut strings);
+        assert!(strings.len() > 500, "{}", strings.len());
+        for w in strings {
+            assert!(
+                !w.is_empty() && w.chars().all(|c| c.is_ascii_lowercase()),
+                "{REWRITE_WORDS_FILE}: {w:?} is not one lower-case word"
+            );
+        }
+        // No object noun slipped into the lists (these would make rewrites naming them pass).
+        for noun in ["spaceship", "dragon", "submarine", "car", "tree", "cat", "dog"] {
+            assert!(!knows(&KNOWN_WORDS, noun), "{noun}");
+        }
     }
 }
