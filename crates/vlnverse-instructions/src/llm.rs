@@ -17,7 +17,9 @@
 //! `generate` renders views along the path, or the goal view for coarse episodes), sent as
 //! `image_url` parts with PNG data URLs, the format vision models of OpenAI-compatible servers
 //! read. A candidate that passes the verifier must still pass [`check_candidate`]: every object
-//! class it names is grounded, on the side the facts give; otherwise it falls back too.
+//! class it names is grounded, on the side the facts give, and every word it uses is known
+//! (from the facts, this crate's word data or the direction words of `data/rewrite_words.toml`),
+//! so a made-up object ("spaceship") is caught; otherwise it falls back too.
 //!
 //! Requests: `POST {base_url}/chat/completions` with `model`, `messages`, `temperature` (0 by
 //! default), `seed` and optionally `max_tokens`; the key, when `api_key_env` names an
@@ -772,7 +774,9 @@ pub struct LlmReport {
 /// (by its class words, e.g. "tv stand") must be grounded in `base` or named by its text,
 /// and a grounded landmark named in a sentence that gives one side (left or right) must
 /// stand on that side. Walls, floors, doors and other structure are room features, not
-/// objects, and are not checked. `Err` gives the first problem.
+/// objects, and are not checked. Then every word must be known (`check_vocabulary`): a word
+/// in neither the facts nor the word data names something the facts do not hold. `Err` gives
+/// the first problem.
 pub fn check_candidate(base: &Instruction, candidate: &str) -> std::result::Result<(), String> {
     use vlnverse_env::SemanticClass;
     check_text(&base.instruction_text, candidate)?;
@@ -1481,7 +1485,10 @@ mod tests {
             instruction_text: "Stop by the spaceship.".into(),
             ..with(&[])
         };
-        assert_eq!(check_candidate(&base, "Go to the spaceship and stop."), Ok(()));
+        assert_eq!(
+            check_candidate(&base, "Go to the spaceship and stop."),
+            Ok(())
+        );
     }
 
     #[test]
@@ -1497,7 +1504,15 @@ mod tests {
             );
         }
         // No object noun slipped into the lists (these would make rewrites naming them pass).
-        for noun in ["spaceship", "dragon", "submarine", "car", "tree", "cat", "dog"] {
+        for noun in [
+            "spaceship",
+            "dragon",
+            "submarine",
+            "car",
+            "tree",
+            "horse",
+            "robe",
+        ] {
             assert!(!knows(&KNOWN_WORDS, noun), "{noun}");
         }
     }
