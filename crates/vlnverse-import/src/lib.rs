@@ -446,6 +446,7 @@ pub fn detect_floor(triangles: impl Iterator<Item = [Vec3; 3]>) -> Option<f32> {
 pub fn import_scene_full(path: &Path, opts: &ImportOptions) -> Result<ImportOutput> {
     let format = format_of(path)?;
     opts.occupancy.validate()?;
+    opts.room_params.validate()?;
     let nodes = match format {
         "obj" => raw::load_obj(path, opts)?,
         _ => raw::load_gltf(path, opts)?,

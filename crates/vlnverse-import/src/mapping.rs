@@ -67,8 +67,8 @@ pub struct Rule {
 /// class = "bed"              # a SemanticClass name
 /// match = "node"             # any (default) | node | mesh | material
 /// motion = "dynamic"         # optional: static (default) | dynamic
-/// mass = 40.0                # optional override (kg)
-/// friction = 0.6             # optional override
+/// mass = 40.0                # optional override (kg), in [0, 10000]
+/// friction = 0.6             # optional override, in [0, 10]
 /// color = "white"            # optional colour word
 /// material = "wood"          # optional material word
 ///
@@ -85,6 +85,11 @@ pub struct Mapping {
 }
 
 const BUILTIN: &str = include_str!("builtin_mapping.toml");
+
+/// Largest `mass` a rule may set (kg).
+pub const MAX_MASS: f32 = 10_000.0;
+/// Largest `friction` a rule may set (Coulomb coefficient).
+pub const MAX_FRICTION: f32 = 10.0;
 
 impl Mapping {
     /// Parse a mapping from TOML text; `path` is only used in error messages.
@@ -116,13 +121,16 @@ impl Mapping {
                     .in_file(path))
                 }
             };
-            for (field, v) in [("mass", r.mass), ("friction", r.friction)] {
+            for (field, v, max) in [
+                ("mass", r.mass, MAX_MASS),
+                ("friction", r.friction, MAX_FRICTION),
+            ] {
                 if let Some(v) = v {
-                    if !(v.is_finite() && v >= 0.0) {
+                    if !(v.is_finite() && (0.0..=max).contains(&v)) {
                         return Err(EnvError::invalid(
                             format!("rule[{i}].{field}"),
                             v,
-                            "must be a finite number >= 0",
+                            format!("must be in [0, {max}]"),
                         )
                         .in_file(path));
                     }
@@ -207,6 +215,27 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("rule[0].class"), "{e}");
+    }
+
+    #[test]
+    fn mass_and_friction_out_of_range_are_refused_by_name() {
+        let p = Path::new("m.toml");
+        for (field, value) in [
+            ("mass", "1e12"),
+            ("mass", "-1.0"),
+            ("mass", "nan"),
+            ("friction", "1e6"),
+            ("friction", "inf"),
+        ] {
+            let text = format!("[[rule]]\npattern = \"x\"\nclass = \"bed\"\n{field} = {value}\n");
+            let e = Mapping::from_toml(&text, p).unwrap_err().to_string();
+            assert!(
+                e.contains("m.toml") && e.contains(&format!("rule[0].{field}")),
+                "{field} = {value}: {e}"
+            );
+        }
+        let ok = "[[rule]]\npattern = \"x\"\nclass = \"bed\"\nmass = 10000.0\nfriction = 0.0\n";
+        assert!(Mapping::from_toml(ok, p).is_ok());
     }
 
     #[test]

@@ -63,6 +63,38 @@ pub struct RoomParams {
     pub object_snap: f32,
 }
 
+/// Largest room annotation coordinate (m, either sign).
+pub const MAX_COORD: f32 = 10_000.0;
+
+impl RoomParams {
+    /// Check every value: `door_ratio` in (0, 1], `split_area` in [0, 100000] m^2,
+    /// `min_room_area` in [0, 10000] m^2, `open_plan_width` and `object_snap` in [0, 100] m.
+    /// The error names the field (`room_params.NAME`) and the value.
+    pub fn validate(&self) -> Result<()> {
+        let fields = [
+            ("door_ratio", self.door_ratio, 1e-6, 1.0),
+            ("split_area", self.split_area, 0.0, 100_000.0),
+            ("min_room_area", self.min_room_area, 0.0, 10_000.0),
+            ("open_plan_width", self.open_plan_width, 0.0, 100.0),
+            ("object_snap", self.object_snap, 0.0, 100.0),
+        ];
+        for (name, v, lo, hi) in fields {
+            if !(v.is_finite() && (lo..=hi).contains(&v)) {
+                return Err(EnvError::invalid(
+                    format!("room_params.{name}"),
+                    v,
+                    if lo > 0.0 {
+                        format!("must be in (0, {hi}]")
+                    } else {
+                        format!("must be in [{lo}, {hi}]")
+                    },
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
 impl Default for RoomParams {
     fn default() -> Self {
         RoomParams {
@@ -109,11 +141,15 @@ impl RoomAnnotation {
                 EnvError::invalid(format!("room[{i}].kind"), &r.kind, "not a room type name")
                     .in_file(path)
             })?;
-            if r.polygon.len() < 3 || r.polygon.iter().flatten().any(|v| !v.is_finite()) {
+            let far = |v: &f32| !(v.is_finite() && v.abs() <= MAX_COORD);
+            if r.polygon.len() < 3
+                || r.polygon.len() > 10_000
+                || r.polygon.iter().flatten().any(far)
+            {
                 return Err(EnvError::invalid(
                     format!("room[{i}].polygon"),
                     format!("{:?}", r.polygon),
-                    "needs at least 3 finite [x, z] points",
+                    format!("needs 3 to 10000 [x, z] points, each coordinate in [-{MAX_COORD}, {MAX_COORD}] m"),
                 )
                 .in_file(path));
             }
@@ -810,6 +846,8 @@ fn find_doors(g: &Labels, room_ids: &[RoomId], floor: f32, open_plan_width: f32)
                 normal: [normal.x, normal.y],
                 rooms: [room_ids[a as usize - 1], room_ids[b as usize - 1]],
                 open_plan: width >= open_plan_width,
+                state: None,
+                leaf: None,
             });
         }
     }
@@ -956,6 +994,59 @@ pub fn apply_annotation(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn room_params_and_annotations_out_of_range_are_refused_by_name() {
+        assert!(RoomParams::default().validate().is_ok());
+        for (p, field) in [
+            (
+                RoomParams {
+                    door_ratio: 0.0,
+                    ..Default::default()
+                },
+                "room_params.door_ratio",
+            ),
+            (
+                RoomParams {
+                    split_area: f32::NAN,
+                    ..Default::default()
+                },
+                "room_params.split_area",
+            ),
+            (
+                RoomParams {
+                    min_room_area: -1.0,
+                    ..Default::default()
+                },
+                "room_params.min_room_area",
+            ),
+            (
+                RoomParams {
+                    open_plan_width: 1e9,
+                    ..Default::default()
+                },
+                "room_params.open_plan_width",
+            ),
+            (
+                RoomParams {
+                    object_snap: f32::INFINITY,
+                    ..Default::default()
+                },
+                "room_params.object_snap",
+            ),
+        ] {
+            let e = p.validate().expect_err(field).to_string();
+            assert!(e.contains(field), "{e}");
+        }
+        let far = "[[room]]\nkind = \"bedroom\"\npolygon = [[0.0, 0.0], [1e9, 0.0], [1.0, 1.0]]\n";
+        let e = RoomAnnotation::from_toml(far, Path::new("rooms.toml"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("rooms.toml") && e.contains("room[0].polygon") && e.contains("1000000000"),
+            "{e}"
+        );
+    }
 
     #[test]
     fn annotation_parses_and_orients_polygons() {

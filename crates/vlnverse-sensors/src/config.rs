@@ -99,17 +99,15 @@ impl Noise {
     };
 
     fn validate(&self, field: &str) -> Result<()> {
-        let bad = |f: &str, v: f32| {
-            SensorError::invalid(format!("{field}.{f}"), v, "must be finite and >= 0")
-        };
-        let ok = |v: f32| v.is_finite() && v >= 0.0;
         match *self {
             Noise::None => Ok(()),
-            Noise::Gaussian { stddev } if !ok(stddev) => Err(bad("stddev", stddev)),
-            Noise::Redwood { a, .. } if !ok(a) => Err(bad("a", a)),
-            Noise::Redwood { b, .. } if !ok(b) => Err(bad("b", b)),
-            Noise::Redwood { quantum, .. } if !ok(quantum) => Err(bad("quantum", quantum)),
-            _ => Ok(()),
+            Noise::Gaussian { stddev } => in_range(field, "stddev", stddev, 0.0, 255.0),
+            Noise::Redwood { a, b, c, quantum } => {
+                in_range(field, "a", a, 0.0, 1.0)?;
+                in_range(field, "b", b, 0.0, 1.0)?;
+                in_range(field, "c", c, 0.0, 20.0)?;
+                in_range(field, "quantum", quantum, 0.0, 0.1)
+            }
         }
     }
 }
@@ -184,13 +182,24 @@ impl CameraSpec {
 
     fn validate(&self, f: &str) -> Result<()> {
         for (k, v) in [("width", self.width), ("height", self.height)] {
-            if !(1..=8192).contains(&v) {
+            if !(1..=MAX_SIDE).contains(&v) {
                 return Err(SensorError::invalid(
                     format!("{f}.{k}"),
                     v,
-                    "1..=8192 pixels",
+                    format!("1..={MAX_SIDE} pixels"),
                 ));
             }
+        }
+        let pixels = u64::from(self.width) * u64::from(self.height);
+        if pixels > MAX_PIXELS {
+            return Err(SensorError::invalid(
+                format!("{f}.width"),
+                format!(
+                    "{} (x height {} = {pixels} pixels)",
+                    self.width, self.height
+                ),
+                format!("at most {MAX_PIXELS} pixels an image (4096 x 4096)"),
+            ));
         }
         if !(self.hfov_deg > 0.0 && self.hfov_deg < 180.0) {
             return Err(SensorError::invalid(
@@ -199,14 +208,13 @@ impl CameraSpec {
                 "in (0, 180)",
             ));
         }
-        if !(self.near > 0.0 && self.near.is_finite()) {
-            return Err(SensorError::invalid(format!("{f}.near"), self.near, "> 0"));
-        }
-        if !(self.far > self.near && self.far.is_finite()) {
+        in_range(f, "near", self.near, 0.001, 10.0)?;
+        in_range(f, "far", self.far, 0.001, MAX_RANGE)?;
+        if self.far <= self.near {
             return Err(SensorError::invalid(
                 format!("{f}.far"),
                 self.far,
-                "finite and > near",
+                format!("must be > near ({})", self.near),
             ));
         }
         validate_mount(&self.mount, f)?;
@@ -281,6 +289,17 @@ impl LidarSpec {
                 "1..=1024",
             ));
         }
+        let rays = u64::from(self.beams) * u64::from(self.channels);
+        if rays > MAX_RAYS {
+            return Err(SensorError::invalid(
+                format!("{f}.beams"),
+                format!(
+                    "{} (x channels {} = {rays} rays)",
+                    self.beams, self.channels
+                ),
+                format!("at most {MAX_RAYS} rays a scan"),
+            ));
+        }
         if !(self.hfov_deg > 0.0 && self.hfov_deg <= 360.0) {
             return Err(SensorError::invalid(
                 format!("{f}.hfov_deg"),
@@ -296,21 +315,16 @@ impl LidarSpec {
                 "-90 <= low <= high <= 90",
             ));
         }
-        if !(self.range_min >= 0.0 && self.range_max > self.range_min && self.range_max.is_finite())
-        {
+        in_range(f, "range_min", self.range_min, 0.0, MAX_RANGE)?;
+        in_range(f, "range_max", self.range_max, 0.001, MAX_RANGE)?;
+        if self.range_max <= self.range_min {
             return Err(SensorError::invalid(
                 format!("{f}.range_max"),
                 self.range_max,
-                "finite and > range_min >= 0",
+                format!("must be > range_min ({})", self.range_min),
             ));
         }
-        if !(self.range_stddev >= 0.0 && self.range_stddev.is_finite()) {
-            return Err(SensorError::invalid(
-                format!("{f}.range_stddev"),
-                self.range_stddev,
-                ">= 0",
-            ));
-        }
+        in_range(f, "range_stddev", self.range_stddev, 0.0, 10.0)?;
         if !(0.0..=1.0).contains(&self.dropout) {
             return Err(SensorError::invalid(
                 format!("{f}.dropout"),
@@ -462,14 +476,21 @@ impl SensorSpec {
                         "1..=360",
                     ));
                 }
-                if !p.step_deg.is_finite() {
+                in_range(field, "step_deg", p.step_deg, -360.0, 360.0)?;
+                p.camera.validate(&format!("{field}.camera"))?;
+                let pixels =
+                    u64::from(p.views) * u64::from(p.camera.width) * u64::from(p.camera.height);
+                if pixels > MAX_PANORAMA_PIXELS {
                     return Err(SensorError::invalid(
-                        format!("{field}.step_deg"),
-                        p.step_deg,
-                        "finite",
+                        format!("{field}.views"),
+                        format!(
+                            "{} (x {} x {} = {pixels} pixels)",
+                            p.views, p.camera.width, p.camera.height
+                        ),
+                        format!("at most {MAX_PANORAMA_PIXELS} pixels over all views"),
                     ));
                 }
-                p.camera.validate(&format!("{field}.camera"))
+                Ok(())
             }
             SensorSpec::Pose(s)
             | SensorSpec::Compass(s)
@@ -479,12 +500,35 @@ impl SensorSpec {
     }
 }
 
+/// Longest side of a camera image (pixels).
+pub const MAX_SIDE: u32 = 8192;
+/// Most pixels of one camera image (4096 x 4096).
+pub const MAX_PIXELS: u64 = 4096 * 4096;
+/// Most pixels of one panorama, all views together.
+pub const MAX_PANORAMA_PIXELS: u64 = 1 << 26;
+/// Most rays of one LiDAR scan (beams x channels).
+pub const MAX_RAYS: u64 = 1 << 20;
+/// Farthest clipping distance or LiDAR range (m).
+pub const MAX_RANGE: f32 = 1000.0;
+
+/// `prefix.name` must be a finite number in `[lo, hi]` (NaN and infinities are refused).
+fn in_range(prefix: &str, name: &str, v: f32, lo: f32, hi: f32) -> Result<()> {
+    if v.is_finite() && (lo..=hi).contains(&v) {
+        return Ok(());
+    }
+    Err(SensorError::invalid(
+        format!("{prefix}.{name}"),
+        v,
+        format!("must be in [{lo}, {hi}]"),
+    ))
+}
+
 fn validate_mount(m: &Mount, f: &str) -> Result<()> {
-    if !m.offset.iter().all(|v| v.is_finite()) {
+    if !m.offset.iter().all(|v| v.is_finite() && v.abs() <= 10.0) {
         return Err(SensorError::invalid(
             format!("{f}.mount.offset"),
             format!("{:?}", m.offset),
-            "finite",
+            "each coordinate must be in [-10, 10] m",
         ));
     }
     if !(-90.0..=90.0).contains(&m.pitch_deg) {
@@ -506,11 +550,11 @@ fn validate_rate(r: &Rate, f: &str) -> Result<()> {
         ));
     }
     if let Some(hz) = r.hz {
-        if !(hz > 0.0 && hz.is_finite()) {
+        if !(hz > 0.0 && hz <= 1000.0) {
             return Err(SensorError::invalid(
                 format!("{f}.rate.hz"),
                 hz,
-                "finite and > 0",
+                "must be in (0, 1000]",
             ));
         }
     }
@@ -655,6 +699,63 @@ mod tests {
         );
         let e = RigConfig::shipped("nope").unwrap_err().to_string();
         assert!(e.contains("nope") && e.contains("full"), "{e}");
+    }
+
+    #[test]
+    fn every_numeric_field_out_of_range_is_refused_by_name_before_any_image_exists() {
+        // (sensor table body, field the error names, value it quotes)
+        let cases = [
+            ("type = \"rgb\"\nwidth = 1000000", "sensors[0].width", "1000000"),
+            ("type = \"rgb\"\nheight = 0", "sensors[0].height", "0"),
+            ("type = \"rgb\"\nwidth = 8192\nheight = 8192", "sensors[0].width", "8192"),
+            ("type = \"rgb\"\nhfov_deg = 0.0", "sensors[0].hfov_deg", "0"),
+            ("type = \"rgb\"\nhfov_deg = nan", "sensors[0].hfov_deg", "NaN"),
+            ("type = \"depth\"\nnear = 0.0", "sensors[0].near", "0"),
+            ("type = \"depth\"\nfar = inf", "sensors[0].far", "inf"),
+            ("type = \"depth\"\nfar = 1e9", "sensors[0].far", "1000000000"),
+            ("type = \"depth\"\nnear = 5.0\nfar = 2.0", "sensors[0].far", "2"),
+            (
+                "type = \"rgb\"\nnoise = { model = \"gaussian\", stddev = 1e6 }",
+                "sensors[0].noise.stddev",
+                "1000000",
+            ),
+            (
+                "type = \"depth\"\nnoise = { model = \"redwood\", a = 0.001, b = 0.002, c = nan, quantum = 0.003 }",
+                "sensors[0].noise.c",
+                "NaN",
+            ),
+            ("type = \"rgb\"\nmount = { offset = [0.0, 1e6, 0.0] }", "sensors[0].mount.offset", "1000000"),
+            ("type = \"rgb\"\nmount = { pitch_deg = nan }", "sensors[0].mount.pitch_deg", "NaN"),
+            ("type = \"rgb\"\nrate = { hz = 1e9 }", "sensors[0].rate.hz", "1000000000"),
+            ("type = \"rgb\"\nrate = { every_steps = 0 }", "sensors[0].rate.every_steps", "0"),
+            ("type = \"lidar\"\nbeams = 0", "sensors[0].beams", "0"),
+            ("type = \"lidar\"\nbeams = 65536\nchannels = 1024", "sensors[0].beams", "65536"),
+            ("type = \"lidar\"\nrange_min = nan", "sensors[0].range_min", "NaN"),
+            ("type = \"lidar\"\nrange_max = 1e7", "sensors[0].range_max", "10000000"),
+            ("type = \"lidar\"\nrange_stddev = -1.0", "sensors[0].range_stddev", "-1"),
+            ("type = \"lidar\"\ndropout = nan", "sensors[0].dropout", "NaN"),
+            ("type = \"lidar\"\nelevation_deg = [-100.0, 0.0]", "sensors[0].elevation_deg", "-100"),
+            ("type = \"panorama\"\nviews = 0", "sensors[0].views", "0"),
+            ("type = \"panorama\"\nstep_deg = 1e30", "sensors[0].step_deg", "1000000000000000000000000000000"),
+            (
+                "type = \"panorama\"\nviews = 360\ncamera = { width = 1024, height = 1024 }",
+                "sensors[0].views",
+                "360",
+            ),
+            ("type = \"panorama\"\ncamera = { width = 0 }", "sensors[0].camera.width", "0"),
+        ];
+        let dir = std::env::temp_dir().join(format!("vlnverse-rig-ranges-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = dir.join("rig.toml");
+        for (body, field, value) in cases {
+            std::fs::write(&file, format!("[[sensors]]\n{body}\n")).unwrap();
+            let e = RigConfig::load(&file).expect_err(body).to_string();
+            assert!(
+                e.contains("rig.toml") && e.contains(field) && e.contains(value),
+                "{body}: {e}"
+            );
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]
