@@ -427,6 +427,79 @@ mod tests {
     }
 
     #[test]
+    fn every_numeric_agent_field_has_a_range_named_in_its_error() {
+        // Each line is appended to the vlnverse profile's text; the error names the file, the
+        // field and the value.
+        let base = PROFILES[0].1;
+        for (line, field, value) in [
+            ("mass = 1e9", "mass", "1000000000"),
+            ("ground_clearance = -0.1", "ground_clearance", "-0.1"),
+            ("sensor_height = nan", "sensor_height", "NaN"),
+            ("step_size = 0.0", "step_size", "0"),
+            ("step_size = 1e6", "step_size", "1000000"),
+            ("turn_angle_deg = 0.0", "turn_angle_deg", "0"),
+            ("turn_angle_deg = 720.0", "turn_angle_deg", "720"),
+            ("look_angle_deg = inf", "look_angle_deg", "inf"),
+            ("max_pitch_deg = 91.0", "max_pitch_deg", "91"),
+            ("collision_threshold = -1.0", "collision_threshold", "-1"),
+            ("max_linear_speed = 1e6", "max_linear_speed", "1000000"),
+            ("max_angular_speed_deg = 0.0", "max_angular_speed_deg", "0"),
+            ("max_linear_accel = nan", "max_linear_accel", "NaN"),
+            (
+                "max_angular_accel_deg = 1e9",
+                "max_angular_accel_deg",
+                "1000000000",
+            ),
+        ] {
+            // Replace the profile's own line for the field, if any, so the TOML stays valid.
+            let key = line.split(' ').next().unwrap();
+            let mut text: String = base
+                .lines()
+                .filter(|l| l.split([' ', '=']).next() != Some(key))
+                .map(|l| format!("{l}\n"))
+                .collect();
+            // Top-level keys go before the first table.
+            let at = text.find("\n[").map_or(0, |i| i + 1);
+            text.insert_str(at, &format!("{line}\n"));
+            let e = AgentConfig::from_toml_str(&text, Path::new("agent.toml"))
+                .expect_err(line)
+                .to_string();
+            assert!(
+                e.contains("agent.toml") && e.contains(field) && e.contains(value),
+                "{line}: {e}"
+            );
+        }
+        for (shape, field) in [
+            (
+                "kind = \"cylinder\"\nheight = 1e6\nradius = 0.3",
+                "shape.height",
+            ),
+            (
+                "kind = \"cylinder\"\nheight = 1.5\nradius = 0.0",
+                "shape.radius",
+            ),
+            (
+                "kind = \"box\"\nheight = 1.0\nwidth = nan\nlength = 0.5",
+                "shape.width",
+            ),
+            (
+                "kind = \"box\"\nheight = 1.0\nwidth = 0.5\nlength = 100.0",
+                "shape.length",
+            ),
+        ] {
+            let e = AgentConfig::from_toml_str(&format!("[shape]\n{shape}\n"), Path::new("a.toml"))
+                .expect_err(shape)
+                .to_string();
+            assert!(e.contains("a.toml") && e.contains(field), "{shape}: {e}");
+        }
+        let dd = "[differential_drive]\nwheel_base = 0.0\nmax_wheel_speed = 1.0\n";
+        let e = AgentConfig::from_toml_str(dd, Path::new("a.toml"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("differential_drive.wheel_base"), "{e}");
+    }
+
+    #[test]
     fn missing_file_names_the_path() {
         let e = AgentConfig::from_toml_file("/nonexistent/agent.toml")
             .unwrap_err()
