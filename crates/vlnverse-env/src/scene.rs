@@ -472,6 +472,68 @@ pub struct Door {
     pub rooms: [RoomId; 2],
     /// True for a wide open-plan connection without a door frame.
     pub open_plan: bool,
+    /// Whether the door leaf stands open or closed; `None` for open-plan openings and doorways
+    /// without a leaf (scenes written before doors had leaves).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub state: Option<DoorState>,
+    /// The object (class `door`) that is the hinged leaf, if the doorway has one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub leaf: Option<ObjectId>,
+}
+
+/// State of a door leaf. A closed leaf fills its doorway: it blocks the agent in every setting,
+/// the maps mark it occupied and routes go round it (agents cannot open doors yet).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DoorState {
+    /// Swung open into one of the rooms, clear of the doorway.
+    Open,
+    /// Shut in the doorway.
+    Closed,
+}
+
+impl DoorState {
+    /// The word used in files and text: `open` or `closed`.
+    pub fn name(self) -> &'static str {
+        match self {
+            DoorState::Open => "open",
+            DoorState::Closed => "closed",
+        }
+    }
+}
+
+impl Door {
+    /// Whether a closed leaf blocks the doorway.
+    pub fn is_closed(&self) -> bool {
+        self.state == Some(DoorState::Closed)
+    }
+
+    /// The doorway as a floor segment `[x, z]` to `[x, z]` across its clear width, in the
+    /// plane of the wall.
+    pub fn segment(&self) -> [[f32; 2]; 2] {
+        let [x, _, z] = self.position;
+        // Along the wall: the normal turned by 90 degrees.
+        let (ax, az) = (-self.normal[1], self.normal[0]);
+        let h = self.width * 0.5;
+        [[x - ax * h, z - az * h], [x + ax * h, z + az * h]]
+    }
+
+    /// Whether the floor segment from `a` to `b` (`[x, z]`) passes through the doorway.
+    pub fn crossed_by(&self, a: [f32; 2], b: [f32; 2]) -> bool {
+        let [p, q] = self.segment();
+        segments_cross(a, b, p, q)
+    }
+}
+
+/// Whether two floor segments `a`-`b` and `c`-`d` (`[x, z]`) intersect; touching counts.
+pub fn segments_cross(a: [f32; 2], b: [f32; 2], c: [f32; 2], d: [f32; 2]) -> bool {
+    let cross = |o: [f32; 2], p: [f32; 2], q: [f32; 2]| {
+        (p[0] - o[0]) * (q[1] - o[1]) - (p[1] - o[1]) * (q[0] - o[0])
+    };
+    let (d1, d2) = (cross(c, d, a), cross(c, d, b));
+    let (d3, d4) = (cross(a, b, c), cross(a, b, d));
+    let opposite = |u: f32, v: f32| (u <= 0.0 && v >= 0.0) || (u >= 0.0 && v <= 0.0);
+    opposite(d1, d2) && opposite(d3, d4) && !(d1 == 0.0 && d2 == 0.0)
 }
 
 /// A whole scene.
@@ -527,6 +589,34 @@ impl Scene {
         self.objects.iter().filter(|o| !o.is_structure())
     }
 
+    /// The doors (with a leaf or not, open plan included) that the floor polyline `path`
+    /// (`[x, z]` points) passes through, in the order it meets them; a door met twice is listed
+    /// twice. With the door's `leaf` and `state` this tells which door leaves a route passes.
+    pub fn doors_on_path(&self, path: &[[f32; 2]]) -> Vec<&Door> {
+        let mut out = Vec::new();
+        for w in path.windows(2) {
+            let mut hits: Vec<(f32, &Door)> = self
+                .doors
+                .iter()
+                .filter(|d| d.crossed_by(w[0], w[1]))
+                .map(|d| {
+                    let dx = d.position[0] - w[0][0];
+                    let dz = d.position[2] - w[0][1];
+                    (dx * dx + dz * dz, d)
+                })
+                .collect();
+            hits.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.id.cmp(&b.1.id)));
+            for (_, d) in hits {
+                // A path vertex exactly in a doorway touches it from both segments.
+                if out.last().is_some_and(|l: &&Door| l.id == d.id) && on_segment(w[0], d) {
+                    continue;
+                }
+                out.push(d);
+            }
+        }
+        out
+    }
+
     /// Total number of triangles when every part is triangulated.
     pub fn triangle_count(&self) -> usize {
         self.objects
@@ -535,6 +625,16 @@ impl Scene {
             .map(|p| crate::geometry::triangle_count(&p.shape))
             .sum()
     }
+}
+
+/// Whether the point lies on the doorway's segment (within a millimetre).
+fn on_segment(p: [f32; 2], d: &Door) -> bool {
+    let [a, b] = d.segment();
+    let (ux, uz) = (b[0] - a[0], b[1] - a[1]);
+    let len2 = (ux * ux + uz * uz).max(1e-12);
+    let t = (((p[0] - a[0]) * ux + (p[1] - a[1]) * uz) / len2).clamp(0.0, 1.0);
+    let (cx, cz) = (a[0] + ux * t - p[0], a[1] + uz * t - p[1]);
+    cx * cx + cz * cz < 1e-6
 }
 
 /// Serde helper: a bevel of 0 is left out of `scene.json`, which keeps sharp-edged scenes

@@ -356,6 +356,8 @@ pub(crate) fn generate(cfg: &ProcgenConfig, seed: u64, id: &str) -> Result<Scene
     if cfg.walls.ceiling {
         add_ceilings(cfg, &plan, wall, &mut b);
     }
+    // From their own stream, clear of the furniture; the decoration then keeps clear of them.
+    let leaves = crate::doors::add_leaves(cfg, &plan, seed, &mut b);
     if cfg.walls.decor {
         crate::decor::add_decor(cfg, &plan, seed, &mut b);
     }
@@ -388,8 +390,9 @@ pub(crate) fn generate(cfg: &ProcgenConfig, seed: u64, id: &str) -> Result<Scene
     let doors = plan
         .openings
         .iter()
+        .zip(leaves)
         .enumerate()
-        .map(|(i, o)| {
+        .map(|(i, (o, (state, leaf)))| {
             let (x, z) = o.position();
             Door {
                 id: i as u32,
@@ -398,6 +401,8 @@ pub(crate) fn generate(cfg: &ProcgenConfig, seed: u64, id: &str) -> Result<Scene
                 normal: o.normal(&plan),
                 rooms: [o.rooms[0] as RoomId, o.rooms[1] as RoomId],
                 open_plan: o.open_plan,
+                state,
+                leaf,
             }
         })
         .collect();

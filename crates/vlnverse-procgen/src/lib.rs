@@ -2,6 +2,7 @@
 
 mod config;
 mod decor;
+mod doors;
 mod floorplan;
 mod furnish;
 mod home;

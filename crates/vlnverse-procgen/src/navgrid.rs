@@ -125,6 +125,54 @@ impl NavGrid {
         reached == total && cells.iter().all(|&i| self.seen[i])
     }
 
+    /// Number of free cells reachable from the first seed point, or 0 when a seed is blocked or
+    /// not reachable from the first.
+    pub fn reachable(&mut self, seeds: &[(f32, f32)]) -> usize {
+        let mut cells = Vec::with_capacity(seeds.len());
+        for &(x, z) in seeds {
+            match self.cell_of(x, z) {
+                Some(i) if self.blocked[i] == 0 => cells.push(i),
+                _ => return 0,
+            }
+        }
+        let Some(&first) = cells.first() else {
+            return 0;
+        };
+        self.seen.iter_mut().for_each(|s| *s = false);
+        self.queue.clear();
+        self.seen[first] = true;
+        self.queue.push_back(first);
+        let mut reached = 0;
+        while let Some(i) = self.queue.pop_front() {
+            reached += 1;
+            let (r, c) = (i / self.cols, i % self.cols);
+            let mut next = [None; 4];
+            if c > 0 {
+                next[0] = Some(i - 1);
+            }
+            if c + 1 < self.cols {
+                next[1] = Some(i + 1);
+            }
+            if r > 0 {
+                next[2] = Some(i - self.cols);
+            }
+            if r + 1 < self.rows {
+                next[3] = Some(i + self.cols);
+            }
+            for j in next.into_iter().flatten() {
+                if !self.seen[j] && self.blocked[j] == 0 {
+                    self.seen[j] = true;
+                    self.queue.push_back(j);
+                }
+            }
+        }
+        if cells.iter().all(|&i| self.seen[i]) {
+            reached
+        } else {
+            0
+        }
+    }
+
     /// Number of free cells.
     pub fn free_cells(&self) -> usize {
         self.blocked.iter().filter(|&&b| b == 0).count()

@@ -418,12 +418,30 @@ impl RapierSimulator {
         out.collided = !at_target.is_empty();
         out.hit = at_target;
         let offsets = Arc::clone(&self.hop_offsets);
+        // A teleport may not pass a closed door: spots behind one do not count.
+        let door = |p: Vec3| {
+            self.scene
+                .as_ref()
+                .and_then(|s| s.closed_door_between([start.x, start.z], [p.x, p.z]))
+        };
+        let mut behind = None;
         let landed = offsets
             .iter()
             .map(|o| target + Vec3::new(o.x, 0.0, o.y))
             .find(|p| {
-                (*p == target && out.hit.is_empty() || *p != target && self.overlaps(*p).is_empty())
-                    && self.supported(*p)
+                let free = (*p == target && out.hit.is_empty()
+                    || *p != target && self.overlaps(*p).is_empty())
+                    && self.supported(*p);
+                if !free {
+                    return false;
+                }
+                match door(*p) {
+                    Some(d) => {
+                        behind.get_or_insert(d);
+                        false
+                    }
+                    None => true,
+                }
             });
         match landed {
             Some(p) => {
@@ -431,6 +449,10 @@ impl RapierSimulator {
                     shift: (p - target).length(),
                 });
                 self.state.base = p;
+            }
+            None if behind.is_some() => {
+                out.collided = true;
+                out.hop = behind.map(|door| Hop::ClosedDoor { door });
             }
             None => {
                 out.collided = true;
@@ -627,7 +649,10 @@ impl Simulator for RapierSimulator {
         }
         let miss = Vec2::from(out.commanded) - Vec2::from(out.achieved);
         out.noticeable = miss.length() > self.cfg.agent.collision_threshold
-            || matches!(out.hop, Some(Hop::NoFreeSpot { .. }));
+            || matches!(
+                out.hop,
+                Some(Hop::NoFreeSpot { .. } | Hop::ClosedDoor { .. })
+            );
         if out.noticeable && self.cfg.setting == CollisionSetting::Strict {
             out.failure = Some(Failure::Collision {
                 hit: out.hit.clone(),

@@ -39,6 +39,12 @@ pub enum Hop {
         /// Search radius (m).
         radius: f32,
     },
+    /// The hop would pass through a closed door (agents cannot open doors yet): the agent did
+    /// not move.
+    ClosedDoor {
+        /// Id of the door in the scene's `doors`.
+        door: u32,
+    },
 }
 
 /// What one [`Simulator::step`] did. Displacements are horizontal `[dx, dz]` in metres.

@@ -76,6 +76,9 @@ pub struct PhysicsScene {
     pub(crate) bounds: Option<[f32; 4]>,
     pub(crate) has_floor: bool,
     pub(crate) dynamic_objects: Vec<(ObjectId, RigidBodyHandle)>,
+    /// Closed doors as `(door id, doorway segment [x, z] to [x, z])`: a Tel-Hop may not pass
+    /// one (the leaf is a static collider, so moves in the other settings stop at it anyway).
+    pub(crate) closed_doors: Vec<(u32, [[f32; 2]; 2])>,
 }
 
 impl std::fmt::Debug for PhysicsScene {
@@ -198,7 +201,21 @@ impl PhysicsScene {
                 .iter()
                 .any(|o| o.class == SemanticClass::Floor),
             dynamic_objects,
+            closed_doors: scene
+                .doors
+                .iter()
+                .filter(|d| d.is_closed())
+                .map(|d| (d.id, d.segment()))
+                .collect(),
         })
+    }
+
+    /// The first closed door (by id) whose doorway the floor segment from `a` to `b` crosses.
+    pub fn closed_door_between(&self, a: [f32; 2], b: [f32; 2]) -> Option<u32> {
+        self.closed_doors
+            .iter()
+            .find(|(_, s)| vlnverse_env::segments_cross(a, b, s[0], s[1]))
+            .map(|(id, _)| *id)
     }
 
     /// Id of the scene this world was built from.
@@ -361,6 +378,11 @@ pub(crate) fn content_key(scene: &Scene, agent_key: u64) -> u64 {
     let mut h = std::collections::hash_map::DefaultHasher::new();
     (fingerprint(scene), agent_key).hash(&mut h);
     scene.floor_height.to_bits().hash(&mut h);
+    // Closed doors also bound Tel-Hops.
+    for d in scene.doors.iter().filter(|d| d.is_closed()) {
+        d.id.hash(&mut h);
+        d.segment().map(|p| p.map(f32::to_bits)).hash(&mut h);
+    }
     for o in &scene.objects {
         std::mem::discriminant(&o.class).hash(&mut h);
         for part in &o.parts {

@@ -143,6 +143,8 @@ pub fn fixture_scene() -> Scene {
             normal: [1.0, 0.0],
             rooms: [1, 1],
             open_plan: false,
+            state: None,
+            leaf: None,
         }],
         objects: vec![wall, table, ball, statue],
     }

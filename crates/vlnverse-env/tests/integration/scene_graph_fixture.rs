@@ -96,6 +96,8 @@ pub fn home() -> Scene {
             normal: [1.0, 0.0],
             rooms: [LIVING, BEDROOM],
             open_plan: false,
+            state: None,
+            leaf: None,
         },
         Door {
             id: 2,
@@ -104,6 +106,8 @@ pub fn home() -> Scene {
             normal: [0.0, 1.0],
             rooms: [KITCHEN, LIVING],
             open_plan: true,
+            state: None,
+            leaf: None,
         },
     ];
     let objects = vec![
