@@ -9,7 +9,7 @@ use std::io::{BufRead, BufReader, Write};
 use std::path::PathBuf;
 use std::process::{Child, ChildStdin, ChildStdout, Command, Stdio};
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::mpsc::{Receiver, RecvTimeoutError};
+use std::sync::mpsc::{Receiver, RecvTimeoutError, Sender};
 use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
 use std::time::Duration;
@@ -139,11 +139,33 @@ fn read_lines(mut out: BufReader<ChildStdout>) -> Receiver<std::io::Result<Strin
     rx
 }
 
+/// A thread that writes each message it gets to `stdin` and answers each with the write's
+/// result, so a write to an agent that never reads its input (once the pipe buffer is full)
+/// can be given up after a timeout instead of blocking the run. It ends, closing `stdin`, when
+/// the sender is dropped or a write fails.
+fn write_lines(mut stdin: ChildStdin) -> (Sender<Vec<u8>>, Receiver<std::io::Result<()>>) {
+    let (tx, rx) = std::sync::mpsc::channel::<Vec<u8>>();
+    let (done_tx, done_rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        for buf in rx {
+            let r = stdin.write_all(&buf).and_then(|_| stdin.flush());
+            let failed = r.is_err();
+            if done_tx.send(r).is_err() || failed {
+                break;
+            }
+        }
+    });
+    (tx, done_rx)
+}
+
 /// A running external agent.
 pub struct ExternalAgent {
     cmd: String,
     child: Child,
-    stdin: Option<ChildStdin>,
+    /// Messages for the agent's stdin, written by a thread ([`write_lines`]).
+    stdin: Option<Sender<Vec<u8>>>,
+    /// The result of each write, in order.
+    written: Receiver<std::io::Result<()>>,
     /// Lines of the agent's stdout, read by a thread so a reply can be awaited with a timeout.
     replies: Receiver<std::io::Result<String>>,
     timeout: Duration,
@@ -194,7 +216,13 @@ impl ExternalAgent {
                 }
             })
         });
-        let stdin = child.stdin.take();
+        let (stdin, written) = match child.stdin.take() {
+            Some(pipe) => {
+                let (tx, rx) = write_lines(pipe);
+                (Some(tx), rx)
+            }
+            None => (None, std::sync::mpsc::channel().1),
+        };
         let stdout = child
             .stdout
             .take()
@@ -211,6 +239,7 @@ impl ExternalAgent {
             cmd: cmd.into(),
             child,
             stdin,
+            written,
             replies,
             timeout: Duration::from_secs_f64(DEFAULT_EXTERNAL_TIMEOUT_S),
             step: None,
@@ -277,14 +306,35 @@ impl ExternalAgent {
         self.err(format!("{what}: {status}{stderr}"))
     }
 
+    /// Write one message, waiting at most the reply timeout for the agent to take it.
     fn send(&mut self, v: &Value) -> Result<()> {
         let mut line = v.to_string();
         line.push('\n');
-        let res = match self.stdin.as_mut() {
-            Some(s) => s.write_all(line.as_bytes()).and_then(|_| s.flush()),
-            None => Err(std::io::Error::other("stdin closed")),
+        let bytes = line.len();
+        let queued = match &self.stdin {
+            Some(tx) => tx.send(line.into_bytes()).is_ok(),
+            None => false,
         };
-        res.map_err(|e| self.dead(format!("cannot write to the agent ({e})")))
+        if !queued {
+            return Err(self.dead("cannot write to the agent (its input is closed)".into()));
+        }
+        match self.written.recv_timeout(self.timeout) {
+            Ok(Ok(())) => Ok(()),
+            Ok(Err(e)) => Err(self.dead(format!("cannot write to the agent ({e})"))),
+            Err(RecvTimeoutError::Disconnected) => {
+                Err(self.dead("cannot write to the agent (its input is closed)".into()))
+            }
+            Err(RecvTimeoutError::Timeout) => {
+                // The agent does not read its input: stopping it also ends the blocked write.
+                let _ = self.child.kill();
+                self.stdin = None;
+                Err(self.err(format!(
+                    "the agent did not read a {bytes}-byte message within {:.1} s \
+                     (external_timeout_s); the agent was stopped",
+                    self.timeout.as_secs_f64()
+                )))
+            }
+        }
     }
 
     fn receive(&mut self) -> Result<Value> {
@@ -541,6 +591,28 @@ mod tests {
 
     fn agent(encoding: ObsEncoding) -> ExternalAgent {
         ExternalAgent::spawn("cat > /dev/null", encoding).unwrap()
+    }
+
+    #[test]
+    fn a_message_the_agent_never_reads_fails_after_the_timeout_naming_command_episode_and_step() {
+        // Sleeps without reading: a message larger than the pipe buffer cannot be written.
+        let cmd = "exec sleep 30";
+        let mut a = ExternalAgent::spawn(cmd, ObsEncoding::Files).unwrap();
+        a.timeout = Duration::from_millis(300);
+        a.episode_id = 7;
+        a.step = Some(3);
+        let big = json!({"type": "step", "pad": "x".repeat(1 << 20)});
+        let err = a.send(&big).unwrap_err().to_string();
+        assert!(
+            err.contains(cmd)
+                && err.contains("episode 7, step 3")
+                && err.contains("did not read")
+                && err.contains("external_timeout_s"),
+            "{err}"
+        );
+        // The agent was stopped, and later messages fail at once instead of blocking.
+        assert!(a.send(&json!({"type": "step"})).is_err());
+        assert!(a.child.try_wait().unwrap().is_some());
     }
 
     /// Files: RGB as PNG, the other channels as `.npy` with their dtype and `[h, w]` shape.

@@ -136,3 +136,42 @@ fn an_agent_that_never_replies_is_stopped_after_the_timeout_naming_command_and_s
         assert!(err.contains("external_timeout_s"), "{err}");
     }
 }
+
+#[test]
+fn an_agent_that_never_reads_its_input_is_stopped_after_the_timeout() {
+    // Observations larger than the pipe buffer: the step message cannot be written to an
+    // agent that does not read, and the write must not block the run.
+    let dir = tempfile::tempdir().unwrap();
+    eval_support::make_dataset(dir.path(), Task::Fine, 1, 1, 21);
+    let rig = dir.path().join("big_rig.toml");
+    std::fs::write(
+        &rig,
+        "backend = \"raycast\"\n[[sensors]]\ntype = \"rgb\"\nwidth = 192\nheight = 192\n",
+    )
+    .unwrap();
+    let script = dir.path().join("deaf_agent.sh");
+    std::fs::write(
+        &script,
+        "#!/bin/sh\n# Never reads its input.\nexec sleep 60\n",
+    )
+    .unwrap();
+    let cfg = EvalConfig {
+        plots: 0,
+        rig: rig.display().to_string(),
+        external_observations: ObsEncoding::Base64,
+        external_timeout_s: 0.5,
+        ..Default::default()
+    };
+    let req = eval_support::fine_test(dir.path(), "deaf", &cfg, None, 1);
+    let cmd = format!("sh {}", script.display());
+    let f = builtin("external", Some(&cmd), &cfg).unwrap();
+    let err = evaluate(&req, &*f).unwrap_err().to_string();
+    assert!(
+        err.contains(&cmd)
+            && err.contains("episode")
+            && err.contains("step 0")
+            && err.contains("did not read")
+            && err.contains("external_timeout_s"),
+        "{err}"
+    );
+}
