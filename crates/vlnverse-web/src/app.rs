@@ -41,7 +41,8 @@ pub struct ServerConfig {
     /// Longest wait for a request's headers; a connection that has not sent them by then is
     /// closed (a client holding half-sent headers must not hold a connection for ever).
     pub header_timeout: Duration,
-    /// Connections served at once; further ones wait in the listen queue until one closes.
+    /// Connections served at once; a further one is answered at once with a 503 JSON error
+    /// and closed.
     pub max_connections: usize,
 }
 

@@ -433,9 +433,10 @@ pub async fn serve_on(
 /// [`serve_on`], also answering the host names `allow_hosts` (see [`AllowedHosts::allow`]).
 ///
 /// Each connection must send a request's headers within `header_timeout` of the
-/// configuration or is closed, and at most `max_connections` are served at once (further
-/// ones wait in the listen queue), so clients that open connections and send headers slowly
-/// cannot hold the server.
+/// configuration or is closed, and at most `max_connections` are served at once: a further
+/// one is answered at once with a 503 JSON error and closed ([`refuse_busy`]), so clients
+/// that open connections and send headers slowly cannot hold the server, and a client over
+/// the limit learns why instead of waiting in the listen queue.
 pub async fn serve_on_with(
     app: Arc<App>,
     listener: tokio::net::TcpListener,
@@ -451,7 +452,10 @@ pub async fn serve_on_with(
             h.allow(n)
         });
     let header_timeout = app.cfg.header_timeout;
-    let slots = Arc::new(tokio::sync::Semaphore::new(app.cfg.max_connections.max(1)));
+    let max_connections = app.cfg.max_connections.max(1);
+    let slots = Arc::new(tokio::sync::Semaphore::new(max_connections));
+    // Refusals in flight; past this many a connection over the limit is closed unanswered.
+    let refusals = Arc::new(tokio::sync::Semaphore::new(MAX_REFUSALS));
     let router = router(app, hosts);
     // `stop` tells connections to finish (graceful shutdown); `done` closes when the last
     // connection task has ended.
@@ -459,13 +463,6 @@ pub async fn serve_on_with(
     let (done_tx, done_rx) = tokio::sync::watch::channel(());
     let mut shutdown = std::pin::pin!(shutdown);
     loop {
-        let slot = tokio::select! {
-            s = slots.clone().acquire_owned() => match s {
-                Ok(s) => s,
-                Err(_) => break,
-            },
-            _ = &mut shutdown => break,
-        };
         let tcp = tokio::select! {
             r = listener.accept() => match r {
                 Ok((tcp, _)) => tcp,
@@ -477,6 +474,17 @@ pub async fn serve_on_with(
                 }
             },
             _ = &mut shutdown => break,
+        };
+        let Ok(slot) = slots.clone().try_acquire_owned() else {
+            if let Ok(permit) = refusals.clone().try_acquire_owned() {
+                let done_rx = done_rx.clone();
+                tokio::spawn(async move {
+                    refuse_busy(tcp, max_connections).await;
+                    drop(permit);
+                    drop(done_rx);
+                });
+            }
+            continue;
         };
         // A frame is a text message and a binary one: without TCP_NODELAY the second waits
         // for the client's delayed ACK (~40 ms), which capped a driver at ~20 frames/s.
@@ -517,6 +525,38 @@ pub async fn serve_on_with(
     drop(done_rx);
     done_tx.closed().await;
     Ok(())
+}
+
+/// Connections over the limit being answered 503 at once (each for at most
+/// [`REFUSAL_DRAIN`]); a flood beyond this is closed unanswered.
+const MAX_REFUSALS: usize = 256;
+/// How long a refused connection's request is read (and thrown away) after the answer.
+const REFUSAL_DRAIN: std::time::Duration = std::time::Duration::from_millis(500);
+
+/// Answer a connection over the `max` limit with a 503 JSON error and close it, without
+/// reading its request. The request is then drained for a moment so closing does not reset
+/// the connection before the client has read the answer.
+async fn refuse_busy(mut tcp: tokio::net::TcpStream, max: usize) {
+    use tokio::io::{AsyncReadExt, AsyncWriteExt};
+    let body = json!({
+        "error": format!(
+            "server busy: {max} connections are open (the server's limit); try again shortly"
+        )
+    })
+    .to_string();
+    let head = format!(
+        "HTTP/1.1 503 Service Unavailable\r\ncontent-type: application/json\r\n\
+         content-length: {}\r\nretry-after: 1\r\nconnection: close\r\n\r\n",
+        body.len()
+    );
+    let drain = async {
+        tcp.write_all(format!("{head}{body}").as_bytes()).await?;
+        tcp.shutdown().await?;
+        let mut buf = [0u8; 4096];
+        while tcp.read(&mut buf).await? > 0 {}
+        std::io::Result::Ok(())
+    };
+    let _ = tokio::time::timeout(REFUSAL_DRAIN, drain).await;
 }
 
 /// Bind `addr` and serve until Ctrl-C; `on_ready` gets the bound address (port 0 picks a free

@@ -1,6 +1,7 @@
-//! What a careless or hostile client cannot do: hold connections with half-sent headers, get a
-//! plain-text error, go unanswered with a binary WebSocket message, or run a second server on
-//! the same output folder (whose review decisions would overwrite the first's).
+//! What a careless or hostile client cannot do: hold connections with half-sent headers, wait
+//! unanswered beyond the connection limit, get a plain-text error, go unanswered with a binary
+//! WebSocket message, or run a second server on the same output folder (whose review decisions
+//! would overwrite the first's).
 
 use std::time::Duration;
 
@@ -45,14 +46,84 @@ async fn half_sent_headers_are_dropped_and_others_are_still_served() {
         s.write_all(part.as_bytes()).await.unwrap();
         slow.push(s);
     }
-    // A normal request is answered: the unfinished ones are closed and free their slots.
-    let (status, body) = tokio::time::timeout(Duration::from_secs(60), srv.get_json("/api/info"))
-        .await
-        .expect("an answer while slow clients hold connections");
+    // A normal request is answered once the unfinished ones are closed and free their slots
+    // (until then it is told the server is busy).
+    let (status, body) = tokio::time::timeout(Duration::from_secs(60), async {
+        loop {
+            let (status, body) = srv.get_json("/api/info").await;
+            if status != 503 {
+                break (status, body);
+            }
+            tokio::time::sleep(Duration::from_millis(100)).await;
+        }
+    })
+    .await
+    .expect("an answer while slow clients hold connections");
     assert_eq!(status, 200, "{body}");
     for (i, s) in slow.into_iter().enumerate() {
         assert!(closed_by_server(s).await, "slow client {i} still connected");
     }
+    srv.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_connection_over_the_limit_gets_a_503_json_error_at_once() {
+    let dir = tempfile::tempdir().unwrap();
+    make_dataset(dir.path(), 1);
+    let mut cfg = config(dir.path());
+    // Long enough that the held connections stay held for the whole test.
+    cfg.header_timeout = Duration::from_secs(120);
+    cfg.max_connections = 4;
+    let srv = Server::start(cfg).await;
+    let mut held = Vec::new();
+    for _ in 0..4 {
+        let mut s = TcpStream::connect(srv.addr).await.unwrap();
+        s.write_all(format!("GET /api/info HTTP/1.1\r\nHost: {}\r\n", srv.addr).as_bytes())
+            .await
+            .unwrap();
+        held.push(s);
+    }
+    // Connections are accepted in the order they arrived: the four take every slot first.
+    let mut extra = TcpStream::connect(srv.addr).await.unwrap();
+    extra
+        .write_all(
+            format!(
+                "GET /api/info HTTP/1.1\r\nHost: {}\r\nConnection: close\r\n\r\n",
+                srv.addr
+            )
+            .as_bytes(),
+        )
+        .await
+        .unwrap();
+    let mut answer = Vec::new();
+    tokio::time::timeout(Duration::from_secs(60), extra.read_to_end(&mut answer))
+        .await
+        .expect("an answer, not a wait in the listen queue")
+        .unwrap();
+    let text = String::from_utf8_lossy(&answer).to_string();
+    assert!(text.starts_with("HTTP/1.1 503 "), "{text}");
+    let body = &text[text.find("\r\n\r\n").expect("a header end") + 4..];
+    let v: Value = serde_json::from_str(body).unwrap_or_else(|e| panic!("{e}: {text}"));
+    assert!(
+        v["error"]
+            .as_str()
+            .is_some_and(|m| m.contains("busy") && m.contains('4')),
+        "{v}"
+    );
+    // Once the held connections go, requests are served again.
+    drop(held);
+    let (status, body) = tokio::time::timeout(Duration::from_secs(60), async {
+        loop {
+            let (status, body) = srv.get_json("/api/info").await;
+            if status != 503 {
+                break (status, body);
+            }
+            tokio::time::sleep(Duration::from_millis(50)).await;
+        }
+    })
+    .await
+    .expect("served after the held connections closed");
+    assert_eq!(status, 200, "{body}");
     srv.stop().await;
 }
 
