@@ -100,7 +100,7 @@ pub enum ClassKind {
 }
 
 vocabulary! {
-    /// Semantic class of a scene object (the fixed vocabulary, 60+ classes).
+    /// Semantic class of a scene object (the fixed vocabulary, 120+ classes).
     pub enum SemanticClass {
         Wall = (1, "wall", Structure),
         Floor = (2, "floor", Structure),
@@ -167,6 +167,65 @@ vocabulary! {
         Plate = (63, "plate", Small),
         Unknown = (64, "unknown", Unknown),
         Door = (65, "door", Furniture),
+        FruitBowl = (66, "fruit_bowl", Small),
+        Teapot = (67, "teapot", Small),
+        Pot = (68, "pot", Small),
+        Pan = (69, "pan", Small),
+        CuttingBoard = (70, "cutting_board", Small),
+        CoffeeMachine = (71, "coffee_machine", Small),
+        Blender = (72, "blender", Small),
+        DishRack = (73, "dish_rack", Small),
+        TissueBox = (74, "tissue_box", Small),
+        Basket = (75, "basket", Small),
+        Speaker = (76, "speaker", Small),
+        Phone = (77, "phone", Small),
+        Tablet = (78, "tablet", Small),
+        Printer = (79, "printer", Small),
+        PenHolder = (80, "pen_holder", Small),
+        Globe = (81, "globe", Small),
+        BoardGame = (82, "board_game", Small),
+        Toy = (83, "toy", Small),
+        JewelryBox = (84, "jewelry_box", Small),
+        ToiletPaper = (85, "toilet_paper", Small),
+        Shampoo = (86, "shampoo", Small),
+        ToothbrushHolder = (87, "toothbrush_holder", Small),
+        Hairdryer = (88, "hairdryer", Small),
+        Magazine = (89, "magazine", Small),
+        Headphones = (90, "headphones", Small),
+        Shoes = (91, "shoes", Furniture),
+        Slippers = (92, "slippers", Furniture),
+        LaundryBasket = (93, "laundry_basket", Furniture),
+        Box = (94, "box", Furniture),
+        Backpack = (95, "backpack", Furniture),
+        UmbrellaStand = (96, "umbrella_stand", Furniture),
+        DogBed = (97, "dog_bed", Furniture),
+        YogaMat = (98, "yoga_mat", Furniture),
+        Dumbbells = (99, "dumbbells", Furniture),
+        Ottoman = (100, "ottoman", Furniture),
+        BeanBag = (101, "bean_bag", Furniture),
+        Chest = (102, "chest", Furniture),
+        Vanity = (103, "vanity", Furniture),
+        FilingCabinet = (104, "filing_cabinet", Furniture),
+        WallShelf = (105, "wall_shelf", Furniture),
+        TowelRack = (106, "towel_rack", Furniture),
+        Curtain = (107, "curtain", Furniture),
+        Radiator = (108, "radiator", Furniture),
+        Fan = (109, "fan", Furniture),
+        Heater = (110, "heater", Furniture),
+        Fireplace = (111, "fireplace", Furniture),
+        Aquarium = (112, "aquarium", Furniture),
+        Treadmill = (113, "treadmill", Furniture),
+        ExerciseBike = (114, "exercise_bike", Furniture),
+        Bicycle = (115, "bicycle", Furniture),
+        IroningBoard = (116, "ironing_board", Furniture),
+        DryingRack = (117, "drying_rack", Furniture),
+        Crib = (118, "crib", Furniture),
+        HighChair = (119, "high_chair", Furniture),
+        PatioChair = (120, "patio_chair", Furniture),
+        PatioTable = (121, "patio_table", Furniture),
+        Planter = (122, "planter", Furniture),
+        ClothesRail = (123, "clothes_rail", Furniture),
+        ShelvingUnit = (124, "shelving_unit", Furniture),
     }
 }
 
@@ -230,7 +289,7 @@ mod tests {
             .filter(|c| matches!(c.kind(), ClassKind::Furniture | ClassKind::Small))
             .count();
         assert!(
-            objects >= 40,
+            objects >= 100,
             "vocabulary has only {objects} object classes"
         );
     }

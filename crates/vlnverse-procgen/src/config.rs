@@ -133,11 +133,15 @@ pub struct DoorsConfig {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct FurnitureConfig {
-    /// Factor on the probability of every optional piece of furniture (0 = only essentials).
+    /// Factor on the probability of every optional piece of furniture (0 = only essentials),
+    /// in `[0, 4]`.
     pub density: f32,
-    /// Placement attempts per piece of furniture.
+    /// Placement attempts per piece of furniture, in `[1, 1000]`.
     pub attempts: usize,
-    /// Most small objects on one surface.
+    /// Factor on the probability of each piece of floor and wall clutter (shoes, laundry
+    /// baskets, wall shelves, radiators...; 0 = none), in `[0, 4]`.
+    pub clutter: f32,
+    /// Most small objects on one surface, in `[0, 8]`.
     pub small_objects_max: usize,
     /// Probability that a surface gets small objects at all.
     pub small_object_probability: f32,
@@ -194,6 +198,9 @@ impl Default for RoomsConfig {
                 kind(RoomType::Office, 0, 1, 1.0, 7.5, 13.0),
                 kind(RoomType::Hallway, 0, 1, 0.8, 6.0, 11.0),
                 kind(RoomType::LaundryRoom, 0, 1, 0.6, 4.8, 7.5),
+                kind(RoomType::EntranceHall, 0, 1, 0.6, 5.0, 9.0),
+                kind(RoomType::Closet, 0, 1, 0.5, 4.8, 7.0),
+                kind(RoomType::Balcony, 0, 1, 0.6, 4.8, 8.0),
             ],
         }
     }
@@ -235,8 +242,9 @@ impl Default for FurnitureConfig {
         FurnitureConfig {
             density: 1.0,
             attempts: 24,
-            small_objects_max: 3,
-            small_object_probability: 0.8,
+            clutter: 1.0,
+            small_objects_max: 6,
+            small_object_probability: 0.95,
             nav_radius: 0.4,
             gap: 0.05,
         }
@@ -256,6 +264,9 @@ impl Default for ProcgenConfig {
         }
     }
 }
+
+/// Most scenes one config may ask for.
+const MAX_SCENES: usize = 100_000;
 
 fn check(ok: bool, field: &str, value: impl ToString, reason: &str) -> Result<()> {
     if ok {
@@ -318,6 +329,13 @@ impl ProcgenConfig {
             "must be non-empty ASCII letters, digits, '_' or '-' (it names folders)",
         )?;
 
+        check(
+            s.count <= MAX_SCENES,
+            "scenes.count",
+            s.count,
+            &format!("must be at most {MAX_SCENES}"),
+        )?;
+
         let r = &self.rooms;
         check(
             (1..=16).contains(&r.count_min),
@@ -345,13 +363,31 @@ impl ProcgenConfig {
             "must be at least 1.5 m so an agent fits through a room",
         )?;
         check(
-            r.max_aspect.is_finite() && r.max_aspect >= 1.5,
+            r.min_side <= 20.0,
+            "rooms.min_side",
+            r.min_side,
+            "must be at most 20 m",
+        )?;
+        check(
+            r.max_aspect.is_finite() && (1.5..=10.0).contains(&r.max_aspect),
             "rooms.max_aspect",
             r.max_aspect,
-            "must be at least 1.5",
+            "must be in [1.5, 10]",
         )?;
         positive("rooms.area_scale_min", r.area_scale_min)?;
         positive("rooms.area_scale_max", r.area_scale_max)?;
+        check(
+            r.area_scale_max <= 10.0,
+            "rooms.area_scale_max",
+            r.area_scale_max,
+            "must be at most 10",
+        )?;
+        check(
+            r.kinds.len() <= 64,
+            "rooms.kinds",
+            format!("({} kinds)", r.kinds.len()),
+            "must list at most 64 kinds",
+        )?;
         check(
             r.area_scale_min <= r.area_scale_max,
             "rooms.area_scale_min",
@@ -378,13 +414,25 @@ impl ProcgenConfig {
                 &format!("must not exceed count_max = {}", k.count_max),
             )?;
             check(
-                k.weight.is_finite() && k.weight >= 0.0,
+                k.count_max <= 16,
+                &f("count_max"),
+                k.count_max,
+                "must be at most 16 (rooms.count_max's limit)",
+            )?;
+            check(
+                k.weight.is_finite() && (0.0..=1000.0).contains(&k.weight),
                 &f("weight"),
                 k.weight,
-                "must be a non-negative number",
+                "must be in [0, 1000]",
             )?;
             positive(&f("area_min"), k.area_min)?;
             positive(&f("area_max"), k.area_max)?;
+            check(
+                k.area_max <= 500.0,
+                &f("area_max"),
+                k.area_max,
+                "must be at most 500 m^2",
+            )?;
             check(
                 k.area_min <= k.area_max,
                 &f("area_min"),
@@ -431,6 +479,12 @@ impl ProcgenConfig {
             "must be at most 0.5 m",
         )?;
         positive("walls.height", w.height)?;
+        check(
+            w.height <= 10.0,
+            "walls.height",
+            w.height,
+            "must be at most 10 m",
+        )?;
 
         let d = &self.doors;
         check(
@@ -505,6 +559,12 @@ impl ProcgenConfig {
             "furniture.attempts",
             f.attempts,
             "must be between 1 and 1000",
+        )?;
+        check(
+            f.clutter.is_finite() && (0.0..=4.0).contains(&f.clutter),
+            "furniture.clutter",
+            f.clutter,
+            "must be in [0, 4]",
         )?;
         check(
             f.small_objects_max <= 8,

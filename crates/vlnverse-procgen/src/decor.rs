@@ -297,8 +297,8 @@ const SKIRTING: &[Finish] = &[
 /// Daylight seen through a pane (bright, a little blue).
 const SKY: [f32; 3] = [0.78, 0.88, 1.0];
 
-/// Add one window (up to three objects of class `Window`: the pane, its frame with sill, and
-/// curtains) centred `c` along a face, `w` wide, within `depth` in front of the face.
+/// Add one window (the pane and its frame with sill, two objects of class `Window`, and on
+/// some a `curtain`) centred `c` along a face, `w` wide, within `depth` in front of the face.
 #[allow(clippy::too_many_arguments)]
 fn add_window(
     b: &mut Builder,
@@ -384,7 +384,7 @@ fn add_window(
             })
             .collect();
         b.add(
-            C::Window,
+            C::Curtain,
             Some(room),
             pose,
             parts,

@@ -74,8 +74,29 @@ pub(crate) struct Plan {
 fn is_public(k: RoomType) -> bool {
     matches!(
         k,
-        RoomType::LivingRoom | RoomType::Kitchen | RoomType::DiningRoom | RoomType::Hallway
+        RoomType::LivingRoom
+            | RoomType::Kitchen
+            | RoomType::DiningRoom
+            | RoomType::Hallway
+            | RoomType::EntranceHall
     )
+}
+
+/// Rooms that are only ever reached through one neighbour of the kinds given (a closet off a
+/// bedroom or hallway, a balcony off the living room or a bedroom); `None` for other rooms.
+fn leaf_of(k: RoomType) -> Option<&'static [RoomType]> {
+    use RoomType as R;
+    match k {
+        R::Closet => Some(&[R::Bedroom, R::Hallway, R::EntranceHall]),
+        R::Balcony => Some(&[R::LivingRoom, R::Bedroom]),
+        _ => None,
+    }
+}
+
+/// Whether a door may join rooms of kinds `a` and `b`.
+fn may_join(a: RoomType, b: RoomType) -> bool {
+    let ok = |x: RoomType, y: RoomType| leaf_of(x).is_none_or(|list| list.contains(&y));
+    ok(a, b) && ok(b, a)
 }
 
 /// Zone rank: public rooms first, then the hallway, then private rooms, so that recursive
@@ -83,7 +104,7 @@ fn is_public(k: RoomType) -> bool {
 fn zone(k: RoomType) -> u8 {
     match k {
         RoomType::LivingRoom | RoomType::Kitchen | RoomType::DiningRoom => 0,
-        RoomType::Hallway => 1,
+        RoomType::Hallway | RoomType::EntranceHall => 1,
         _ => 2,
     }
 }
@@ -226,10 +247,23 @@ fn shared_walls(rects: &[Rect], min_len: f32) -> Vec<Shared> {
     out
 }
 
-fn connected(n: usize, edges: &[Shared]) -> bool {
-    let mut seen = vec![false; n];
-    let mut stack = vec![0];
-    seen[0] = true;
+/// Whether a room lies along the house footprint's outline.
+fn touches_outside(r: &Rect, footprint: &Rect) -> bool {
+    const EPS: f32 = 1e-3;
+    (r.x0 - footprint.x0).abs() < EPS
+        || (r.x1 - footprint.x1).abs() < EPS
+        || (r.z0 - footprint.z0).abs() < EPS
+        || (r.z1 - footprint.z1).abs() < EPS
+}
+
+/// Whether the rooms not marked `skip` are connected by `edges`.
+fn connected_without(skip: &[bool], edges: &[Shared]) -> bool {
+    let Some(first) = skip.iter().position(|&s| !s) else {
+        return true;
+    };
+    let mut seen = skip.to_vec();
+    let mut stack = vec![first];
+    seen[first] = true;
     while let Some(u) = stack.pop() {
         for e in edges {
             for (p, q) in [(e.a, e.b), (e.b, e.a)] {
@@ -247,10 +281,11 @@ fn connected(n: usize, edges: &[Shared]) -> bool {
 fn hub_weight(k: RoomType) -> f32 {
     match k {
         RoomType::Hallway => 6.0,
+        RoomType::EntranceHall => 5.0,
         RoomType::LivingRoom => 4.0,
         RoomType::DiningRoom => 2.0,
         RoomType::Kitchen => 1.2,
-        RoomType::Bathroom | RoomType::LaundryRoom | RoomType::Closet => 0.03,
+        RoomType::Bathroom | RoomType::LaundryRoom | RoomType::Closet | RoomType::Balcony => 0.03,
         RoomType::Bedroom => 0.15,
         _ => 0.5,
     }
@@ -293,9 +328,26 @@ fn try_layout(
     }
     let d = &cfg.doors;
     let min_len = d.width_min + 2.0 * (d.frame_width + d.corner_margin) + cfg.walls.thickness;
-    let shared = shared_walls(&rects, min_len);
-    if !connected(rects.len(), &shared) {
+    let mut shared = shared_walls(&rects, min_len);
+    shared.retain(|s| may_join(list[s.a].0, list[s.b].0));
+    // Leaf rooms (closets, balconies) must hang off an allowed neighbour, and the other rooms
+    // must connect without passing through one; a balcony also needs an outside wall.
+    let inner: Vec<Shared> = shared
+        .iter()
+        .filter(|s| leaf_of(list[s.a].0).is_none() && leaf_of(list[s.b].0).is_none())
+        .copied()
+        .collect();
+    let is_leaf: Vec<bool> = list.iter().map(|(k, _)| leaf_of(*k).is_some()).collect();
+    if !connected_without(&is_leaf, &inner) {
         return None;
+    }
+    for (i, (k, _)) in list.iter().enumerate() {
+        if is_leaf[i] && !shared.iter().any(|s| s.a == i || s.b == i) {
+            return None;
+        }
+        if *k == RoomType::Balcony && !touches_outside(&rects[i], &footprint) {
+            return None;
+        }
     }
     let rooms = rects
         .into_iter()
@@ -366,6 +418,7 @@ pub(crate) fn generate(cfg: &ProcgenConfig, rng: &mut ChaCha8Rng) -> Option<Plan
     let start = rooms
         .iter()
         .position(|r| r.kind == RoomType::LivingRoom)
+        .or_else(|| rooms.iter().position(|r| leaf_of(r.kind).is_none()))
         .unwrap_or(0);
     let mut in_tree = vec![false; n];
     in_tree[start] = true;
@@ -377,6 +430,10 @@ pub(crate) fn generate(cfg: &ProcgenConfig, rng: &mut ChaCha8Rng) -> Option<Plan
             .map(|s| {
                 if in_tree[s.a] != in_tree[s.b] {
                     let (u, v) = if in_tree[s.a] { (s.a, s.b) } else { (s.b, s.a) };
+                    if leaf_of(rooms[u].kind).is_some() {
+                        // Nothing is reached through a closet or a balcony.
+                        return 0.0;
+                    }
                     hub_weight(rooms[u].kind) * (0.5 + 0.5 * hub_weight(rooms[v].kind).min(1.0))
                 } else {
                     0.0
@@ -399,6 +456,7 @@ pub(crate) fn generate(cfg: &ProcgenConfig, rng: &mut ChaCha8Rng) -> Option<Plan
                     | RoomType::Kitchen
                     | RoomType::DiningRoom
                     | RoomType::Hallway
+                    | RoomType::EntranceHall
                     | RoomType::Office
             )
         };

@@ -22,6 +22,11 @@ use vlnverse_env::{ObjectId, Pose, RoomId, RoomType, SemanticClass as C};
 
 /// Grid cell of the in-room navigability check (m).
 const NAV_CELL: f32 = 0.1;
+/// How far past a framed doorway's gap, along the wall, floor and wall clutter stays away (m):
+/// an open leaf (about a door width deep) stands there.
+const CLUTTER_SWING: f32 = 0.7;
+/// Random spots tried for each small object on its surface.
+const SMALL_TRIES: usize = 16;
 /// Distance kept between furniture and walls (m).
 const WALL_GAP: f32 = 0.01;
 
@@ -46,7 +51,8 @@ struct Item {
 impl Item {
     fn at(model: Model, x: f32, z: f32, yaw: f32) -> Item {
         Item {
-            flat: model.class == C::Rug,
+            // Rugs and mats: walkable (below the maps' floor clearance).
+            flat: model.class == C::Rug || model.h < 0.02,
             model,
             x,
             z,
@@ -477,6 +483,64 @@ fn kitchen_run(rng: &mut ChaCha8Rng, target: f32) -> Group {
     }
 }
 
+/// A bathroom sink with a mirror on the wall above it.
+fn sink_group(rng: &mut ChaCha8Rng) -> Group {
+    let sink = models::sink(rng);
+    let mirror = models::clutter(C::Mirror, rng);
+    let back = (sink.d - mirror.d) * 0.5;
+    let mut items = vec![Item::at(sink, 0.0, 0.0, 0.0)];
+    if mirror.w <= items[0].model.w {
+        items.push(Item::at(mirror, 0.0, back, 0.0));
+    }
+    Group {
+        items,
+        mode: Mode::Wall,
+    }
+}
+
+/// A vanity (dressing table) with a mirror above it and a stool in front.
+fn vanity_group(rng: &mut ChaCha8Rng) -> Group {
+    let vanity = models::clutter(C::Vanity, rng);
+    let mirror = models::clutter(C::Mirror, rng);
+    let stool = models::stool(rng);
+    let (vd, md) = (vanity.d, mirror.d);
+    let mut items = vec![Item::at(vanity, 0.0, 0.0, 0.0)];
+    if mirror.w <= items[0].model.w {
+        items.push(Item::at(mirror, 0.0, (vd - md) * 0.5, 0.0));
+    }
+    if rng.random_bool(0.6) {
+        let z = -vd * 0.5 - 0.05 - stool.d * 0.5;
+        items.push(Item::at(stool, 0.0, z, 0.0));
+    }
+    Group {
+        items,
+        mode: Mode::Wall,
+    }
+}
+
+/// A small outdoor table with one to three chairs around it.
+fn patio_group(rng: &mut ChaCha8Rng, chairs: usize) -> Group {
+    let table = models::clutter(C::PatioTable, rng);
+    let chair = models::clutter(C::PatioChair, rng);
+    let off = table.w * 0.5 + 0.05 + chair.d * 0.5;
+    let mut items = vec![Item::at(table, 0.0, 0.0, 0.0)];
+    // Chairs face the table: on the left, right and front sides.
+    for (x, z, yaw) in [
+        (-off, 0.0, -FRAC_PI_2),
+        (off, 0.0, FRAC_PI_2),
+        (0.0, -off, PI),
+    ]
+    .into_iter()
+    .take(chairs)
+    {
+        items.push(Item::at(chair.clone(), x, z, yaw));
+    }
+    Group {
+        items,
+        mode: Mode::Wall,
+    }
+}
+
 fn wall(m: Model) -> Group {
     Group::one(m, Mode::Wall)
 }
@@ -518,6 +582,12 @@ fn recipe(
             }
             if maybe(cfg, rng, 0.1) {
                 out.push(vec![wall(models::piano(rng))]);
+            }
+            if maybe(cfg, rng, 0.2) {
+                out.push(vec![wall(models::clutter(C::Fireplace, rng))]);
+            }
+            if maybe(cfg, rng, 0.08) {
+                out.push(vec![wall(models::clutter(C::Aquarium, rng))]);
             }
             for (p, f) in [
                 (0.6, models::potted_plant as fn(&mut ChaCha8Rng) -> Model),
@@ -605,6 +675,15 @@ fn recipe(
                 let office = rng.random_bool(0.5);
                 out.push(vec![desk_group(rng, office)]);
             }
+            if maybe(cfg, rng, 0.2) {
+                out.push(vec![vanity_group(rng)]);
+            }
+            if maybe(cfg, rng, 0.25) {
+                out.push(vec![wall(models::clutter(C::Chest, rng))]);
+            }
+            if maybe(cfg, rng, 0.06) {
+                out.push(vec![wall(models::clutter(C::Crib, rng))]);
+            }
             for (p, f) in [
                 (0.3, models::potted_plant as fn(&mut ChaCha8Rng) -> Model),
                 (0.25, models::floor_lamp),
@@ -618,7 +697,7 @@ fn recipe(
         }
         RoomType::Bathroom => {
             out.push(vec![wall(models::toilet(rng))]);
-            out.push(vec![wall(models::sink(rng))]);
+            out.push(vec![sink_group(rng), wall(models::sink(rng))]);
             if maybe(cfg, rng, 0.55) {
                 out.push(vec![
                     corner(models::bathtub(rng)),
@@ -633,9 +712,15 @@ fn recipe(
             if maybe(cfg, rng, 0.4) {
                 out.push(vec![corner(models::trash_can(rng))]);
             }
+            if maybe(cfg, rng, 0.6) {
+                out.push(vec![wall(models::clutter(C::TowelRack, rng))]);
+            }
         }
         RoomType::Office => {
             out.push(vec![desk_group(rng, true), desk_group(rng, false)]);
+            if maybe(cfg, rng, 0.6) {
+                out.push(vec![wall(models::clutter(C::FilingCabinet, rng))]);
+            }
             if maybe(cfg, rng, 0.8) {
                 out.push(vec![wall(models::bookshelf(rng))]);
             }
@@ -676,6 +761,15 @@ fn recipe(
         }
         RoomType::LaundryRoom => {
             out.push(vec![wall(models::washing_machine(rng))]);
+            if maybe(cfg, rng, 0.5) {
+                out.push(vec![wall(models::clutter(C::IroningBoard, rng))]);
+            }
+            if maybe(cfg, rng, 0.5) {
+                out.push(vec![wall(models::clutter(C::DryingRack, rng))]);
+            }
+            if maybe(cfg, rng, 0.4) {
+                out.push(vec![wall(models::clutter(C::ShelvingUnit, rng))]);
+            }
             if maybe(cfg, rng, 0.45) {
                 out.push(vec![wall(models::washing_machine(rng))]);
             }
@@ -684,6 +778,59 @@ fn recipe(
             }
             if maybe(cfg, rng, 0.3) {
                 out.push(vec![corner(models::trash_can(rng))]);
+            }
+        }
+        RoomType::Closet => {
+            out.push(vec![
+                wall(models::clutter(C::ClothesRail, rng)),
+                wall(models::wardrobe(rng)),
+            ]);
+            if maybe(cfg, rng, 0.6) {
+                out.push(vec![wall(models::shoe_rack(rng))]);
+            }
+            if maybe(cfg, rng, 0.5) {
+                out.push(vec![wall(models::clutter(C::ShelvingUnit, rng))]);
+            }
+            if maybe(cfg, rng, 0.4) {
+                out.push(vec![wall(models::clutter(C::Chest, rng))]);
+            }
+            if maybe(cfg, rng, 0.3) {
+                out.push(vec![wall(models::dresser(rng))]);
+            }
+        }
+        RoomType::EntranceHall => {
+            out.push(vec![wall(models::shoe_rack(rng)), wall(models::bench(rng))]);
+            if maybe(cfg, rng, 0.7) {
+                out.push(vec![corner(models::coat_rack(rng))]);
+            }
+            if maybe(cfg, rng, 0.5) {
+                out.push(vec![wall(models::side_table(rng))]);
+            }
+            if maybe(cfg, rng, 0.4) {
+                out.push(vec![wall(models::clutter(C::Mirror, rng))]);
+            }
+            if maybe(cfg, rng, 0.4) {
+                out.push(vec![corner(models::potted_plant(rng))]);
+            }
+            if maybe(cfg, rng, 0.5) {
+                let (w, d) = (rng.random_range(0.8f32..1.2), rng.random_range(1.0f32..1.6));
+                let r = models::rug(rng, w, d);
+                out.push(vec![Group::one(r, Mode::Center)]);
+            }
+        }
+        RoomType::Balcony => {
+            let chairs = rng.random_range(1..=3);
+            out.push(vec![
+                patio_group(rng, chairs),
+                patio_group(rng, 1),
+                wall(models::clutter(C::PatioChair, rng)),
+            ]);
+            out.push(vec![wall(models::clutter(C::Planter, rng))]);
+            if maybe(cfg, rng, 0.5) {
+                out.push(vec![wall(models::clutter(C::Planter, rng))]);
+            }
+            if maybe(cfg, rng, 0.5) {
+                out.push(vec![corner(models::potted_plant(rng))]);
             }
         }
         _ => {
@@ -703,6 +850,131 @@ fn recipe(
     out
 }
 
+/// Floor and wall clutter of a room, placed after its furniture (ProcTHOR's separate floor
+/// and wall stages): each entry is a class, its chance (times `furniture.clutter`) and where it
+/// goes. Pieces stand against a wall or in a corner, so they keep the room's free space one
+/// island and the doorways clear like any furniture (the same placement checks).
+fn clutter_recipe(cfg: &ProcgenConfig, kind: RoomType, rng: &mut ChaCha8Rng) -> Vec<Vec<Group>> {
+    use RoomType as R;
+    const W: Mode = Mode::Wall;
+    const K: Mode = Mode::Corner;
+    let list: &[(C, f32, Mode)] = match kind {
+        R::LivingRoom => &[
+            (C::WallShelf, 0.6, W),
+            (C::Radiator, 0.35, W),
+            (C::Ottoman, 0.4, W),
+            (C::BeanBag, 0.2, K),
+            (C::DogBed, 0.2, K),
+            (C::Fan, 0.12, K),
+            (C::Heater, 0.1, K),
+            (C::Box, 0.25, K),
+            (C::Treadmill, 0.05, W),
+            (C::ShelvingUnit, 0.15, W),
+            (C::WallShelf, 0.4, W),
+            (C::WallShelf, 0.3, W),
+        ],
+        R::Kitchen => &[
+            (C::WallShelf, 0.5, W),
+            (C::WallShelf, 0.3, W),
+            (C::HighChair, 0.12, W),
+            (C::Radiator, 0.25, W),
+            (C::DogBed, 0.1, K),
+        ],
+        R::DiningRoom => &[
+            (C::WallShelf, 0.4, W),
+            (C::WallShelf, 0.3, W),
+            (C::Radiator, 0.35, W),
+            (C::HighChair, 0.15, W),
+            (C::Aquarium, 0.05, W),
+        ],
+        R::Bedroom => &[
+            (C::WallShelf, 0.5, W),
+            (C::WallShelf, 0.3, W),
+            (C::LaundryBasket, 0.5, K),
+            (C::Slippers, 0.45, W),
+            (C::Shoes, 0.25, W),
+            (C::Backpack, 0.3, W),
+            (C::Radiator, 0.3, W),
+            (C::Ottoman, 0.1, W),
+            (C::BeanBag, 0.1, K),
+            (C::YogaMat, 0.1, W),
+            (C::Dumbbells, 0.1, W),
+            (C::ExerciseBike, 0.05, W),
+            (C::Fan, 0.1, K),
+            (C::Heater, 0.08, K),
+            (C::ClothesRail, 0.08, W),
+            (C::Box, 0.25, K),
+            (C::Ottoman, 0.15, W),
+        ],
+        R::Bathroom => &[
+            (C::WallShelf, 0.55, W),
+            (C::LaundryBasket, 0.3, K),
+            (C::Radiator, 0.25, W),
+            (C::Slippers, 0.15, W),
+        ],
+        R::Office => &[
+            (C::WallShelf, 0.6, W),
+            (C::WallShelf, 0.4, W),
+            (C::Backpack, 0.3, W),
+            (C::Box, 0.35, K),
+            (C::Radiator, 0.3, W),
+            (C::ShelvingUnit, 0.2, W),
+            (C::Fan, 0.15, K),
+            (C::Heater, 0.1, K),
+            (C::ExerciseBike, 0.06, W),
+            (C::Treadmill, 0.04, W),
+            (C::YogaMat, 0.08, W),
+        ],
+        R::Hallway => &[
+            (C::Shoes, 0.5, W),
+            (C::UmbrellaStand, 0.35, K),
+            (C::Mirror, 0.3, W),
+            (C::Radiator, 0.2, W),
+            (C::Backpack, 0.2, W),
+            (C::WallShelf, 0.25, W),
+            (C::Bicycle, 0.06, W),
+        ],
+        R::EntranceHall => &[
+            (C::Shoes, 0.7, W),
+            (C::Shoes, 0.4, W),
+            (C::UmbrellaStand, 0.5, K),
+            (C::Backpack, 0.3, W),
+            (C::Slippers, 0.3, W),
+            (C::WallShelf, 0.35, W),
+            (C::Radiator, 0.25, W),
+            (C::Bicycle, 0.1, W),
+        ],
+        R::LaundryRoom => &[
+            (C::LaundryBasket, 0.7, K),
+            (C::Box, 0.3, K),
+            (C::WallShelf, 0.4, W),
+            (C::LaundryBasket, 0.25, K),
+        ],
+        R::Closet => &[
+            (C::Shoes, 0.6, W),
+            (C::Box, 0.5, K),
+            (C::LaundryBasket, 0.4, K),
+            (C::WallShelf, 0.4, W),
+            (C::Mirror, 0.3, W),
+            (C::Slippers, 0.3, W),
+        ],
+        R::Balcony => &[
+            (C::DryingRack, 0.3, W),
+            (C::Bicycle, 0.12, W),
+            (C::Planter, 0.3, W),
+        ],
+        _ => &[(C::WallShelf, 0.3, W), (C::Box, 0.2, K)],
+    };
+    let mut out = Vec::new();
+    for &(class, p, mode) in list {
+        let p = (p * cfg.furniture.clutter).clamp(0.0, 1.0);
+        if rng.random_bool(p as f64) {
+            out.push(vec![Group::one(models::clutter(class, rng), mode)]);
+        }
+    }
+    out
+}
+
 /// Small objects that fit on a support, by support class and room.
 fn small_choices(support: C, room: RoomType) -> &'static [C] {
     match (support, room) {
@@ -713,6 +985,9 @@ fn small_choices(support: C, room: RoomType) -> &'static [C] {
             C::Cup,
             C::SmallPlant,
             C::Candle,
+            C::Phone,
+            C::TissueBox,
+            C::Tablet,
         ],
         (C::Dresser, _) => &[
             C::Vase,
@@ -722,6 +997,8 @@ fn small_choices(support: C, room: RoomType) -> &'static [C] {
             C::TableLamp,
             C::Book,
             C::SmallPlant,
+            C::JewelryBox,
+            C::Basket,
         ],
         (C::Counter, _) => &[
             C::Toaster,
@@ -732,6 +1009,14 @@ fn small_choices(support: C, room: RoomType) -> &'static [C] {
             C::Cup,
             C::Mug,
             C::Bottle,
+            C::FruitBowl,
+            C::Teapot,
+            C::Pot,
+            C::Pan,
+            C::CuttingBoard,
+            C::CoffeeMachine,
+            C::Blender,
+            C::DishRack,
         ],
         (C::CoffeeTable, _) => &[
             C::Remote,
@@ -742,13 +1027,58 @@ fn small_choices(support: C, room: RoomType) -> &'static [C] {
             C::Cup,
             C::Mug,
             C::SmallPlant,
+            C::Magazine,
+            C::TissueBox,
+            C::BoardGame,
+            C::FruitBowl,
+            C::Phone,
+            C::Tablet,
+            C::Toy,
         ],
-        (C::DiningTable, _) => &[C::Plate, C::Bowl, C::Vase, C::Cup, C::Bottle, C::Candle],
-        (C::SideTable, _) => &[C::TableLamp, C::Vase, C::Book, C::SmallPlant, C::Clock],
-        (C::Desk, _) => &[C::Laptop, C::Mug, C::Book, C::TableLamp, C::Cup],
-        (C::Cabinet, RoomType::Bathroom | RoomType::LaundryRoom) => {
-            &[C::Towel, C::SoapDispenser, C::Bottle]
-        }
+        (C::DiningTable, _) => &[
+            C::Plate,
+            C::Bowl,
+            C::Vase,
+            C::Cup,
+            C::Bottle,
+            C::Candle,
+            C::FruitBowl,
+            C::Teapot,
+        ],
+        (C::SideTable, _) => &[
+            C::TableLamp,
+            C::Vase,
+            C::Book,
+            C::SmallPlant,
+            C::Clock,
+            C::Phone,
+            C::Magazine,
+            C::TissueBox,
+        ],
+        (C::Desk, _) => &[
+            C::Laptop,
+            C::Mug,
+            C::Book,
+            C::TableLamp,
+            C::Cup,
+            C::Phone,
+            C::PenHolder,
+            C::Printer,
+            C::Headphones,
+            C::Globe,
+            C::Speaker,
+            C::Tablet,
+        ],
+        (C::Cabinet, RoomType::Bathroom | RoomType::LaundryRoom) => &[
+            C::Towel,
+            C::SoapDispenser,
+            C::Bottle,
+            C::ToiletPaper,
+            C::Shampoo,
+            C::ToothbrushHolder,
+            C::Hairdryer,
+            C::Basket,
+        ],
         (C::Cabinet, _) => &[
             C::Vase,
             C::Book,
@@ -756,9 +1086,70 @@ fn small_choices(support: C, room: RoomType) -> &'static [C] {
             C::SmallPlant,
             C::PictureFrame,
             C::Clock,
+            C::Speaker,
+            C::Basket,
+            C::BoardGame,
+            C::Globe,
+            C::Toy,
         ],
-        (C::WashingMachine, _) => &[C::Towel, C::Bottle],
-        (C::ShoeRack, _) => &[C::SmallPlant, C::Vase],
+        (C::WashingMachine, _) => &[C::Towel, C::Bottle, C::Basket],
+        (C::ShoeRack, _) => &[C::SmallPlant, C::Vase, C::Basket],
+        (C::Vanity, _) => &[
+            C::JewelryBox,
+            C::Hairdryer,
+            C::TissueBox,
+            C::Candle,
+            C::PictureFrame,
+            C::Vase,
+            C::Bottle,
+        ],
+        (C::Chest, _) => &[C::Basket, C::Book, C::Toy, C::BoardGame, C::Pillow],
+        (C::FilingCabinet, _) => &[C::Printer, C::PenHolder, C::Globe, C::Book, C::SmallPlant],
+        (C::WallShelf, RoomType::Bathroom) => &[
+            C::Towel,
+            C::Shampoo,
+            C::ToiletPaper,
+            C::SoapDispenser,
+            C::Candle,
+        ],
+        (C::WallShelf, RoomType::Kitchen) => &[C::Bowl, C::Plate, C::Mug, C::Teapot, C::Bottle],
+        (C::WallShelf, _) => &[
+            C::Book,
+            C::Vase,
+            C::SmallPlant,
+            C::PictureFrame,
+            C::Clock,
+            C::Candle,
+            C::Toy,
+            C::Speaker,
+            C::Globe,
+        ],
+        (C::Fireplace, _) => &[C::Candle, C::Clock, C::PictureFrame, C::Vase],
+        (C::Ottoman, _) => &[C::Magazine, C::Book, C::Tablet],
+        (C::PatioTable, _) => &[
+            C::Cup,
+            C::Mug,
+            C::Bottle,
+            C::Candle,
+            C::SmallPlant,
+            C::Phone,
+        ],
+        (C::ShelvingUnit, RoomType::LaundryRoom | RoomType::Closet) => {
+            &[C::Basket, C::Towel, C::Bottle]
+        }
+        (C::ShelvingUnit, _) => &[C::Basket, C::Book, C::Toy, C::BoardGame, C::Speaker],
+        (C::Box, _) => &[C::Book, C::Magazine, C::Toy],
+        (C::Bookshelf, _) => &[
+            C::Basket,
+            C::Vase,
+            C::SmallPlant,
+            C::Globe,
+            C::Clock,
+            C::Speaker,
+            C::Toy,
+            C::BoardGame,
+            C::PictureFrame,
+        ],
         _ => &[],
     }
 }
@@ -790,7 +1181,9 @@ fn add_smalls(
     if support.class == C::Desk && rng.random_bool(0.5) {
         want.extend([C::Monitor, C::Keyboard]);
     }
-    let n = rng.random_range(1..=fc.small_objects_max);
+    // At least half the most: a surface that has things on it rarely has just one.
+    let lo = (fc.small_objects_max / 2).max(1);
+    let n = rng.random_range(lo..=fc.small_objects_max);
     while want.len() < n.max(want.len()) {
         if let Some(&c) = choices.choose(rng) {
             want.push(c);
@@ -812,7 +1205,7 @@ fn add_smalls(
         if w > top.w() || d > top.d() {
             continue;
         }
-        for _ in 0..8 {
+        for _ in 0..SMALL_TRIES {
             let x = rng.random_range(top.x0 + w * 0.5..=top.x1 - w * 0.5);
             let z = rng.random_range(top.z0 + d * 0.5..=top.z1 - d * 0.5);
             let r = Rect::centered(x, z, w, d);
@@ -885,7 +1278,23 @@ fn furnish_room(
         return;
     }
     let mut has_fridge = false;
-    for variants in recipe(cfg, room.kind, interior, has_kitchen, rng) {
+    let groups = recipe(cfg, room.kind, interior, has_kitchen, rng);
+    let main = groups.len();
+    let mut groups = groups;
+    groups.extend(clutter_recipe(cfg, room.kind, rng));
+    for (g, variants) in groups.into_iter().enumerate() {
+        if g == main {
+            // Clutter also keeps off the wall beside each framed doorway, where its door leaf
+            // swings open (`doors.rs`), so that the leaf does not close a pocket off.
+            for o in plan
+                .openings
+                .iter()
+                .filter(|o| o.rooms.contains(&i) && !o.open_plan)
+            {
+                let swing = clearance_rect(o, cfg, cfg.doors.clearance + 0.05, CLUTTER_SWING);
+                st.keepout.push(swing);
+            }
+        }
         for mut g in variants {
             let fridge = g.items.iter().any(|it| it.model.class == C::Fridge);
             if fridge && has_fridge {

@@ -1217,7 +1217,7 @@ pub(crate) fn bookshelf(rng: &mut ChaCha8Rng) -> Model {
             rgb,
         );
     }
-    Model::new(C::Bookshelf, fin, [w, h, d], 35.0, p)
+    Model::new(C::Bookshelf, fin, [w, h, d], 35.0, p).with_top(0.03)
 }
 
 /// A potted plant: pot, soil, stem, foliage. Variants: one round bush; a bush with smaller
@@ -1644,6 +1644,168 @@ pub(crate) fn small(class: C, rng: &mut ChaCha8Rng) -> Model {
             cyl(&mut p, 0.0, 0.13, 0.0, 0.01, 0.04, tone::STEEL);
             ([0.07, 0.17, 0.07], 0.3)
         }
+        C::FruitBowl => {
+            cyl(&mut p, 0.0, 0.0, 0.0, 0.12, 0.06, c);
+            let fruit = [tone::FRUIT_RED, tone::FRUIT_YELLOW, tone::FRUIT_ORANGE];
+            for (i, rgb) in fruit.into_iter().enumerate() {
+                let a = i as f32 * 2.1;
+                cube(
+                    &mut p,
+                    a.cos() * 0.05,
+                    0.05,
+                    a.sin() * 0.05,
+                    [0.07, 0.06, 0.07],
+                    rgb,
+                );
+            }
+            ([0.24, 0.11, 0.24], 1.2)
+        }
+        C::Teapot => {
+            cyl(&mut p, 0.0, 0.0, 0.0, 0.08, 0.13, c);
+            cube(&mut p, 0.1, 0.04, 0.0, [0.06, 0.025, 0.025], c);
+            cube(&mut p, -0.095, 0.03, 0.0, [0.03, 0.08, 0.02], c);
+            ([0.26, 0.13, 0.16], 0.9)
+        }
+        C::Pot => {
+            cyl(&mut p, 0.0, 0.0, 0.0, 0.11, 0.14, c);
+            cube(&mut p, 0.0, 0.1, 0.0, [0.3, 0.025, 0.03], tone::METAL);
+            ([0.3, 0.14, 0.22], 1.6)
+        }
+        C::Pan => {
+            cyl(&mut p, 0.0, 0.0, 0.0, 0.13, 0.045, c);
+            cube(&mut p, 0.21, 0.03, 0.0, [0.18, 0.02, 0.03], tone::METAL);
+            ([0.44, 0.05, 0.26], 1.2)
+        }
+        C::CuttingBoard => {
+            cube(&mut p, 0.0, 0.0, 0.0, [0.38, 0.02, 0.26], c);
+            ([0.38, 0.02, 0.26], 1.0)
+        }
+        C::CoffeeMachine => {
+            cube(&mut p, 0.0, 0.0, 0.02, [0.24, 0.36, 0.26], c);
+            cube(&mut p, 0.0, 0.0, -0.13, [0.2, 0.03, 0.06], shade(c, 0.6));
+            cube(&mut p, 0.0, 0.28, -0.13, [0.24, 0.08, 0.06], c);
+            ([0.24, 0.36, 0.32], 5.0)
+        }
+        C::Blender => {
+            cube(&mut p, 0.0, 0.0, 0.0, [0.16, 0.12, 0.16], c);
+            cyl(&mut p, 0.0, 0.12, 0.0, 0.065, 0.24, tone::GLASS);
+            ([0.16, 0.36, 0.16], 2.5)
+        }
+        C::DishRack => {
+            cube(&mut p, 0.0, 0.0, 0.0, [0.42, 0.03, 0.3], c);
+            for i in 0..4 {
+                let x = -0.15 + 0.1 * i as f32;
+                cube(&mut p, x, 0.03, 0.02, [0.015, 0.2, 0.22], tone::WHITE);
+            }
+            ([0.42, 0.23, 0.3], 1.5)
+        }
+        C::TissueBox => {
+            cube(&mut p, 0.0, 0.0, 0.0, [0.23, 0.09, 0.12], c);
+            cube(&mut p, 0.0, 0.09, 0.0, [0.08, 0.03, 0.04], tone::WHITE);
+            ([0.23, 0.12, 0.12], 0.2)
+        }
+        C::Basket => {
+            let (w, d) = (r(rng, 0.25, 0.4), r(rng, 0.18, 0.28));
+            bcube(&mut p, 0.0, 0.0, 0.0, [w, 0.16, d], 0.01, c);
+            ([w, 0.16, d], 0.6)
+        }
+        C::Speaker => {
+            let h = r(rng, 0.18, 0.32);
+            cube(&mut p, 0.0, 0.0, 0.0, [0.14, h, 0.16], c);
+            disc_z(&mut p, [0.0, h * 0.4, -0.081], 0.045, 0.004, tone::METAL);
+            ([0.14, h, 0.164], 2.0)
+        }
+        C::Phone => {
+            cube(&mut p, 0.0, 0.0, 0.0, [0.075, 0.01, 0.15], c);
+            cube(&mut p, 0.0, 0.01, 0.0, [0.065, 0.002, 0.135], tone::SCREEN);
+            ([0.075, 0.012, 0.15], 0.2)
+        }
+        C::Tablet => {
+            cube(&mut p, 0.0, 0.0, 0.0, [0.25, 0.01, 0.17], c);
+            cube(&mut p, 0.0, 0.01, 0.0, [0.23, 0.002, 0.15], tone::SCREEN);
+            ([0.25, 0.012, 0.17], 0.5)
+        }
+        C::Printer => {
+            bcube(&mut p, 0.0, 0.0, 0.0, [0.42, 0.2, 0.34], 0.01, c);
+            cube(&mut p, 0.0, 0.2, 0.08, [0.3, 0.06, 0.08], tone::LINEN);
+            cube(&mut p, 0.0, 0.08, -0.2, [0.3, 0.015, 0.06], shade(c, 0.7));
+            ([0.42, 0.26, 0.4], 6.0)
+        }
+        C::PenHolder => {
+            cyl(&mut p, 0.0, 0.0, 0.0, 0.04, 0.1, c);
+            cube(&mut p, 0.0, 0.1, 0.0, [0.02, 0.05, 0.02], tone::FRUIT_RED);
+            ([0.08, 0.15, 0.08], 0.2)
+        }
+        C::Globe => {
+            cube(&mut p, 0.0, 0.0, 0.0, [0.14, 0.02, 0.14], tone::WOOD);
+            cube(&mut p, 0.0, 0.02, 0.0, [0.02, 0.08, 0.02], tone::METAL);
+            cyl(&mut p, 0.0, 0.1, 0.0, 0.13, 0.22, c);
+            ([0.26, 0.32, 0.26], 1.0)
+        }
+        C::BoardGame => {
+            let t = r(rng, 0.04, 0.07);
+            cube(&mut p, 0.0, 0.0, 0.0, [0.4, t, 0.27], c);
+            cube(&mut p, 0.0, t, 0.0, [0.3, 0.002, 0.18], tone::LINEN);
+            ([0.4, t + 0.002, 0.27], 1.0)
+        }
+        C::Toy => {
+            // A toy truck: body, cab, wheels.
+            cube(&mut p, 0.0, 0.03, 0.0, [0.24, 0.08, 0.12], c);
+            cube(
+                &mut p,
+                -0.08,
+                0.11,
+                0.0,
+                [0.08, 0.07, 0.11],
+                tone::FRUIT_YELLOW,
+            );
+            for sx in [-1.0, 1.0] {
+                cube(&mut p, sx * 0.07, 0.0, 0.0, [0.05, 0.05, 0.14], tone::METAL);
+            }
+            ([0.24, 0.18, 0.14], 0.4)
+        }
+        C::JewelryBox => {
+            bcube(&mut p, 0.0, 0.0, 0.0, [0.2, 0.09, 0.13], 0.008, c);
+            cube(&mut p, 0.0, 0.09, 0.0, [0.2, 0.02, 0.13], shade(c, 0.8));
+            ([0.2, 0.11, 0.13], 0.5)
+        }
+        C::ToiletPaper => {
+            cyl(&mut p, 0.0, 0.0, 0.0, 0.055, 0.1, c);
+            ([0.11, 0.1, 0.11], 0.1)
+        }
+        C::Shampoo => {
+            let h = r(rng, 0.18, 0.24);
+            cube(&mut p, 0.0, 0.0, 0.0, [0.08, h, 0.045], c);
+            cube(&mut p, 0.0, h, 0.0, [0.03, 0.03, 0.03], tone::WHITE);
+            ([0.08, h + 0.03, 0.045], 0.4)
+        }
+        C::ToothbrushHolder => {
+            cyl(&mut p, 0.0, 0.0, 0.0, 0.035, 0.1, c);
+            cube(
+                &mut p,
+                -0.01,
+                0.1,
+                0.0,
+                [0.012, 0.08, 0.012],
+                tone::FRUIT_RED,
+            );
+            cube(&mut p, 0.012, 0.1, 0.0, [0.012, 0.07, 0.012], tone::WHITE);
+            ([0.07, 0.18, 0.07], 0.3)
+        }
+        C::Hairdryer => {
+            cube(&mut p, 0.0, 0.0, 0.0, [0.05, 0.14, 0.05], c);
+            cube(&mut p, 0.03, 0.12, 0.0, [0.2, 0.08, 0.08], c);
+            ([0.23, 0.2, 0.08], 0.6)
+        }
+        C::Magazine => {
+            cube(&mut p, 0.0, 0.0, 0.0, [0.21, 0.008, 0.28], c);
+            ([0.21, 0.008, 0.28], 0.2)
+        }
+        C::Headphones => {
+            cube(&mut p, 0.0, 0.0, 0.0, [0.16, 0.03, 0.18], c);
+            cube(&mut p, 0.0, 0.03, 0.0, [0.03, 0.05, 0.03], c);
+            ([0.16, 0.08, 0.18], 0.3)
+        }
         // Anything else becomes a plain box, so a caller can never get an empty model.
         _ => {
             cube(&mut p, 0.0, 0.0, 0.0, [0.15, 0.15, 0.15], c);
@@ -1651,6 +1813,454 @@ pub(crate) fn small(class: C, rng: &mut ChaCha8Rng) -> Model {
         }
     };
     Model::new(class, fin, size, mass, p)
+}
+
+/// Floor clutter, wall objects and the larger pieces of the rooms issue 30 added (shoes,
+/// laundry baskets, wall shelves, radiators, a fireplace, balcony furniture...). Mostly plain
+/// boxes: a home holds many of them, and each box is 12 triangles (20 bevelled).
+pub(crate) fn clutter(class: C, rng: &mut ChaCha8Rng) -> Model {
+    let fin = palette::pick(class, rng);
+    let c = fin.rgb;
+    let dark = shade(c, 0.7);
+    let mut p = Vec::new();
+    let mut top = None;
+    let (size, mass) = match class {
+        C::Shoes => {
+            for sx in [-1.0, 1.0] {
+                cube(&mut p, sx * 0.06, 0.0, 0.0, [0.1, 0.1, 0.28], c);
+            }
+            ([0.22, 0.1, 0.28], 1.0)
+        }
+        C::Slippers => {
+            for sx in [-1.0, 1.0] {
+                cube(&mut p, sx * 0.06, 0.0, 0.0, [0.1, 0.06, 0.27], c);
+            }
+            ([0.22, 0.06, 0.27], 0.4)
+        }
+        C::LaundryBasket => {
+            let h = r(rng, 0.4, 0.55);
+            bcube(&mut p, 0.0, 0.0, 0.0, [0.5, h, 0.36], 0.02, c);
+            cube(&mut p, 0.0, h, 0.0, [0.4, 0.05, 0.26], palette::fabric(rng));
+            ([0.5, h + 0.05, 0.36], 2.0)
+        }
+        C::Box => {
+            let (w, h, d) = (r(rng, 0.3, 0.6), r(rng, 0.25, 0.45), r(rng, 0.3, 0.45));
+            cube(&mut p, 0.0, 0.0, 0.0, [w, h, d], c);
+            cube(&mut p, 0.0, h, 0.0, [w, 0.004, 0.05], shade(c, 0.8));
+            top = Some(0.03);
+            ([w, h + 0.004, d], 3.0)
+        }
+        C::Backpack => {
+            bcube(&mut p, 0.0, 0.0, 0.0, [0.3, 0.42, 0.18], 0.03, c);
+            cube(&mut p, 0.0, 0.05, -0.11, [0.22, 0.18, 0.04], dark);
+            ([0.3, 0.42, 0.22], 2.5)
+        }
+        C::UmbrellaStand => {
+            cyl(&mut p, 0.0, 0.0, 0.0, 0.12, 0.5, c);
+            cube(&mut p, 0.03, 0.5, 0.0, [0.03, 0.35, 0.03], tone::METAL);
+            ([0.24, 0.85, 0.24], 3.0)
+        }
+        C::DogBed => {
+            let (w, d) = (r(rng, 0.6, 0.9), r(rng, 0.5, 0.7));
+            bcube(&mut p, 0.0, 0.0, 0.0, [w, 0.08, d], 0.015, c);
+            cube(&mut p, 0.0, 0.08, d * 0.5 - 0.06, [w, 0.12, 0.12], dark);
+            for sx in [-1.0, 1.0] {
+                cube(
+                    &mut p,
+                    sx * (w * 0.5 - 0.06),
+                    0.08,
+                    0.0,
+                    [0.12, 0.1, d - 0.12],
+                    dark,
+                );
+            }
+            ([w, 0.2, d], 2.0)
+        }
+        C::YogaMat => {
+            let d = r(rng, 1.7, 1.85);
+            cube(&mut p, 0.0, 0.0, 0.0, [0.61, 0.006, d], c);
+            ([0.61, 0.006, d], 1.2)
+        }
+        C::Dumbbells => {
+            for sx in [-1.0, 1.0] {
+                cube(&mut p, sx * 0.07, 0.0, 0.0, [0.09, 0.09, 0.3], tone::METAL);
+            }
+            ([0.23, 0.09, 0.3], 10.0)
+        }
+        C::Ottoman => {
+            let (w, h) = (r(rng, 0.5, 0.8), r(rng, 0.38, 0.45));
+            bcube(&mut p, 0.0, 0.0, 0.0, [w, h, w * 0.8], 0.03, c);
+            top = Some(0.06);
+            ([w, h, w * 0.8], 10.0)
+        }
+        C::BeanBag => {
+            let s = r(rng, 0.7, 0.9);
+            bcube(&mut p, 0.0, 0.0, 0.0, [s, 0.45, s], 0.1, c);
+            bcube(&mut p, 0.0, 0.3, s * 0.25, [s * 0.8, 0.3, s * 0.4], 0.06, c);
+            ([s, 0.6, s], 4.0)
+        }
+        C::Chest => {
+            let (w, h, d) = (r(rng, 0.8, 1.1), r(rng, 0.45, 0.55), r(rng, 0.42, 0.5));
+            bcube(&mut p, 0.0, 0.0, 0.0, [w, h - 0.06, d], 0.015, c);
+            bcube(
+                &mut p,
+                0.0,
+                h - 0.06,
+                0.0,
+                [w + 0.02, 0.06, d + 0.02],
+                0.012,
+                dark,
+            );
+            front(
+                &mut p,
+                d,
+                [0.0, h - 0.16, -0.006],
+                [0.08, 0.06, 0.012],
+                tone::STEEL,
+            );
+            top = Some(0.05);
+            ([w + 0.02, h, d + 0.02], 25.0)
+        }
+        C::Vanity => {
+            let (w, d) = (r(rng, 0.8, 1.1), 0.45);
+            let h = 0.76;
+            bcube(&mut p, 0.0, h - 0.04, 0.0, [w, 0.04, d], 0.008, c);
+            for sx in [-1.0, 1.0] {
+                cube(
+                    &mut p,
+                    sx * (w * 0.5 - 0.18),
+                    0.0,
+                    0.0,
+                    [0.34, h - 0.04, d - 0.02],
+                    c,
+                );
+                front(
+                    &mut p,
+                    d,
+                    [sx * (w * 0.5 - 0.18), h * 0.5, -0.005],
+                    [0.1, 0.02, 0.01],
+                    tone::STEEL,
+                );
+            }
+            top = Some(0.04);
+            ([w, h, d], 25.0)
+        }
+        C::FilingCabinet => {
+            let (w, h, d) = (0.45, r(rng, 0.7, 1.3), 0.6);
+            bcube(&mut p, 0.0, 0.0, 0.0, [w, h, d], 0.01, c);
+            let n = (h / 0.32) as usize;
+            for i in 0..n {
+                let y = 0.05 + i as f32 * (h - 0.05) / n as f32;
+                front(
+                    &mut p,
+                    d,
+                    [0.0, y + 0.08, -0.004],
+                    [0.14, 0.025, 0.012],
+                    tone::STEEL,
+                );
+            }
+            top = Some(0.04);
+            ([w, h, d], 30.0)
+        }
+        C::WallShelf => {
+            let w = r(rng, 0.6, 1.1);
+            let y = r(rng, 1.1, 1.4);
+            bcube(&mut p, 0.0, y, 0.0, [w, 0.03, 0.22], 0.005, c);
+            for sx in [-1.0, 1.0] {
+                cube(
+                    &mut p,
+                    sx * (w * 0.5 - 0.08),
+                    y - 0.12,
+                    0.09,
+                    [0.02, 0.12, 0.04],
+                    tone::METAL,
+                );
+            }
+            top = Some(0.02);
+            ([w, y + 0.03, 0.22], 3.0)
+        }
+        C::Mirror => {
+            let (w, h) = (r(rng, 0.45, 0.8), r(rng, 0.55, 0.8));
+            let y = 1.05;
+            cube(&mut p, 0.0, y, 0.0, [w, h, 0.025], c);
+            cube(
+                &mut p,
+                0.0,
+                y + 0.03,
+                -0.013,
+                [w - 0.06, h - 0.06, 0.002],
+                tone::GLASS,
+            );
+            ([w, y + h, 0.027], 4.0)
+        }
+        C::TowelRack => {
+            let w = r(rng, 0.5, 0.7);
+            let y = r(rng, 0.9, 1.1);
+            for sx in [-1.0, 1.0] {
+                cube(
+                    &mut p,
+                    sx * w * 0.5,
+                    y,
+                    0.06,
+                    [0.03, 0.04, 0.06],
+                    tone::STEEL,
+                );
+            }
+            cube(&mut p, 0.0, y + 0.01, 0.02, [w, 0.02, 0.02], tone::STEEL);
+            cube(
+                &mut p,
+                0.0,
+                y - 0.35,
+                0.0,
+                [w * 0.8, 0.38, 0.05],
+                palette::pick(C::Towel, rng).rgb,
+            );
+            ([w + 0.03, y + 0.04, 0.09], 2.0)
+        }
+        C::Radiator => {
+            let w = r(rng, 0.6, 1.2);
+            let n = (w / 0.1) as usize;
+            cube(&mut p, 0.0, 0.12, 0.05, [w, 0.06, 0.06], c);
+            for i in 0..n {
+                let x = -w * 0.5 + 0.05 + i as f32 * (w - 0.1) / (n - 1).max(1) as f32;
+                cube(&mut p, x, 0.12, 0.0, [0.05, 0.5, 0.08], c);
+            }
+            ([w, 0.62, 0.1], 15.0)
+        }
+        C::Fan => {
+            let h = r(rng, 1.0, 1.3);
+            cube(&mut p, 0.0, 0.0, 0.0, [0.36, 0.03, 0.36], c);
+            cube(&mut p, 0.0, 0.03, 0.0, [0.04, h - 0.4, 0.04], c);
+            disc_z(&mut p, [0.0, h - 0.2, 0.0], 0.2, 0.12, c);
+            ([0.4, h, 0.36], 5.0)
+        }
+        C::Heater => {
+            bcube(&mut p, 0.0, 0.0, 0.0, [0.45, 0.6, 0.2], 0.02, c);
+            front(
+                &mut p,
+                0.2,
+                [0.0, 0.35, -0.003],
+                [0.3, 0.18, 0.006],
+                tone::METAL,
+            );
+            ([0.45, 0.6, 0.2], 6.0)
+        }
+        C::Fireplace => {
+            let w = r(rng, 1.2, 1.6);
+            bcube(&mut p, 0.0, 0.0, 0.0, [w, 1.05, 0.4], 0.02, c);
+            front(
+                &mut p,
+                0.4,
+                [0.0, 0.12, -0.002],
+                [w * 0.55, 0.6, 0.004],
+                tone::SOOT,
+            );
+            front(
+                &mut p,
+                0.4,
+                [0.0, 0.14, -0.004],
+                [w * 0.35, 0.14, 0.004],
+                tone::FRUIT_ORANGE,
+            );
+            bcube(&mut p, 0.0, 1.05, 0.0, [w + 0.1, 0.05, 0.45], 0.01, dark);
+            top = Some(0.04);
+            ([w + 0.1, 1.1, 0.45], 150.0)
+        }
+        C::Aquarium => {
+            let w = r(rng, 0.8, 1.2);
+            bcube(&mut p, 0.0, 0.0, 0.0, [w, 0.75, 0.4], 0.015, c);
+            cube(&mut p, 0.0, 0.75, 0.0, [w, 0.45, 0.38], tone::WATER);
+            cube(&mut p, 0.0, 1.2, 0.0, [w, 0.04, 0.4], tone::METAL);
+            ([w, 1.24, 0.4], 120.0)
+        }
+        C::Treadmill => {
+            bcube(&mut p, 0.0, 0.0, 0.0, [0.75, 0.18, 1.8], 0.03, c);
+            cube(&mut p, 0.0, 0.18, 0.0, [0.5, 0.01, 1.5], tone::SCREEN);
+            for sx in [-1.0, 1.0] {
+                cube(
+                    &mut p,
+                    sx * 0.34,
+                    0.18,
+                    -0.75,
+                    [0.05, 1.1, 0.06],
+                    tone::METAL,
+                );
+            }
+            cube(&mut p, 0.0, 1.2, -0.78, [0.75, 0.12, 0.2], c);
+            ([0.75, 1.32, 1.8], 80.0)
+        }
+        C::ExerciseBike => {
+            bcube(&mut p, 0.0, 0.0, 0.0, [0.5, 0.06, 1.0], 0.012, tone::METAL);
+            cube(&mut p, 0.0, 0.06, -0.25, [0.06, 0.9, 0.06], c);
+            cube(&mut p, 0.0, 0.06, 0.2, [0.06, 0.8, 0.06], c);
+            cube(&mut p, 0.0, 0.2, -0.2, [0.08, 0.45, 0.45], c);
+            cube(&mut p, 0.0, 0.86, 0.2, [0.22, 0.06, 0.3], tone::METAL);
+            cube(&mut p, 0.0, 0.96, -0.3, [0.45, 0.04, 0.08], tone::METAL);
+            ([0.5, 1.0, 1.0], 35.0)
+        }
+        C::Bicycle => {
+            // Seen side on from the front: frame along z, wheels as thin discs.
+            for z in [-0.55, 0.55] {
+                turned(
+                    &mut p,
+                    Shape::Cylinder {
+                        radius: 0.34,
+                        half_height: 0.02,
+                    },
+                    [0.0, 0.34, z],
+                    Quat::from_rotation_z(std::f32::consts::FRAC_PI_2),
+                    tone::SOOT,
+                );
+            }
+            cube(&mut p, 0.0, 0.55, 0.0, [0.04, 0.04, 1.0], c);
+            cube(&mut p, 0.0, 0.34, 0.2, [0.04, 0.45, 0.04], c);
+            cube(&mut p, 0.0, 0.8, 0.2, [0.1, 0.05, 0.22], tone::SOOT);
+            cube(&mut p, 0.0, 0.9, -0.5, [0.5, 0.03, 0.03], tone::METAL);
+            ([0.5, 0.93, 1.78], 12.0)
+        }
+        C::IroningBoard => {
+            bcube(&mut p, 0.0, 0.85, 0.0, [1.2, 0.03, 0.36], 0.006, c);
+            for sx in [-1.0, 1.0] {
+                cube(&mut p, sx * 0.3, 0.0, 0.0, [0.03, 0.85, 0.3], tone::METAL);
+            }
+            top = Some(0.05);
+            ([1.2, 0.88, 0.36], 6.0)
+        }
+        C::DryingRack => {
+            for sx in [-1.0, 1.0] {
+                cube(&mut p, sx * 0.42, 0.0, 0.0, [0.03, 0.95, 0.5], tone::STEEL);
+            }
+            for i in 0..5 {
+                let z = -0.2 + 0.1 * i as f32;
+                cube(&mut p, 0.0, 0.9, z, [0.84, 0.015, 0.015], tone::STEEL);
+            }
+            cube(
+                &mut p,
+                -0.1,
+                0.45,
+                0.0,
+                [0.35, 0.45, 0.02],
+                palette::fabric(rng),
+            );
+            ([0.87, 0.95, 0.5], 3.0)
+        }
+        C::Crib => {
+            let (w, d, h) = (1.25, 0.68, 0.95);
+            bcube(
+                &mut p,
+                0.0,
+                0.3,
+                0.0,
+                [w - 0.06, 0.12, d - 0.06],
+                0.02,
+                tone::LINEN,
+            );
+            for sx in [-1.0, 1.0] {
+                cube(&mut p, sx * (w - 0.04) * 0.5, 0.0, 0.0, [0.04, h, d], c);
+            }
+            for sz in [-1.0, 1.0] {
+                cube(
+                    &mut p,
+                    0.0,
+                    0.25,
+                    sz * (d - 0.03) * 0.5,
+                    [w - 0.08, 0.04, 0.03],
+                    c,
+                );
+                cube(
+                    &mut p,
+                    0.0,
+                    h - 0.04,
+                    sz * (d - 0.03) * 0.5,
+                    [w - 0.08, 0.04, 0.03],
+                    c,
+                );
+            }
+            ([w, h, d], 20.0)
+        }
+        C::HighChair => {
+            legs(&mut p, 0.5, 0.55, 0.55, 0.04, c);
+            bcube(&mut p, 0.0, 0.55, 0.0, [0.4, 0.05, 0.4], 0.01, c);
+            cube(&mut p, 0.0, 0.6, 0.18, [0.38, 0.45, 0.04], c);
+            cube(&mut p, 0.0, 0.78, -0.2, [0.42, 0.03, 0.18], tone::WHITE);
+            ([0.5, 1.05, 0.55], 7.0)
+        }
+        C::PatioChair => {
+            legs(&mut p, 0.5, 0.5, 0.42, 0.04, c);
+            bcube(&mut p, 0.0, 0.42, 0.0, [0.5, 0.04, 0.5], 0.008, c);
+            cube(&mut p, 0.0, 0.46, 0.23, [0.5, 0.45, 0.04], c);
+            ([0.5, 0.91, 0.5], 4.0)
+        }
+        C::PatioTable => {
+            let w = r(rng, 0.6, 0.9);
+            legs(&mut p, w - 0.1, w - 0.1, 0.7, 0.04, c);
+            bcube(&mut p, 0.0, 0.7, 0.0, [w, 0.03, w], 0.006, c);
+            top = Some(0.04);
+            ([w, 0.73, w], 8.0)
+        }
+        C::Planter => {
+            let w = r(rng, 0.6, 1.0);
+            bcube(&mut p, 0.0, 0.0, 0.0, [w, 0.4, 0.3], 0.02, c);
+            cube(&mut p, 0.0, 0.4, 0.0, [w - 0.08, 0.25, 0.22], tone::LEAF);
+            ([w, 0.65, 0.3], 25.0)
+        }
+        C::ClothesRail => {
+            let w = r(rng, 0.9, 1.3);
+            for sx in [-1.0, 1.0] {
+                cube(
+                    &mut p,
+                    sx * w * 0.5,
+                    0.0,
+                    0.0,
+                    [0.03, 1.6, 0.45],
+                    tone::STEEL,
+                );
+            }
+            cube(&mut p, 0.0, 1.55, 0.0, [w, 0.025, 0.025], tone::STEEL);
+            let n = 4 + (w / 0.3) as usize;
+            for i in 0..n {
+                let x = -w * 0.5 + 0.1 + i as f32 * (w - 0.2) / (n - 1) as f32;
+                cube(
+                    &mut p,
+                    x,
+                    0.75,
+                    0.0,
+                    [0.04, 0.78, 0.4],
+                    palette::fabric(rng),
+                );
+            }
+            ([w + 0.03, 1.6, 0.45], 12.0)
+        }
+        C::ShelvingUnit => {
+            let (w, h, d) = (r(rng, 0.8, 1.2), r(rng, 1.4, 1.8), 0.4);
+            for sx in [-1.0, 1.0] {
+                cube(
+                    &mut p,
+                    sx * (w - 0.03) * 0.5,
+                    0.0,
+                    0.0,
+                    [0.03, h, d],
+                    tone::STEEL,
+                );
+            }
+            for i in 0..4 {
+                let y = 0.1 + i as f32 * (h - 0.13) / 3.0;
+                bcube(&mut p, 0.0, y, 0.0, [w - 0.06, 0.03, d], 0.005, c);
+            }
+            top = Some(0.03);
+            ([w, h + 0.03, d], 20.0)
+        }
+        // Anything else becomes a plain box, so a caller can never get an empty model.
+        _ => {
+            cube(&mut p, 0.0, 0.0, 0.0, [0.4, 0.4, 0.4], c);
+            ([0.4, 0.4, 0.4], 5.0)
+        }
+    };
+    let m = Model::new(class, fin, size, mass, p);
+    match top {
+        Some(inset) => m.with_top(inset),
+        None => m,
+    }
 }
 
 /// Shift the parts so that their x/z extent is centred on the origin and record the exact

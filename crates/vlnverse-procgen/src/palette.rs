@@ -138,6 +138,22 @@ const RUG: &[Finish] = &[
     f("yellow", "fabric", [0.75, 0.6, 0.15]),
     f("brown", "fabric", [0.3, 0.17, 0.08]),
 ];
+const WICKER: &[Finish] = &[
+    f("brown", "wicker", [0.4, 0.25, 0.12]),
+    f("beige", "wicker", [0.7, 0.58, 0.38]),
+    f("white", "plastic", [0.88, 0.88, 0.88]),
+    f("grey", "plastic", [0.4, 0.4, 0.42]),
+];
+const CARDBOARD: &[Finish] = &[
+    f("brown", "cardboard", [0.45, 0.3, 0.15]),
+    f("beige", "cardboard", [0.62, 0.5, 0.32]),
+];
+const STONE: &[Finish] = &[
+    f("white", "stone", [0.82, 0.8, 0.76]),
+    f("grey", "stone", [0.42, 0.42, 0.43]),
+    f("red", "brick", [0.45, 0.15, 0.08]),
+];
+const TISSUE: &[Finish] = &[f("white", "paper", [0.9, 0.9, 0.88])];
 const TOWEL: &[Finish] = &[
     f("white", "fabric", [0.9, 0.9, 0.9]),
     f("blue", "fabric", [0.1, 0.25, 0.6]),
@@ -170,6 +186,45 @@ fn choices(class: C) -> &'static [Finish] {
         C::Candle => WAX,
         C::Rug => RUG,
         C::Towel | C::Pillow => TOWEL,
+        C::Ottoman
+        | C::BeanBag
+        | C::DogBed
+        | C::Backpack
+        | C::Shoes
+        | C::Slippers
+        | C::YogaMat
+        | C::Curtain => FABRIC,
+        C::Basket | C::LaundryBasket => WICKER,
+        C::Box => CARDBOARD,
+        C::Fireplace => STONE,
+        C::Pot | C::Pan => APPLIANCE,
+        C::FruitBowl | C::Teapot => CERAMIC,
+        C::CoffeeMachine | C::Blender | C::Printer | C::Heater | C::Radiator => APPLIANCE,
+        C::Speaker | C::Phone | C::Tablet | C::Headphones | C::Treadmill => SCREEN,
+        C::Hairdryer
+        | C::Shampoo
+        | C::ToothbrushHolder
+        | C::TissueBox
+        | C::PenHolder
+        | C::Toy
+        | C::Globe
+        | C::DishRack
+        | C::Fan
+        | C::PatioChair
+        | C::PatioTable
+        | C::HighChair
+        | C::UmbrellaStand => PLASTIC,
+        C::BoardGame | C::Magazine => PAPER,
+        C::ToiletPaper => TISSUE,
+        C::Planter => POT,
+        C::FilingCabinet
+        | C::ShelvingUnit
+        | C::Bicycle
+        | C::ExerciseBike
+        | C::IroningBoard
+        | C::DryingRack
+        | C::ClothesRail
+        | C::Dumbbells => METAL,
         _ => WOOD,
     }
 }
@@ -221,4 +276,14 @@ pub(crate) mod tone {
     pub const WOOD: [f32; 3] = [0.5, 0.32, 0.16];
     /// Glass panels.
     pub const GLASS: [f32; 3] = [0.7, 0.8, 0.85];
+    /// Fruit.
+    pub const FRUIT_RED: [f32; 3] = [0.62, 0.06, 0.04];
+    /// Fruit, a toy's cab.
+    pub const FRUIT_YELLOW: [f32; 3] = [0.85, 0.7, 0.1];
+    /// Fruit, embers.
+    pub const FRUIT_ORANGE: [f32; 3] = [0.85, 0.35, 0.05];
+    /// Soot, tyres.
+    pub const SOOT: [f32; 3] = [0.03, 0.03, 0.03];
+    /// Aquarium water.
+    pub const WATER: [f32; 3] = [0.2, 0.45, 0.55];
 }

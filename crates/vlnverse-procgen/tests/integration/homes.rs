@@ -73,7 +73,11 @@ fn no_object_intersects_another_object_or_a_wall() {
                 // A rug may lie under furniture, never in a wall or on another rug.
                 let rug_under = (is_rug(a) && !b.is_structure() && !is_rug(b))
                     || (is_rug(b) && !a.is_structure() && !is_rug(a));
-                if rug_under || supported(a, b) {
+                // Curtains hang in front of their window's frame.
+                let curtain = |x: &SceneObject, y: &SceneObject| {
+                    x.class == C::Curtain && y.class == C::Window
+                };
+                if rug_under || supported(a, b) || curtain(a, b) || curtain(b, a) {
                     continue;
                 }
                 // A closed leaf stands inside its frame: they may not overlap part by part.
@@ -423,6 +427,30 @@ fn bad_configs_name_file_field_and_value() {
         ),
         ("[furniture]\nnav_radius = 0.0\n", "furniture.nav_radius", "0"),
         ("[doors]\nopen_plan_probability = 1.5\n", "doors.open_plan_probability", "1.5"),
+        // Huge values are refused before anything loops or allocates on them.
+        ("[furniture]\nattempts = 1000000000\n", "furniture.attempts", "1000000000"),
+        (
+            "[furniture]\nsmall_objects_max = 1000000000\n",
+            "furniture.small_objects_max",
+            "1000000000",
+        ),
+        ("[furniture]\nclutter = 5.0\n", "furniture.clutter", "5"),
+        ("[furniture]\ndensity = 1e9\n", "furniture.density", "1000000000"),
+        ("[scenes]\ncount = 1000000000\n", "scenes.count", "1000000000"),
+        ("[rooms]\nmax_aspect = 1e9\n", "rooms.max_aspect", "1000000000"),
+        ("[rooms]\nmin_side = 1e9\n", "rooms.min_side", "1000000000"),
+        ("[rooms]\narea_scale_max = 1e9\n", "rooms.area_scale_max", "1000000000"),
+        ("[walls]\nheight = 1e9\n", "walls.height", "1000000000"),
+        (
+            "[[rooms.kinds]]\nkind = \"bedroom\"\ncount_max = 10\nweight = 1.0\narea_min = 12.0\narea_max = 1e9\n",
+            "rooms.kinds[0].area_max",
+            "1000000000",
+        ),
+        (
+            "[[rooms.kinds]]\nkind = \"bedroom\"\ncount_max = 1000000000\nweight = 1.0\narea_min = 12.0\narea_max = 14.0\n",
+            "rooms.kinds[0].count_max",
+            "1000000000",
+        ),
     ];
     for (body, field, value) in cases {
         let (f, v) = config_error(body);

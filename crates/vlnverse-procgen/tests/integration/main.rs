@@ -1,7 +1,9 @@
 //! Integration tests of `vlnverse-procgen`, linked into one test binary (one link, shared fixtures).
 
 mod baked_light_file;
+mod clutter;
 mod decor;
+mod doors;
 mod homes;
 mod look;
 mod navigable;

@@ -10,7 +10,9 @@ use vlnverse_procgen::{HomeGenerator, Preset};
 fn homes() -> Vec<Scene> {
     let g = HomeGenerator::from_preset(Preset::Tiny).expect("tiny preset");
     let mut out: Vec<Scene> = (0..g.len()).map(|i| g.scene(i).expect("tiny")).collect();
-    out.extend((0..16).map(|s| g.generate(1000 + s, "extra").expect("home")));
+    // Enough homes that the rarer rooms (dining rooms compete with offices, closets, balconies
+    // ... for the tiny preset's few extra rooms) turn up several times.
+    out.extend((0..48).map(|s| g.generate(1000 + s, "extra").expect("home")));
     out
 }
 

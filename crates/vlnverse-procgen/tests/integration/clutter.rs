@@ -1,0 +1,142 @@
+//! Clutter and the added room kinds (issue 30): how many classes and objects the `vlnverse`
+//! preset holds, where small objects and floor clutter stand, and where closets, balconies and
+//! entrance halls open.
+
+use rayon::prelude::*;
+use std::collections::{BTreeMap, BTreeSet};
+use vlnverse_env::{ClassKind, RoomType as R, Scene, SceneSource, SemanticClass as C};
+use vlnverse_procgen::{HomeGenerator, Preset};
+
+fn vlnverse_homes() -> Vec<Scene> {
+    let g = HomeGenerator::from_preset(Preset::Vlnverse).expect("vlnverse preset");
+    (0..g.len())
+        .into_par_iter()
+        .map(|i| g.scene(i).expect("scene"))
+        .collect()
+}
+
+/// Objects the issue counts: everything but structure (walls, floors, ceilings, windows, door
+/// frames) and doors.
+fn counted(s: &Scene) -> impl Iterator<Item = &vlnverse_env::SceneObject> {
+    s.objects
+        .iter()
+        .filter(|o| !o.class.is_structure() && o.class != C::Door)
+}
+
+#[test]
+fn vlnverse_preset_holds_a_hundred_classes_and_objects_a_home() {
+    let homes = vlnverse_homes();
+    let mut classes = BTreeSet::new();
+    let mut per_home = Vec::new();
+    for s in &homes {
+        per_home.push(counted(s).count());
+        classes.extend(counted(s).map(|o| o.class));
+    }
+    let mean = per_home.iter().sum::<usize>() as f64 / per_home.len() as f64;
+    assert!(mean >= 100.0, "{mean:.1} objects a home");
+    assert!(
+        classes.len() >= 100,
+        "{} classes: {classes:?}",
+        classes.len()
+    );
+    // Every object class of the vocabulary but doors (their own stage) turns up somewhere.
+    let missing: Vec<C> = C::ALL
+        .iter()
+        .copied()
+        .filter(|c| matches!(c.kind(), ClassKind::Furniture | ClassKind::Small))
+        .filter(|c| *c != C::Door && !classes.contains(c))
+        .collect();
+    assert!(missing.is_empty(), "never placed: {missing:?}");
+}
+
+/// Small objects never stand on the floor: each rests on a piece of furniture (so it adds no
+/// obstacle of its own to the maps), and floor clutter is furniture placed like furniture.
+#[test]
+fn small_objects_stand_on_furniture() {
+    for s in vlnverse_homes().iter().step_by(7) {
+        for o in s
+            .objects
+            .iter()
+            .filter(|o| o.class.kind() == ClassKind::Small)
+        {
+            let sup = o
+                .supported_by
+                .and_then(|id| s.object(id))
+                .unwrap_or_else(|| panic!("{}: {} stands on nothing", s.id, o.name));
+            assert_eq!(
+                sup.class.kind(),
+                ClassKind::Furniture,
+                "{}: {}",
+                s.id,
+                o.name
+            );
+            let foot = |b: &vlnverse_env::Aabb| (b.min[0], b.min[2], b.max[0], b.max[2]);
+            let (a, b) = (foot(&o.bbox), foot(&sup.bbox));
+            assert!(
+                a.0 >= b.0 - 1e-3 && a.1 >= b.1 - 1e-3 && a.2 <= b.2 + 1e-3 && a.3 <= b.3 + 1e-3,
+                "{}: {} reaches past {}",
+                s.id,
+                o.name,
+                sup.name
+            );
+        }
+    }
+}
+
+#[test]
+fn closets_balconies_and_entrance_halls_open_where_they_belong() {
+    let homes = vlnverse_homes();
+    let mut seen: BTreeMap<R, usize> = BTreeMap::new();
+    for s in &homes {
+        // The house outline: the bounding box of every room.
+        let (mut x0, mut z0, mut x1, mut z1) = (f32::MAX, f32::MAX, f32::MIN, f32::MIN);
+        for r in &s.rooms {
+            for p in &r.polygon {
+                (x0, z0, x1, z1) = (x0.min(p[0]), z0.min(p[1]), x1.max(p[0]), z1.max(p[1]));
+            }
+        }
+        for r in &s.rooms {
+            *seen.entry(r.kind).or_default() += 1;
+            let allowed: &[R] = match r.kind {
+                R::Closet => &[R::Bedroom, R::Hallway, R::EntranceHall],
+                R::Balcony => &[R::LivingRoom, R::Bedroom],
+                _ => continue,
+            };
+            let doors: Vec<_> = s.doors.iter().filter(|d| d.rooms.contains(&r.id)).collect();
+            assert_eq!(
+                doors.len(),
+                1,
+                "{}: {} has {} doors",
+                s.id,
+                r.name,
+                doors.len()
+            );
+            let other = doors[0].rooms.iter().find(|&&id| id != r.id).copied();
+            let kind = other.and_then(|id| s.room(id)).map(|o| o.kind);
+            assert!(
+                kind.is_some_and(|k| allowed.contains(&k)),
+                "{}: {} opens into {kind:?}",
+                s.id,
+                r.name
+            );
+            if r.kind == R::Balcony {
+                let on_edge = r.polygon.iter().any(|p| {
+                    (p[0] - x0).abs() < 0.1
+                        || (p[0] - x1).abs() < 0.1
+                        || (p[1] - z0).abs() < 0.1
+                        || (p[1] - z1).abs() < 0.1
+                });
+                assert!(on_edge, "{}: {} has no outside wall", s.id, r.name);
+            }
+        }
+    }
+    for k in [
+        R::Closet,
+        R::Balcony,
+        R::EntranceHall,
+        R::Office,
+        R::LaundryRoom,
+    ] {
+        assert!(seen.get(&k).copied().unwrap_or(0) >= 10, "{k:?}: {seen:?}");
+    }
+}
