@@ -3,7 +3,6 @@
 mod baked_light_file;
 mod clutter;
 mod decor;
-mod doors;
 mod homes;
 mod look;
 mod navigable;
