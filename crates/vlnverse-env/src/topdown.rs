@@ -122,6 +122,7 @@ pub fn class_color(class: SemanticClass) -> [u8; 3] {
     match class {
         SemanticClass::Wall => [52, 52, 58],
         SemanticClass::DoorFrame => [120, 86, 60],
+        SemanticClass::Door => [176, 120, 70],
         SemanticClass::Window => [120, 180, 230],
         SemanticClass::Floor | SemanticClass::Ceiling => [200, 200, 200],
         SemanticClass::Unknown => [150, 150, 150],
@@ -643,7 +644,7 @@ pub fn render_topdown(
         0
     };
     let legend_h = if opts.legend {
-        present.len() as u32 * 14 + 3 * 14 + 22 + title_h as u32 + 2 * opts.margin_px
+        present.len() as u32 * 14 + 4 * 14 + 22 + title_h as u32 + 2 * opts.margin_px
     } else {
         0
     };
@@ -765,28 +766,70 @@ fn draw_objects(img: &mut RgbImage, frame: &WorldToPixel, scene: &Scene, objs: &
     }
 }
 
-/// Doors: a coloured bar across the opening (dashed for open-plan connections).
+/// Colour of an open doorway's bar.
+const DOOR_OPEN: [u8; 3] = [230, 130, 30];
+/// Colour of a closed door's bar.
+const DOOR_CLOSED: [u8; 3] = [200, 30, 40];
+/// Colour of an open-plan opening's dashes.
+const OPEN_PLAN: [u8; 3] = [90, 150, 220];
+
+/// Doors: a bar across the opening, orange when open (with the leaf's swing arc), red and
+/// thicker when closed, dashed blue for open-plan connections. The leaves themselves are drawn
+/// with the objects.
 fn draw_doors(img: &mut RgbImage, frame: &WorldToPixel, scene: &Scene) {
     for d in &scene.doors {
         let n = Vec2::from_array(d.normal).normalize_or(Vec2::X);
         let t = n.perp();
         let c = Vec2::new(d.position[0], d.position[2]);
         let (a, b) = (c - t * d.width * 0.5, c + t * d.width * 0.5);
-        let color = if d.open_plan {
-            [90, 150, 220]
-        } else {
-            [230, 130, 30]
-        };
         if d.open_plan {
             let segs = 6;
             for k in (0..segs).step_by(2) {
                 let p0 = a + (b - a) * (k as f32 / segs as f32);
                 let p1 = a + (b - a) * ((k + 1) as f32 / segs as f32);
-                thick_line(img, frame.to_pixel(p0), frame.to_pixel(p1), 3.0, color);
+                thick_line(img, frame.to_pixel(p0), frame.to_pixel(p1), 3.0, OPEN_PLAN);
             }
+        } else if d.is_closed() {
+            thick_line(img, frame.to_pixel(a), frame.to_pixel(b), 6.0, DOOR_CLOSED);
         } else {
-            thick_line(img, frame.to_pixel(a), frame.to_pixel(b), 4.0, color);
+            thick_line(img, frame.to_pixel(a), frame.to_pixel(b), 4.0, DOOR_OPEN);
+            if let Some(leaf) = d.leaf.and_then(|id| scene.object(id)) {
+                draw_swing(img, frame, c, t, n, d.width, leaf);
+            }
         }
+    }
+}
+
+/// The quarter circle an open leaf sweeps, from the far jamb to where the leaf stands.
+fn draw_swing(
+    img: &mut RgbImage,
+    frame: &WorldToPixel,
+    c: Vec2,
+    t: Vec2,
+    n: Vec2,
+    width: f32,
+    leaf: &SceneObject,
+) {
+    let lc = Vec2::new(leaf.bbox.center().x, leaf.bbox.center().z);
+    let along = (lc - c).dot(t);
+    let side = (lc - c).dot(n).signum();
+    // The hinge: the leaf's jamb, on the wall line.
+    let hinge = c + t * along.signum() * width * 0.5;
+    let start = -t * along.signum();
+    let end = n * side;
+    let steps = 12;
+    let point = |k: usize| {
+        let u = k as f32 / steps as f32 * std::f32::consts::FRAC_PI_2;
+        hinge + (start * u.cos() + end * u.sin()) * width
+    };
+    for k in 0..steps {
+        thin_line(
+            img,
+            frame.to_pixel(point(k)),
+            frame.to_pixel(point(k + 1)),
+            DOOR_OPEN,
+            0.8,
+        );
     }
 }
 
@@ -942,8 +985,9 @@ fn draw_legend(
         ly += 14;
     }
     for (label, col, dashed) in [
-        ("door", [230, 130, 30], false),
-        ("open plan", [90, 150, 220], true),
+        ("open door", DOOR_OPEN, false),
+        ("closed door", DOOR_CLOSED, false),
+        ("open plan", OPEN_PLAN, true),
     ] {
         for xx in 0..14 {
             if !dashed || (xx / 4) % 2 == 0 {

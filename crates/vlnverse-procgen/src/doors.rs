@@ -44,8 +44,11 @@ const UNDERCUT: f32 = 0.02;
 const HANDLE_Y: f32 = 1.0;
 /// Distance of the handle from the leaf's free edge (m).
 const HANDLE_INSET: f32 = 0.07;
-/// Smallest share of a room's floor an open leaf leaves reachable.
+/// Share of a room's floor an open leaf must leave reachable, unless it keeps
+/// [`KEEP_IN_FULL_ROOM`] of what was reachable before it.
 const MIN_REACHABLE: f32 = 0.2;
+/// Part of a furnished room's reachable floor an open leaf must leave.
+const KEEP_IN_FULL_ROOM: f32 = 0.8;
 /// Cell of the in-room reachability check (m): the occupancy map's.
 const CHECK_CELL: f32 = 0.05;
 /// Radius of the in-room reachability check (m): the agent's radius plus one map cell.
@@ -292,8 +295,10 @@ fn room_stays_connected(
     grid.stamp(leaf, true);
     let lost = free - grid.free_cells();
     let after = grid.reachable(&seeds);
-    (after > 0 && after + lost >= reach)
-        .then(|| after as f32 * CHECK_CELL * CHECK_CELL / interior.area().max(1e-6))
+    let share = after as f32 * CHECK_CELL * CHECK_CELL / interior.area().max(1e-6);
+    // In a room furniture already fills, the leaf may take only a small part of what is left.
+    let small = share >= MIN_REACHABLE || after as f32 >= KEEP_IN_FULL_ROOM * reach as f32;
+    (after > 0 && after + lost >= reach && small).then_some(share)
 }
 
 /// Add the leaves of every doorway; returns each opening's state and leaf.
@@ -334,8 +339,7 @@ pub(crate) fn add_leaves(
         if !closed[i] {
             let (_, (nx, nz), _) = axes(o);
             let (px, pz) = o.position();
-            // Of the ways that fit, the one leaving the most of its room reachable; a leaf
-            // that would leave less than `MIN_REACHABLE` of it is not hung open.
+            // Of the ways that fit, the one leaving the most of its room reachable.
             let mut best: Option<(f32, SceneObject, usize)> = None;
             for (k, h) in options {
                 let r = o.rooms[k];
@@ -345,7 +349,7 @@ pub(crate) fn add_leaves(
                 let cand = open_leaf(cfg, o, side, h, fin.rgb);
                 let room = &plan.rooms[r].rect;
                 let share = fits(cfg, plan, i, r, room, &cand.bbox, &b.objects, &leaves);
-                if let Some(share) = share.filter(|&v| v >= MIN_REACHABLE) {
+                if let Some(share) = share {
                     if best.as_ref().is_none_or(|b| share > b.0) {
                         best = Some((share, cand, r));
                     }

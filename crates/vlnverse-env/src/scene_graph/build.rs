@@ -1,7 +1,9 @@
 //! Building the graph from a [`Scene`].
 
 use super::spatial::footprint_distance;
-use super::{Edge, Node, NodeRef, ObjectNode, Relation, RoomNode, SceneGraph, SceneGraphConfig};
+use super::{
+    DoorNode, Edge, Node, NodeRef, ObjectNode, Relation, RoomNode, SceneGraph, SceneGraphConfig,
+};
 use crate::scene::{Aabb, ObjectId, RoomId, Scene};
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -37,6 +39,17 @@ impl SceneGraph {
                 .room
                 .filter(|&r| scene.room(r).is_some())
                 .or_else(|| scene.room_at(center.x, center.z).map(|r| r.id));
+            let door = scene
+                .doors
+                .iter()
+                .find(|d| d.leaf == Some(obj.id))
+                .and_then(|d| {
+                    Some(DoorNode {
+                        id: d.id,
+                        state: d.state?,
+                        rooms: d.rooms,
+                    })
+                });
             nodes.push(Node::Object(ObjectNode {
                 object: obj.id,
                 class: obj.class,
@@ -45,6 +58,7 @@ impl SceneGraph {
                 position: center.to_array(),
                 color: obj.color.clone(),
                 bbox: obj.bbox,
+                door,
             }));
             is_node.insert(obj.id);
             if let Some(r) = room {
@@ -101,6 +115,7 @@ impl SceneGraph {
                 distance: None,
                 door: Some(door.id),
                 open_plan: Some(door.open_plan),
+                state: door.state,
             });
         }
 
@@ -117,6 +132,7 @@ impl Edge {
             distance: None,
             door: None,
             open_plan: None,
+            state: None,
         }
     }
 }

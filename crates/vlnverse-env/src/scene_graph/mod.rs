@@ -9,7 +9,10 @@
 //! | `on` | object -> object | the source rests on the target (`supported_by` or geometry) |
 //! | `near` | object -> object | footprints closer than 1.0 m, same room (symmetric, stored once) |
 //! | `next_to` | object -> object | footprints closer than 0.3 m, same room (also `near`) |
-//! | `connected` | room -> room | a door or open-plan opening joins the rooms (carries the door id) |
+//! | `connected` | room -> room | a door or open-plan opening joins the rooms (carries the door id and, for a doorway with a leaf, its `state`) |
+//!
+//! A door leaf is an object node of class `door` whose `door` field names its doorway, its
+//! state (`open` / `closed`) and the two rooms it joins.
 //!
 //! Viewpoint relations (left / right / ahead / behind) depend on where the agent stands, so they
 //! are computed on demand with [`side_of`]. The task layer's queries live here too:
@@ -38,7 +41,7 @@ pub use spatial::{
     yaw_from_direction, Side,
 };
 
-use crate::scene::{Aabb, ObjectId, RoomId};
+use crate::scene::{Aabb, DoorState, ObjectId, RoomId};
 use crate::vocab::{RoomType, SemanticClass};
 use petgraph::graph::{DiGraph, NodeIndex};
 use serde::{Deserialize, Serialize};
@@ -147,6 +150,21 @@ pub struct ObjectNode {
     pub color: String,
     /// World bounding box.
     pub bbox: Aabb,
+    /// For a door leaf (class `door`): its doorway, state and the two rooms it joins.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub door: Option<DoorNode>,
+}
+
+/// What a door leaf object adds to its node: it stands in a doorway between two rooms, open or
+/// closed ("go through the white door", "the closed door on your left").
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct DoorNode {
+    /// Id of the doorway in the scene's `doors`.
+    pub id: u32,
+    /// Open or closed.
+    pub state: DoorState,
+    /// The two rooms of the doorway.
+    pub rooms: [RoomId; 2],
 }
 
 /// A node of the graph.
@@ -223,6 +241,10 @@ pub struct Edge {
     /// Whether the `connected` opening is open plan (no door frame).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub open_plan: Option<bool>,
+    /// State of the `connected` doorway's leaf, if it has one (a closed door does not let the
+    /// agent through: the rooms are still connected, by other ways round).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub state: Option<DoorState>,
 }
 
 impl Edge {

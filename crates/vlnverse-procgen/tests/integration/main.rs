@@ -3,6 +3,7 @@
 mod baked_light_file;
 mod clutter;
 mod decor;
+mod doors;
 mod homes;
 mod look;
 mod navigable;
