@@ -3,5 +3,6 @@
 mod common;
 
 mod behaviour;
+mod doors;
 mod generated_home;
 mod shared_worlds;
