@@ -7,6 +7,7 @@ mod occupancy_fixtures;
 mod scene_graph_fixture;
 
 mod bevel;
+mod doors;
 mod io_leftovers;
 mod io_scene_files;
 mod occupancy_geodesic;
