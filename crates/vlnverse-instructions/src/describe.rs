@@ -320,6 +320,34 @@ pub(crate) fn room_np(scene: &Scene, room: RoomId, synonym: f64, rng: &mut ChaCh
     }
 }
 
+/// The opening between rooms `a` and `b` nearest `at`, where the path crosses from one to the
+/// other.
+pub(crate) fn door_between(scene: &Scene, a: RoomId, b: RoomId, at: Vec2) -> Option<&Door> {
+    scene
+        .doors
+        .iter()
+        .filter(|d| d.rooms.contains(&a) && d.rooms.contains(&b))
+        .min_by(|x, y| {
+            let dx = Vec2::new(x.position[0], x.position[2]).distance(at);
+            let dy = Vec2::new(y.position[0], y.position[2]).distance(at);
+            dx.total_cmp(&dy).then(x.id.cmp(&y.id))
+        })
+}
+
+/// The door leaves hung in an opening: objects of class `door` whose footprint centre lies
+/// within the opening's width of its centre (an open leaf stands swung by its jamb).
+pub(crate) fn door_leaves<'s>(
+    scene: &'s Scene,
+    door: &Door,
+) -> impl Iterator<Item = &'s SceneObject> {
+    let c = Vec2::new(door.position[0], door.position[2]);
+    let reach = door.width + 0.4;
+    scene.objects.iter().filter(move |o| {
+        let m = o.bbox.center();
+        o.class == C::Door && Vec2::new(m.x, m.z).distance(c) < reach
+    })
+}
+
 /// The opening a path crosses from room `a` into room `b` near `at`, described ("the
 /// doorway", "the open archway").
 pub(crate) fn door_np(
@@ -329,15 +357,18 @@ pub(crate) fn door_np(
     at: Vec2,
     rng: &mut ChaCha8Rng,
 ) -> Option<String> {
-    let door: &Door = scene
-        .doors
-        .iter()
-        .filter(|d| d.rooms.contains(&a) && d.rooms.contains(&b))
-        .min_by(|x, y| {
-            let dx = Vec2::new(x.position[0], x.position[2]).distance(at);
-            let dy = Vec2::new(y.position[0], y.position[2]).distance(at);
-            dx.total_cmp(&dy).then(x.id.cmp(&y.id))
-        })?;
+    let door = door_between(scene, a, b, at)?;
+    // A doorway with a leaf in it is a door, and people name its colour now and then.
+    if let Some(leaf) = door_leaves(scene, door).next() {
+        let coloured = format!("the {} door", leaf.color);
+        let bank = [
+            "the door",
+            "the open door",
+            "the doorway",
+            coloured.as_str(),
+        ];
+        return Some(pick(rng, &bank).to_string());
+    }
     let bank: &[&str] = if door.open_plan {
         &[
             "the archway",

@@ -3,8 +3,10 @@
 //! plain, chatty, precise) who pick sentence plans per leg, leave things out and reorder them
 //! the way people do. Every object named is grounded.
 
-use super::describe::{door_np, end_place, object_np, room_np, NpOptions, Viewpoint};
-use super::lexicon::{number_word, ordinal_word};
+use super::describe::{
+    door_between, door_leaves, door_np, end_place, object_np, room_np, NpOptions, Viewpoint,
+};
+use super::lexicon::{class_names, number_word, ordinal_word, plural};
 use super::path::{
     classify_turn, direction_of_yaw, env_side, floor_points, footprint, rect_distance,
     segment_headings, side_word, signed_turn_deg, visible, wall_rects, Turn,
@@ -16,7 +18,7 @@ use glam::{Vec2, Vec3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use vlnverse_env::scene_graph::{is_landmark, rooms_along_path, side_of_heading, Landmark};
-use vlnverse_env::{RoomId, RoomType, SceneObject};
+use vlnverse_env::{ObjectId, RoomId, RoomType, SceneObject};
 use vlnverse_score::episode::{GroundedObject, Instruction, Role, Side};
 use vlnverse_score::{DataError, Result};
 
@@ -347,6 +349,8 @@ fn end_object<'s>(
 struct Named {
     text: String,
     side: Side,
+    /// Several objects of one class named together ("the two chairs").
+    group: bool,
 }
 
 /// A room change as written.
@@ -502,13 +506,23 @@ impl<'c, 's> Route<'c, 's> {
         let legs = legs_of(&pts, direction_of_yaw(ctx.start_yaw), cfg);
         let end = pts[pts.len() - 1];
         let end_obj = end_object(cfg, ctx, end, &walls);
-        let landmarks = ctx.graph.landmarks_along_path(
+        let mut landmarks = ctx.graph.landmarks_along_path(
             ctx.scene,
             &path3,
             |a, b| visible(ctx.navigable, &walls, a, b, cfg.sight_slack),
             cfg.landmark_distance,
         );
         let rooms = rooms_along_path(ctx.scene, &path3);
+        // The door walked through is "the door" of a room change, not a landmark passed.
+        let walked: Vec<ObjectId> = rooms
+            .windows(2)
+            .filter_map(|w| {
+                let at = pts[w[1].0.min(pts.len() - 1)];
+                door_between(ctx.scene, w[0].1, w[1].1, at)
+            })
+            .flat_map(|d| door_leaves(ctx.scene, d).map(|o| o.id))
+            .collect();
+        landmarks.retain(|l| !walked.contains(&l.object));
         Route {
             cfg,
             ctx,
@@ -729,7 +743,8 @@ fn leg_landmarks<'r>(
     Some(chosen)
 }
 
-/// The phrases of the chosen landmarks, grounded.
+/// The phrases of the chosen landmarks, grounded. A landmark passed beside others of its class
+/// on the same side of the same leg is often named with them ("the two chairs on your left").
 fn name_landmarks(route: &Route<'_, '_>, chosen: &[&Landmark], draft: &mut Draft) -> Vec<Named> {
     let mut named: Vec<Named> = Vec::new();
     for l in chosen {
@@ -737,6 +752,24 @@ fn name_landmarks(route: &Route<'_, '_>, chosen: &[&Landmark], draft: &mut Draft
             continue;
         };
         let side = env_side(l.side);
+        let mates = group_mates(route, l, o);
+        if !mates.is_empty() && draft.rng.random_bool(0.7) {
+            let text = group_np(o, &mates, &mut draft.rng);
+            draft
+                .grounding
+                .push(grounded(o, Role::Landmark, Some(side), l.path_index));
+            for (m, ml) in &mates {
+                draft
+                    .grounding
+                    .push(grounded(m, Role::Landmark, Some(side), ml.path_index));
+            }
+            named.push(Named {
+                text,
+                side,
+                group: true,
+            });
+            continue;
+        }
         let (text, extra) = object_np(
             route.ctx,
             o,
@@ -749,11 +782,61 @@ fn name_landmarks(route: &Route<'_, '_>, chosen: &[&Landmark], draft: &mut Draft
             .grounding
             .push(grounded(o, Role::Landmark, Some(side), l.path_index));
         draft.grounding.extend(extra);
-        named.push(Named { text, side });
+        named.push(Named {
+            text,
+            side,
+            group: false,
+        });
     }
     named
 }
 
+/// The other landmarks of `o`'s class passed on the same side of the same leg as `l` (at most
+/// three, so a group is two to four objects); none when `l` is straight ahead.
+fn group_mates<'r>(
+    route: &'r Route<'_, '_>,
+    l: &Landmark,
+    o: &SceneObject,
+) -> Vec<(&'r SceneObject, &'r Landmark)> {
+    let side = env_side(l.side);
+    if !matches!(side, Side::Left | Side::Right) {
+        return Vec::new();
+    }
+    let li = route.leg_of(l.path_index);
+    let end = route.end_obj.map(|e| e.id);
+    let mates: Vec<_> = route
+        .landmarks
+        .iter()
+        .filter(|m| m.object != l.object && Some(m.object) != end)
+        .filter(|m| route.leg_of(m.path_index) == li && env_side(m.side) == side)
+        .filter_map(|m| {
+            let x = route.ctx.scene.object(m.object)?;
+            (x.class == o.class).then_some((x, m))
+        })
+        .collect();
+    if mates.len() > 3 {
+        Vec::new()
+    } else {
+        mates
+    }
+}
+
+/// A group of objects of one class: "the two chairs", "the white chairs", "three stools".
+fn group_np(o: &SceneObject, mates: &[(&SceneObject, &Landmark)], rng: &mut ChaCha8Rng) -> String {
+    let noun = plural(class_names(o.class)[0]);
+    let colour = mates
+        .iter()
+        .all(|(m, _)| m.color == o.color)
+        .then_some(o.color.as_str())
+        .filter(|c| !c.is_empty() && rng.random_bool(0.4));
+    let adj = colour.map(|c| format!("{c} ")).unwrap_or_default();
+    let n = number_word(mates.len() as u32 + 1);
+    match rng.random_range(0..3) {
+        0 => format!("the {adj}{noun}"),
+        1 => format!("{n} {adj}{noun}"),
+        _ => format!("the {n} {adj}{noun}"),
+    }
+}
 /// Now and then hold back this leg's last lateral landmark to open the next leg's turn.
 fn hold_back_landmark(route: &Route<'_, '_>, li: usize, named: &mut Vec<Named>, draft: &mut Draft) {
     let next_turns = route
@@ -855,7 +938,12 @@ fn see_sentence(m: &Named, rng: &mut ChaCha8Rng) -> String {
         format!("{} is ahead of you", m.text)
     } else {
         let sp = fill(pick(rng, &ph::SIDE), &[("dir", side_word(m.side))]);
-        fill(pick(rng, &ph::SEE_SIDE), &[("obj", &m.text), ("side", &sp)])
+        let bank = if m.group {
+            &ph::SEE_SIDE_GROUP
+        } else {
+            &ph::SEE_SIDE
+        };
+        fill(pick(rng, bank), &[("obj", &m.text), ("side", &sp)])
     }
 }
 

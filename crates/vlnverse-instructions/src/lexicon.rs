@@ -388,6 +388,32 @@ pub fn shape_words(o: &SceneObject, peers: &[&SceneObject]) -> Vec<&'static str>
     out
 }
 
+/// The plural of a class name: "chairs", "benches", "bookshelves", "potted plants".
+pub fn plural(name: &str) -> String {
+    let (head, last) = name.rsplit_once(' ').map_or(("", name), |(h, l)| (h, l));
+    let p = if let Some(stem) = last.strip_suffix("shelf") {
+        format!("{stem}shelves")
+    } else if ["s", "x", "z", "ch", "sh"]
+        .iter()
+        .any(|e| last.ends_with(e))
+    {
+        format!("{last}es")
+    } else if last.ends_with('y')
+        && !last.ends_with("ay")
+        && !last.ends_with("ey")
+        && !last.ends_with("oy")
+    {
+        format!("{}ies", &last[..last.len() - 1])
+    } else {
+        format!("{last}s")
+    };
+    if head.is_empty() {
+        p
+    } else {
+        format!("{head} {p}")
+    }
+}
+
 /// A whole number written out ("three", "twenty-four"); digits above ninety-nine.
 pub fn number_word(n: u32) -> String {
     const ONES: [&str; 20] = [
@@ -458,6 +484,24 @@ mod tests {
     fn the_embedded_colour_file_is_valid() {
         if let Err(e) = parse_shade_rules(COLOURS_FILE, include_str!("../data/colours.toml")) {
             panic!("{e}");
+        }
+    }
+
+    #[test]
+    fn plurals_of_class_names() {
+        for (one, many) in [
+            ("chair", "chairs"),
+            ("bench", "benches"),
+            ("bookshelf", "bookshelves"),
+            ("glass", "glasses"),
+            ("potted plant", "potted plants"),
+            ("wall shelf", "wall shelves"),
+            ("tv", "tvs"),
+            ("laundry", "laundries"),
+            ("tray", "trays"),
+            ("box", "boxes"),
+        ] {
+            assert_eq!(plural(one), many);
         }
     }
 

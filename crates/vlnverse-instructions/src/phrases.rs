@@ -92,6 +92,7 @@ banks! {
     METRES = metres,
     PASS_SIDE = pass_side,
     SEE_SIDE = see_side,
+    SEE_SIDE_GROUP = see_side_group,
     WITH_SIDE = with_side,
     AFTER_OBJ = after_obj,
     TOWARDS = towards,

@@ -622,11 +622,17 @@ pub fn chain_parts(parts: &[Instruction], seed: u64) -> Result<Instruction> {
                 decapitalize(t)
             };
             if casual {
-                // One line: "go to ..., then ... and then ...".
+                // One line: "go to ..., then ... and then ..."; a "please" closes the line,
+                // not a part in the middle of it.
                 let join = if i == 0 {
                     ""
                 } else {
                     pick(&mut rng, &ph::CHAIN_CASUAL)
+                };
+                let body = if i + 1 < subs.len() {
+                    body.strip_suffix(" please").unwrap_or(&body).to_string()
+                } else {
+                    body
                 };
                 pieces.push(format!("{join}{body}"));
                 continue;
@@ -675,5 +681,27 @@ mod tests {
             ". Wait there."
         );
         assert_eq!(closer("wait by the desk", " and wait there", ""), "");
+    }
+
+    #[test]
+    fn a_casual_chain_says_please_once_at_the_end() {
+        let part = |t: &str| Instruction {
+            instruction_text: t.to_string(),
+            instruction_tokens: None,
+            style: Some(Style::Casual),
+            grounding: Vec::new(),
+            sub_instructions: Vec::new(),
+        };
+        let parts = [
+            part("go to the desk please"),
+            part("find the red mug please"),
+            part("stop by the sofa please"),
+        ];
+        for seed in 0..20 {
+            let text = chain_parts(&parts, seed).unwrap().instruction_text;
+            assert_eq!(text.matches("please").count(), 1, "{text}");
+            assert!(text.ends_with("the sofa please"), "{text}");
+            assert!(text.starts_with("go to the desk"), "{text}");
+        }
     }
 }
