@@ -334,18 +334,18 @@ pub(crate) fn door_between(scene: &Scene, a: RoomId, b: RoomId, at: Vec2) -> Opt
         })
 }
 
-/// The door leaves hung in an opening: objects of class `door` whose footprint centre lies
-/// within the opening's width of its centre (an open leaf stands swung by its jamb).
-pub(crate) fn door_leaves<'s>(
-    scene: &'s Scene,
-    door: &Door,
-) -> impl Iterator<Item = &'s SceneObject> {
-    let c = Vec2::new(door.position[0], door.position[2]);
-    let reach = door.width + 0.4;
-    scene.objects.iter().filter(move |o| {
-        let m = o.bbox.center();
-        o.class == C::Door && Vec2::new(m.x, m.z).distance(c) < reach
-    })
+/// The leaf hung in an opening, if it has one.
+pub(crate) fn door_leaf<'s>(scene: &'s Scene, door: &Door) -> Option<&'s SceneObject> {
+    door.leaf.and_then(|id| scene.object(id))
+}
+
+/// Whether `o` is the leaf of a closed door.
+pub(crate) fn is_closed_leaf(scene: &Scene, o: &SceneObject) -> bool {
+    o.class == C::Door
+        && scene
+            .doors
+            .iter()
+            .any(|d| d.leaf == Some(o.id) && d.is_closed())
 }
 
 /// The opening a path crosses from room `a` into room `b` near `at`, described ("the
@@ -359,7 +359,7 @@ pub(crate) fn door_np(
 ) -> Option<String> {
     let door = door_between(scene, a, b, at)?;
     // A doorway with a leaf in it is a door, and people name its colour now and then.
-    if let Some(leaf) = door_leaves(scene, door).next() {
+    if let Some(leaf) = door_leaf(scene, door) {
         let coloured = format!("the {} door", leaf.color);
         let bank = [
             "the door",

@@ -4,7 +4,7 @@
 //! the way people do. Every object named is grounded.
 
 use super::describe::{
-    door_between, door_leaves, door_np, end_place, object_np, room_np, NpOptions, Viewpoint,
+    door_between, door_np, end_place, is_closed_leaf, object_np, room_np, NpOptions, Viewpoint,
 };
 use super::lexicon::{class_names, number_word, ordinal_word, plural};
 use super::path::{
@@ -520,7 +520,7 @@ impl<'c, 's> Route<'c, 's> {
                 let at = pts[w[1].0.min(pts.len() - 1)];
                 door_between(ctx.scene, w[0].1, w[1].1, at)
             })
-            .flat_map(|d| door_leaves(ctx.scene, d).map(|o| o.id))
+            .filter_map(|d| d.leaf)
             .collect();
         landmarks.retain(|l| !walked.contains(&l.object));
         Route {
@@ -778,6 +778,15 @@ fn name_landmarks(route: &Route<'_, '_>, chosen: &[&Landmark], draft: &mut Draft
             MAX_REFERENCE_DISTANCE,
             &mut draft.rng,
         );
+        // A shut door is worth saying so: it is not the way through.
+        let text = if text.starts_with("the ")
+            && is_closed_leaf(route.ctx.scene, o)
+            && draft.rng.random_bool(0.7)
+        {
+            text.replacen("the ", "the closed ", 1)
+        } else {
+            text
+        };
         draft
             .grounding
             .push(grounded(o, Role::Landmark, Some(side), l.path_index));
