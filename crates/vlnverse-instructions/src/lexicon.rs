@@ -337,6 +337,10 @@ pub fn shape_words(o: &SceneObject, peers: &[&SceneObject]) -> Vec<&'static str>
     let s = o.bbox.size();
     let (w, h, d) = (s.x.max(s.z), s.y, s.x.min(s.z));
     let mut out = Vec::new();
+    // Every door is tall and thin; saying so tells one door from another no better.
+    if o.class == C::Door {
+        return out;
+    }
     let furniture = o.class.kind() == vlnverse_env::ClassKind::Furniture;
     if furniture && h > 1.5 {
         out.push("tall");
