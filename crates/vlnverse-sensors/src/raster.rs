@@ -1,9 +1,11 @@
 //! The CPU rasteriser backend: a plain software rasteriser for the few thousand triangles of a
 //! home, several times faster than both the ray caster and wgpu on a software Vulkan driver.
 //!
-//! Per view: objects outside the frustum are skipped (bounding boxes); the rest of the triangles
-//! go to camera space, are clipped against the near plane (and a wide guard band), projected
-//! with vertices snapped to 1/4096 pixel, and filled with exact integer edge functions sampled at
+//! Per view: objects outside the frustum are skipped (bounding boxes), and so are runs of up to
+//! 32 consecutive triangles of an object (clusters, each with its own box) that are outside it
+//! or whose projected box holds no pixel centre; the rest of the triangles go to camera space,
+//! are clipped against the near plane (and a wide guard band), projected with vertices snapped
+//! to 1/4096 pixel, and filled with exact integer edge functions sampled at
 //! pixel centres `(x + 0.5, y + 0.5)` under the top-left rule, so neighbouring triangles neither
 //! leave cracks nor overlap. Depth is `1 / z` from the triangle's plane (linear in screen space)
 //! and is kept in the depth buffer; a resolve pass turns it into metres along the optical axis
@@ -63,6 +65,10 @@ const TILE: usize = 8;
 /// Longest run of pixels of one triangle shaded at once by the RGB resolve.
 const RUN: usize = 64;
 
+/// Most triangles in a cluster: a run of consecutive triangles of one object with its own box,
+/// culled as a whole against the view (frustum, and whether it can cover a pixel centre).
+const CLUSTER: usize = 32;
+
 /// Attributes interpolated over a triangle: encoded light, texture u, v.
 const ATTRS: usize = 3;
 
@@ -113,11 +119,21 @@ struct Slot {
 /// An object's triangle range and whether its back faces may be culled.
 #[derive(Clone, Copy, Debug)]
 struct ObjInfo {
-    first: usize,
     count: usize,
     bbox: Aabb,
     /// Closed, outward-oriented surfaces only.
     closed: bool,
+    /// Its clusters: `clusters[c0..c1]` of [`RasterScene::clusters`].
+    c0: u32,
+    c1: u32,
+}
+
+/// Consecutive draw triangles `first..end` of one object and the box of their corners.
+#[derive(Clone, Copy, Debug)]
+struct Cluster {
+    first: u32,
+    end: u32,
+    bbox: Aabb,
 }
 
 /// A scene prepared for the rasteriser (built once per [`Renderer::set_scene`]).
@@ -139,12 +155,19 @@ pub struct RasterScene {
     /// Unit geometric normal per draw triangle (as [`SceneMesh::normal`]).
     normal: Vec<Vec3>,
     objects: Vec<ObjInfo>,
+    /// Every object's triangles in runs of at most [`CLUSTER`], object by object.
+    clusters: Vec<Cluster>,
+    /// Whether clusters are culled (off only in tests that compare against drawing them all).
+    cull_clusters: bool,
 }
 
 /// Reused depth and id buffers of views that do not return them (saves page faults), shared
 /// by every prepared scene so that scenes kept in the cache hold none.
 static SPARE_Z: Mutex<Vec<Vec<f32>>> = Mutex::new(Vec::new());
 static SPARE_IDS: Mutex<Vec<Vec<u32>>> = Mutex::new(Vec::new());
+/// Reused set-up lists of finished views (a big home's lists take a fresh allocation, and so
+/// page faults, in every view otherwise).
+static SPARE_SETUP: Mutex<Vec<Setup>> = Mutex::new(Vec::new());
 
 /// Take a buffer from a pool (or a new one) holding `n` copies of `v`.
 fn take<T: Copy>(pool: &Mutex<Vec<Vec<T>>>, n: usize, v: T) -> Vec<T> {
@@ -269,11 +292,15 @@ struct Group {
 
 /// Triangles set up for one view, grouped by object, nearest objects first. Views with RGB
 /// write slot numbers (`slot + 1`) instead of tags; `slot_tag` maps them back.
+#[derive(Default)]
 struct Setup {
     tris: Vec<ScreenTri>,
     groups: Vec<Group>,
     slots: Vec<Slot>,
     slot_tag: Vec<u32>,
+    /// Clusters culled whole (what the tests check culling against).
+    #[cfg_attr(not(test), allow(dead_code))]
+    culled: usize,
 }
 
 /// Per-view constants.
@@ -435,17 +462,30 @@ impl RasterScene {
         }
         // Closed surfaces are judged on the mesh's own triangles (merged faces meet their
         // neighbours' cells at T-junctions, but bound the same solid).
+        let mut clusters = Vec::new();
         let objects = mesh
             .objects
             .iter()
             .zip(&draw.objects)
             .map(|(o, &(first, count, bbox))| {
                 let (f, n) = (o.first as usize, o.count as usize);
+                let c0 = clusters.len() as u32;
+                for s in (first..first + count).step_by(CLUSTER) {
+                    let end = (s + CLUSTER).min(first + count);
+                    let mut b = Aabb::EMPTY;
+                    draw.pos[3 * s..3 * end].iter().for_each(|p| b.extend(*p));
+                    clusters.push(Cluster {
+                        first: s as u32,
+                        end: end as u32,
+                        bbox: b,
+                    });
+                }
                 ObjInfo {
-                    first,
                     count,
                     bbox,
                     closed: closed_outward(&mesh.positions[3 * f..3 * (f + n)]),
+                    c0,
+                    c1: clusters.len() as u32,
                 }
             })
             .collect();
@@ -466,6 +506,8 @@ impl RasterScene {
             mesh,
             normal,
             objects,
+            clusters,
+            cull_clusters: true,
         }
     }
 
@@ -501,6 +543,7 @@ impl RasterScene {
             + held(&self.look)
             + held(&self.normal)
             + held(&self.objects)
+            + held(&self.clusters)
             + held(&self.tag_class)
             + held(&self.tag_object)
     }
@@ -580,6 +623,11 @@ impl RasterScene {
         } else {
             work.into_par_iter().for_each(run);
         }
+        if let Ok(mut pool) = SPARE_SETUP.lock() {
+            if pool.len() < 16 {
+                pool.push(tris);
+            }
+        }
         let depth = if ch.depth {
             zbuf
         } else {
@@ -625,60 +673,77 @@ impl RasterScene {
             .collect();
         // Ties (and NaN-free keys) broken by object index: the order is deterministic.
         order.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        let mut out = Vec::with_capacity(self.draw.src.len() / 2);
-        let mut groups = Vec::with_capacity(order.len());
-        let (mut slots, mut slot_tag) = (Vec::new(), Vec::new());
+        let spare = SPARE_SETUP
+            .lock()
+            .ok()
+            .and_then(|mut p| p.pop())
+            .unwrap_or_default();
+        let (mut out, mut groups, mut slots, mut slot_tag) =
+            (spare.tris, spare.groups, spare.slots, spare.slot_tag);
+        out.clear();
+        groups.clear();
+        slots.clear();
+        slot_tag.clear();
+        let mut culled = 0;
         if shade {
-            slots.reserve(self.draw.src.len() / 2);
-            slot_tag.reserve(self.draw.src.len() / 2);
             slot_tag.push(0);
         }
         for &(_, oi) in &order {
             let o = &self.objects[oi];
-            let first = out.len();
             let cull = o.closed && {
                 let (lo, hi) = (o.bbox.min_v() - reach, o.bbox.max_v() + reach);
                 !(p.pos.cmpge(lo).all() && p.pos.cmple(hi).all())
             };
-            for t in o.first..o.first + o.count {
-                let wp = &self.draw.pos[3 * t..3 * t + 3];
-                let back = self.normal[t].dot(wp[0] - p.pos) > 0.0;
-                if back && cull {
+            let several = o.c1 > o.c0 + 1;
+            for c in &self.clusters[o.c0 as usize..o.c1 as usize] {
+                if self.cull_clusters
+                    && ((several && !frustum.intersects_aabb(&c.bbox))
+                        || !may_cover_pixel(p, &c.bbox))
+                {
+                    culled += 1;
                     continue;
                 }
-                let v = [p.to_camera(wp[0]), p.to_camera(wp[1]), p.to_camera(wp[2])];
-                let tag = 2 * self.draw.src[t] + back as u32 + 1;
-                if shade {
-                    let n = out.len();
-                    let slot = slots.len() as u32 + 1;
-                    if let Some(plane) = self.setup_triangle(p, v, slot, &mut out) {
-                        if out.len() > n {
-                            slots.push(self.slot(p, t, plane));
-                            slot_tag.push(tag);
-                        }
+                let first = out.len();
+                for t in c.first as usize..c.end as usize {
+                    let wp = &self.draw.pos[3 * t..3 * t + 3];
+                    let back = self.normal[t].dot(wp[0] - p.pos) > 0.0;
+                    if back && cull {
+                        continue;
                     }
-                } else {
-                    self.setup_triangle(p, v, tag, &mut out);
+                    let v = [p.to_camera(wp[0]), p.to_camera(wp[1]), p.to_camera(wp[2])];
+                    let tag = 2 * self.draw.src[t] + back as u32 + 1;
+                    if shade {
+                        let n = out.len();
+                        let slot = slots.len() as u32 + 1;
+                        if let Some(plane) = self.setup_triangle(p, v, slot, &mut out) {
+                            if out.len() > n {
+                                slots.push(self.slot(p, t, plane));
+                                slot_tag.push(tag);
+                            }
+                        }
+                    } else {
+                        self.setup_triangle(p, v, tag, &mut out);
+                    }
                 }
-            }
-            if out.len() > first {
-                let mut g = Group {
-                    first,
-                    end: out.len(),
-                    x0: i32::MAX,
-                    x1: i32::MIN,
-                    y0: i32::MAX,
-                    y1: i32::MIN,
-                    zmax: 0.0,
-                };
-                for t in &out[first..] {
-                    g.x0 = g.x0.min(t.x0);
-                    g.x1 = g.x1.max(t.x1);
-                    g.y0 = g.y0.min(t.y0);
-                    g.y1 = g.y1.max(t.y1);
-                    g.zmax = g.zmax.max(t.zhi);
+                if out.len() > first {
+                    let mut g = Group {
+                        first,
+                        end: out.len(),
+                        x0: i32::MAX,
+                        x1: i32::MIN,
+                        y0: i32::MAX,
+                        y1: i32::MIN,
+                        zmax: 0.0,
+                    };
+                    for t in &out[first..] {
+                        g.x0 = g.x0.min(t.x0);
+                        g.x1 = g.x1.max(t.x1);
+                        g.y0 = g.y0.min(t.y0);
+                        g.y1 = g.y1.max(t.y1);
+                        g.zmax = g.zmax.max(t.zhi);
+                    }
+                    groups.push(g);
                 }
-                groups.push(g);
             }
         }
         Setup {
@@ -686,6 +751,7 @@ impl RasterScene {
             groups,
             slots,
             slot_tag,
+            culled,
         }
     }
 
@@ -1062,6 +1128,31 @@ struct Band<'a> {
     ids: Option<&'a mut [u32]>,
     rgb: Option<&'a mut [u8]>,
     semantic: Option<&'a mut [u16]>,
+}
+
+/// Whether a box may cover a pixel centre: false only when the whole box is in front of the
+/// near plane and its projection's bounding rectangle holds no pixel centre, even with twice the
+/// margin [`RasterScene::setup_triangle`] gives a triangle (so every triangle inside the box
+/// would be rejected there; projection is convex in front of the eye).
+fn may_cover_pixel(p: &ViewParams, b: &Aabb) -> bool {
+    let (lo, hi) = (b.min_v(), b.max_v());
+    let (mut x0, mut x1, mut y0, mut y1) = (f32::MAX, f32::MIN, f32::MAX, f32::MIN);
+    for k in 0..8 {
+        let c = Vec3::new(
+            if k & 1 == 0 { lo.x } else { hi.x },
+            if k & 2 == 0 { lo.y } else { hi.y },
+            if k & 4 == 0 { lo.z } else { hi.z },
+        );
+        let q = p.to_camera(c);
+        if q.z > -p.near {
+            return true;
+        }
+        let (sx, sy, _) = p.project(q);
+        (x0, x1, y0, y1) = (x0.min(sx), x1.max(sx), y0.min(sy), y1.max(sy));
+    }
+    const M: f32 = 0.02;
+    let (ceil, floor) = (|v: f32| fast_ceil(v as f64), |v: f32| fast_floor(v as f64));
+    ceil(x0 - 0.5 - M) <= floor(x1 - 0.5 + M) && ceil(y0 - 0.5 - M) <= floor(y1 - 0.5 + M)
 }
 
 /// Clip a polygon against plane `k` of [`ViewParams::plane`] (Sutherland-Hodgman). New points
@@ -1478,6 +1569,58 @@ mod tests {
         assert!(!closed_outward(&c[3..]));
         let flipped: Vec<Vec3> = c.chunks(3).flat_map(|t| [t[0], t[2], t[1]]).collect();
         assert!(!closed_outward(&flipped));
+    }
+
+    #[test]
+    fn culling_clusters_changes_no_pixel() {
+        use crate::{CameraSpec, Channels};
+        use vlnverse_env::{Pose, SceneSource};
+        let homes = vlnverse_procgen::HomeGenerator::from_preset(vlnverse_procgen::Preset::Tiny)
+            .expect("preset");
+        let scene = homes.scene(1).expect("home");
+        let mesh = Arc::new(SceneMesh::new(&scene).expect("mesh"));
+        let culled = RasterScene::new(mesh);
+        assert!(culled.clusters.len() > culled.objects.len());
+        let mut all = RasterScene::new(culled.mesh.clone());
+        all.cull_clusters = false;
+        // Standing and looking across the home at varied headings and pitches, from a grid of
+        // spots (some inside furniture: near-plane cuts), RGB with ids and depth.
+        let b = scene.bounds();
+        let (mut views, mut skipped) = (0, 0);
+        for i in 0..6 {
+            for j in 0..6 {
+                let x = b.min[0] + (b.max[0] - b.min[0]) * (i as f32 + 0.5) / 6.0;
+                let z = b.min[2] + (b.max[2] - b.min[2]) * (j as f32 + 0.5) / 6.0;
+                let yaw = (i * 6 + j) as f32 * 0.7;
+                let mut pose = Pose::from_yaw(Vec3::new(x, scene.floor_height, z), yaw);
+                let pitch = [0.0f32, -0.6, 0.4][(i + j) % 3];
+                pose.rotation = (pose.quat() * glam::Quat::from_rotation_x(pitch)).to_array();
+                for (spec, ch) in [
+                    (CameraSpec::default(), Channels::ALL),
+                    (CameraSpec::depth(), Channels::DEPTH),
+                ] {
+                    let view = View {
+                        camera: spec.camera(&pose),
+                        channels: ch,
+                    };
+                    let (p, c) = (ViewParams::new(&view.camera), &view.camera);
+                    skipped += culled.setup(c, &p, false).culled;
+                    assert_eq!(all.setup(c, &p, false).culled, 0);
+                    for bands in [1, 3] {
+                        let (x, y) = (
+                            culled.render_view(&view, bands),
+                            all.render_view(&view, bands),
+                        );
+                        assert_eq!(x.rgb, y.rgb, "view {views}");
+                        assert_eq!(x.depth, y.depth, "view {views}");
+                        assert_eq!(x.semantic, y.semantic, "view {views}");
+                        assert_eq!(x.instance, y.instance, "view {views}");
+                    }
+                    views += 1;
+                }
+            }
+        }
+        assert!(skipped > 0);
     }
 
     #[test]

@@ -55,6 +55,12 @@ pub fn all() -> Vec<Case> {
             setup: raster,
         },
         Case {
+            name: "frames",
+            what: "RGB-D frames (RGB 224 + semantic, depth 256) one pose at a time on the CPU rasteriser, all threads: the AWS small house (../shared/scenes, skipped when absent) and a generated vlnverse home",
+            max_reps: 100,
+            setup: frames,
+        },
+        Case {
             name: "raycast",
             what: "CPU ray caster: 256x256 depth views, rays per second",
             max_reps: 100,
@@ -296,6 +302,95 @@ fn raster(scale: Scale) -> anyhow::Result<Repetition> {
             "frames",
             detail.clone(),
         )])
+    }))
+}
+
+/// The paper's observation of one pose: RGB 224 with semantic, and depth 256.
+fn rgbd_views(pose: &Pose) -> [View; 2] {
+    [
+        View {
+            camera: CameraSpec::default().camera(pose),
+            channels: Channels {
+                rgb: true,
+                semantic: true,
+                ..Default::default()
+            },
+        },
+        View {
+            camera: CameraSpec::depth().camera(pose),
+            channels: Channels::DEPTH,
+        },
+    ]
+}
+
+/// The AWS small house of `../shared/scenes/` (imported with its shipped mapping) and its
+/// navigable map; None when the folder is absent.
+fn aws_house() -> anyhow::Result<Option<(Scene, GridMap)>> {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+    let file = PathBuf::from(format!(
+        "{root}/../shared/scenes/aws_small_house/aws_small_house_yup.glb"
+    ));
+    if !file.exists() {
+        eprintln!(
+            "frames: skipped the AWS house ({} is absent)",
+            file.display()
+        );
+        return Ok(None);
+    }
+    let opts = vlnverse_import::ImportOptions {
+        mapping: Some(PathBuf::from(format!(
+            "{root}/configs/import/aws_small_house.toml"
+        ))),
+        ..Default::default()
+    };
+    let (scene, _) = vlnverse_import::import_scene(&file, &opts)
+        .with_context(|| format!("importing {}", file.display()))?;
+    let maps = build_maps(&scene, &opts.occupancy)?;
+    Ok(Some((scene, maps.navigable)))
+}
+
+fn frames(scale: Scale) -> anyhow::Result<Repetition> {
+    use vlnverse_sensors::{RasterRenderer, Renderer};
+    let n = scale.pick(400, 60);
+    let mut homes = Vec::new();
+    if let Some((scene, nav)) = aws_house()? {
+        homes.push(("frames/aws_rgbd", scene, nav));
+    }
+    let (scene, nav) = home(Preset::Vlnverse, 0)?;
+    homes.push(("frames/generated_rgbd", scene, nav));
+    let mut fixtures = Vec::new();
+    for (name, scene, nav) in homes {
+        let poses = navigable_poses(&scene, &nav, n)?;
+        let mesh = Arc::new(SceneMesh::new(&scene)?);
+        let detail = format!(
+            "{n} navigable poses in {} ({} triangles), RGB 224 + semantic, depth 256",
+            scene.id,
+            mesh.triangle_count()
+        );
+        let mut r = RasterRenderer::new();
+        r.set_scene(mesh)?;
+        fixtures.push((name, poses, r, detail));
+    }
+    Ok(Box::new(move || {
+        let mut out = Vec::new();
+        // Alternated in one repetition, so load on the machine falls on both alike.
+        for (name, poses, r, detail) in &mut fixtures {
+            let (s, done) = timed(|| {
+                poses.iter().try_for_each(|p| {
+                    r.render(&rgbd_views(p))
+                        .map(|f| drop(std::hint::black_box(f)))
+                })
+            });
+            done?;
+            out.push(Sample::rate(
+                name,
+                poses.len() as f64,
+                s,
+                "frames",
+                detail.clone(),
+            ));
+        }
+        Ok(out)
     }))
 }
 
