@@ -162,7 +162,26 @@ def concurrent_evaluations(c: Ctx, case: Case) -> tuple[str, str]:
 
 
 def edited_split_resume(c: Ctx, case: Case) -> tuple[str, str]:
-    """A resume after the split's goals moved is refused, naming split_fingerprint."""
+    """A resume after the goal of an episode the run finished moved is refused, naming
+    episode_fingerprint."""
+    out = c.work / "out"
+    d = c.dataset()
+    rc, text = run([*xtask(), *evaluate(d, out, "--episodes", "1")], case.timeout, ROOT)
+    if rc != 0:
+        return "unclear", f"the first run failed: {text[-300:]}"
+
+    def move(eps: Eps) -> None:
+        eps[0]["goals"] = eps[1]["goals"]
+    c.spoil("fine", "test", move)
+    before = listing(out)
+    rc, text = run([*xtask(), *evaluate(d, out)], case.timeout, ROOT)
+    from _hostile_cases import classify
+    return classify(case, rc, text, before, listing(out)), text.strip()[-300:]
+
+
+def resume_past_an_edited_unrun_episode(c: Ctx, case: Case) -> tuple[str, str]:
+    """Editing an episode the run has not reached is no reason to refuse the resume: it runs
+    the episode as it is now."""
     out = c.work / "out"
     d = c.dataset()
     rc, text = run([*xtask(), *evaluate(d, out, "--episodes", "1")], case.timeout, ROOT)
@@ -172,14 +191,160 @@ def edited_split_resume(c: Ctx, case: Case) -> tuple[str, str]:
     def move(eps: Eps) -> None:
         eps[2]["goals"] = eps[1]["goals"]
     c.spoil("fine", "test", move)
-    before = listing(out)
-    rc, text = run([*xtask(), *evaluate(d, out)], case.timeout, ROOT)
-    from _hostile_cases import classify
-    return classify(case, rc, text, before, listing(out)), text.strip()[-300:]
+    rc, text = run([*xtask(), *evaluate(d, out, "--episodes", "3")], case.timeout, ROOT)
+    if rc is None:
+        return "hang", text[-300:]
+    if rc != 0:
+        return ("crash" if rc == 101 or rc < 0 else "unclear"), text.strip()[-300:]
+    summary = json.loads((out / "summary.json").read_text())
+    if summary.get("episodes") != 3:
+        return "partial", f"summary of {summary.get('episodes')} episodes, not 3"
+    return "clear", "resumed to 3 episodes"
 
 
 def _first_scene(c: Ctx) -> str:
     return str(sorted((c.tiny / "scenes").iterdir())[0])
+
+
+def _first_start(c: Ctx) -> tuple[str, str]:
+    """The scene folder and start position of the tiny dataset's first test episode."""
+    import gzip
+    eps = json.loads(gzip.decompress((c.tiny / "fine/test/test.json.gz").read_bytes()))
+    ep = eps["episodes"][0]
+    return str(c.tiny / "scenes" / ep["scene_id"]), ",".join(str(v) for v in ep["start_position"])
+
+
+def render_rig(name: str, sensor: str, expect: tuple[str, ...]) -> Case:
+    """`render` with a rig of one bad sensor: refused before any image is made."""
+    def cli(c: Ctx) -> list[str]:
+        rig = c.work / "rig.toml"
+        rig.write_text(f"[[sensors]]\n{sensor}\n")
+        scene, start = _first_start(c)
+        return ["render", "--scene", scene, "--position", start, "--sensors", str(rig),
+                "--out", str(c.work / "out")]
+    return Case(f"rig_{name}", cli=cli, expect=expect, watch=lambda c: c.work / "out")
+
+
+def agent_profile(name: str, line: str, expect: tuple[str, ...]) -> Case:
+    """An evaluation whose agent profile file has one value out of range."""
+    def cli(c: Ctx) -> list[str]:
+        base = (ROOT / "crates/vlnverse-sim/configs/agent/vlnverse.toml").read_text()
+        key = line.split("=")[0].strip()
+        kept = [ln for ln in base.splitlines() if ln.split("=")[0].strip() != key]
+        (c.work / "robot.toml").write_text(line + "\n" + "\n".join(kept) + "\n")
+        return evaluate(c.dataset(), c.work / "out", "--config",
+                        protocol(c, f'agent_profile = "{c.work / "robot.toml"}"'))
+    return Case(f"agent_profile_{name}", cli=cli, expect=expect, watch=lambda c: c.work / "out")
+
+
+def import_mapping(name: str, rule: str, expect: tuple[str, ...]) -> Case:
+    """`import` of a one-triangle OBJ with a mapping rule out of range."""
+    def cli(c: Ctx) -> list[str]:
+        obj = c.work / "room.obj"
+        obj.write_text("o Bed_1\nv 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 3\n")
+        (c.work / "map.toml").write_text(f'[[rule]]\npattern = "Bed"\nclass = "bed"\n{rule}\n')
+        return ["import", "--input", str(obj), "--mapping", str(c.work / "map.toml"),
+                "--out", str(c.work / "out")]
+    return Case(f"import_{name}", cli=cli, expect=expect, watch=lambda c: c.work / "out")
+
+
+def deaf_external_agent(c: Ctx) -> list[str]:
+    """An external agent that sleeps without reading, sent observations larger than the pipe
+    buffer (a 192x192 RGB image in base64 is about 150 KB)."""
+    (c.work / "big.toml").write_text(
+        'backend = "raycast"\n[[sensors]]\ntype = "rgb"\nwidth = 192\nheight = 192\n')
+    cfg = c.work / "protocol.toml"
+    cfg.write_text('setting = "lenient"\nplots = 0\nrig = "big.toml"\n'
+                   'external_observations = "base64"\nexternal_timeout_s = 1.0\n')
+    return ["evaluate", "--dataset", str(c.dataset()), "--task", "fine", "--split", "test",
+            "--agent", "external", "--agent-cmd", "exec sleep 60", "--config", str(cfg),
+            "--episodes", "1", "--threads", "1", "--out", str(c.work / "out")]
+
+
+def web_over_the_connection_limit(c: Ctx, case: Case) -> tuple[str, str]:
+    """`serve` with its 256 connections held by clients that sent half a header: one more
+    gets a 503 JSON error at once instead of waiting in the listen queue."""
+    import socket
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    cmd = [*xtask(), "serve", "--dataset", str(c.dataset()), "--port", str(port),
+           "--out", str(c.work / "web")]
+    p = subprocess.Popen(cmd, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                         start_new_session=True)
+    held: list[socket.socket] = []
+    try:
+        for _ in range(300):
+            try:
+                socket.create_connection(("127.0.0.1", port), timeout=1).close()
+                break
+            except OSError:
+                time.sleep(0.1)
+        for _ in range(256):
+            h = socket.create_connection(("127.0.0.1", port), timeout=5)
+            h.sendall(f"GET /api/info HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\n".encode())
+            held.append(h)
+        extra = socket.create_connection(("127.0.0.1", port), timeout=5)
+        extra.sendall(f"GET /api/info HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\n"
+                      "Connection: close\r\n\r\n".encode())
+        answer = b""
+        try:
+            while chunk := extra.recv(65536):
+                answer += chunk
+        except socket.timeout:
+            return "hang", f"no answer within 5 s ({len(answer)} bytes)"
+        extra.close()
+    finally:
+        for h in held:
+            h.close()
+        os.killpg(p.pid, signal.SIGKILL)
+        p.wait()
+    text = answer.decode(errors="replace")
+    head, _, body = text.partition("\r\n\r\n")
+    if not head.startswith("HTTP/1.1 503"):
+        return "unclear", text[:300]
+    try:
+        message = json.loads(body)["error"]
+    except (ValueError, KeyError):
+        return "unclear", f"not the JSON error shape: {body[:300]}"
+    outcome = "clear" if all(w in message for w in case.expect) else "unclear"
+    return outcome, f"503 {message}"
+
+
+def llm_made_up_object(c: Ctx, case: Case) -> tuple[str, str]:
+    """Generation with an LLM stage whose every rewrite names a spaceship, verifier off and
+    on_reject = "error": the rewrite check stops the run naming the word."""
+    import http.server
+    import threading
+
+    class Stub(http.server.BaseHTTPRequestHandler):
+        def do_POST(self) -> None:  # noqa: N802 (the http.server name)
+            self.rfile.read(int(self.headers.get("Content-Length", 0)))
+            body = json.dumps({"choices": [{"message": {
+                "content": "Walk past the spaceship and stop by the door."}}]}).encode()
+            self.send_response(200)
+            self.send_header("Content-Type", "application/json")
+            self.send_header("Content-Length", str(len(body)))
+            self.end_headers()
+            self.wfile.write(body)
+
+        def log_message(self, *args: Any) -> None:
+            pass
+
+    srv = http.server.ThreadingHTTPServer(("127.0.0.1", 0), Stub)
+    threading.Thread(target=srv.serve_forever, daemon=True).start()
+    try:
+        url = f"http://127.0.0.1:{srv.server_address[1]}/v1"
+        cfg = c.work / "gen.toml"
+        cfg.write_text(llm('verify = false\non_reject = "error"')(TINY_TOML.read_text())
+                       .replace("http://127.0.0.1:9/v1", url))
+        out = c.work / "out"
+        rc, text = run([*xtask(), "generate", "--config", str(cfg), "--out", str(out)],
+                       case.timeout, ROOT)
+    finally:
+        srv.shutdown()
+    from _hostile_cases import classify
+    return classify(case, rc, text, None, listing(out)), text.strip()[-300:]
 
 
 CASES: list[Case] = [
@@ -377,5 +542,32 @@ CASES: list[Case] = [
     Case("two_evaluations_on_one_folder", custom=concurrent_evaluations,
          expect=("another job",)),
     Case("resume_of_an_edited_split", custom=edited_split_resume,
-         expect=("split_fingerprint",)),
+         expect=("episode_fingerprint", "--fresh")),
+    Case("resume_past_an_edited_unrun_episode", custom=resume_past_an_edited_unrun_episode),
+    # Sensor rigs, agent profiles and import mappings with values out of range.
+    render_rig("width_1e6", 'type = "rgb"\nwidth = 1000000', ("sensors[0].width", "1000000")),
+    render_rig("hfov_nan", 'type = "rgb"\nhfov_deg = nan', ("sensors[0].hfov_deg", "nan")),
+    render_rig("hfov_0", 'type = "depth"\nhfov_deg = 0.0', ("sensors[0].hfov_deg",)),
+    render_rig("far_1e9", 'type = "depth"\nfar = 1e9', ("sensors[0].far", "1000000000")),
+    render_rig("redwood_c_nan", 'type = "depth"\nnoise = { model = "redwood", a = 0.001, '
+               'b = 0.002, c = nan, quantum = 0.003 }', ("sensors[0].noise.c",)),
+    render_rig("lidar_a_billion_rays", 'type = "lidar"\nbeams = 65536\nchannels = 1024',
+               ("sensors[0].beams", "rays")),
+    render_rig("panorama_360_big_views", 'type = "panorama"\nviews = 360\n'
+               'camera = { width = 1024, height = 1024 }', ("sensors[0].views", "pixels")),
+    agent_profile("step_size_1e6", "step_size = 1e6", ("robot.toml", "step_size", "1000000")),
+    agent_profile("turn_angle_0", "turn_angle_deg = 0.0", ("robot.toml", "turn_angle_deg")),
+    agent_profile("speed_nan", "max_linear_speed = nan", ("robot.toml", "max_linear_speed")),
+    import_mapping("mass_1e12", "mass = 1e12", ("map.toml", "rule[0].mass")),
+    import_mapping("friction_inf", "friction = inf", ("map.toml", "rule[0].friction")),
+    # An external agent that never reads its input.
+    Case("external_agent_never_reads", cli=deaf_external_agent,
+         expect=("did not read", "exec sleep 60", "step 0", "external_timeout_s"),
+         watch=lambda c: c.work / "nothing"),
+    # The web app over its connection limit.
+    Case("web_connection_over_the_limit", custom=web_over_the_connection_limit,
+         expect=("busy", "256")),
+    # An LLM rewrite naming an object the facts do not hold.
+    Case("llm_rewrite_names_a_spaceship", custom=llm_made_up_object, timeout=120,
+         expect=("spaceship", "on_reject")),
 ]

@@ -694,12 +694,12 @@ impl EpisodeState {
         let distances = goal_distances(scene, ep, &self.goal_fields)?;
         let mut metrics = score_episode(ep, &traj, &distances, &settings.metrics);
         metrics.split = settings.split;
-        Ok(EpisodeRecord {
-            episode_id: ep.episode_id,
-            trajectory: traj,
+        Ok(EpisodeRecord::new(
+            ep.episode_id,
+            traj,
             metrics,
-            failure: self.failure.clone(),
-        })
+            self.failure.clone(),
+        ))
     }
 }
 

@@ -22,12 +22,15 @@ pub use episode_loop::{
 };
 pub use error::{Result, TaskError};
 pub use protocol::{ActionSpace, EvalConfig, LlmSection, Setting};
-pub use resume::{EpisodeRecord, ProgressLog, LATER_KEYS, PROGRESS_FILE, RUN_FILE};
+pub use resume::{
+    check_unchanged, episode_fingerprint, EpisodeRecord, ProgressLog, LATER_KEYS, PROGRESS_FILE,
+    RETIRED_KEYS, RUN_FILE,
+};
 pub use runner::{
     check_run_folder, check_split, configured_renderer, evaluate, evaluate_with, finish_run,
-    open_run, rapier_simulator, run_identity, select_episodes, sim_config, split_fingerprint,
-    DefaultRenderers, DefaultSimulators, EvalOutcome, EvalRequest, LayerIdentity, Layers,
-    RendererFactory, SimulatorFactory, MAX_THREADS, RUN_FILES,
+    open_run, rapier_simulator, run_identity, select_episodes, sim_config, DefaultRenderers,
+    DefaultSimulators, EvalOutcome, EvalRequest, LayerIdentity, Layers, RendererFactory,
+    SimulatorFactory, MAX_THREADS, RUN_FILES,
 };
 pub use scene_context::{SceneCache, SceneContext};
 pub use vec_env::{

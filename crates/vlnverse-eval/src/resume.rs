@@ -2,8 +2,12 @@
 //! (one JSON line, flushed and fsynced); a restart skips those episodes, and the final files
 //! are rebuilt from it. A half-written last line (the process was killed mid-write) is cut off.
 //! `RUN/run.json` records what the run is (agent, setting, task, split, dataset, protocol) so
-//! that a different run is never mixed into the same folder.
+//! that a different run is never mixed into the same folder, and each finished episode's line
+//! carries a hash of the episode as it was run ([`episode_fingerprint`]), so a resume after
+//! that episode was edited in the split file is refused ([`check_unchanged`]) while edits to
+//! episodes the run has not reached are simply run as they are now.
 
+use std::collections::BTreeMap;
 use std::fs::{File, OpenOptions};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -14,6 +18,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Result, TaskError};
 use vlnverse_score::metrics::EpisodeMetrics;
 use vlnverse_score::trajectory::Trajectory;
+use vlnverse_score::Episode;
 use vlnverse_sim::Failure;
 
 /// One finished episode.
@@ -35,6 +40,10 @@ pub struct EpisodeRecord {
         deserialize_with = "failure_then_or_now"
     )]
     pub failure: Option<Failure>,
+    /// [`episode_fingerprint`] of the episode as it was run (set by [`ProgressLog::append`];
+    /// records of older runs have none and are not checked).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub episode_fingerprint: Option<String>,
 }
 
 impl EpisodeRecord {
@@ -50,8 +59,55 @@ impl EpisodeRecord {
             trajectory,
             metrics,
             failure,
+            episode_fingerprint: None,
         }
     }
+}
+
+/// A stable hash (hex) of one episode as the split file holds it: start, goals, instruction,
+/// path and the rest.
+pub fn episode_fingerprint(ep: &Episode) -> Result<String> {
+    let json = serde_json::to_vec(ep)
+        .map_err(|e| TaskError::invalid("episode", ep.episode_id, e.to_string()))?;
+    let mut key = vlnverse_env::cache::ContentKey::new();
+    key.bytes(&json);
+    Ok(format!("{:016x}", key.finish()))
+}
+
+/// Refuse a resume in which an episode already finished in the folder (`done`) is not the
+/// same episode in the split file now (`episodes`, the episodes of this call, read from
+/// `split_file`): its result would mix two versions of the split. The error names the
+/// episode, its index and `episode_fingerprint`.
+pub fn check_unchanged(
+    split_file: &Path,
+    episodes: &[Episode],
+    done: &BTreeMap<u64, EpisodeRecord>,
+) -> Result<()> {
+    for (i, ep) in episodes.iter().enumerate() {
+        let Some(then) = done
+            .get(&ep.episode_id)
+            .and_then(|r| r.episode_fingerprint.as_deref())
+        else {
+            continue;
+        };
+        let now = episode_fingerprint(ep)?;
+        if now != then {
+            return Err(TaskError::invalid(
+                format!(
+                    "{}: episode {} (episodes[{i}]).episode_fingerprint",
+                    split_file.display(),
+                    ep.episode_id
+                ),
+                &now,
+                format!(
+                    "the episode changed in the split file since this folder's run finished it \
+                     (then {then}); resuming would mix two versions of the split: choose \
+                     another --out, or --fresh to start over"
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// A failure as written now (an object) or by older runs (its JSON text as a string).
@@ -141,6 +197,8 @@ pub fn load_progress(path: &Path) -> Result<Vec<EpisodeRecord>> {
 pub struct ProgressLog {
     path: PathBuf,
     file: Mutex<File>,
+    /// [`episode_fingerprint`] by episode id, stamped on each record appended.
+    fingerprints: BTreeMap<u64, String>,
 }
 
 impl ProgressLog {
@@ -154,12 +212,27 @@ impl ProgressLog {
         Ok(ProgressLog {
             path: path.to_path_buf(),
             file: Mutex::new(file),
+            fingerprints: BTreeMap::new(),
         })
     }
 
-    /// Append one record and make it durable.
-    pub fn append(&self, rec: &EpisodeRecord) -> Result<()> {
-        let mut line = serde_json::to_string(rec)
+    /// Stamp each record appended with the [`episode_fingerprint`] of its episode among
+    /// `episodes` (the run's).
+    pub fn for_episodes(mut self, episodes: &[Episode]) -> Result<Self> {
+        for ep in episodes {
+            self.fingerprints
+                .insert(ep.episode_id, episode_fingerprint(ep)?);
+        }
+        Ok(self)
+    }
+
+    /// Stamp `rec` with its episode's fingerprint (when the log has one), append it and
+    /// make it durable.
+    pub fn append(&self, rec: &mut EpisodeRecord) -> Result<()> {
+        if let Some(f) = self.fingerprints.get(&rec.episode_id) {
+            rec.episode_fingerprint = Some(f.clone());
+        }
+        let mut line = serde_json::to_string(&*rec)
             .map_err(|e| TaskError::invalid("episode record", rec.episode_id, e.to_string()))?;
         line.push('\n');
         let mut f = self
@@ -172,16 +245,20 @@ impl ProgressLog {
     }
 }
 
+/// Keys an older `run.json` may hold that are no longer compared: `split_fingerprint` hashed
+/// the whole split file, so an edit to an episode the run never reached refused the resume
+/// (finished episodes are now checked one by one, [`check_unchanged`]).
+pub const RETIRED_KEYS: [&str; 1] = ["split_fingerprint"];
+
 /// Keys of `run.json` added after runs were first written: a `run.json` without one of them
 /// (a run made before) is not compared on it; one that has it is.
-pub const LATER_KEYS: [&str; 7] = [
+pub const LATER_KEYS: [&str; 6] = [
     "benchmark_version",
     "simulator",
     "simulator_fingerprint",
     "renderer",
     "renderer_fingerprint",
     "rig_fingerprint",
-    "split_fingerprint",
 ];
 
 /// Write `run.json`, or check that the existing one describes the same run. `identity` lists
@@ -210,6 +287,7 @@ pub fn check_or_write_identity(dir: &Path, identity: &[(&str, serde_json::Value)
                     // A key of the file that this run does not have.
                     old.as_object()?
                         .iter()
+                        .filter(|(k, _)| !RETIRED_KEYS.contains(&k.as_str()))
                         .find(|(k, _)| !identity.iter().any(|(n, _)| n == k))
                         .map(|(k, v)| (k.clone(), "<none>".into(), Some(v.to_string())))
                 });

@@ -458,21 +458,10 @@ impl<SF: SimulatorFactory, RF: RendererFactory> Shared<'_, SF, RF> {
             &self.settings,
         );
         self.give_back(w);
-        let rec = res?;
-        log.append(&rec)?;
+        let mut rec = res?;
+        log.append(&mut rec)?;
         Ok(rec)
     }
-}
-
-/// A stable hash (hex) of a split's episodes: `run.json` records it, so a resume after the
-/// split file was edited (other goals, starts or instructions) is refused instead of mixing
-/// old and new episodes in one run.
-pub fn split_fingerprint(episodes: &[Episode]) -> Result<String> {
-    let json = serde_json::to_vec(episodes)
-        .map_err(|e| TaskError::invalid("episodes", "<split>", e.to_string()))?;
-    let mut key = vlnverse_env::cache::ContentKey::new();
-    key.bytes(&json);
-    Ok(format!("{:016x}", key.finish()))
 }
 
 /// Check every episode of `episodes` in its scene ([`check_episode`]) before anything is
@@ -582,7 +571,6 @@ pub fn evaluate_with<SF: SimulatorFactory, RF: RendererFactory>(
         ));
     }
     let total_in_split = episodes.len();
-    let fingerprint = split_fingerprint(&episodes)?;
     episodes = select_episodes(req, episodes)?;
     let mut settings = EpisodeSettings::new(&req.config)?;
     settings.privileged = factory.privileged();
@@ -621,7 +609,7 @@ pub fn evaluate_with<SF: SimulatorFactory, RF: RendererFactory>(
     in_pool(req.threads, || {
         check_split(&shared.split_file, &episodes, &shared.scenes)
     })??;
-    let identity = run_identity(req, factory, &layer_identity, &fingerprint)?;
+    let identity = run_identity(req, factory, &layer_identity)?;
     let created = !req.out.exists();
     let lock = OutputLock::acquire(&req.out, "evaluate")?;
     let result = evaluate_locked(
@@ -687,6 +675,7 @@ fn evaluate_locked<SF: SimulatorFactory, RF: RendererFactory>(
 ) -> Result<EvalOutcome> {
     let req = shared.req;
     let mut done = open_run(req, identity, total_in_split)?;
+    resume::check_unchanged(&shared.split_file, episodes, &done)?;
     let todo: Vec<&Episode> = {
         let mut v: Vec<&Episode> = episodes
             .iter()
@@ -698,7 +687,7 @@ fn evaluate_locked<SF: SimulatorFactory, RF: RendererFactory>(
         v
     };
     let resumed = episodes.len() - todo.len();
-    let log = ProgressLog::open(&req.out.join(PROGRESS_FILE))?;
+    let log = ProgressLog::open(&req.out.join(PROGRESS_FILE))?.for_episodes(episodes)?;
     // The first failure stops the run (no further episodes start): a broken agent or
     // simulator would otherwise fail, or wait out its timeout, once per remaining episode.
     let run = || -> Result<Vec<EpisodeRecord>> {
@@ -815,14 +804,14 @@ fn remove_run_files(out: &Path) -> Result<()> {
 /// differing key is named): `run.json` of the run folder. Besides the protocol's names and
 /// paths it records their contents (`agent_config`, `rig_config`), so an edited file is
 /// noticed, and the layers that ran it (`simulator`, `renderer`, `rig_fingerprint`: see
-/// [`LayerIdentity`]), and `split`, the [`split_fingerprint`] of the whole split file (not of
-/// the episodes selected, so a resume may run more of it). Thread count and episode count are
-/// left out (a resume may use other values).
+/// [`LayerIdentity`]). The split file's content is not part of it: each finished episode is
+/// checked on resume instead ([`resume::check_unchanged`]), so an edit to an episode the run
+/// has not reached is no reason to refuse. Thread count and episode count are left out (a
+/// resume may use other values).
 pub fn run_identity(
     req: &EvalRequest,
     factory: &dyn AgentFactory,
     layers: &LayerIdentity,
-    split: &str,
 ) -> Result<Vec<(&'static str, serde_json::Value)>> {
     use serde_json::{json, to_value};
     let cfg = &req.config;
@@ -873,8 +862,6 @@ pub fn run_identity(
         ("renderer", json!(layers.renderer)),
         ("renderer_fingerprint", json!(layers.renderer_fingerprint)),
         ("rig_fingerprint", json!(layers.rig_fingerprint)),
-        // What the split file held, last: the same run of an edited split.
-        ("split_fingerprint", json!(split)),
     ];
     // Only when set, so runs made before these options existed still resume.
     if let Some(sample) = req.sample {

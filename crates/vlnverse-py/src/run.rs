@@ -8,7 +8,6 @@ use std::sync::Mutex;
 use pyo3::prelude::*;
 use vlnverse_task::dataset;
 use vlnverse_task::episode::{Episode, Split, Task};
-use vlnverse_task::eval::split_fingerprint;
 use vlnverse_task::eval::{check_split, finish_run, open_run, run_identity, select_episodes};
 use vlnverse_task::eval::{AgentFactory, EvalRequest, LayerIdentity, SceneCache};
 use vlnverse_task::eval::{EpisodeRecord, ProgressLog, PROGRESS_FILE};
@@ -188,7 +187,6 @@ impl RunFolder {
                 )));
             }
             let total = eps.len();
-            let split_key = split_fingerprint(&eps).map_err(py_err)?;
             let eps = select_episodes(&req, eps).map_err(py_err)?;
             // Every episode checked in its scene before run.json or a lock is written.
             let split_file = dataset::split_path(&dataset, task, split);
@@ -198,11 +196,14 @@ impl RunFolder {
                 fingerprint: agent_fingerprint,
             };
             let layers = LayerIdentity::of_defaults(&req).map_err(py_err)?;
-            let identity = run_identity(&req, &factory, &layers, &split_key).map_err(py_err)?;
+            let identity = run_identity(&req, &factory, &layers).map_err(py_err)?;
             vlnverse_task::eval::check_run_folder(&out).map_err(py_err)?;
             let lock = OutputLock::acquire(&out, "evaluate").map_err(py_err)?;
             let done = open_run(&req, &identity, total).map_err(py_err)?;
-            let log = ProgressLog::open(&out.join(PROGRESS_FILE)).map_err(py_err)?;
+            vlnverse_task::eval::check_unchanged(&split_file, &eps, &done).map_err(py_err)?;
+            let log = ProgressLog::open(&out.join(PROGRESS_FILE))
+                .and_then(|l| l.for_episodes(&eps))
+                .map_err(py_err)?;
             Ok(RunFolder {
                 open: Mutex::new(Some(Open {
                     req,
@@ -235,7 +236,7 @@ impl RunFolder {
     /// Append a finished episode (the JSON of an episode record, `info["record"]`).
     fn record(&self, record: &str) -> PyResult<()> {
         self.with(|o| {
-            let rec: EpisodeRecord = serde_json::from_str(record)
+            let mut rec: EpisodeRecord = serde_json::from_str(record)
                 .map_err(|e| py_err(format!("record: not an episode record: {e}")))?;
             if !o.episodes.iter().any(|e| e.episode_id == rec.episode_id) {
                 return Err(py_err(format!(
@@ -246,7 +247,7 @@ impl RunFolder {
             if o.done.contains_key(&rec.episode_id) {
                 return Ok(());
             }
-            o.log.append(&rec).map_err(py_err)?;
+            o.log.append(&mut rec).map_err(py_err)?;
             o.done.insert(rec.episode_id, rec);
             Ok(())
         })

@@ -1,5 +1,5 @@
 //! The split a run is made of: every episode is checked in its scene before anything is
-//! written, and a resume after the split file changed is refused by the key that changed.
+//! written, and a resume after a finished episode changed in the split file is refused.
 
 use vlnverse_eval::agents::builtin;
 use vlnverse_eval::{evaluate, EvalConfig, Setting};
@@ -18,32 +18,48 @@ fn blind_lenient() -> EvalConfig {
 }
 
 #[test]
-fn a_resume_of_an_edited_split_is_refused_naming_the_split_fingerprint() {
+fn a_resume_is_refused_only_when_a_finished_episode_changed_in_the_split() {
     let dir = tempfile::tempdir().unwrap();
     let eps = eval_support::make_dataset(dir.path(), Task::Fine, 1, 3, 21);
     let cfg = blind_lenient();
     let agent = builtin("forward", None, &cfg).unwrap();
     let req = |n| eval_support::fine_test(dir.path(), "run", &cfg, n, 1);
     evaluate(&req(Some(1)), &*agent).unwrap();
-    let run = std::fs::read_to_string(dir.path().join("run/run.json")).unwrap();
-    assert!(run.contains("\"split_fingerprint\""), "{run}");
+    let log = std::fs::read_to_string(dir.path().join("run/progress.jsonl")).unwrap();
+    assert!(log.contains("\"episode_fingerprint\""), "{log}");
 
-    // The goals of the episodes not yet run move: resuming would mix two splits.
+    // An episode the run has not reached moves its goal: nothing of the run depends on it,
+    // and the resume runs it as it is now.
     let mut edited = eps.clone();
     edited[2].goals[0] = eps[1].goals[0].clone();
     write_split(dir.path(), Task::Fine, Split::Test, &edited).unwrap();
-    let err = evaluate(&req(None), &*agent).unwrap_err().to_string();
-    assert!(
-        err.contains("`split_fingerprint`") && err.contains("--fresh"),
-        "{err}"
-    );
-    let log = std::fs::read_to_string(dir.path().join("run/progress.jsonl")).unwrap();
-    assert_eq!(log.lines().count(), 1, "the refused resume ran nothing");
+    let out = evaluate(&req(Some(2)), &*agent).unwrap();
+    assert_eq!((out.resumed, out.records.len()), (1, 2));
 
-    // The split as it was resumes, with more episodes than the first call ran.
-    write_split(dir.path(), Task::Fine, Split::Test, &eps).unwrap();
+    // A finished one changes: its result would come from the old split.
+    let mut changed = edited.clone();
+    changed[0].goals[0] = eps[1].goals[0].clone();
+    write_split(dir.path(), Task::Fine, Split::Test, &changed).unwrap();
+    let err = evaluate(&req(None), &*agent).unwrap_err().to_string();
+    let first = format!(
+        "episode {} (episodes[0]).episode_fingerprint",
+        eps[0].episode_id
+    );
+    assert!(err.contains(&first) && err.contains("--fresh"), "{err}");
+    let log = std::fs::read_to_string(dir.path().join("run/progress.jsonl")).unwrap();
+    assert_eq!(log.lines().count(), 2, "the refused resume ran nothing");
+
+    // The split as the run saw it resumes to the end, even with a run.json of the time when
+    // it held the whole split's hash.
+    write_split(dir.path(), Task::Fine, Split::Test, &edited).unwrap();
+    let run_json = dir.path().join("run/run.json");
+    let mut run: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&run_json).unwrap()).unwrap();
+    assert!(run.get("split_fingerprint").is_none(), "{run}");
+    run["split_fingerprint"] = "0123456789abcdef".into();
+    std::fs::write(&run_json, run.to_string()).unwrap();
     let rest = evaluate(&req(None), &*agent).unwrap();
-    assert_eq!((rest.resumed, rest.records.len()), (1, 3));
+    assert_eq!((rest.resumed, rest.records.len()), (2, 3));
 }
 
 #[test]
