@@ -77,9 +77,12 @@ pub(crate) type DoorLeaf = (Option<DoorState>, Option<ObjectId>);
 /// Whether every room reaches room 0 through the openings not in `closed`.
 fn connected(plan: &Plan, closed: &[bool]) -> bool {
     let n = plan.rooms.len();
+    if n == 0 {
+        return true;
+    }
     let mut seen = vec![false; n];
     let mut stack = vec![0usize];
-    seen[0] = n > 0;
+    seen[0] = true;
     while let Some(r) = stack.pop() {
         for (o, _) in plan
             .openings
