@@ -257,7 +257,8 @@ def deaf_external_agent(c: Ctx) -> list[str]:
     cfg.write_text('setting = "lenient"\nplots = 0\nrig = "big.toml"\n'
                    'external_observations = "base64"\nexternal_timeout_s = 1.0\n')
     return ["evaluate", "--dataset", str(c.dataset()), "--task", "fine", "--split", "test",
-            "--agent", "external", "--agent-cmd", "exec sleep 60", "--config", str(cfg),
+            "--agent", "external", "--agent-cmd", "exec sleep 60", "--setting", "lenient",
+            "--config", str(cfg),
             "--episodes", "1", "--threads", "1", "--out", str(c.work / "out")]
 
 
@@ -336,7 +337,9 @@ def llm_made_up_object(c: Ctx, case: Case) -> tuple[str, str]:
     try:
         url = f"http://127.0.0.1:{srv.server_address[1]}/v1"
         cfg = c.work / "gen.toml"
-        cfg.write_text(llm('verify = false\non_reject = "error"')(TINY_TOML.read_text())
+        # The reply cache outside --out: kept on purpose (a rerun pays nothing twice).
+        cache = f'cache_dir = "{c.work / "cache"}"'
+        cfg.write_text(llm(f'verify = false\non_reject = "error"\n{cache}')(TINY_TOML.read_text())
                        .replace("http://127.0.0.1:9/v1", url))
         out = c.work / "out"
         rc, text = run([*xtask(), "generate", "--config", str(cfg), "--out", str(out)],
@@ -563,7 +566,7 @@ CASES: list[Case] = [
     # An external agent that never reads its input.
     Case("external_agent_never_reads", cli=deaf_external_agent,
          expect=("did not read", "exec sleep 60", "step 0", "external_timeout_s"),
-         watch=lambda c: c.work / "nothing"),
+         watch=lambda c: c.work / "out"),
     # The web app over its connection limit.
     Case("web_connection_over_the_limit", custom=web_over_the_connection_limit,
          expect=("busy", "256")),
