@@ -68,6 +68,11 @@ pub struct DatasetStats {
     pub navigable_m2: BTreeMap<String, f64>,
     /// Rooms per scene, by scene id.
     pub rooms: BTreeMap<String, usize>,
+    /// Objects per scene besides structure (walls, floors, ceilings, windows, door frames) and
+    /// doors, by scene id.
+    pub objects: BTreeMap<String, usize>,
+    /// Classes of those objects, over all scenes.
+    pub object_classes: BTreeSet<String>,
     /// Episodes per task and split.
     pub episodes: BTreeMap<String, BTreeMap<String, usize>>,
     /// Geodesic path lengths (m) per task.
@@ -176,6 +181,14 @@ pub fn collect(dir: &Path) -> Result<DatasetStats> {
             let raw = std::fs::read(&json_path).map_err(|e| DataError::io(&json_path, e))?;
             let scene = scene_from_json(&raw, &json_path)?;
             st.rooms.insert(id.clone(), scene.rooms.len());
+            let objects: Vec<_> = scene
+                .objects
+                .iter()
+                .filter(|o| !o.class.is_structure() && o.class != vlnverse_env::SemanticClass::Door)
+                .collect();
+            st.objects.insert(id.clone(), objects.len());
+            st.object_classes
+                .extend(objects.iter().map(|o| o.class.name().to_string()));
             let yaml = p.join("navigable.yaml");
             if yaml.is_file() {
                 let map = GridMap::load_ros(&yaml)?;
@@ -480,6 +493,12 @@ fn stats_markdown(dir: &Path, st: &DatasetStats) -> String {
     );
     let rooms: Vec<f64> = st.rooms.values().map(|&r| r as f64).collect();
     row(&mut md, "rooms per scene", ValueStats::of(&rooms));
+    let objects: Vec<f64> = st.objects.values().map(|&n| n as f64).collect();
+    row(
+        &mut md,
+        "objects per scene (no structure, doors)",
+        ValueStats::of(&objects),
+    );
     for (task, v) in &st.path_length {
         row(
             &mut md,
@@ -508,8 +527,9 @@ fn stats_markdown(dir: &Path, st: &DatasetStats) -> String {
         ));
     }
     md.push_str(&format!(
-        "\nLandmark vocabulary: {} object classes named as landmarks ({} classes grounded in all); \
-         {} distinct words over all instructions.\n",
+        "\nObject classes in the scenes: {}. Landmark vocabulary: {} object classes named as \
+         landmarks ({} classes grounded in all); {} distinct words over all instructions.\n",
+        st.object_classes.len(),
         st.landmark_classes.len(),
         st.grounded_classes.len(),
         st.word_vocabulary

@@ -25,6 +25,9 @@ const NAV_CELL: f32 = 0.1;
 /// How far past a framed doorway's gap, along the wall, floor and wall clutter stays away (m):
 /// an open leaf (about a door width deep) stands there.
 const CLUTTER_SWING: f32 = 0.7;
+/// Share of a room's floor that stays free in the in-room grid (whose radius is more than the
+/// agent's) when floor and wall clutter is placed.
+const CLUTTER_MIN_FREE: f32 = 0.2;
 /// Random spots tried for each small object on its surface.
 const SMALL_TRIES: usize = 16;
 /// Distance kept between furniture and walls (m).
@@ -139,6 +142,9 @@ struct RoomState<'a> {
     placed: Vec<Rect>,
     grid: NavGrid,
     seeds: Vec<(f32, f32)>,
+    /// Fewest free grid cells a placement must leave (the clutter stage keeps a share of the
+    /// room walkable).
+    min_free: usize,
 }
 
 /// A placed group item, ready to become a scene object.
@@ -258,7 +264,7 @@ impl RoomState<'_> {
             for r in &solid {
                 self.grid.stamp(r, true);
             }
-            if !self.grid.connected(&self.seeds) {
+            if !self.grid.connected(&self.seeds) || self.grid.free_cells() < self.min_free {
                 for r in &solid {
                     self.grid.stamp(r, false);
                 }
@@ -819,7 +825,8 @@ fn recipe(
             }
         }
         RoomType::Balcony => {
-            let chairs = rng.random_range(1..=3);
+            // A narrow balcony keeps a walkway: a third chair only on a large one.
+            let chairs = rng.random_range(1..=if area > 8.0 { 3 } else { 2 });
             out.push(vec![
                 patio_group(rng, chairs),
                 patio_group(rng, 1),
@@ -879,6 +886,7 @@ fn clutter_recipe(cfg: &ProcgenConfig, kind: RoomType, rng: &mut ChaCha8Rng) -> 
             (C::HighChair, 0.12, W),
             (C::Radiator, 0.25, W),
             (C::DogBed, 0.1, K),
+            (C::ShelvingUnit, 0.2, W),
         ],
         R::DiningRoom => &[
             (C::WallShelf, 0.4, W),
@@ -886,6 +894,7 @@ fn clutter_recipe(cfg: &ProcgenConfig, kind: RoomType, rng: &mut ChaCha8Rng) -> 
             (C::Radiator, 0.35, W),
             (C::HighChair, 0.15, W),
             (C::Aquarium, 0.05, W),
+            (C::ShelvingUnit, 0.15, W),
         ],
         R::Bedroom => &[
             (C::WallShelf, 0.5, W),
@@ -905,6 +914,7 @@ fn clutter_recipe(cfg: &ProcgenConfig, kind: RoomType, rng: &mut ChaCha8Rng) -> 
             (C::ClothesRail, 0.08, W),
             (C::Box, 0.25, K),
             (C::Ottoman, 0.15, W),
+            (C::ShelvingUnit, 0.1, W),
         ],
         R::Bathroom => &[
             (C::WallShelf, 0.55, W),
@@ -933,6 +943,7 @@ fn clutter_recipe(cfg: &ProcgenConfig, kind: RoomType, rng: &mut ChaCha8Rng) -> 
             (C::Backpack, 0.2, W),
             (C::WallShelf, 0.25, W),
             (C::Bicycle, 0.06, W),
+            (C::Box, 0.2, K),
         ],
         R::EntranceHall => &[
             (C::Shoes, 0.7, W),
@@ -958,11 +969,7 @@ fn clutter_recipe(cfg: &ProcgenConfig, kind: RoomType, rng: &mut ChaCha8Rng) -> 
             (C::Mirror, 0.3, W),
             (C::Slippers, 0.3, W),
         ],
-        R::Balcony => &[
-            (C::DryingRack, 0.3, W),
-            (C::Bicycle, 0.12, W),
-            (C::Planter, 0.3, W),
-        ],
+        R::Balcony => &[(C::DryingRack, 0.3, W), (C::Bicycle, 0.1, W)],
         _ => &[(C::WallShelf, 0.3, W), (C::Box, 0.2, K)],
     };
     let mut out = Vec::new();
@@ -1137,6 +1144,14 @@ fn small_choices(support: C, room: RoomType) -> &'static [C] {
         (C::ShelvingUnit, RoomType::LaundryRoom | RoomType::Closet) => {
             &[C::Basket, C::Towel, C::Bottle]
         }
+        (C::ShelvingUnit, RoomType::Kitchen | RoomType::DiningRoom) => &[
+            C::Bowl,
+            C::Plate,
+            C::Teapot,
+            C::Bottle,
+            C::Basket,
+            C::FruitBowl,
+        ],
         (C::ShelvingUnit, _) => &[C::Basket, C::Book, C::Toy, C::BoardGame, C::Speaker],
         (C::Box, _) => &[C::Book, C::Magazine, C::Toy],
         (C::Bookshelf, _) => &[
@@ -1269,6 +1284,7 @@ fn furnish_room(
         placed: Vec::new(),
         grid: NavGrid::new(interior, NAV_CELL, cfg.furniture.nav_radius),
         seeds,
+        min_free: 0,
     };
     if !st.grid.connected(&st.seeds) {
         tracing::debug!(
@@ -1294,6 +1310,7 @@ fn furnish_room(
                 let swing = clearance_rect(o, cfg, cfg.doors.clearance + 0.05, CLUTTER_SWING);
                 st.keepout.push(swing);
             }
+            st.min_free = (CLUTTER_MIN_FREE * interior.area() / (NAV_CELL * NAV_CELL)) as usize;
         }
         for mut g in variants {
             let fridge = g.items.iter().any(|it| it.model.class == C::Fridge);
