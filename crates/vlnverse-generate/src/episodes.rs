@@ -366,8 +366,7 @@ impl SceneTaskContext<'_> {
     }
 
     fn pick_target(&self, rng: &mut ChaCha8Rng) -> Option<TargetSpot> {
-        let t = self.sampler.targets();
-        (!t.is_empty()).then(|| t[rng.random_range(0..t.len())])
+        self.sampler.draw_target(rng)
     }
 
     fn coarse(

@@ -25,7 +25,7 @@ use vlnverse_env::geodesic::{polyline_length, shortest_path, DistanceField, Geod
 use vlnverse_env::occupancy::GridMap;
 use vlnverse_env::occupancy::OccupancyMaps;
 use vlnverse_env::scene_graph::{yaw_from_direction, SceneGraph};
-use vlnverse_env::{ObjectId, Scene, SceneObject};
+use vlnverse_env::{ClassKind, ObjectId, Scene, SceneObject};
 
 use super::presets::{SamplingConfig, TaskConfig};
 use vlnverse_score::Result;
@@ -103,6 +103,9 @@ pub struct SceneSampler<'a> {
     pub target_rejections: Rejections,
 }
 
+/// Weight of a small object against a piece of furniture when a target is drawn.
+const SMALL_TARGET_WEIGHT: f64 = 1.0 / 3.0;
+
 fn footprint(o: &SceneObject) -> (Vec2, Vec2) {
     (
         Vec2::new(o.bbox.min[0], o.bbox.min[2]),
@@ -159,6 +162,28 @@ impl<'a> SceneSampler<'a> {
     /// The usable targets, by object id.
     pub fn targets(&self) -> &[TargetSpot] {
         &self.targets
+    }
+
+    /// A target drawn at random: a small object (a cup, a book) is drawn a third as often as
+    /// furniture, as people send someone to the sofa more often than to the cup on it, and
+    /// homes hold more small objects than furniture.
+    pub fn draw_target(&self, rng: &mut ChaCha8Rng) -> Option<TargetSpot> {
+        let weight = |t: &TargetSpot| match self.scene.object(t.object).map(|o| o.class.kind()) {
+            Some(ClassKind::Small) => SMALL_TARGET_WEIGHT,
+            _ => 1.0,
+        };
+        let total: f64 = self.targets.iter().map(weight).sum();
+        if self.targets.is_empty() || total <= 0.0 {
+            return None;
+        }
+        let mut x = rng.random_range(0.0..total);
+        for t in &self.targets {
+            x -= weight(t);
+            if x < 0.0 {
+                return Some(*t);
+            }
+        }
+        self.targets.last().copied()
     }
 
     /// Number of navigable points.

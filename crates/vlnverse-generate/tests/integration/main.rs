@@ -6,3 +6,4 @@ mod generate_llm;
 mod generate_llm_stop;
 mod generate_output;
 mod generate_skip;
+mod generate_targets;
