@@ -1302,7 +1302,7 @@ fn walk_time(pts: &[Vec2], rng: &mut ChaCha8Rng) -> String {
         s if (25.0..35.0).contains(&s) => "about half a minute".to_string(),
         s if s < 50.0 => format!(
             "{} {} seconds",
-            pick(rng, &["about", "roughly", "around"]),
+            pick(rng, &["about", "around"]),
             number_word(((s / 5.0).round() * 5.0) as u32)
         ),
         s if s < 75.0 => "about a minute".to_string(),

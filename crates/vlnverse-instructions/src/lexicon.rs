@@ -516,7 +516,7 @@ mod tests {
         assert_eq!(shades_for("white", [0.8, 0.8, 0.8])[0], "plain white");
         assert_eq!(shades_for("red", [0.2, 0.0, 0.0])[0], "dark red");
         assert_eq!(shades_for("red", [0.5, 0.1, 0.1])[0], "dark red");
-        assert_eq!(shades_for("brown", [0.5, 0.3, 0.1])[0], "medium brown");
+        assert_eq!(shades_for("brown", [0.5, 0.3, 0.1])[0], "reddish brown");
         assert_eq!(shades_for("red", [0.9, 0.1, 0.1])[0], "bright red");
         assert_eq!(shades_for("yellow", [0.9, 0.5, 0.1])[0], "dark yellow");
         assert_eq!(shades_for("yellow", [0.9, 0.8, 0.1])[0], "bright yellow");
