@@ -149,23 +149,29 @@ pub(crate) fn build(mesh: &SceneMesh, luma: &[u8]) -> DrawMesh {
 fn fill_gaps(t: &mut [f32], w: usize, h: usize) {
     let mut empty_rows = false;
     for row in t.chunks_exact_mut(w) {
-        if !row.iter().any(|v| v.is_nan()) {
+        // Gaps are few and mostly at the ends of a row: find each run of them and fill it
+        // with the value before it (a leading run: the first value of the row).
+        let Some(mut i) = row.iter().position(|v| v.is_nan()) else {
             continue;
-        }
-        // Forward: each gap takes the last value before it; then a leading gap takes the
-        // first value of the row.
-        let mut last = f32::NAN;
-        for v in row.iter_mut() {
-            last = if v.is_nan() { last } else { *v };
-            *v = last;
-        }
-        match row.iter().position(|v| !v.is_nan()) {
-            Some(0) => {}
-            Some(p) => {
-                let first = row[p];
-                row[..p].fill(first);
-            }
-            None => empty_rows = true,
+        };
+        while i < row.len() {
+            let end = row[i..]
+                .iter()
+                .position(|v| !v.is_nan())
+                .map_or(row.len(), |n| i + n);
+            let fill = if i > 0 {
+                row[i - 1]
+            } else if end < row.len() {
+                row[end]
+            } else {
+                empty_rows = true;
+                break;
+            };
+            row[i..end].fill(fill);
+            i = match row[end..].iter().position(|v| v.is_nan()) {
+                Some(n) => end + n,
+                None => break,
+            };
         }
     }
     if !empty_rows {
@@ -183,13 +189,17 @@ fn fill_gaps(t: &mut [f32], w: usize, h: usize) {
     }
 }
 
-/// `v.round().clamp(0.0, 255.0) as u8` (0 for NaN) for the light times a texel, branch-free
-/// and without the libm call (`round` is one without SSE4.1): the fraction of `v` is exact
-/// below 2^23.
+/// `v.round().clamp(0.0, 255.0) as u8` (0 for NaN) for the light times a texel, branch-free,
+/// without the libm call (`round` is one without SSE4.1) or a saturating conversion, so that a
+/// loop of it runs on vector lanes: adding 1.5 * 2^23 rounds to the nearest integer `n`, ties
+/// to even, in the low mantissa bits; `v - n` is exact, and a tie below `v` goes up.
+#[inline]
 fn round_byte(v: f32) -> u8 {
+    const MAGIC: f32 = 12_582_912.0;
     let v = if v > 0.0 { v.min(255.0) } else { 0.0 };
-    let t = v as i32;
-    (t + i32::from(v - t as f32 >= 0.5)) as u8
+    let r = v + MAGIC;
+    let n = r.to_bits() & 0xff;
+    (n + u32::from(v - (r - MAGIC) >= 0.5)) as u8
 }
 
 /// Split triangles into pieces connected through shared corners (exact positions), each in
@@ -321,15 +331,43 @@ fn merge(d: &mut DrawMesh, mesh: &SceneMesh, tris: &[usize], luma: &[u8]) -> boo
             (hi.y.ceil() as usize).min(h),
         );
         let (l0, l1, l2) = (l.light[0], l.light[1] - l.light[0], l.light[2] - l.light[0]);
+        // Each condition of the test below is linear along a row, `slope * qx + c >= 0`: its
+        // root, widened by two texels, bounds the columns where a centre can pass (far beyond
+        // the test's rounding; a nearly flat condition bounds nothing). The test itself is
+        // unchanged, so no texel changes: only columns that cannot pass are skipped.
+        let (d, ux) = (den as f64, uv[0].x as f64);
+        let (s1, s2) = (e2.y as f64 / d, -(e1.y as f64) / d);
         for j in j0..j1 {
             let qy = j as f32 + 0.5 - uv[0].y;
-            let row = &mut texels[j * w + i0..j * w + i1.max(i0)];
+            let (c1, c2) = (-(qy as f64) * e2.x as f64 / d, qy as f64 * e1.x as f64 / d);
+            let (mut lo, mut hi) = (i0 as f64, i1 as f64 - 1.0);
+            for (s, c) in [
+                (s1, c1 + 1e-4),
+                (s2, c2 + 1e-4),
+                (-(s1 + s2), 1.0 + 1e-4 - c1 - c2),
+            ] {
+                if s.abs() < 1e-3 {
+                    continue;
+                }
+                let root = -c / s + ux - 0.5;
+                if s > 0.0 {
+                    lo = lo.max((root - 2.0).floor());
+                } else {
+                    hi = hi.min((root + 2.0).ceil());
+                }
+            }
+            // (`max` and `min` pass over a NaN root: the bounds stay numbers.)
+            if lo > hi {
+                continue;
+            }
+            let (a, b) = (lo as usize, hi as usize + 1);
+            let row = &mut texels[j * w + a..j * w + b];
             // Branch-free so that it runs on vector lanes (IEEE division and products give
             // the same bits there). The first triangle (in order) that covers a texel centre
             // gives its light.
             for (k, cell) in row.iter_mut().enumerate() {
                 // Through i32: exact below 2^24, and one instruction (usize is not).
-                let qx = (i0 + k) as i32 as f32 + 0.5 - uv[0].x;
+                let qx = (a + k) as i32 as f32 + 0.5 - uv[0].x;
                 let b1 = (qx * e2.y - qy * e2.x) / den;
                 let b2 = (e1.x * qy - e1.y * qx) / den;
                 let inside = b1 >= -1e-4 && b2 >= -1e-4 && b1 + b2 <= 1.0 + 1e-4;
@@ -341,22 +379,28 @@ fn merge(d: &mut DrawMesh, mesh: &SceneMesh, tris: &[usize], luma: &[u8]) -> boo
     // Texels whose centre lies outside the face (its outline is not on texel boundaries):
     // the light of the nearest texel inside, along the row, else along the column.
     fill_gaps(&mut texels, w, h);
-    d.texels.reserve(w * h);
+    d.texels.resize(base + w * h, 0);
     let u0i = u0 as i64 as usize;
-    for (j, row) in texels.chunks_exact(w).enumerate() {
+    for (j, (row, out)) in texels
+        .chunks_exact(w)
+        .zip(d.texels[base..].chunks_exact_mut(w))
+        .enumerate()
+    {
         let tv = (v0 as i64 + j as i64) as usize & (TEX_SIZE - 1);
         let tex_row = &tex[tv * TEX_SIZE..(tv + 1) * TEX_SIZE];
-        // Runs of the row over which the texture row does not wrap.
+        // Runs of the row over which the texture row does not wrap (slices of equal length, so
+        // the loop runs on vector lanes).
         let mut i = 0;
         while i < w {
             let tu = u0i.wrapping_add(i) & (TEX_SIZE - 1);
             let n = (TEX_SIZE - tu).min(w - i);
-            d.texels.extend(
-                row[i..i + n]
-                    .iter()
-                    .zip(&tex_row[tu..tu + n])
-                    .map(|(light, t)| round_byte(*light * *t as f32)),
-            );
+            for ((o, light), t) in out[i..i + n]
+                .iter_mut()
+                .zip(&row[i..i + n])
+                .zip(&tex_row[tu..tu + n])
+            {
+                *o = round_byte(*light * *t as f32);
+            }
             i += n;
         }
     }
