@@ -106,9 +106,10 @@ fn every_framed_doorway_has_a_leaf_and_open_plan_openings_none() {
         }
     }
     assert!(framed > 150, "{framed} framed doorways");
-    // Left bare only where no swing fits and closing would cut a room off.
+    // Left bare only where no swing fits (tight, furnished rooms) and closing would cut a
+    // room off: rare.
     assert!(
-        bare * 50 <= framed,
+        bare * 30 <= framed,
         "{bare} of {framed} doorways without a leaf"
     );
 }
