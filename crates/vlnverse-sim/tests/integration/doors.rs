@@ -128,13 +128,14 @@ fn an_open_door_lets_the_agent_through() {
     let (c, n) = centre_normal(&d);
     let mut s = sim(CollisionSetting::Strict);
     s.reset(&scene, facing(c, n, 1.0)).unwrap();
+    // Through and on to 0.5 m past the wall: the clearance box (1 m deep) is free.
     let mut last = 1.0;
-    for _ in 0..8 {
+    for _ in 0..6 {
         let out = s.step(Action::MoveForward(0.25)).unwrap();
         assert!(!out.done, "{out:?}");
         last = side(&out, c, n);
     }
-    assert!(last < -0.9, "still at {last} m from the wall");
+    assert!(last < -0.45, "still at {last} m from the wall");
     let mut t = sim(CollisionSetting::TelHop);
     t.reset(&scene, facing(c, n, 0.6)).unwrap();
     let to = c - n * 0.6;
