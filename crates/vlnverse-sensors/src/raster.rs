@@ -36,7 +36,6 @@ use crate::renderer::Renderer;
 use crate::scene_mesh::SceneMesh;
 use glam::{DVec3, Mat3, Vec3};
 use rayon::prelude::*;
-use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 use vlnverse_env::cache::{self, SharedLru};
 use vlnverse_env::material::{Surface, TEX_SIZE};
@@ -1439,31 +1438,41 @@ fn closed_outward(pos: &[Vec3]) -> bool {
     if pos.is_empty() {
         return false;
     }
-    let mut index: HashMap<[u32; 3], usize> = HashMap::new();
-    let vid: Vec<usize> = pos
+    // Corner ids by sorting the corners (no hashing).
+    let mut keyed: Vec<([u32; 3], u32)> = pos
         .iter()
-        .map(|p| {
-            let key = p.to_array().map(|c| (c + 0.0).to_bits());
-            let next = index.len();
-            *index.entry(key).or_insert(next)
-        })
+        .enumerate()
+        .map(|(i, p)| (p.to_array().map(|c| (c + 0.0).to_bits()), i as u32))
         .collect();
-    // Balance of directed edges: +1 for (a, b) with a < b, -1 for (b, a).
-    let mut balance: HashMap<(usize, usize), i64> = HashMap::new();
+    keyed.sort_unstable();
+    let mut vid = vec![0usize; pos.len()];
+    let mut n_ids = 0;
+    for run in keyed.chunk_by(|a, b| a.0 == b.0) {
+        for &(_, i) in run {
+            vid[i as usize] = n_ids;
+        }
+        n_ids += 1;
+    }
+    // Balance of directed edges: +1 for (a, b) with a < b, -1 for (b, a); sorted, each
+    // undirected edge's signs must add up to zero.
+    let mut edges: Vec<(usize, usize, i64)> = Vec::with_capacity(pos.len());
     for t in vid.chunks_exact(3) {
         for (i, j) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
             if i == j {
                 return false;
             }
-            let (k, s) = if i < j { ((i, j), 1) } else { ((j, i), -1) };
-            *balance.entry(k).or_insert(0) += s;
+            edges.push(if i < j { (i, j, 1) } else { (j, i, -1) });
         }
     }
-    if balance.values().any(|b| *b != 0) {
+    edges.sort_unstable();
+    if edges
+        .chunk_by(|a, b| (a.0, a.1) == (b.0, b.1))
+        .any(|run| run.iter().map(|e| e.2).sum::<i64>() != 0)
+    {
         return false;
     }
     // Connected pieces (union-find over shared corners) and their signed volumes.
-    let mut parent: Vec<usize> = (0..index.len()).collect();
+    let mut parent: Vec<usize> = (0..n_ids).collect();
     fn find(parent: &mut [usize], mut i: usize) -> usize {
         while parent[i] != i {
             parent[i] = parent[parent[i]];
@@ -1477,13 +1486,13 @@ fn closed_outward(pos: &[Vec3]) -> bool {
             parent[a] = b;
         }
     }
-    let mut volume = vec![0.0f64; index.len()];
+    let mut volume = vec![0.0f64; n_ids];
     let origin = pos[0].as_dvec3();
     for (t, c) in vid.chunks_exact(3).zip(pos.chunks_exact(3)) {
         let [a, b, cc] = [0, 1, 2].map(|k| c[k].as_dvec3() - origin);
         volume[find(&mut parent, t[0])] += a.dot(b.cross(cc));
     }
-    (0..index.len())
+    (0..n_ids)
         .filter(|&i| find(&mut parent, i) == i)
         .all(|r| volume[r] > 0.0)
 }
