@@ -1450,6 +1450,8 @@ mod tests {
              right, and you will see the red sofa in the living room. Stop beside it.",
             "out of the bedroom, left into the hall, past the bookshelf on ur right, stop at the \
              red sofa in the living room",
+            "Leave the bedroom, take the 1st left into the hallway, pass the bookshelf on \
+             your right and stop 2 m from the red sofa in the living room.",
             "First, exit the bedroom and turn left into the hallway. Next, walk past the \
              bookshelf, keeping it on your right. Finally, stop when you are next to the red \
              sofa in the living room.",
