@@ -57,7 +57,8 @@ fn answer(body: &Value, log: &Log) -> String {
     if system == DESCRIBER_PROMPT {
         let mut s = format!("Please, {reference}");
         if reference.contains("sofa") {
-            s.push_str(" Then look at the piano.");
+            // An object no home holds: the grounding check must refuse it.
+            s.push_str(" Then look at the spaceship.");
         }
         s
     } else if system == VERIFIER_PROMPT {
@@ -199,7 +200,7 @@ fn the_llm_stage_rewrites_checks_caches_and_reports() {
             // Kept rewrites are the fake model's; every other instruction is the template's.
             if a != b {
                 assert_eq!(a, &format!("Please, {b}"), "{task}");
-                assert!(!a.contains("piano") && !a.contains(" bed"), "{a}");
+                assert!(!a.contains("spaceship") && !a.contains(" bed"), "{a}");
             }
         }
     }
