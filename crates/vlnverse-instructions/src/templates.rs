@@ -112,7 +112,12 @@ fn grounded(o: &SceneObject, role: Role, side: Option<Side>, idx: Option<usize>)
 
 impl InstructionGenerator for TemplateGenerator {
     fn fine(&self, ctx: &PathContext<'_>, seed: u64) -> Result<Instruction> {
-        super::fine::fine(&self.config, ctx, seed)
+        let mut ins = super::fine::fine(&self.config, ctx, seed)?;
+        ins.instruction_text = outdoor_prepositions(&ins.instruction_text);
+        for s in &mut ins.sub_instructions {
+            *s = outdoor_prepositions(s);
+        }
+        Ok(ins)
     }
 
     fn coarse(
@@ -150,6 +155,7 @@ impl InstructionGenerator for TemplateGenerator {
             remark,
         };
         let text = capitalize_sentence(&coarse_sentence(style, &parts, &mut rng), style);
+        let text = outdoor_prepositions(&text);
         Ok(Instruction {
             instruction_text: text,
             instruction_tokens: None,
@@ -162,6 +168,47 @@ impl InstructionGenerator for TemplateGenerator {
     fn chain(&self, parts: &[Instruction], seed: u64) -> Result<Instruction> {
         chain_parts(parts, seed)
     }
+}
+
+/// A balcony is not a room one is "in": "in the balcony" becomes "on the balcony", "into" becomes
+/// "out onto", "inside" becomes "out on".
+fn outdoor_prepositions(text: &str) -> String {
+    if !text.contains("balcony") {
+        return text.to_string();
+    }
+    let mut out = text.to_string();
+    for size in ["", "small ", "little ", "large ", "big "] {
+        let place = format!("the {size}balcony");
+        for (from, to) in [
+            ("into", "out onto"),
+            ("inside", "out on"),
+            ("over in", "out on"),
+            ("in", "on"),
+            ("Into", "Out onto"),
+            ("Inside", "Out on"),
+            ("In", "On"),
+        ] {
+            out = replace_words(&out, &format!("{from} {place}"), &format!("{to} {place}"));
+        }
+    }
+    out
+}
+
+/// `text` with every `from` that starts a word replaced by `to`.
+fn replace_words(text: &str, from: &str, to: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(i) = rest.find(from) {
+        let starts_word = rest[..i]
+            .chars()
+            .next_back()
+            .is_none_or(|c| !c.is_alphanumeric());
+        out.push_str(&rest[..i]);
+        out.push_str(if starts_word { to } else { from });
+        rest = &rest[i + from.len()..];
+    }
+    out.push_str(rest);
+    out
 }
 
 /// The pieces of a coarse instruction before they are put in a sentence.
@@ -681,6 +728,27 @@ mod tests {
             ". Wait there."
         );
         assert_eq!(closer("wait by the desk", " and wait there", ""), "");
+    }
+
+    #[test]
+    fn one_stands_on_a_balcony_not_in_it() {
+        assert_eq!(
+            outdoor_prepositions("Go into the balcony and stop by the chair in the small balcony."),
+            "Go out onto the balcony and stop by the chair on the small balcony."
+        );
+        assert_eq!(
+            outdoor_prepositions("In the balcony, find the plant inside the balcony"),
+            "On the balcony, find the plant out on the balcony"
+        );
+        assert_eq!(
+            outdoor_prepositions("Go again the balcony, then in the balcony"),
+            "Go again the balcony, then on the balcony"
+        );
+        // Other rooms and words that merely contain "in" are left alone.
+        assert_eq!(
+            outdoor_prepositions("Walk in the kitchen, then into the balcony"),
+            "Walk in the kitchen, then out onto the balcony"
+        );
     }
 
     #[test]
