@@ -323,7 +323,7 @@ fn end_object<'s>(
     end: Vec2,
     walls: &[(Vec2, Vec2)],
 ) -> Option<&'s SceneObject> {
-    let mut best: Option<(f32, &SceneObject)> = None;
+    let mut best: Option<((bool, f32), &SceneObject)> = None;
     for o in ctx.scene.objects.iter().filter(|o| is_landmark(o)) {
         let (lo, hi) = footprint(o);
         let d = rect_distance(end, lo, hi);
@@ -338,8 +338,17 @@ fn end_object<'s>(
         if !visible(ctx.navigable, walls, end, aim, cfg.sight_slack) {
             continue;
         }
-        if best.is_none_or(|(bd, bo)| d < bd - 1e-6 || (d <= bd + 1e-6 && o.id < bo.id)) {
-            best = Some((d, o));
+        // A door stands by nearly every end point near a doorway; people name the furniture
+        // there and the door only when nothing else is in reach.
+        let door = o.class == vlnverse_env::SemanticClass::Door;
+        let better = |(bdoor, bd): (bool, f32), bo: &SceneObject| {
+            if door != bdoor {
+                return bdoor;
+            }
+            d < bd - 1e-6 || (d <= bd + 1e-6 && o.id < bo.id)
+        };
+        if best.is_none_or(|(b, bo)| better(b, bo)) {
+            best = Some(((door, d), o));
         }
     }
     best.map(|(_, o)| o)
@@ -871,7 +880,14 @@ fn room_changes(route: &Route<'_, '_>, li: usize, rng: &mut ChaCha8Rng) -> Vec<S
     let ctx = route.ctx;
     let rooms = &route.rooms;
     let ks: Vec<usize> = route.rooms_entered_on(li).collect();
-    if ks.len() >= 2 && rng.random_bool(0.7) {
+    // "through the bedroom into the bedroom" would not say which is which: rooms of one type
+    // in a row are said one by one ("into the other bedroom").
+    let kinds: Vec<Option<RoomType>> = ks
+        .iter()
+        .map(|&k| ctx.scene.room(rooms[k].1).map(|r| r.kind))
+        .collect();
+    let distinct = kinds.windows(2).all(|w| w[0] != w[1]);
+    if ks.len() >= 2 && distinct && rng.random_bool(0.7) {
         let kind = |k: usize| {
             ctx.scene
                 .room(rooms[k].1)
