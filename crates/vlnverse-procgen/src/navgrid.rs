@@ -84,60 +84,35 @@ impl NavGrid {
 
     /// Whether the free cells form one island containing every seed point.
     pub fn connected(&mut self, seeds: &[(f32, f32)]) -> bool {
-        let mut cells = Vec::with_capacity(seeds.len());
-        for &(x, z) in seeds {
-            match self.cell_of(x, z) {
-                Some(i) if self.blocked[i] == 0 => cells.push(i),
-                _ => return false,
-            }
-        }
         let total = self.blocked.iter().filter(|&&b| b == 0).count();
-        let Some(&first) = cells.first() else {
-            return total > 0;
-        };
-        self.seen.iter_mut().for_each(|s| *s = false);
-        self.queue.clear();
-        self.seen[first] = true;
-        self.queue.push_back(first);
-        let mut reached = 0;
-        while let Some(i) = self.queue.pop_front() {
-            reached += 1;
-            let (r, c) = (i / self.cols, i % self.cols);
-            let visit = |j: usize, seen: &mut Vec<bool>, q: &mut VecDeque<usize>| {
-                if !seen[j] && self.blocked[j] == 0 {
-                    seen[j] = true;
-                    q.push_back(j);
-                }
-            };
-            if c > 0 {
-                visit(i - 1, &mut self.seen, &mut self.queue);
-            }
-            if c + 1 < self.cols {
-                visit(i + 1, &mut self.seen, &mut self.queue);
-            }
-            if r > 0 {
-                visit(i - self.cols, &mut self.seen, &mut self.queue);
-            }
-            if r + 1 < self.rows {
-                visit(i + self.cols, &mut self.seen, &mut self.queue);
-            }
+        match self.seed_cells(seeds) {
+            Some(cells) if cells.is_empty() => total > 0,
+            Some(cells) => self.flood(&cells) == Some(total),
+            None => false,
         }
-        reached == total && cells.iter().all(|&i| self.seen[i])
     }
 
     /// Number of free cells reachable from the first seed point, or 0 when a seed is blocked or
     /// not reachable from the first.
     pub fn reachable(&mut self, seeds: &[(f32, f32)]) -> usize {
-        let mut cells = Vec::with_capacity(seeds.len());
-        for &(x, z) in seeds {
-            match self.cell_of(x, z) {
-                Some(i) if self.blocked[i] == 0 => cells.push(i),
-                _ => return 0,
-            }
+        match self.seed_cells(seeds) {
+            Some(cells) if !cells.is_empty() => self.flood(&cells).unwrap_or(0),
+            _ => 0,
         }
-        let Some(&first) = cells.first() else {
-            return 0;
-        };
+    }
+
+    /// The cells of the seed points, or `None` when one is outside the grid or blocked.
+    fn seed_cells(&self, seeds: &[(f32, f32)]) -> Option<Vec<usize>> {
+        seeds
+            .iter()
+            .map(|&(x, z)| self.cell_of(x, z).filter(|&i| self.blocked[i] == 0))
+            .collect()
+    }
+
+    /// Flood the free cells from `cells[0]`: the number reached, or `None` when another of
+    /// `cells` is not among them.
+    fn flood(&mut self, cells: &[usize]) -> Option<usize> {
+        let first = cells[0];
         self.seen.iter_mut().for_each(|s| *s = false);
         self.queue.clear();
         self.seen[first] = true;
@@ -166,11 +141,7 @@ impl NavGrid {
                 }
             }
         }
-        if cells.iter().all(|&i| self.seen[i]) {
-            reached
-        } else {
-            0
-        }
+        cells.iter().all(|&i| self.seen[i]).then_some(reached)
     }
 
     /// Number of free cells.
