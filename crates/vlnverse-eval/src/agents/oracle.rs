@@ -1,7 +1,10 @@
 //! `oracle`: follows the geodesic shortest path to each goal (the upper bound of the table).
 //!
 //! Discrete space: turn toward the next waypoint of the goal's distance field until the heading
-//! is within half a turn step, then move forward. Waypoint space: one waypoint action per
+//! is within half a turn step, then move forward; within one turn step it keeps going while a
+//! step still gains nearly its full length on the geodesic distance (no zig-zag between two
+//! headings), and off the navigable map it aims past the map's nearest edge (no stepping back
+//! and forth over a narrow gap). Waypoint space: one waypoint action per
 //! line-of-sight segment (a hop in Tel-Hop, a drive otherwise). Continuous space: velocity
 //! commands from a turn-then-drive controller ([`super::control::VelocityController`]) on the
 //! same geodesic path: it turns in place toward the next path corner, then drives at it,
@@ -14,6 +17,7 @@ use std::sync::Arc;
 
 use glam::Vec2;
 use vlnverse_env::geodesic::DistanceField;
+use vlnverse_env::scene_graph::direction_of_yaw;
 use vlnverse_sim::{Action, AgentConfig, WaypointMode};
 
 use super::control::{VelocityController, TURN_IN_PLACE};
@@ -65,10 +69,19 @@ impl Agent for OracleAgent {
         let Some(mut w) = field.next_waypoint(p) else {
             return Ok(Action::Stop);
         };
-        if w.distance(p) < 0.05 {
-            // Standing on an anchor: look one further along the path.
+        // Off the navigable map (in its clearance margin, where the body still fits) the first
+        // waypoint is the map's nearest edge, often a few centimetres away: a whole step at it
+        // overshoots, into the margin across a narrow gap (the agent then steps back and forth
+        // over the gap until the step limit) or into what the margin keeps clear. Look past it.
+        let near = if self.space == ActionSpace::Discrete && !field.map().is_free_at(p) {
+            0.5 * self.agent.step_size
+        } else {
+            0.05
+        };
+        if w.distance(p) < near {
+            // Standing on an anchor (or next to the map's edge): look one further along the path.
             if let Some(path) = field.path(p) {
-                if let Some(n) = path.points.iter().find(|q| q.distance(p) >= 0.05) {
+                if let Some(n) = path.points.iter().find(|q| q.distance(p) >= near) {
                     w = *n;
                 }
             }
@@ -86,9 +99,22 @@ impl Agent for OracleAgent {
             });
         }
         let v: Vec2 = w - p;
-        let diff = wrap_angle(yaw_towards(v) - step.pose.yaw());
+        let yaw = step.pose.yaw();
+        let diff = wrap_angle(yaw_towards(v) - yaw);
         let turn = self.agent.turn_angle();
-        if diff.abs() > 0.5 * turn + 1e-4 {
+        // Within one turn step of the path a forward step that still gains nearly its full
+        // length on the geodesic distance is kept: turning whenever the error passes half a
+        // step makes the agent zig-zag (one turn per step) when the path lies between two
+        // reachable headings, which doubles the steps of a long walk.
+        let straight_on = diff.abs() <= turn + 1e-4 && {
+            let len = self.agent.step_size;
+            let ahead = p + direction_of_yaw(yaw) * len;
+            field
+                .distance(ahead)
+                .meters()
+                .is_some_and(|da| d - da >= len * turn.cos() - 1e-3)
+        };
+        if diff.abs() > 0.5 * turn + 1e-4 && !straight_on {
             return Ok(if diff > 0.0 {
                 Action::left(&self.agent)
             } else {
@@ -149,6 +175,82 @@ mod tests {
             position: [p.x, 0.0, p.y],
             rotation: Quat::from_rotation_y(yaw).to_array(),
         }
+    }
+
+    #[test]
+    fn discrete_oracle_keeps_straight_on_a_path_between_two_headings() {
+        // Open floor; the goal 10 m away at 8 degrees from the start heading, so no multiple
+        // of the 15-degree turn points straight at it.
+        let map = GridMap::new(300, 300, 0.1, Vec2::new(-15.0, -15.0), CellState::Free).unwrap();
+        let goal = heading(8f32.to_radians()) * 10.0;
+        let mut oracle = OracleAgent {
+            fields: vec![Arc::new(DistanceField::new(&map, goal).unwrap())],
+            ..Default::default()
+        };
+        oracle.reset(&inputs(ActionSpace::Discrete)).unwrap();
+        let (p, steps, turns) = walk(&mut oracle, Vec2::ZERO, 0.0);
+        assert!(
+            p.distance(goal) <= 1.0,
+            "stopped {} m away",
+            p.distance(goal)
+        );
+        // 36 forward steps cover the 9 m to the stop radius; a zig-zag adds a turn per step.
+        assert!(
+            turns <= 4,
+            "{turns} turns in {steps} steps on a straight path"
+        );
+    }
+
+    /// Walk the discrete oracle kinematically (no collisions) from `p` facing `yaw` until it
+    /// stops; the end point, the steps and the turns.
+    fn walk(oracle: &mut OracleAgent, mut p: Vec2, mut yaw: f32) -> (Vec2, u32, u32) {
+        let obs = Observations::new();
+        let (mut steps, mut turns) = (0, 0);
+        loop {
+            let mut step = crate::agents::test_support::step_input(steps, &obs, None);
+            step.pose = pose(p, yaw);
+            match oracle.act(&mut step).unwrap() {
+                Action::TurnLeft(a) => {
+                    yaw += a;
+                    turns += 1;
+                }
+                Action::TurnRight(a) => {
+                    yaw -= a;
+                    turns += 1;
+                }
+                Action::MoveForward(d) => p += heading(yaw) * d,
+                Action::Stop => return (p, steps, turns),
+                a => panic!("unexpected {a:?}"),
+            }
+            steps += 1;
+            assert!(steps < 200, "no stop after 200 steps, at {p:?}");
+        }
+    }
+
+    #[test]
+    fn discrete_oracle_follows_a_narrow_gap_it_starts_beside() {
+        // Navigable only along a 10 cm strip at z in [-0.05, 0.05]; the agent starts 6 cm
+        // south of it (in the clearance margin) and the goal is 8 m along it.
+        let mut map =
+            GridMap::new(200, 100, 0.05, Vec2::new(-5.0, -2.5), CellState::Occupied).unwrap();
+        for col in 0..200 {
+            for row in 49..51 {
+                map.set(col, row, CellState::Free);
+            }
+        }
+        let goal = Vec2::new(-4.0, 0.0);
+        let mut oracle = OracleAgent {
+            fields: vec![Arc::new(DistanceField::new(&map, goal).unwrap())],
+            ..Default::default()
+        };
+        oracle.reset(&inputs(ActionSpace::Discrete)).unwrap();
+        let (end, steps, _) = walk(&mut oracle, Vec2::new(4.0, -0.11), 0.0);
+        assert!(
+            end.distance(goal) <= 1.0,
+            "stopped {} m away",
+            end.distance(goal)
+        );
+        assert!(steps <= 40, "{steps} steps for 8 m");
     }
 
     #[test]
