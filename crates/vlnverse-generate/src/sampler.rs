@@ -98,6 +98,8 @@ pub struct SceneSampler<'a> {
     pub graph: &'a SceneGraph,
     free: Vec<Vec2>,
     targets: Vec<TargetSpot>,
+    /// Each target's weight in [`SceneSampler::draw_target`], in the order of `targets`.
+    weights: Vec<f64>,
     fields: RefCell<BTreeMap<usize, Arc<DistanceField>>>,
     /// Rejections found while choosing targets.
     pub target_rejections: Rejections,
@@ -148,12 +150,20 @@ impl<'a> SceneSampler<'a> {
             targets.truncate(cfg.max_targets);
             targets.sort_by_key(|t| t.object);
         }
+        let weights = targets
+            .iter()
+            .map(|t| match scene.object(t.object).map(|o| o.class.kind()) {
+                Some(ClassKind::Small) => SMALL_TARGET_WEIGHT,
+                _ => 1.0,
+            })
+            .collect();
         SceneSampler {
             scene,
             maps,
             graph,
             free,
             targets,
+            weights,
             fields: RefCell::new(BTreeMap::new()),
             target_rejections: rejections,
         }
@@ -168,17 +178,13 @@ impl<'a> SceneSampler<'a> {
     /// furniture, as people send someone to the sofa more often than to the cup on it, and
     /// homes hold more small objects than furniture.
     pub fn draw_target(&self, rng: &mut ChaCha8Rng) -> Option<TargetSpot> {
-        let weight = |t: &TargetSpot| match self.scene.object(t.object).map(|o| o.class.kind()) {
-            Some(ClassKind::Small) => SMALL_TARGET_WEIGHT,
-            _ => 1.0,
-        };
-        let total: f64 = self.targets.iter().map(weight).sum();
+        let total: f64 = self.weights.iter().sum();
         if self.targets.is_empty() || total <= 0.0 {
             return None;
         }
         let mut x = rng.random_range(0.0..total);
-        for t in &self.targets {
-            x -= weight(t);
+        for (t, w) in self.targets.iter().zip(&self.weights) {
+            x -= w;
             if x < 0.0 {
                 return Some(*t);
             }
