@@ -8,8 +8,9 @@
 //!   refuses changes nothing but still costs a step;
 //! - a noticeable collision (`StepOutcome::noticeable`) counts for the collision rate; a Strict
 //!   failure ends the episode;
-//! - the episode ends at STOP of the last sub-goal, at `max_steps`, or when the simulator says
-//!   it is over.
+//! - the episode ends at STOP of the last sub-goal, at its step limit (`max_steps` for each of
+//!   its goals: a long-horizon episode of three sub-tasks gets three episodes' budget), or when
+//!   the simulator says it is over.
 //!
 //! The evaluation runner ([`crate::evaluate_with`]), the Python environments and remote
 //! workers all call it, so they cannot drift apart.
@@ -359,6 +360,8 @@ pub struct EpisodeState {
     actions: Vec<ActionKind>,
     stops: Vec<u32>,
     steps: u32,
+    /// Steps the episode may take: `max_steps` for each of its goals.
+    limit: u32,
     collisions: u32,
     stopped: bool,
     over: bool,
@@ -415,6 +418,8 @@ impl EpisodeState {
             }
             rig.reset(pose);
         }
+        // A long-horizon episode chains sub-tasks; each gets the budget of one episode.
+        let limit = cfg.max_steps.saturating_mul(goal_fields.len() as u32);
         let inputs = EpisodeInputs {
             episode_id: ep.episode_id,
             scene_id: ep.scene_id.clone(),
@@ -433,7 +438,7 @@ impl EpisodeState {
             action_space: cfg.action_space,
             setting: cfg.setting,
             success_distance: cfg.success_distance,
-            max_steps: cfg.max_steps,
+            max_steps: limit,
             oracle_budget: ep.oracle_budget,
             seed: episode_seed(cfg.seed, ep.episode_id),
         };
@@ -463,9 +468,10 @@ impl EpisodeState {
             actions: Vec::new(),
             stops: Vec::new(),
             steps: 0,
+            limit,
             collisions: 0,
             stopped: false,
-            over: cfg.max_steps == 0,
+            over: limit == 0,
             last: None,
             failure: None,
         })
@@ -625,18 +631,18 @@ impl EpisodeState {
                 }
             }
         };
-        self.end_if_limit(cfg);
+        self.end_if_limit();
         Ok(applied)
     }
 
     /// An action that cannot be carried out (`kind` in the trajectory, e.g. a question with
     /// no budget left: [`ActionKind::Ask`]): nothing moves, the step counts.
-    pub fn refuse(&mut self, kind: ActionKind, why: &str, cfg: &EvalConfig) -> Result<Applied> {
+    pub fn refuse(&mut self, kind: ActionKind, why: &str) -> Result<Applied> {
         self.check_live(kind.name())?;
         self.steps += 1;
         self.actions.push(kind);
         self.stand_still();
-        self.end_if_limit(cfg);
+        self.end_if_limit();
         Ok(Applied::Refused(why.to_string()))
     }
 
@@ -663,8 +669,8 @@ impl EpisodeState {
     }
 
     /// The step limit ends the episode.
-    fn end_if_limit(&mut self, cfg: &EvalConfig) {
-        if self.steps >= cfg.max_steps {
+    fn end_if_limit(&mut self) {
+        if self.steps >= self.limit {
             self.over = true;
         }
     }

@@ -2,7 +2,7 @@
 //!
 //! ```toml
 //! setting = "telhop"          # strict | telhop | lenient
-//! max_steps = 200
+//! max_steps = 200             # per goal: a long-horizon episode of n sub-tasks gets n x 200
 //! success_distance = 3.0
 //! rig = "../sensors/default.toml"   # relative to this file; empty = the paper's RGB-D rig
 //! backend = "raycast"         # optional override of the rig's renderer backend
@@ -181,7 +181,8 @@ pub type LlmSection = toml::Table;
 pub struct EvalConfig {
     /// Collision setting.
     pub setting: Setting,
-    /// Actions per episode before it is cut (STOP counts).
+    /// Actions per episode before it is cut (STOP counts); a long-horizon episode gets this
+    /// many for each of its sub-goals.
     pub max_steps: u32,
     /// Success threshold (m).
     pub success_distance: f32,

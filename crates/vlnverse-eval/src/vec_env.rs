@@ -585,11 +585,7 @@ impl Ctx<'_> {
                     }
                     EnvAction::Ask(_) => {
                         // Nothing to ask: a refused action, one step.
-                        run.state.refuse(
-                            ActionKind::Ask,
-                            "no questions left",
-                            &self.settings.config,
-                        )?;
+                        run.state.refuse(ActionKind::Ask, "no questions left")?;
                         info_extra.refused = Some("no questions left".into());
                     }
                     EnvAction::Act(a) => {

@@ -311,3 +311,39 @@ fn a_seeded_sample_spreads_over_scenes_and_is_part_of_the_run() {
     assert!(err.to_string().contains("--sample"), "{err}");
     assert!(!dir.path().join("d").exists());
 }
+
+/// Turns on the spot and never stops.
+struct Spinner;
+
+impl Agent for Spinner {
+    fn reset(&mut self, _inputs: &EpisodeInputs) -> vlnverse_eval::Result<()> {
+        Ok(())
+    }
+    fn act(&mut self, _step: &mut StepInput) -> vlnverse_eval::Result<Action> {
+        Ok(Action::TurnLeft(15f32.to_radians()))
+    }
+}
+
+#[test]
+fn a_long_horizon_episode_gets_the_step_limit_once_for_each_sub_goal() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut eps = eval_support::make_dataset(dir.path(), Task::Fine, 1, 2, 9);
+    // The second episode chains three sub-tasks (the same goal thrice: a spinner never gets
+    // there, so only the limit ends it).
+    let goal = eps[1].goals[0].clone();
+    eps[1].sub_goals = vec![goal.clone(), goal.clone(), goal];
+    dataset::write_split(dir.path(), Task::Fine, Split::Test, &eps).unwrap();
+    let cfg = EvalConfig {
+        max_steps: 4,
+        ..blind_lenient()
+    };
+    let req = eval_support::fine_test(dir.path(), "run", &cfg, None, 1);
+    let spinner = FnFactory::new("spinner", false, || Box::new(Spinner) as Box<dyn Agent>);
+    let out = evaluate(&req, &spinner).unwrap();
+    let steps: Vec<(u64, u32)> = out
+        .records
+        .iter()
+        .map(|r| (r.trajectory.episode_id, r.trajectory.steps))
+        .collect();
+    assert_eq!(steps, vec![(eps[0].episode_id, 4), (eps[1].episode_id, 12)]);
+}
