@@ -79,6 +79,7 @@ fn load_glb_as_meshes(path: &Path) -> Option<Scene> {
         rooms: Vec::new(),
         doors: Vec::new(),
         objects,
+        storeys: Default::default(),
     })
 }
 

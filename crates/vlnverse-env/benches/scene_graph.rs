@@ -115,6 +115,7 @@ fn synthetic_home(seed: u64) -> Scene {
         rooms,
         doors: Vec::new(),
         objects,
+        storeys: Default::default(),
     }
 }
 

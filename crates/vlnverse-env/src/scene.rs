@@ -555,6 +555,93 @@ pub struct Scene {
     pub doors: Vec<Door>,
     /// All objects, structure included, sorted by id.
     pub objects: Vec<SceneObject>,
+    /// Levels (storeys) and stairs of a home on more than one floor; empty for a single-storey
+    /// scene (every scene written before storeys existed), which has one implicit level at
+    /// `floor_height` holding every room. In `scene.json` its fields are top-level keys
+    /// (`levels`, `stairs`), each left out when empty.
+    #[serde(flatten)]
+    pub storeys: Storeys,
+}
+
+/// Identifier of a level (storey) within its scene: its index in [`Storeys::levels`], the
+/// ground floor first.
+pub type LevelId = u32;
+
+/// The levels and stairs of a scene (see [`Scene::storeys`]).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Storeys {
+    /// Levels from the lowest up; empty: one implicit level at [`Scene::floor_height`].
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub levels: Vec<Level>,
+    /// Flights of stairs between levels.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub stairs: Vec<Stairs>,
+}
+
+impl Storeys {
+    /// Whether the scene is single-storey (no levels listed).
+    pub fn is_empty(&self) -> bool {
+        self.levels.is_empty() && self.stairs.is_empty()
+    }
+}
+
+/// One storey of a home: the height of its walkable floor and the rooms on it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Level {
+    /// Index of the level, from 0 (the lowest) up.
+    pub id: LevelId,
+    /// Words for the level: `ground floor`, `upper floor`.
+    pub name: String,
+    /// y of the level's walkable floor (m).
+    pub floor_height: f32,
+    /// The rooms on this level.
+    pub rooms: Vec<RoomId>,
+}
+
+/// A straight flight of stairs between two levels. The agent walks onto it at `foot` (on the
+/// lower level, in front of the first step) and leaves it at `head` (on the upper level, past
+/// the last step); the flight rises `steps` times by `rise` over `steps - 1` treads of `run`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Stairs {
+    /// Unique id within the scene.
+    pub id: u32,
+    /// The lower and the upper level it joins.
+    pub levels: [LevelId; 2],
+    /// The object (class `stairs`) that is the flight, if any.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub object: Option<ObjectId>,
+    /// The flight's floor outline as `[x, z]` points, counter-clockwise seen from above.
+    pub footprint: Vec<[f32; 2]>,
+    /// Where a walk up begins: a point on the lower level's floor in front of the first step.
+    pub foot: [f32; 3],
+    /// Where a walk up ends: a point on the upper level's floor past the last step.
+    pub head: [f32; 3],
+    /// Number of risers (the last one reaches the upper floor).
+    pub steps: u32,
+    /// Height of one riser (m).
+    pub rise: f32,
+    /// Depth of one tread (m).
+    pub run: f32,
+    /// Clear width of the flight (m).
+    pub width: f32,
+}
+
+impl Stairs {
+    /// Length of the walk from `foot` to `head` along the flight: the flat legs to and from the
+    /// steps and the sloped flight between them (m).
+    pub fn walk_length(&self) -> f32 {
+        let flight = (self.steps.saturating_sub(1)) as f32 * self.run;
+        let dx = self.head[0] - self.foot[0];
+        let dz = self.head[2] - self.foot[2];
+        let flat = ((dx * dx + dz * dz).sqrt() - flight).max(0.0);
+        let rise = self.head[1] - self.foot[1];
+        flat + (flight * flight + rise * rise).sqrt()
+    }
+
+    /// Pitch of the flight: the angle of the line over the step nosings (radians).
+    pub fn pitch(&self) -> f32 {
+        self.rise.atan2(self.run)
+    }
 }
 
 impl Scene {
@@ -615,6 +702,156 @@ impl Scene {
             }
         }
         out
+    }
+
+    /// Number of levels (1 for a single-storey scene).
+    pub fn level_count(&self) -> usize {
+        self.storeys.levels.len().max(1)
+    }
+
+    /// Whether the scene has more than one level.
+    pub fn is_multi_level(&self) -> bool {
+        self.storeys.levels.len() > 1
+    }
+
+    /// Floor height of a level (`floor_height` for level 0 of a single-storey scene); None for a
+    /// level the scene does not have.
+    pub fn level_height(&self, level: LevelId) -> Option<f32> {
+        if self.storeys.levels.is_empty() {
+            return (level == 0).then_some(self.floor_height);
+        }
+        self.storeys
+            .levels
+            .get(level as usize)
+            .map(|l| l.floor_height)
+    }
+
+    /// The level a room is on (0 for every room of a single-storey scene); None when a
+    /// multi-level scene lists the room on no level.
+    pub fn room_level(&self, room: RoomId) -> Option<LevelId> {
+        if self.storeys.levels.is_empty() {
+            return Some(0);
+        }
+        self.storeys
+            .levels
+            .iter()
+            .find(|l| l.rooms.contains(&room))
+            .map(|l| l.id)
+    }
+
+    /// The level whose floor is the highest at or below `y` (plus a 0.25 m tolerance for a
+    /// point on a step or a sensor slightly below the floor); level 0 below every floor.
+    pub fn level_at_height(&self, y: f32) -> LevelId {
+        let mut out = 0;
+        for l in &self.storeys.levels {
+            if l.floor_height <= y + 0.25 {
+                out = l.id;
+            }
+        }
+        out
+    }
+
+    /// The room on `level` containing the floor point `(x, z)`, if any (rooms of different
+    /// levels overlap in plan).
+    pub fn room_at_level(&self, level: LevelId, x: f32, z: f32) -> Option<&Room> {
+        self.rooms
+            .iter()
+            .find(|r| self.room_level(r.id) == Some(level) && r.contains(x, z))
+    }
+
+    /// Check the levels and stairs: levels numbered from 0 in rising floor height, level 0 at
+    /// `floor_height`, every room on exactly one level, every stair between two existing levels
+    /// (lower first) with positive steps, rise, run and width and finite points. Single-storey
+    /// scenes always pass. The error names the field and the value.
+    pub fn validate_storeys(&self) -> crate::Result<()> {
+        use crate::EnvError;
+        let st = &self.storeys;
+        if st.levels.is_empty() {
+            if let Some(s) = st.stairs.first() {
+                return Err(EnvError::invalid(
+                    format!("stairs[{}]", s.id),
+                    "(no levels)",
+                    "stairs need the scene's `levels`",
+                ));
+            }
+            return Ok(());
+        }
+        for (i, l) in st.levels.iter().enumerate() {
+            let field = |f: &str| format!("levels[{i}].{f}");
+            if l.id as usize != i {
+                return Err(EnvError::invalid(field("id"), l.id, format!("must be {i}")));
+            }
+            if !l.floor_height.is_finite() {
+                return Err(EnvError::invalid(
+                    field("floor_height"),
+                    l.floor_height,
+                    "must be finite",
+                ));
+            }
+            if i == 0 && l.floor_height != self.floor_height {
+                return Err(EnvError::invalid(
+                    field("floor_height"),
+                    l.floor_height,
+                    format!(
+                        "must equal the scene's floor_height = {}",
+                        self.floor_height
+                    ),
+                ));
+            }
+            if i > 0 && l.floor_height <= st.levels[i - 1].floor_height {
+                return Err(EnvError::invalid(
+                    field("floor_height"),
+                    l.floor_height,
+                    "must be above the level below",
+                ));
+            }
+        }
+        for r in &self.rooms {
+            let on = st.levels.iter().filter(|l| l.rooms.contains(&r.id)).count();
+            if on != 1 {
+                return Err(EnvError::invalid(
+                    format!("room {}", r.id),
+                    &r.name,
+                    format!("is listed on {on} levels; every room must be on exactly one"),
+                ));
+            }
+        }
+        for s in &st.stairs {
+            let field = |f: &str| format!("stairs[{}].{f}", s.id);
+            let [lo, hi] = s.levels;
+            if lo >= hi || hi as usize >= st.levels.len() {
+                return Err(EnvError::invalid(
+                    field("levels"),
+                    format!("{:?}", s.levels),
+                    format!(
+                        "must name two of the {} levels, the lower first",
+                        st.levels.len()
+                    ),
+                ));
+            }
+            let positive = [
+                ("rise", s.rise),
+                ("run", s.run),
+                ("width", s.width),
+                ("steps", s.steps as f32),
+            ];
+            for (f, v) in positive {
+                if !(v.is_finite() && v > 0.0) {
+                    return Err(EnvError::invalid(field(f), v, "must be a positive number"));
+                }
+            }
+            let finite = s.foot.iter().chain(&s.head).all(|v| v.is_finite())
+                && s.footprint.len() >= 3
+                && s.footprint.iter().flatten().all(|v| v.is_finite());
+            if !finite {
+                return Err(EnvError::invalid(
+                    field("foot/head/footprint"),
+                    format!("{:?} {:?}", s.foot, s.head),
+                    "needs finite points and a footprint of at least 3",
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// Total number of triangles when every part is triangulated.

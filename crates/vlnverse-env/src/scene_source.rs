@@ -28,6 +28,7 @@ use crate::scene::Scene;
 ///             rooms: vec![],
 ///             doors: vec![],
 ///             objects: vec![],
+///             storeys: Default::default(),
 ///         })
 ///     }
 /// }

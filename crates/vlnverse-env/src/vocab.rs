@@ -89,7 +89,7 @@ macro_rules! vocabulary {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ClassKind {
-    /// Walls, floor, ceiling, door frames: never a landmark or a target.
+    /// Walls, floor, ceiling, door frames, windows, railings: never a landmark or a target.
     Structure,
     /// Floor-standing furniture and appliances.
     Furniture,
@@ -226,6 +226,8 @@ vocabulary! {
         Planter = (122, "planter", Furniture),
         ClothesRail = (123, "clothes_rail", Furniture),
         ShelvingUnit = (124, "shelving_unit", Furniture),
+        Stairs = (125, "stairs", Furniture),
+        Railing = (126, "railing", Structure),
     }
 }
 

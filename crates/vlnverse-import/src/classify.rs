@@ -67,6 +67,8 @@ pub fn class_defaults(class: SemanticClass) -> (f32, f32, &'static str) {
         C::PatioChair | C::PatioTable => (6.0, 0.5, "plastic"),
         C::Planter => (20.0, 0.7, "ceramic"),
         C::ShelvingUnit => (20.0, 0.5, "metal"),
+        C::Stairs => (400.0, 0.8, "wood"),
+        C::Railing => (15.0, 0.5, "metal"),
         C::Unknown => (10.0, 0.5, "unknown"),
     }
 }

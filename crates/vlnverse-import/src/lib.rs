@@ -621,6 +621,7 @@ pub fn import_scene_full(path: &Path, opts: &ImportOptions) -> Result<ImportOutp
         rooms: Vec::new(),
         doors: Vec::new(),
         objects,
+        storeys: Default::default(),
     };
     report.objects = scene.objects.len();
     report.triangles = scene.triangle_count();

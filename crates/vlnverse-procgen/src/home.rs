@@ -415,6 +415,7 @@ pub(crate) fn generate(cfg: &ProcgenConfig, seed: u64, id: &str) -> Result<Scene
         rooms,
         doors,
         objects: b.objects,
+        storeys: Default::default(),
     };
     if cfg.walls.ceiling && cfg.walls.decor {
         crate::decor::add_light_panels(&mut scene);

@@ -2397,6 +2397,7 @@ mod tests {
                     rooms: Vec::new(),
                     doors: Vec::new(),
                     objects,
+                    storeys: Default::default(),
                 };
                 let maps = build_maps(&scene, &OccupancyConfig::default()).expect("maps");
                 (bits, maps)

@@ -349,5 +349,6 @@ pub fn demo_scene(seed: u64) -> Scene {
         ],
         doors: vec![],
         objects,
+        storeys: Default::default(),
     }
 }

@@ -140,6 +140,7 @@ mod tests {
             rooms: vec![],
             doors: vec![],
             objects: vec![],
+            storeys: Default::default(),
         }
     }
 

@@ -91,7 +91,8 @@ pub struct StepOutcome {
 /// }
 ///
 /// let scene = Scene { format_version: 1, id: "empty".into(), source: "doc".into(), seed: None,
-///     floor_height: 0.0, rooms: vec![], doors: vec![], objects: vec![] };
+///     floor_height: 0.0, rooms: vec![], doors: vec![], objects: vec![],
+///     storeys: Default::default() };
 /// let mut sim = RapierSimulator::new(SimConfig::default()).unwrap();
 /// let end = run(&mut sim, &scene, Pose::IDENTITY, &[Action::MoveForward(1.0), Action::Stop]);
 /// assert!((end.position[2] + 1.0).abs() < 1e-5); // yaw 0 looks along -Z

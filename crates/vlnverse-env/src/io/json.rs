@@ -38,6 +38,7 @@ pub fn scene_from_json(bytes: &[u8], path: &Path) -> Result<Scene> {
         bad_bevel(bytes, path).unwrap_or_else(|| json_error(path, bytes, &e))
     })?;
     check_values(&scene, path)?;
+    scene.validate_storeys().map_err(|e| e.in_file(path))?;
     Ok(scene)
 }
 

@@ -163,5 +163,6 @@ pub fn grid_home(rooms_x: u32, rooms_z: u32, room_size: f32, seed: u64) -> Scene
         rooms: Vec::new(),
         doors: Vec::new(),
         objects: objs,
+        storeys: Default::default(),
     }
 }

@@ -23,5 +23,6 @@ pub fn scene(id: &str, rooms: Vec<Room>, doors: Vec<Door>, mut objects: Vec<Scen
         rooms,
         doors,
         objects,
+        storeys: Default::default(),
     }
 }

@@ -62,6 +62,7 @@ fn two_rooms(state: DoorState) -> Scene {
             leaf: Some(LEAF),
         }],
         objects,
+        storeys: Default::default(),
     }
 }
 

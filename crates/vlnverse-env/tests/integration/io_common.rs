@@ -147,5 +147,6 @@ pub fn fixture_scene() -> Scene {
             leaf: None,
         }],
         objects: vec![wall, table, ball, statue],
+        storeys: Default::default(),
     }
 }

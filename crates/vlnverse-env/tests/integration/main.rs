@@ -15,4 +15,5 @@ mod occupancy_maps;
 mod scene_graph_properties;
 mod scene_graph_queries;
 mod scene_graph_relations;
+mod storeys;
 mod topdown_render;

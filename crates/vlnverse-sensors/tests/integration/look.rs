@@ -92,6 +92,7 @@ fn room_with_table() -> Scene {
         }],
         doors: vec![],
         objects,
+        storeys: Default::default(),
     }
 }
 

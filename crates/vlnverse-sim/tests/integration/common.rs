@@ -80,6 +80,7 @@ pub fn room() -> Scene {
         rooms: vec![],
         doors: vec![],
         objects,
+        storeys: Default::default(),
     }
 }
 
