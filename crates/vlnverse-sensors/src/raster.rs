@@ -36,12 +36,26 @@ use crate::renderer::Renderer;
 use crate::scene_mesh::SceneMesh;
 use glam::{DVec3, Mat3, Vec3};
 use rayon::prelude::*;
+use std::path::Path;
 use std::sync::{Arc, Mutex, OnceLock};
 use vlnverse_env::cache::{self, SharedLru};
 use vlnverse_env::material::{Surface, TEX_SIZE};
 use vlnverse_env::Aabb;
 
 mod faces;
+mod prepared;
+
+use prepared::Prepared;
+pub use prepared::{PREPARED_FILE, PREPARED_VERSION};
+
+/// Every surface texture's grey part, encoded ([`Surface::luma_encoded`]), one after the other
+/// ([`Surface::ALL`] order).
+fn surface_luma() -> Vec<u8> {
+    Surface::ALL
+        .iter()
+        .flat_map(|s| s.luma_encoded().iter().copied())
+        .collect()
+}
 
 /// Megabytes of prepared scenes kept by [`RasterScene::shared`] unless [`SCENE_CACHE_MB_VAR`]
 /// says otherwise (a generated `vlnverse` home holds about 5 MB, mesh included:
@@ -379,12 +393,72 @@ impl RasterScene {
     /// Prepare a mesh: the triangles to draw (cut faces merged, with their face textures),
     /// per-triangle looks, ids, and which objects are closed surfaces.
     pub fn new(mesh: Arc<SceneMesh>) -> Self {
-        let n_tri = mesh.triangle_count();
-        let texels: Vec<u8> = Surface::ALL
-            .iter()
-            .flat_map(|s| s.luma_encoded().iter().copied())
-            .collect();
+        let texels = surface_luma();
         let draw = faces::build(&mesh, &texels);
+        // Closed surfaces are judged on the mesh's own triangles (merged faces meet their
+        // neighbours' cells at T-junctions, but bound the same solid).
+        let closed = mesh
+            .objects
+            .iter()
+            .map(|o| {
+                let (f, n) = (o.first as usize, o.count as usize);
+                closed_outward(&mesh.positions[3 * f..3 * (f + n)])
+            })
+            .collect();
+        Self::from_parts(mesh, Prepared { draw, closed }, texels)
+    }
+
+    /// [`RasterScene::new`], the merged faces and face textures read from a prepared file
+    /// ([`RasterScene::write_prepared`]) instead of computed: the same scene, for a small part
+    /// of the time. Refused, naming the file and what is wrong, when the file is not one,
+    /// is damaged, or was prepared from another mesh or with other surface textures.
+    pub fn load_prepared(mesh: Arc<SceneMesh>, file: &Path) -> Result<Self> {
+        let texels = surface_luma();
+        let bytes = std::fs::read(file)
+            .map_err(|e| SensorError::from(vlnverse_env::EnvError::io(file, e)))?;
+        let p = prepared::decode(&bytes, &mesh, &texels).map_err(|message| SensorError::Scene {
+            scene: mesh.scene_id.clone(),
+            message: format!("prepared scene {}: {message}", file.display()),
+        })?;
+        Ok(Self::from_parts(mesh, p, texels))
+    }
+
+    /// The scene for `mesh`: loaded from [`SceneMesh::prepared_file`] when it names a file
+    /// that exists, else prepared afresh ([`RasterScene::new`]). A file that cannot be used
+    /// (damaged, or stale: made from another mesh) is reported as a warning and the scene
+    /// prepared afresh, so the images never depend on the file.
+    pub fn load_or_new(mesh: Arc<SceneMesh>) -> Self {
+        if let Some(file) = mesh.prepared_file.as_ref().filter(|f| f.is_file()) {
+            match Self::load_prepared(mesh.clone(), file) {
+                Ok(s) => return s,
+                Err(e) => tracing::warn!("{e}; preparing the scene afresh"),
+            }
+        }
+        Self::new(mesh)
+    }
+
+    /// Write what [`RasterScene::load_prepared`] reads back: the merged faces, their face
+    /// textures and which objects are closed, keyed to this scene's mesh and the surface
+    /// textures (written to a temporary file first, then renamed).
+    pub fn write_prepared(&self, file: &Path) -> Result<()> {
+        let bytes = prepared::encode(&self.draw, &self.closed_flags(), &self.mesh, &self.texels);
+        let tmp = file.with_extension("bin.tmp");
+        let err = |e: std::io::Error| SensorError::Write {
+            path: file.to_path_buf(),
+            message: e.to_string(),
+        };
+        std::fs::write(&tmp, &bytes).map_err(err)?;
+        std::fs::rename(&tmp, file).map_err(err)
+    }
+
+    fn closed_flags(&self) -> Vec<bool> {
+        self.objects.iter().map(|o| o.closed).collect()
+    }
+
+    /// The rest of the preparation, from the merged faces: looks, clusters, ids.
+    fn from_parts(mesh: Arc<SceneMesh>, p: Prepared, texels: Vec<u8>) -> Self {
+        let Prepared { draw, closed } = p;
+        let n_tri = mesh.triangle_count();
         let mut image_texels = Vec::new();
         let image_base: Vec<u32> = mesh
             .images
@@ -459,15 +533,11 @@ impl RasterScene {
                 kind,
             });
         }
-        // Closed surfaces are judged on the mesh's own triangles (merged faces meet their
-        // neighbours' cells at T-junctions, but bound the same solid).
         let mut clusters = Vec::new();
-        let objects = mesh
-            .objects
+        let objects = closed
             .iter()
             .zip(&draw.objects)
-            .map(|(o, &(first, count, bbox))| {
-                let (f, n) = (o.first as usize, o.count as usize);
+            .map(|(&closed, &(first, count, bbox))| {
                 let c0 = clusters.len() as u32;
                 for s in (first..first + count).step_by(CLUSTER) {
                     let end = (s + CLUSTER).min(first + count);
@@ -482,7 +552,7 @@ impl RasterScene {
                 ObjInfo {
                     count,
                     bbox,
-                    closed: closed_outward(&mesh.positions[3 * f..3 * (f + n)]),
+                    closed,
                     c0,
                     c1: clusters.len() as u32,
                 }
@@ -547,7 +617,7 @@ impl RasterScene {
             + held(&self.tag_object)
     }
 
-    /// [`RasterScene::new`], shared: a mesh prepared a moment ago (same
+    /// [`RasterScene::load_or_new`], shared: a mesh prepared a moment ago (same
     /// [`SceneMesh::content_key`]) is taken from a process-wide cache of up to
     /// [`SCENE_CACHE_MB_VAR`] megabytes (default [`SCENE_CACHE_MB`]), so environments that keep
     /// loading the same homes prepare each once.
@@ -563,7 +633,12 @@ impl RasterScene {
             return hit;
         }
         let key = mesh.content_key();
-        cache::get_or_insert(cache, key, || RasterScene::new(mesh), RasterScene::bytes)
+        cache::get_or_insert(
+            cache,
+            key,
+            || RasterScene::load_or_new(mesh),
+            RasterScene::bytes,
+        )
     }
 
     /// Number of objects whose back faces may be culled (closed, outward-oriented surfaces).
@@ -1578,6 +1653,111 @@ mod tests {
         assert!(!closed_outward(&c[3..]));
         let flipped: Vec<Vec3> = c.chunks(3).flat_map(|t| [t[0], t[2], t[1]]).collect();
         assert!(!closed_outward(&flipped));
+    }
+
+    /// A tiny home's mesh (lit: merged faces with face textures).
+    fn home_mesh(i: usize) -> (vlnverse_env::Scene, Arc<SceneMesh>) {
+        use vlnverse_env::SceneSource;
+        let homes = vlnverse_procgen::HomeGenerator::from_preset(vlnverse_procgen::Preset::Tiny)
+            .expect("preset");
+        let scene = homes.scene(i).expect("home");
+        let mesh = Arc::new(SceneMesh::new(&scene).expect("mesh"));
+        (scene, mesh)
+    }
+
+    fn temp_file(name: &str) -> std::path::PathBuf {
+        let dir = std::env::temp_dir().join(format!("vlnverse-raster-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("temp dir");
+        dir.join(name)
+    }
+
+    #[test]
+    fn a_prepared_file_loads_the_same_scene_and_the_same_pixels() {
+        use crate::{CameraSpec, Channels};
+        use vlnverse_env::Pose;
+        let (scene, mesh) = home_mesh(0);
+        let made = RasterScene::new(mesh.clone());
+        assert!(made.face_texture_bytes() > 1, "the home has face textures");
+        let file = temp_file("same.bin");
+        made.write_prepared(&file).expect("written");
+        let loaded = RasterScene::load_prepared(mesh.clone(), &file).expect("loaded");
+        let bits = |v: &[Vec3]| {
+            v.iter()
+                .flat_map(|p| p.to_array())
+                .map(f32::to_bits)
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(bits(&loaded.draw.pos), bits(&made.draw.pos));
+        assert_eq!(loaded.draw.src, made.draw.src);
+        assert_eq!(
+            format!("{:?}", loaded.draw.face),
+            format!("{:?}", made.draw.face)
+        );
+        assert_eq!(loaded.draw.objects, made.draw.objects);
+        assert_eq!(loaded.draw.texels, made.draw.texels);
+        assert_eq!(loaded.closed_flags(), made.closed_flags());
+        assert!(made.closed_objects() > 0);
+        // load_or_new takes the file the mesh names.
+        let mut named = (*mesh).clone();
+        named.prepared_file = Some(file.clone());
+        let via = RasterScene::load_or_new(Arc::new(named));
+        let b = scene.bounds();
+        for k in 0..8 {
+            let t = (k as f32 + 0.5) / 8.0;
+            let at = Vec3::new(
+                b.min[0] + (b.max[0] - b.min[0]) * t,
+                scene.floor_height,
+                b.min[2] + (b.max[2] - b.min[2]) * (1.0 - t),
+            );
+            let view = View {
+                camera: CameraSpec::default().camera(&Pose::from_yaw(at, k as f32 * 0.8)),
+                channels: Channels::ALL,
+            };
+            let want = made.render_view(&view, 1);
+            for got in [loaded.render_view(&view, 1), via.render_view(&view, 2)] {
+                assert_eq!(got.rgb, want.rgb, "view {k}");
+                assert_eq!(got.depth, want.depth, "view {k}");
+                assert_eq!(got.semantic, want.semantic, "view {k}");
+                assert_eq!(got.instance, want.instance, "view {k}");
+            }
+        }
+        let _ = std::fs::remove_file(&file);
+    }
+
+    #[test]
+    fn a_damaged_or_stale_prepared_file_is_refused_by_name_and_load_or_new_prepares_afresh() {
+        let (_, mesh) = home_mesh(0);
+        let made = RasterScene::new(mesh.clone());
+        let file = temp_file("refused.bin");
+        made.write_prepared(&file).expect("written");
+        let good = std::fs::read(&file).expect("read");
+        let refused = |bytes: &[u8]| -> String {
+            std::fs::write(&file, bytes).expect("written");
+            let e = RasterScene::load_prepared(mesh.clone(), &file).expect_err("refused");
+            let e = e.to_string();
+            assert!(e.contains(&file.display().to_string()), "{e}");
+            e
+        };
+        let mut flipped = good.clone();
+        let mid = flipped.len() / 2;
+        flipped[mid] ^= 0x10;
+        assert!(refused(&flipped).contains("checksum"));
+        assert!(refused(&good[..good.len() - 100]).contains("checksum"));
+        assert!(refused(b"not a prepared scene at all").contains("VLNRAST"));
+        let mut old = good.clone();
+        old[8..12].copy_from_slice(&(PREPARED_VERSION + 1).to_le_bytes());
+        assert!(refused(&old).contains("format version"));
+        // Another home's file is stale for this mesh.
+        let (_, other) = home_mesh(1);
+        std::fs::write(&file, &good).expect("written");
+        let e = RasterScene::load_prepared(other.clone(), &file).expect_err("stale");
+        assert!(e.to_string().contains("mesh key"), "{e}");
+        // load_or_new falls back to preparing: the same scene as new().
+        let mut named = (*other).clone();
+        named.prepared_file = Some(file.clone());
+        let fresh = RasterScene::load_or_new(Arc::new(named));
+        assert_eq!(fresh.draw.texels, RasterScene::new(other).draw.texels);
+        let _ = std::fs::remove_file(&file);
     }
 
     #[test]

@@ -19,6 +19,7 @@
 
 use crate::error::{Result, SensorError};
 use glam::Vec3;
+use std::path::PathBuf;
 use vlnverse_env::geometry::triangulate_part_cells;
 use vlnverse_env::light::{bake, cell_of, BakedLight};
 use vlnverse_env::material::{box_uv, surface_of, Surface, TEX_SIZE};
@@ -118,6 +119,11 @@ pub struct SceneMesh {
     pub look: Vec<TriLook>,
     /// Imported textures, indexed by [`TriLook::image`].
     pub images: Vec<ImageTexture>,
+    /// Where the rasteriser may find this mesh prepared ([`crate::raster::PREPARED_FILE`] in
+    /// the scene's folder, written at generation) instead of preparing it; the file is checked
+    /// against the mesh before use ([`crate::RasterScene::load_or_new`]). Not part of
+    /// [`SceneMesh::content_key`].
+    pub prepared_file: Option<PathBuf>,
 }
 
 impl SceneMesh {
@@ -189,6 +195,7 @@ impl SceneMesh {
             class_of,
             look: Vec::with_capacity(n_tri),
             images: Vec::new(),
+            prepared_file: None,
         };
         // The scene's textures, deduplicated, with the index each got in `images`.
         let mut seen: Vec<&MeshTexture> = Vec::new();

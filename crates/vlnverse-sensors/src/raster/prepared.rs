@@ -1,0 +1,299 @@
+//! A scene prepared for the rasteriser, stored: the merged faces and their face textures
+//! ([`super::faces`]) and which objects are closed surfaces, the part of
+//! [`super::RasterScene::new`] that costs (nearly all of a home switch: merging faces and
+//! baking their textures takes ~25 ms a `vlnverse` home, reading them back ~2 ms). Written at
+//! generation beside `scene.glb` ([`PREPARED_FILE`]) and read back when a home is loaded.
+//!
+//! The file is keyed to what it was made from: the mesh ([`SceneMesh::content_key`]) and the
+//! surface textures (a hash of their bytes), with a format version and a checksum of every
+//! byte before it, so a stale or damaged file is refused rather than drawn.
+//!
+//! Layout, little-endian: magic `VLNRAST\0`, version (u32), 0 (u32), mesh key (u64), texture
+//! key (u64), mesh triangles, draw triangles, objects, face-texture bytes (u32 each); per draw
+//! triangle its 9 corner coordinates (f32); per draw triangle its mesh triangle (u32); per
+//! draw triangle its face texture (`base, w, h` as u32, `w = 0` for none, then 6 f32 of
+//! face-texture coordinates); per object its first draw triangle and count (u32), box (6 f32)
+//! and whether it is closed (u32); the face-texture bytes; the checksum (u64).
+
+use super::faces::{DrawMesh, FaceTexture};
+use crate::scene_mesh::SceneMesh;
+use glam::Vec3;
+use vlnverse_env::Aabb;
+
+/// Name of the prepared-scene file in a scene's folder.
+pub const PREPARED_FILE: &str = "raster.bin";
+/// Format of [`PREPARED_FILE`]; raise it whenever what the rasteriser prepares changes (how
+/// faces merge, how face textures are baked), so files of the old kind are refused.
+pub const PREPARED_VERSION: u32 = 1;
+
+const MAGIC: &[u8; 8] = b"VLNRAST\0";
+/// Bytes of the header: magic, version, 0, two keys, four counts.
+const HEADER: usize = 8 + 4 + 4 + 8 + 8 + 4 * 4;
+/// Bytes per draw triangle: corners, mesh triangle, face texture and its coordinates.
+const PER_TRIANGLE: usize = 9 * 4 + 4 + 3 * 4 + 6 * 4;
+/// Bytes per object: range, box, closed.
+const PER_OBJECT: usize = 2 * 4 + 6 * 4 + 4;
+
+/// What is stored: the triangles drawn and whether each object is a closed surface.
+pub(crate) struct Prepared {
+    pub draw: DrawMesh,
+    pub closed: Vec<bool>,
+}
+
+/// A hash of bytes, eight at a time on four independent lanes (a few megabytes of face
+/// textures hash in well under a millisecond).
+fn checksum(b: &[u8]) -> u64 {
+    const K: [u64; 4] = [
+        0x9e37_79b9_7f4a_7c15,
+        0xc2b2_ae3d_27d4_eb4f,
+        0x1656_67b1_9e37_79f9,
+        0x85eb_ca77_c2b2_ae63,
+    ];
+    let mut h = K;
+    let blocks = b.chunks_exact(32);
+    let tail = blocks.remainder();
+    for block in blocks {
+        for (k, w) in block.chunks_exact(8).enumerate() {
+            let w = u64::from_le_bytes(w.try_into().expect("8 bytes"));
+            h[k] = (h[k] ^ w).wrapping_mul(K[k]).rotate_left(29);
+        }
+    }
+    let mut out = b.len() as u64;
+    for (k, v) in h.iter().enumerate() {
+        out = (out ^ v).wrapping_mul(K[k]).rotate_left(31);
+    }
+    for &c in tail {
+        out = (out ^ u64::from(c)).wrapping_mul(K[0]);
+    }
+    out ^ (out >> 32)
+}
+
+/// Key of the surface textures the face textures were baked from.
+fn texture_key(luma: &[u8]) -> u64 {
+    checksum(luma)
+}
+
+/// The file's bytes for `draw` and `closed`, prepared from `mesh` with the surface textures
+/// `luma`.
+pub(crate) fn encode(draw: &DrawMesh, closed: &[bool], mesh: &SceneMesh, luma: &[u8]) -> Vec<u8> {
+    let n = draw.src.len();
+    let mut b = Vec::with_capacity(
+        HEADER + n * PER_TRIANGLE + closed.len() * PER_OBJECT + draw.texels.len() + 8,
+    );
+    let u32s = |b: &mut Vec<u8>, v: u32| b.extend_from_slice(&v.to_le_bytes());
+    let f32s = |b: &mut Vec<u8>, v: &[f32]| v.iter().for_each(|x| u32s(b, x.to_bits()));
+    b.extend_from_slice(MAGIC);
+    u32s(&mut b, PREPARED_VERSION);
+    u32s(&mut b, 0);
+    b.extend_from_slice(&mesh.content_key().to_le_bytes());
+    b.extend_from_slice(&texture_key(luma).to_le_bytes());
+    for c in [
+        mesh.triangle_count(),
+        n,
+        draw.objects.len(),
+        draw.texels.len(),
+    ] {
+        u32s(&mut b, c as u32);
+    }
+    draw.pos.iter().for_each(|p| f32s(&mut b, &p.to_array()));
+    draw.src.iter().for_each(|s| u32s(&mut b, *s));
+    for f in &draw.face {
+        let (t, uv) = f.unwrap_or((
+            FaceTexture {
+                base: 0,
+                w: 0,
+                h: 0,
+            },
+            [[0.0; 2]; 3],
+        ));
+        [t.base, t.w, t.h].iter().for_each(|v| u32s(&mut b, *v));
+        f32s(&mut b, uv.as_flattened());
+    }
+    for (&(first, count, bbox), &c) in draw.objects.iter().zip(closed) {
+        u32s(&mut b, first as u32);
+        u32s(&mut b, count as u32);
+        f32s(&mut b, &bbox.min);
+        f32s(&mut b, &bbox.max);
+        u32s(&mut b, u32::from(c));
+    }
+    b.extend_from_slice(&draw.texels);
+    let sum = checksum(&b);
+    b.extend_from_slice(&sum.to_le_bytes());
+    b
+}
+
+/// Reads little-endian words, refusing to run past the end.
+struct Reader<'a> {
+    b: &'a [u8],
+    at: usize,
+}
+
+impl Reader<'_> {
+    fn take(&mut self, n: usize) -> Result<&[u8], String> {
+        let s = self
+            .b
+            .get(self.at..self.at + n)
+            .ok_or_else(|| format!("ends at byte {} (truncated)", self.b.len()))?;
+        self.at += n;
+        Ok(s)
+    }
+
+    fn u32(&mut self) -> Result<u32, String> {
+        Ok(u32::from_le_bytes(
+            self.take(4)?.try_into().expect("4 bytes"),
+        ))
+    }
+
+    fn u64(&mut self) -> Result<u64, String> {
+        Ok(u64::from_le_bytes(
+            self.take(8)?.try_into().expect("8 bytes"),
+        ))
+    }
+
+    fn f32(&mut self) -> Result<f32, String> {
+        Ok(f32::from_bits(self.u32()?))
+    }
+
+    fn f32s<const N: usize>(&mut self) -> Result<[f32; N], String> {
+        let mut v = [0.0; N];
+        for x in &mut v {
+            *x = self.f32()?;
+        }
+        Ok(v)
+    }
+}
+
+/// The prepared scene in `b`, checked against `mesh` and the surface textures `luma`; what is
+/// wrong otherwise (the field and the values found and expected).
+pub(crate) fn decode(b: &[u8], mesh: &SceneMesh, luma: &[u8]) -> Result<Prepared, String> {
+    if b.len() < HEADER + 8 || &b[..8] != MAGIC {
+        return Err("not a prepared raster scene (no VLNRAST header)".into());
+    }
+    let (body, sum) = b.split_at(b.len() - 8);
+    let mut r = Reader { b: body, at: 8 };
+    let version = r.u32()?;
+    if version != PREPARED_VERSION {
+        return Err(format!(
+            "format version {version}, this build reads {PREPARED_VERSION} (stale: generate the \
+             dataset again, or delete the file to prepare the scene on load)"
+        ));
+    }
+    r.u32()?;
+    let want = u64::from_le_bytes(sum.try_into().expect("8 bytes"));
+    if checksum(body) != want {
+        return Err("checksum does not match (the file is damaged)".into());
+    }
+    let (mesh_key, tex_key) = (r.u64()?, r.u64()?);
+    if mesh_key != mesh.content_key() {
+        return Err(format!(
+            "mesh key {mesh_key:016x}, the scene's mesh is {:016x} (stale: prepared from \
+             another version of the scene)",
+            mesh.content_key()
+        ));
+    }
+    if tex_key != texture_key(luma) {
+        return Err("prepared with other surface textures (stale)".into());
+    }
+    let (n_tri, n, n_obj, n_tex) = (
+        r.u32()? as usize,
+        r.u32()? as usize,
+        r.u32()? as usize,
+        r.u32()? as usize,
+    );
+    if n_tri != mesh.triangle_count() || n_obj != mesh.objects.len() {
+        return Err(format!(
+            "{n_tri} triangles and {n_obj} objects, the mesh has {} and {}",
+            mesh.triangle_count(),
+            mesh.objects.len()
+        ));
+    }
+    let need = HEADER + n * PER_TRIANGLE + n_obj * PER_OBJECT + n_tex;
+    if body.len() != need {
+        return Err(format!(
+            "{} bytes before the checksum, {need} expected for {n} triangles, {n_obj} objects \
+             and {n_tex} texel bytes",
+            body.len()
+        ));
+    }
+    let mut d = DrawMesh {
+        pos: Vec::with_capacity(3 * n),
+        src: Vec::with_capacity(n),
+        face: Vec::with_capacity(n),
+        objects: Vec::with_capacity(n_obj),
+        texels: Vec::new(),
+    };
+    for _ in 0..3 * n {
+        d.pos.push(Vec3::from_array(r.f32s::<3>()?));
+    }
+    for i in 0..n {
+        let s = r.u32()?;
+        if s as usize >= n_tri {
+            return Err(format!("draw triangle {i}: mesh triangle {s} of {n_tri}"));
+        }
+        d.src.push(s);
+    }
+    for i in 0..n {
+        let t = FaceTexture {
+            base: r.u32()?,
+            w: r.u32()?,
+            h: r.u32()?,
+        };
+        let uv = r.f32s::<6>()?;
+        if t.w == 0 {
+            d.face.push(None);
+            continue;
+        }
+        let end = t.base as u64 + t.w as u64 * t.h as u64;
+        if t.h == 0 || end > n_tex as u64 {
+            return Err(format!(
+                "draw triangle {i}: face texture {}x{} at {} past the {n_tex} texel bytes",
+                t.w, t.h, t.base
+            ));
+        }
+        d.face
+            .push(Some((t, [[uv[0], uv[1]], [uv[2], uv[3]], [uv[4], uv[5]]])));
+    }
+    let mut closed = Vec::with_capacity(n_obj);
+    let mut next = 0;
+    for k in 0..n_obj {
+        let (first, count) = (r.u32()? as usize, r.u32()? as usize);
+        let (min, max) = (r.f32s::<3>()?, r.f32s::<3>()?);
+        if first != next || first + count > n {
+            return Err(format!(
+                "object {k}: draw triangles {first}..{} (expected from {next}, of {n})",
+                first + count
+            ));
+        }
+        next = first + count;
+        d.objects.push((first, count, Aabb { min, max }));
+        closed.push(r.u32()? != 0);
+    }
+    if next != n {
+        return Err(format!("objects cover {next} of {n} draw triangles"));
+    }
+    d.texels = r.take(n_tex)?.to_vec();
+    if d.texels.is_empty() {
+        return Err("no face-texture bytes (at least one is written)".into());
+    }
+    Ok(Prepared { draw: d, closed })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn checksum_sees_every_byte_and_the_length() {
+        let b: Vec<u8> = (0..1000u32).map(|i| (i * 7 % 251) as u8).collect();
+        let h = checksum(&b);
+        for i in [0, 31, 32, 500, 999] {
+            let mut c = b.clone();
+            c[i] ^= 1;
+            assert_ne!(checksum(&c), h, "byte {i}");
+        }
+        assert_ne!(checksum(&b[..999]), h);
+        let mut z = b.clone();
+        z.push(0);
+        assert_ne!(checksum(&z), h);
+    }
+}
