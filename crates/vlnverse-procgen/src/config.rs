@@ -21,6 +21,29 @@ pub struct ProcgenConfig {
     pub doors: DoorsConfig,
     /// Furniture and small objects.
     pub furniture: FurnitureConfig,
+    /// Homes on two floors: how many, the slab between the floors and the stairs.
+    pub floors: FloorsConfig,
+}
+
+/// Homes on two floors (docs/storeys.md). At `two_storey_share = 0` (both presets) no home has
+/// a second floor and no draw of any home changes.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct FloorsConfig {
+    /// Share of homes with an upper floor and a staircase, in `[0, 1]` (drawn per home from a
+    /// stream of its own; a home whose footprint has no side for the stair hall stays on one
+    /// floor).
+    pub two_storey_share: f32,
+    /// Thickness between the ground floor's ceiling height (`walls.height`) and the upper
+    /// floor (m), in `[0.05, 0.5]`: the upper floor lies at `walls.height + slab`.
+    pub slab: f32,
+    /// Highest riser of a stair (m), in `[0.1, 0.2]`: the flight gets as many equal risers as
+    /// it needs to stay at or below it.
+    pub max_riser: f32,
+    /// Depth of a tread (m), in `[0.22, 0.4]`.
+    pub tread: f32,
+    /// Clear width of the flight (m), in `[0.8, 2]`.
+    pub stair_width: f32,
 }
 
 /// Scene count, seed and naming.
@@ -251,6 +274,18 @@ impl Default for FurnitureConfig {
     }
 }
 
+impl Default for FloorsConfig {
+    fn default() -> Self {
+        FloorsConfig {
+            two_storey_share: 0.0,
+            slab: 0.1,
+            max_riser: 0.18,
+            tread: 0.28,
+            stair_width: 1.0,
+        }
+    }
+}
+
 impl Default for ProcgenConfig {
     /// The documented default: identical to the shipped `vlnverse` preset (263 homes, 3-10
     /// rooms, seed 2026).
@@ -261,6 +296,7 @@ impl Default for ProcgenConfig {
             walls: WallsConfig::default(),
             doors: DoorsConfig::default(),
             furniture: FurnitureConfig::default(),
+            floors: FloorsConfig::default(),
         }
     }
 }
@@ -596,6 +632,28 @@ impl ProcgenConfig {
             "furniture.gap",
             f.gap,
             "must be in [0, 0.5] m",
+        )?;
+
+        let fl = &self.floors;
+        probability("floors.two_storey_share", fl.two_storey_share)?;
+        let range = |field: &str, v: f32, lo: f32, hi: f32, unit: &str| {
+            check(
+                v.is_finite() && (lo..=hi).contains(&v),
+                field,
+                v,
+                &format!("must be in [{lo}, {hi}]{unit}"),
+            )
+        };
+        range("floors.slab", fl.slab, 0.05, 0.5, " m")?;
+        range("floors.max_riser", fl.max_riser, 0.1, 0.2, " m")?;
+        range("floors.tread", fl.tread, 0.22, 0.4, " m")?;
+        range("floors.stair_width", fl.stair_width, 0.8, 2.0, " m")?;
+        let need = 2.0 * f.nav_radius + 0.1;
+        check(
+            fl.stair_width >= need - 1e-4,
+            "floors.stair_width",
+            fl.stair_width,
+            &format!("must be at least {need:.2} m (twice furniture.nav_radius plus 0.1)"),
         )?;
         Ok(())
     }

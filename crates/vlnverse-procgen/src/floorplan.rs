@@ -16,6 +16,8 @@ const LAYOUT_ATTEMPTS: usize = 400;
 pub(crate) struct PlanRoom {
     pub kind: RoomType,
     pub rect: Rect,
+    /// Left without furniture and clutter (the stair hall of a two-storey home).
+    pub bare: bool,
 }
 
 /// An opening in the wall line between two rooms.
@@ -94,7 +96,7 @@ fn leaf_of(k: RoomType) -> Option<&'static [RoomType]> {
 }
 
 /// Whether a door may join rooms of kinds `a` and `b`.
-fn may_join(a: RoomType, b: RoomType) -> bool {
+pub(crate) fn may_join(a: RoomType, b: RoomType) -> bool {
     let ok = |x: RoomType, y: RoomType| leaf_of(x).is_none_or(|list| list.contains(&y));
     ok(a, b) && ok(b, a)
 }
@@ -161,7 +163,12 @@ pub(crate) fn weighted_index(weights: &[f32], rng: &mut ChaCha8Rng) -> Option<us
     weights.iter().rposition(|&w| w > 0.0)
 }
 
-fn split(rect: Rect, rooms: &[(RoomType, f32)], rng: &mut ChaCha8Rng, out: &mut Vec<Rect>) {
+pub(crate) fn split(
+    rect: Rect,
+    rooms: &[(RoomType, f32)],
+    rng: &mut ChaCha8Rng,
+    out: &mut Vec<Rect>,
+) {
     if rooms.len() == 1 {
         out.push(rect);
         return;
@@ -205,16 +212,16 @@ fn split(rect: Rect, rooms: &[(RoomType, f32)], rng: &mut ChaCha8Rng, out: &mut 
 
 /// A shared wall segment between two rooms.
 #[derive(Clone, Copy, Debug)]
-struct Shared {
-    a: usize,
-    b: usize,
-    along_z: bool,
-    line: f32,
-    lo: f32,
-    hi: f32,
+pub(crate) struct Shared {
+    pub a: usize,
+    pub b: usize,
+    pub along_z: bool,
+    pub line: f32,
+    pub lo: f32,
+    pub hi: f32,
 }
 
-fn shared_walls(rects: &[Rect], min_len: f32) -> Vec<Shared> {
+pub(crate) fn shared_walls(rects: &[Rect], min_len: f32) -> Vec<Shared> {
     const EPS: f32 = 1e-3;
     let mut out = Vec::new();
     for a in 0..rects.len() {
@@ -257,7 +264,7 @@ fn touches_outside(r: &Rect, footprint: &Rect) -> bool {
 }
 
 /// Whether the rooms not marked `skip` are connected by `edges`.
-fn connected_without(skip: &[bool], edges: &[Shared]) -> bool {
+pub(crate) fn connected_without(skip: &[bool], edges: &[Shared]) -> bool {
     let Some(first) = skip.iter().position(|&s| !s) else {
         return true;
     };
@@ -352,12 +359,16 @@ fn try_layout(
     let rooms = rects
         .into_iter()
         .zip(list)
-        .map(|(rect, (kind, _))| PlanRoom { kind, rect })
+        .map(|(rect, (kind, _))| PlanRoom {
+            kind,
+            rect,
+            bare: false,
+        })
         .collect();
     Some((rooms, shared))
 }
 
-fn make_opening(
+pub(crate) fn make_opening(
     cfg: &ProcgenConfig,
     rooms: &[PlanRoom],
     s: &Shared,
@@ -414,12 +425,26 @@ pub(crate) fn generate(cfg: &ProcgenConfig, rng: &mut ChaCha8Rng) -> Option<Plan
     let (rooms, shared) = found?;
 
     // Random spanning tree (Prim) from the living room, preferring hubs.
-    let n = rooms.len();
     let start = rooms
         .iter()
         .position(|r| r.kind == RoomType::LivingRoom)
         .or_else(|| rooms.iter().position(|r| leaf_of(r.kind).is_none()))
         .unwrap_or(0);
+    let openings = connect(cfg, &rooms, &shared, start, rng)?;
+    Some(Plan { rooms, openings })
+}
+
+/// The openings of a plan: a random spanning tree (Prim) of the shared walls from room `start`,
+/// preferring hubs, then extra doors between rooms people walk through; None when the shared
+/// walls do not connect every room.
+pub(crate) fn connect(
+    cfg: &ProcgenConfig,
+    rooms: &[PlanRoom],
+    shared: &[Shared],
+    start: usize,
+    rng: &mut ChaCha8Rng,
+) -> Option<Vec<Opening>> {
+    let n = rooms.len();
     let mut in_tree = vec![false; n];
     in_tree[start] = true;
     let mut used = vec![false; shared.len()];
@@ -444,7 +469,7 @@ pub(crate) fn generate(cfg: &ProcgenConfig, rng: &mut ChaCha8Rng) -> Option<Plan
         used[i] = true;
         in_tree[shared[i].a] = true;
         in_tree[shared[i].b] = true;
-        openings.push(make_opening(cfg, &rooms, &shared[i], rng));
+        openings.push(make_opening(cfg, rooms, &shared[i], rng));
     }
     for (i, s) in shared.iter().enumerate() {
         // Extra doors only between rooms people walk through, so private rooms keep their
@@ -462,8 +487,8 @@ pub(crate) fn generate(cfg: &ProcgenConfig, rng: &mut ChaCha8Rng) -> Option<Plan
         };
         let private_only = !walk_through(rooms[s.a].kind) || !walk_through(rooms[s.b].kind);
         if !used[i] && !private_only && rng.random_bool(cfg.doors.extra_door_probability as f64) {
-            openings.push(make_opening(cfg, &rooms, s, rng));
+            openings.push(make_opening(cfg, rooms, s, rng));
         }
     }
-    Some(Plan { rooms, openings })
+    Some(openings)
 }

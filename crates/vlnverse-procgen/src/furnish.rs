@@ -1259,6 +1259,9 @@ fn furnish_room(
     rng: &mut ChaCha8Rng,
     b: &mut Builder,
 ) {
+    if room.bare {
+        return;
+    }
     let interior = room.rect.inset(t * 0.5);
     let mut keepout = Vec::new();
     let mut seeds = Vec::new();

@@ -7,6 +7,7 @@ use crate::furnish;
 use crate::models::Model;
 use crate::palette::{self, f, Finish};
 use crate::rect::Rect;
+use crate::storeys;
 use glam::Vec3;
 use rand_chacha::ChaCha8Rng;
 use std::collections::BTreeMap;
@@ -341,18 +342,30 @@ pub(crate) fn clearance_rect(o: &Opening, cfg: &ProcgenConfig, depth: f32, margi
 pub(crate) fn generate(cfg: &ProcgenConfig, seed: u64, id: &str) -> Result<Scene> {
     use rand::SeedableRng;
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let plan = floorplan::generate(cfg, &mut rng).ok_or_else(|| EnvError::InvalidScene {
+    let mut plan = floorplan::generate(cfg, &mut rng).ok_or_else(|| EnvError::InvalidScene {
         scene: id.to_string(),
         message: format!(
             "no floorplan satisfies rooms.min_side = {} and rooms.max_aspect = {} (seed {seed})",
             cfg.rooms.min_side, cfg.rooms.max_aspect
         ),
     })?;
+    // A second floor comes from streams of its own: without one nothing below changes.
+    let upper = storeys::plan_upper(cfg, seed, &plan);
+    if let Some(up) = &upper {
+        plan.rooms.push(up.ground_hall.clone());
+        plan.openings.push(up.ground_opening.clone());
+    }
     let mut b = Builder {
         objects: Vec::with_capacity(256),
     };
     let wall = build_structure(cfg, &plan, &mut rng, &mut b);
     furnish::furnish(cfg, &plan, &mut rng, &mut b);
+    let mut flight = None;
+    if let Some(up) = &upper {
+        let mut srng = ChaCha8Rng::seed_from_u64(seed ^ storeys::UPPER_SALT);
+        let hall = (plan.rooms.len() - 1) as RoomId;
+        flight = Some(storeys::add_flight(&up.stairs, hall, &mut srng, &mut b));
+    }
     if cfg.walls.ceiling {
         add_ceilings(cfg, &plan, wall, &mut b);
     }
@@ -364,8 +377,121 @@ pub(crate) fn generate(cfg: &ProcgenConfig, seed: u64, id: &str) -> Result<Scene
 
     let t = cfg.walls.thickness;
     let mut counts: BTreeMap<RoomType, usize> = BTreeMap::new();
-    let rooms = plan
-        .rooms
+    let mut rooms = rooms_of(&plan, t, 0, &mut counts);
+    let mut doors = doors_of(&plan, leaves, 0.0, 0, 0, 0);
+    let mut storeys = vlnverse_env::Storeys::default();
+    if let Some(up) = upper {
+        let hall = (plan.rooms.len() - 1) as RoomId;
+        let s = &up.stairs;
+        cut_hole_if(
+            cfg.walls.ceiling,
+            &mut b.objects,
+            C::Ceiling,
+            hall,
+            &s.flight,
+        );
+        let ground_rooms = plan.rooms.len() as RoomId;
+        let upper_objects = build_upper(cfg, seed, &up);
+        let off = storeys::append_lifted(&mut b, upper_objects.0, s.upper_height, ground_rooms);
+        rooms.extend(rooms_of(&up.plan, t, ground_rooms, &mut counts));
+        let first_door = doors.len() as u32;
+        doors.extend(doors_of(
+            &up.plan,
+            upper_objects.1,
+            s.upper_height,
+            ground_rooms,
+            off,
+            first_door,
+        ));
+        let level = |id: u32, name: &str, h: f32, r: std::ops::Range<RoomId>| vlnverse_env::Level {
+            id,
+            name: name.into(),
+            floor_height: h,
+            rooms: r.collect(),
+        };
+        let f = s.flight;
+        storeys.levels = vec![
+            level(0, "ground floor", 0.0, 0..ground_rooms),
+            level(
+                1,
+                "upper floor",
+                s.upper_height,
+                ground_rooms..rooms.len() as RoomId,
+            ),
+        ];
+        storeys.stairs = vec![vlnverse_env::Stairs {
+            id: 0,
+            levels: [0, 1],
+            object: flight,
+            footprint: vec![[f.x0, f.z0], [f.x0, f.z1], [f.x1, f.z1], [f.x1, f.z0]],
+            foot: [s.foot.0, 0.0, s.foot.1],
+            head: [s.head.0, s.upper_height, s.head.1],
+            steps: s.steps,
+            rise: s.rise,
+            run: s.run,
+            width: s.width,
+        }];
+    }
+    let mut scene = Scene {
+        format_version: SCENE_FORMAT_VERSION,
+        id: id.to_string(),
+        source: "procgen".into(),
+        seed: Some(seed),
+        floor_height: 0.0,
+        rooms,
+        doors,
+        objects: b.objects,
+        storeys,
+    };
+    if cfg.walls.ceiling && cfg.walls.decor {
+        crate::decor::add_light_panels(&mut scene);
+    }
+    Ok(scene)
+}
+
+fn cut_hole_if(on: bool, objects: &mut [SceneObject], class: C, room: RoomId, hole: &Rect) {
+    if on {
+        storeys::cut_hole(objects, class, room, hole);
+    }
+}
+
+/// The upper floor built at height 0 in a builder of its own (structure, furniture, railings,
+/// ceilings, door leaves, decoration, the stairwell cut out of the landing's floor): its objects
+/// and each opening's leaf.
+fn build_upper(
+    cfg: &ProcgenConfig,
+    seed: u64,
+    up: &storeys::UpperFloor,
+) -> (Vec<SceneObject>, Vec<crate::doors::DoorLeaf>) {
+    use rand::SeedableRng;
+    let upper_seed = seed ^ storeys::UPPER_SALT;
+    let mut rng = ChaCha8Rng::seed_from_u64(upper_seed.rotate_left(17));
+    let mut b = Builder {
+        objects: Vec::with_capacity(192),
+    };
+    let landing = (up.plan.rooms.len() - 1) as RoomId;
+    let wall = build_structure(cfg, &up.plan, &mut rng, &mut b);
+    storeys::cut_hole(&mut b.objects, C::Floor, landing, &up.stairs.flight);
+    furnish::furnish(cfg, &up.plan, &mut rng, &mut b);
+    storeys::add_railings(&up.stairs, landing, &mut rng, &mut b);
+    if cfg.walls.ceiling {
+        add_ceilings(cfg, &up.plan, wall, &mut b);
+    }
+    let leaves = crate::doors::add_leaves(cfg, &up.plan, upper_seed, &mut b);
+    if cfg.walls.decor {
+        crate::decor::add_decor(cfg, &up.plan, upper_seed, &mut b);
+    }
+    (b.objects, leaves)
+}
+
+/// The scene rooms of a plan, ids from `first`, names numbered on from `counts`.
+fn rooms_of(
+    plan: &Plan,
+    t: f32,
+    first: RoomId,
+    counts: &mut BTreeMap<RoomType, usize>,
+) -> Vec<Room> {
+    plan.rooms
         .iter()
         .enumerate()
         .map(|(i, r)| {
@@ -373,7 +499,7 @@ pub(crate) fn generate(cfg: &ProcgenConfig, seed: u64, id: &str) -> Result<Scene
             *n += 1;
             let inner = r.rect.inset(t * 0.5);
             Room {
-                id: i as RoomId,
+                id: first + i as RoomId,
                 kind: r.kind,
                 name: format!("{}_{}", r.kind.name(), *n),
                 // Counter-clockwise seen from above (+Y): with x right and z towards the
@@ -386,39 +512,38 @@ pub(crate) fn generate(cfg: &ProcgenConfig, seed: u64, id: &str) -> Result<Scene
                 ],
             }
         })
-        .collect();
-    let doors = plan
-        .openings
+        .collect()
+}
+
+/// The scene doors of a plan's openings on the floor at `y`: room ids after `room_offset`, leaf
+/// ids after `leaf_offset`, door ids from `first`.
+fn doors_of(
+    plan: &Plan,
+    leaves: Vec<crate::doors::DoorLeaf>,
+    y: f32,
+    room_offset: RoomId,
+    leaf_offset: ObjectId,
+    first: u32,
+) -> Vec<Door> {
+    plan.openings
         .iter()
         .zip(leaves)
         .enumerate()
         .map(|(i, (o, (state, leaf)))| {
             let (x, z) = o.position();
             Door {
-                id: i as u32,
-                position: [x, 0.0, z],
+                id: first + i as u32,
+                position: [x, y, z],
                 width: o.width,
-                normal: o.normal(&plan),
-                rooms: [o.rooms[0] as RoomId, o.rooms[1] as RoomId],
+                normal: o.normal(plan),
+                rooms: [
+                    room_offset + o.rooms[0] as RoomId,
+                    room_offset + o.rooms[1] as RoomId,
+                ],
                 open_plan: o.open_plan,
                 state,
-                leaf,
+                leaf: leaf.map(|l| l + leaf_offset),
             }
         })
-        .collect();
-    let mut scene = Scene {
-        format_version: SCENE_FORMAT_VERSION,
-        id: id.to_string(),
-        source: "procgen".into(),
-        seed: Some(seed),
-        floor_height: 0.0,
-        rooms,
-        doors,
-        objects: b.objects,
-        storeys: Default::default(),
-    };
-    if cfg.walls.ceiling && cfg.walls.decor {
-        crate::decor::add_light_panels(&mut scene);
-    }
-    Ok(scene)
+        .collect()
 }

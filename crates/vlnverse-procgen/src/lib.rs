@@ -10,10 +10,11 @@ mod models;
 mod navgrid;
 mod palette;
 mod rect;
+mod storeys;
 
 pub use config::{
-    DoorsConfig, FurnitureConfig, ProcgenConfig, RoomKindConfig, RoomsConfig, ScenesConfig,
-    WallsConfig,
+    DoorsConfig, FloorsConfig, FurnitureConfig, ProcgenConfig, RoomKindConfig, RoomsConfig,
+    ScenesConfig, WallsConfig,
 };
 pub use rect::Rect;
 
