@@ -8,6 +8,7 @@ use super::lexicon::{
 };
 use super::path::{env_side, footprint, rect_distance};
 use super::phrases::{self as ph, pick};
+use super::spatial;
 use super::PathContext;
 use glam::Vec2;
 use rand::Rng;
@@ -205,24 +206,32 @@ fn relation_phrase(
     }
     // Only objects named unambiguously (unique class in the scene) and in view of the path.
     cands.retain(|(_, x)| g.objects_of_class(x.class).len() == 1 && x.id != o.id);
+    let seen = |x: &SceneObject| view.side_of(x).filter(|&(_, d)| d <= max_ref_distance);
+    // A place people single a thing out by: in front of a piece, under a window, between two.
+    let seen_places: Vec<(Place<'_>, Vec<Side>)> = places(ctx, o)
+        .into_iter()
+        .filter_map(|p| {
+            let sides = p.objects().into_iter().map(|x| seen(x).map(|s| s.0));
+            let sides = sides.collect::<Option<Vec<Side>>>()?;
+            Some((p, sides))
+        })
+        .collect();
+    if !seen_places.is_empty() && rng.random_bool(0.4) {
+        let (p, sides) = &seen_places[rng.random_range(0..seen_places.len())];
+        for (x, side) in p.objects().into_iter().zip(sides) {
+            extra.push(reference(x, *side, view.index));
+        }
+        return Some(p.phrase(rng));
+    }
     let feature = room_feature(scene, o);
     if cands.is_empty() || (feature.is_some() && rng.random_bool(0.35)) {
         return feature.map(|f| pick(rng, f).to_string());
     }
     let (kind, x) = cands[rng.random_range(0..cands.len())];
-    let (side, d) = view.side_of(x)?;
-    if d > max_ref_distance {
+    let Some((side, _)) = seen(x) else {
         return feature.map(|f| pick(rng, f).to_string());
-    }
-    let names = class_names(x.class);
-    let xn = format!(
-        "the {}",
-        if rng.random_bool(0.3) {
-            pick(rng, names)
-        } else {
-            names[0]
-        }
-    );
+    };
+    let xn = reference_name(x, rng);
     let bank: &[&str] = match kind {
         0 => &["on {x}", "on top of {x}", "sitting on {x}"],
         1 => &["with {x} on it", "with {x} on top"],
@@ -230,14 +239,118 @@ fn relation_phrase(
         _ => &["near {x}", "close to {x}", "not far from {x}"],
     };
     let phrase = fill1(pick(rng, bank), &xn);
-    extra.push(GroundedObject {
+    extra.push(reference(x, side, view.index));
+    Some(phrase)
+}
+
+/// "the sofa", now and then by a synonym ("the couch"): how a reference object is named.
+fn reference_name(x: &SceneObject, rng: &mut ChaCha8Rng) -> String {
+    let names = class_names(x.class);
+    let name = if rng.random_bool(0.3) {
+        pick(rng, names)
+    } else {
+        names[0]
+    };
+    format!("the {name}")
+}
+
+/// The grounding of a reference object seen from path point `index` on `side`.
+fn reference(x: &SceneObject, side: Side, index: usize) -> GroundedObject {
+    GroundedObject {
         object_id: x.id,
         class: x.class.name().to_string(),
         role: Role::Reference,
         side: Some(side),
-        path_index: Some(view.index as u32),
-    });
-    Some(phrase)
+        path_index: Some(index as u32),
+    }
+}
+
+/// Landmark objects in `o`'s room other than `o`, of a class the scene has once (so "the
+/// sofa" names one thing), in id order.
+fn room_landmarks<'s>(
+    ctx: &PathContext<'s>,
+    o: &SceneObject,
+) -> impl Iterator<Item = &'s SceneObject> + use<'s> {
+    let (scene, g) = (ctx.scene, ctx.graph);
+    let (id, room, class) = (o.id, o.room, o.class);
+    scene.objects.iter().filter(move |x| {
+        x.id != id
+            && x.room.is_some()
+            && x.room == room
+            && x.class != class
+            && !x.is_structure()
+            && x.class != C::Door
+            && is_landmark(x)
+            && g.objects_of_class(x.class).len() == 1
+    })
+}
+
+/// Where `o` stands relative to other things in its room, as people single a thing out.
+pub(crate) enum Place<'s> {
+    /// In front of a piece with its back to a wall; for a bed, at its foot.
+    Front(&'s SceneObject),
+    /// Under a window.
+    Window(&'s SceneObject),
+    /// Between two pieces.
+    Between(&'s SceneObject, &'s SceneObject),
+}
+
+impl<'s> Place<'s> {
+    /// The objects the place names.
+    pub(crate) fn objects(&self) -> Vec<&'s SceneObject> {
+        match *self {
+            Place::Front(x) | Place::Window(x) => vec![x],
+            Place::Between(x, y) => vec![x, y],
+        }
+    }
+
+    /// "in front of the sofa", "at the foot of the bed", "under the window", "between the
+    /// bed and the dresser".
+    pub(crate) fn phrase(&self, rng: &mut ChaCha8Rng) -> String {
+        match *self {
+            Place::Front(x) => {
+                let bank: &[&str] = if x.class == C::Bed {
+                    &["at the foot of {x}", "at the end of {x}"]
+                } else {
+                    &[
+                        "in front of {x}",
+                        "just in front of {x}",
+                        "out in front of {x}",
+                    ]
+                };
+                fill1(pick(rng, bank), &reference_name(x, rng))
+            }
+            Place::Window(_) => {
+                let bank = ["under the window", "below the window", "beneath the window"];
+                pick(rng, &bank).to_string()
+            }
+            Place::Between(x, y) => {
+                let (xn, yn) = (reference_name(x, rng), reference_name(y, rng));
+                format!("between {xn} and {yn}")
+            }
+        }
+    }
+}
+
+/// Every [`Place`] that holds of `o`: each piece it is in front of, the window above it, and
+/// each pair it stands between (pieces the scene has one of, so "the sofa" names one thing).
+pub(crate) fn places<'s>(ctx: &PathContext<'s>, o: &SceneObject) -> Vec<Place<'s>> {
+    let scene = ctx.scene;
+    let near: Vec<&SceneObject> = room_landmarks(ctx, o).collect();
+    let mut out: Vec<Place<'s>> = near
+        .iter()
+        .filter(|x| spatial::in_front_of(scene, o, x))
+        .map(|x| Place::Front(x))
+        .collect();
+    out.extend(spatial::window_above(scene, o).map(Place::Window));
+    for (i, x) in near.iter().enumerate() {
+        for y in &near[i + 1..] {
+            if x.class != y.class && spatial::between(o, x, y) {
+                out.push(Place::Between(x, y));
+            }
+        }
+    }
+    out
 }
 
 fn fill1(t: &str, x: &str) -> String {

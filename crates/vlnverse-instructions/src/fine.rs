@@ -12,6 +12,7 @@ use super::path::{
     segment_headings, side_word, signed_turn_deg, visible, wall_rects, Turn,
 };
 use super::phrases::{self as ph, capitalize, fill, pick};
+use super::spatial;
 use super::templates::TemplateConfig;
 use super::PathContext;
 use glam::{Vec2, Vec3};
@@ -28,6 +29,8 @@ const SIMPLIFY_TOLERANCE: f32 = 0.5;
 const MIN_LEG: f32 = 1.0;
 /// Objects a description names besides the landmark must be this close to the path (m).
 const MAX_REFERENCE_DISTANCE: f32 = 2.5;
+/// A clear turn of at least this many degrees is "sharp".
+const SHARP_TURN_DEG: f32 = 115.0;
 
 /// How an instruction's writer writes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -196,11 +199,13 @@ fn distance_phrase(d: f32, w: Writer, rng: &mut ChaCha8Rng) -> String {
     }
 }
 
-/// "turn left", "bear towards your two o'clock", "turn 90 degrees to the right".
+/// "turn left", "bear towards your two o'clock", "turn 90 degrees to the right", "make a
+/// sharp right", "turn left again" (`prev`: the turn before, a clear turn the same way).
 fn turn_clause(
     turn: Turn,
     angle: f32,
     start: bool,
+    prev: Option<Turn>,
     w: Writer,
     rng: &mut ChaCha8Rng,
 ) -> Option<String> {
@@ -226,7 +231,11 @@ fn turn_clause(
         }
         Turn::Turn(s) => {
             let dir = side_word(s);
-            if w == Writer::Precise && rng.random_bool(0.3) {
+            if angle.abs() >= SHARP_TURN_DEG && rng.random_bool(0.5) {
+                Some(fill(pick(rng, &ph::SHARP_TURN), &[("dir", dir)]))
+            } else if !start && prev == Some(Turn::Turn(s)) && rng.random_bool(0.45) {
+                Some(fill(pick(rng, &ph::TURN_AGAIN), &[("dir", dir)]))
+            } else if w == Writer::Precise && rng.random_bool(0.3) {
                 let deg = ((angle.abs() / 15.0).round() * 15.0) as u32;
                 let deg = if rng.random_bool(0.5) {
                     number_word(deg)
@@ -385,6 +394,9 @@ fn room_change(
     if scene.room(to).map(|r| r.kind) == Some(RoomType::Hallway) && rng.random_bool(0.3) {
         return pick(rng, &["go out into {room}", "walk out into {room}"])
             .replace("{room}", &to_np);
+    }
+    if scene.room(to).map(|r| r.kind) == Some(RoomType::Balcony) && rng.random_bool(0.6) {
+        return fill(pick(rng, &ph::GO_OUTSIDE), &[("room", &to_np)]);
     }
     let door = door_np(scene, from, to, at, rng);
     // Mostly just the room entered, as people say it ("go into the kitchen").
@@ -600,6 +612,9 @@ struct Draft {
     /// How many more landmarks may be named (people name a handful per route, not every one
     /// they pass).
     budget: u32,
+    /// The last leg walked to the end of its hallway ("walk to the end of the hallway"), so
+    /// the next turn does not say so again.
+    hall_end_said: bool,
 }
 
 /// The start of the instruction: now and then an opener, whether the steps are numbered, and
@@ -638,6 +653,7 @@ fn opening(route: &Route<'_, '_>, mut rng: ChaCha8Rng) -> Draft {
         step_no: 0,
         after: None,
         budget: 2,
+        hall_end_said: false,
     }
 }
 
@@ -655,13 +671,25 @@ fn leg_sentences(route: &Route<'_, '_>, li: usize, draft: &mut Draft) {
         && draft.after.is_none()
         && (!named.is_empty() || route.rooms_entered_on(li).next().is_some())
         && draft.rng.random_bool(0.5);
+    let prev = li.checked_sub(1).map(|k| route.legs[k].turn);
     let mut turn = if unsaid {
         None
     } else {
-        turn_clause(leg.turn, leg.angle, li == 0, route.writer, &mut draft.rng)
+        turn_clause(
+            leg.turn,
+            leg.angle,
+            li == 0,
+            prev,
+            route.writer,
+            &mut draft.rng,
+        )
     };
     if let (Some(t), Some(a)) = (turn.as_mut(), draft.after.take()) {
         *t = format!("{a}, {t}");
+    } else if let Some(t) = turn.as_mut().filter(|_| li > 0) {
+        if let Some(w) = turn_prefix(route, li, draft) {
+            *t = format!("{w} {t}");
+        }
     }
     hold_back_landmark(route, li, &mut named, draft);
     let changes = room_changes(route, li, &mut draft.rng);
@@ -669,7 +697,14 @@ fn leg_sentences(route: &Route<'_, '_>, li: usize, draft: &mut Draft) {
         .rooms_entered_on(li)
         .next_back()
         .map(|k| route.rooms[k].1);
-    let mv = movement(route, leg, &changes, !named.is_empty(), &mut draft.rng);
+    let mv = movement(
+        route,
+        leg,
+        &changes,
+        !named.is_empty(),
+        &mut draft.hall_end_said,
+        &mut draft.rng,
+    );
     let mut out = leg_plan(
         route,
         li,
@@ -917,6 +952,7 @@ fn movement(
     leg: &Leg,
     changes: &[String],
     landmark: bool,
+    hall_end_said: &mut bool,
     rng: &mut ChaCha8Rng,
 ) -> String {
     let scene = route.ctx.scene;
@@ -927,7 +963,13 @@ fn movement(
         .find(|(s, _)| *s <= leg.first)
         .map(|&(_, r)| r);
     let here_kind = here.and_then(|r| scene.room(r)).map(|r| r.kind);
+    let ends_hall = hall_end_at(route, leg.last + 1).is_some() && leg.last + 2 < route.n();
     match here {
+        Some(r) if changes.is_empty() && ends_hall && rng.random_bool(0.5) => {
+            *hall_end_said = true;
+            let hall = room_np(scene, r, route.room_syn, rng);
+            fill(pick(rng, &ph::TO_HALL_END), &[("room", &hall)])
+        }
         Some(r)
             if changes.is_empty()
                 && here_kind == Some(RoomType::Hallway)
@@ -942,6 +984,41 @@ fn movement(
         }
         _ => move_clause(leg.len, route.writer, landmark, rng),
     }
+}
+
+/// The hallway that ends just past path point `vertex` (walking on along the segment before
+/// it leaves the hallway within 90 cm), where people say "at the end of the hallway".
+fn hall_end_at(route: &Route<'_, '_>, vertex: usize) -> Option<RoomId> {
+    let (p, h) = (
+        *route.pts.get(vertex)?,
+        *route.headings.get(vertex.checked_sub(1)?)?,
+    );
+    let scene = route.ctx.scene;
+    let hall = scene
+        .room_at(p.x, p.y)
+        .filter(|r| r.kind == RoomType::Hallway)?;
+    let q = p + h * 0.9;
+    (scene.room_at(q.x, q.y).map(|r| r.id) != Some(hall.id)).then_some(hall.id)
+}
+
+/// What comes before the turn opening leg `li` when it holds: "at the end of the hallway,"
+/// where the hallway ends there, "immediately" where the leg before entered a room within a
+/// step or so of the turn.
+fn turn_prefix(route: &Route<'_, '_>, li: usize, draft: &mut Draft) -> Option<String> {
+    let leg = &route.legs[li];
+    let rng = &mut draft.rng;
+    if let Some(hall) = hall_end_at(route, leg.first) {
+        if !std::mem::take(&mut draft.hall_end_said) && rng.random_bool(0.5) {
+            let hall = room_np(route.ctx.scene, hall, route.room_syn, rng);
+            return Some(fill(pick(rng, &ph::HALL_END), &[("room", &hall)]));
+        }
+        return None;
+    }
+    let turn_at = route.pts[leg.first];
+    let entered_just_before = route
+        .rooms_entered_on(li - 1)
+        .any(|k| route.pts[route.rooms[k].0.min(route.n() - 1)].distance(turn_at) < 1.2);
+    (entered_just_before && rng.random_bool(0.3)).then(|| pick(rng, &ph::AT_ONCE).to_string())
 }
 
 /// A landmark as a clause of a movement: "towards the lamp", "passing the sofa on your left".
@@ -1215,7 +1292,18 @@ fn stop_sentence(route: &Route<'_, '_>, draft: &mut Draft) -> String {
         .last()
         .copied()
         .unwrap_or(Vec2::new(0.0, -1.0));
-    let mut stop = if let Some(o) = route.end_obj {
+    let mut stop = if let Some(s) = stop_in_doorway(route, end_heading, rng) {
+        s
+    } else if let Some((x, y, sx, sy)) = end_between(route).filter(|_| rng.random_bool(0.4)) {
+        draft
+            .grounding
+            .push(grounded(x, Role::Reference, Some(sx), n - 1));
+        draft
+            .grounding
+            .push(grounded(y, Role::Reference, Some(sy), n - 1));
+        let pair = format!("the {} and the {}", x.class.words(), y.class.words());
+        fill(pick(rng, &ph::STOP_BETWEEN), &[("obj", &pair)])
+    } else if let Some(o) = route.end_obj {
         let (lo, hi) = footprint(o);
         let side = Some(env_side(side_of_heading(end, end_heading, (lo + hi) * 0.5)));
         let (obj, extra) = object_np(
@@ -1262,6 +1350,65 @@ fn stop_sentence(route: &Route<'_, '_>, draft: &mut Draft) -> String {
         stop = format!("{}{stop}", draft.prefix);
     }
     stop
+}
+
+/// "stop in the doorway to the kitchen" when the goal is in an open doorway, the walker
+/// facing through it (now and then).
+fn stop_in_doorway(route: &Route<'_, '_>, heading: Vec2, rng: &mut ChaCha8Rng) -> Option<String> {
+    let scene = route.ctx.scene;
+    let d = spatial::doorway_at(scene, route.end)?;
+    let room_at = |p: Vec2| scene.room_at(p.x, p.y).map(|r| r.id);
+    let ahead = room_at(route.end + heading * 0.6)?;
+    let behind = room_at(route.end - heading * 0.6)?;
+    if ahead == behind || !d.rooms.contains(&ahead) || !d.rooms.contains(&behind) {
+        return None;
+    }
+    if !rng.random_bool(0.5) {
+        return None;
+    }
+    let kind = |r: RoomId| scene.room(r).map(|r| r.kind);
+    let room = format!("the {}", kind(ahead)?.words());
+    let mut from = format!("the {}", kind(behind)?.words());
+    if from == room {
+        from = format!("the other {}", kind(behind)?.words());
+    }
+    Some(fill(
+        pick(rng, &ph::STOP_DOORWAY),
+        &[("room", &room), ("from", &from)],
+    ))
+}
+
+/// Two pieces of furniture the goal lies between, each the only one of its class in the home
+/// and within 2 m of the goal (in id order), with their sides seen from the last point.
+fn end_between<'s>(
+    route: &Route<'_, 's>,
+) -> Option<(&'s SceneObject, &'s SceneObject, Side, Side)> {
+    let ctx = route.ctx;
+    let view = route.view(route.n() - 1);
+    let near: Vec<(&SceneObject, Side)> = ctx
+        .scene
+        .objects
+        .iter()
+        .filter(|o| {
+            is_landmark(o)
+                && !o.is_structure()
+                && o.class != vlnverse_env::SemanticClass::Door
+                && o.class.kind() == vlnverse_env::ClassKind::Furniture
+                && ctx.graph.objects_of_class(o.class).len() == 1
+        })
+        .filter_map(|o| {
+            let (side, d) = view.side_of(o)?;
+            (d <= 2.0 && side != Side::Ahead).then_some((o, side))
+        })
+        .collect();
+    for (i, &(x, sx)) in near.iter().enumerate() {
+        for &(y, sy) in &near[i + 1..] {
+            if sx != sy && spatial::point_between(route.end, x, y) {
+                return Some((x, y, sx, sy));
+            }
+        }
+    }
+    None
 }
 
 /// Remarks people add after the stop, only where they hold: a big end object, the only one of

@@ -52,6 +52,7 @@ pub mod lexicon;
 pub mod llm;
 mod path;
 mod phrases;
+mod spatial;
 mod templates;
 
 use path::{direction_of_yaw, env_side, floor_points, segment_headings};

@@ -166,6 +166,14 @@ banks! {
     CHAIN_MID = chain_mid,
     CHAIN_LAST = chain_last,
     CHAIN_CASUAL = chain_casual,
+    TURN_AGAIN = turn_again,
+    SHARP_TURN = sharp_turn,
+    AT_ONCE = at_once,
+    HALL_END = hall_end,
+    TO_HALL_END = to_hall_end,
+    GO_OUTSIDE = go_outside,
+    STOP_DOORWAY = stop_doorway,
+    STOP_BETWEEN = stop_between,
 }
 
 /// A bank as written in the data file.

@@ -1,7 +1,8 @@
 //! The default, template-based instruction generator.
 
+use super::describe::{places, Place};
 use super::lexicon::{class_uses, color_phrases, material_noun, material_words, shape_words};
-use super::path::{env_side, floor_points, footprint, segment_headings, TurnConfig};
+use super::path::{env_side, floor_points, footprint, rect_distance, segment_headings, TurnConfig};
 use super::phrases::{self as ph, capitalize, decapitalize, fill, pick};
 use super::{InstructionGenerator, PathContext};
 use glam::Vec2;
@@ -141,11 +142,15 @@ impl InstructionGenerator for TemplateGenerator {
         let room = coarse_room(ctx, &expr, &mut rng);
         // Now and then a remark on the target from what the scene model holds: its material,
         // the shade of its colour, what its class is for, or where it stands in its room.
+        let mut grounding = coarse_grounding(ctx, &expr);
         let remark = ctx
             .scene
             .object(target)
             .filter(|_| rng.random_bool(0.2))
-            .and_then(|o| target_remark(ctx, o, &expr.class.words(), style, &mut rng))
+            .and_then(|o| {
+                let name = expr.class.words();
+                target_remark(ctx, o, &name, style, &mut rng, &mut grounding)
+            })
             .unwrap_or_default();
         let parts = CoarseParts {
             desc,
@@ -160,7 +165,7 @@ impl InstructionGenerator for TemplateGenerator {
             instruction_text: text,
             instruction_tokens: None,
             style: Some(style),
-            grounding: coarse_grounding(ctx, &expr),
+            grounding,
             sub_instructions: Vec::new(),
         })
     }
@@ -393,19 +398,10 @@ fn closer<'a>(core: &str, close: &'a str, plain: &'a str) -> &'a str {
 /// The grounding of a coarse instruction: the target, what it stands on and its reference
 /// object, seen from the end of the path, facing along its last segment.
 fn coarse_grounding(ctx: &PathContext<'_>, expr: &ReferringExpression) -> Vec<GroundedObject> {
-    let pts = floor_points(ctx.path);
-    let headings = segment_headings(&pts);
-    let idx = pts.len().checked_sub(1);
     let mut grounding = Vec::new();
     let mut push = |id: ObjectId, role: Role| {
         if let Some(o) = ctx.scene.object(id) {
-            let (lo, hi) = footprint(o);
-            let side = if pts.len() >= 2 {
-                end_side(&pts, &headings, (lo + hi) * 0.5)
-            } else {
-                None
-            };
-            grounding.push(grounded(o, role, side, idx));
+            grounding.push(grounded_at_end(ctx, o, role));
         }
     };
     push(expr.target, Role::Target);
@@ -418,6 +414,19 @@ fn coarse_grounding(ctx: &PathContext<'_>, expr: &ReferringExpression) -> Vec<Gr
     grounding
 }
 
+/// The grounding of `o` seen from the end of the path, facing along its last segment.
+fn grounded_at_end(ctx: &PathContext<'_>, o: &SceneObject, role: Role) -> GroundedObject {
+    let pts = floor_points(ctx.path);
+    let headings = segment_headings(&pts);
+    let (lo, hi) = footprint(o);
+    let side = if pts.len() >= 2 {
+        end_side(&pts, &headings, (lo + hi) * 0.5)
+    } else {
+        None
+    };
+    grounded(o, role, side, pts.len().checked_sub(1))
+}
+
 /// A remark on `o` in the style's register ("It is made of wood", " - kinda navy"), from its
 /// material, the shade of its colour, its class's use or its place in the room; `None` when the
 /// scene model holds none of these.
@@ -427,6 +436,7 @@ fn target_remark(
     name: &str,
     style: Style,
     rng: &mut ChaCha8Rng,
+    grounding: &mut Vec<GroundedObject>,
 ) -> Option<String> {
     let (mat_b, shade_b, use_b, place_b) = match style {
         Style::Formal => (
@@ -453,12 +463,25 @@ fn target_remark(
     let shades: Vec<String> = color_phrases(o).into_iter().skip(1).collect();
     let uses = class_uses(o.class);
     let place = super::describe::room_feature(ctx.scene, o);
+    // Places the goal can be seen from: the path ends within reach of the target, and the
+    // pieces a place names stand within a few metres of it.
+    let end = floor_points(ctx.path).last().copied();
+    let spatial: Vec<Place<'_>> = places(ctx, o)
+        .into_iter()
+        .filter(|p| {
+            p.objects().iter().all(|x| {
+                let (lo, hi) = footprint(x);
+                end.is_some_and(|e| rect_distance(e, lo, hi) <= 2.5)
+            })
+        })
+        .collect();
     let mut kinds: Vec<u8> = Vec::new();
     for (k, ok) in [
         (0u8, !mats.is_empty()),
         (1, !shades.is_empty()),
         (2, !uses.is_empty()),
         (3, place.is_some()),
+        (4, !spatial.is_empty()),
     ] {
         if ok {
             kinds.push(k);
@@ -480,10 +503,17 @@ fn target_remark(
             pick(rng, &use_b),
             &[("use", pick(rng, uses)), ("name", name)],
         ),
-        _ => fill(
+        3 => fill(
             pick(rng, &place_b),
             &[("f", pick(rng, place.unwrap_or(&[])))],
         ),
+        _ => {
+            let p = &spatial[rng.random_range(0..spatial.len())];
+            for x in p.objects() {
+                grounding.push(grounded_at_end(ctx, x, Role::Reference));
+            }
+            fill(pick(rng, &place_b), &[("f", &p.phrase(rng))])
+        }
     })
 }
 

@@ -1,0 +1,194 @@
+//! Spatial relations people use to single out a thing in a room, read from the scene's boxes:
+//! in front of a piece standing against a wall ("the rug in front of the sofa", "at the foot
+//! of the bed"), under a window, between two pieces, and a point between two pieces or in a
+//! doorway. Each test is strict, so a relation said is true of the scene.
+
+use glam::Vec2;
+use vlnverse_env::{Door, Room, Scene, SceneObject, SemanticClass as C};
+
+use super::path::{footprint, rect_distance};
+
+/// The nearest edge of `room`'s polygon to the rectangle `[lo, hi]`: its distance and the
+/// unit normal pointing from the edge into the room, towards the rectangle.
+pub(crate) fn nearest_wall(room: &Room, lo: Vec2, hi: Vec2) -> Option<(f32, Vec2)> {
+    let n = room.polygon.len();
+    if n < 3 {
+        return None;
+    }
+    let c = (lo + hi) * 0.5;
+    let mut best: Option<(f32, Vec2)> = None;
+    for i in 0..n {
+        let a = Vec2::from(room.polygon[i]);
+        let b = Vec2::from(room.polygon[(i + 1) % n]);
+        let ab = b - a;
+        let Some(along) = ab.try_normalize() else {
+            continue;
+        };
+        let t = ((c - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0);
+        let q = a + ab * t;
+        // The edge's normal, turned to face the rectangle's centre.
+        let mut normal = along.perp();
+        if normal.dot(c - q) < 0.0 {
+            normal = -normal;
+        }
+        let d = rect_distance(q, lo, hi);
+        if best.is_none_or(|(bd, _)| d < bd) {
+            best = Some((d, normal));
+        }
+    }
+    best
+}
+
+/// Half the extent of the rectangle `[lo, hi]` along the unit direction `dir`.
+fn half_extent(lo: Vec2, hi: Vec2, dir: Vec2) -> f32 {
+    let h = (hi - lo) * 0.5;
+    h.x * dir.x.abs() + h.y * dir.y.abs()
+}
+
+/// Whether `o` stands in front of `x`: `x` has its back to a wall of its room, and `o` is in
+/// the same room, out from `x` into the room, within a metre of it and no wider off its sides
+/// than `x` itself. For a bed (headboard to the wall) this is the foot of the bed.
+pub(crate) fn in_front_of(scene: &Scene, o: &SceneObject, x: &SceneObject) -> bool {
+    if o.room.is_none() || o.room != x.room || o.id == x.id {
+        return false;
+    }
+    let Some(room) = x.room.and_then(|r| scene.room(r)) else {
+        return false;
+    };
+    let (xlo, xhi) = footprint(x);
+    let Some((wall, n)) = nearest_wall(room, xlo, xhi) else {
+        return false;
+    };
+    if wall > 0.25 {
+        return false;
+    }
+    let (olo, ohi) = footprint(o);
+    let d = (olo + ohi) * 0.5 - (xlo + xhi) * 0.5;
+    let side = n.perp();
+    let gap = d.dot(n) - half_extent(xlo, xhi, n) - half_extent(olo, ohi, n);
+    let off = d.dot(side).abs();
+    (-0.05..=1.0).contains(&gap) && off <= half_extent(xlo, xhi, side).max(0.3)
+}
+
+/// The window `o` stands under: `o` is against a wall, its top below the window's sill, and
+/// the window's centre within 30 cm of its footprint, seen from above.
+pub(crate) fn window_above<'s>(scene: &'s Scene, o: &SceneObject) -> Option<&'s SceneObject> {
+    let room = o.room.and_then(|r| scene.room(r))?;
+    let (lo, hi) = footprint(o);
+    if nearest_wall(room, lo, hi)?.0 > 0.3 {
+        return None;
+    }
+    scene
+        .objects
+        .iter()
+        .filter(|w| w.class == C::Window && o.bbox.max[1] <= w.bbox.min[1] + 0.02)
+        .find(|w| {
+            let (wlo, whi) = footprint(w);
+            rect_distance((wlo + whi) * 0.5, lo, hi) < 0.3
+        })
+}
+
+/// Whether the floor point `p` lies between the footprints of `x` and `y`: on the line joining
+/// their centres, in its middle half, within 40 cm of it, the two no more than 3.5 m apart
+/// and `p` clear of both.
+pub(crate) fn point_between(p: Vec2, x: &SceneObject, y: &SceneObject) -> bool {
+    let (xlo, xhi) = footprint(x);
+    let (ylo, yhi) = footprint(y);
+    let (a, b) = ((xlo + xhi) * 0.5, (ylo + yhi) * 0.5);
+    let ab = b - a;
+    let len2 = ab.length_squared();
+    if !(0.25..=3.5 * 3.5).contains(&len2) {
+        return false;
+    }
+    let t = (p - a).dot(ab) / len2;
+    let off = (a + ab * t).distance(p);
+    (0.25..=0.75).contains(&t)
+        && off < 0.4
+        && rect_distance(p, xlo, xhi) > 0.05
+        && rect_distance(p, ylo, yhi) > 0.05
+}
+
+/// Whether `o` stands between `x` and `y` (its centre, [`point_between`]), all in one room.
+pub(crate) fn between(o: &SceneObject, x: &SceneObject, y: &SceneObject) -> bool {
+    let (lo, hi) = footprint(o);
+    o.room.is_some() && o.room == x.room && o.room == y.room && point_between((lo + hi) * 0.5, x, y)
+}
+
+/// The doorway whose opening the floor point `p` stands in (within 45 cm of its centre).
+pub(crate) fn doorway_at(scene: &Scene, p: Vec2) -> Option<&Door> {
+    scene
+        .doors
+        .iter()
+        .filter(|d| !d.open_plan && !d.is_closed())
+        .find(|d| Vec2::new(d.position[0], d.position[2]).distance(p) < 0.45)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use vlnverse_env::{Aabb, Pose, RoomType};
+
+    fn object(id: u32, class: C, lo: [f32; 3], hi: [f32; 3]) -> SceneObject {
+        let mut o = SceneObject::from_parts(id, class, Pose::IDENTITY, Vec::new());
+        o.bbox = Aabb { min: lo, max: hi };
+        o.room = Some(0);
+        o
+    }
+
+    fn room() -> Room {
+        Room {
+            id: 0,
+            kind: RoomType::Bedroom,
+            name: "bedroom_0".into(),
+            polygon: vec![[0.0, 0.0], [4.0, 0.0], [4.0, 4.0], [0.0, 4.0]],
+        }
+    }
+
+    fn scene(objects: Vec<SceneObject>) -> Scene {
+        // Through JSON, so fields the format gains later keep their defaults.
+        serde_json::from_value(serde_json::json!({
+            "format_version": 1, "id": "t", "source": "test", "seed": null,
+            "floor_height": 0.0, "rooms": [room()], "doors": [], "objects": objects,
+        }))
+        .unwrap()
+    }
+
+    #[test]
+    fn a_bench_at_the_foot_of_a_bed_against_the_wall_is_in_front_of_it() {
+        // Bed with its head to the wall z = 0, foot at z = 2; a bench just past the foot.
+        let bed = object(1, C::Bed, [1.0, 0.0, 0.0], [2.6, 0.6, 2.0]);
+        let bench = object(2, C::Bench, [1.2, 0.0, 2.2], [2.4, 0.45, 2.6]);
+        let far = object(3, C::Bench, [1.2, 0.0, 3.4], [2.4, 0.45, 3.8]);
+        let aside = object(4, C::Chair, [3.2, 0.0, 0.5], [3.7, 0.9, 1.0]);
+        let s = scene(vec![bed.clone(), bench.clone(), far.clone(), aside.clone()]);
+        assert!(in_front_of(&s, &bench, &bed));
+        assert!(!in_front_of(&s, &far, &bed), "more than a metre away");
+        assert!(!in_front_of(&s, &aside, &bed), "off its side");
+        assert!(
+            !in_front_of(&s, &bed, &bench),
+            "the bench is not against a wall"
+        );
+    }
+
+    #[test]
+    fn a_radiator_below_a_window_is_under_it_and_a_tall_wardrobe_is_not() {
+        let window = object(1, C::Window, [1.0, 0.9, -0.1], [2.2, 2.1, 0.1]);
+        let radiator = object(2, C::Radiator, [1.1, 0.1, 0.0], [2.0, 0.7, 0.12]);
+        let wardrobe = object(3, C::Wardrobe, [1.0, 0.0, 0.0], [2.0, 2.0, 0.6]);
+        let s = scene(vec![window.clone(), radiator.clone(), wardrobe.clone()]);
+        assert_eq!(window_above(&s, &radiator).map(|w| w.id), Some(1));
+        assert!(window_above(&s, &wardrobe).is_none());
+    }
+
+    #[test]
+    fn between_needs_the_middle_of_the_line_joining_the_two() {
+        let a = object(1, C::Nightstand, [0.0, 0.0, 0.0], [0.5, 0.5, 0.5]);
+        let b = object(2, C::Dresser, [2.5, 0.0, 0.0], [3.0, 0.8, 0.5]);
+        let mid = object(3, C::PottedPlant, [1.3, 0.0, 0.1], [1.7, 0.8, 0.4]);
+        let end = object(4, C::PottedPlant, [2.0, 0.0, 0.1], [2.3, 0.8, 0.4]);
+        let off = object(5, C::PottedPlant, [1.3, 0.0, 1.1], [1.7, 0.8, 1.4]);
+        assert!(between(&mid, &a, &b));
+        assert!(!between(&end, &a, &b));
+        assert!(!between(&off, &a, &b));
+    }
+}
