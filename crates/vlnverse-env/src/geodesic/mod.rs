@@ -8,6 +8,8 @@
 //! - [`DistanceField`]: the same search without a target, from one goal to every cell; a query
 //!   is then O(1).
 //! - [`GeodesicCache`]: distance fields keyed by goal cell (LRU), for many queries.
+//! - [`MultiLevelMap`]: the same across the levels of a home on several floors, the stairs
+//!   joining the levels' navigable maps as portals.
 //!
 //! Traversable cells are the free cells; moves never cut a corner between two blocked cells, so
 //! reachability is 4-connectivity (as the navigable map's island selection).
@@ -21,10 +23,12 @@
 pub mod bench;
 mod cache;
 mod field;
+mod levels;
 pub(crate) mod search;
 
 pub use cache::GeodesicCache;
 pub use field::DistanceField;
+pub use levels::{LevelPoint, LevelRoute, MultiLevelMap, Portal, RouteLeg};
 
 use crate::error::{EnvError, Result};
 use crate::occupancy::GridMap;

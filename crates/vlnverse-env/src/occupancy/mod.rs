@@ -37,7 +37,7 @@ mod ros;
 pub mod synthetic;
 
 use crate::error::{EnvError, Result};
-use crate::scene::Scene;
+use crate::scene::{LevelId, Scene};
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
 
@@ -492,8 +492,12 @@ pub struct OccupancyMaps {
     pub navigable: GridMap,
 }
 
-/// Build the raw occupancy map and the navigable map of a scene.
+/// Build the raw occupancy map and the navigable map of a scene. For a scene on several levels
+/// these are the maps of level 0 (the ground floor); [`build_level_maps`] gives every level's.
 pub fn build_maps(scene: &Scene, cfg: &OccupancyConfig) -> Result<OccupancyMaps> {
+    if scene.is_multi_level() {
+        return build_one_level(scene, cfg, 0);
+    }
     cfg.validate()?;
     let (occupancy, covered) = raster::rasterize_scene(scene, cfg)?;
     let mut navigable = dilate(&occupancy, cfg.agent_radius);
@@ -504,6 +508,40 @@ pub fn build_maps(scene: &Scene, cfg: &OccupancyConfig) -> Result<OccupancyMaps>
         height = occupancy.height,
         navigable_cells = kept,
         "occupancy maps built"
+    );
+    Ok(OccupancyMaps {
+        occupancy,
+        navigable,
+    })
+}
+
+/// The maps of every level of a scene, the lowest first: for a single-storey scene exactly
+/// `vec![build_maps(scene, cfg)?]`. On a level the height band starts at that level's floor,
+/// only the floors and ceilings of that level count (a floor by the height of its top, a ceiling
+/// by the height below its underside), and the footprint of every flight of stairs reaching
+/// the level is occupied: a solid block on the lower level, the stairwell on the upper one. The
+/// stairs join the levels as portals ([`crate::geodesic::MultiLevelMap`]).
+pub fn build_level_maps(scene: &Scene, cfg: &OccupancyConfig) -> Result<Vec<OccupancyMaps>> {
+    if !scene.is_multi_level() {
+        return Ok(vec![build_maps(scene, cfg)?]);
+    }
+    (0..scene.level_count() as LevelId)
+        .map(|l| build_one_level(scene, cfg, l))
+        .collect()
+}
+
+fn build_one_level(scene: &Scene, cfg: &OccupancyConfig, level: LevelId) -> Result<OccupancyMaps> {
+    cfg.validate()?;
+    let (occupancy, covered) = raster::rasterize_level(scene, cfg, level)?;
+    let mut navigable = dilate(&occupancy, cfg.agent_radius);
+    let kept = keep_best_island(&mut navigable, covered.as_deref());
+    tracing::debug!(
+        scene = %scene.id,
+        level,
+        width = occupancy.width,
+        height = occupancy.height,
+        navigable_cells = kept,
+        "level maps built"
     );
     Ok(OccupancyMaps {
         occupancy,

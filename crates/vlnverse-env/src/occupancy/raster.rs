@@ -3,7 +3,7 @@
 use super::{CellState, GridMap, OccupancyConfig};
 use crate::error::{EnvError, Result};
 use crate::geometry;
-use crate::scene::{Pose, Scene, Shape};
+use crate::scene::{LevelId, Pose, Scene, SceneObject, Shape};
 use crate::vocab::SemanticClass;
 use glam::{Affine3A, DVec2, Quat, Vec2, Vec3};
 
@@ -423,20 +423,76 @@ pub(super) fn rasterize_scene(
     scene: &Scene,
     cfg: &OccupancyConfig,
 ) -> Result<(GridMap, Option<Vec<bool>>)> {
-    if !scene.floor_height.is_finite() {
+    rasterize(scene, cfg, None)
+}
+
+/// Raw occupancy map of one level of a multi-level scene (see `build_level_maps`): the band
+/// from that level's floor, only the floors and ceilings of that level, and the footprints of
+/// the stairs that reach it occupied.
+pub(super) fn rasterize_level(
+    scene: &Scene,
+    cfg: &OccupancyConfig,
+    level: LevelId,
+) -> Result<(GridMap, Option<Vec<bool>>)> {
+    rasterize(scene, cfg, Some(level))
+}
+
+/// Whether a floor or ceiling object belongs to `level` (always for single-level maps): a floor
+/// by the height of its top, a ceiling by the height just below its underside.
+fn on_level(scene: &Scene, o: &SceneObject, level: Option<LevelId>) -> bool {
+    let Some(level) = level else {
+        return true;
+    };
+    let y = if o.class == SemanticClass::Ceiling {
+        o.bbox.min[1] - 0.5
+    } else {
+        o.bbox.max[1]
+    };
+    scene.level_at_height(y) == level
+}
+
+fn rasterize(
+    scene: &Scene,
+    cfg: &OccupancyConfig,
+    level: Option<LevelId>,
+) -> Result<(GridMap, Option<Vec<bool>>)> {
+    let floor_height = match level {
+        None => scene.floor_height,
+        Some(l) => scene.level_height(l).ok_or_else(|| {
+            EnvError::invalid("level", l, format!("scene {} has no such level", scene.id))
+        })?,
+    };
+    if !floor_height.is_finite() {
         return Err(EnvError::InvalidScene {
             scene: scene.id.clone(),
-            message: format!("floor_height = {} is not finite", scene.floor_height),
+            message: format!("floor_height = {floor_height} is not finite"),
         });
     }
     let band = Band {
-        lo: scene.floor_height + cfg.floor_clearance,
-        hi: scene.floor_height + cfg.agent_height,
+        lo: floor_height + cfg.floor_clearance,
+        hi: floor_height + cfg.agent_height,
     };
     let mut obstacles = Footprints::new();
     let mut floors = Footprints::new();
     let mut ceilings = Footprints::new();
+    if let Some(l) = level {
+        // A flight is a solid block on its lower level and a hole in the floor of its upper one.
+        for s in scene
+            .storeys
+            .stairs
+            .iter()
+            .filter(|s| s.levels.contains(&l))
+        {
+            let pts: Vec<Vec2> = s.footprint.iter().map(|p| Vec2::new(p[0], p[1])).collect();
+            obstacles.push_poly(&pts);
+        }
+    }
     for o in &scene.objects {
+        if matches!(o.class, SemanticClass::Ceiling | SemanticClass::Floor)
+            && !on_level(scene, o, level)
+        {
+            continue;
+        }
         match o.class {
             SemanticClass::Ceiling => {
                 for part in &o.parts {

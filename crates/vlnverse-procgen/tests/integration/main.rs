@@ -7,4 +7,5 @@ mod doors;
 mod homes;
 mod look;
 mod navigable;
+mod storeys;
 mod variants;
