@@ -31,6 +31,8 @@ pub struct SceneContext {
     pub navigable: Arc<GridMap>,
     graph: OnceLock<Arc<SceneGraph>>,
     mesh: OnceLock<Arc<SceneMesh>>,
+    /// The scene's folder, when loaded from one (the renderer may find it prepared there).
+    dir: Option<PathBuf>,
     fields: Mutex<BTreeMap<(u32, u32), Arc<DistanceField>>>,
 }
 
@@ -42,6 +44,7 @@ impl SceneContext {
             navigable: Arc::new(navigable),
             graph: OnceLock::new(),
             mesh: OnceLock::new(),
+            dir: None,
             fields: Mutex::new(BTreeMap::new()),
         }
     }
@@ -58,7 +61,10 @@ impl SceneContext {
         }
         let scene = vlnverse_env::io::load_scene(&dir)?;
         let navigable = GridMap::load_ros(navigable_map_path(dataset, scene_id))?;
-        Ok(SceneContext::new(scene, navigable))
+        Ok(SceneContext {
+            dir: Some(dir),
+            ..SceneContext::new(scene, navigable)
+        })
     }
 
     /// The scene graph, built on first use (only dialogue episodes need it).
@@ -69,12 +75,20 @@ impl SceneContext {
     }
 
     /// The scene prepared for rendering, built on first use and shared by every environment
-    /// that shows this scene (two asking at once may both build it; one is kept).
+    /// that shows this scene (two asking at once may both build it; one is kept). A scene
+    /// loaded from its folder names the rasteriser's prepared file there
+    /// ([`vlnverse_sensors::raster::PREPARED_FILE`]), so the renderer loads what generation
+    /// prepared instead of preparing it again.
     pub fn mesh(&self) -> Result<Arc<SceneMesh>> {
         if let Some(m) = self.mesh.get() {
             return Ok(m.clone());
         }
-        let m = Arc::new(SceneMesh::new(&self.scene)?);
+        let mut m = SceneMesh::new(&self.scene)?;
+        m.prepared_file = self
+            .dir
+            .as_ref()
+            .map(|d| d.join(vlnverse_sensors::raster::PREPARED_FILE));
+        let m = Arc::new(m);
         Ok(self.mesh.get_or_init(|| m).clone())
     }
 

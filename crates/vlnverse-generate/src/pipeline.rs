@@ -31,6 +31,8 @@ use vlnverse_env::io::{is_complete_scene_dir, list_scene_dirs, load_scene, remov
 use vlnverse_env::occupancy::{build_maps, OccupancyConfig};
 use vlnverse_env::scene_graph::SceneGraph;
 use vlnverse_env::{Scene, SceneSource};
+use vlnverse_sensors::raster::PREPARED_FILE;
+use vlnverse_sensors::RasterScene;
 
 use super::episodes::{ScenePart, SceneTaskContext, Stage, StageTimes, Unfit};
 use super::presets::GenerateConfig;
@@ -454,8 +456,18 @@ fn generate_scene(
     })?;
     let scenes_dir = opts.out.join("scenes");
     let bundle = vlnverse_env::io::SceneBundle { scene, maps, graph };
-    if !is_complete_scene_dir(scenes_dir.join(&bundle.scene.id)) {
+    let scene_dir = scenes_dir.join(&bundle.scene.id);
+    if !is_complete_scene_dir(&scene_dir) {
         times.time(Stage::Writing, || bundle.write(&scenes_dir))?;
+    }
+    // The rasteriser's prepared scene beside it, so loading the home prepares nothing (a
+    // folder written before there was one gets it too).
+    if !scene_dir.join(PREPARED_FILE).is_file() {
+        times.time(Stage::Writing, || {
+            RasterScene::write_prepared_scene(&bundle.scene, &scene_dir).map_err(|e| {
+                DataError::invalid("scene", &bundle.scene.id, format!("cannot prepare: {e}"))
+            })
+        })?;
     }
     let (scene, maps, graph) = (&bundle.scene, &bundle.maps, &bundle.graph);
     if todo.is_empty() {

@@ -441,14 +441,28 @@ impl RasterScene {
     /// textures and which objects are closed, keyed to this scene's mesh and the surface
     /// textures (written to a temporary file first, then renamed).
     pub fn write_prepared(&self, file: &Path) -> Result<()> {
-        let bytes = prepared::encode(&self.draw, &self.closed_flags(), &self.mesh, &self.texels);
-        let tmp = file.with_extension("bin.tmp");
-        let err = |e: std::io::Error| SensorError::Write {
+        let err = |message: String| SensorError::Write {
             path: file.to_path_buf(),
-            message: e.to_string(),
+            message,
         };
+        let bytes = prepared::encode(&self.draw, &self.closed_flags(), &self.mesh, &self.texels)
+            .map_err(err)?;
+        let tmp = file.with_extension("bin.tmp");
+        let err = |e: std::io::Error| err(e.to_string());
         std::fs::write(&tmp, &bytes).map_err(err)?;
         std::fs::rename(&tmp, file).map_err(err)
+    }
+
+    /// Prepare `scene` (its mesh with the light it was baked with) and write it to
+    /// [`PREPARED_FILE`] in `scene_dir`, the scene's folder; returns the file. Generation
+    /// calls it after writing the folder, so that loading the home costs no preparation.
+    pub fn write_prepared_scene(
+        scene: &vlnverse_env::Scene,
+        scene_dir: &Path,
+    ) -> Result<std::path::PathBuf> {
+        let file = scene_dir.join(PREPARED_FILE);
+        RasterScene::new(Arc::new(SceneMesh::new(scene)?)).write_prepared(&file)?;
+        Ok(file)
     }
 
     fn closed_flags(&self) -> Vec<bool> {
@@ -1741,8 +1755,8 @@ mod tests {
         let mut flipped = good.clone();
         let mid = flipped.len() / 2;
         flipped[mid] ^= 0x10;
-        assert!(refused(&flipped).contains("checksum"));
-        assert!(refused(&good[..good.len() - 100]).contains("checksum"));
+        assert!(refused(&flipped).contains("damaged"));
+        assert!(refused(&good[..good.len() - 100]).contains("damaged"));
         assert!(refused(b"not a prepared scene at all").contains("VLNRAST"));
         let mut old = good.clone();
         old[8..12].copy_from_slice(&(PREPARED_VERSION + 1).to_le_bytes());
