@@ -759,6 +759,48 @@ impl Scene {
             .find(|r| self.room_level(r.id) == Some(level) && r.contains(x, z))
     }
 
+    /// The part of the scene on one level, as a single-storey scene with that level's floor
+    /// height: its rooms, the doors between them, the objects in them, the objects in no room
+    /// (walls, frames) whose bottom lies between this level's floor and the next one's, and the
+    /// flights of stairs that reach it. A single-storey scene's level 0 is the scene itself;
+    /// None for a level the scene does not have.
+    pub fn level_view(&self, level: LevelId) -> Option<Scene> {
+        let floor = self.level_height(level)?;
+        if !self.is_multi_level() {
+            return Some(self.clone());
+        }
+        let next = self.level_height(level + 1).unwrap_or(f32::INFINITY);
+        let on = |r: RoomId| self.room_level(r) == Some(level);
+        let flights: Vec<ObjectId> = self
+            .storeys
+            .stairs
+            .iter()
+            .filter(|s| s.levels.contains(&level))
+            .filter_map(|s| s.object)
+            .collect();
+        let keep = |o: &SceneObject| match o.room {
+            _ if flights.contains(&o.id) => true,
+            Some(r) => on(r),
+            None => o.bbox.min[1] >= floor - 0.1 && o.bbox.min[1] < next - 0.1,
+        };
+        Some(Scene {
+            format_version: self.format_version,
+            id: self.id.clone(),
+            source: self.source.clone(),
+            seed: self.seed,
+            floor_height: floor,
+            rooms: self.rooms.iter().filter(|r| on(r.id)).cloned().collect(),
+            doors: self
+                .doors
+                .iter()
+                .filter(|d| d.rooms.iter().all(|&r| on(r)))
+                .cloned()
+                .collect(),
+            objects: self.objects.iter().filter(|o| keep(o)).cloned().collect(),
+            storeys: Storeys::default(),
+        })
+    }
+
     /// Check the levels and stairs: levels numbered from 0 in rising floor height, level 0 at
     /// `floor_height`, every room on exactly one level, every stair between two existing levels
     /// (lower first) with positive steps, rise, run and width and finite points. Single-storey

@@ -697,6 +697,26 @@ pub fn render_topdown(
     Topdown { image: img, frame }
 }
 
+/// Render a top-down picture of one level of a scene ([`Scene::level_view`]: its rooms, doors
+/// and objects, the stairs reaching it) with that level's navigable map; the title gets the
+/// level's name. For a single-storey scene level 0 is [`render_topdown`]; None for a level the
+/// scene does not have.
+pub fn render_topdown_level(
+    scene: &Scene,
+    level: crate::scene::LevelId,
+    navigable: Option<&GridMap>,
+    opts: &TopdownOptions,
+) -> Option<Topdown> {
+    let view = scene.level_view(level)?;
+    let mut opts = opts.clone();
+    if let Some(l) = scene.storeys.levels.get(level as usize) {
+        if !opts.title.is_empty() {
+            opts.title = format!("{} - {}", opts.title, l.name);
+        }
+    }
+    Some(render_topdown(&view, navigable, &opts))
+}
+
 /// The floor extent `(min, max)` of rooms and objects (ceilings excluded, they cover
 /// everything anyway); a unit square for an empty scene.
 fn scene_extent(scene: &Scene) -> (Vec2, Vec2) {

@@ -62,7 +62,15 @@ pub fn write_scene_bundle(
     occupancy: &OccupancyConfig,
 ) -> Result<(SceneBundle, PathBuf)> {
     let bundle = scene_bundle(scene, occupancy)?;
-    let dir = bundle.write(out_dir)?;
+    let dir = if bundle.scene.is_multi_level() {
+        // The upper floors' ROS maps join the folder in the same atomic write.
+        let upper = crate::occupancy::upper_level_files(&bundle.scene, occupancy)?;
+        let mut files: Vec<(&str, Vec<u8>)> = bundle.companion_files();
+        files.extend(upper.iter().map(|(n, b)| (n.as_str(), b.clone())));
+        write_scene_dir(out_dir, &bundle.scene, &files)?
+    } else {
+        bundle.write(out_dir)?
+    };
     Ok((bundle, dir))
 }
 

@@ -530,6 +530,29 @@ pub fn build_level_maps(scene: &Scene, cfg: &OccupancyConfig) -> Result<Vec<Occu
         .collect()
 }
 
+/// The ROS map files of the levels above the ground floor of a multi-level scene:
+/// `occupancy_level<k>.{pgm,yaml}` and `navigable_level<k>.{pgm,yaml}` for `k >= 1` (the
+/// ground floor's are the scene folder's `occupancy.*` / `navigable.*`); none for a
+/// single-storey scene.
+pub fn upper_level_files(scene: &Scene, cfg: &OccupancyConfig) -> Result<Vec<(String, Vec<u8>)>> {
+    let mut out = Vec::new();
+    if !scene.is_multi_level() {
+        return Ok(out);
+    }
+    for level in 1..scene.level_count() as LevelId {
+        let maps = build_one_level(scene, cfg, level)?;
+        for (stem, map) in [("occupancy", &maps.occupancy), ("navigable", &maps.navigable)] {
+            let pgm = format!("{stem}_level{level}.pgm");
+            out.push((
+                format!("{stem}_level{level}.yaml"),
+                map.to_yaml(&pgm).into_bytes(),
+            ));
+            out.push((pgm, map.to_pgm_bytes()));
+        }
+    }
+    Ok(out)
+}
+
 fn build_one_level(scene: &Scene, cfg: &OccupancyConfig, level: LevelId) -> Result<OccupancyMaps> {
     cfg.validate()?;
     let (occupancy, covered) = raster::rasterize_level(scene, cfg, level)?;

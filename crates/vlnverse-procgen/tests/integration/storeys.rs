@@ -204,3 +204,52 @@ fn floors_config_is_range_checked_with_the_field_named() {
         .to_string();
     assert!(e.contains("stairs"), "{e}");
 }
+
+#[test]
+fn a_two_storey_folder_holds_ros_maps_and_pictures_per_floor() {
+    let g = two_storey(2, 3);
+    let s = (0..g.len())
+        .map(|i| g.scene(i).unwrap())
+        .find(|s| s.is_multi_level())
+        .unwrap();
+    let cfg = OccupancyConfig::default();
+    let tmp = tempfile::tempdir().unwrap();
+    let (_, dir) = vlnverse_env::io::write_scene_bundle(tmp.path(), s.clone(), &cfg).unwrap();
+    assert!(vlnverse_env::io::is_complete_scene_dir(&dir));
+    let levels = build_level_maps(&s, &cfg).unwrap();
+    let ground = vlnverse_env::occupancy::GridMap::load_ros(dir.join("navigable.yaml")).unwrap();
+    assert_eq!(ground, levels[0].navigable);
+    for stem in ["occupancy", "navigable"] {
+        let m = vlnverse_env::occupancy::GridMap::load_ros(dir.join(format!("{stem}_level1.yaml")))
+            .unwrap();
+        let want = if stem == "navigable" {
+            &levels[1].navigable
+        } else {
+            &levels[1].occupancy
+        };
+        assert_eq!(&m, want, "{stem}_level1");
+    }
+    assert!(!dir.join("navigable_level2.yaml").exists());
+    let back = vlnverse_env::io::load_scene(&dir).unwrap();
+    assert_eq!(back.storeys, s.storeys);
+
+    // Each floor's picture shows that floor's rooms: the views split the rooms.
+    let views: Vec<Scene> = (0..2).map(|l| s.level_view(l).unwrap()).collect();
+    assert_eq!(views[0].rooms.len() + views[1].rooms.len(), s.rooms.len());
+    assert!(views
+        .iter()
+        .all(|v| v.objects.iter().any(|o| o.class == C::Stairs)));
+    assert!(views[1].objects.iter().any(|o| o.class == C::Railing));
+    assert!(!views[0].objects.iter().any(|o| o.class == C::Railing));
+    assert!(s.level_view(2).is_none());
+    let opts = vlnverse_env::topdown::TopdownOptions {
+        title: s.id.clone(),
+        ..Default::default()
+    };
+    for (l, m) in levels.iter().enumerate() {
+        let t =
+            vlnverse_env::topdown::render_topdown_level(&s, l as u32, Some(&m.navigable), &opts)
+                .unwrap();
+        assert!(t.image.width() > 100 && t.image.height() > 100);
+    }
+}
