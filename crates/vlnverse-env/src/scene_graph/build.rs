@@ -20,13 +20,17 @@ impl SceneGraph {
     pub fn build_with(scene: &Scene, cfg: &SceneGraphConfig) -> SceneGraph {
         let mut nodes = Vec::with_capacity(scene.rooms.len() + scene.objects.len());
         let mut edges = Vec::new();
+        let multi = scene.is_multi_level();
         for room in &scene.rooms {
             let c = room.center();
+            let level = scene.room_level(room.id).unwrap_or(0);
+            let y = scene.level_height(level).unwrap_or(scene.floor_height);
             nodes.push(Node::Room(RoomNode {
                 room: room.id,
                 kind: room.kind,
                 name: room.name.clone(),
-                position: [c[0], scene.floor_height, c[1]],
+                position: [c[0], y, c[1]],
+                level: multi.then_some(level),
             }));
         }
 
@@ -35,10 +39,10 @@ impl SceneGraph {
         let mut is_node: BTreeSet<ObjectId> = BTreeSet::new();
         for obj in scene.items() {
             let center = obj.bbox.center();
-            let room = obj
-                .room
-                .filter(|&r| scene.room(r).is_some())
-                .or_else(|| scene.room_at(center.x, center.z).map(|r| r.id));
+            let room = obj.room.filter(|&r| scene.room(r).is_some()).or_else(|| {
+                let level = scene.level_at_height(obj.bbox.min[1]);
+                scene.room_at_level(level, center.x, center.z).map(|r| r.id)
+            });
             let door = scene
                 .doors
                 .iter()

@@ -161,8 +161,9 @@ impl SceneGraph {
 /// the previous room.
 pub fn rooms_along_path(scene: &Scene, path: &[Vec3]) -> Vec<(usize, RoomId)> {
     let mut out: Vec<(usize, RoomId)> = Vec::new();
-    let mut visit = |i: usize, p: Vec2| {
-        if let Some(r) = scene.room_at(p.x, p.y) {
+    // The level of each point from its height (always level 0 in a single-storey scene).
+    let mut visit = |i: usize, p: Vec2, y: f32| {
+        if let Some(r) = scene.room_at_level(scene.level_at_height(y), p.x, p.y) {
             if out.last().is_none_or(|&(_, last)| last != r.id) {
                 out.push((i, r.id));
             }
@@ -172,11 +173,12 @@ pub fn rooms_along_path(scene: &Scene, path: &[Vec3]) -> Vec<(usize, RoomId)> {
         let (a, b) = (floor(w[0]), floor(w[1]));
         let steps = ((b - a).length() / ROOM_SAMPLE_STEP).ceil().max(1.0) as usize;
         for k in 0..steps {
-            visit(i, a.lerp(b, k as f32 / steps as f32));
+            let t = k as f32 / steps as f32;
+            visit(i, a.lerp(b, t), w[0].y + (w[1].y - w[0].y) * t);
         }
     }
     if let Some(&p) = path.last() {
-        visit(path.len() - 1, floor(p));
+        visit(path.len() - 1, floor(p), p.y);
     }
     out
 }

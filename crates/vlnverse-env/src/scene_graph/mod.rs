@@ -41,7 +41,7 @@ pub use spatial::{
     yaw_from_direction, Side,
 };
 
-use crate::scene::{Aabb, DoorState, ObjectId, RoomId};
+use crate::scene::{Aabb, DoorState, LevelId, ObjectId, RoomId};
 use crate::vocab::{RoomType, SemanticClass};
 use petgraph::graph::{DiGraph, NodeIndex};
 use serde::{Deserialize, Serialize};
@@ -129,8 +129,11 @@ pub struct RoomNode {
     pub kind: RoomType,
     /// Unique name, e.g. `bedroom_2`.
     pub name: String,
-    /// Centroid of the floor polygon at floor height.
+    /// Centroid of the floor polygon at the height of the room's floor.
     pub position: [f32; 3],
+    /// The level (storey) the room is on, in a home on more than one floor; absent otherwise.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub level: Option<LevelId>,
 }
 
 /// An object node (furniture, small objects; never structure).

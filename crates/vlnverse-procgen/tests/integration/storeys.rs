@@ -253,3 +253,50 @@ fn a_two_storey_folder_holds_ros_maps_and_pictures_per_floor() {
         assert!(t.image.width() > 100 && t.image.height() > 100);
     }
 }
+
+#[test]
+fn the_scene_graph_knows_the_floors() {
+    use vlnverse_env::scene_graph::{rooms_along_path, Node, SceneGraph};
+    let g = two_storey(2, 11);
+    let s = (0..g.len())
+        .map(|i| g.scene(i).unwrap())
+        .find(|s| s.is_multi_level())
+        .unwrap();
+    let graph = SceneGraph::build(&s);
+    for n in graph.nodes() {
+        match n {
+            Node::Room(r) => {
+                let level = s.room_level(r.room).unwrap();
+                assert_eq!(r.level, Some(level));
+                assert_eq!(r.position[1], s.level_height(level).unwrap());
+            }
+            Node::Object(o) => {
+                // An object's room is on the level it stands on.
+                if let Some(room) = o.room {
+                    let floor = s.level_height(s.room_level(room).unwrap()).unwrap();
+                    assert!(o.bbox.min[1] >= floor - 0.06, "{}", o.name);
+                }
+            }
+        }
+    }
+    // A route up the stairs passes the hall below, then the landing above.
+    let st = &s.storeys.stairs[0];
+    let path = [
+        glam::Vec3::from_array(st.foot),
+        glam::Vec3::from_array(st.head),
+    ];
+    let rooms = rooms_along_path(&s, &path);
+    let levels: Vec<u32> = rooms
+        .iter()
+        .map(|&(_, r)| s.room_level(r).unwrap())
+        .collect();
+    assert_eq!(levels.first(), Some(&0));
+    assert_eq!(levels.last(), Some(&1));
+    // Single-storey graphs carry no levels.
+    let one = HomeGenerator::from_preset(Preset::Tiny)
+        .unwrap()
+        .scene(0)
+        .unwrap();
+    let json = SceneGraph::build(&one).to_json_string();
+    assert!(!json.contains("\"level\""));
+}
