@@ -541,7 +541,10 @@ pub fn upper_level_files(scene: &Scene, cfg: &OccupancyConfig) -> Result<Vec<(St
     }
     for level in 1..scene.level_count() as LevelId {
         let maps = build_one_level(scene, cfg, level)?;
-        for (stem, map) in [("occupancy", &maps.occupancy), ("navigable", &maps.navigable)] {
+        for (stem, map) in [
+            ("occupancy", &maps.occupancy),
+            ("navigable", &maps.navigable),
+        ] {
             let pgm = format!("{stem}_level{level}.pgm");
             out.push((
                 format!("{stem}_level{level}.yaml"),
