@@ -404,12 +404,119 @@ fn edge_distance(room: &Room, lo: Vec2, hi: Vec2) -> f32 {
     best
 }
 
-/// "the kitchen", now and then "the lounge" or "the big kitchen" (room names and sizes from
-/// the room's type and floor area).
+/// What people call a room from what it holds and how it sits in the home ("master bedroom",
+/// "nursery", "en suite bathroom", "walk-in closet"): the bank of such names, `None` when none
+/// holds.
+pub(crate) fn room_by_content(scene: &Scene, room: RoomId) -> Option<ph::Bank> {
+    let r = scene.room(room)?;
+    let of_kind = |k: RoomType| scene.rooms.iter().filter(move |x| x.kind == k);
+    let holds = |id: RoomId, c: C| scene.items().any(|o| o.room == Some(id) && o.class == c);
+    // The rooms the openings of `id` lead to.
+    let neighbours = |id: RoomId| -> Vec<RoomId> {
+        scene
+            .doors
+            .iter()
+            .filter(|d| d.rooms.contains(&id))
+            .map(|d| if d.rooms[0] == id { d.rooms[1] } else { d.rooms[0] })
+            .collect()
+    };
+    let off_a_bedroom = |id: RoomId| {
+        let n = neighbours(id);
+        !n.is_empty()
+            && n.iter().all(|&x| x == n[0])
+            && scene.room(n[0]).is_some_and(|x| x.kind == RoomType::Bedroom)
+    };
+    match r.kind {
+        RoomType::Bedroom if holds(room, C::Crib) => Some(ph::ROOM_NURSERY),
+        RoomType::Bedroom => {
+            let mut areas: Vec<(f32, RoomId)> =
+                of_kind(RoomType::Bedroom).map(|x| (x.area(), x.id)).collect();
+            areas.sort_by(|a, b| b.0.total_cmp(&a.0));
+            let master = areas.len() >= 2 && areas[0].0 >= 1.15 * areas[1].0;
+            if master && areas[0].1 == room {
+                Some(ph::ROOM_MASTER)
+            } else if master {
+                Some(ph::ROOM_GUEST)
+            } else {
+                None
+            }
+        }
+        RoomType::Bathroom if off_a_bedroom(room) => Some(ph::ROOM_EN_SUITE),
+        RoomType::Bathroom => {
+            let tubs = of_kind(RoomType::Bathroom)
+                .filter(|x| holds(x.id, C::Bathtub))
+                .count();
+            let baths = of_kind(RoomType::Bathroom).count();
+            (baths >= 2 && tubs == 1 && holds(room, C::Bathtub)).then_some(ph::ROOM_MAIN_BATH)
+        }
+        RoomType::Closet if off_a_bedroom(room) => Some(ph::ROOM_WALK_IN),
+        _ => None,
+    }
+}
+
+/// A name for the room from [`room_by_content`] now and then (with probability `p`), else
+/// `None`; with `keep_kind`, only a name holding the room type's own words ("master bedroom",
+/// not "nursery"), so a reader still knows the type.
+pub(crate) fn content_name(
+    scene: &Scene,
+    room: RoomId,
+    p: f64,
+    keep_kind: bool,
+    rng: &mut ChaCha8Rng,
+) -> Option<String> {
+    let bank = room_by_content(scene, room)?;
+    if !rng.random_bool(p) {
+        return None;
+    }
+    let name = pick(rng, &bank);
+    let kind = scene.room(room)?.kind.words();
+    (!keep_kind || name.contains(kind.as_str())).then(|| format!("the {name}"))
+}
+
+/// "the kitchen with the tiled floor", "the carpeted bedroom": a room by the floor one sees
+/// in it (its floor surface, as rendered); `None` for a plain floor.
+fn room_by_floor(scene: &Scene, r: &Room, rng: &mut ChaCha8Rng) -> Option<String> {
+    use vlnverse_env::material::{surface_of, Surface};
+    let floor = scene
+        .objects
+        .iter()
+        .find(|o| o.class == C::Floor && o.room == Some(r.id))?;
+    let name = r.kind.words();
+    let bank: &[&str] = match surface_of(scene, floor) {
+        Surface::Tiles => &[
+            "the {r} with the tiled floor",
+            "the {r} with the tile floor",
+            "the tiled {r}",
+        ],
+        Surface::Carpet => &[
+            "the carpeted {r}",
+            "the {r} with the carpet",
+            "the {r} with the carpeted floor",
+        ],
+        Surface::WoodFloor => &[
+            "the {r} with the wooden floor",
+            "the {r} with the wood floor",
+            "the {r} with the hardwood floor",
+        ],
+        _ => return None,
+    };
+    Some(pick(rng, bank).replace("{r}", &name))
+}
+
+/// "the kitchen", now and then "the lounge", "the big kitchen" or "the master bedroom" (room
+/// names and sizes from the room's type, floor area and what it holds).
 pub(crate) fn room_np(scene: &Scene, room: RoomId, synonym: f64, rng: &mut ChaCha8Rng) -> String {
     let Some(r) = scene.room(room) else {
         return "the room".into();
     };
+    if let Some(name) = content_name(scene, room, 0.3, false, rng) {
+        return name;
+    }
+    if rng.random_bool(0.06) {
+        if let Some(np) = room_by_floor(scene, r, rng) {
+            return np;
+        }
+    }
     let names = room_names(r.kind);
     let name = if rng.random_bool(synonym) {
         pick(rng, names)

@@ -4,7 +4,7 @@
 //! the way people do. Every object named is grounded.
 
 use super::describe::{
-    door_between, door_np, end_place, is_closed_leaf, object_np, room_np, NpOptions, Viewpoint,
+    content_name, door_between, door_np, end_place, is_closed_leaf, object_np, room_np, NpOptions, Viewpoint,
 };
 use super::lexicon::{class_names, number_word, ordinal_word, plural};
 use super::path::{
@@ -385,7 +385,10 @@ fn room_change(
     // The room entered is always named by its type, so a reader can tell where they are.
     let mut to_np = scene
         .room(to)
-        .map(|r| format!("the {}", r.kind.words()))
+        .map(|r| {
+            content_name(scene, to, 0.3, true, rng)
+                .unwrap_or_else(|| format!("the {}", r.kind.words()))
+        })
         .unwrap_or_else(|| "the next room".into());
     let same = scene.room(from).map(|r| r.kind) == scene.room(to).map(|r| r.kind);
     if same {

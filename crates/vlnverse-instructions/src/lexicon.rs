@@ -381,12 +381,33 @@ pub fn shape_words(o: &SceneObject, peers: &[&SceneObject]) -> Vec<&'static str>
         .filter(|x| x.class == o.class && x.id != o.id)
         .map(|x| vol(x))
         .collect();
+    // Against one other: "the bigger table"; against several: "the biggest table".
+    let one = others.len() == 1;
     if !others.is_empty() {
         let v = vol(o);
         if others.iter().all(|&x| v > 1.3 * x) {
-            out.extend(["large", "big", "bigger", "larger"]);
+            out.extend(["large", "big"]);
+            out.extend(if one {
+                ["bigger", "larger"]
+            } else {
+                ["biggest", "largest"]
+            });
         } else if others.iter().all(|&x| v * 1.3 < x) {
-            out.extend(["small", "little", "smaller"]);
+            out.extend(["small", "little"]);
+            out.push(if one { "smaller" } else { "smallest" });
+        }
+    }
+    // Height against the others of its class (furniture: people compare what they see).
+    let heights: Vec<f32> = peers
+        .iter()
+        .filter(|x| x.class == o.class && x.id != o.id)
+        .map(|x| x.bbox.size().y)
+        .collect();
+    if furniture && !heights.is_empty() {
+        if heights.iter().all(|&x| h > 1.25 * x) {
+            out.push(if one { "taller" } else { "tallest" });
+        } else if heights.iter().all(|&x| h * 1.25 < x) {
+            out.push(if one { "shorter" } else { "shortest" });
         }
     }
     out

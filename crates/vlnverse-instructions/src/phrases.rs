@@ -174,6 +174,12 @@ banks! {
     GO_OUTSIDE = go_outside,
     STOP_DOORWAY = stop_doorway,
     STOP_BETWEEN = stop_between,
+    ROOM_MASTER = room_master,
+    ROOM_GUEST = room_guest,
+    ROOM_NURSERY = room_nursery,
+    ROOM_EN_SUITE = room_en_suite,
+    ROOM_MAIN_BATH = room_main_bath,
+    ROOM_WALK_IN = room_walk_in,
 }
 
 /// A bank as written in the data file.

@@ -1,6 +1,6 @@
 //! The default, template-based instruction generator.
 
-use super::describe::{places, Place};
+use super::describe::{content_name, places, Place};
 use super::lexicon::{class_uses, color_phrases, material_noun, material_words, shape_words};
 use super::path::{env_side, floor_points, footprint, rect_distance, segment_headings, TurnConfig};
 use super::phrases::{self as ph, capitalize, decapitalize, fill, pick};
@@ -304,6 +304,9 @@ fn coarse_room(
     rng: &mut ChaCha8Rng,
 ) -> Option<String> {
     expr.room.map(|r| {
+        if let Some(name) = content_name(ctx.scene, r.room, 0.3, false, rng) {
+            return name;
+        }
         let area = ctx.scene.room(r.room).map_or(15.0, |x| x.area());
         let size: &[&str] = if area > 24.0 {
             &["large", "big"]
