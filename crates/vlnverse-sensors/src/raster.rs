@@ -49,12 +49,15 @@ use prepared::Prepared;
 pub use prepared::{PREPARED_FILE, PREPARED_VERSION};
 
 /// Every surface texture's grey part, encoded ([`Surface::luma_encoded`]), one after the other
-/// ([`Surface::ALL`] order).
-fn surface_luma() -> Vec<u8> {
-    Surface::ALL
-        .iter()
-        .flat_map(|s| s.luma_encoded().iter().copied())
-        .collect()
+/// ([`Surface::ALL`] order): made once and shared by every prepared scene.
+fn surface_luma() -> &'static [u8] {
+    static LUMA: OnceLock<Vec<u8>> = OnceLock::new();
+    LUMA.get_or_init(|| {
+        Surface::ALL
+            .iter()
+            .flat_map(|s| s.luma_encoded().iter().copied())
+            .collect()
+    })
 }
 
 /// Megabytes of prepared scenes kept by [`RasterScene::shared`] unless [`SCENE_CACHE_MB_VAR`]
@@ -159,8 +162,8 @@ pub struct RasterScene {
     /// Look of each triangle.
     look: Vec<Look>,
     /// Every surface texture's grey part, encoded ([`Surface::luma_encoded`]), one after the
-    /// other ([`Surface::ALL`] order); tints are in the triangle colours.
-    texels: Vec<u8>,
+    /// other ([`Surface::ALL`] order); tints are in the triangle colours. Shared.
+    texels: &'static [u8],
     /// The triangles drawn (the mesh's, with faces cut into cells merged back).
     draw: faces::DrawMesh,
     /// Every imported image ([`SceneMesh::images`]), texels packed as `r | g << 8 | b << 16`.
@@ -393,8 +396,14 @@ impl RasterScene {
     /// Prepare a mesh: the triangles to draw (cut faces merged, with their face textures),
     /// per-triangle looks, ids, and which objects are closed surfaces.
     pub fn new(mesh: Arc<SceneMesh>) -> Self {
-        let texels = surface_luma();
-        let draw = faces::build(&mesh, &texels);
+        let p = Self::prepare(&mesh);
+        Self::from_parts(mesh, p)
+    }
+
+    /// The part of the preparation that costs, and that [`PREPARED_FILE`] stores: merged faces
+    /// with their face textures, and which objects are closed surfaces.
+    fn prepare(mesh: &SceneMesh) -> Prepared {
+        let draw = faces::build(mesh, surface_luma());
         // Closed surfaces are judged on the mesh's own triangles (merged faces meet their
         // neighbours' cells at T-junctions, but bound the same solid).
         let closed = mesh
@@ -405,7 +414,7 @@ impl RasterScene {
                 closed_outward(&mesh.positions[3 * f..3 * (f + n)])
             })
             .collect();
-        Self::from_parts(mesh, Prepared { draw, closed }, texels)
+        Prepared { draw, closed }
     }
 
     /// [`RasterScene::new`], the merged faces and face textures read from a prepared file
@@ -413,14 +422,15 @@ impl RasterScene {
     /// of the time. Refused, naming the file and what is wrong, when the file is not one,
     /// is damaged, or was prepared from another mesh or with other surface textures.
     pub fn load_prepared(mesh: Arc<SceneMesh>, file: &Path) -> Result<Self> {
-        let texels = surface_luma();
         let bytes = std::fs::read(file)
             .map_err(|e| SensorError::from(vlnverse_env::EnvError::io(file, e)))?;
-        let p = prepared::decode(&bytes, &mesh, &texels).map_err(|message| SensorError::Scene {
-            scene: mesh.scene_id.clone(),
-            message: format!("prepared scene {}: {message}", file.display()),
+        let p = prepared::decode(&bytes, &mesh, surface_luma()).map_err(|message| {
+            SensorError::Scene {
+                scene: mesh.scene_id.clone(),
+                message: format!("prepared scene {}: {message}", file.display()),
+            }
         })?;
-        Ok(Self::from_parts(mesh, p, texels))
+        Ok(Self::from_parts(mesh, p))
     }
 
     /// The scene for `mesh`: loaded from [`SceneMesh::prepared_file`] when it names a file
@@ -437,16 +447,16 @@ impl RasterScene {
         Self::new(mesh)
     }
 
-    /// Write what [`RasterScene::load_prepared`] reads back: the merged faces, their face
-    /// textures and which objects are closed, keyed to this scene's mesh and the surface
-    /// textures (written to a temporary file first, then renamed).
-    pub fn write_prepared(&self, file: &Path) -> Result<()> {
+    /// Prepare `mesh` and write what [`RasterScene::load_prepared`] reads back: the merged
+    /// faces, their face textures and which objects are closed, keyed to the mesh and the
+    /// surface textures (written to a temporary file first, then renamed).
+    pub fn write_prepared(mesh: &SceneMesh, file: &Path) -> Result<()> {
         let err = |message: String| SensorError::Write {
             path: file.to_path_buf(),
             message,
         };
-        let bytes = prepared::encode(&self.draw, &self.closed_flags(), &self.mesh, &self.texels)
-            .map_err(err)?;
+        let p = Self::prepare(mesh);
+        let bytes = prepared::encode(&p.draw, &p.closed, mesh, surface_luma()).map_err(err)?;
         let tmp = file.with_extension("bin.tmp");
         let err = |e: std::io::Error| err(e.to_string());
         std::fs::write(&tmp, &bytes).map_err(err)?;
@@ -461,17 +471,14 @@ impl RasterScene {
         scene_dir: &Path,
     ) -> Result<std::path::PathBuf> {
         let file = scene_dir.join(PREPARED_FILE);
-        RasterScene::new(Arc::new(SceneMesh::new(scene)?)).write_prepared(&file)?;
+        RasterScene::write_prepared(&SceneMesh::new(scene)?, &file)?;
         Ok(file)
     }
 
-    fn closed_flags(&self) -> Vec<bool> {
-        self.objects.iter().map(|o| o.closed).collect()
-    }
-
     /// The rest of the preparation, from the merged faces: looks, clusters, ids.
-    fn from_parts(mesh: Arc<SceneMesh>, p: Prepared, texels: Vec<u8>) -> Self {
-        let Prepared { draw, closed } = p;
+    fn from_parts(mesh: Arc<SceneMesh>, p: Prepared) -> Self {
+        let Prepared { mut draw, closed } = p;
+        let texels = surface_luma();
         let n_tri = mesh.triangle_count();
         let mut image_texels = Vec::new();
         let image_base: Vec<u32> = mesh
@@ -572,6 +579,8 @@ impl RasterScene {
                 }
             })
             .collect();
+        // The looks hold what the merged faces gave (face texture and its coordinates).
+        draw.face = Vec::new();
         let class = |t: usize| mesh.class(mesh.object[t]);
         let mut tag_class = Vec::with_capacity(2 * n_tri + 1);
         tag_class.push(0);
@@ -621,7 +630,6 @@ impl RasterScene {
             + held(&d.face)
             + held(&d.objects)
             + held(&d.texels)
-            + held(&self.texels)
             + held(&self.image_texels)
             + held(&self.look)
             + held(&self.normal)
@@ -1693,7 +1701,7 @@ mod tests {
         let made = RasterScene::new(mesh.clone());
         assert!(made.face_texture_bytes() > 1, "the home has face textures");
         let file = temp_file("same.bin");
-        made.write_prepared(&file).expect("written");
+        RasterScene::write_prepared(&mesh, &file).expect("written");
         let loaded = RasterScene::load_prepared(mesh.clone(), &file).expect("loaded");
         let bits = |v: &[Vec3]| {
             v.iter()
@@ -1703,13 +1711,11 @@ mod tests {
         };
         assert_eq!(bits(&loaded.draw.pos), bits(&made.draw.pos));
         assert_eq!(loaded.draw.src, made.draw.src);
-        assert_eq!(
-            format!("{:?}", loaded.draw.face),
-            format!("{:?}", made.draw.face)
-        );
+        assert_eq!(format!("{:?}", loaded.look), format!("{:?}", made.look));
         assert_eq!(loaded.draw.objects, made.draw.objects);
         assert_eq!(loaded.draw.texels, made.draw.texels);
-        assert_eq!(loaded.closed_flags(), made.closed_flags());
+        let closed = |s: &RasterScene| s.objects.iter().map(|o| o.closed).collect::<Vec<_>>();
+        assert_eq!(closed(&loaded), closed(&made));
         assert!(made.closed_objects() > 0);
         // load_or_new takes the file the mesh names.
         let mut named = (*mesh).clone();
@@ -1741,9 +1747,8 @@ mod tests {
     #[test]
     fn a_damaged_or_stale_prepared_file_is_refused_by_name_and_load_or_new_prepares_afresh() {
         let (_, mesh) = home_mesh(0);
-        let made = RasterScene::new(mesh.clone());
         let file = temp_file("refused.bin");
-        made.write_prepared(&file).expect("written");
+        RasterScene::write_prepared(&mesh, &file).expect("written");
         let good = std::fs::read(&file).expect("read");
         let refused = |bytes: &[u8]| -> String {
             std::fs::write(&file, bytes).expect("written");

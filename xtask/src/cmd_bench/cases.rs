@@ -74,7 +74,7 @@ pub fn all() -> Vec<Case> {
         },
         Case {
             name: "home_switch",
-            what: "a vlnverse home loaded from its folder and prepared for the CPU rasteriser (first visit), and the bytes it holds",
+            what: "a vlnverse home loaded from its folder with its prepared raster scene (raster.bin, as generation writes it; first visit), the same prepared afresh, and the bytes it holds",
             max_reps: 20,
             setup: home_switch,
         },
@@ -566,35 +566,55 @@ impl Drop for HomeFolders {
 }
 
 fn home_switch(scale: Scale) -> anyhow::Result<Repetition> {
+    use vlnverse_sensors::RasterScene;
     let n = scale.pick(4, 2);
     let root = std::env::temp_dir().join(format!("vlnverse-bench-homes-{}", std::process::id()));
     let homes = HomeGenerator::from_preset(Preset::Vlnverse)?;
     let dirs = (0..n)
         .map(|i| {
-            Ok(vlnverse_env::io::write_scene_dir(
-                &root,
-                &homes.scene(i)?,
-                &[],
-            )?)
+            let scene = homes.scene(i)?;
+            let dir = vlnverse_env::io::write_scene_dir(&root, &scene, &[])?;
+            // As generation does: the rasteriser's prepared scene beside it.
+            RasterScene::write_prepared_scene(&scene, &dir)?;
+            Ok(dir)
         })
         .collect::<anyhow::Result<Vec<_>>>()?;
     let folders = HomeFolders { root, dirs };
-    let detail = format!("{n} vlnverse homes: scene folder read, mesh, prepared scene");
+    let detail = format!(
+        "{n} vlnverse homes: scene folder read, mesh, prepared scene loaded from raster.bin"
+    );
+    let afresh = format!("{n} vlnverse homes: scene folder read, mesh, scene prepared afresh");
     Ok(Box::new(move || {
-        let (mut secs, mut bytes) = (0.0, 0);
+        let (mut secs, mut secs_afresh, mut bytes) = (0.0, 0.0, 0);
         for d in &folders.dirs {
             let (s, prepared) = timed(|| -> anyhow::Result<_> {
                 let scene = vlnverse_env::io::load_scene(d)?;
-                let mesh = Arc::new(SceneMesh::new(&scene)?);
-                Ok((scene, vlnverse_sensors::RasterScene::new(mesh)))
+                let mut mesh = SceneMesh::new(&scene)?;
+                let file = d.join(vlnverse_sensors::raster::PREPARED_FILE);
+                mesh.prepared_file = Some(file.clone());
+                // Strict: a file that does not fit is an error here, not a fallback.
+                Ok((scene, RasterScene::load_prepared(Arc::new(mesh), &file)?))
             });
             let (scene, prepared) = prepared?;
             secs += s;
             bytes += prepared.bytes() + vlnverse_env::light::bake(&scene).bytes();
+            let (s, fresh) = timed(|| -> anyhow::Result<_> {
+                let scene = vlnverse_env::io::load_scene(d)?;
+                Ok(RasterScene::new(Arc::new(SceneMesh::new(&scene)?)))
+            });
+            fresh?;
+            secs_afresh += s;
         }
         let n = folders.dirs.len();
         Ok(vec![
             Sample::time("home_switch/first_visit", secs, n, "home", detail.clone()),
+            Sample::time(
+                "home_switch/prepared_afresh",
+                secs_afresh,
+                n,
+                "home",
+                afresh.clone(),
+            ),
             Sample::size(
                 "home_switch/renderer_bytes",
                 bytes,
