@@ -1,7 +1,8 @@
 //! What a home switch costs the renderer: a generated `vlnverse` home read from its folder
 //! (`scene.json`, and the light `scene.glb` holds), its triangles and looks (`SceneMesh`), and
-//! the rasteriser's prepared scene (`RasterScene`: merged faces and their face textures); for
-//! comparison, the light bake a load no longer runs. Prints the bytes each part holds.
+//! the rasteriser's prepared scene (`RasterScene`: merged faces and their face textures), read
+//! back from the `raster.bin` generation writes or prepared afresh; for comparison, the light
+//! bake a load no longer runs. Prints the bytes each part holds.
 //!
 //! `cargo bench -p vlnverse-sensors --bench home_load -- --warm-up-time 1 --measurement-time 3`
 
@@ -12,6 +13,7 @@ use std::sync::Arc;
 use vlnverse_env::io::{load_scene, write_scene_dir};
 use vlnverse_env::{light, SceneSource};
 use vlnverse_procgen::{HomeGenerator, Preset};
+use vlnverse_sensors::raster::PREPARED_FILE;
 use vlnverse_sensors::{RasterScene, SceneMesh};
 
 /// Homes written to a temporary folder (removed when dropped).
@@ -32,7 +34,9 @@ fn homes(n: usize) -> Homes {
     let dirs = (0..n)
         .map(|i| {
             let scene = generator.scene(i).expect("home");
-            write_scene_dir(&root, &scene, &[]).expect("written")
+            let dir = write_scene_dir(&root, &scene, &[]).expect("written");
+            RasterScene::write_prepared_scene(&scene, &dir).expect("prepared");
+            dir
         })
         .collect();
     Homes { root, dirs }
@@ -84,8 +88,24 @@ fn bench(c: &mut Criterion) {
             black_box(RasterScene::new(meshes[i].clone()))
         })
     });
-    // The whole switch without the prepared-scene cache: read the folder, triangulate,
-    // prepare.
+    let files: Vec<PathBuf> = homes.dirs.iter().map(|d| d.join(PREPARED_FILE)).collect();
+    g.bench_function("raster_scene_from_file", |b| {
+        b.iter(|| {
+            i = (i + 1) % meshes.len();
+            black_box(RasterScene::load_prepared(meshes[i].clone(), &files[i]).unwrap())
+        })
+    });
+    // The whole switch without the prepared-scene cache: read the folder, triangulate, read
+    // the prepared scene back.
+    g.bench_function("switch_from_file", |b| {
+        b.iter(|| {
+            i = (i + 1) % homes.dirs.len();
+            let s = load_scene(&homes.dirs[i]).unwrap();
+            let mesh = Arc::new(SceneMesh::new(&s).unwrap());
+            black_box(RasterScene::load_prepared(mesh, &files[i]).unwrap())
+        })
+    });
+    // The same, preparing the scene afresh.
     g.bench_function("switch_uncached", |b| {
         b.iter(|| {
             i = (i + 1) % homes.dirs.len();
