@@ -1,5 +1,7 @@
-//! One home generated from its seed (vlnverse preset), and its light baked
-//! (`vlnverse_env::light::bake_fresh`: occlusion, lamp and daylight shadow rays per vertex).
+//! One home generated from its seed (vlnverse preset; and a home on two floors from
+//! `configs/scenes/two_storey.toml` with its per-level maps and a geodesic query across the
+//! floors), and its light baked (`vlnverse_env::light::bake_fresh`: occlusion, lamp and
+//! daylight shadow rays per vertex).
 //!
 //! `cargo bench -p vlnverse-procgen --bench generate -- --warm-up-time 1 --measurement-time 5`
 
@@ -19,6 +21,41 @@ fn generate(c: &mut Criterion) {
     });
 }
 
+fn two_storey(c: &mut Criterion) {
+    use vlnverse_env::geodesic::{LevelPoint, MultiLevelMap};
+    let cfg = vlnverse_procgen::ProcgenConfig::from_toml_str(
+        include_str!("../configs/scenes/two_storey.toml"),
+        None,
+    )
+    .expect("two_storey.toml is valid");
+    let homes = HomeGenerator::new(cfg).expect("valid config");
+    let mut i = 0;
+    c.bench_function("generate_one_two_storey_home", |b| {
+        b.iter(|| {
+            i = (i + 1) % homes.len();
+            black_box(homes.scene(black_box(i)).expect("scene generates"))
+        })
+    });
+    let scene = homes.scene(0).expect("scene generates");
+    let occ = vlnverse_env::occupancy::OccupancyConfig::default();
+    c.bench_function("level_maps_two_storey_home", |b| {
+        b.iter(|| black_box(MultiLevelMap::from_scene(black_box(&scene), &occ).expect("maps")))
+    });
+    let map = MultiLevelMap::from_scene(&scene, &occ).expect("maps");
+    let st = &scene.storeys.stairs[0];
+    // From beside the foot on the ground floor to beside the head upstairs (cold A* legs).
+    let a = LevelPoint::new(0, st.foot[0], st.foot[2] + 0.1);
+    let z = LevelPoint::new(1, st.head[0], st.head[2] - 0.1);
+    c.bench_function("geodesic_across_floors_cold", |b| {
+        b.iter(|| {
+            black_box(
+                map.geodesic_distance(black_box(a), black_box(z))
+                    .expect("finite"),
+            )
+        })
+    });
+}
+
 fn bake(c: &mut Criterion) {
     let homes = HomeGenerator::from_preset(Preset::Vlnverse).expect("shipped preset is valid");
     // The first 8 homes, baked in turn; `bake_fresh` bypasses the content cache.
@@ -34,5 +71,5 @@ fn bake(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, generate, bake);
+criterion_group!(benches, generate, two_storey, bake);
 criterion_main!(benches);
