@@ -4,7 +4,8 @@
 //! middle, doorway). Every other object a description names is returned as grounding.
 
 use super::lexicon::{
-    class_names, class_uses, color_phrases, material_noun, material_words, room_names, shape_words,
+    color_phrases, material_noun, material_words, object_names, object_uses, room_names,
+    shape_words,
 };
 use super::path::{env_side, footprint, rect_distance};
 use super::phrases::{self as ph, pick};
@@ -81,9 +82,9 @@ pub(crate) fn object_np(
         .filter_map(|&id| scene.object(id))
         .collect();
     let ambiguous = peers.len() > 1;
-    let names = class_names(o.class);
+    let names = object_names(o);
     let name = if rng.random_bool(opts.synonym) {
-        pick(rng, names)
+        pick(rng, &names)
     } else {
         names[0]
     };
@@ -160,7 +161,7 @@ pub(crate) fn object_np(
             s.push_str(&r);
         }
     } else if rng.random_bool(0.12) {
-        let uses = class_uses(o.class);
+        let uses = object_uses(o);
         if !uses.is_empty() {
             s.push(' ');
             s.push_str(pick(rng, uses));
@@ -245,9 +246,9 @@ fn relation_phrase(
 
 /// "the sofa", now and then by a synonym ("the couch"): how a reference object is named.
 fn reference_name(x: &SceneObject, rng: &mut ChaCha8Rng) -> String {
-    let names = class_names(x.class);
+    let names = object_names(x);
     let name = if rng.random_bool(0.3) {
-        pick(rng, names)
+        pick(rng, &names)
     } else {
         names[0]
     };
@@ -417,20 +418,29 @@ pub(crate) fn room_by_content(scene: &Scene, room: RoomId) -> Option<ph::Bank> {
             .doors
             .iter()
             .filter(|d| d.rooms.contains(&id))
-            .map(|d| if d.rooms[0] == id { d.rooms[1] } else { d.rooms[0] })
+            .map(|d| {
+                if d.rooms[0] == id {
+                    d.rooms[1]
+                } else {
+                    d.rooms[0]
+                }
+            })
             .collect()
     };
     let off_a_bedroom = |id: RoomId| {
         let n = neighbours(id);
         !n.is_empty()
             && n.iter().all(|&x| x == n[0])
-            && scene.room(n[0]).is_some_and(|x| x.kind == RoomType::Bedroom)
+            && scene
+                .room(n[0])
+                .is_some_and(|x| x.kind == RoomType::Bedroom)
     };
     match r.kind {
         RoomType::Bedroom if holds(room, C::Crib) => Some(ph::ROOM_NURSERY),
         RoomType::Bedroom => {
-            let mut areas: Vec<(f32, RoomId)> =
-                of_kind(RoomType::Bedroom).map(|x| (x.area(), x.id)).collect();
+            let mut areas: Vec<(f32, RoomId)> = of_kind(RoomType::Bedroom)
+                .map(|x| (x.area(), x.id))
+                .collect();
             areas.sort_by(|a, b| b.0.total_cmp(&a.0));
             let master = areas.len() >= 2 && areas[0].0 >= 1.15 * areas[1].0;
             if master && areas[0].1 == room {

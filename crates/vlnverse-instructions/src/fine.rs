@@ -4,9 +4,10 @@
 //! the way people do. Every object named is grounded.
 
 use super::describe::{
-    content_name, door_between, door_np, end_place, is_closed_leaf, object_np, room_np, NpOptions, Viewpoint,
+    content_name, door_between, door_np, end_place, is_closed_leaf, object_np, room_np, NpOptions,
+    Viewpoint,
 };
-use super::lexicon::{class_names, number_word, ordinal_word, plural};
+use super::lexicon::{number_word, object_names, ordinal_word, plural};
 use super::path::{
     classify_turn, direction_of_yaw, env_side, floor_points, footprint, rect_distance,
     segment_headings, side_word, signed_turn_deg, visible, wall_rects, Turn,
@@ -391,7 +392,10 @@ fn room_change(
         })
         .unwrap_or_else(|| "the next room".into());
     let same = scene.room(from).map(|r| r.kind) == scene.room(to).map(|r| r.kind);
-    if same {
+    let by_type = scene
+        .room(to)
+        .is_some_and(|r| to_np == format!("the {}", r.kind.words()));
+    if same && by_type {
         to_np = to_np.replacen("the ", pick(rng, &["the next ", "the other "]), 1);
     }
     if scene.room(to).map(|r| r.kind) == Some(RoomType::Hallway) && rng.random_bool(0.3) {
@@ -879,7 +883,7 @@ fn group_mates<'r>(
 
 /// A group of objects of one class: "the two chairs", "the white chairs", "three stools".
 fn group_np(o: &SceneObject, mates: &[(&SceneObject, &Landmark)], rng: &mut ChaCha8Rng) -> String {
-    let noun = plural(class_names(o.class)[0]);
+    let noun = plural(object_names(o)[0]);
     let colour = mates
         .iter()
         .all(|(m, _)| m.color == o.color)
@@ -1381,19 +1385,22 @@ fn stop_in_doorway(route: &Route<'_, '_>, heading: Vec2, rng: &mut ChaCha8Rng) -
     ))
 }
 
-/// Two pieces of furniture the goal lies between, each the only one of its class in the home
-/// and within 2 m of the goal (in id order), with their sides seen from the last point.
+/// Two pieces of furniture in the goal's room that the goal lies between, each the only one of
+/// its class in the home and within 2 m of the goal (in id order), with their sides seen from
+/// the last point.
 fn end_between<'s>(
     route: &Route<'_, 's>,
 ) -> Option<(&'s SceneObject, &'s SceneObject, Side, Side)> {
     let ctx = route.ctx;
     let view = route.view(route.n() - 1);
+    let here = ctx.scene.room_at(route.end.x, route.end.y)?.id;
     let near: Vec<(&SceneObject, Side)> = ctx
         .scene
         .objects
         .iter()
         .filter(|o| {
-            is_landmark(o)
+            o.room == Some(here)
+                && is_landmark(o)
                 && !o.is_structure()
                 && o.class != vlnverse_env::SemanticClass::Door
                 && o.class.kind() == vlnverse_env::ClassKind::Furniture

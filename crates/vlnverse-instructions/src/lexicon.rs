@@ -17,6 +17,40 @@ pub fn class_names(class: C) -> &'static [&'static str] {
     &CLASS_WORDS[class_index(class)].0
 }
 
+/// The names of one object: its class's names, narrowed where objects of a class differ in
+/// what people call them (a framed canvas on a wall is a painting, a frame on a shelf a photo
+/// frame). The first is the one used by default.
+pub fn object_names(o: &SceneObject) -> Vec<&'static str> {
+    let names = class_names(o.class);
+    if o.class != C::PictureFrame {
+        return names.to_vec();
+    }
+    let painting = o.material == "canvas";
+    let mut out: Vec<&'static str> = names
+        .iter()
+        .copied()
+        .filter(|n| n.contains("painting") == painting)
+        .collect();
+    if painting {
+        out.extend(names.iter().copied().filter(|n| *n == "picture"));
+    }
+    if out.is_empty() {
+        names.to_vec()
+    } else {
+        out
+    }
+}
+
+/// What one object is for ([`class_uses`]), none for a framed canvas (its class's uses are a
+/// photo frame's).
+pub fn object_uses(o: &SceneObject) -> &'static [&'static str] {
+    if o.class == C::PictureFrame && o.material == "canvas" {
+        &[]
+    } else {
+        class_uses(o.class)
+    }
+}
+
 /// The classes whose names include `name` (for checks: a synonym names one class, or a class
 /// whose names overlap in a word, e.g. "plant" for both plants).
 pub fn class_of_name(name: &str) -> Vec<C> {

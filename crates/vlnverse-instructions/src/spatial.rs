@@ -45,9 +45,10 @@ fn half_extent(lo: Vec2, hi: Vec2, dir: Vec2) -> f32 {
     h.x * dir.x.abs() + h.y * dir.y.abs()
 }
 
-/// Whether `o` stands in front of `x`: `x` has its back to a wall of its room, and `o` is in
-/// the same room, out from `x` into the room, within a metre of it and no wider off its sides
-/// than `x` itself. For a bed (headboard to the wall) this is the foot of the bed.
+/// Whether `o` stands in front of `x`: `x` has its back to a wall of its room, and `o` stands
+/// on the floor of the same room away from the walls, out from `x` into the room, within a
+/// metre of it and no wider off its sides than `x` itself. For a bed (headboard to the wall)
+/// this is the foot of the bed.
 pub(crate) fn in_front_of(scene: &Scene, o: &SceneObject, x: &SceneObject) -> bool {
     if o.room.is_none() || o.room != x.room || o.id == x.id {
         return false;
@@ -55,6 +56,12 @@ pub(crate) fn in_front_of(scene: &Scene, o: &SceneObject, x: &SceneObject) -> bo
     let Some(room) = x.room.and_then(|r| scene.room(r)) else {
         return false;
     };
+    // Only a thing standing out on the floor: a sink against the wall under a mirror, or a
+    // curtain across the room from a bed, is not "in front of" it as people say it.
+    let (olo, ohi) = footprint(o);
+    if o.bbox.min[1] > 0.05 || nearest_wall(room, olo, ohi).is_none_or(|(d, _)| d < 0.15) {
+        return false;
+    }
     let (xlo, xhi) = footprint(x);
     let Some((wall, n)) = nearest_wall(room, xlo, xhi) else {
         return false;
@@ -62,7 +69,6 @@ pub(crate) fn in_front_of(scene: &Scene, o: &SceneObject, x: &SceneObject) -> bo
     if wall > 0.25 {
         return false;
     }
-    let (olo, ohi) = footprint(o);
     let d = (olo + ohi) * 0.5 - (xlo + xhi) * 0.5;
     let side = n.perp();
     let gap = d.dot(n) - half_extent(xlo, xhi, n) - half_extent(olo, ohi, n);
@@ -158,7 +164,7 @@ mod tests {
         // Bed with its head to the wall z = 0, foot at z = 2; a bench just past the foot.
         let bed = object(1, C::Bed, [1.0, 0.0, 0.0], [2.6, 0.6, 2.0]);
         let bench = object(2, C::Bench, [1.2, 0.0, 2.2], [2.4, 0.45, 2.6]);
-        let far = object(3, C::Bench, [1.2, 0.0, 3.4], [2.4, 0.45, 3.8]);
+        let far = object(3, C::Bench, [1.2, 0.0, 3.2], [2.4, 0.45, 3.6]);
         let aside = object(4, C::Chair, [3.2, 0.0, 0.5], [3.7, 0.9, 1.0]);
         let s = scene(vec![bed.clone(), bench.clone(), far.clone(), aside.clone()]);
         assert!(in_front_of(&s, &bench, &bed));

@@ -1,7 +1,7 @@
 //! The default, template-based instruction generator.
 
 use super::describe::{content_name, places, Place};
-use super::lexicon::{class_uses, color_phrases, material_noun, material_words, shape_words};
+use super::lexicon::{color_phrases, material_noun, material_words, object_uses, shape_words};
 use super::path::{env_side, floor_points, footprint, rect_distance, segment_headings, TurnConfig};
 use super::phrases::{self as ph, capitalize, decapitalize, fill, pick};
 use super::{InstructionGenerator, PathContext};
@@ -464,7 +464,7 @@ fn target_remark(
     let mats = material_words(o);
     // Shades only: the plain colour word is already in the description when it is needed.
     let shades: Vec<String> = color_phrases(o).into_iter().skip(1).collect();
-    let uses = class_uses(o.class);
+    let uses = object_uses(o);
     let place = super::describe::room_feature(ctx.scene, o);
     // Places the goal can be seen from: the path ends within reach of the target, and the
     // pieces a place names stand within a few metres of it.
