@@ -42,10 +42,20 @@ fn two_storey(c: &mut Criterion) {
         b.iter(|| black_box(MultiLevelMap::from_scene(black_box(&scene), &occ).expect("maps")))
     });
     let map = MultiLevelMap::from_scene(&scene, &occ).expect("maps");
-    let st = &scene.storeys.stairs[0];
-    // From beside the foot on the ground floor to beside the head upstairs (cold A* legs).
-    let a = LevelPoint::new(0, st.foot[0], st.foot[2] + 0.1);
-    let z = LevelPoint::new(1, st.head[0], st.head[2] - 0.1);
+    // From a navigable cell of the first ground-floor room to one of the last upstairs room:
+    // two A* legs and the flight.
+    let cell_in = |room: u32| {
+        let level = scene.room_level(room).expect("room on a level");
+        let nav = map.level(level).expect("level map");
+        let r = scene.room(room).expect("room");
+        nav.free_cells()
+            .map(|(c, w)| nav.cell_center(c, w))
+            .find(|p| r.contains(p.x, p.y))
+            .map(|p| LevelPoint::new(level, p.x, p.y))
+            .expect("navigable room")
+    };
+    let a = cell_in(scene.rooms[0].id);
+    let z = cell_in(scene.rooms[scene.rooms.len() - 2].id);
     c.bench_function("geodesic_across_floors_cold", |b| {
         b.iter(|| {
             black_box(
