@@ -607,7 +607,26 @@ pub(crate) fn add_light_panels(scene: &mut Scene) {
                 && (o.bbox.min[0]..=o.bbox.max[0]).contains(&lamp.x)
                 && (o.bbox.min[2]..=o.bbox.max[2]).contains(&lamp.z)
         };
-        let Some(ceiling) = scene.objects.iter_mut().find(|o| inside(o)) else {
+        // In a home on several floors ceilings overlap in plan: the lowest one above the lamp
+        // (the first in object order among equals, so a single-storey home is as before).
+        let above = |o: &SceneObject| o.bbox.min[1] >= lamp.y - 0.01;
+        let mut pick: Option<usize> = None;
+        for (i, o) in scene.objects.iter().enumerate() {
+            if !inside(o) {
+                continue;
+            }
+            let better = match pick {
+                None => true,
+                Some(j) => {
+                    let b = &scene.objects[j];
+                    above(o) && (!above(b) || o.bbox.min[1] < b.bbox.min[1])
+                }
+            };
+            if better {
+                pick = Some(i);
+            }
+        }
+        let Some(ceiling) = pick.map(|i| &mut scene.objects[i]) else {
             continue;
         };
         // Ceilings are placed without rotation; the panel hangs from the slab's underside.
