@@ -349,6 +349,39 @@ fn visual_reference_images_and_dialogue_budgets_exist() {
 }
 
 #[test]
+fn every_scene_folder_holds_its_prepared_raster_scene_and_it_draws_as_one_prepared_afresh() {
+    use std::sync::Arc;
+    use vlnverse_env::Pose;
+    use vlnverse_sensors::raster::PREPARED_FILE;
+    use vlnverse_sensors::{CameraSpec, Channels, RasterScene, SceneMesh, View};
+    for (id, check) in scenes() {
+        let file = tiny().join("scenes").join(id).join(PREPARED_FILE);
+        let mesh = Arc::new(SceneMesh::new(&check.scene).unwrap());
+        // Strict: the file fits the mesh of the scene loaded back from its folder.
+        let loaded = RasterScene::load_prepared(mesh.clone(), &file).unwrap();
+        let fresh = RasterScene::new(mesh);
+        assert_eq!(loaded.drawn_triangles(), fresh.drawn_triangles(), "{id}");
+        assert_eq!(loaded.face_texture_bytes(), fresh.face_texture_bytes(), "{id}");
+        assert!(fresh.face_texture_bytes() > 1, "{id}: a lit home has face textures");
+        let b = check.scene.bounds();
+        let centre = glam::Vec3::new(
+            (b.min[0] + b.max[0]) / 2.0,
+            check.scene.floor_height,
+            (b.min[2] + b.max[2]) / 2.0,
+        );
+        for k in 0..4 {
+            let view = View {
+                camera: CameraSpec::default().camera(&Pose::from_yaw(centre, k as f32 * 1.6)),
+                channels: Channels::ALL,
+            };
+            let (a, f) = (loaded.render_view(&view, 1), fresh.render_view(&view, 1));
+            assert!(a.rgb == f.rgb && a.depth == f.depth, "{id}: view {k}");
+            assert!(a.semantic == f.semantic && a.instance == f.instance, "{id}: view {k}");
+        }
+    }
+}
+
+#[test]
 fn visual_reference_and_dialogue_reuse_the_coarse_episodes() {
     // The paper: the same trajectories and instructions as the coarse-grained dataset, so the
     // three tasks compare episode by episode.
