@@ -672,6 +672,10 @@ fn leg_sentences(route: &Route<'_, '_>, li: usize, draft: &mut Draft) {
         return;
     };
     let mut named = name_landmarks(route, &chosen, draft);
+    // With nothing else to name on the way, a room passed by its open doorway.
+    if named.is_empty() && route.writer != Writer::Terse && draft.rng.random_bool(0.35) {
+        named.extend(room_passed(route, li));
+    }
     // A slight bend on the way into another room or past a landmark often goes unsaid.
     let unsaid = matches!(leg.turn, Turn::Slight(_))
         && li > 0
@@ -821,14 +825,17 @@ fn name_landmarks(route: &Route<'_, '_>, chosen: &[&Landmark], draft: &mut Draft
             });
             continue;
         }
-        let (text, extra) = object_np(
-            route.ctx,
-            o,
-            route.view(l.path_index),
-            route.np_opts,
-            MAX_REFERENCE_DISTANCE,
-            &mut draft.rng,
-        );
+        let (text, extra) = match door_by_room(route, o, l.path_index, &mut draft.rng) {
+            Some(t) => (t, Vec::new()),
+            None => object_np(
+                route.ctx,
+                o,
+                route.view(l.path_index),
+                route.np_opts,
+                MAX_REFERENCE_DISTANCE,
+                &mut draft.rng,
+            ),
+        };
         // A shut door is worth saying so: it is not the way through.
         let text = if text.starts_with("the ")
             && is_closed_leaf(route.ctx.scene, o)
@@ -849,6 +856,83 @@ fn name_landmarks(route: &Route<'_, '_>, chosen: &[&Landmark], draft: &mut Draft
         });
     }
     named
+}
+
+/// A room the leg passes by without entering it ("the kitchen" on your left): an open doorway
+/// of the room walked through, beside one of the leg's segments (within 1.2 m of it, passed
+/// along its middle), in sight, into a room of another type the path never enters.
+fn room_passed(route: &Route<'_, '_>, li: usize) -> Option<Named> {
+    let scene = route.ctx.scene;
+    let leg = &route.legs[li];
+    let entered: Vec<RoomId> = route.rooms.iter().map(|&(_, r)| r).collect();
+    for seg in leg.first..=leg.last.min(route.n() - 2) {
+        let (a, b) = (route.pts[seg], route.pts[seg + 1]);
+        let ab = b - a;
+        let Some(here) = scene.room_at(a.x, a.y) else {
+            continue;
+        };
+        for d in scene.doors.iter().filter(|d| !d.is_closed()) {
+            let Some(&other) = d.rooms.iter().find(|&&r| r != here.id) else {
+                continue;
+            };
+            if !d.rooms.contains(&here.id) || entered.contains(&other) {
+                continue;
+            }
+            let Some(kind) = scene.room(other).map(|r| r.kind) else {
+                continue;
+            };
+            let c = Vec2::new(d.position[0], d.position[2]);
+            let t = (c - a).dot(ab) / ab.length_squared().max(1e-9);
+            let q = a + ab * t.clamp(0.0, 1.0);
+            if kind == here.kind || !(0.15..=0.85).contains(&t) || q.distance(c) > 1.2 {
+                continue;
+            }
+            if !visible(route.ctx.navigable, &route.walls, q, c, 0.3) {
+                continue;
+            }
+            let side = env_side(side_of_heading(q, route.headings[seg], c));
+            if matches!(side, Side::Left | Side::Right) {
+                return Some(Named {
+                    text: format!("the {}", kind.words()),
+                    side,
+                    group: false,
+                });
+            }
+        }
+    }
+    None
+}
+
+/// A door leaf passed, named now and then by the room behind it as people do ("the bathroom
+/// door", "the door to the kitchen"): the room of its doorway that the path is not in there.
+fn door_by_room(
+    route: &Route<'_, '_>,
+    o: &SceneObject,
+    path_index: usize,
+    rng: &mut ChaCha8Rng,
+) -> Option<String> {
+    if o.class != vlnverse_env::SemanticClass::Door {
+        return None;
+    }
+    let scene = route.ctx.scene;
+    let door = scene.doors.iter().find(|d| d.leaf == Some(o.id))?;
+    let p = route.pts[path_index.min(route.n() - 1)];
+    let here = scene.room_at(p.x, p.y)?.id;
+    if !door.rooms.contains(&here) || !rng.random_bool(0.5) {
+        return None;
+    }
+    let other = door.rooms.iter().copied().find(|&r| r != here)?;
+    let kind = scene.room(other)?.kind;
+    if kind == scene.room(here)?.kind {
+        return None;
+    }
+    let room = kind.words();
+    let bank = [
+        "the {r} door",
+        "the door to the {r}",
+        "the door into the {r}",
+    ];
+    Some(pick(rng, &bank).replace("{r}", &room))
 }
 
 /// The other landmarks of `o`'s class passed on the same side of the same leg as `l` (at most
