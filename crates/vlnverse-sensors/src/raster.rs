@@ -37,7 +37,7 @@ use crate::scene_mesh::SceneMesh;
 use glam::{DVec3, Mat3, Vec3};
 use rayon::prelude::*;
 use std::path::Path;
-use std::sync::{Arc, Mutex, OnceLock};
+use std::sync::{Arc, Mutex, OnceLock, Weak};
 use vlnverse_env::cache::{self, SharedLru};
 use vlnverse_env::material::{Surface, TEX_SIZE};
 use vlnverse_env::Aabb;
@@ -155,7 +155,10 @@ struct Cluster {
 /// A scene prepared for the rasteriser (built once per [`Renderer::set_scene`]).
 #[derive(Debug)]
 pub struct RasterScene {
-    mesh: Arc<SceneMesh>,
+    /// The mesh it was prepared from, not kept alive by it (drawing needs none of it): a kept
+    /// scene holds only what it draws, and [`RasterScene::shared`] still finds it by its mesh
+    /// while the mesh lives.
+    mesh: Weak<SceneMesh>,
     /// Class and object id of each tag (`2 * triangle + back + 1`; 0 for tag 0).
     tag_class: Vec<u16>,
     tag_object: Vec<u32>,
@@ -595,7 +598,7 @@ impl RasterScene {
             texels,
             draw,
             image_texels,
-            mesh,
+            mesh: Arc::downgrade(&mesh),
             normal,
             objects,
             clusters,
@@ -603,9 +606,10 @@ impl RasterScene {
         }
     }
 
-    /// The triangles drawn.
-    pub fn mesh(&self) -> &Arc<SceneMesh> {
-        &self.mesh
+    /// The mesh it was prepared from, while something else keeps it alive (a prepared scene
+    /// does not).
+    pub fn mesh(&self) -> Option<Arc<SceneMesh>> {
+        self.mesh.upgrade()
     }
 
     /// Number of triangles drawn (the mesh's, with faces cut into cells merged back).
@@ -618,13 +622,14 @@ impl RasterScene {
         self.draw.texels.len()
     }
 
-    /// Bytes held (allocated, not only used): drawn triangles, looks, face textures, images
-    /// and the mesh.
+    /// Bytes held (allocated, not only used): drawn triangles, looks, face textures and
+    /// images (not the mesh, which it does not keep: [`SceneMesh::bytes`]).
     pub fn bytes(&self) -> usize {
         use crate::scene_mesh::held;
         let d = &self.draw;
+        // The mesh's own block stays allocated while a weak reference to it lives.
         std::mem::size_of::<Self>()
-            + self.mesh.bytes()
+            + std::mem::size_of::<SceneMesh>()
             + held(&d.pos)
             + held(&d.src)
             + held(&d.face)
@@ -649,8 +654,9 @@ impl RasterScene {
             cache::shared_lru(cache::budget_from_env(SCENE_CACHE_MB_VAR, SCENE_CACHE_MB))
         });
         // The very mesh a kept scene was prepared from (environments sharing one loaded home):
-        // no need to hash it. A kept scene holds its mesh, so the pointer cannot be reused.
-        let same = |s: &RasterScene| Arc::ptr_eq(&s.mesh, &mesh);
+        // no need to hash it. A kept scene's weak reference keeps the mesh's block allocated
+        // even after the mesh is dropped, so no other mesh can be at that address.
+        let same = |s: &RasterScene| std::ptr::eq(s.mesh.as_ptr(), Arc::as_ptr(&mesh));
         if let Some(hit) = cache.lock().ok().and_then(|mut c| c.find(same)) {
             return hit;
         }
@@ -1787,9 +1793,9 @@ mod tests {
             .expect("preset");
         let scene = homes.scene(1).expect("home");
         let mesh = Arc::new(SceneMesh::new(&scene).expect("mesh"));
-        let culled = RasterScene::new(mesh);
+        let culled = RasterScene::new(mesh.clone());
         assert!(culled.clusters.len() > culled.objects.len());
-        let mut all = RasterScene::new(culled.mesh.clone());
+        let mut all = RasterScene::new(mesh);
         all.cull_clusters = false;
         // Standing and looking across the home at varied headings and pitches, from a grid of
         // spots (some inside furniture: near-plane cuts), RGB with ids and depth.

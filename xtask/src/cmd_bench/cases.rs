@@ -585,19 +585,22 @@ fn home_switch(scale: Scale) -> anyhow::Result<Repetition> {
     );
     let afresh = format!("{n} vlnverse homes: scene folder read, mesh, scene prepared afresh");
     Ok(Box::new(move || {
-        let (mut secs, mut secs_afresh, mut bytes) = (0.0, 0.0, 0);
+        let (mut secs, mut secs_afresh, mut bytes, mut mesh_bytes) = (0.0, 0.0, 0, 0);
         for d in &folders.dirs {
             let (s, prepared) = timed(|| -> anyhow::Result<_> {
                 let scene = vlnverse_env::io::load_scene(d)?;
                 let mut mesh = SceneMesh::new(&scene)?;
                 let file = d.join(vlnverse_sensors::raster::PREPARED_FILE);
                 mesh.prepared_file = Some(file.clone());
+                let mesh = Arc::new(mesh);
                 // Strict: a file that does not fit is an error here, not a fallback.
-                Ok((scene, RasterScene::load_prepared(Arc::new(mesh), &file)?))
+                let prepared = RasterScene::load_prepared(mesh.clone(), &file)?;
+                Ok((scene, mesh, prepared))
             });
-            let (scene, prepared) = prepared?;
+            let (scene, mesh, prepared) = prepared?;
             secs += s;
             bytes += prepared.bytes() + vlnverse_env::light::bake(&scene).bytes();
+            mesh_bytes += mesh.bytes();
             let (s, fresh) = timed(|| -> anyhow::Result<_> {
                 let scene = vlnverse_env::io::load_scene(d)?;
                 Ok(RasterScene::new(Arc::new(SceneMesh::new(&scene)?)))
@@ -620,7 +623,14 @@ fn home_switch(scale: Scale) -> anyhow::Result<Repetition> {
                 bytes,
                 n,
                 "home",
-                detail.clone(),
+                "the prepared scene (what the raster cache holds) and the light".into(),
+            ),
+            Sample::size(
+                "home_switch/mesh_bytes",
+                mesh_bytes,
+                n,
+                "home",
+                "the SceneMesh an environment showing the home holds besides".into(),
             ),
         ])
     }))

@@ -237,9 +237,11 @@ fn raster_backend_is_selectable_and_needs_a_scene() {
         r.render(&[v]),
         Err(vlnverse_sensors::SensorError::NoScene)
     ));
-    // The prepared scene keeps the mesh it was given.
+    // The prepared scene knows the mesh it was given, without keeping it alive.
     let mesh = Arc::new(SceneMesh::new(&demo_scene(0)).unwrap());
     let s = RasterScene::new(mesh.clone());
-    assert!(Arc::ptr_eq(s.mesh(), &mesh));
+    assert!(Arc::ptr_eq(&s.mesh().unwrap(), &mesh));
     assert!(s.closed_objects() > 0);
+    drop(mesh);
+    assert!(s.mesh().is_none());
 }
