@@ -300,3 +300,28 @@ fn the_scene_graph_knows_the_floors() {
     let json = SceneGraph::build(&one).to_json_string();
     assert!(!json.contains("\"level\""));
 }
+
+#[test]
+fn a_share_gives_that_share_and_leaves_the_other_homes_as_they_were() {
+    let base = HomeGenerator::from_preset(Preset::Vlnverse).unwrap();
+    let mut cfg = base.config().clone();
+    cfg.floors.two_storey_share = 0.3;
+    let mixed = HomeGenerator::new(cfg).unwrap();
+    let n = 60;
+    let results: Vec<(bool, bool)> = (0..n)
+        .into_par_iter()
+        .map(|i| {
+            let (a, b) = (base.scene(i).unwrap(), mixed.scene(i).unwrap());
+            let same = vlnverse_env::io::json::scene_to_json(&a)
+                == vlnverse_env::io::json::scene_to_json(&b);
+            (b.is_multi_level(), same)
+        })
+        .collect();
+    let two = results.iter().filter(|r| r.0).count();
+    assert!(
+        (8..=30).contains(&two),
+        "{two} of {n} homes on two floors at share 0.3"
+    );
+    // A home left on one floor is the preset's home, byte for byte.
+    assert!(results.iter().all(|&(multi, same)| multi != same));
+}
