@@ -10,6 +10,9 @@
 //! areas add up to the rectangle that bounds them (so they tile it exactly); the texel for a
 //! point is the one the cells would have fetched (same texture coordinates), times the light
 //! the cells interpolate there, rounded to a byte.
+//!
+//! What this builds is stored at generation ([`super::prepared`]): a change to it must raise
+//! [`super::PREPARED_VERSION`] (a test holds a checksum of what it builds for a small mesh).
 
 use crate::scene_mesh::SceneMesh;
 use glam::{Vec2, Vec3};

@@ -310,6 +310,83 @@ pub(crate) fn decode(file: &[u8], mesh: &SceneMesh, luma: &[u8]) -> Result<Prepa
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene_mesh::{ObjectRange, TriLook};
+    use vlnverse_env::material::Surface;
+
+    /// A floor of unit cells (two triangles each) with a light that is not linear, texture
+    /// coordinates 64 texels per metre shifted off the texel grid (gaps to fill), and a wall
+    /// piece on another surface.
+    fn cells() -> SceneMesh {
+        let mut m = SceneMesh::default();
+        let light = |p: Vec3| 0.3 + 0.2 * p.x + 0.05 * p.z * p.z + 0.1 * p.y;
+        let mut push = |tri: [Vec3; 3], uv: [[f32; 2]; 3], surface: Surface| {
+            m.positions.extend_from_slice(&tri);
+            m.object.push(1);
+            m.color.push([0.7; 3]);
+            m.look.push(TriLook {
+                tone: [0.8, 0.7, 0.6],
+                light: tri.map(light),
+                uv,
+                surface,
+                image: None,
+            });
+        };
+        for x in 0..3 {
+            for z in 0..2 {
+                let c = |dx: i32, dz: i32| Vec3::new((x + dx) as f32, 0.0, (z + dz) as f32);
+                for tri in [[c(0, 0), c(0, 1), c(1, 1)], [c(0, 0), c(1, 1), c(1, 0)]] {
+                    push(
+                        tri,
+                        tri.map(|p| [p.x * 64.0 + 0.3, p.z * 64.0 + 0.7]),
+                        Surface::WoodFloor,
+                    );
+                }
+            }
+        }
+        for y in 0..2 {
+            let c = |dx: i32, dy: i32| Vec3::new((dx) as f32, (y + dy) as f32, 0.0);
+            for tri in [[c(0, 0), c(1, 1), c(0, 1)], [c(0, 0), c(1, 0), c(1, 1)]] {
+                push(tri, tri.map(|p| [p.x * 64.0, p.y * 64.0]), Surface::Plaster);
+            }
+        }
+        let mut bbox = Aabb::EMPTY;
+        m.positions.iter().for_each(|p| bbox.extend(*p));
+        m.objects.push(ObjectRange {
+            id: 1,
+            first: 0,
+            count: m.object.len() as u32,
+            bbox,
+        });
+        m
+    }
+
+    #[test]
+    fn what_is_prepared_is_what_files_of_this_version_hold() {
+        // A file keeps what faces::build made when it was written; the mesh and texture keys
+        // cannot tell that the building changed. If this fails, how faces are merged or face
+        // textures baked has changed: raise PREPARED_VERSION (files of the old version are then
+        // refused and scenes prepared on load until the dataset is generated again) and put
+        // the new checksum here.
+        let m = cells();
+        let luma = super::super::surface_luma();
+        let d = super::super::faces::build(&m, luma);
+        assert!(d.face.iter().all(|f| f.is_some()), "the cells merge");
+        let body = encode(&d, &[false], &m, luma).expect("encoded");
+        let mut b = Vec::new();
+        let r = decode(&body, &m, luma).expect("decoded");
+        b.extend_from_slice(&r.draw.texels);
+        r.draw.pos.iter().for_each(|p| {
+            p.to_array()
+                .iter()
+                .for_each(|c| b.extend_from_slice(&c.to_bits().to_le_bytes()))
+        });
+        b.extend_from_slice(format!("{:?}{:?}", r.draw.face, r.draw.src).as_bytes());
+        assert_eq!(
+            (PREPARED_VERSION, checksum(&b)),
+            (1, 14_747_998_955_599_738_887),
+            "faces::build changed: raise PREPARED_VERSION"
+        );
+    }
 
     #[test]
     fn checksum_sees_every_byte_and_the_length() {
