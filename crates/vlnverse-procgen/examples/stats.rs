@@ -1,12 +1,20 @@
-//! Statistics of a preset: rooms, areas, objects, triangles, time per scene.
+//! Statistics of a preset or a config file: rooms, areas, objects, triangles, time per scene,
+//! homes on two floors.
+//!
+//! `cargo run --release -p vlnverse-procgen --example stats -- vlnverse` (or `tiny`, or a path
+//! to a `.toml` config such as `configs/scenes/two_storey.toml`).
 use std::time::Instant;
 use vlnverse_env::SceneSource;
-use vlnverse_procgen::{HomeGenerator, Preset};
+use vlnverse_procgen::{HomeGenerator, Preset, ProcgenConfig};
 
 fn main() -> Result<(), vlnverse_env::EnvError> {
     let name = std::env::args().nth(1).unwrap_or_else(|| "vlnverse".into());
-    let preset: Preset = name.parse()?;
-    let g = HomeGenerator::from_preset(preset)?;
+    let g = if name.ends_with(".toml") {
+        HomeGenerator::new(ProcgenConfig::from_toml_file(&name)?)?
+    } else {
+        HomeGenerator::from_preset(name.parse::<Preset>()?)?
+    };
+    let mut two_storey = 0usize;
     let mut rooms = Vec::new();
     let mut areas = Vec::new();
     let mut items = Vec::new();
@@ -24,6 +32,7 @@ fn main() -> Result<(), vlnverse_env::EnvError> {
         };
         times.push(t.elapsed().as_secs_f64() * 1e3);
         rooms.push(s.rooms.len());
+        two_storey += usize::from(s.is_multi_level());
         areas.push(s.rooms.iter().map(|r| r.area()).sum::<f32>());
         items.push(s.items().count());
         tris.push(s.triangle_count());
@@ -59,6 +68,7 @@ fn main() -> Result<(), vlnverse_env::EnvError> {
     };
     let f = |v: &[usize]| v.iter().map(|&x| x as f64).collect::<Vec<_>>();
     println!("scenes {}", rooms.len());
+    println!("two-storey {two_storey} of {}", rooms.len());
     println!("rooms {}", stat(&f(&rooms)));
     println!(
         "area {}",
