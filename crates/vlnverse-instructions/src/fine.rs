@@ -370,6 +370,8 @@ struct Named {
     side: Side,
     /// Several objects of one class named together ("the two chairs").
     group: bool,
+    /// Two objects the path goes between, one on each side ("the sofa and the coffee table").
+    between: bool,
 }
 
 /// A room change as written.
@@ -671,7 +673,11 @@ fn leg_sentences(route: &Route<'_, '_>, li: usize, draft: &mut Draft) {
     let Some(chosen) = leg_landmarks(route, li, draft) else {
         return;
     };
-    let mut named = name_landmarks(route, &chosen, draft);
+    let pair = between_pair(route, li).filter(|_| draft.rng.random_bool(0.35));
+    let mut named = match pair {
+        Some((a, b)) => vec![name_between(route, a, b, draft)],
+        None => name_landmarks(route, &chosen, draft),
+    };
     // With nothing else to name on the way, a room passed by its open doorway.
     if named.is_empty() && route.writer != Writer::Terse && draft.rng.random_bool(0.35) {
         named.extend(room_passed(route, li));
@@ -822,6 +828,7 @@ fn name_landmarks(route: &Route<'_, '_>, chosen: &[&Landmark], draft: &mut Draft
                 text,
                 side,
                 group: true,
+                between: false,
             });
             continue;
         }
@@ -853,9 +860,61 @@ fn name_landmarks(route: &Route<'_, '_>, chosen: &[&Landmark], draft: &mut Draft
             text,
             side,
             group: false,
+            between: false,
         });
     }
     named
+}
+
+/// Two landmarks the leg goes between: one on each side, passed within a metre of each other
+/// along the path, each within 1.5 m of it, of two classes (the first such pair by distance).
+fn between_pair<'r>(route: &'r Route<'_, '_>, li: usize) -> Option<(&'r Landmark, &'r Landmark)> {
+    let scene = route.ctx.scene;
+    let end = route.end_obj.map(|o| o.id);
+    let on_leg: Vec<&Landmark> = route
+        .landmarks
+        .iter()
+        .filter(|l| route.leg_of(l.path_index) == li && Some(l.object) != end)
+        .filter(|l| l.distance < 1.5)
+        .collect();
+    let class = |l: &Landmark| scene.object(l.object).map(|o| o.class);
+    let mut best: Option<(f32, &Landmark, &Landmark)> = None;
+    for a in on_leg.iter().filter(|l| env_side(l.side) == Side::Left) {
+        for b in on_leg.iter().filter(|l| env_side(l.side) == Side::Right) {
+            let gap = a.point.distance(b.point);
+            if gap < 1.0 && class(a) != class(b) && best.is_none_or(|(g, _, _)| gap < g) {
+                best = Some((gap, a, b));
+            }
+        }
+    }
+    best.map(|(_, a, b)| (a, b))
+}
+
+/// "the sofa and the coffee table": the pair a leg goes between, grounded, in path order.
+fn name_between(route: &Route<'_, '_>, a: &Landmark, b: &Landmark, draft: &mut Draft) -> Named {
+    let opts = NpOptions {
+        relation: 0.0,
+        ..route.np_opts
+    };
+    let mut texts = Vec::new();
+    for l in [a, b] {
+        if let Some(o) = route.ctx.scene.object(l.object) {
+            let view = route.view(l.path_index);
+            let (t, _) = object_np(route.ctx, o, view, opts, 0.0, &mut draft.rng);
+            texts.push(t);
+            let side = Some(env_side(l.side));
+            draft
+                .grounding
+                .push(grounded(o, Role::Landmark, side, l.path_index));
+        }
+    }
+    draft.budget = draft.budget.saturating_sub(1);
+    Named {
+        text: texts.join(" and "),
+        side: Side::Left,
+        group: false,
+        between: true,
+    }
 }
 
 /// A room the leg passes by without entering it ("the kitchen" on your left): an open doorway
@@ -896,6 +955,7 @@ fn room_passed(route: &Route<'_, '_>, li: usize) -> Option<Named> {
                     text: format!("the {}", kind.words()),
                     side,
                     group: false,
+                    between: false,
                 });
             }
         }
@@ -1114,7 +1174,9 @@ fn turn_prefix(route: &Route<'_, '_>, li: usize, draft: &mut Draft) -> Option<St
 
 /// A landmark as a clause of a movement: "towards the lamp", "passing the sofa on your left".
 fn landmark_clause(m: &Named, rng: &mut ChaCha8Rng) -> String {
-    if m.side == Side::Ahead {
+    if m.between {
+        fill(pick(rng, &ph::PASS_BETWEEN), &[("obj", &m.text)])
+    } else if m.side == Side::Ahead {
         fill(pick(rng, &ph::TOWARDS), &[("obj", &m.text)])
     } else {
         let sp = fill(pick(rng, &ph::SIDE), &[("dir", side_word(m.side))]);
@@ -1127,7 +1189,9 @@ fn landmark_clause(m: &Named, rng: &mut ChaCha8Rng) -> String {
 
 /// A landmark as a sentence of its own: "you'll see the sofa on your right".
 fn see_sentence(m: &Named, rng: &mut ChaCha8Rng) -> String {
-    if m.side == Side::Ahead {
+    if m.between {
+        fill(pick(rng, &ph::SEE_BETWEEN), &[("obj", &m.text)])
+    } else if m.side == Side::Ahead {
         format!("{} is ahead of you", m.text)
     } else {
         let sp = fill(pick(rng, &ph::SIDE), &[("dir", side_word(m.side))]);
@@ -1162,7 +1226,9 @@ fn leg_plan(
         && turn.is_some()
         && li + 1 < route.legs.len()
         && (writer == Writer::Terse || rng.random_bool(if li >= 2 { 0.95 } else { 0.8 }));
-    let lateral_first = named.first().is_some_and(|m| m.side != Side::Ahead);
+    let lateral_first = named
+        .first()
+        .is_some_and(|m| m.side != Side::Ahead && !m.between);
     let ahead_last = named.last().is_some_and(|m| m.side == Side::Ahead);
     // A leg into another room is often only its turn and the room change ("Turn left into
     // the kitchen"), more so further along a long route.

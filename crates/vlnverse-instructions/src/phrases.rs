@@ -180,6 +180,8 @@ banks! {
     ROOM_EN_SUITE = room_en_suite,
     ROOM_MAIN_BATH = room_main_bath,
     ROOM_WALK_IN = room_walk_in,
+    PASS_BETWEEN = pass_between,
+    SEE_BETWEEN = see_between,
 }
 
 /// A bank as written in the data file.

@@ -304,7 +304,8 @@ fn coarse_room(
     rng: &mut ChaCha8Rng,
 ) -> Option<String> {
     expr.room.map(|r| {
-        if let Some(name) = content_name(ctx.scene, r.room, 0.3, false, rng) {
+        // Named with its type's words (readers and agents look for "bedroom").
+        if let Some(name) = content_name(ctx.scene, r.room, 0.3, true, rng) {
             return name;
         }
         let area = ctx.scene.room(r.room).map_or(15.0, |x| x.area());
