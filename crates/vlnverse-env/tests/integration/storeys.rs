@@ -105,3 +105,139 @@ fn bad_levels_are_refused_naming_the_field() {
     let text = s.validate_storeys().unwrap_err().to_string();
     assert!(text.contains("stairs[0].rise"), "{text}");
 }
+
+/// Two 6 x 6 m open rooms stacked 3 m apart (walls 2.5 m, the upper floor slab on top), a
+/// 1 x 3 m flight at x in [4.5, 5.5], z in [1, 4] rising towards -z, foot at z = 4.6, head at
+/// z = 0.5.
+fn stacked_rooms() -> Scene {
+    use crate::occupancy_fixtures::{boxed, open_room};
+    use vlnverse_env::{Room, RoomType, SemanticClass};
+    let ground = open_room(6.0);
+    let mut s = ground.clone();
+    let n = s.objects.len() as u32;
+    for o in &ground.objects {
+        let mut o = o.clone();
+        o.id += n;
+        o.name = format!("{}_{}", o.class.name(), o.id);
+        o.pose.position[1] += 3.0;
+        o.bbox.min[1] += 3.0;
+        o.bbox.max[1] += 3.0;
+        s.objects.push(o);
+    }
+    // The flight: a block to just under the upper floor on the ground floor.
+    s.objects.push(boxed(
+        2 * n + 1,
+        SemanticClass::Stairs,
+        [4.5, 0.0, 1.0],
+        [5.5, 2.8, 4.0],
+    ));
+    // Ceiling of the ground floor (a slab under the upper floor, holed over the flight).
+    s.objects.push(boxed(
+        2 * n + 2,
+        SemanticClass::Ceiling,
+        [0.0, 2.5, 0.0],
+        [4.5, 2.55, 6.0],
+    ));
+    let room = |id: u32, name: &str| Room {
+        id,
+        kind: RoomType::Hallway,
+        name: name.into(),
+        polygon: vec![[0.0, 0.0], [0.0, 6.0], [6.0, 6.0], [6.0, 0.0]],
+    };
+    s.rooms = vec![room(0, "hallway_1"), room(1, "hallway_2")];
+    s.doors.clear();
+    s.storeys = Storeys {
+        levels: vec![
+            Level {
+                id: 0,
+                name: "ground floor".into(),
+                floor_height: 0.0,
+                rooms: vec![0],
+            },
+            Level {
+                id: 1,
+                name: "upper floor".into(),
+                floor_height: 3.0,
+                rooms: vec![1],
+            },
+        ],
+        stairs: vec![Stairs {
+            id: 0,
+            levels: [0, 1],
+            object: Some(2 * n + 1),
+            footprint: vec![[4.5, 1.0], [4.5, 4.0], [5.5, 4.0], [5.5, 1.0]],
+            foot: [5.0, 0.0, 4.6],
+            head: [5.0, 3.0, 0.5],
+            steps: 12,
+            rise: 0.25,
+            run: 3.0 / 11.0,
+            width: 1.0,
+        }],
+    };
+    s.validate_storeys().unwrap();
+    s
+}
+
+#[test]
+fn level_maps_join_through_the_stairs_and_single_levels_are_unchanged() {
+    use glam::Vec2;
+    use vlnverse_env::geodesic::{geodesic_distance, LevelPoint, MultiLevelMap};
+    use vlnverse_env::occupancy::{build_level_maps, build_maps, OccupancyConfig};
+    let cfg = OccupancyConfig::default();
+    let s = stacked_rooms();
+    let maps = build_level_maps(&s, &cfg).unwrap();
+    assert_eq!(maps.len(), 2);
+    assert_eq!(build_maps(&s, &cfg).unwrap(), maps[0]);
+    // The same room on both levels, the flight occupied on both: the same maps.
+    assert_eq!(maps[0].navigable, maps[1].navigable);
+    let flight = Vec2::new(5.0, 2.5);
+    assert!(!maps[1].occupancy.is_free_at(flight));
+    assert!(maps[0].navigable.is_free_at(Vec2::new(2.0, 2.0)));
+    // One level: exactly the single-level maps.
+    let one = crate::occupancy_fixtures::open_room(6.0);
+    assert_eq!(
+        build_level_maps(&one, &cfg).unwrap(),
+        vec![build_maps(&one, &cfg).unwrap()]
+    );
+
+    let m = MultiLevelMap::from_scene(&s, &cfg).unwrap();
+    let a = LevelPoint::new(0, 2.0, 5.0);
+    let b = LevelPoint::new(1, 2.0, 1.0);
+    let st = &s.storeys.stairs[0];
+    let nav = &maps[0].navigable;
+    let leg = |p: Vec2, q: [f32; 3]| {
+        geodesic_distance(nav, p, Vec2::new(q[0], q[2]))
+            .unwrap()
+            .meters()
+            .unwrap()
+    };
+    let want = leg(a.point, st.foot) + st.walk_length() + leg(b.point, st.head);
+    let got = m.geodesic_distance(a, b).unwrap().meters().unwrap();
+    assert!((got - want).abs() < 1e-3, "{got} vs {want}");
+    assert_eq!(
+        LevelPoint::from_world(&s, [2.0, 3.0, 1.0]),
+        LevelPoint::new(1, 2.0, 1.0)
+    );
+
+    // The picture of a floor holds that floor: its room, its walls, the flight on both.
+    let up = s.level_view(1).unwrap();
+    assert_eq!(up.floor_height, 3.0);
+    assert_eq!(up.rooms.len(), 1);
+    assert!(up
+        .objects
+        .iter()
+        .any(|o| o.class == vlnverse_env::SemanticClass::Stairs));
+    assert!(up
+        .objects
+        .iter()
+        .filter(|o| o.class == vlnverse_env::SemanticClass::Wall)
+        .all(|o| o.bbox.min[1] >= 2.9));
+    let t = vlnverse_env::topdown::render_topdown_level(
+        &s,
+        1,
+        Some(&maps[1].navigable),
+        &Default::default(),
+    )
+    .unwrap();
+    assert!(t.image.width() > 100);
+}
