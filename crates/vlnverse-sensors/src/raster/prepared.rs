@@ -8,14 +8,16 @@
 //! surface textures (a hash of their bytes), with a format version and a checksum of every
 //! byte before it, so a stale or damaged file is refused rather than drawn.
 //!
-//! Layout, little-endian: magic `VLNRAST\0`, version (u32), 0 (u32), the body's length (u64)
-//! and the body compressed with zstd (level 1: face textures shrink ~4x and unpack at over a
-//! gigabyte a second). The body: mesh key (u64), texture key (u64), mesh triangles, draw
-//! triangles, objects, face-texture bytes (u32 each); per draw triangle its 9 corner
-//! coordinates (f32); per draw triangle its mesh triangle (u32); per draw triangle its face
-//! texture (`base, w, h` as u32, `w = 0` for none, then 6 f32 of face-texture coordinates); per
-//! object its first draw triangle and count (u32), box (6 f32) and whether it is closed (u32);
-//! the face-texture bytes; the checksum of the body before it (u64).
+//! Layout, little-endian: magic `VLNRAST\0`, version (u32), 0 (u32), the lengths of the body
+//! and of the face textures (u64 each), the length of the packed body (u64), then the body and
+//! the face textures, each packed with zstd (level 1: face textures shrink ~4x and unpack at
+//! over a gigabyte a second; on their own, so that they unpack straight into the buffer the
+//! scene keeps). The body: mesh key (u64), texture key (u64), mesh triangles, draw triangles,
+//! objects, face-texture bytes (u32 each); per draw triangle its 9 corner coordinates (f32);
+//! per draw triangle its mesh triangle (u32); per draw triangle its face texture (`base, w, h`
+//! as u32, `w = 0` for none, then 6 f32 of face-texture coordinates); per object its first
+//! draw triangle and count (u32), box (6 f32) and whether it is closed (u32); the checksum of
+//! the body before it and of the face textures (u64).
 
 use super::faces::{DrawMesh, FaceTexture};
 use crate::scene_mesh::SceneMesh;
@@ -26,17 +28,22 @@ use vlnverse_env::Aabb;
 pub const PREPARED_FILE: &str = "raster.bin";
 /// Format of [`PREPARED_FILE`]; raise it whenever what the rasteriser prepares changes (how
 /// faces merge, how face textures are baked), so files of the old kind are refused.
-pub const PREPARED_VERSION: u32 = 1;
+pub const PREPARED_VERSION: u32 = 2;
 
 const MAGIC: &[u8; 8] = b"VLNRAST\0";
-/// Bytes before the compressed body: magic, version, 0, the body's length.
-const FILE_HEADER: usize = 8 + 4 + 4 + 8;
+/// Bytes before the packed body: magic, version, 0, three lengths.
+const FILE_HEADER: usize = 8 + 4 + 4 + 3 * 8;
 /// Bytes of the body's header: two keys, four counts.
 const HEADER: usize = 8 + 8 + 4 * 4;
 /// zstd level of the body.
 const LEVEL: i32 = 1;
-/// Longest body read back (a home's is a few megabytes).
+/// Longest body or face textures read back (a home's are a few megabytes).
 const MAX_BODY: u64 = 1 << 31;
+
+/// The checksum of the body (before its checksum) and the face textures.
+fn body_checksum(body: &[u8], texels: &[u8]) -> u64 {
+    checksum(body) ^ checksum(texels).rotate_left(17)
+}
 /// Bytes per draw triangle: corners, mesh triangle, face texture and its coordinates.
 const PER_TRIANGLE: usize = 9 * 4 + 4 + 3 * 4 + 6 * 4;
 /// Bytes per object: range, box, closed.
@@ -90,9 +97,7 @@ pub(crate) fn encode(
     luma: &[u8],
 ) -> Result<Vec<u8>, String> {
     let n = draw.src.len();
-    let mut b = Vec::with_capacity(
-        HEADER + n * PER_TRIANGLE + closed.len() * PER_OBJECT + draw.texels.len() + 8,
-    );
+    let mut b = Vec::with_capacity(HEADER + n * PER_TRIANGLE + closed.len() * PER_OBJECT + 8);
     let u32s = |b: &mut Vec<u8>, v: u32| b.extend_from_slice(&v.to_le_bytes());
     let f32s = |b: &mut Vec<u8>, v: &[f32]| v.iter().for_each(|x| u32s(b, x.to_bits()));
     b.extend_from_slice(&mesh.content_key().to_le_bytes());
@@ -126,15 +131,19 @@ pub(crate) fn encode(
         f32s(&mut b, &bbox.max);
         u32s(&mut b, u32::from(c));
     }
-    b.extend_from_slice(&draw.texels);
-    let sum = checksum(&b);
+    let sum = body_checksum(&b, &draw.texels);
     b.extend_from_slice(&sum.to_le_bytes());
-    let mut file = Vec::with_capacity(FILE_HEADER + b.len() / 3);
+    let pack = |v: &[u8]| zstd::bulk::compress(v, LEVEL).map_err(|e| e.to_string());
+    let (body, texels) = (pack(&b)?, pack(&draw.texels)?);
+    let mut file = Vec::with_capacity(FILE_HEADER + body.len() + texels.len());
     file.extend_from_slice(MAGIC);
     file.extend_from_slice(&PREPARED_VERSION.to_le_bytes());
     file.extend_from_slice(&0u32.to_le_bytes());
-    file.extend_from_slice(&(b.len() as u64).to_le_bytes());
-    file.extend_from_slice(&zstd::bulk::compress(&b, LEVEL).map_err(|e| e.to_string())?);
+    for len in [b.len(), draw.texels.len(), body.len()] {
+        file.extend_from_slice(&(len as u64).to_le_bytes());
+    }
+    file.extend_from_slice(&body);
+    file.extend_from_slice(&texels);
     Ok(file)
 }
 
@@ -194,22 +203,34 @@ pub(crate) fn decode(file: &[u8], mesh: &SceneMesh, luma: &[u8]) -> Result<Prepa
         ));
     }
     r.u32()?;
-    let len = r.u64()?;
-    if !(HEADER as u64 + 8..=MAX_BODY).contains(&len) {
-        return Err(format!("body of {len} bytes (damaged)"));
-    }
-    let b = zstd::bulk::decompress(&file[FILE_HEADER..], len as usize)
-        .map_err(|e| format!("cannot unpack the body (damaged): {e}"))?;
-    if b.len() as u64 != len {
+    let (len, tex_len, packed) = (r.u64()?, r.u64()?, r.u64()?);
+    if !(HEADER as u64 + 8..=MAX_BODY).contains(&len) || tex_len > MAX_BODY {
         return Err(format!(
-            "body of {} bytes, {len} written (damaged)",
-            b.len()
+            "body of {len} bytes, face textures of {tex_len} (damaged)"
         ));
     }
+    let rest = &file[FILE_HEADER..];
+    let split = usize::try_from(packed)
+        .ok()
+        .filter(|&p| p <= rest.len())
+        .ok_or_else(|| format!("packed body of {packed} bytes past the end (truncated)"))?;
+    let unpack = |what: &str, v: &[u8], len: u64| {
+        let out = zstd::bulk::decompress(v, len as usize)
+            .map_err(|e| format!("cannot unpack the {what} (damaged): {e}"))?;
+        if out.len() as u64 != len {
+            return Err(format!(
+                "{what} of {} bytes, {len} written (damaged)",
+                out.len()
+            ));
+        }
+        Ok(out)
+    };
+    let b = unpack("body", &rest[..split], len)?;
+    let texels = unpack("face textures", &rest[split..], tex_len)?;
     let (body, sum) = b.split_at(b.len() - 8);
     let mut r = Reader { b: body, at: 0 };
     let want = u64::from_le_bytes(sum.try_into().expect("8 bytes"));
-    if checksum(body) != want {
+    if body_checksum(body, &texels) != want {
         return Err("checksum does not match (the file is damaged)".into());
     }
     let (mesh_key, tex_key) = (r.u64()?, r.u64()?);
@@ -236,12 +257,13 @@ pub(crate) fn decode(file: &[u8], mesh: &SceneMesh, luma: &[u8]) -> Result<Prepa
             mesh.objects.len()
         ));
     }
-    let need = HEADER + n * PER_TRIANGLE + n_obj * PER_OBJECT + n_tex;
-    if body.len() != need {
+    let need = HEADER + n * PER_TRIANGLE + n_obj * PER_OBJECT;
+    if body.len() != need || texels.len() != n_tex {
         return Err(format!(
-            "{} bytes before the checksum, {need} expected for {n} triangles, {n_obj} objects \
-             and {n_tex} texel bytes",
-            body.len()
+            "{} bytes before the checksum and {} of face textures, {need} and {n_tex} expected \
+             for {n} triangles and {n_obj} objects",
+            body.len(),
+            texels.len()
         ));
     }
     let mut d = DrawMesh {
@@ -300,7 +322,7 @@ pub(crate) fn decode(file: &[u8], mesh: &SceneMesh, luma: &[u8]) -> Result<Prepa
     if next != n {
         return Err(format!("objects cover {next} of {n} draw triangles"));
     }
-    d.texels = r.take(n_tex)?.to_vec();
+    d.texels = texels;
     if d.texels.is_empty() {
         return Err("no face-texture bytes (at least one is written)".into());
     }
@@ -383,7 +405,7 @@ mod tests {
         b.extend_from_slice(format!("{:?}{:?}", r.draw.face, r.draw.src).as_bytes());
         assert_eq!(
             (PREPARED_VERSION, checksum(&b)),
-            (1, 14_747_998_955_599_738_887),
+            (2, 14_747_998_955_599_738_887),
             "faces::build changed: raise PREPARED_VERSION"
         );
     }
