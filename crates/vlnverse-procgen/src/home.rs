@@ -383,21 +383,16 @@ pub(crate) fn generate(cfg: &ProcgenConfig, seed: u64, id: &str) -> Result<Scene
     if let Some(up) = upper {
         let hall = (plan.rooms.len() - 1) as RoomId;
         let s = &up.stairs;
-        cut_hole_if(
-            cfg.walls.ceiling,
-            &mut b.objects,
-            C::Ceiling,
-            hall,
-            &s.flight,
-        );
+        // The stairwell: no ceiling over the flight (the upper floor's slab is cut likewise).
+        storeys::cut_hole(&mut b.objects, C::Ceiling, hall, &s.flight);
         let ground_rooms = plan.rooms.len() as RoomId;
-        let upper_objects = build_upper(cfg, seed, &up);
-        let off = storeys::append_lifted(&mut b, upper_objects.0, s.upper_height, ground_rooms);
+        let (upper_objects, upper_leaves) = build_upper(cfg, seed, &up);
+        let off = storeys::append_lifted(&mut b, upper_objects, s.upper_height, ground_rooms);
         rooms.extend(rooms_of(&up.plan, t, ground_rooms, &mut counts));
         let first_door = doors.len() as u32;
         doors.extend(doors_of(
             &up.plan,
-            upper_objects.1,
+            upper_leaves,
             s.upper_height,
             ground_rooms,
             off,
@@ -447,12 +442,6 @@ pub(crate) fn generate(cfg: &ProcgenConfig, seed: u64, id: &str) -> Result<Scene
         crate::decor::add_light_panels(&mut scene);
     }
     Ok(scene)
-}
-
-fn cut_hole_if(on: bool, objects: &mut [SceneObject], class: C, room: RoomId, hole: &Rect) {
-    if on {
-        storeys::cut_hole(objects, class, room, hole);
-    }
 }
 
 /// The upper floor built at height 0 in a builder of its own (structure, furniture, railings,
