@@ -673,7 +673,7 @@ fn leg_sentences(route: &Route<'_, '_>, li: usize, draft: &mut Draft) {
     let Some(chosen) = leg_landmarks(route, li, draft) else {
         return;
     };
-    let pair = between_pair(route, li).filter(|_| draft.rng.random_bool(0.35));
+    let pair = between_pair(route, li).filter(|_| draft.rng.random_bool(0.15));
     let mut named = match pair {
         Some((a, b)) => vec![name_between(route, a, b, draft)],
         None => name_landmarks(route, &chosen, draft),
@@ -892,16 +892,17 @@ fn between_pair<'r>(route: &'r Route<'_, '_>, li: usize) -> Option<(&'r Landmark
 
 /// "the sofa and the coffee table": the pair a leg goes between, grounded, in path order.
 fn name_between(route: &Route<'_, '_>, a: &Landmark, b: &Landmark, draft: &mut Draft) -> Named {
-    let opts = NpOptions {
-        relation: 0.0,
-        ..route.np_opts
-    };
     let mut texts = Vec::new();
     for l in [a, b] {
         if let Some(o) = route.ctx.scene.object(l.object) {
-            let view = route.view(l.path_index);
-            let (t, _) = object_np(route.ctx, o, view, opts, 0.0, &mut draft.rng);
-            texts.push(t);
+            // Plain names, the colour only where the class alone is not enough.
+            let twins = route.ctx.graph.objects_of_class(o.class).len() > 1;
+            let colour = if twins && !o.color.is_empty() {
+                format!("{} ", o.color)
+            } else {
+                String::new()
+            };
+            texts.push(format!("the {colour}{}", object_names(o)[0]));
             let side = Some(env_side(l.side));
             draft
                 .grounding
