@@ -866,9 +866,14 @@ fn name_landmarks(route: &Route<'_, '_>, chosen: &[&Landmark], draft: &mut Draft
     named
 }
 
-/// Two landmarks the leg goes between: one on each side, passed within a metre of each other
-/// along the path, each within 1.5 m of it, of two classes (the first such pair by distance).
+/// Two landmarks a leg within one room goes between: one on each side, passed within a metre
+/// of each other along the path, each within 1.5 m of it, of two classes (the closest pair).
 fn between_pair<'r>(route: &'r Route<'_, '_>, li: usize) -> Option<(&'r Landmark, &'r Landmark)> {
+    // Only on a leg within one room: a clause after a room change would place them in the
+    // room entered.
+    if route.rooms_entered_on(li).next().is_some() {
+        return None;
+    }
     let scene = route.ctx.scene;
     let end = route.end_obj.map(|o| o.id);
     let on_leg: Vec<&Landmark> = route
