@@ -425,9 +425,16 @@ impl RasterScene {
     /// of the time. Refused, naming the file and what is wrong, when the file is not one,
     /// is damaged, or was prepared from another mesh or with other surface textures.
     pub fn load_prepared(mesh: Arc<SceneMesh>, file: &Path) -> Result<Self> {
+        let key = mesh.content_key();
+        Self::load_prepared_keyed(mesh, key, file)
+    }
+
+    /// [`RasterScene::load_prepared`] for a mesh whose [`SceneMesh::content_key`] is `key`
+    /// (hashing a home's mesh costs about as much as triangulating it).
+    fn load_prepared_keyed(mesh: Arc<SceneMesh>, key: u64, file: &Path) -> Result<Self> {
         let bytes = std::fs::read(file)
             .map_err(|e| SensorError::from(vlnverse_env::EnvError::io(file, e)))?;
-        let p = prepared::decode(&bytes, &mesh, surface_luma()).map_err(|message| {
+        let p = prepared::decode(&bytes, &mesh, key, surface_luma()).map_err(|message| {
             SensorError::Scene {
                 scene: mesh.scene_id.clone(),
                 message: format!("prepared scene {}: {message}", file.display()),
@@ -441,8 +448,14 @@ impl RasterScene {
     /// (damaged, or stale: made from another mesh) is reported as a warning and the scene
     /// prepared afresh, so the images never depend on the file.
     pub fn load_or_new(mesh: Arc<SceneMesh>) -> Self {
+        Self::load_or_new_keyed(mesh, None)
+    }
+
+    /// [`RasterScene::load_or_new`], with the mesh's [`SceneMesh::content_key`] when known.
+    fn load_or_new_keyed(mesh: Arc<SceneMesh>, key: Option<u64>) -> Self {
         if let Some(file) = mesh.prepared_file.as_ref().filter(|f| f.is_file()) {
-            match Self::load_prepared(mesh.clone(), file) {
+            let key = key.unwrap_or_else(|| mesh.content_key());
+            match Self::load_prepared_keyed(mesh.clone(), key, file) {
                 Ok(s) => return s,
                 Err(e) => tracing::warn!("{e}; preparing the scene afresh"),
             }
@@ -664,7 +677,7 @@ impl RasterScene {
         cache::get_or_insert(
             cache,
             key,
-            || RasterScene::load_or_new(mesh),
+            || RasterScene::load_or_new_keyed(mesh, Some(key)),
             RasterScene::bytes,
         )
     }

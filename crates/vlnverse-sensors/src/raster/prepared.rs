@@ -188,9 +188,15 @@ impl Reader<'_> {
     }
 }
 
-/// The prepared scene in `b`, checked against `mesh` and the surface textures `luma`; what is
-/// wrong otherwise (the field and the values found and expected).
-pub(crate) fn decode(file: &[u8], mesh: &SceneMesh, luma: &[u8]) -> Result<Prepared, String> {
+/// The prepared scene in `file`, checked against `mesh` (whose
+/// [`SceneMesh::content_key`] is `mesh_key`) and the surface textures `luma`; what is wrong
+/// otherwise (the field and the values found and expected).
+pub(crate) fn decode(
+    file: &[u8],
+    mesh: &SceneMesh,
+    mesh_key: u64,
+    luma: &[u8],
+) -> Result<Prepared, String> {
     if file.len() < FILE_HEADER || &file[..8] != MAGIC {
         return Err("not a prepared raster scene (no VLNRAST header)".into());
     }
@@ -233,12 +239,11 @@ pub(crate) fn decode(file: &[u8], mesh: &SceneMesh, luma: &[u8]) -> Result<Prepa
     if body_checksum(body, &texels) != want {
         return Err("checksum does not match (the file is damaged)".into());
     }
-    let (mesh_key, tex_key) = (r.u64()?, r.u64()?);
-    if mesh_key != mesh.content_key() {
+    let (found, tex_key) = (r.u64()?, r.u64()?);
+    if found != mesh_key {
         return Err(format!(
-            "mesh key {mesh_key:016x}, the scene's mesh is {:016x} (stale: prepared from \
-             another version of the scene)",
-            mesh.content_key()
+            "mesh key {found:016x}, the scene's mesh is {mesh_key:016x} (stale: prepared from \
+             another version of the scene)"
         ));
     }
     if tex_key != texture_key(luma) {
@@ -395,7 +400,7 @@ mod tests {
         assert!(d.face.iter().all(|f| f.is_some()), "the cells merge");
         let body = encode(&d, &[false], &m, luma).expect("encoded");
         let mut b = Vec::new();
-        let r = decode(&body, &m, luma).expect("decoded");
+        let r = decode(&body, &m, m.content_key(), luma).expect("decoded");
         b.extend_from_slice(&r.draw.texels);
         r.draw.pos.iter().for_each(|p| {
             p.to_array()
