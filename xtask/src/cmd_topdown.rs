@@ -76,29 +76,11 @@ pub fn render_levels(
     let wanted: Vec<u32> = level.map_or_else(|| (0..levels).collect(), |k| vec![k]);
     let mut out = Vec::new();
     for k in wanted {
-        let yaml = if k == 0 {
-            scene_dir.join("navigable.yaml")
-        } else {
-            scene_dir.join(format!("navigable_level{k}.yaml"))
-        };
-        let nav = if yaml.is_file() {
-            Some(GridMap::load_ros(&yaml)?)
-        } else {
-            None
-        };
-        let opts = TopdownOptions {
-            px_per_m,
-            labels,
-            title: scene.id.clone(),
-            ..TopdownOptions::default()
-        };
+        let nav = navigable_map(scene_dir, k)?;
+        let opts = options(&scene, px_per_m, labels);
         let td = render_topdown_level(&scene, k, nav.as_ref(), &opts)
             .with_context(|| format!("scene `{}` has no floor {k}", scene.id))?;
-        let mut png = Vec::new();
-        td.image
-            .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
-            .context("PNG encoding failed")?;
-        out.push((k, png));
+        out.push((k, png_bytes(&td)?));
     }
     Ok(out)
 }
@@ -123,27 +105,47 @@ pub fn render_png_scaled(
     labels: bool,
 ) -> anyhow::Result<(Vec<u8>, f32)> {
     let scene = vlnverse_env::io::load_scene(scene_dir)?;
-    let nav_yaml = scene_dir.join("navigable.yaml");
-    let nav = if nav_yaml.is_file() {
-        Some(GridMap::load_ros(&nav_yaml)?)
-    } else {
-        None
-    };
-    let opts = TopdownOptions {
-        px_per_m,
-        labels,
-        title: scene.id.clone(),
-        ..TopdownOptions::default()
-    };
+    let nav = navigable_map(scene_dir, 0)?;
+    let opts = options(&scene, px_per_m, labels);
     let td = render_topdown(&scene, nav.as_ref(), &opts);
     if let Some(w) = clamp_warning(px_per_m, td.frame.px_per_m, opts.max_size) {
         tracing::warn!("{}: {w}", scene_dir.display());
     }
+    Ok((png_bytes(&td)?, td.frame.px_per_m))
+}
+
+/// The navigable map of floor `level` in a scene folder (`navigable.yaml`, or
+/// `navigable_level<k>.yaml` above the ground floor), if the folder has one.
+fn navigable_map(scene_dir: &Path, level: u32) -> anyhow::Result<Option<GridMap>> {
+    let yaml = if level == 0 {
+        scene_dir.join("navigable.yaml")
+    } else {
+        scene_dir.join(format!("navigable_level{level}.yaml"))
+    };
+    Ok(if yaml.is_file() {
+        Some(GridMap::load_ros(&yaml)?)
+    } else {
+        None
+    })
+}
+
+/// The picture options of the command for `scene`.
+fn options(scene: &vlnverse_env::Scene, px_per_m: f32, labels: bool) -> TopdownOptions {
+    TopdownOptions {
+        px_per_m,
+        labels,
+        title: scene.id.clone(),
+        ..TopdownOptions::default()
+    }
+}
+
+/// The picture as PNG bytes.
+fn png_bytes(td: &vlnverse_env::topdown::Topdown) -> anyhow::Result<Vec<u8>> {
     let mut png = Vec::new();
     td.image
         .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
         .context("PNG encoding failed")?;
-    Ok((png, td.frame.px_per_m))
+    Ok(png)
 }
 
 /// Run the command.

@@ -73,7 +73,8 @@ pub(crate) struct Plan {
     pub openings: Vec<Opening>,
 }
 
-fn is_public(k: RoomType) -> bool {
+/// Whether rooms of kind `k` are shared by the household (living, kitchen, dining, halls).
+pub(crate) fn is_public(k: RoomType) -> bool {
     matches!(
         k,
         RoomType::LivingRoom

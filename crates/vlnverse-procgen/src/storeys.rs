@@ -5,7 +5,7 @@
 //! one floor is generated exactly as before.
 
 use crate::config::ProcgenConfig;
-use crate::floorplan::{self, Opening, Plan, PlanRoom, Shared};
+use crate::floorplan::{self, is_public, Opening, Plan, PlanRoom, Shared};
 use crate::home::{box_part, Builder};
 use crate::palette::{f, Finish};
 use crate::rect::Rect;
@@ -279,17 +279,6 @@ fn place_hall(
         }
     }
     None
-}
-
-fn is_public(k: RoomType) -> bool {
-    matches!(
-        k,
-        RoomType::LivingRoom
-            | RoomType::Kitchen
-            | RoomType::DiningRoom
-            | RoomType::Hallway
-            | RoomType::EntranceHall
-    )
 }
 
 /// The upper floor's room kinds and target areas: a bathroom, bedrooms, sometimes an office
