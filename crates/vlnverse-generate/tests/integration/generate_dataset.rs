@@ -361,8 +361,15 @@ fn every_scene_folder_holds_its_prepared_raster_scene_and_it_draws_as_one_prepar
         let loaded = RasterScene::load_prepared(mesh.clone(), &file).unwrap();
         let fresh = RasterScene::new(mesh);
         assert_eq!(loaded.drawn_triangles(), fresh.drawn_triangles(), "{id}");
-        assert_eq!(loaded.face_texture_bytes(), fresh.face_texture_bytes(), "{id}");
-        assert!(fresh.face_texture_bytes() > 1, "{id}: a lit home has face textures");
+        assert_eq!(
+            loaded.face_texture_bytes(),
+            fresh.face_texture_bytes(),
+            "{id}"
+        );
+        assert!(
+            fresh.face_texture_bytes() > 1,
+            "{id}: a lit home has face textures"
+        );
         let b = check.scene.bounds();
         let centre = glam::Vec3::new(
             (b.min[0] + b.max[0]) / 2.0,
@@ -376,7 +383,10 @@ fn every_scene_folder_holds_its_prepared_raster_scene_and_it_draws_as_one_prepar
             };
             let (a, f) = (loaded.render_view(&view, 1), fresh.render_view(&view, 1));
             assert!(a.rgb == f.rgb && a.depth == f.depth, "{id}: view {k}");
-            assert!(a.semantic == f.semantic && a.instance == f.instance, "{id}: view {k}");
+            assert!(
+                a.semantic == f.semantic && a.instance == f.instance,
+                "{id}: view {k}"
+            );
         }
     }
 }
