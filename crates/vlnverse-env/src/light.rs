@@ -199,24 +199,47 @@ pub fn bake_meshes(scene: &Scene) -> Vec<crate::geometry::TriMesh> {
 
 /// Where the lamps of a scene hang: under the ceiling of every room, at the centre of its
 /// outline's box, two along the long side of rooms longer than 4.5 m. Empty for scenes that are
-/// not procedural homes.
+/// not procedural homes. In a home on several floors each room's lamps hang under the walls of
+/// its own floor.
 pub fn lamps(scene: &Scene) -> Vec<Vec3> {
     if !is_lit(scene) {
         return Vec::new();
     }
-    let top = scene
-        .objects
-        .iter()
-        .filter(|o| o.class == crate::SemanticClass::Wall)
-        .map(|o| o.bbox.max[1])
-        .fold(f32::NEG_INFINITY, f32::max);
+    // The top of the walls standing on a floor at height `floor` (all walls when `None`).
+    let wall_top = |floor: Option<f32>| {
+        scene
+            .objects
+            .iter()
+            .filter(|o| o.class == crate::SemanticClass::Wall)
+            .filter(|o| floor.is_none_or(|f| (o.bbox.min[1] - f).abs() < 0.3))
+            .map(|o| o.bbox.max[1])
+            .fold(f32::NEG_INFINITY, f32::max)
+    };
+    let top = wall_top(None);
     let y = if top.is_finite() {
         top - LAMP_DROP
     } else {
         scene.floor_height + 2.3
     };
+    // A room's lamp height: the scene's for one floor (as it always was), else its floor's.
+    let height_of = |r: &crate::scene::Room| {
+        if !scene.is_multi_level() {
+            return y;
+        }
+        let floor = scene
+            .room_level(r.id)
+            .and_then(|l| scene.level_height(l))
+            .unwrap_or(scene.floor_height);
+        let top = wall_top(Some(floor));
+        if top.is_finite() {
+            top - LAMP_DROP
+        } else {
+            floor + 2.3
+        }
+    };
     let mut out = Vec::new();
     for r in &scene.rooms {
+        let y = height_of(r);
         if r.polygon.is_empty() {
             continue;
         }

@@ -241,3 +241,22 @@ fn level_maps_join_through_the_stairs_and_single_levels_are_unchanged() {
     .unwrap();
     assert!(t.image.width() > 100);
 }
+
+/// In a home on several floors each room's lamps hang under its own floor's walls: the ground
+/// floor's under the ground floor's ceiling, not at the upper floor's height.
+#[test]
+fn lamps_hang_under_the_walls_of_their_own_floor() {
+    let mut s = stacked_rooms();
+    s.source = "procgen".into();
+    let lamps = vlnverse_env::light::lamps(&s);
+    assert_eq!(lamps.len(), 4, "two rooms of 6 m, two lamps each");
+    let ys: Vec<f32> = lamps.iter().map(|p| p.y).collect();
+    // Walls of the fixture stand 2.5 m on each floor (the upper floor at 3 m).
+    assert!(ys[..2].iter().all(|&y| y > 1.5 && y < 2.5), "{ys:?}");
+    assert!(ys[2..].iter().all(|&y| y > 4.5 && y < 5.5), "{ys:?}");
+    // One floor: every lamp at the one height, as before.
+    let mut one = crate::occupancy_fixtures::open_room(6.0);
+    one.source = "procgen".into();
+    let flat = vlnverse_env::light::lamps(&one);
+    assert!(flat.windows(2).all(|w| w[0].y == w[1].y), "{flat:?}");
+}
