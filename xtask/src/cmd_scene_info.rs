@@ -1,7 +1,8 @@
-//! `cargo xtask scene-info`: statistics of one scene folder or a folder of scenes (navigable
-//! area, rooms by type, objects by class, triangle counts). `objects` counts every object,
-//! structure included (as the importer's report); `items` the non-structure objects, and
-//! `outside` those of them that lie in no room.
+//! `cargo xtask scene-info`: statistics of one scene folder or a folder of scenes (floors,
+//! navigable area, rooms by type, objects by class, triangle counts). `objects` counts every
+//! object, structure included (as the importer's report); `items` the non-structure objects,
+//! and `outside` those of them that lie in no room. The navigable area of a home on several
+//! floors is that of all its floors.
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -43,15 +44,11 @@ pub fn report(dir: &Path) -> anyhow::Result<String> {
         (0.0f64, 0usize, 0usize, 0usize);
     let (mut tot_objs, mut tot_outside) = (0usize, 0usize);
     let mut navs = Vec::new();
-    let mut rows: Vec<[String; 8]> = Vec::new();
+    let mut rows: Vec<[String; 9]> = Vec::new();
     for d in &dirs {
         let scene = vlnverse_env::io::load_scene(d)?;
-        let nav_yaml = d.join("navigable.yaml");
-        let nav = if nav_yaml.is_file() {
-            Some(GridMap::load_ros(&nav_yaml)?.free_area_m2() as f64)
-        } else {
-            None
-        };
+        let floors = scene.level_count();
+        let nav = navigable_area(d, floors)?;
         let floor: f32 = scene.rooms.iter().map(|r| r.area()).sum();
         let items = scene.items().count();
         let outside = scene.items().filter(|o| o.room.is_none()).count();
@@ -64,6 +61,7 @@ pub fn report(dir: &Path) -> anyhow::Result<String> {
         }
         rows.push([
             scene.id.clone(),
+            floors.to_string(),
             scene.rooms.len().to_string(),
             scene.objects.len().to_string(),
             items.to_string(),
@@ -84,6 +82,7 @@ pub fn report(dir: &Path) -> anyhow::Result<String> {
     }
     let header = [
         "scene",
+        "floors",
         "rooms",
         "objects",
         "items",
@@ -102,7 +101,7 @@ pub fn report(dir: &Path) -> anyhow::Result<String> {
                 .unwrap_or(0)
         })
         .collect();
-    let line = |cells: [&str; 8]| -> String {
+    let line = |cells: [&str; 9]| -> String {
         let mut l = format!("{:<w$}", cells[0], w = widths[0]);
         for (c, w) in cells.iter().zip(&widths).skip(1) {
             l += &format!(" {:>w$}", c, w = *w);
@@ -145,6 +144,28 @@ pub fn report(dir: &Path) -> anyhow::Result<String> {
     Ok(out)
 }
 
+/// The navigable area (m^2) of a scene folder's `floors` floors: `navigable.yaml` and, above
+/// the ground floor, `navigable_level<k>.yaml`; `None` when the ground floor's map is missing.
+fn navigable_area(dir: &Path, floors: usize) -> anyhow::Result<Option<f64>> {
+    let mut total = None;
+    for k in 0..floors {
+        let yaml = if k == 0 {
+            dir.join("navigable.yaml")
+        } else {
+            dir.join(format!("navigable_level{k}.yaml"))
+        };
+        if !yaml.is_file() {
+            if k == 0 {
+                return Ok(None);
+            }
+            continue;
+        }
+        let a = GridMap::load_ros(&yaml)?.free_area_m2() as f64;
+        total = Some(total.unwrap_or(0.0) + a);
+    }
+    Ok(total)
+}
+
 /// Run the command.
 pub fn run(args: Args) -> anyhow::Result<()> {
     print!("{}", report(&args.dir)?);
@@ -184,13 +205,46 @@ mod tests {
             .iter()
             .map(|l| l.split_whitespace().collect())
             .collect();
-        assert_eq!(cells[0][2..5], ["objects", "items", "outside"]);
+        assert_eq!(
+            cells[0][1..6],
+            ["floors", "rooms", "objects", "items", "outside"]
+        );
         let row = &cells[1];
         assert_eq!(row[0], a.id);
-        assert_eq!(row[2], a.objects.len().to_string());
-        assert_eq!(row[3], a.items().count().to_string());
-        assert_eq!(row[4], "1");
+        assert_eq!(row[1], "1");
+        assert_eq!(row[3], a.objects.len().to_string());
+        assert_eq!(row[4], a.items().count().to_string());
+        assert_eq!(row[5], "1");
         assert!(a.objects.len() > a.items().count());
-        assert_eq!(cells[2][4], "0");
+        assert_eq!(cells[2][5], "0");
+    }
+
+    /// A home on two floors counts its floors and the navigable area of both.
+    #[test]
+    fn a_two_storey_home_counts_both_floors() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut cfg = vlnverse_procgen::ProcgenConfig::from_toml_str(
+            include_str!("../../configs/scenes/two_storey.toml"),
+            None,
+        )
+        .unwrap();
+        cfg.scenes.count = 1;
+        let generator = vlnverse_procgen::HomeGenerator::new(cfg).unwrap();
+        let scene = vlnverse_env::SceneSource::scene(&generator, 0).unwrap();
+        let occupancy = vlnverse_env::occupancy::OccupancyConfig::default();
+        let (_, folder) =
+            vlnverse_env::io::write_scene_bundle(dir.path(), scene, &occupancy).unwrap();
+        let ground = GridMap::load_ros(folder.join("navigable.yaml"))
+            .unwrap()
+            .free_area_m2() as f64;
+        let both = navigable_area(&folder, 2).unwrap().unwrap();
+        assert!(
+            both > ground + 5.0,
+            "upper floor adds no area: {ground} {both}"
+        );
+        let text = report(&folder).unwrap();
+        let row: Vec<&str> = text.lines().nth(1).unwrap().split_whitespace().collect();
+        assert_eq!(row[1], "2", "{text}");
+        assert_eq!(row[8], format!("{both:.1}"), "{text}");
     }
 }
