@@ -1490,6 +1490,12 @@ fn stop_sentence(route: &Route<'_, '_>, draft: &mut Draft) -> String {
             }
         }
         s
+    } else if route.rooms.len() <= 1 {
+        // The walk never leaves its room: no "stop once you enter the kitchen".
+        match end_place(ctx.scene, last_room, end, end_heading, rng) {
+            Some(w) => format!("{} {w}", pick(rng, &["stop", "wait", "come to a stop"])),
+            None => pick(rng, &ph::STOP).to_string(),
+        }
     } else if let Some(r) = last_room {
         let room = room_np(ctx.scene, r, route.room_syn, rng);
         match end_place(ctx.scene, Some(r), end, end_heading, rng) {

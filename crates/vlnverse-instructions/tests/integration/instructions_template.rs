@@ -157,12 +157,26 @@ fn fine_grounding_exists_near_path_and_on_stated_side() {
 #[test]
 fn fine_names_the_rooms_entered() {
     let g = gen();
-    let mut transitions = 0;
+    // With no object to stop at, the stop names the room (or, staying in one, a place in it).
+    let roomy = TemplateGenerator::new(vlnverse_instructions::TemplateConfig {
+        end_object_distance: 0.01,
+        ..Default::default()
+    })
+    .unwrap();
+    let (mut transitions, mut single) = (0, 0);
     for (wi, w) in worlds(5).iter().enumerate() {
         for s in paths(w, 10, 100 + wi as u64) {
             let path3: Vec<glam::Vec3> = s.path.iter().map(|p| glam::Vec3::from(*p)).collect();
             let rooms = rooms_along_path(&w.scene, &path3);
             let ins = g.fine(&w.ctx(&s), 3).unwrap();
+            // A walk that never leaves its room is not told to enter one.
+            if rooms.len() <= 1 {
+                single += 1;
+                let t = roomy.fine(&w.ctx(&s), 3).unwrap().instruction_text;
+                let t = t.to_lowercase();
+                let entering = ["enter ", "get into ", "once you are in ", "are inside "];
+                assert!(!entering.iter().any(|e| t.contains(e)), "{t}");
+            }
             for &(_, r) in rooms.iter().skip(1) {
                 transitions += 1;
                 let kind = w.scene.room(r).unwrap().kind.words();
@@ -175,6 +189,7 @@ fn fine_names_the_rooms_entered() {
         }
     }
     assert!(transitions >= 10, "only {transitions} room changes sampled");
+    assert!(single >= 3, "only {single} walks within one room sampled");
 }
 
 /// A path far outside the home: no landmark, no room, only turns.
