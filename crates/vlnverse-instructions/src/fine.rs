@@ -201,7 +201,8 @@ fn distance_phrase(d: f32, w: Writer, rng: &mut ChaCha8Rng) -> String {
 }
 
 /// "turn left", "bear towards your two o'clock", "turn 90 degrees to the right", "make a
-/// sharp right", "turn left again" (`prev`: the turn before, a clear turn the same way).
+/// sharp right", "turn left again", "bear left again" (`prev`: the turn before, when it went
+/// the same way).
 fn turn_clause(
     turn: Turn,
     angle: f32,
@@ -215,7 +216,9 @@ fn turn_clause(
         Turn::Around => Some(pick(rng, &ph::TURN_AROUND).to_string()),
         Turn::Slight(s) => {
             let dir = side_word(s);
-            if rng.random_bool(0.05) {
+            if !start && prev == Some(Turn::Slight(s)) && rng.random_bool(0.5) {
+                Some(fill(pick(rng, &ph::SLIGHT_AGAIN), &[("dir", dir)]))
+            } else if rng.random_bool(0.05) {
                 let k = ((angle.abs() / 30.0).round() as u32).clamp(1, 2);
                 let hour = if s == Side::Right { k } else { 12 - k };
                 let clock = if rng.random_bool(0.5) {

@@ -182,6 +182,7 @@ banks! {
     ROOM_WALK_IN = room_walk_in,
     PASS_BETWEEN = pass_between,
     SEE_BETWEEN = see_between,
+    SLIGHT_AGAIN = slight_again,
 }
 
 /// A bank as written in the data file.

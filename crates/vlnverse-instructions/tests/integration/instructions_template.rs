@@ -503,3 +503,33 @@ fn path_context_is_copy_for_callers() {
     let copy = ctx;
     assert_eq!(gen().fine(&ctx, 1).unwrap(), gen().fine(&copy, 1).unwrap());
 }
+
+/// A second turn the same way as the first is now and then said so ("turn right again",
+/// "take another right", "bear left again"); a turn the other way never is.
+#[test]
+fn a_turn_the_same_way_again_is_said_so() {
+    let w = &worlds(1)[0];
+    let g = gen();
+    let said = |text: &str| {
+        let t = text.to_lowercase();
+        t.contains("again") || t.contains("another") || t.contains("keep bearing")
+    };
+    // Right, then right again; right, then left.
+    let twice = open_path(&[(0.0, 0.0), (0.0, -5.0), (5.0, -5.0), (5.0, 0.0)], 0.0);
+    let back = open_path(&[(0.0, 0.0), (0.0, -5.0), (5.0, -5.0), (5.0, -10.0)], 0.0);
+    // Two slight bends to the left (about 29 and 35 degrees).
+    let bends = open_path(&[(0.0, 0.0), (0.0, -5.0), (-2.5, -9.5), (-7.0, -11.7)], 0.0);
+    let (mut again, mut slight) = (0, 0);
+    for seed in 0..40 {
+        again += usize::from(said(
+            &g.fine(&w.ctx(&twice), seed).unwrap().instruction_text,
+        ));
+        let b = g.fine(&w.ctx(&back), seed).unwrap().instruction_text;
+        assert!(!said(&b), "{b}");
+        let s = g.fine(&w.ctx(&bends), seed).unwrap().instruction_text;
+        assert!(!s.contains("right"), "{s}");
+        slight += usize::from(said(&s));
+    }
+    assert!(again >= 5, "only {again} of 40");
+    assert!(slight >= 3, "only {slight} of 40");
+}
