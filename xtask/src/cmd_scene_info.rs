@@ -7,7 +7,6 @@
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-use vlnverse_env::occupancy::GridMap;
 
 /// Arguments of `cargo xtask scene-info`.
 #[derive(clap::Args, Clone, Debug)]
@@ -148,20 +147,12 @@ pub fn report(dir: &Path) -> anyhow::Result<String> {
 /// the ground floor, `navigable_level<k>.yaml`; `None` when the ground floor's map is missing.
 fn navigable_area(dir: &Path, floors: usize) -> anyhow::Result<Option<f64>> {
     let mut total = None;
-    for k in 0..floors {
-        let yaml = if k == 0 {
-            dir.join("navigable.yaml")
-        } else {
-            dir.join(format!("navigable_level{k}.yaml"))
-        };
-        if !yaml.is_file() {
-            if k == 0 {
-                return Ok(None);
-            }
-            continue;
+    for k in 0..floors as u32 {
+        match crate::cmd_topdown::navigable_map(dir, k)? {
+            Some(map) => total = Some(total.unwrap_or(0.0) + map.free_area_m2() as f64),
+            None if k == 0 => return Ok(None),
+            None => {}
         }
-        let a = GridMap::load_ros(&yaml)?.free_area_m2() as f64;
-        total = Some(total.unwrap_or(0.0) + a);
     }
     Ok(total)
 }
@@ -223,18 +214,8 @@ mod tests {
     #[test]
     fn a_two_storey_home_counts_both_floors() {
         let dir = tempfile::tempdir().unwrap();
-        let mut cfg = vlnverse_procgen::ProcgenConfig::from_toml_str(
-            include_str!("../../configs/scenes/two_storey.toml"),
-            None,
-        )
-        .unwrap();
-        cfg.scenes.count = 1;
-        let generator = vlnverse_procgen::HomeGenerator::new(cfg).unwrap();
-        let scene = vlnverse_env::SceneSource::scene(&generator, 0).unwrap();
-        let occupancy = vlnverse_env::occupancy::OccupancyConfig::default();
-        let (_, folder) =
-            vlnverse_env::io::write_scene_bundle(dir.path(), scene, &occupancy).unwrap();
-        let ground = GridMap::load_ros(folder.join("navigable.yaml"))
+        let folder = crate::cmd_topdown::two_storey_folder(dir.path());
+        let ground = vlnverse_env::occupancy::GridMap::load_ros(folder.join("navigable.yaml"))
             .unwrap()
             .free_area_m2() as f64;
         let both = navigable_area(&folder, 2).unwrap().unwrap();

@@ -116,12 +116,12 @@ pub fn render_png_scaled(
 
 /// The navigable map of floor `level` in a scene folder (`navigable.yaml`, or
 /// `navigable_level<k>.yaml` above the ground floor), if the folder has one.
-fn navigable_map(scene_dir: &Path, level: u32) -> anyhow::Result<Option<GridMap>> {
-    let yaml = if level == 0 {
-        scene_dir.join("navigable.yaml")
-    } else {
-        scene_dir.join(format!("navigable_level{level}.yaml"))
-    };
+pub fn navigable_map(scene_dir: &Path, level: u32) -> anyhow::Result<Option<GridMap>> {
+    let yaml = scene_dir.join(vlnverse_env::occupancy::level_map_file(
+        "navigable",
+        level,
+        "yaml",
+    ));
     Ok(if yaml.is_file() {
         Some(GridMap::load_ros(&yaml)?)
     } else {
@@ -167,6 +167,24 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// A scene folder of the first home of `configs/scenes/two_storey.toml` (two floors, with each
+/// floor's maps) written under `dir`, for the tests of the commands that read floors.
+#[cfg(test)]
+pub fn two_storey_folder(dir: &Path) -> PathBuf {
+    let mut cfg = vlnverse_procgen::ProcgenConfig::from_toml_str(
+        include_str!("../../configs/scenes/two_storey.toml"),
+        None,
+    )
+    .unwrap();
+    cfg.scenes.count = 1;
+    let generator = vlnverse_procgen::HomeGenerator::new(cfg).unwrap();
+    let scene = vlnverse_env::SceneSource::scene(&generator, 0).unwrap();
+    let occupancy = vlnverse_env::occupancy::OccupancyConfig::default();
+    vlnverse_env::io::write_scene_bundle(dir, scene, &occupancy)
+        .unwrap()
+        .1
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -198,17 +216,7 @@ mod tests {
     #[test]
     fn a_two_storey_home_gives_a_picture_per_floor() {
         let dir = tempfile::tempdir().unwrap();
-        let mut cfg = vlnverse_procgen::ProcgenConfig::from_toml_str(
-            include_str!("../../configs/scenes/two_storey.toml"),
-            None,
-        )
-        .unwrap();
-        cfg.scenes.count = 1;
-        let generator = vlnverse_procgen::HomeGenerator::new(cfg).unwrap();
-        let scene = vlnverse_env::SceneSource::scene(&generator, 0).unwrap();
-        let occupancy = vlnverse_env::occupancy::OccupancyConfig::default();
-        let (_, folder) =
-            vlnverse_env::io::write_scene_bundle(dir.path(), scene, &occupancy).unwrap();
+        let folder = two_storey_folder(dir.path());
         let all = render_levels(&folder, 20.0, false, None).unwrap();
         assert_eq!(all.iter().map(|p| p.0).collect::<Vec<_>>(), vec![0, 1]);
         assert_ne!(all[0].1, all[1].1, "the two floors drew the same picture");

@@ -530,6 +530,17 @@ pub fn build_level_maps(scene: &Scene, cfg: &OccupancyConfig) -> Result<Vec<Occu
         .collect()
 }
 
+/// The file name of a map of floor `level` in a scene folder: `{stem}.{ext}` on the ground
+/// floor (`navigable.yaml`), `{stem}_level{level}.{ext}` above it (`navigable_level1.yaml`);
+/// `stem` is `occupancy` or `navigable`, `ext` `yaml` or `pgm`.
+pub fn level_map_file(stem: &str, level: LevelId, ext: &str) -> String {
+    if level == 0 {
+        format!("{stem}.{ext}")
+    } else {
+        format!("{stem}_level{level}.{ext}")
+    }
+}
+
 /// The ROS map files of the levels above the ground floor of a multi-level scene:
 /// `occupancy_level<k>.{pgm,yaml}` and `navigable_level<k>.{pgm,yaml}` for `k >= 1` (the
 /// ground floor's are the scene folder's `occupancy.*` / `navigable.*`); none for a
@@ -545,9 +556,9 @@ pub fn upper_level_files(scene: &Scene, cfg: &OccupancyConfig) -> Result<Vec<(St
             ("occupancy", &maps.occupancy),
             ("navigable", &maps.navigable),
         ] {
-            let pgm = format!("{stem}_level{level}.pgm");
+            let pgm = level_map_file(stem, level, "pgm");
             out.push((
-                format!("{stem}_level{level}.yaml"),
+                level_map_file(stem, level, "yaml"),
                 map.to_yaml(&pgm).into_bytes(),
             ));
             out.push((pgm, map.to_pgm_bytes()));
