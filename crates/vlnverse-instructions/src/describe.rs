@@ -266,19 +266,28 @@ fn reference(x: &SceneObject, side: Side, index: usize) -> GroundedObject {
     }
 }
 
-/// Landmark objects in `o`'s room other than `o`, of a class the scene has once (so "the
-/// sofa" names one thing), in id order.
+/// Landmark objects in `o`'s room of another class than `o`'s, each the only one of its class
+/// in the scene (so "the sofa" names one thing), in id order.
 fn room_landmarks<'s>(
     ctx: &PathContext<'s>,
     o: &SceneObject,
 ) -> impl Iterator<Item = &'s SceneObject> + use<'s> {
+    let (ctx, class) = (*ctx, o.class);
+    o.room
+        .into_iter()
+        .flat_map(move |r| unique_landmarks_in(&ctx, r))
+        .filter(move |x| x.class != class)
+}
+
+/// Landmark objects in room `room` (no structure, no door leaves), each the only one of its
+/// class in the scene, in id order.
+pub(crate) fn unique_landmarks_in<'s>(
+    ctx: &PathContext<'s>,
+    room: RoomId,
+) -> impl Iterator<Item = &'s SceneObject> + use<'s> {
     let (scene, g) = (ctx.scene, ctx.graph);
-    let (id, room, class) = (o.id, o.room, o.class);
     scene.objects.iter().filter(move |x| {
-        x.id != id
-            && x.room.is_some()
-            && x.room == room
-            && x.class != class
+        x.room == Some(room)
             && !x.is_structure()
             && x.class != C::Door
             && is_landmark(x)

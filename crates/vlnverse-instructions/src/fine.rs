@@ -4,8 +4,8 @@
 //! the way people do. Every object named is grounded.
 
 use super::describe::{
-    content_name, door_between, door_np, end_place, is_closed_leaf, object_np, room_np, NpOptions,
-    Viewpoint,
+    content_name, door_between, door_np, end_place, is_closed_leaf, object_np, room_np,
+    unique_landmarks_in, NpOptions, Viewpoint,
 };
 use super::lexicon::{number_word, object_names, ordinal_word, plural};
 use super::path::{
@@ -1559,18 +1559,8 @@ fn end_between<'s>(
     let ctx = route.ctx;
     let view = route.view(route.n() - 1);
     let here = ctx.scene.room_at(route.end.x, route.end.y)?.id;
-    let near: Vec<(&SceneObject, Side)> = ctx
-        .scene
-        .objects
-        .iter()
-        .filter(|o| {
-            o.room == Some(here)
-                && is_landmark(o)
-                && !o.is_structure()
-                && o.class != vlnverse_env::SemanticClass::Door
-                && o.class.kind() == vlnverse_env::ClassKind::Furniture
-                && ctx.graph.objects_of_class(o.class).len() == 1
-        })
+    let near: Vec<(&SceneObject, Side)> = unique_landmarks_in(ctx, here)
+        .filter(|o| o.class.kind() == vlnverse_env::ClassKind::Furniture)
         .filter_map(|o| {
             let (side, d) = view.side_of(o)?;
             (d <= 2.0 && side != Side::Ahead).then_some((o, side))
