@@ -140,6 +140,14 @@ pub struct AgentConfig {
     pub max_angular_accel_deg: f32,
     /// Wheel limits of a differential-drive robot (None: no wheel constraint).
     pub differential_drive: Option<DifferentialDrive>,
+    /// Highest step the agent climbs onto (or steps down from) while walking (m): a tread,
+    /// a kerb, a threshold. Used in scenes with more than one level (`Scene::is_multi_level`),
+    /// where the agent follows the ground; single-level scenes keep the planar agent.
+    pub max_step_height: f32,
+    /// Steepest surface the agent walks up (degrees from horizontal, measured on the
+    /// surface's normal): ramps and sloped imported meshes; the flat treads of a flight of
+    /// stairs are steps, whatever the flight's pitch. Multi-level scenes only.
+    pub max_slope_deg: f32,
 }
 
 impl Default for AgentConfig {
@@ -164,9 +172,18 @@ impl Default for AgentConfig {
             max_linear_accel: 1.5,
             max_angular_accel_deg: 360.0,
             differential_drive: None,
+            max_step_height: DEFAULT_MAX_STEP_HEIGHT,
+            max_slope_deg: DEFAULT_MAX_SLOPE_DEG,
         }
     }
 }
+
+/// Default [`AgentConfig::max_step_height`] (m): above the generated homes' risers (at most
+/// 0.18 m, 0.175 m at the default storey height) and the usual building-code limit of 0.2 m.
+pub const DEFAULT_MAX_STEP_HEIGHT: f32 = 0.2;
+/// Default [`AgentConfig::max_slope_deg`]: above the generated flights' pitch (about 32
+/// degrees), so a flight imported as one sloped mesh is walkable too.
+pub const DEFAULT_MAX_SLOPE_DEG: f32 = 35.0;
 
 /// The shipped profiles, embedded from `configs/agent/*.toml`.
 pub const PROFILES: &[(&str, &str)] = &[
@@ -235,6 +252,8 @@ impl AgentConfig {
             1.0,
             36_000.0,
         )?;
+        check_range("max_step_height", self.max_step_height, 0.0, 1.0)?;
+        check_range("max_slope_deg", self.max_slope_deg, 0.0, 85.0)?;
         if let Some(d) = &self.differential_drive {
             check_range("differential_drive.wheel_base", d.wheel_base, 0.01, 5.0)?;
             check_range(
@@ -450,6 +469,10 @@ mod tests {
                 "max_angular_accel_deg",
                 "1000000000",
             ),
+            ("max_step_height = -0.2", "max_step_height", "-0.2"),
+            ("max_step_height = 1.5", "max_step_height", "1.5"),
+            ("max_slope_deg = nan", "max_slope_deg", "NaN"),
+            ("max_slope_deg = 90.0", "max_slope_deg", "90"),
         ] {
             // Replace the profile's own line for the field, if any, so the TOML stays valid.
             let key = line.split(' ').next().unwrap();
