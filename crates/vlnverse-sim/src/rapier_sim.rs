@@ -9,7 +9,9 @@ use crate::config::{CollisionSetting, SimConfig};
 use crate::error::{Result, SimError};
 use crate::physics_cache::PhysicsCache;
 use crate::simulator::{Failure, Hop, Simulator, StepOutcome};
-use crate::world::{agent_key, check_agent, content_key, PhysicsScene, World, AGENT_QUERY};
+use crate::world::{
+    agent_key, check_agent, content_key, PhysicsScene, World, AGENT_QUERY, STAND_QUERY,
+};
 use crate::{Action, WaypointMode};
 use glam::{Quat, Vec2, Vec3};
 use rand::{Rng, SeedableRng};
@@ -21,6 +23,8 @@ use std::f64::consts::{PI, TAU};
 use std::hash::{Hash, Hasher};
 use std::sync::Arc;
 use vlnverse_env::ObjectId;
+
+mod ground;
 
 /// Gap kept between the agent and obstacles by discrete moves (m).
 const SKIN: f32 = 0.005;
@@ -201,8 +205,11 @@ impl RapierSimulator {
         start.rotation.map(f32::to_bits).hash(&mut h);
         self.rng = ChaCha8Rng::seed_from_u64(h.finish());
         self.scene = Some(scene);
+        if self.follows_ground() {
+            self.state.base.y = self.stand_height(p);
+        }
         self.sync_body(Vec3::ZERO);
-        let hits = self.overlaps(p);
+        let hits = self.overlaps(self.state.base);
         if !hits.is_empty() {
             tracing::warn!(?hits, "start pose overlaps objects");
         }
@@ -276,10 +283,15 @@ impl RapierSimulator {
         let (Some(s), Some(w)) = (self.scene.as_ref(), self.world.as_ref()) else {
             return vec![];
         };
+        // Following the ground, a floor higher than the feet is in the way too.
+        let groups = match s.follows_ground() {
+            true => STAND_QUERY,
+            false => AGENT_QUERY,
+        };
         let qp = w.query(
             QueryFilter::default()
                 .exclude_rigid_body(s.agent_body)
-                .groups(AGENT_QUERY),
+                .groups(groups),
         );
         let shape = s.agent_shape.as_ref();
         let handles: Vec<ColliderHandle> = qp
@@ -339,13 +351,34 @@ impl RapierSimulator {
     /// controller, whose ground-contact tests (useless for a planar agent) made blocked moves
     /// 3-4 times slower.
     fn slide_move(&mut self, desired: Vec3) -> (Vec3, Vec<ObjectId>) {
+        if self.follows_ground() {
+            return self.climb_move(desired);
+        }
+        let (achieved, hits) = self.slide_cast(self.state.base, desired, AGENT_QUERY);
+        let hits = self.ids(hits);
+        self.state.base += achieved;
+        self.state.speed = 0.0;
+        self.state.omega = 0.0;
+        self.sync_body(Vec3::ZERO);
+        (achieved, hits)
+    }
+
+    /// The slide loop of [`Self::slide_move`] from base position `start` against the
+    /// colliders of `groups`, changing nothing: the achieved horizontal displacement and the
+    /// colliders hit.
+    fn slide_cast(
+        &self,
+        start: Vec3,
+        desired: Vec3,
+        groups: InteractionGroups,
+    ) -> (Vec3, Vec<ColliderHandle>) {
         let (Some(s), Some(w)) = (self.scene.as_ref(), self.world.as_ref()) else {
             return (Vec3::ZERO, vec![]);
         };
         let qp = w.query(
             QueryFilter::default()
                 .exclude_rigid_body(s.agent_body)
-                .groups(AGENT_QUERY),
+                .groups(groups),
         );
         let rot = self.quat();
         let sliding = self.cfg.agent.allow_sliding;
@@ -360,7 +393,7 @@ impl RapierSimulator {
             }
             let dir = remaining / dist;
             let cast = qp.cast_shape(
-                &self.shape_pose(self.state.base + achieved, rot),
+                &self.shape_pose(start + achieved, rot),
                 dir,
                 s.agent_shape.as_ref(),
                 ShapeCastOptions {
@@ -402,16 +435,14 @@ impl RapierSimulator {
             // A hair away from the surface so the next cast does not start touching it.
             remaining += n * NUDGE;
         }
-        let hits = self.ids(hits);
-        self.state.base += achieved;
-        self.state.speed = 0.0;
-        self.state.omega = 0.0;
-        self.sync_body(Vec3::ZERO);
         (achieved, hits)
     }
 
     /// Teleport to `target` (base position) and resolve to the nearest free spot.
     fn hop(&mut self, target: Vec3, out: &mut StepOutcome) {
+        if self.follows_ground() {
+            return self.hop_on_ground(target, out);
+        }
         let start = self.state.base;
         out.commanded = [target.x - start.x, target.z - start.z];
         let at_target = self.overlaps(target);

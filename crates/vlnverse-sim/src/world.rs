@@ -18,6 +18,20 @@ const SOLID: InteractionGroups =
 /// Groups of the agent's collider, moves and overlap tests: everything but the ground.
 pub(crate) const AGENT_QUERY: InteractionGroups =
     InteractionGroups::new(Group::GROUP_1, Group::GROUP_1, InteractionTestMode::And);
+/// Collision group of floors in a multi-level scene: ground (never in [`AGENT_QUERY`]) that
+/// the agent also stands on ([`STAND_QUERY`]). Single-level scenes keep [`GROUND`].
+const FLOOR: InteractionGroups = InteractionGroups::new(
+    Group::GROUP_2.union(Group::GROUP_3),
+    Group::ALL,
+    InteractionTestMode::And,
+);
+/// Groups of the multi-level agent's "what am I standing on" casts: floors and solids, not
+/// the low objects it drives over (rugs).
+pub(crate) const STAND_QUERY: InteractionGroups = InteractionGroups::new(
+    Group::GROUP_1,
+    Group::GROUP_1.union(Group::GROUP_3),
+    InteractionTestMode::And,
+);
 
 /// The mutable part of a rapier world (what an environment owns and a snapshot copies).
 #[derive(Clone)]
@@ -75,10 +89,17 @@ pub struct PhysicsScene {
     /// Horizontal scene bounds `[min_x, min_z, max_x, max_z]` (None for an empty scene).
     pub(crate) bounds: Option<[f32; 4]>,
     pub(crate) has_floor: bool,
+    /// Floor heights of the levels, lowest first, when the scene has more than one (the agent
+    /// then follows the ground: steps, flights, falls); empty for a single-level scene.
+    pub(crate) levels: Vec<f32>,
+    /// Lowest y of the scene (the bottom of the deepest fall).
+    pub(crate) min_y: f32,
     pub(crate) dynamic_objects: Vec<(ObjectId, RigidBodyHandle)>,
     /// Closed doors as `(door id, doorway segment [x, z] to [x, z])`: a Tel-Hop may not pass
     /// one (the leaf is a static collider, so moves in the other settings stop at it anyway).
     pub(crate) closed_doors: Vec<(u32, [[f32; 2]; 2])>,
+    /// The level (index into `levels`) of each of `closed_doors`, 0 in a single-level scene.
+    pub(crate) closed_door_levels: Vec<usize>,
 }
 
 impl std::fmt::Debug for PhysicsScene {
@@ -97,6 +118,16 @@ impl PhysicsScene {
         agent.validate()?;
         let mut w = World::new();
         let mut dynamic_objects = Vec::new();
+        let levels: Vec<f32> = if scene.is_multi_level() {
+            scene
+                .storeys
+                .levels
+                .iter()
+                .map(|l| l.floor_height)
+                .collect()
+        } else {
+            vec![]
+        };
         for o in &scene.objects {
             let dynamic = o.physics.motion == Motion::Dynamic
                 && o.physics.mass.is_finite()
@@ -111,9 +142,18 @@ impl PhysicsScene {
             let user = o.id as u128;
             // Floors and anything the agent drives over never block a horizontal move; keeping
             // them out of the agent's queries keeps every shape cast and overlap test short.
-            let ground = o.class == SemanticClass::Floor
-                || o.bbox.max[1] < scene.floor_height + agent.ground_clearance;
-            let groups = if ground { GROUND } else { SOLID };
+            // In a multi-level scene "low" is measured from the floor of the object's own level.
+            let floor = match levels.is_empty() {
+                true => scene.floor_height,
+                false => levels[level_below(&levels, o.bbox.min[1])],
+            };
+            let is_floor = o.class == SemanticClass::Floor;
+            let ground = is_floor || o.bbox.max[1] < floor + agent.ground_clearance;
+            let groups = match (ground, is_floor && !levels.is_empty()) {
+                (_, true) => FLOOR,
+                (true, false) => GROUND,
+                (false, false) => SOLID,
+            };
             if dynamic {
                 if convex.is_empty() {
                     continue;
@@ -186,6 +226,19 @@ impl PhysicsScene {
 
         let b = scene.bounds();
         let bounds = (!b.is_empty()).then(|| [b.min[0], b.min[2], b.max[0], b.max[2]]);
+        let closed: Vec<&vlnverse_env::Door> =
+            scene.doors.iter().filter(|d| d.is_closed()).collect();
+        let closed_door_levels = closed
+            .iter()
+            .map(|d| {
+                let level = scene.room_level(d.rooms[0]).unwrap_or(0) as usize;
+                if level < levels.len() {
+                    level
+                } else {
+                    0
+                }
+            })
+            .collect();
         Ok(PhysicsScene {
             scene_id: scene.id.clone(),
             fingerprint: fingerprint(scene),
@@ -200,14 +253,39 @@ impl PhysicsScene {
                 .objects
                 .iter()
                 .any(|o| o.class == SemanticClass::Floor),
+            min_y: if b.is_empty() { 0.0 } else { b.min[1] },
+            levels,
             dynamic_objects,
-            closed_doors: scene
-                .doors
-                .iter()
-                .filter(|d| d.is_closed())
-                .map(|d| (d.id, d.segment()))
-                .collect(),
+            closed_doors: closed.iter().map(|d| (d.id, d.segment())).collect(),
+            closed_door_levels,
         })
+    }
+
+    /// Whether the agent follows the ground in this world (a scene of more than one level):
+    /// it climbs steps up to its `max_step_height`, walks slopes up to its `max_slope_deg`
+    /// and falls where nothing is under it. Single-level scenes keep the planar agent.
+    pub fn follows_ground(&self) -> bool {
+        !self.levels.is_empty()
+    }
+
+    /// The level whose floor is the highest at or below the feet height `y` (a small
+    /// tolerance for a point a hair below its floor); 0 in a single-level scene.
+    pub fn level_at(&self, y: f32) -> usize {
+        level_below(&self.levels, y)
+    }
+
+    /// [`Self::closed_door_between`] for the doors on the given levels only.
+    pub(crate) fn closed_door_between_on(
+        &self,
+        a: [f32; 2],
+        b: [f32; 2],
+        on: &[usize],
+    ) -> Option<u32> {
+        self.closed_doors
+            .iter()
+            .zip(&self.closed_door_levels)
+            .find(|((_, s), l)| on.contains(l) && vlnverse_env::segments_cross(a, b, s[0], s[1]))
+            .map(|((id, _), _)| *id)
     }
 
     /// The first closed door (by id) whose doorway the floor segment from `a` to `b` crosses.
@@ -232,6 +310,12 @@ impl PhysicsScene {
     pub fn dynamic_object_ids(&self) -> Vec<ObjectId> {
         self.dynamic_objects.iter().map(|(id, _)| *id).collect()
     }
+}
+
+/// Index of the highest of `levels` (floor heights, ascending) at or below `y` (with 1 cm of
+/// tolerance); 0 when `y` is below them all or there are none.
+fn level_below(levels: &[f32], y: f32) -> usize {
+    levels.iter().rposition(|&f| f <= y + 0.01).unwrap_or(0)
 }
 
 /// One static collider per shape, at `pose * local`, tagged with the object's `user` data.

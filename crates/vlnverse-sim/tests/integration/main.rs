@@ -6,3 +6,4 @@ mod behaviour;
 mod doors;
 mod generated_home;
 mod shared_worlds;
+mod storeys;
