@@ -1,4 +1,5 @@
-//! Throughput of the simulator in a generated home (procgen `tiny` preset, scene 0).
+//! Throughput of the simulator in a generated home (procgen `tiny` preset, scene 0), and
+//! on the flight of stairs of a two-storey home (`configs/scenes/two_storey.toml`, scene 0).
 //!
 //! `cargo bench -p vlnverse-sim --bench sim -- --warm-up-time 1 --measurement-time 3`
 
@@ -15,6 +16,27 @@ fn home() -> Scene {
     HomeGenerator::from_preset(Preset::Tiny)
         .and_then(|g| g.scene(0))
         .expect("procgen tiny scene 0")
+}
+
+/// The first home of `configs/scenes/two_storey.toml` (on two floors).
+fn two_storey_home() -> Scene {
+    let cfg = vlnverse_procgen::ProcgenConfig::from_toml_str(
+        include_str!("../../vlnverse-procgen/configs/scenes/two_storey.toml"),
+        None,
+    )
+    .expect("two_storey.toml");
+    HomeGenerator::new(cfg)
+        .and_then(|g| g.scene(0))
+        .expect("two-storey scene 0")
+}
+
+/// At the foot of the home's first flight facing its head; moves from the foot to the head.
+fn flight_start(scene: &Scene, step: f32) -> (Pose, usize) {
+    let st = &scene.storeys.stairs[0];
+    let (f, h) = (glam::Vec3::from(st.foot), glam::Vec3::from(st.head));
+    let d = glam::Vec3::new(h.x - f.x, 0.0, h.z - f.z);
+    let yaw = (-d.x).atan2(-d.z);
+    (Pose::from_yaw(f, yaw), (d.length() / step).round() as usize)
 }
 
 /// `n` collision-free start poses, sampled deterministically inside the rooms.
@@ -87,6 +109,31 @@ fn bench(c: &mut Criterion) {
             )
         });
     }
+
+    // Up the flight and back down (Strict: not one noticeable collision on the way).
+    let stairs = two_storey_home();
+    let strict = SimConfig::default();
+    let (foot, n_up) = flight_start(&stairs, strict.agent.step_size);
+    let upstairs = Arc::new(PhysicsScene::build(&stairs, &strict.agent).expect("physics"));
+    let mut up_down = vec![Action::forward(&strict.agent); n_up];
+    up_down.push(Action::TurnLeft(std::f32::consts::PI));
+    up_down.extend(vec![Action::forward(&strict.agent); n_up]);
+    g.throughput(Throughput::Elements(up_down.len() as u64));
+    g.bench_function("flight_up_and_down_1_env", |b| {
+        b.iter_batched_ref(
+            || {
+                let mut s = RapierSimulator::new(strict.clone()).expect("sim");
+                s.reset_in(Arc::clone(&upstairs), foot).expect("reset");
+                s
+            },
+            |s| {
+                for a in up_down.iter() {
+                    black_box(s.step(*a).expect("step"));
+                }
+            },
+            BatchSize::SmallInput,
+        )
+    });
 
     let envs = 64;
     let rounds = 20;
