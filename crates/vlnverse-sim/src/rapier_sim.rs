@@ -574,6 +574,12 @@ impl RapierSimulator {
             let t = b.translation();
             self.state.base = Vec3::new(t.x, start.y, t.z);
         }
+        if self.follows_ground() {
+            // The body is held at its height (a riser stops it), but it falls where the floor
+            // under it ends.
+            self.state.base.y = self.fall_height(self.state.base);
+            self.sync_body(self.forward() * self.state.speed);
+        }
         out.commanded = [commanded.x, commanded.z];
         out.achieved = [self.state.base.x - start.x, self.state.base.z - start.z];
         out.hit = self.ids(touched);

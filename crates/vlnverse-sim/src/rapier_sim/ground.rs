@@ -101,6 +101,15 @@ impl RapierSimulator {
         }
     }
 
+    /// Where an agent with its feet at `p` comes to rest going only down: the ground under it
+    /// when that is lower than `p.y` (a fall), else `p.y`.
+    pub(super) fn fall_height(&self, p: Vec3) -> f32 {
+        match self.ground_under(p, 0.0) {
+            Some(g) if g.y < p.y - FLAT => g.y,
+            _ => p.y,
+        }
+    }
+
     /// [`Self::slide_move`] following the ground: the move is cut into sub-moves of at most
     /// [`CLIMB_STEP`]; each slides with the shape raised by [`Self::lift`] (so a low step does
     /// not stop it) and then drops onto the ground under it. A step higher than

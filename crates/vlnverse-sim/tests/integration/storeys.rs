@@ -335,3 +335,40 @@ fn a_walk_in_a_two_storey_home_is_deterministic() {
     };
     assert_eq!(run(), run());
 }
+
+#[test]
+fn velocity_control_falls_off_an_edge_but_climbs_nothing() {
+    let scene = two_level_room();
+    let mut sim = sim(CollisionSetting::Lenient, DEFAULT_MAX_STEP);
+    // On the slab facing its edge at x = 1: 2.5 s at 1 m/s goes over it.
+    sim.reset(
+        &scene,
+        Pose::from_yaw(Vec3::new(3.0, 1.0, 0.0), 90f32.to_radians()),
+    )
+    .unwrap();
+    sim.step(Action::Velocity {
+        v: 1.0,
+        omega: 0.0,
+        duration: 3.0,
+    })
+    .unwrap();
+    let p = sim.pose().position;
+    assert!(p[0] < 0.7, "{p:?}");
+    assert_eq!(p[1], 0.0, "{p:?}");
+    // Facing the 0.15 m platform: the body is held at its height, the platform stops it.
+    sim.reset(
+        &scene,
+        Pose::from_yaw(Vec3::new(-0.5, 0.0, 0.0), 90f32.to_radians()),
+    )
+    .unwrap();
+    let out = sim
+        .step(Action::Velocity {
+            v: 1.0,
+            omega: 0.0,
+            duration: 3.0,
+        })
+        .unwrap();
+    assert!(out.collided, "{out:?}");
+    assert_eq!(sim.pose().position[1], 0.0);
+    assert!(sim.pose().position[0] > -1.8, "{out:?}");
+}
