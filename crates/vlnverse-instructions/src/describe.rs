@@ -303,13 +303,17 @@ pub(crate) enum Place<'s> {
     Window(&'s SceneObject),
     /// Between two pieces.
     Between(&'s SceneObject, &'s SceneObject),
+    /// Hanging on the wall above a piece.
+    Above(&'s SceneObject),
+    /// Under a thing hanging above it (a painting, a mirror, a clock).
+    Under(&'s SceneObject),
 }
 
 impl<'s> Place<'s> {
     /// The objects the place names.
     pub(crate) fn objects(&self) -> Vec<&'s SceneObject> {
         match *self {
-            Place::Front(x) | Place::Window(x) => vec![x],
+            Place::Front(x) | Place::Window(x) | Place::Above(x) | Place::Under(x) => vec![x],
             Place::Between(x, y) => vec![x, y],
         }
     }
@@ -334,6 +338,19 @@ impl<'s> Place<'s> {
                 let bank = ["under the window", "below the window", "beneath the window"];
                 pick(rng, &bank).to_string()
             }
+            Place::Above(x) => {
+                let bank = [
+                    "above {x}",
+                    "over {x}",
+                    "hanging above {x}",
+                    "on the wall above {x}",
+                ];
+                fill1(pick(rng, &bank), &reference_name(x, rng))
+            }
+            Place::Under(x) => {
+                let bank = ["under {x}", "below {x}", "beneath {x}"];
+                fill1(pick(rng, &bank), &reference_name(x, rng))
+            }
             Place::Between(x, y) => {
                 let (xn, yn) = (reference_name(x, rng), reference_name(y, rng));
                 format!("between {xn} and {yn}")
@@ -342,8 +359,8 @@ impl<'s> Place<'s> {
     }
 }
 
-/// Every [`Place`] that holds of `o`: each piece it is in front of, the window above it, and
-/// each pair it stands between (pieces the scene has one of, so "the sofa" names one thing).
+/// Every [`Place`] that holds of `o`: each piece it is in front of, the window above it, each
+/// piece it hangs above, the thing hanging above it, and each pair it stands between (pieces the scene has one of, so "the sofa" names one thing).
 pub(crate) fn places<'s>(ctx: &PathContext<'s>, o: &SceneObject) -> Vec<Place<'s>> {
     let scene = ctx.scene;
     let near: Vec<&SceneObject> = room_landmarks(ctx, o).collect();
@@ -353,6 +370,12 @@ pub(crate) fn places<'s>(ctx: &PathContext<'s>, o: &SceneObject) -> Vec<Place<'s
         .map(|x| Place::Front(x))
         .collect();
     out.extend(spatial::window_above(scene, o).map(Place::Window));
+    out.extend(
+        near.iter()
+            .filter(|x| spatial::hangs_above(o, x))
+            .map(|x| Place::Above(x)),
+    );
+    out.extend(spatial::hung_above(scene, o).map(Place::Under));
     for (i, x) in near.iter().enumerate() {
         for y in &near[i + 1..] {
             if x.class != y.class && spatial::between(o, x, y) {

@@ -1161,9 +1161,34 @@ fn hall_end_at(route: &Route<'_, '_>, vertex: usize) -> Option<RoomId> {
     (scene.room_at(q.x, q.y).map(|r| r.id) != Some(hall.id)).then_some(hall.id)
 }
 
+/// Where a turn at path point `vertex` falls along the hallway it is in: the hallway, and the
+/// metres of it behind and ahead along the heading walked there. `None` outside hallways.
+fn hall_span(route: &Route<'_, '_>, vertex: usize) -> Option<(RoomId, f32, f32)> {
+    let (p, h) = (
+        *route.pts.get(vertex)?,
+        *route.headings.get(vertex.checked_sub(1)?)?,
+    );
+    let hall = route
+        .ctx
+        .scene
+        .room_at(p.x, p.y)
+        .filter(|r| r.kind == RoomType::Hallway)?;
+    let reach = |dir: Vec2| {
+        (1..300)
+            .map(|k| k as f32 * 0.1)
+            .find(|&d| {
+                let q = p + dir * d;
+                !hall.contains(q.x, q.y)
+            })
+            .unwrap_or(30.0)
+    };
+    Some((hall.id, reach(-h), reach(h)))
+}
+
 /// What comes before the turn opening leg `li` when it holds: "at the end of the hallway,"
-/// where the hallway ends there, "immediately" where the leg before entered a room within a
-/// step or so of the turn.
+/// where the hallway ends there, "halfway down the hallway," or "just before the end of the
+/// hallway," where a long hallway goes on, "immediately" where the leg before entered a room
+/// within a step or so of the turn.
 fn turn_prefix(route: &Route<'_, '_>, li: usize, draft: &mut Draft) -> Option<String> {
     let leg = &route.legs[li];
     let rng = &mut draft.rng;
@@ -1173,6 +1198,22 @@ fn turn_prefix(route: &Route<'_, '_>, li: usize, draft: &mut Draft) -> Option<St
             return Some(fill(pick(rng, &ph::HALL_END), &[("room", &hall)]));
         }
         return None;
+    }
+    if let Some((hall, back, ahead)) = hall_span(route, leg.first) {
+        let length = back + ahead;
+        let bank = if length < 4.0 || back < 1.5 {
+            None
+        } else if (0.35..=0.65).contains(&(back / length)) {
+            Some(&ph::HALFWAY)
+        } else if (0.9..=2.2).contains(&ahead) {
+            Some(&ph::BEFORE_HALL_END)
+        } else {
+            None
+        };
+        if let Some(bank) = bank.filter(|_| rng.random_bool(0.4)) {
+            let hall = room_np(route.ctx.scene, hall, route.room_syn, rng);
+            return Some(fill(pick(rng, bank), &[("room", &hall)]));
+        }
     }
     let turn_at = route.pts[leg.first];
     let entered_just_before = route
@@ -1191,8 +1232,19 @@ fn landmark_clause(m: &Named, rng: &mut ChaCha8Rng) -> String {
         let sp = fill(pick(rng, &ph::SIDE), &[("dir", side_word(m.side))]);
         fill(
             pick(rng, &ph::PASS_SIDE),
-            &[("obj", &m.text), ("side", &sp)],
+            &[("obj", &first_mention(m, rng)), ("side", &sp)],
         )
+    }
+}
+
+/// A landmark as it is named when first met: now and then "a sofa" rather than "the sofa"
+/// (one object, not a group or a pair).
+fn first_mention(m: &Named, rng: &mut ChaCha8Rng) -> String {
+    match m.text.strip_prefix("the ") {
+        Some(rest) if !m.group && !m.between && rng.random_bool(0.15) => {
+            format!("{} {rest}", indefinite_article(rest))
+        }
+        _ => m.text.clone(),
     }
 }
 
@@ -1204,12 +1256,33 @@ fn see_sentence(m: &Named, rng: &mut ChaCha8Rng) -> String {
         format!("{} is ahead of you", m.text)
     } else {
         let sp = fill(pick(rng, &ph::SIDE), &[("dir", side_word(m.side))]);
-        let bank = if m.group {
-            &ph::SEE_SIDE_GROUP
-        } else {
-            &ph::SEE_SIDE
-        };
-        fill(pick(rng, bank), &[("obj", &m.text), ("side", &sp)])
+        if m.group {
+            return fill(
+                pick(rng, &ph::SEE_SIDE_GROUP),
+                &[("obj", &m.text), ("side", &sp)],
+            );
+        }
+        // First met, a landmark is often "a sofa" ("there is a sofa on your left").
+        if let Some(rest) = m
+            .text
+            .strip_prefix("the ")
+            .filter(|_| rng.random_bool(0.25))
+        {
+            let obj = format!("{} {rest}", indefinite_article(rest));
+            return fill(pick(rng, &ph::SEE_SIDE_A), &[("obj", &obj), ("side", &sp)]);
+        }
+        fill(pick(rng, &ph::SEE_SIDE), &[("obj", &m.text), ("side", &sp)])
+    }
+}
+
+/// "a" or "an" before `words`, by the sound of its first letter.
+fn indefinite_article(words: &str) -> &'static str {
+    let vowel = words.starts_with(['a', 'e', 'i', 'o'])
+        || (words.starts_with('u') && !words.starts_with("uni") && !words.starts_with("use"));
+    if vowel {
+        "an"
+    } else {
+        "a"
     }
 }
 

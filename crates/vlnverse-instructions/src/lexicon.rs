@@ -64,18 +64,24 @@ pub fn class_of_name(name: &str) -> Vec<C> {
 /// Names of a room type, the vocabulary name first.
 pub fn room_names(kind: RoomType) -> &'static [&'static str] {
     match kind {
-        RoomType::LivingRoom => &["living room", "lounge", "family room", "sitting room"],
+        RoomType::LivingRoom => &[
+            "living room",
+            "lounge",
+            "family room",
+            "sitting room",
+            "den",
+        ],
         RoomType::Kitchen => &["kitchen"],
         RoomType::DiningRoom => &["dining room", "dining area"],
         RoomType::Bedroom => &["bedroom"],
-        RoomType::Bathroom => &["bathroom", "restroom"],
+        RoomType::Bathroom => &["bathroom", "restroom", "washroom"],
         RoomType::Hallway => &["hallway", "hall", "corridor"],
         RoomType::Office => &["office", "study"],
-        RoomType::LaundryRoom => &["laundry room", "laundry"],
+        RoomType::LaundryRoom => &["laundry room", "laundry", "utility room"],
         RoomType::Closet => &["closet", "storage room"],
         RoomType::Gym => &["gym", "exercise room", "workout room"],
         RoomType::Room => &["room", "spare room", "empty room"],
-        RoomType::EntranceHall => &["entrance hall", "entryway", "front hall"],
+        RoomType::EntranceHall => &["entrance hall", "entryway", "front hall", "foyer", "entry"],
         RoomType::Balcony => &["balcony"],
     }
 }

@@ -31,7 +31,7 @@ const TEXT: &str = include_str!("../data/phrases.toml");
 /// Every placeholder a bank may declare: the keys the code fills with [`fill`].
 pub(crate) const PLACEHOLDERS: &[&str] = &[
     "obj", "room", "from", "mid", "door", "dir", "side", "dist", "deg", "clock", "n", "t", "where",
-    "ord", "num", "name", "desc", "sup", "rel", "a", "m", "c", "use", "f",
+    "ord", "num", "name", "names", "desc", "sup", "rel", "a", "m", "c", "use", "f",
 ];
 
 /// One bank of phrases: a name for the code, its entries in the data file. Dereferences to the
@@ -93,6 +93,7 @@ banks! {
     PASS_SIDE = pass_side,
     SEE_SIDE = see_side,
     SEE_SIDE_GROUP = see_side_group,
+    SEE_SIDE_A = see_side_a,
     WITH_SIDE = with_side,
     AFTER_OBJ = after_obj,
     TOWARDS = towards,
@@ -162,6 +163,9 @@ banks! {
     CASUAL_SHADE = casual_shade,
     CASUAL_USE = casual_use,
     CASUAL_PLACE = casual_place,
+    FORMAL_COUNT = formal_count,
+    NATURAL_COUNT = natural_count,
+    CASUAL_COUNT = casual_count,
     CHAIN_FIRST = chain_first,
     CHAIN_MID = chain_mid,
     CHAIN_LAST = chain_last,
@@ -171,6 +175,8 @@ banks! {
     AT_ONCE = at_once,
     HALL_END = hall_end,
     TO_HALL_END = to_hall_end,
+    HALFWAY = halfway,
+    BEFORE_HALL_END = before_hall_end,
     GO_OUTSIDE = go_outside,
     STOP_DOORWAY = stop_doorway,
     STOP_BETWEEN = stop_between,

@@ -1,9 +1,11 @@
 //! Spatial relations people use to single out a thing in a room, read from the scene's boxes:
 //! in front of a piece standing against a wall ("the rug in front of the sofa", "at the foot
 //! of the bed"), under a window, between two pieces, and a point between two pieces or in a
-//! doorway. Each test is strict, so a relation said is true of the scene.
+//! doorway, and a thing hanging on a wall above a piece ("the painting above the sofa"). Each
+//! test is strict, so a relation said is true of the scene.
 
 use glam::Vec2;
+use vlnverse_env::scene_graph::is_landmark;
 use vlnverse_env::{Door, Room, Scene, SceneObject, SemanticClass as C};
 
 use super::path::{footprint, rect_distance};
@@ -91,6 +93,46 @@ pub(crate) fn window_above<'s>(scene: &'s Scene, o: &SceneObject) -> Option<&'s 
         .find(|w| {
             let (wlo, whi) = footprint(w);
             rect_distance((wlo + whi) * 0.5, lo, hi) < 0.3
+        })
+}
+
+/// Whether `o` hangs on a wall above `x` ("the painting above the sofa"): both in one room,
+/// `x` standing on the floor, `o` on nothing, its bottom at least 80 cm above the floor and no
+/// lower than `x`'s top, and its centre over `x`'s footprint (within 20 cm), seen from above.
+pub(crate) fn hangs_above(o: &SceneObject, x: &SceneObject) -> bool {
+    if o.room.is_none() || o.room != x.room || o.id == x.id {
+        return false;
+    }
+    if o.supported_by.is_some() || x.supported_by.is_some() {
+        return false;
+    }
+    let (bottom, floor) = (o.bbox.min[1], x.bbox.min[1]);
+    if bottom - floor < 0.8 || bottom < x.bbox.max[1] - 0.02 {
+        return false;
+    }
+    let (olo, ohi) = footprint(o);
+    let (xlo, xhi) = footprint(x);
+    rect_distance((olo + ohi) * 0.5, xlo, xhi) < 0.2
+}
+
+/// The thing hanging above `o` that people would name it by ("the sofa under the painting"):
+/// a landmark, not a window, the only one of its class in the room.
+pub(crate) fn hung_above<'s>(scene: &'s Scene, o: &SceneObject) -> Option<&'s SceneObject> {
+    let in_room = |x: &&SceneObject| x.room.is_some() && x.room == o.room;
+    scene
+        .objects
+        .iter()
+        .filter(in_room)
+        .filter(|h| !h.is_structure() && h.class != C::Window && is_landmark(h))
+        .find(|h| {
+            hangs_above(h, o)
+                && scene
+                    .objects
+                    .iter()
+                    .filter(in_room)
+                    .filter(|x| x.class == h.class)
+                    .count()
+                    == 1
         })
 }
 
@@ -184,6 +226,34 @@ mod tests {
         let s = scene(vec![window.clone(), radiator.clone(), wardrobe.clone()]);
         assert_eq!(window_above(&s, &radiator).map(|w| w.id), Some(1));
         assert!(window_above(&s, &wardrobe).is_none());
+    }
+
+    #[test]
+    fn a_painting_over_a_sofa_hangs_above_it_and_names_it() {
+        // Sofa against the wall z = 0; a painting on that wall over it, another to its side.
+        let sofa = object(1, C::Sofa, [1.0, 0.0, 0.0], [3.0, 0.85, 0.9]);
+        let mut painting = object(2, C::PictureFrame, [1.6, 1.2, 0.0], [2.4, 1.8, 0.03]);
+        painting.material = "canvas".into();
+        let mut aside = object(3, C::Clock, [3.4, 1.5, 0.0], [3.7, 1.8, 0.05]);
+        aside.material = "plastic".into();
+        let mut low = object(4, C::Mirror, [1.2, 0.5, 0.0], [1.5, 1.0, 0.03]);
+        low.material = "glass".into();
+        let s = scene(vec![
+            sofa.clone(),
+            painting.clone(),
+            aside.clone(),
+            low.clone(),
+        ]);
+        assert!(hangs_above(&painting, &sofa));
+        assert!(!hangs_above(&aside, &sofa), "not over its footprint");
+        assert!(!hangs_above(&low, &sofa), "below the sofa's top");
+        assert!(!hangs_above(&sofa, &painting));
+        assert_eq!(hung_above(&s, &sofa).map(|h| h.id), Some(2));
+        // A second painting in the room: "under the painting" no longer names one.
+        let mut other = object(5, C::PictureFrame, [0.1, 1.2, 3.97], [0.9, 1.8, 4.0]);
+        other.material = "canvas".into();
+        let s = scene(vec![sofa.clone(), painting, other]);
+        assert!(hung_above(&s, &sofa).is_none());
     }
 
     #[test]

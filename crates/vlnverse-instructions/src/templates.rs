@@ -1,7 +1,9 @@
 //! The default, template-based instruction generator.
 
 use super::describe::{content_name, places, Place};
-use super::lexicon::{color_phrases, material_noun, material_words, object_uses, shape_words};
+use super::lexicon::{
+    color_phrases, material_noun, material_words, number_word, object_uses, plural, shape_words,
+};
 use super::path::{env_side, floor_points, footprint, rect_distance, segment_headings, TurnConfig};
 use super::phrases::{self as ph, capitalize, decapitalize, fill, pick};
 use super::{InstructionGenerator, PathContext};
@@ -114,9 +116,10 @@ fn grounded(o: &SceneObject, role: Role, side: Option<Side>, idx: Option<usize>)
 impl InstructionGenerator for TemplateGenerator {
     fn fine(&self, ctx: &PathContext<'_>, seed: u64) -> Result<Instruction> {
         let mut ins = super::fine::fine(&self.config, ctx, seed)?;
-        ins.instruction_text = outdoor_prepositions(&ins.instruction_text);
+        let american = writes_american(seed);
+        ins.instruction_text = spelled(&outdoor_prepositions(&ins.instruction_text), american);
         for s in &mut ins.sub_instructions {
-            *s = outdoor_prepositions(s);
+            *s = spelled(&outdoor_prepositions(s), american);
         }
         Ok(ins)
     }
@@ -160,7 +163,7 @@ impl InstructionGenerator for TemplateGenerator {
             remark,
         };
         let text = capitalize_sentence(&coarse_sentence(style, &parts, &mut rng), style);
-        let text = outdoor_prepositions(&text);
+        let text = spelled(&outdoor_prepositions(&text), writes_american(seed ^ salt));
         Ok(Instruction {
             instruction_text: text,
             instruction_tokens: None,
@@ -197,6 +200,21 @@ fn outdoor_prepositions(text: &str) -> String {
         }
     }
     out
+}
+
+/// Whether the writer of the instruction seeded `seed` spells the American way ("gray"), as
+/// about a third of the people who wrote R2R's directions did.
+fn writes_american(seed: u64) -> bool {
+    ChaCha8Rng::seed_from_u64(seed ^ 0x7370_656c).random_bool(0.35)
+}
+
+/// `text` in the writer's spelling.
+fn spelled(text: &str, american: bool) -> String {
+    if american {
+        replace_words(text, "grey", "gray")
+    } else {
+        text.to_string()
+    }
 }
 
 /// `text` with every `from` that starts a word replaced by `to`.
@@ -442,24 +460,27 @@ fn target_remark(
     rng: &mut ChaCha8Rng,
     grounding: &mut Vec<GroundedObject>,
 ) -> Option<String> {
-    let (mat_b, shade_b, use_b, place_b) = match style {
+    let (mat_b, shade_b, use_b, place_b, count_b) = match style {
         Style::Formal => (
             ph::FORMAL_MATERIAL,
             ph::FORMAL_SHADE,
             ph::FORMAL_USE,
             ph::FORMAL_PLACE,
+            ph::FORMAL_COUNT,
         ),
         Style::Natural => (
             ph::NATURAL_MATERIAL,
             ph::NATURAL_SHADE,
             ph::NATURAL_USE,
             ph::NATURAL_PLACE,
+            ph::NATURAL_COUNT,
         ),
         Style::Casual => (
             ph::CASUAL_MATERIAL,
             ph::CASUAL_SHADE,
             ph::CASUAL_USE,
             ph::CASUAL_PLACE,
+            ph::CASUAL_COUNT,
         ),
     };
     let mats = material_words(o);
@@ -479,6 +500,7 @@ fn target_remark(
             })
         })
         .collect();
+    let count = same_class_in_room(ctx, o, name);
     let mut kinds: Vec<u8> = Vec::new();
     for (k, ok) in [
         (0u8, !mats.is_empty()),
@@ -486,6 +508,7 @@ fn target_remark(
         (2, !uses.is_empty()),
         (3, place.is_some()),
         (4, !spatial.is_empty()),
+        (5, count.is_some()),
     ] {
         if ok {
             kinds.push(k);
@@ -511,6 +534,10 @@ fn target_remark(
             pick(rng, &place_b),
             &[("f", pick(rng, place.unwrap_or(&[])))],
         ),
+        5 => {
+            let (n, names) = count.unwrap_or_default();
+            fill(pick(rng, &count_b), &[("n", &n), ("names", &names)])
+        }
         _ => {
             let p = &spatial[rng.random_range(0..spatial.len())];
             for x in p.objects() {
@@ -520,6 +547,32 @@ fn target_remark(
         }
     })
 }
+
+/// How many objects of `o`'s class its room holds, as a number word, and the class name
+/// `name` in the plural: `None` for one alone, for more than six (nobody counts those), and for
+/// names with no plural ("shoes", "shampoo").
+fn same_class_in_room(
+    ctx: &PathContext<'_>,
+    o: &SceneObject,
+    name: &str,
+) -> Option<(String, String)> {
+    let room = o.room?;
+    if name.ends_with('s') || NO_PLURAL.contains(&name) {
+        return None;
+    }
+    let n = ctx
+        .scene
+        .objects
+        .iter()
+        .filter(|x| x.class == o.class && x.room == Some(room))
+        .count();
+    (2..=6)
+        .contains(&n)
+        .then(|| (number_word(n as u32), plural(name)))
+}
+
+/// Class names that take no plural.
+const NO_PLURAL: [&str; 2] = ["shampoo", "toilet paper"];
 
 fn capitalize_sentence(s: &str, style: Style) -> String {
     match style {

@@ -114,9 +114,9 @@ pub struct WallsConfig {
     /// boards and pictures (on by default). They come after every other object and draw from
     /// their own random stream, so turning them off leaves the rest of a home as it is.
     pub decor: bool,
-    /// With `decor`: also hang pictures in living rooms, bedrooms and hallways (off by default:
-    /// a picture is a `picture_frame`, an object-goal target, so the object-goal episodes of a
-    /// preset change with them).
+    /// With `decor`: also hang paintings in living rooms, bedrooms, hallways, dining rooms,
+    /// offices and entrance halls (on by default; a painting is a `picture_frame`, a landmark
+    /// and an object-goal target).
     pub pictures: bool,
 }
 
@@ -236,7 +236,7 @@ impl Default for WallsConfig {
             height: 2.7,
             ceiling: true,
             decor: true,
-            pictures: false,
+            pictures: true,
         }
     }
 }

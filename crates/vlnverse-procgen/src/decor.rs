@@ -515,10 +515,11 @@ const CANVASES: &[(&str, [f32; 3])] = &[
     ("beige", [0.8, 0.72, 0.6]),
 ];
 
-/// Pictures on the walls of living rooms, bedrooms and hallways: a frame and a painted canvas
-/// (material `canvas`: a painting texture), one or two per room, at eye height, clear of
-/// windows, doorways and tall furniture. They stay under 0.5 m across, below the size at which
-/// small objects are named in instructions, so instructions stay as they were.
+/// Paintings on the walls of living rooms, bedrooms, hallways, dining rooms, offices and
+/// entrance halls: a frame and a painted canvas (material `canvas`: a painting texture), one or
+/// two per room, at eye height, clear of windows, doorways and tall furniture (above a sofa, a
+/// bed or a low cabinet, as people hang them). At 0.4 to 0.9 m across they are landmarks
+/// instructions name ("the painting above the sofa").
 fn add_pictures(
     cfg: &ProcgenConfig,
     plan: &Plan,
@@ -530,7 +531,11 @@ fn add_pictures(
     for (i, room) in plan.rooms.iter().enumerate() {
         let want = match room.kind {
             RoomType::LivingRoom => 2,
-            RoomType::Bedroom | RoomType::Hallway => 1,
+            RoomType::Bedroom
+            | RoomType::Hallway
+            | RoomType::DiningRoom
+            | RoomType::Office
+            | RoomType::EntranceHall => 1,
             _ => continue,
         };
         let mut placed = 0;
@@ -545,12 +550,12 @@ fn add_pictures(
             let Some(depth) = face.depth.filter(|d| *d >= 0.008) else {
                 continue;
             };
-            let (w, h) = if rng.random_bool(0.5) {
-                (rng.random_range(0.36..0.48), rng.random_range(0.28..0.36))
+            let (w, h) = if rng.random_bool(0.6) {
+                (rng.random_range(0.55..0.9), rng.random_range(0.4..0.6))
             } else {
-                (rng.random_range(0.28..0.36), rng.random_range(0.36..0.48))
+                (rng.random_range(0.4..0.55), rng.random_range(0.55..0.75))
             };
-            let cy = rng.random_range(1.45..1.6);
+            let cy = rng.random_range(1.5..1.6);
             let stretches = free_stretches(cfg, plan, face, face.span, CLEAR);
             let ys = (cy - h * 0.5 - 0.1, cy + h * 0.5 + 0.1);
             let Some(c) = find_spot(&b.objects, face, t, &stretches, w, 0.3, ys) else {
