@@ -11,6 +11,7 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 
+use super::floors::Floors;
 use super::presets::{episodes_per_trajectory, GenerateConfig};
 use super::reference_image::ReferenceRenderer;
 use super::sampler::{Reject, Rejections, SampledPath, SceneSampler, TargetSpot};
@@ -139,6 +140,9 @@ pub struct SceneTaskContext<'a> {
     pub out: &'a Path,
     /// Stage timers.
     pub times: &'a StageTimes,
+    /// A home on several floors: the samplers of its levels and the map across them (then
+    /// every task samples through [`super::cross`]); `None` for a single-storey home.
+    pub floors: Option<&'a Floors<'a>>,
 }
 
 /// Hard-link `src` to `dest` through a temporary name (atomic); false when links fail. The
@@ -161,11 +165,11 @@ fn link_atomic(src: &Path, dest: &Path) -> bool {
     ok
 }
 
-fn yaw_quat(yaw: f32) -> [f32; 4] {
+pub(crate) fn yaw_quat(yaw: f32) -> [f32; 4] {
     Quat::from_rotation_y(yaw).to_array()
 }
 
-fn heading_yaw(a: Vec2, b: Vec2, fallback: f32) -> f32 {
+pub(crate) fn heading_yaw(a: Vec2, b: Vec2, fallback: f32) -> f32 {
     let d = b - a;
     if d.length_squared() > 1e-10 {
         vlnverse_env::scene_graph::yaw_from_direction(d)
@@ -202,7 +206,7 @@ impl SceneTaskContext<'_> {
         }
     }
 
-    fn fail(&self, share: &CellShare, k: usize, rej: &Rejections) -> Unfit {
+    pub(crate) fn fail(&self, share: &CellShare, k: usize, rej: &Rejections) -> Unfit {
         let reasons: Vec<String> = rej
             .iter()
             .map(|(r, n)| format!("{} {n}", r.name()))
@@ -227,10 +231,14 @@ impl SceneTaskContext<'_> {
     /// one target object for the coarse-based tasks, `sub_tasks_min` distinct targets for
     /// long-horizon episodes. `None` when sampling may proceed.
     pub fn lacks(&self, task: Task) -> Option<String> {
-        let targets = self.sampler.targets().len();
+        let samplers = match self.floors {
+            Some(f) => f.samplers.iter().collect(),
+            None => vec![self.sampler],
+        };
+        let targets: usize = samplers.iter().map(|s| s.targets().len()).sum();
         let need = match task {
             Task::Fine => {
-                let free = self.sampler.free_points();
+                let free: usize = samplers.iter().map(|s| s.free_points()).sum();
                 return (free < 2)
                     .then(|| format!("{task} needs 2 navigable cells for a path, found {free}"));
             }
@@ -255,8 +263,10 @@ impl SceneTaskContext<'_> {
         let mut rejections = Rejections::new();
         let mut episodes = Vec::with_capacity(share.episodes());
         let renderer = if share.task == Task::VisualReference && share.trajectories > 0 {
+            // A home on several floors is rendered whole (the view from upstairs).
+            let scene = self.floors.map_or(self.sampler.scene, |f| f.scene);
             Some(self.times.time(Stage::Images, || {
-                ReferenceRenderer::new(self.sampler.scene, &self.config.image)
+                ReferenceRenderer::new(scene, &self.config.image)
             })?)
         } else {
             None
@@ -277,11 +287,31 @@ impl SceneTaskContext<'_> {
                 share.first_episode_id + (k * episodes_per_trajectory(share.task)) as u64 + 1;
             let mut rng = ChaCha8Rng::seed_from_u64(seed);
             let mut done = false;
-            for _ in 0..self.config.sampling.max_attempts {
-                let made = match share.task {
-                    Task::Fine => self.fine(&mut rng, seed)?,
-                    Task::LongHorizon => self.long_horizon(&mut rng, seed)?,
-                    _ => self.coarse(share, &mut rng, seed, first_id, renderer.as_ref())?,
+            // A home on several floors: whether this trajectory crosses floors is drawn once
+            // (its own stream), and kept for the first half of the attempts (cross-floor paths
+            // are long, so per-attempt draws would favour one floor).
+            let cross = self.floors.is_some()
+                && ChaCha8Rng::seed_from_u64(derive_seed(seed, &[0xC205_5F10]))
+                    .random_bool(f64::from(self.config.sampling.cross_floor_share));
+            let attempts = self.config.sampling.max_attempts;
+            for attempt in 0..attempts {
+                let cross = cross && attempt < attempts.div_ceil(2);
+                let made = match (share.task, self.floors) {
+                    (Task::Fine, None) => self.fine(&mut rng, seed)?,
+                    (Task::LongHorizon, None) => self.long_horizon(&mut rng, seed)?,
+                    (_, None) => self.coarse(share, &mut rng, seed, first_id, renderer.as_ref())?,
+                    (Task::Fine, Some(f)) => self.fine_floors(f, &mut rng, seed, cross)?,
+                    (Task::LongHorizon, Some(f)) => {
+                        self.long_horizon_floors(f, &mut rng, seed, cross)?
+                    }
+                    (_, Some(f)) => self.coarse_floors(
+                        f,
+                        share,
+                        &mut rng,
+                        (seed, cross),
+                        first_id,
+                        renderer.as_ref(),
+                    )?,
                 };
                 match made {
                     Ok(mut eps) => {
@@ -426,28 +456,39 @@ impl SceneTaskContext<'_> {
             let png = self
                 .times
                 .time(Stage::Images, || r.render_png(spot.goal, centre))?;
-            self.times.time(Stage::Writing, || -> Result<()> {
-                let mut first: Option<std::path::PathBuf> = None;
-                for (j, ep) in out.iter_mut().enumerate() {
-                    let id = first_id + j as u64;
-                    let rel = format!("images/{id}.png");
-                    let file = self
-                        .out
-                        .join(Task::VisualReference.name())
-                        .join(share.split.name())
-                        .join(&rel);
-                    // The three styles share one view: hard links save disk and time.
-                    match &first {
-                        Some(f) if link_atomic(f, &file) => {}
-                        _ => write_atomic(&file, &png)?,
-                    }
-                    first.get_or_insert(file);
-                    ep.reference_image = Some(rel);
-                }
-                Ok(())
-            })?;
+            self.write_images(share, first_id, &mut out, &png)?;
         }
         Ok(Ok(out))
+    }
+
+    /// Write the reference image of the episodes of one coarse sample (ids from `first_id`).
+    pub(crate) fn write_images(
+        &self,
+        share: &CellShare,
+        first_id: u64,
+        out: &mut [Episode],
+        png: &[u8],
+    ) -> Result<()> {
+        self.times.time(Stage::Writing, || -> Result<()> {
+            let mut first: Option<std::path::PathBuf> = None;
+            for (j, ep) in out.iter_mut().enumerate() {
+                let id = first_id + j as u64;
+                let rel = format!("images/{id}.png");
+                let file = self
+                    .out
+                    .join(Task::VisualReference.name())
+                    .join(share.split.name())
+                    .join(&rel);
+                // The three styles share one view: hard links save disk and time.
+                match &first {
+                    Some(f) if link_atomic(f, &file) => {}
+                    _ => write_atomic(&file, png)?,
+                }
+                first.get_or_insert(file);
+                ep.reference_image = Some(rel);
+            }
+            Ok(())
+        })
     }
 
     fn long_horizon(
@@ -552,7 +593,7 @@ impl SceneTaskContext<'_> {
 
 /// An instruction error that must end the run (the LLM stage under `on_reject = "error"`), not
 /// count as one more unusable sample.
-fn stops_the_run(e: &vlnverse_score::DataError) -> bool {
+pub(crate) fn stops_the_run(e: &vlnverse_score::DataError) -> bool {
     #[cfg(feature = "llm")]
     {
         vlnverse_instructions::llm::stops_the_run(e)

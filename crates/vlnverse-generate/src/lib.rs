@@ -21,7 +21,9 @@
 //! Every random choice is seeded from (global seed, scene index, task, split, trajectory), so
 //! the output is byte-identical on any number of threads and when sharded and merged.
 
+mod cross;
 mod episodes;
+mod floors;
 #[cfg(feature = "llm")]
 mod llm_stage;
 mod pipeline;
@@ -34,6 +36,7 @@ mod splits;
 pub mod stats;
 
 pub use episodes::{ScenePart, SceneTaskContext, Stage, StageTimes, Unfit, GOAL_RADIUS};
+pub use floors::{flight_points, FloorPath, Floors, LevelData, Walk};
 #[cfg(feature = "llm")]
 pub use llm_stage::{LLM_CACHE_DIR, LLM_REPORT_FILE};
 pub use pipeline::{

@@ -27,14 +27,18 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
+use vlnverse_env::io::write_scene_dir;
 use vlnverse_env::io::{is_complete_scene_dir, list_scene_dirs, load_scene, remove_temp_leftovers};
-use vlnverse_env::occupancy::{build_maps, OccupancyConfig};
+use vlnverse_env::occupancy::{
+    build_level_maps, build_maps, level_map_file, OccupancyConfig, OccupancyMaps,
+};
 use vlnverse_env::scene_graph::SceneGraph;
 use vlnverse_env::{Scene, SceneSource};
 use vlnverse_sensors::raster::PREPARED_FILE;
 use vlnverse_sensors::RasterScene;
 
 use super::episodes::{ScenePart, SceneTaskContext, Stage, StageTimes, Unfit};
+use super::floors::{Floors, LevelData};
 use super::presets::GenerateConfig;
 use super::sampler::{Reject, SceneSampler};
 use super::seed::derive_seed;
@@ -448,17 +452,31 @@ fn generate_scene(
     parts_written: &AtomicUsize,
 ) -> Result<Vec<Skip>> {
     let scene: Scene = times.time(Stage::Scenes, || source.scene(index))?;
-    let (maps, graph) = times.time(Stage::Maps, || -> Result<_> {
-        Ok((
-            build_maps(&scene, &opts.occupancy)?,
-            SceneGraph::build(&scene),
-        ))
+    // A home on several floors: every level's maps (level 0's are the bundle's maps).
+    let (maps, graph, level_maps) = times.time(Stage::Maps, || -> Result<_> {
+        let graph = SceneGraph::build(&scene);
+        if !scene.is_multi_level() {
+            return Ok((build_maps(&scene, &opts.occupancy)?, graph, Vec::new()));
+        }
+        let levels = build_level_maps(&scene, &opts.occupancy)?;
+        Ok((levels[0].clone(), graph, levels))
     })?;
     let scenes_dir = opts.out.join("scenes");
     let bundle = vlnverse_env::io::SceneBundle { scene, maps, graph };
     let scene_dir = scenes_dir.join(&bundle.scene.id);
     if !is_complete_scene_dir(&scene_dir) {
-        times.time(Stage::Writing, || bundle.write(&scenes_dir))?;
+        times.time(Stage::Writing, || -> Result<()> {
+            if level_maps.len() > 1 {
+                // The upper floors' ROS maps join the folder in the same atomic write.
+                let upper = upper_level_map_files(&level_maps);
+                let mut files = bundle.companion_files();
+                files.extend(upper.iter().map(|(n, b)| (n.as_str(), b.clone())));
+                write_scene_dir(&scenes_dir, &bundle.scene, &files)?;
+            } else {
+                bundle.write(&scenes_dir)?;
+            }
+            Ok(())
+        })?;
     }
     // The rasteriser's prepared scene beside it, so loading the home prepares nothing (a
     // folder written before there was one gets it too).
@@ -473,17 +491,34 @@ fn generate_scene(
     if todo.is_empty() {
         return Ok(Vec::new());
     }
-    let sampler = times.time(Stage::Sampling, || {
-        SceneSampler::new(
-            scene,
-            maps,
-            graph,
-            &cfg.sampling,
-            derive_seed(cfg.seed, &[index as u64, 0x007A_59E7]),
-        )
-    });
+    let target_seed = derive_seed(cfg.seed, &[index as u64, 0x007A_59E7]);
+    let levels = if level_maps.len() > 1 {
+        times.time(Stage::Maps, || LevelData::of_scene(scene, level_maps))?
+    } else {
+        Vec::new()
+    };
+    // A home on several floors samples on each level (`floors`); a single-storey one on its
+    // maps, exactly as before.
+    let floors = if levels.is_empty() {
+        None
+    } else {
+        Some(times.time(Stage::Sampling, || {
+            Floors::new(scene, &levels, &cfg.sampling, target_seed)
+        })?)
+    };
+    let single;
+    let sampler = match &floors {
+        Some(f) => &f.samplers[0],
+        None => {
+            single = times.time(Stage::Sampling, || {
+                SceneSampler::new(scene, maps, graph, &cfg.sampling, target_seed)
+            });
+            &single
+        }
+    };
     let ctx = SceneTaskContext {
-        sampler: &sampler,
+        floors: floors.as_ref(),
+        sampler,
         scene_index: index,
         config: cfg,
         instructions,
@@ -496,7 +531,10 @@ fn generate_scene(
             scene_id: scene.id.clone(),
             task,
             episodes: BTreeMap::new(),
-            rejections: sampler.target_rejections.clone(),
+            rejections: floors.as_ref().map_or_else(
+                || sampler.target_rejections.clone(),
+                |f| f.target_rejections(),
+            ),
             skipped: None,
         };
         let shares: Vec<_> = plan.scenes[index]
@@ -555,6 +593,27 @@ fn generate_scene(
         parts_written.fetch_add(1, Ordering::SeqCst);
     }
     Ok(skips)
+}
+
+/// The ROS map files of the levels above the ground floor (`occupancy_level<k>.{pgm,yaml}`,
+/// `navigable_level<k>.{pgm,yaml}`), as [`vlnverse_env::occupancy::upper_level_files`] writes
+/// them, from maps already built.
+fn upper_level_map_files(levels: &[OccupancyMaps]) -> Vec<(String, Vec<u8>)> {
+    let mut out = Vec::new();
+    for (k, maps) in levels.iter().enumerate().skip(1) {
+        for (stem, map) in [
+            ("occupancy", &maps.occupancy),
+            ("navigable", &maps.navigable),
+        ] {
+            let pgm = level_map_file(stem, k as vlnverse_env::LevelId, "pgm");
+            out.push((
+                level_map_file(stem, k as vlnverse_env::LevelId, "yaml"),
+                map.to_yaml(&pgm).into_bytes(),
+            ));
+            out.push((pgm, map.to_pgm_bytes()));
+        }
+    }
+    out
 }
 
 /// Remove the reference images a share may have written before it failed.

@@ -146,6 +146,25 @@ pub struct SamplingConfig {
     /// target costs one distance field (about ten A* queries), so this bounds sampling time.
     #[serde(default)]
     pub max_targets: usize,
+    /// In a home on several floors, the share of each task's samples whose start and goal are
+    /// drawn on different levels (the path takes the stairs). Single-storey homes ignore it.
+    /// Left out of written configs at its default, so manifests of earlier runs still match.
+    #[serde(
+        default = "default_cross_floor_share",
+        skip_serializing_if = "is_default_cross_floor_share"
+    )]
+    pub cross_floor_share: f32,
+}
+
+/// Default of [`SamplingConfig::cross_floor_share`].
+pub const DEFAULT_CROSS_FLOOR_SHARE: f32 = 0.3;
+
+fn default_cross_floor_share() -> f32 {
+    DEFAULT_CROSS_FLOOR_SHARE
+}
+
+fn is_default_cross_floor_share(v: &f32) -> bool {
+    *v == DEFAULT_CROSS_FLOOR_SHARE
 }
 
 /// Settings of one task.
@@ -443,6 +462,13 @@ impl GenerateConfig {
                 "sampling.goal_min_distance".into(),
                 s.goal_min_distance.to_string(),
                 "must be >= 0 and below sampling.goal_max_distance",
+            ));
+        }
+        if !(s.cross_floor_share.is_finite() && (0.0..=1.0).contains(&s.cross_floor_share)) {
+            return Err(bad(
+                "sampling.cross_floor_share".into(),
+                s.cross_floor_share.to_string(),
+                "must be a share in [0, 1]",
             ));
         }
         let im = &self.image;

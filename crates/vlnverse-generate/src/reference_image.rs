@@ -45,7 +45,13 @@ impl ReferenceRenderer {
     /// RGB pixels (row-major, top row first) seen from `goal` `(x, z)` at `yaw`, the camera
     /// pitched by `pitch` (radians, positive looks up).
     pub fn render_rgb(&self, goal: Vec2, yaw: f32, pitch: f32) -> Vec<u8> {
-        let position = Vec3::new(goal.x, self.floor + self.cfg.camera_height, goal.y);
+        self.render_rgb_on(self.floor, goal, yaw, pitch)
+    }
+
+    /// [`ReferenceRenderer::render_rgb`] standing on the floor at height `floor` (a level of a
+    /// home on several floors).
+    pub fn render_rgb_on(&self, floor: f32, goal: Vec2, yaw: f32, pitch: f32) -> Vec<u8> {
+        let position = Vec3::new(goal.x, floor + self.cfg.camera_height, goal.y);
         let rotation = Quat::from_rotation_y(yaw) * Quat::from_rotation_x(pitch);
         let pose = Pose {
             position: position.to_array(),
@@ -75,20 +81,30 @@ impl ReferenceRenderer {
     /// target object's box): turned towards it and pitched towards it within
     /// [-`MAX_PITCH`, `MAX_PITCH`].
     pub fn render_png(&self, goal: Vec2, target: Vec3) -> Result<Vec<u8>> {
-        let (yaw, pitch) = self.aim(goal, target);
-        let rgb = self.render_rgb(goal, yaw, pitch);
+        self.render_png_on(self.floor, goal, target)
+    }
+
+    /// [`ReferenceRenderer::render_png`] standing on the floor at height `floor`.
+    pub fn render_png_on(&self, floor: f32, goal: Vec2, target: Vec3) -> Result<Vec<u8>> {
+        let (yaw, pitch) = self.aim_on(floor, goal, target);
+        let rgb = self.render_rgb_on(floor, goal, yaw, pitch);
         encode_png(&rgb, self.cfg.width, self.cfg.height)
     }
 
     /// Yaw and pitch that look from the camera above `goal` at `target`.
     pub fn aim(&self, goal: Vec2, target: Vec3) -> (f32, f32) {
+        self.aim_on(self.floor, goal, target)
+    }
+
+    /// [`ReferenceRenderer::aim`] from a camera standing on the floor at height `floor`.
+    pub fn aim_on(&self, floor: f32, goal: Vec2, target: Vec3) -> (f32, f32) {
         let flat = Vec2::new(target.x, target.z) - goal;
         let yaw = if flat.length_squared() > 1e-10 {
             vlnverse_env::scene_graph::yaw_from_direction(flat)
         } else {
             0.0
         };
-        let dy = target.y - (self.floor + self.cfg.camera_height);
+        let dy = target.y - (floor + self.cfg.camera_height);
         let pitch = dy
             .atan2(flat.length().max(0.05))
             .clamp(-MAX_PITCH, MAX_PITCH);

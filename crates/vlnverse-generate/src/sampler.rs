@@ -169,6 +169,20 @@ impl<'a> SceneSampler<'a> {
         }
     }
 
+    /// Leave out the targets of `objects` (e.g. the flights of stairs of a home on several
+    /// floors, objects that span two floors).
+    pub fn drop_targets(&mut self, objects: &[ObjectId]) {
+        let keep: Vec<bool> = self
+            .targets
+            .iter()
+            .map(|t| !objects.contains(&t.object))
+            .collect();
+        let mut k = keep.iter();
+        self.targets.retain(|_| *k.next().unwrap_or(&true));
+        let mut k = keep.iter();
+        self.weights.retain(|_| *k.next().unwrap_or(&true));
+    }
+
     /// The usable targets, by object id.
     pub fn targets(&self) -> &[TargetSpot] {
         &self.targets

@@ -53,6 +53,7 @@ pub mod llm;
 mod path;
 mod phrases;
 mod spatial;
+pub mod storeys;
 mod templates;
 
 use path::{direction_of_yaw, env_side, floor_points, segment_headings};

@@ -23,11 +23,13 @@
 pub mod bench;
 mod cache;
 mod field;
+mod level_field;
 mod levels;
 pub(crate) mod search;
 
 pub use cache::GeodesicCache;
 pub use field::DistanceField;
+pub use level_field::{Guide, LevelField};
 pub use levels::{LevelPoint, LevelRoute, MultiLevelMap, Portal, RouteLeg};
 
 use crate::error::{EnvError, Result};

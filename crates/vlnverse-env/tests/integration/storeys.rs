@@ -260,3 +260,44 @@ fn lamps_hang_under_the_walls_of_their_own_floor() {
     let flat = vlnverse_env::light::lamps(&one);
     assert!(flat.windows(2).all(|w| w[0].y == w[1].y), "{flat:?}");
 }
+
+/// The distance to an upstairs goal across floors: the route's length from the ground floor,
+/// the rest of the flight from a tread, the walk on the goal's floor up there; a point right
+/// below the goal is as far as the walk through the stairs; the way there goes to the foot,
+/// then along the flight.
+#[test]
+fn a_level_field_measures_across_floors_and_guides_up_the_flight() {
+    use glam::Vec2;
+    use vlnverse_env::geodesic::{Guide, LevelField, LevelPoint, MultiLevelMap};
+    use vlnverse_env::occupancy::OccupancyConfig;
+    let s = stacked_rooms();
+    let m = MultiLevelMap::from_scene(&s, &OccupancyConfig::default()).unwrap();
+    let st = &s.storeys.stairs[0];
+    let goal = LevelPoint::new(1, 2.0, 1.0);
+    let f = LevelField::new(&m, &[0.0, 3.0], &[0.5 * st.width], goal).unwrap();
+    let from = |p: [f32; 3]| f.distance(p).meters().unwrap();
+    let via = |a: LevelPoint| m.geodesic_distance(a, goal).unwrap().meters().unwrap();
+    // From the ground floor: the route across floors (the field's cells vs A*: within 5 cm).
+    let below = from([2.0, 0.0, 1.0]);
+    assert!((below - via(LevelPoint::new(0, 2.0, 1.0))).abs() < 0.05, "{below}");
+    assert!(below > 5.0, "right below the goal is far from it: {below}");
+    // Upstairs: the walk on the goal's floor.
+    let up = from([2.0, 3.0, 2.0]);
+    assert!((up - 1.0).abs() < 0.05, "{up}");
+    // Halfway up the flight: half its length and the rest.
+    let mid = [5.0, 1.5, 2.5];
+    let head_rest = via(LevelPoint::new(1, st.head[0], st.head[2]));
+    let half = from(mid);
+    assert!((half - (0.5 * st.walk_length() + head_rest)).abs() < 0.3, "{half}");
+    // The way: from the ground floor down a field (to the foot), on the flight toward the head.
+    assert!(matches!(f.guide([2.0, 0.0, 5.0]), Some(Guide::Walk { rest, .. }) if rest > 1.0));
+    match f.guide(mid) {
+        Some(Guide::Flight { up, to, .. }) => {
+            assert!(up);
+            assert_eq!(to, Vec2::new(st.head[0], st.head[2]));
+        }
+        g => panic!("{g:?}"),
+    }
+    assert!(matches!(f.guide(st.foot), Some(Guide::Flight { up: true, .. })));
+    assert!(matches!(f.guide([2.0, 3.0, 2.0]), Some(Guide::Walk { rest, .. }) if rest == 0.0));
+}

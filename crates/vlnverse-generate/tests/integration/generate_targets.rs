@@ -13,6 +13,7 @@ fn small_objects_are_drawn_a_third_as_often_as_furniture() {
         goal_max_distance: 1.0,
         goal_min_distance: 0.2,
         max_targets: 0,
+        cross_floor_share: 0.3,
     };
     let sampler = SceneSampler::new(&w.scene, &w.maps, &w.graph, &cfg, 7);
     let kind = |id| w.scene.object(id).map(|o| o.class.kind());

@@ -6,4 +6,5 @@ mod generate_llm;
 mod generate_llm_stop;
 mod generate_output;
 mod generate_skip;
+mod generate_storeys;
 mod generate_targets;
