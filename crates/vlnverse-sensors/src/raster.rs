@@ -85,6 +85,14 @@ const RUN: usize = 64;
 /// culled as a whole against the view (frustum, and whether it can cover a pixel centre).
 const CLUSTER: usize = 32;
 
+/// Grid in metres on which [`closed_outward`] compares corners (2^-16 m, about 15 micrometres:
+/// far below any edge of a home's meshes, far above the rounding error of a corner).
+const WELD: f64 = 1.0 / 65536.0;
+
+/// Pixels in the box of a triangle small enough that [`emit`] tests their centres before
+/// setting it up for the fill.
+const SMALL_BOX: i64 = 4;
+
 /// Attributes interpolated over a triangle: encoded light, texture u, v.
 const ATTRS: usize = 3;
 
@@ -926,8 +934,9 @@ impl RasterScene {
         // In front of the near plane and so small that no pixel centre can be inside its box
         // (with a margin far above snapping and rounding): most triangles of detailed far
         // objects, rejected before the exact set-up.
-        if v.iter().all(|q| q.z <= nz) {
-            let s = v.map(|q| p.project(q));
+        let front = v.iter().all(|q| q.z <= nz);
+        let projected = front.then(|| v.map(|q| p.project(q)));
+        if let Some(s) = projected {
             let (x0, x1) = (
                 s[0].0.min(s[1].0).min(s[2].0),
                 s[0].0.max(s[1].0).max(s[2].0),
@@ -937,10 +946,10 @@ impl RasterScene {
                 s[0].1.max(s[1].1).max(s[2].1),
             );
             const M: f32 = 0.01;
-            // f32 `ceil` and `floor` are libm calls on baseline x86-64 (2% of a frame here).
-            let (ceil, floor) = (|v: f32| fast_ceil(v as f64), |v: f32| fast_floor(v as f64));
-            if ceil(x0 - 0.5 - M) > floor(x1 - 0.5 + M) || ceil(y0 - 0.5 - M) > floor(y1 - 0.5 + M)
-            {
+            // No integer in [lo, hi] (no pixel centre in the box) when floor(hi) < lo, which
+            // is ceil(lo) > floor(hi). f32 `floor` is a libm call on baseline x86-64.
+            let none = |lo: f32, hi: f32| fast_floor(hi as f64) < lo as f64;
+            if none(x0 - 0.5 - M, x1 - 0.5 + M) || none(y0 - 0.5 - M, y1 - 0.5 + M) {
                 return None;
             }
         }
@@ -962,9 +971,13 @@ impl RasterScene {
             let (sx, sy, _) = p.project(*q);
             sx.abs() < p.guard && sy.abs() < p.guard
         };
-        if v.iter().all(|q| q.z <= nz) && v.iter().all(in_guard) {
-            emit(p, [v[0], v[1], v[2]], plane, tag, out);
-            return plane64;
+        if let Some(s) = projected {
+            if s.iter()
+                .all(|(sx, sy, _)| sx.abs() < p.guard && sy.abs() < p.guard)
+            {
+                emit(p, [v[0], v[1], v[2]], plane, tag, out);
+                return plane64;
+            }
         }
         let mut poly = Poly {
             v: [Vec3::ZERO; 9],
@@ -1266,8 +1279,9 @@ fn may_cover_pixel(p: &ViewParams, b: &Aabb) -> bool {
         (x0, x1, y0, y1) = (x0.min(sx), x1.max(sx), y0.min(sy), y1.max(sy));
     }
     const M: f32 = 0.02;
-    let (ceil, floor) = (|v: f32| fast_ceil(v as f64), |v: f32| fast_floor(v as f64));
-    ceil(x0 - 0.5 - M) <= floor(x1 - 0.5 + M) && ceil(y0 - 0.5 - M) <= floor(y1 - 0.5 + M)
+    // An integer in [lo, hi] when floor(hi) >= lo.
+    let some = |lo: f32, hi: f32| fast_floor(hi as f64) >= lo as f64;
+    some(x0 - 0.5 - M, x1 - 0.5 + M) && some(y0 - 0.5 - M, y1 - 0.5 + M)
 }
 
 /// Clip a polygon against plane `k` of [`ViewParams::plane`] (Sutherland-Hodgman). New points
@@ -1304,6 +1318,19 @@ fn clip(p: &ViewParams, poly: &Poly, k: usize) -> Poly {
 
 /// Project, snap and set up one triangle in front of the near plane.
 fn emit(p: &ViewParams, v: [Vec3; 3], plane: [f32; 3], tag: u32, out: &mut Vec<ScreenTri>) {
+    emit_tested(p, v, plane, tag, out, SMALL_BOX)
+}
+
+/// [`emit`], testing the pixel centres of boxes of at most `small` pixels.
+#[inline]
+fn emit_tested(
+    p: &ViewParams,
+    v: [Vec3; 3],
+    plane: [f32; 3],
+    tag: u32,
+    out: &mut Vec<ScreenTri>,
+    small: i64,
+) {
     let sub = p.sub;
     let mut s = [(0.0f64, 0.0f64); 3];
     let (mut zlo, mut zhi) = (f32::INFINITY, 0.0f32);
@@ -1331,11 +1358,13 @@ fn emit(p: &ViewParams, v: [Vec3; 3], plane: [f32; 3], tag: u32, out: &mut Vec<S
         s[0].1.min(s[1].1).min(s[2].1),
         s[0].1.max(s[1].1).max(s[2].1),
     );
-    // Pixels whose centres can be inside.
-    let x0 = fast_ceil((xmin - half) / sub).max(0.0);
-    let x1 = fast_floor((xmax - half) / sub).min(p.w as f64 - 1.0);
-    let y0 = fast_ceil((ymin - half) / sub).max(0.0);
-    let y1 = fast_floor((ymax - half) / sub).min(p.h as f64 - 1.0);
+    // Pixels whose centres can be inside (`sub` is a power of two: times its inverse is the
+    // same as divided by it).
+    let inv = 1.0 / sub;
+    let x0 = fast_ceil((xmin - half) * inv).max(0.0);
+    let x1 = fast_floor((xmax - half) * inv).min(p.w as f64 - 1.0);
+    let y0 = fast_ceil((ymin - half) * inv).max(0.0);
+    let y1 = fast_floor((ymax - half) * inv).min(p.h as f64 - 1.0);
     if x0 > x1 || y0 > y1 {
         return;
     }
@@ -1352,8 +1381,19 @@ fn emit(p: &ViewParams, v: [Vec3; 3], plane: [f32; 3], tag: u32, out: &mut Vec<S
                 as i64,
         }
     };
+    let edges = [edge(0, 1), edge(1, 2), edge(2, 0)];
+    // A triangle of a few pixels' box (most of a small object's far away) often holds none of
+    // their centres: test them here, as the fill would, and leave out one that would fill
+    // nothing (no slot, no fill, no group for it).
+    let (px0, px1, py0, py1) = (x0 as i64, x1 as i64, y0 as i64, y1 as i64);
+    if (px1 - px0 + 1) * (py1 - py0 + 1) <= small
+        && !(py0..=py1)
+            .any(|y| (px0..=px1).any(|x| edges.iter().all(|e| e.a * x + e.b * y + e.c >= 0)))
+    {
+        return;
+    }
     out.push(ScreenTri {
-        edges: [edge(0, 1), edge(1, 2), edge(2, 0)],
+        edges,
         x0: x0 as i32,
         x1: x1 as i32,
         y0: y0 as i32,
@@ -1530,35 +1570,34 @@ impl ClampRange for f32 {
 #[inline]
 fn fast_ceil(v: f64) -> f64 {
     let t = v as i64 as f64;
-    if t < v {
-        t + 1.0
-    } else {
-        t
-    }
+    t + f64::from(u8::from(t < v))
 }
 
 #[inline]
 fn fast_floor(v: f64) -> f64 {
     let t = v as i64 as f64;
-    if t > v {
-        t - 1.0
-    } else {
-        t
-    }
+    t - f64::from(u8::from(t > v))
 }
 
 /// Whether triangles (corner triples) form closed surfaces with outward winding: every
 /// directed edge is matched by its reverse, and each connected piece encloses positive volume.
-/// Corners are compared bit for bit (the shared triangulation repeats them exactly).
+/// Corners are compared on a grid of [`WELD`] metres: the seam of a cylinder or sphere, where
+/// the last segment's corners (at an angle of 2 pi) stand a rounding error away from the first
+/// one's, is closed (that gap, under a micrometre, is a few thousandths of a pixel even a few
+/// centimetres from the camera: a pixel centre falls in it about never).
 fn closed_outward(pos: &[Vec3]) -> bool {
     if pos.is_empty() {
         return false;
     }
-    // Corner ids by sorting the corners (no hashing).
-    let mut keyed: Vec<([u32; 3], u32)> = pos
+    // Corner ids by sorting the corners (no hashing). Two corners on either side of a grid
+    // line stay apart: the surface is then judged open, which only costs speed.
+    let mut keyed: Vec<([i64; 3], u32)> = pos
         .iter()
         .enumerate()
-        .map(|(i, p)| (p.to_array().map(|c| (c + 0.0).to_bits()), i as u32))
+        .map(|(i, p)| {
+            let k = p.to_array().map(|c| (c as f64 / WELD).round() as i64);
+            (k, i as u32)
+        })
         .collect();
     keyed.sort_unstable();
     let mut vid = vec![0usize; pos.len()];
@@ -1573,10 +1612,12 @@ fn closed_outward(pos: &[Vec3]) -> bool {
     // undirected edge's signs must add up to zero.
     let mut edges: Vec<(usize, usize, i64)> = Vec::with_capacity(pos.len());
     for t in vid.chunks_exact(3) {
+        // Two equal corners: a triangle of no area (a sphere's pole), seen from nowhere; its
+        // two other edges are the same edge both ways.
+        if t[0] == t[1] || t[1] == t[2] || t[2] == t[0] {
+            continue;
+        }
         for (i, j) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
-            if i == j {
-                return false;
-            }
             edges.push(if i < j { (i, j, 1) } else { (j, i, -1) });
         }
     }
@@ -1668,15 +1709,77 @@ mod tests {
     use super::*;
 
     fn cube() -> Vec<Vec3> {
-        let s = vlnverse_env::Shape::Cuboid {
+        corners(&vlnverse_env::Shape::Cuboid {
             half_extents: [0.5, 1.0, 0.25],
             bevel: 0.0,
-        };
-        let m = vlnverse_env::geometry::triangulate(&s);
+        })
+    }
+
+    /// The corners of a shape's triangles, as the mesh holds them.
+    fn corners(s: &vlnverse_env::Shape) -> Vec<Vec3> {
+        let m = vlnverse_env::geometry::triangulate(s);
         m.indices
             .iter()
             .flat_map(|t| t.map(|i| Vec3::from_array(m.positions[i as usize])))
             .collect()
+    }
+
+    #[test]
+    fn small_triangles_that_hold_no_pixel_centre_are_left_out_and_the_fill_is_the_same() {
+        use rand::{Rng, SeedableRng};
+        let cam = crate::CameraSpec::default().camera(&vlnverse_env::Pose::default());
+        let p = ViewParams::new(&cam);
+        // A camera-space point at depth `z` seen at pixel coordinates (x, y).
+        let at =
+            |x: f32, y: f32, z: f32| Vec3::new((x - p.cx) / p.fx * z, -(y - p.cy) / p.fy * z, -z);
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+        let (mut all, mut tested) = (Vec::new(), Vec::new());
+        for k in 0..4000u32 {
+            // Triangles of up to two pixels a side around pixel (40 + k % 100, 60 + k / 100).
+            let (cx, cy) = ((40 + k % 100) as f32, (60 + k / 100) as f32);
+            let mut corner = || {
+                let (dx, dy) = (rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0));
+                at(cx + dx, cy + dy, 2.0)
+            };
+            let v = [corner(), corner(), corner()];
+            emit_tested(&p, v, [0.0, 0.0, 0.5], k + 1, &mut all, 0);
+            emit_tested(&p, v, [0.0, 0.0, 0.5], k + 1, &mut tested, SMALL_BOX);
+        }
+        assert!(tested.len() < all.len(), "some are left out");
+        let fill = |tris: &[ScreenTri]| {
+            let (mut z, mut ids) = (vec![0.0f32; p.w * p.h], vec![0u32; p.w * p.h]);
+            // Each on its own buffer (they overlap): every pixel it writes.
+            let mut written = Vec::new();
+            for t in tris {
+                z.fill(0.0);
+                ids.fill(0);
+                raster::<true>(p.w, 0, p.h, std::slice::from_ref(t), &mut z, &mut ids);
+                let px: Vec<usize> = (0..ids.len()).filter(|&i| ids[i] != 0).collect();
+                if !px.is_empty() {
+                    written.push((t.tag, px));
+                }
+            }
+            written
+        };
+        assert_eq!(fill(&tested), fill(&all));
+    }
+
+    #[test]
+    fn round_shapes_are_closed_surfaces() {
+        // Cups, bottles, vases, fruit and plants: their back faces may be culled. A sphere's
+        // poles hold triangles with two equal corners (drawn as nothing), which do not open it.
+        let cylinder = corners(&vlnverse_env::Shape::Cylinder {
+            radius: 0.04,
+            half_height: 0.06,
+        });
+        assert!(closed_outward(&cylinder));
+        let sphere = corners(&vlnverse_env::Shape::Sphere { radius: 0.05 });
+        assert!(sphere
+            .chunks(3)
+            .any(|t| t[0] == t[1] || t[1] == t[2] || t[2] == t[0]));
+        assert!(closed_outward(&sphere));
+        let flipped: Vec<Vec3> = sphere.chunks(3).flat_map(|t| [t[0], t[2], t[1]]).collect();
+        assert!(!closed_outward(&flipped));
     }
 
     #[test]

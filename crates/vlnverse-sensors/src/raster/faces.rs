@@ -83,6 +83,7 @@ pub(crate) fn build(mesh: &SceneMesh, luma: &[u8]) -> DrawMesh {
         // Group the object's triangles by plane and look, then into pieces that share corners
         // (coplanar faces of separate parts, such as wall pieces beside a door, stay apart).
         let mut keyed: Vec<([i64; 8], usize)> = (lo..hi)
+            .filter(|&t| !degenerate(mesh, t))
             .filter_map(|t| {
                 // Imported images keep their own texture coordinates.
                 let l = mesh.look.get(t).filter(|l| l.image.is_none())?;
@@ -119,6 +120,9 @@ pub(crate) fn build(mesh: &SceneMesh, luma: &[u8]) -> DrawMesh {
         }
         let mut done = vec![false; groups.len()];
         for t in lo..hi {
+            if degenerate(mesh, t) {
+                continue;
+            }
             let g = group_of[t - lo];
             if g == usize::MAX || groups[g].len() <= 2 {
                 push_plain(&mut d, mesh, t);
@@ -251,6 +255,14 @@ fn pieces(mesh: &SceneMesh, tris: &[usize]) -> Vec<Vec<usize>> {
         out[slot[r]].push(t);
     }
     out
+}
+
+/// Whether two corners of mesh triangle `t` are the same point (the poles of a sphere): it
+/// covers no pixel in any view, so it is not drawn (its corners snap to the same pixel
+/// position, an empty triangle, in every view).
+fn degenerate(mesh: &SceneMesh, t: usize) -> bool {
+    let [a, b, c] = [0, 1, 2].map(|k| mesh.positions[3 * t + k]);
+    a == b || b == c || c == a
 }
 
 fn push_plain(d: &mut DrawMesh, mesh: &SceneMesh, t: usize) {

@@ -28,7 +28,9 @@ use vlnverse_env::Aabb;
 pub const PREPARED_FILE: &str = "raster.bin";
 /// Format of [`PREPARED_FILE`]; raise it whenever what the rasteriser prepares changes (how
 /// faces merge, how face textures are baked), so files of the old kind are refused.
-pub const PREPARED_VERSION: u32 = 2;
+/// (3: triangles with two equal corners are left out, and the seams of round shapes no longer
+/// keep them from counting as closed surfaces.)
+pub const PREPARED_VERSION: u32 = 3;
 
 const MAGIC: &[u8; 8] = b"VLNRAST\0";
 /// Bytes before the packed body: magic, version, 0, three lengths.
@@ -410,7 +412,7 @@ mod tests {
         b.extend_from_slice(format!("{:?}{:?}", r.draw.face, r.draw.src).as_bytes());
         assert_eq!(
             (PREPARED_VERSION, checksum(&b)),
-            (2, 14_747_998_955_599_738_887),
+            (3, 14_747_998_955_599_738_887),
             "faces::build changed: raise PREPARED_VERSION"
         );
     }
