@@ -6,7 +6,8 @@
 //! `cargo run --release -p vlnverse-sensors --example clutter_rate -- [--frames N] [--reps R]
 //! DATASET_OR_SCENE_DIR...` (a dataset: its `scenes/*` folders). Several datasets are rendered
 //! alternately, `R` times each, so that load on the machine falls on all alike; CPU time per
-//! frame (all threads, from the scheduler's counts) is printed beside frames/s.
+//! frame (all threads, from the scheduler's counts) is printed beside frames/s, and a hash of
+//! every image of the first rep (to check that two builds draw the same images).
 
 use glam::Vec3;
 use rand::{Rng, SeedableRng};
@@ -141,11 +142,29 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         for (name, homes) in &mut fixtures {
             let mut n = 0;
             let (t, cpu) = (Instant::now(), cpu_seconds());
+            // FNV-1a over every image of the rep: equal between builds when the images are.
+            let mut hash = 0xcbf2_9ce4_8422_2325u64;
+            let mut eat = |b: &[u8]| {
+                for v in b {
+                    hash = (hash ^ *v as u64).wrapping_mul(0x100_0000_01b3);
+                }
+            };
             for (r, poses) in homes.iter_mut() {
                 for p in poses.iter() {
-                    std::hint::black_box(r.render(&rgbd(p))?);
+                    let frames = r.render(&rgbd(p))?;
+                    if rep == 0 {
+                        for f in &frames {
+                            eat(&f.rgb);
+                            f.depth.iter().for_each(|d| eat(&d.to_le_bytes()));
+                            f.semantic.iter().for_each(|c| eat(&c.to_le_bytes()));
+                        }
+                    }
+                    std::hint::black_box(frames);
                     n += 1;
                 }
+            }
+            if rep == 0 {
+                println!("{name}: images hash {hash:016x}");
             }
             let s = t.elapsed().as_secs_f64();
             let cpu = cpu_seconds() - cpu;
