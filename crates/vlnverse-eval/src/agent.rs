@@ -128,6 +128,9 @@ pub struct Privileged<'a> {
     pub episode: &'a vlnverse_score::episode::Episode,
     /// Distance fields to the goals in order (`Episode::goal_sequence`).
     pub fields: &'a [std::sync::Arc<vlnverse_env::geodesic::DistanceField>],
+    /// In a home on several floors, the fields toward the goals across floors (in order;
+    /// `fields` then lie on each goal's level); empty in a single-storey scene.
+    pub levels: &'a [std::sync::Arc<vlnverse_env::geodesic::LevelField>],
 }
 
 /// Makes agents (one per worker) and hands each episode's privileged view to agents that may

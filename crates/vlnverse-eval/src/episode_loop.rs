@@ -19,7 +19,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use glam::Vec2;
-use vlnverse_env::geodesic::DistanceField;
+use vlnverse_env::geodesic::{DistanceField, LevelField};
 use vlnverse_env::Pose;
 use vlnverse_sensors::{AgentState, CollisionInfo, Observations, SensorRig};
 use vlnverse_sim::{Action, AgentConfig, Failure, Simulator, StepOutcome};
@@ -282,7 +282,11 @@ pub fn check_episode(ep: &Episode, scene: &SceneContext) -> Result<(), EpisodeCh
     if !p.iter().all(|v| v.is_finite()) || !ep.start_rotation.iter().all(|v| v.is_finite()) {
         return bad("start_position", format!("{p:?}"), Unrunnable::NotFinite);
     }
-    let floor = scene.scene.floor_height;
+    // In a home on several floors, the floor of the level the start is on.
+    let s = &scene.scene;
+    let floor = s
+        .level_height(s.level_at_height(p[1]))
+        .unwrap_or(s.floor_height);
     if (p[1] - floor).abs() > 0.5 {
         let offset = p[1] - floor;
         return bad(
@@ -291,7 +295,7 @@ pub fn check_episode(ep: &Episode, scene: &SceneContext) -> Result<(), EpisodeCh
             Unrunnable::OffFloor { offset, floor },
         );
     }
-    let map = &scene.navigable;
+    let map = scene.navigable_at(p);
     if map.world_to_cell(Vec2::new(p[0], p[2])).is_none() {
         return bad("start_position", format!("{p:?}"), Unrunnable::OffMap);
     }
@@ -323,7 +327,8 @@ pub fn check_episode(ep: &Episode, scene: &SceneContext) -> Result<(), EpisodeCh
         if !g.position.iter().all(|v| v.is_finite()) {
             return bad(&field_name, value, Unrunnable::NotFinite);
         }
-        if map
+        if scene
+            .navigable_at(g.position)
             .world_to_cell(Vec2::new(g.position[0], g.position[2]))
             .is_none()
         {
@@ -336,7 +341,12 @@ pub fn check_episode(ep: &Episode, scene: &SceneContext) -> Result<(), EpisodeCh
         if field.goal().is_none() {
             return bad(&field_name, value, Unrunnable::NotNavigable);
         }
-        if GoalDistance::distance(&*field, p).is_none() {
+        let reachable = match scene.level_field(g.position) {
+            Ok(Some(lf)) => GoalDistance::distance(&*lf, p).is_some(),
+            Ok(None) => GoalDistance::distance(&*field, p).is_some(),
+            Err(e) => return bad(&field_name, value, Unrunnable::Field(e.to_string())),
+        };
+        if !reachable {
             return bad(&field_name, value, Unrunnable::Unreachable);
         }
     }
@@ -352,6 +362,9 @@ pub struct EpisodeState {
     /// What the agent is told at the start.
     pub inputs: EpisodeInputs,
     goal_fields: Vec<Arc<DistanceField>>,
+    /// In a home on several floors, the fields toward the goals across floors (in order);
+    /// empty in a single-storey scene.
+    level_fields: Vec<Arc<LevelField>>,
     pose: Pose,
     progress: SubGoalProgress,
     dialogue: Option<Box<dyn Oracle>>,
@@ -399,6 +412,11 @@ impl EpisodeState {
             .goal_sequence()
             .iter()
             .map(|g| scene.field(g.position))
+            .collect::<Result<_>>()?;
+        let level_fields: Vec<Arc<LevelField>> = ep
+            .goal_sequence()
+            .iter()
+            .filter_map(|g| scene.level_field(g.position).transpose())
             .collect::<Result<_>>()?;
         if goal_fields.is_empty() {
             return Err(TaskError::invalid(
@@ -460,6 +478,7 @@ impl EpisodeState {
         Ok(EpisodeState {
             inputs,
             goal_fields,
+            level_fields,
             pose,
             progress: SubGoalProgress { current: 0, total },
             dialogue,
@@ -482,6 +501,7 @@ impl EpisodeState {
         Privileged {
             episode: ep,
             fields: &self.goal_fields,
+            levels: &self.level_fields,
         }
     }
 
@@ -536,6 +556,9 @@ impl EpisodeState {
     /// tasks); `None` when the agent stands off the navigable map.
     pub fn distance_to_goal(&self) -> Option<f32> {
         let k = (self.progress.current as usize).min(self.goal_fields.len() - 1);
+        if let Some(lf) = self.level_fields.get(k) {
+            return GoalDistance::distance(&**lf, self.pose.position);
+        }
         GoalDistance::distance(&*self.goal_fields[k], self.pose.position)
     }
 
@@ -697,7 +720,11 @@ impl EpisodeState {
         settings: &EpisodeSettings,
     ) -> Result<EpisodeRecord> {
         let traj = self.trajectory();
-        let distances = goal_distances(scene, ep, &self.goal_fields)?;
+        let distances = if self.level_fields.is_empty() {
+            goal_distances(scene, ep, &self.goal_fields)?
+        } else {
+            level_goal_distances(scene, ep, &self.level_fields)?
+        };
         let mut metrics = score_episode(ep, &traj, &distances, &settings.metrics);
         metrics.split = settings.split;
         Ok(EpisodeRecord::new(
@@ -751,6 +778,33 @@ pub fn run_episode<S: Simulator>(
     }
     agent.end_episode()?;
     st.finish(ep, scene, settings)
+}
+
+/// [`goal_distances`] across the floors of a home on several floors.
+fn level_goal_distances(
+    scene: &SceneContext,
+    ep: &Episode,
+    seq: &[Arc<LevelField>],
+) -> Result<GoalDistances> {
+    let goals: Vec<Arc<dyn GoalDistance>> = ep
+        .goals
+        .iter()
+        .filter_map(|g| scene.level_field(g.position).transpose())
+        .map(|f| f.map(|f| f as Arc<dyn GoalDistance>))
+        .collect::<Result<_>>()?;
+    let goal: Arc<dyn GoalDistance> = match goals.len() {
+        0 => seq[seq.len() - 1].clone(),
+        1 => goals[0].clone(),
+        _ => Arc::new(Nearest(goals)),
+    };
+    let sub_goals = if ep.sub_goals.is_empty() {
+        Vec::new()
+    } else {
+        seq.iter()
+            .map(|f| f.clone() as Arc<dyn GoalDistance>)
+            .collect()
+    };
+    Ok(GoalDistances { goal, sub_goals })
 }
 
 /// Distances to the goal (the nearest of several goals) and, for long-horizon episodes, to

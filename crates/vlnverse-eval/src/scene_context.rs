@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, MutexGuard, OnceLock, PoisonError};
 
 use glam::Vec2;
-use vlnverse_env::geodesic::DistanceField;
+use vlnverse_env::geodesic::{DistanceField, LevelField, LevelPoint, MultiLevelMap, Portal};
 use vlnverse_env::occupancy::GridMap;
 use vlnverse_env::scene_graph::SceneGraph;
 use vlnverse_env::Scene;
@@ -33,7 +33,11 @@ pub struct SceneContext {
     mesh: OnceLock<Arc<SceneMesh>>,
     /// The scene's folder, when loaded from one (the renderer may find it prepared there).
     dir: Option<PathBuf>,
-    fields: Mutex<BTreeMap<(u32, u32), Arc<DistanceField>>>,
+    fields: Mutex<BTreeMap<(u32, u32, u32), Arc<DistanceField>>>,
+    /// A home on several floors: every level's navigable map joined by the stairs (level 0's
+    /// is `navigable`); `None` for a single-storey scene.
+    levels: Option<Arc<MultiLevelMap>>,
+    level_fields: Mutex<BTreeMap<(u32, u32, u32), Arc<LevelField>>>,
 }
 
 impl SceneContext {
@@ -46,7 +50,86 @@ impl SceneContext {
             mesh: OnceLock::new(),
             dir: None,
             fields: Mutex::new(BTreeMap::new()),
+            levels: None,
+            level_fields: Mutex::new(BTreeMap::new()),
         }
+    }
+
+    /// A context for a home on several floors from its levels' navigable maps (lowest first);
+    /// the stairs join them. An error when the maps do not fit the scene's levels.
+    pub fn with_levels(scene: Scene, levels: Vec<GridMap>) -> Result<Self> {
+        if levels.len() != scene.level_count() || levels.is_empty() {
+            return Err(TaskError::invalid(
+                "levels",
+                levels.len(),
+                format!(
+                    "scene `{}` has {} levels; give one navigable map each",
+                    scene.id,
+                    scene.level_count()
+                ),
+            ));
+        }
+        let portals = scene.storeys.stairs.iter().map(Portal::of_stairs).collect();
+        let multi = MultiLevelMap::new(levels.clone(), portals)?;
+        let ground = levels.into_iter().next().expect("checked non-empty");
+        Ok(SceneContext {
+            levels: scene.is_multi_level().then(|| Arc::new(multi)),
+            ..SceneContext::new(scene, ground)
+        })
+    }
+
+    /// The levels' maps joined by the stairs, in a home on several floors.
+    pub fn levels(&self) -> Option<&Arc<MultiLevelMap>> {
+        self.levels.as_ref()
+    }
+
+    /// The navigable map of the level a 3-D point stands on (`navigable` in a single-storey
+    /// scene).
+    pub fn navigable_at(&self, p: [f32; 3]) -> &GridMap {
+        match &self.levels {
+            Some(m) => m
+                .level(self.scene.level_at_height(p[1]))
+                .unwrap_or(&self.navigable),
+            None => &self.navigable,
+        }
+    }
+
+    /// The field toward a goal across floors (cached), in a home on several floors; `None` in
+    /// a single-storey scene (use [`SceneContext::field`]).
+    pub fn level_field(&self, goal: [f32; 3]) -> Result<Option<Arc<LevelField>>> {
+        let Some(multi) = &self.levels else {
+            return Ok(None);
+        };
+        let key = (goal[0].to_bits(), goal[1].to_bits(), goal[2].to_bits());
+        if let Some(f) = lock(&self.level_fields).get(&key) {
+            return Ok(Some(f.clone()));
+        }
+        let heights: Vec<f32> = (0..self.scene.level_count() as u32)
+            .map(|l| {
+                self.scene
+                    .level_height(l)
+                    .unwrap_or(self.scene.floor_height)
+            })
+            .collect();
+        let half: Vec<f32> = self
+            .scene
+            .storeys
+            .stairs
+            .iter()
+            .map(|s| 0.5 * s.width)
+            .collect();
+        let f = Arc::new(LevelField::new(
+            multi,
+            &heights,
+            &half,
+            LevelPoint::from_world(&self.scene, goal),
+        )?);
+        let mut c = lock(&self.level_fields);
+        if c.len() >= FIELD_CACHE {
+            c.clear();
+        }
+        c.insert(key, f.clone());
+        Ok(Some(f))
     }
 
     /// Load `dataset/scenes/<id>/` (the scene and its navigable map).
@@ -61,6 +144,22 @@ impl SceneContext {
         }
         let scene = vlnverse_env::io::load_scene(&dir)?;
         let navigable = GridMap::load_ros(navigable_map_path(dataset, scene_id))?;
+        if scene.is_multi_level() {
+            // The upper floors' maps beside the ground floor's (`navigable_level<k>.yaml`).
+            let mut levels = vec![navigable];
+            for k in 1..scene.level_count() as u32 {
+                let file = dir.join(vlnverse_env::occupancy::level_map_file(
+                    "navigable",
+                    k,
+                    "yaml",
+                ));
+                levels.push(GridMap::load_ros(&file)?);
+            }
+            return Ok(SceneContext {
+                dir: Some(dir),
+                ..SceneContext::with_levels(scene, levels)?
+            });
+        }
         Ok(SceneContext {
             dir: Some(dir),
             ..SceneContext::new(scene, navigable)
@@ -92,14 +191,14 @@ impl SceneContext {
         Ok(self.mesh.get_or_init(|| m).clone())
     }
 
-    /// The distance field to a goal point (cached).
+    /// The distance field to a goal point (cached), on the goal's level's map.
     pub fn field(&self, goal: [f32; 3]) -> Result<Arc<DistanceField>> {
-        let key = (goal[0].to_bits(), goal[2].to_bits());
+        let key = (goal[0].to_bits(), goal[1].to_bits(), goal[2].to_bits());
         if let Some(f) = lock(&self.fields).get(&key) {
             return Ok(f.clone());
         }
         let f = Arc::new(DistanceField::new(
-            &self.navigable,
+            self.navigable_at(goal),
             Vec2::new(goal[0], goal[2]),
         )?);
         let mut c = lock(&self.fields);

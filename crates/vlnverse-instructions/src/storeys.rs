@@ -179,7 +179,7 @@ pub fn join_walks(
 /// style's casing is kept (a casual instruction stays lowercase).
 pub fn goal_across(ins: &Instruction, flight: Flight, seed: u64) -> Instruction {
     let p = &*PHRASES;
-    let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x5550_5354_4149_52);
+    let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x0055_5053_5441_4952);
     let body = ins.instruction_text.trim();
     let text = if ins.style == Some(Style::Casual) {
         let lead = match flight {

@@ -141,6 +141,15 @@ impl GoalDistance for vlnverse_env::geodesic::DistanceField {
     }
 }
 
+/// Geodesic distance across the floors of a home (the 3-D point's level from its height): a
+/// point on another floor than the goal is as far as the walk through the stairs, so a success
+/// radius counts on the goal's floor only.
+impl GoalDistance for vlnverse_env::geodesic::LevelField {
+    fn distance(&self, p: [f32; 3]) -> Option<f32> {
+        vlnverse_env::geodesic::LevelField::distance(self, p).meters()
+    }
+}
+
 /// The distances an episode is scored with: to its goal (nearest of `goals`), and to each of its
 /// `sub_goals` in order (long-horizon only; empty otherwise).
 #[derive(Clone)]

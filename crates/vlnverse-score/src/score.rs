@@ -11,8 +11,8 @@ use std::sync::Arc;
 
 use glam::Vec2;
 use rayon::prelude::*;
-use vlnverse_env::geodesic::DistanceField;
-use vlnverse_env::occupancy::GridMap;
+use vlnverse_env::geodesic::{DistanceField, LevelField, LevelPoint, MultiLevelMap, Portal};
+use vlnverse_env::occupancy::{level_map_file, GridMap};
 
 use crate::episode::{Episode, Split, Task};
 use crate::error::{DataError, Result};
@@ -189,6 +189,14 @@ pub fn score_on_maps(
     }
     let mut out: Vec<Option<EpisodeMetrics>> = vec![None; episodes.len()];
     for (scene, mut idxs) in by_scene {
+        if let Some(levels) = scene_levels(dataset_dir, scene)? {
+            let scored = score_across_floors(&levels, episodes, trajectories, &idxs, cfg)?;
+            for (i, m) in scored {
+                out[i] = Some(m);
+            }
+            on_done(idxs.len());
+            continue;
+        }
         let path = navigable_map_path(dataset_dir, scene);
         let map = GridMap::load_ros(&path)?;
         // Episodes sharing goals (the three coarse styles of a path) end up in one chunk.
@@ -219,6 +227,113 @@ pub fn score_on_maps(
         }
     }
     Ok(out.into_iter().flatten().collect())
+}
+
+/// A home on several floors: its levels' floor heights, flights' half widths and the map
+/// across its floors.
+struct SceneLevels {
+    heights: Vec<f32>,
+    half_widths: Vec<f32>,
+    map: MultiLevelMap,
+}
+
+/// The levels of `dataset_dir/scenes/<scene_id>/` when it is a home on several floors (its
+/// folder holds `navigable_level1.yaml`); `None` for a single-storey scene (not even its
+/// `scene.json` is read then).
+fn scene_levels(dataset_dir: &Path, scene_id: &str) -> Result<Option<SceneLevels>> {
+    let dir = dataset_dir.join("scenes").join(scene_id);
+    if !dir.join(level_map_file("navigable", 1, "yaml")).is_file() {
+        return Ok(None);
+    }
+    let json = dir.join(vlnverse_env::io::SCENE_JSON);
+    let bytes = std::fs::read(&json).map_err(|e| DataError::io(&json, e))?;
+    let scene = vlnverse_env::io::json::scene_from_json(&bytes, &json)?;
+    let mut maps = Vec::new();
+    for k in 0..scene.level_count() as u32 {
+        let file = if k == 0 {
+            navigable_map_path(dataset_dir, scene_id)
+        } else {
+            dir.join(level_map_file("navigable", k, "yaml"))
+        };
+        maps.push(GridMap::load_ros(&file)?);
+    }
+    let portals = scene.storeys.stairs.iter().map(Portal::of_stairs).collect();
+    let map = MultiLevelMap::new(maps, portals)
+        .map_err(|e| DataError::invalid("scene", scene_id, e.to_string()))?;
+    Ok(Some(SceneLevels {
+        heights: (0..scene.level_count() as u32)
+            .map(|l| scene.level_height(l).unwrap_or(scene.floor_height))
+            .collect(),
+        half_widths: scene.storeys.stairs.iter().map(|s| 0.5 * s.width).collect(),
+        map,
+    }))
+}
+
+/// Score the episodes `idxs` of a home on several floors with distances across its floors
+/// ([`LevelField`]: a success radius counts on the goal's floor only).
+fn score_across_floors(
+    levels: &SceneLevels,
+    episodes: &[Episode],
+    trajectories: &[Trajectory],
+    idxs: &[usize],
+    cfg: &MetricsConfig,
+) -> Result<Vec<(usize, EpisodeMetrics)>> {
+    let goals: BTreeSet<(u32, u32, u32)> = idxs
+        .iter()
+        .flat_map(|&i| episodes[i].goals.iter().chain(&episodes[i].sub_goals))
+        .map(|g| {
+            (
+                g.position[0].to_bits(),
+                g.position[1].to_bits(),
+                g.position[2].to_bits(),
+            )
+        })
+        .collect();
+    let fields: BTreeMap<(u32, u32, u32), Arc<LevelField>> = goals
+        .into_par_iter()
+        .map(|k| {
+            let p = [
+                f32::from_bits(k.0),
+                f32::from_bits(k.1),
+                f32::from_bits(k.2),
+            ];
+            let goal = LevelPoint::new(level_of(&levels.heights, p[1]), p[0], p[2]);
+            LevelField::new(&levels.map, &levels.heights, &levels.half_widths, goal)
+                .map(|f| (k, Arc::new(f)))
+                .map_err(DataError::from)
+        })
+        .collect::<Result<_>>()?;
+    let field = |p: [f32; 3]| -> Arc<dyn GoalDistance> {
+        let k = (p[0].to_bits(), p[1].to_bits(), p[2].to_bits());
+        fields
+            .get(&k)
+            .map(|f| f.clone() as Arc<dyn GoalDistance>)
+            .unwrap_or_else(|| Arc::new(crate::metrics::Euclidean(p)))
+    };
+    Ok(idxs
+        .par_iter()
+        .map(|&i| {
+            let ep = &episodes[i];
+            let goal = if ep.goals.len() == 1 {
+                field(ep.goals[0].position)
+            } else {
+                Arc::new(Nearest(
+                    ep.goals.iter().map(|g| field(g.position)).collect(),
+                ))
+            };
+            let d = GoalDistances {
+                goal,
+                sub_goals: ep.sub_goals.iter().map(|g| field(g.position)).collect(),
+            };
+            (i, score_episode(ep, &trajectories[i], &d, cfg))
+        })
+        .collect())
+}
+
+/// The level whose floor is the highest at or below `y` (0.25 m tolerance, as
+/// `Scene::level_at_height`).
+fn level_of(heights: &[f32], y: f32) -> u32 {
+    heights.iter().rposition(|h| *h <= y + 0.25).unwrap_or(0) as u32
 }
 
 /// Split a scene's episodes into runs with at most [`MAX_FIELDS_PER_CHUNK`] distinct goals.

@@ -21,6 +21,8 @@ use crate::scene::LevelId;
 
 /// Extra half-width around a flight's walking line inside which a point counts as on it (m).
 const FLIGHT_MARGIN: f32 = 0.35;
+/// How far ahead along a flight's line [`Guide::Flight::aim`] lies (m).
+const AIM_AHEAD: f32 = 0.5;
 /// Height above the lower floor and below the upper one from which a point over a flight's run
 /// stands on the flight (m; a tread is at least a riser above the floor).
 const ON_FLIGHT: f32 = 0.05;
@@ -46,6 +48,10 @@ pub enum Guide {
         up: bool,
         /// The end the walk on the flight heads for `(x, z)`.
         to: Vec2,
+        /// Where to walk now `(x, z)`: a point on the flight's line a little ahead of the
+        /// point's place along it, so a walk that started off the line comes back onto it
+        /// before the body meets the flight's sides.
+        aim: Vec2,
         /// Height of the floor at `to`.
         to_height: f32,
     },
@@ -86,6 +92,23 @@ struct FlightInfo {
     half_width: f32,
     cost: f32,
     to_goal: [Option<f32>; 2],
+}
+
+impl FlightInfo {
+    /// The point [`AIM_AHEAD`] along the flight's line (up: toward the head) from `q`'s
+    /// projection on it, within the line's ends.
+    fn aim(&self, q: Vec2, up: bool) -> Vec2 {
+        let (a, b) = (self.ends[0], self.ends[1]);
+        let ab = b - a;
+        let len = ab.length();
+        if len < 1e-6 {
+            return b;
+        }
+        let t = (q - a).dot(ab) / (len * len);
+        let step = AIM_AHEAD / len;
+        let t = if up { t + step } else { t - step };
+        a + ab * t.clamp(0.0, 1.0)
+    }
 }
 
 impl LevelField {
@@ -168,8 +191,9 @@ impl LevelField {
     }
 
     /// Where along flight `i` a point stands: `t` in [0, 1] from foot to head, when it is over
-    /// the flight's run and between its two floors (not on either).
-    fn on_flight(&self, i: usize, p: [f32; 3]) -> Option<f32> {
+    /// the flight's run and between its two floors (not on either; with `floors`, on either
+    /// too).
+    fn on_flight(&self, i: usize, p: [f32; 3], floors: bool) -> Option<f32> {
         let f = &self.flights[i];
         let (a, b) = (f.ends[0], f.ends[1]);
         let q = Vec2::new(p[0], p[2]);
@@ -178,18 +202,39 @@ impl LevelField {
         if len2 < 1e-8 {
             return None;
         }
-        let t = ((q - a).dot(ab) / len2).clamp(0.0, 1.0);
+        let t = (q - a).dot(ab) / len2;
+        if !(0.0..=1.0).contains(&t) {
+            return None;
+        }
         let off = q.distance(a + ab * t);
-        let between = p[1] > f.heights[0] + ON_FLIGHT && p[1] < f.heights[1] - ON_FLIGHT;
+        let between = if floors {
+            p[1] > f.heights[0] - FLOOR_TOLERANCE && p[1] < f.heights[1] + FLOOR_TOLERANCE
+        } else {
+            p[1] > f.heights[0] + ON_FLIGHT && p[1] < f.heights[1] - ON_FLIGHT
+        };
         (off <= f.half_width + FLIGHT_MARGIN && between).then_some(t)
     }
 
-    /// The candidates from a point: (distance, guide).
+    /// The candidates from a point: (distance, guide). On a flight, its two ways; on a floor,
+    /// the walk to the goal and to each flight's end on this floor; off the floor's map (the
+    /// step between a floor and a flight's end, over the flight's run), the flight's ways.
     fn options(&self, p: [f32; 3]) -> Vec<(f32, Guide)> {
-        let q = Vec2::new(p[0], p[2]);
+        let out = self.flight_options(p, false);
+        if !out.is_empty() {
+            return out;
+        }
+        let out = self.floor_options(p);
+        if !out.is_empty() {
+            return out;
+        }
+        self.flight_options(p, true)
+    }
+
+    /// Both ways along each flight the point stands on ([`Self::on_flight`]).
+    fn flight_options(&self, p: [f32; 3], floors: bool) -> Vec<(f32, Guide)> {
         let mut out = Vec::new();
         for (i, f) in self.flights.iter().enumerate() {
-            if let Some(t) = self.on_flight(i, p) {
+            if let Some(t) = self.on_flight(i, p, floors) {
                 for (end, rest, share, up) in [
                     (1, f.to_goal[1], 1.0 - t, true),
                     (0, f.to_goal[0], t, false),
@@ -201,6 +246,7 @@ impl LevelField {
                                 stairs: f.stairs,
                                 up,
                                 to: f.ends[end],
+                                aim: f.aim(Vec2::new(p[0], p[2]), up),
                                 to_height: f.heights[end],
                             },
                         ));
@@ -208,9 +254,13 @@ impl LevelField {
                 }
             }
         }
-        if !out.is_empty() {
-            return out;
-        }
+        out
+    }
+
+    /// The walk on the point's floor to the goal and to each flight's end there.
+    fn floor_options(&self, p: [f32; 3]) -> Vec<(f32, Guide)> {
+        let q = Vec2::new(p[0], p[2]);
+        let mut out = Vec::new();
         let level = self.level_at(p[1]);
         if level == self.goal_level {
             if let Some(d) = self.goal.distance(q).meters() {
@@ -235,6 +285,7 @@ impl LevelField {
                     stairs: f.stairs,
                     up: e.foot,
                     to: f.ends[there],
+                    aim: f.aim(q, e.foot),
                     to_height: f.heights[there],
                 }
             } else {

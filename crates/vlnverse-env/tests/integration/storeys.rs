@@ -279,7 +279,10 @@ fn a_level_field_measures_across_floors_and_guides_up_the_flight() {
     let via = |a: LevelPoint| m.geodesic_distance(a, goal).unwrap().meters().unwrap();
     // From the ground floor: the route across floors (the field's cells vs A*: within 5 cm).
     let below = from([2.0, 0.0, 1.0]);
-    assert!((below - via(LevelPoint::new(0, 2.0, 1.0))).abs() < 0.05, "{below}");
+    assert!(
+        (below - via(LevelPoint::new(0, 2.0, 1.0))).abs() < 0.05,
+        "{below}"
+    );
     assert!(below > 5.0, "right below the goal is far from it: {below}");
     // Upstairs: the walk on the goal's floor.
     let up = from([2.0, 3.0, 2.0]);
@@ -288,7 +291,10 @@ fn a_level_field_measures_across_floors_and_guides_up_the_flight() {
     let mid = [5.0, 1.5, 2.5];
     let head_rest = via(LevelPoint::new(1, st.head[0], st.head[2]));
     let half = from(mid);
-    assert!((half - (0.5 * st.walk_length() + head_rest)).abs() < 0.3, "{half}");
+    assert!(
+        (half - (0.5 * st.walk_length() + head_rest)).abs() < 0.3,
+        "{half}"
+    );
     // The way: from the ground floor down a field (to the foot), on the flight toward the head.
     assert!(matches!(f.guide([2.0, 0.0, 5.0]), Some(Guide::Walk { rest, .. }) if rest > 1.0));
     match f.guide(mid) {
@@ -298,6 +304,9 @@ fn a_level_field_measures_across_floors_and_guides_up_the_flight() {
         }
         g => panic!("{g:?}"),
     }
-    assert!(matches!(f.guide(st.foot), Some(Guide::Flight { up: true, .. })));
+    assert!(matches!(
+        f.guide(st.foot),
+        Some(Guide::Flight { up: true, .. })
+    ));
     assert!(matches!(f.guide([2.0, 3.0, 2.0]), Some(Guide::Walk { rest, .. }) if rest == 0.0));
 }

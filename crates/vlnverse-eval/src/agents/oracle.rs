@@ -12,11 +12,17 @@
 //! through gentle corners and toward the goal. It stops once the geodesic
 //! distance to the goal is below `stop_within` (min(1 m, half the success distance)), so the
 //! stop lands safely inside the success radius; long-horizon episodes get one STOP per goal.
+//!
+//! In a home on several floors it follows the goal's field across floors
+//! ([`vlnverse_env::geodesic::LevelField`]): on another floor than the goal it walks the same
+//! way to the end of the flight to take, then along the flight from foot to head (or head to
+//! foot) in a straight line, the simulator raising it tread by tread (Strict) or hopping it to
+//! the flight's other end (a Tel-Hop waypoint there), and on the goal's floor as before.
 
 use std::sync::Arc;
 
 use glam::Vec2;
-use vlnverse_env::geodesic::DistanceField;
+use vlnverse_env::geodesic::{DistanceField, Guide, LevelField};
 use vlnverse_env::scene_graph::direction_of_yaw;
 use vlnverse_sim::{Action, AgentConfig, WaypointMode};
 
@@ -30,6 +36,7 @@ use crate::protocol::{ActionSpace, Setting};
 #[derive(Default)]
 pub struct OracleAgent {
     fields: Vec<Arc<DistanceField>>,
+    levels: Vec<Arc<LevelField>>,
     agent: AgentConfig,
     space: ActionSpace,
     setting: Setting,
@@ -40,6 +47,7 @@ pub struct OracleAgent {
 impl Agent for OracleAgent {
     fn set_truth(&mut self, truth: &Privileged) {
         self.fields = truth.fields.to_vec();
+        self.levels = truth.levels.to_vec();
     }
 
     fn reset(&mut self, inputs: &EpisodeInputs) -> Result<()> {
@@ -53,21 +61,86 @@ impl Agent for OracleAgent {
 
     fn act(&mut self, step: &mut StepInput) -> Result<Action> {
         let k = step.sub_goal.current as usize;
+        let p = floor_point(&step.pose);
+        if let Some(lf) = self.levels.get(k).or(self.levels.last()).cloned() {
+            return Ok(self.act_across(&lf, p, step));
+        }
         let Some(field) = self.fields.get(k).or(self.fields.last()).cloned() else {
             return Ok(Action::Stop);
         };
-        let p = floor_point(&step.pose);
         let Some(d) = field.distance(p).meters() else {
             return Ok(Action::Stop);
         };
         if d <= self.stop_within {
             return Ok(Action::Stop);
         }
+        Ok(self.follow(&field, p, d, step))
+    }
+}
+
+impl OracleAgent {
+    /// One action in a home on several floors: stop near the goal, else walk down the field
+    /// the goal's field across floors points to, or along the flight to take.
+    fn act_across(&mut self, lf: &LevelField, p: Vec2, step: &StepInput) -> Action {
+        let at = step.pose.position;
+        let Some(d) = lf.distance(at).meters() else {
+            return Action::Stop;
+        };
+        if d <= self.stop_within {
+            return Action::Stop;
+        }
+        match lf.guide(at) {
+            None => Action::Stop,
+            Some(Guide::Walk { field, .. }) => match field.distance(p).meters() {
+                Some(dw) => self.follow(&field, p, dw, step),
+                None => Action::Stop,
+            },
+            Some(Guide::Flight { to, aim, .. }) => self.toward(to, aim, p, step),
+        }
+    }
+
+    /// Along a flight to its end `to`: a waypoint there (a hop, or a drive along the line), or
+    /// walk at `aim` (a point on the flight's line just ahead): a velocity command at it, or
+    /// turn toward it within half a turn step and step forward.
+    fn toward(&mut self, to: Vec2, aim: Vec2, p: Vec2, step: &StepInput) -> Action {
+        let yaw = step.pose.yaw();
+        let err = wrap_angle(yaw_towards(aim - p) - yaw);
+        match self.space {
+            ActionSpace::Waypoint => Action::Waypoint {
+                x: to.x,
+                z: to.y,
+                mode: if self.setting == Setting::Telhop {
+                    WaypointMode::TelHop
+                } else {
+                    WaypointMode::Drive
+                },
+            },
+            ActionSpace::Continuous => {
+                self.control
+                    .follow(err, aim.distance(p), self.agent.max_linear_speed)
+            }
+            ActionSpace::Discrete => {
+                let turn = self.agent.turn_angle();
+                if err.abs() > 0.5 * turn + 1e-4 {
+                    if err > 0.0 {
+                        Action::left(&self.agent)
+                    } else {
+                        Action::right(&self.agent)
+                    }
+                } else {
+                    Action::forward(&self.agent)
+                }
+            }
+        }
+    }
+
+    /// One action down `field` from `p`, `d` metres from its target.
+    fn follow(&mut self, field: &Arc<DistanceField>, p: Vec2, d: f32, step: &StepInput) -> Action {
         if self.space == ActionSpace::Continuous {
-            return Ok(self.drive(&field, p, step.pose.yaw()));
+            return self.drive(field, p, step.pose.yaw());
         }
         let Some(mut w) = field.next_waypoint(p) else {
-            return Ok(Action::Stop);
+            return Action::Stop;
         };
         // Off the navigable map (in its clearance margin, where the body still fits) the first
         // waypoint is the map's nearest edge, often a few centimetres away: a whole step at it
@@ -92,11 +165,11 @@ impl Agent for OracleAgent {
             } else {
                 WaypointMode::Drive
             };
-            return Ok(Action::Waypoint {
+            return Action::Waypoint {
                 x: w.x,
                 z: w.y,
                 mode,
-            });
+            };
         }
         let v: Vec2 = w - p;
         let yaw = step.pose.yaw();
@@ -115,17 +188,15 @@ impl Agent for OracleAgent {
                 .is_some_and(|da| d - da >= len * turn.cos() - 1e-3)
         };
         if diff.abs() > 0.5 * turn + 1e-4 && !straight_on {
-            return Ok(if diff > 0.0 {
+            return if diff > 0.0 {
                 Action::left(&self.agent)
             } else {
                 Action::right(&self.agent)
-            });
+            };
         }
-        Ok(Action::forward(&self.agent))
+        Action::forward(&self.agent)
     }
-}
 
-impl OracleAgent {
     /// Continuous space: one velocity command toward the next corner of the geodesic path.
     fn drive(&mut self, field: &DistanceField, p: Vec2, yaw: f32) -> Action {
         let Some(path) = field.path(p) else {
