@@ -25,13 +25,36 @@ const FLOOR: InteractionGroups = InteractionGroups::new(
     Group::ALL,
     InteractionTestMode::And,
 );
-/// Groups of the multi-level agent's "what am I standing on" casts: floors and solids, not
-/// the low objects it drives over (rugs).
+/// Collision group, in a multi-level scene, of solids the agent may stand on: flights of
+/// stairs (class `stairs`) and objects lower than its `max_step_height` above their level's
+/// floor (thresholds, kerbs, low platforms). Solid for every agent query ([`AGENT_QUERY`]);
+/// the walls, furniture and other solids of [`SOLID`] are never stood on (a wall's top next
+/// to a flight, a bed reached from a low stool).
+const STEP: InteractionGroups = InteractionGroups::new(
+    Group::GROUP_1.union(Group::GROUP_4),
+    Group::ALL,
+    InteractionTestMode::And,
+);
+/// Groups of the multi-level agent's moves, overlap tests and "what am I standing on" casts:
+/// solids and floors, not the low objects it drives over (rugs).
 pub(crate) const STAND_QUERY: InteractionGroups = InteractionGroups::new(
     Group::GROUP_1,
     Group::GROUP_1.union(Group::GROUP_3),
     InteractionTestMode::And,
 );
+/// Groups of what the multi-level agent may stand on: floors and [`STEP`] solids.
+pub(crate) const STEP_QUERY: InteractionGroups = InteractionGroups::new(
+    Group::GROUP_1,
+    Group::GROUP_3.union(Group::GROUP_4),
+    InteractionTestMode::And,
+);
+
+/// Whether a collider's groups make it something the agent may stand on (floor or step).
+pub(crate) fn standable(groups: InteractionGroups) -> bool {
+    groups
+        .memberships
+        .intersects(Group::GROUP_3.union(Group::GROUP_4))
+}
 
 /// The mutable part of a rapier world (what an environment owns and a snapshot copies).
 #[derive(Clone)]
@@ -149,10 +172,22 @@ impl PhysicsScene {
             };
             let is_floor = o.class == SemanticClass::Floor;
             let ground = is_floor || o.bbox.max[1] < floor + agent.ground_clearance;
-            let groups = match (ground, is_floor && !levels.is_empty()) {
-                (_, true) => FLOOR,
-                (true, false) => GROUND,
-                (false, false) => SOLID,
+            let groups = if levels.is_empty() {
+                if ground {
+                    GROUND
+                } else {
+                    SOLID
+                }
+            } else if is_floor {
+                FLOOR
+            } else if ground {
+                GROUND
+            } else if o.class == SemanticClass::Stairs
+                || o.bbox.max[1] < floor + agent.max_step_height
+            {
+                STEP
+            } else {
+                SOLID
             };
             if dynamic {
                 if convex.is_empty() {
@@ -462,6 +497,10 @@ pub(crate) fn content_key(scene: &Scene, agent_key: u64) -> u64 {
     let mut h = std::collections::hash_map::DefaultHasher::new();
     (fingerprint(scene), agent_key).hash(&mut h);
     scene.floor_height.to_bits().hash(&mut h);
+    // The levels decide whether the agent follows the ground (none: nothing hashed, as before).
+    for l in &scene.storeys.levels {
+        l.floor_height.to_bits().hash(&mut h);
+    }
     // Closed doors also bound Tel-Hops.
     for d in scene.doors.iter().filter(|d| d.is_closed()) {
         d.id.hash(&mut h);

@@ -7,7 +7,7 @@
 
 use super::{RapierSimulator, MIN_MOVE};
 use crate::simulator::{Hop, StepOutcome};
-use crate::world::STAND_QUERY;
+use crate::world::{standable, STAND_QUERY, STEP_QUERY};
 use glam::Vec3;
 use rapier3d::parry::query::ShapeCastOptions;
 use rapier3d::prelude::*;
@@ -20,6 +20,9 @@ const CLIMB_STEP: f32 = 0.1;
 /// Height differences below this are none (m); ground this close to a level's floor is that
 /// floor, exactly.
 const FLAT: f32 = 1e-3;
+/// A contact whose normal is less upward than this (its y) is the side of something, not
+/// ground, unless a ray finds ground under it.
+const GRAZE: f32 = 0.05;
 /// How far below the scene's lowest point a fall is looked for (m).
 const FALL_MARGIN: f32 = 1.0;
 
@@ -29,7 +32,8 @@ struct Ground {
     y: f32,
     /// The collider it belongs to.
     handle: ColliderHandle,
-    /// Whether its slope (at the contact) is walkable for the agent.
+    /// Whether the agent may stand on it: a floor or a step (not a wall's top, not furniture)
+    /// whose slope at the contact is within its `max_slope_deg`.
     walkable: bool,
 }
 
@@ -76,18 +80,26 @@ impl RapierSimulator {
             y = *f;
         }
         let cos_max = self.cfg.agent.max_slope_deg.to_radians().cos();
-        // A shape touching a tread's edge reports a slanted normal: ask the surface under the
-        // contact point (a ray's normal) before calling it steep.
-        let walkable = hit.normal1.y >= cos_max || {
+        // The surface under the contact point, by a ray: a shape touching a tread's edge
+        // reports a slanted normal, and one grazing a wall's face a level one at any depth.
+        let under = || {
             let p = hit.witness1;
             let ray = Ray::new(Vec3::new(p.x, y + 0.05, p.z), Vec3::NEG_Y);
             qp.cast_ray_and_get_normal(&ray, 0.1, true)
-                .is_some_and(|(_, r)| r.normal.y >= cos_max)
+                .map(|(_, r)| r.normal.y)
         };
+        if hit.normal1.y < GRAZE && under().is_none_or(|n| n < GRAZE) {
+            return None;
+        }
+        let walkable = hit.normal1.y >= cos_max || under().is_some_and(|n| n >= cos_max);
+        let standable = w
+            .colliders
+            .get(handle)
+            .is_some_and(|c| standable(c.collision_groups()));
         Some(Ground {
             y,
             handle,
-            walkable,
+            walkable: walkable && standable,
         })
     }
 
@@ -96,7 +108,7 @@ impl RapierSimulator {
     pub(super) fn stand_height(&self, p: Vec3) -> f32 {
         let step = self.cfg.agent.max_step_height;
         match self.ground_under(p, self.lift()) {
-            Some(g) if (g.y - p.y).abs() <= step + FLAT => g.y,
+            Some(g) if g.walkable && (g.y - p.y).abs() <= step + FLAT => g.y,
             _ => p.y,
         }
     }
@@ -113,8 +125,9 @@ impl RapierSimulator {
     /// [`Self::slide_move`] following the ground: the move is cut into sub-moves of at most
     /// [`CLIMB_STEP`]; each slides with the shape raised by [`Self::lift`] (so a low step does
     /// not stop it) and then drops onto the ground under it. A step higher than
-    /// `max_step_height` or a slope steeper than `max_slope_deg` stops the move there (hit, as
-    /// a wall would); a drop of any depth is a fall.
+    /// `max_step_height`, a slope steeper than `max_slope_deg` or a top that is not a floor or
+    /// a step (a wall's, a piece of furniture's) stops the move there (hit, as a wall would); a
+    /// drop of any depth onto a floor or a step is a fall.
     pub(super) fn climb_move(&mut self, desired: Vec3) -> (Vec3, Vec<ObjectId>) {
         let flat = Vec3::new(desired.x, 0.0, desired.z);
         let n = (flat.length() / CLIMB_STEP).ceil().max(1.0);
@@ -141,11 +154,18 @@ impl RapierSimulator {
                 continue;
             };
             let up = g.y - base.y;
-            if up > FLAT && (up > max_step + FLAT || !g.walkable) {
+            if !g.walkable || up > max_step + FLAT {
                 handles.push(g.handle);
                 break;
             }
-            self.state.base = Vec3::new(base.x + moved.x, g.y, base.z + moved.z);
+            let next = Vec3::new(base.x + moved.x, g.y, base.z + moved.z);
+            // Standing up on the step may put the head into what hangs over it (a slab's edge
+            // over a flight): no room, no step.
+            if up > FLAT && !self.overlaps(next).is_empty() {
+                handles.push(g.handle);
+                break;
+            }
+            self.state.base = next;
             if blocked && !self.cfg.agent.allow_sliding {
                 break;
             }
@@ -169,7 +189,7 @@ impl RapierSimulator {
         let qp = w.query(
             QueryFilter::default()
                 .exclude_rigid_body(s.agent_body)
-                .groups(STAND_QUERY),
+                .groups(STEP_QUERY),
         );
         let step = self.cfg.agent.max_step_height;
         let d = Vec3::new(target.x - start.x, 0.0, target.z - start.z);
@@ -204,7 +224,7 @@ impl RapierSimulator {
         let lift = self.lift();
         let stand = |p: Vec3| -> Option<Vec3> {
             let g = self.ground_under(Vec3::new(p.x, y, p.z), lift)?;
-            ((g.y - y).abs() <= step + FLAT).then(|| Vec3::new(p.x, g.y, p.z))
+            (g.walkable && (g.y - y).abs() <= step + FLAT).then(|| Vec3::new(p.x, g.y, p.z))
         };
         let at_target = stand(target).map(|p| self.overlaps(p)).unwrap_or_default();
         out.collided = !at_target.is_empty();

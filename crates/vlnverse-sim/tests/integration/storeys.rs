@@ -372,3 +372,31 @@ fn velocity_control_falls_off_an_edge_but_climbs_nothing() {
     assert_eq!(sim.pose().position[1], 0.0);
     assert!(sim.pose().position[0] > -1.8, "{out:?}");
 }
+
+#[test]
+fn the_agent_stands_on_floors_and_steps_never_on_furniture() {
+    // A 0.15 m platform (a step) at x in [-3, -2] and, behind it, a 0.3 m sofa at x in
+    // [-4, -3]: its top is within a step of the platform's, but it is furniture.
+    let mut scene = two_level_room();
+    scene.objects.push(boxed(
+        8,
+        SemanticClass::Sofa,
+        Vec3::new(-3.5, 0.15, 0.0),
+        Vec3::new(0.5, 0.15, 5.0),
+        Motion::Static,
+        1000.0,
+        0.6,
+    ));
+    let mut sim = sim(CollisionSetting::Lenient, DEFAULT_MAX_STEP);
+    sim.reset(
+        &scene,
+        Pose::from_yaw(Vec3::new(-0.5, 0.0, 0.0), 90f32.to_radians()),
+    )
+    .unwrap();
+    sim.step(Action::MoveForward(2.0)).unwrap();
+    assert!((sim.pose().position[1] - 0.15).abs() < 1e-3);
+    let out = sim.step(Action::MoveForward(1.0)).unwrap();
+    assert!(out.noticeable && out.hit.contains(&8), "{out:?}");
+    assert!((sim.pose().position[1] - 0.15).abs() < 1e-3);
+    assert!(sim.pose().position[0] > -3.0 + 0.29, "{out:?}");
+}
