@@ -335,7 +335,12 @@ impl<'s> Place<'s> {
                 fill1(pick(rng, bank), &reference_name(x, rng))
             }
             Place::Window(_) => {
-                let bank = ["under the window", "below the window", "beneath the window"];
+                let bank = [
+                    "under the window",
+                    "below the window",
+                    "beneath the window",
+                    "underneath the window",
+                ];
                 pick(rng, &bank).to_string()
             }
             Place::Above(x) => {
@@ -348,7 +353,7 @@ impl<'s> Place<'s> {
                 fill1(pick(rng, &bank), &reference_name(x, rng))
             }
             Place::Under(x) => {
-                let bank = ["under {x}", "below {x}", "beneath {x}"];
+                let bank = ["under {x}", "below {x}", "beneath {x}", "underneath {x}"];
                 fill1(pick(rng, &bank), &reference_name(x, rng))
             }
             Place::Between(x, y) => {

@@ -186,6 +186,12 @@ fn distance_phrase(d: f32, w: Writer, rng: &mut ChaCha8Rng) -> String {
             "{about} {}",
             fill(pick(rng, &ph::METRES), &[("n", &n.to_string())])
         ),
+        1 if (0.35..0.65).contains(&d.fract()) => {
+            format!(
+                "{about} {} and a half metres",
+                number_word(d.trunc() as u32)
+            )
+        }
         1 => format!("{about} {} metres", number_word(n)),
         2 if w == Writer::Precise => format!("{d:.1} metres"),
         2 | 3 => format!("{about} {} steps", number_word(steps)),
@@ -1555,7 +1561,12 @@ fn stop_sentence(route: &Route<'_, '_>, draft: &mut Draft) -> String {
         );
         draft.grounding.push(grounded(o, Role::Target, side, n - 1));
         draft.grounding.extend(extra);
-        let mut s = fill(pick(rng, &ph::STOP_AT), &[("obj", &obj)]);
+        let bank = if spatial::at_foot_of(ctx.scene, end, o) && rng.random_bool(0.5) {
+            &ph::STOP_FOOT
+        } else {
+            &ph::STOP_AT
+        };
+        let mut s = fill(pick(rng, bank), &[("obj", &obj)]);
         if let Some(sd @ (Side::Left | Side::Right)) = side {
             if rng.random_bool(0.35) {
                 let sp = fill(pick(rng, &ph::SIDE), &[("dir", side_word(sd))]);

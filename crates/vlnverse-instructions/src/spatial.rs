@@ -64,6 +64,13 @@ pub(crate) fn in_front_of(scene: &Scene, o: &SceneObject, x: &SceneObject) -> bo
     if o.bbox.min[1] > 0.05 || nearest_wall(room, olo, ohi).is_none_or(|(d, _)| d < 0.15) {
         return false;
     }
+    out_in_front(room, x, olo, ohi, 0.3)
+}
+
+/// Whether the rectangle `[lo, hi]` lies out from `x` into `room`, where `x` has its back to a
+/// wall: within a metre of its front, and no further off its sides than `x` itself (or
+/// `min_side`).
+fn out_in_front(room: &Room, x: &SceneObject, lo: Vec2, hi: Vec2, min_side: f32) -> bool {
     let (xlo, xhi) = footprint(x);
     let Some((wall, n)) = nearest_wall(room, xlo, xhi) else {
         return false;
@@ -71,11 +78,20 @@ pub(crate) fn in_front_of(scene: &Scene, o: &SceneObject, x: &SceneObject) -> bo
     if wall > 0.25 {
         return false;
     }
-    let d = (olo + ohi) * 0.5 - (xlo + xhi) * 0.5;
+    let d = (lo + hi) * 0.5 - (xlo + xhi) * 0.5;
     let side = n.perp();
-    let gap = d.dot(n) - half_extent(xlo, xhi, n) - half_extent(olo, ohi, n);
+    let gap = d.dot(n) - half_extent(xlo, xhi, n) - half_extent(lo, hi, n);
     let off = d.dot(side).abs();
-    (-0.05..=1.0).contains(&gap) && off <= half_extent(xlo, xhi, side).max(0.3)
+    (-0.05..=1.0).contains(&gap) && off <= half_extent(xlo, xhi, side).max(min_side)
+}
+
+/// Whether the floor point `p` is at the foot of bed `bed`: in its room, out from the end
+/// opposite its headboard wall, within a metre and no wider than the bed.
+pub(crate) fn at_foot_of(scene: &Scene, p: Vec2, bed: &SceneObject) -> bool {
+    let Some(room) = bed.room.and_then(|r| scene.room(r)) else {
+        return false;
+    };
+    bed.class == C::Bed && room.contains(p.x, p.y) && out_in_front(room, bed, p, p, 0.0)
 }
 
 /// The window `o` stands under: `o` is against a wall, its top below the window's sill, and
@@ -215,6 +231,19 @@ mod tests {
         assert!(
             !in_front_of(&s, &bed, &bench),
             "the bench is not against a wall"
+        );
+    }
+
+    #[test]
+    fn a_point_past_the_end_of_a_bed_is_at_its_foot() {
+        let bed = object(1, C::Bed, [1.0, 0.0, 0.0], [2.6, 0.6, 2.0]);
+        let s = scene(vec![bed.clone()]);
+        assert!(at_foot_of(&s, Vec2::new(1.8, 2.5), &bed));
+        assert!(!at_foot_of(&s, Vec2::new(1.8, 3.5), &bed), "too far");
+        assert!(!at_foot_of(&s, Vec2::new(3.2, 1.0), &bed), "at its side");
+        assert!(
+            !at_foot_of(&s, Vec2::new(3.2, 2.5), &bed),
+            "off past a corner"
         );
     }
 

@@ -141,7 +141,7 @@ impl InstructionGenerator for TemplateGenerator {
             seed ^ salt ^ u64::from(target).wrapping_mul(0x9E37_79B9_7F4A_7C15),
         );
         let desc = coarse_description(ctx, target, &expr, &mut rng);
-        let (sup, rel) = coarse_relations(&expr, style, &mut rng);
+        let (sup, rel) = coarse_relations(ctx, &expr, style, &mut rng);
         let room = coarse_room(ctx, &expr, &mut rng);
         // Now and then a remark on the target from what the scene model holds: its material,
         // the shade of its colour, what its class is for, or where it stands in its room.
@@ -203,9 +203,9 @@ fn outdoor_prepositions(text: &str) -> String {
 }
 
 /// Whether the writer of the instruction seeded `seed` spells the American way ("gray"), as
-/// about a third of the people who wrote R2R's directions did.
+/// some of the people who wrote R2R's directions did (a third of its greys are grays).
 fn writes_american(seed: u64) -> bool {
-    ChaCha8Rng::seed_from_u64(seed ^ 0x7370_656c).random_bool(0.35)
+    ChaCha8Rng::seed_from_u64(seed ^ 0x7370_656c).random_bool(0.25)
 }
 
 /// `text` in the writer's spelling.
@@ -287,6 +287,7 @@ fn coarse_description(
 /// What the target stands on, and its relation to the reference object, in the style's
 /// phrases (each "" when the expression has none).
 fn coarse_relations(
+    ctx: &PathContext<'_>,
     expr: &ReferringExpression,
     style: Style,
     rng: &mut ChaCha8Rng,
@@ -303,7 +304,9 @@ fn coarse_relations(
         .unwrap_or_default();
     let rel = match (&expr.reference, expr.relation) {
         (Some(m), Some(r)) => {
-            let bank = if r == Relation::NextTo {
+            let bank = if closest_of_its_class(ctx, expr.target, m.object) && rng.random_bool(0.3) {
+                ph::CLOSEST
+            } else if r == Relation::NextTo {
                 next_bank
             } else {
                 near_bank
@@ -313,6 +316,25 @@ fn coarse_relations(
         _ => String::new(),
     };
     (sup, rel)
+}
+
+/// Whether `target` is clearly the closest of its class to `reference` (by 30 cm or more,
+/// footprint to footprint), so "the cup closest to the lamp" names it.
+fn closest_of_its_class(ctx: &PathContext<'_>, target: ObjectId, reference: ObjectId) -> bool {
+    let (Some(t), Some(r)) = (ctx.scene.object(target), ctx.scene.object(reference)) else {
+        return false;
+    };
+    let (rlo, rhi) = footprint(r);
+    let gap = |o: &SceneObject| {
+        let (lo, hi) = footprint(o);
+        rect_distance((lo + hi) * 0.5, rlo, rhi)
+    };
+    let mine = gap(t);
+    ctx.scene
+        .objects
+        .iter()
+        .filter(|o| o.class == t.class && o.id != t.id)
+        .all(|o| gap(o) > mine + 0.3)
 }
 
 /// The target's room, now and then with its size from the floor area ("the spacious kitchen").

@@ -575,3 +575,46 @@ fn a_count_remark_gives_the_true_number_in_the_room() {
     }
     assert!(said > 0, "no count remark in any coarse instruction");
 }
+
+/// "The cup closest to the lamp" is said only of the one of its class nearest the lamp.
+#[test]
+fn closest_is_said_only_of_the_closest() {
+    let g = gen();
+    let mut said = 0;
+    let centre = |o: &vlnverse_env::SceneObject| {
+        Vec2::new(
+            (o.bbox.min[0] + o.bbox.max[0]) * 0.5,
+            (o.bbox.min[2] + o.bbox.max[2]) * 0.5,
+        )
+    };
+    for (wi, w) in worlds(5).iter().enumerate() {
+        for (target, s) in coarse_cases(w, wi as u64) {
+            let ctx = w.ctx(&s);
+            for style in Style::ALL {
+                let expr = coarse_expression(&ctx, target, style).unwrap();
+                let Some(r) = expr.reference.as_ref() else {
+                    continue;
+                };
+                for seed in 0..30 {
+                    let t = g
+                        .coarse(&ctx, target, style, seed)
+                        .unwrap()
+                        .instruction_text;
+                    if !(t.contains(" closest to ") || t.contains(" nearest ")) {
+                        continue;
+                    }
+                    said += 1;
+                    let o = w.scene.object(target).unwrap();
+                    let rc = centre(w.scene.object(r.object).unwrap());
+                    let mine = centre(o).distance(rc);
+                    for x in w.scene.objects.iter() {
+                        if x.class == o.class && x.id != o.id {
+                            assert!(centre(x).distance(rc) > mine, "{t}");
+                        }
+                    }
+                }
+            }
+        }
+    }
+    assert!(said > 0, "no coarse instruction said closest");
+}
