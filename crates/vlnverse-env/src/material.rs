@@ -4,7 +4,7 @@
 //! A material is derived from what the scene already says (class, material word, room, seed;
 //! see [`surface_of`]), so old scene files get materials too. Each [`Surface`] has one seeded,
 //! tileable [`TEX_SIZE`]-square texture of multipliers in `[0, 1]` (grain, weave, grout,
-//! stripes) that repeats every [`Surface::repeat`] metres. Texture coordinates are a box
+//! stripes, brick courses) that repeats every [`Surface::repeat`] metres. Texture coordinates are a box
 //! projection of the world position ([`box_uv`]), so patterns run on across neighbouring parts.
 //! The texel is multiplied with the part colour and the baked light ([`crate::light`]), as
 //! glTF multiplies `baseColorFactor`, `baseColorTexture` and `COLOR_0`.
@@ -48,11 +48,15 @@ pub enum Surface {
     Rug,
     /// A painted canvas (a landscape of bands, hills and brush strokes).
     Painting,
+    /// Brickwork in running bond (fireplaces).
+    Brick,
+    /// Stone blocks of uneven tone with mortar joints (fireplaces).
+    Stone,
 }
 
 impl Surface {
     /// Every surface, in index order.
-    pub const ALL: [Surface; 14] = [
+    pub const ALL: [Surface; 16] = [
         Surface::Plain,
         Surface::Plaster,
         Surface::Wallpaper,
@@ -67,6 +71,8 @@ impl Surface {
         Surface::Glass,
         Surface::Rug,
         Surface::Painting,
+        Surface::Brick,
+        Surface::Stone,
     ];
 
     /// Position in [`Surface::ALL`].
@@ -91,6 +97,8 @@ impl Surface {
             Surface::Glass => "glass",
             Surface::Rug => "rug",
             Surface::Painting => "painting",
+            Surface::Brick => "brick",
+            Surface::Stone => "stone",
         }
     }
 
@@ -103,6 +111,7 @@ impl Surface {
             Surface::Fabric | Surface::Leather => 0.8,
             Surface::Rug => 1.6,
             Surface::Painting => 0.5,
+            Surface::Brick | Surface::Stone => 0.8,
             _ => 1.0,
         }
     }
@@ -270,6 +279,31 @@ impl Surface {
                         };
                         base + 0.08 * fbm(seed ^ 11, fx, fy * 0.25, 8.0)
                     }
+                    Surface::Brick => {
+                        // Courses 16 texels high, bricks 32 long, every other course shifted
+                        // by half a brick; mortar 2 texels wide.
+                        let course = y / 16;
+                        let shift = if course % 2 == 0 { 0 } else { 16 };
+                        let brick = (x + shift) / 32;
+                        let mortar = y % 16 < 2 || (x + shift) % 32 < 2;
+                        if mortar {
+                            1.0
+                        } else {
+                            0.7 + 0.16 * hash01(seed, brick, course) + 0.05 * fbm(seed, fx, fy, 6.0)
+                        }
+                    }
+                    Surface::Stone => {
+                        // Blocks of 32 x 21 texels in staggered rows, each its own tone.
+                        let row = y * 6 / TEX_SIZE;
+                        let shift = if row % 2 == 0 { 0 } else { 13 };
+                        let block = (x + shift) / 32;
+                        let joint = (y * 6) % TEX_SIZE < 6 || (x + shift) % 32 < 2;
+                        if joint {
+                            0.55
+                        } else {
+                            0.72 + 0.2 * hash01(seed, block, row) + 0.08 * fbm(seed, fx, fy, 8.0)
+                        }
+                    }
                 };
                 out.push((v.clamp(0.0, 1.0) * 255.0).round() as u8);
             }
@@ -376,6 +410,9 @@ pub fn surface_of(scene: &Scene, o: &SceneObject) -> Surface {
             "metal" | "steel" | "aluminium" => Surface::Metal,
             "ceramic" | "porcelain" | "tile" => Surface::Ceramic,
             "glass" => Surface::Glass,
+            "brick" => Surface::Brick,
+            "stone" => Surface::Stone,
+            "wicker" => Surface::Fabric,
             _ => Surface::Plain,
         },
     }

@@ -356,6 +356,10 @@ pub fn material_words(o: &SceneObject) -> &'static [&'static str] {
         "glass" => &["glass"],
         "wax" => &["wax"],
         "paper" => &["paper"],
+        "stone" => &["stone"],
+        "brick" => &["brick"],
+        "wicker" => &["wicker"],
+        "cardboard" => &["cardboard"],
         _ => &[],
     }
 }
