@@ -463,13 +463,19 @@ impl EpisodeState {
         let total = goal_fields.len() as u32;
         let dialogue = match ep.oracle_budget {
             Some(_) => Some(dialogue_oracle(
-                ShortestPathOracle::for_episode(
-                    scene.scene.clone(),
-                    scene.graph(),
-                    scene.navigable.clone(),
-                    ep,
-                    OracleConfig::default(),
-                )?,
+                with_levels(
+                    ShortestPathOracle::for_episode(
+                        scene.scene.clone(),
+                        scene.graph(),
+                        match scene.levels() {
+                            Some(_) => Arc::new(scene.navigable_at(last_goal(ep)).clone()),
+                            None => scene.navigable.clone(),
+                        },
+                        ep,
+                        OracleConfig::default(),
+                    )?,
+                    level_fields.last(),
+                ),
                 cfg,
                 inputs.seed,
             )?),
@@ -778,6 +784,21 @@ pub fn run_episode<S: Simulator>(
     }
     agent.end_episode()?;
     st.finish(ep, scene, settings)
+}
+
+/// The position of an episode's final goal (the start when it has none).
+fn last_goal(ep: &Episode) -> [f32; 3] {
+    ep.goal_sequence()
+        .last()
+        .map_or(ep.start_position, |g| g.position)
+}
+
+/// The dialogue oracle with the final goal's field across floors, in a home on several floors.
+fn with_levels(o: ShortestPathOracle, field: Option<&Arc<LevelField>>) -> ShortestPathOracle {
+    match field {
+        Some(f) => o.with_levels(f.clone()),
+        None => o,
+    }
 }
 
 /// [`goal_distances`] across the floors of a home on several floors.

@@ -22,7 +22,7 @@ use crate::error::{Result, TaskError};
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
-use vlnverse_env::geodesic::shortest_path;
+use vlnverse_env::geodesic::{shortest_path, GeodesicPath, Guide, LevelField};
 use vlnverse_env::occupancy::GridMap;
 use vlnverse_env::scene_graph::{direction_of_yaw, segment_headings};
 use vlnverse_env::scene_graph::{rooms_along_path, side_of, SceneGraph};
@@ -193,6 +193,9 @@ pub struct ShortestPathOracle {
     target: Option<ObjectId>,
     config: OracleConfig,
     asked: u32,
+    /// In a home on several floors, the goal's field across floors (see
+    /// [`ShortestPathOracle::with_levels`]).
+    levels: Option<Arc<LevelField>>,
 }
 
 fn check_finite(field: &str, v: &[f32]) -> Result<()> {
@@ -255,6 +258,40 @@ impl ShortestPathOracle {
             target,
             config,
             asked: 0,
+            levels: None,
+        })
+    }
+
+    /// In a home on several floors: answer with the goal's field across floors (`navigable`
+    /// is then the goal's floor's map). "Which way" from another floor leads to the stairs and
+    /// says to take them; on a flight it says to keep going up or down; "am I close" counts
+    /// the walk through the stairs; "where is" names the room of the asker's own floor.
+    pub fn with_levels(self, levels: Arc<LevelField>) -> Self {
+        ShortestPathOracle {
+            levels: Some(levels),
+            ..self
+        }
+    }
+
+    /// The way from a 3-D point across floors: `(path on this floor, total distance, what to
+    /// say after it)`; `None` when there is no field across floors or no way.
+    fn across(&self, at: [f32; 3]) -> Option<(Option<GeodesicPath>, f32, Option<&'static str>)> {
+        let lf = self.levels.as_ref()?;
+        let d = lf.distance(at).meters()?;
+        let p = Vec2::new(at[0], at[2]);
+        Some(match lf.guide(at)? {
+            Guide::Walk { field, rest } if rest > 0.0 => {
+                let up = lf.goal_level() > lf.level_at(at[1]);
+                let then = if up {
+                    "go up the stairs; the goal is upstairs"
+                } else {
+                    "go down the stairs; the goal is downstairs"
+                };
+                (field.path(p), d, Some(then))
+            }
+            Guide::Walk { field, .. } => (field.path(p), d, None),
+            Guide::Flight { up: true, .. } => (None, d, Some("go up the stairs")),
+            Guide::Flight { up: false, .. } => (None, d, Some("go down the stairs")),
         })
     }
 
@@ -293,14 +330,36 @@ impl ShortestPathOracle {
         &self.config
     }
 
-    fn which_way(&self, p: Vec2, yaw: f32, remaining: u32) -> Result<OracleAnswer> {
-        let Some(path) = shortest_path(&self.navigable, p, self.goal)? else {
+    fn which_way(&self, at: [f32; 3], yaw: f32, remaining: u32) -> Result<OracleAnswer> {
+        let p = Vec2::new(at[0], at[2]);
+        let (path, total, then) = match (self.levels.is_some(), self.across(at)) {
+            (true, None) => (None, 0.0, None),
+            (true, Some((path, d, then))) => (path, d, then),
+            (false, _) => (shortest_path(&self.navigable, p, self.goal)?, 0.0, None),
+        };
+        if let (None, Some(then)) = (&path, then) {
+            // On a flight (or at its end): keep going along it.
+            return Ok(OracleAnswer {
+                text: format!("{}.", crate_capitalize(then)),
+                answered: true,
+                remaining,
+                turn: Some(Turn::Straight),
+                distance_m: Some(total),
+                object_id: None,
+                side: None,
+            });
+        }
+        let Some(path) = path else {
             return Ok(OracleAnswer::silent(
                 "I cannot find a way to the goal from where you are.".into(),
                 remaining,
             ));
         };
-        let d = path.length;
+        let d = if self.levels.is_some() {
+            total
+        } else {
+            path.length
+        };
         if d <= self.config.arrived_m {
             return Ok(OracleAnswer {
                 text: "You are already there; stop here.".into(),
@@ -320,7 +379,14 @@ impl ShortestPathOracle {
             }
         }
         if pts.len() < 2 {
-            pts.push(self.goal);
+            pts.push(match self.levels {
+                // Across floors the path may end at a flight's end, not at the goal.
+                Some(_) => path.points.last().copied().unwrap_or(self.goal),
+                None => self.goal,
+            });
+        }
+        if self.levels.is_some() && pts[0] == pts[1] {
+            pts[1] = p + direction_of_yaw(yaw) * 0.3;
         }
         let headings = segment_headings(&pts);
         // Legs: merge segments joined without a named turn.
@@ -340,7 +406,10 @@ impl ShortestPathOracle {
                 _ => legs.push((t, len, i + 1)),
             }
         }
-        let path3: Vec<glam::Vec3> = pts.iter().map(|q| glam::Vec3::new(q.x, 0.0, q.y)).collect();
+        let path3: Vec<glam::Vec3> = pts
+            .iter()
+            .map(|q| glam::Vec3::new(q.x, at[1], q.y))
+            .collect();
         let rooms = rooms_along_path(&self.scene, &path3);
         let mut parts = Vec::new();
         for (k, &(turn, len, end)) in legs.iter().take(self.config.legs).enumerate() {
@@ -368,6 +437,12 @@ impl ShortestPathOracle {
         let mut text = parts.join(", then ");
         if legs.len() > self.config.legs {
             text.push_str(", and ask again from there");
+            if let Some(then) = then {
+                // The way goes on to the stairs: say so now.
+                text.push_str(&format!(" (after that, {then})"));
+            }
+        } else if let Some(then) = then {
+            text.push_str(&format!(", then {then}"));
         }
         Ok(OracleAnswer {
             text: format!("{}.", crate_capitalize(&text)),
@@ -380,14 +455,18 @@ impl ShortestPathOracle {
         })
     }
 
-    fn am_i_close(&self, p: Vec2, remaining: u32) -> Result<OracleAnswer> {
-        let Some(path) = shortest_path(&self.navigable, p, self.goal)? else {
+    fn am_i_close(&self, at: [f32; 3], remaining: u32) -> Result<OracleAnswer> {
+        let p = Vec2::new(at[0], at[2]);
+        let d = match &self.levels {
+            Some(lf) => lf.distance(at).meters(),
+            None => shortest_path(&self.navigable, p, self.goal)?.map(|path| path.length),
+        };
+        let Some(d) = d else {
             return Ok(OracleAnswer::silent(
                 "I cannot tell: there is no way to the goal from where you are.".into(),
                 remaining,
             ));
         };
-        let d = path.length;
         let b = self.config.buckets_m;
         let text = if d <= self.config.arrived_m {
             "Yes, you are there. Stop here.".to_string()
@@ -422,7 +501,9 @@ impl ShortestPathOracle {
             .collect()
     }
 
-    fn where_is(&self, what: &str, p: Vec2, yaw: f32, remaining: u32) -> OracleAnswer {
+    fn where_is(&self, what: &str, at: [f32; 3], yaw: f32, remaining: u32) -> OracleAnswer {
+        let p = Vec2::new(at[0], at[2]);
+        let level = self.scene.level_at_height(at[1]);
         let found = self.find(what);
         let q = normalize(what);
         let pick = found
@@ -449,11 +530,16 @@ impl ShortestPathOracle {
                     ca.total_cmp(&cb).then(a.id.cmp(&b.id))
                 });
             return match room {
-                Some(r) if r.contains(p.x, p.y) => OracleAnswer {
-                    text: format!("You are in the {} now.", r.kind.words()),
-                    answered: true,
-                    ..OracleAnswer::silent(String::new(), remaining)
-                },
+                Some(r)
+                    if r.contains(p.x, p.y)
+                        && self.scene.room_level(r.id).unwrap_or(0) == level =>
+                {
+                    OracleAnswer {
+                        text: format!("You are in the {} now.", r.kind.words()),
+                        answered: true,
+                        ..OracleAnswer::silent(String::new(), remaining)
+                    }
+                }
                 Some(r) => {
                     let c = Vec2::from(r.center());
                     let side = env_side(side_of(p, yaw, c));
@@ -487,7 +573,7 @@ impl ShortestPathOracle {
         {
             place.push_str(&format!(" on the {}", s.class.words()));
         }
-        let here = self.scene.room_at(p.x, p.y).map(|r| r.id);
+        let here = self.scene.room_at_level(level, p.x, p.y).map(|r| r.id);
         if let Some(r) = self.graph.room_of(o.id).and_then(|r| self.scene.room(r)) {
             if Some(r.id) == here {
                 place.push_str(" here in this room");
@@ -544,11 +630,10 @@ impl Oracle for ShortestPathOracle {
         }
         self.asked += 1;
         let remaining = self.config.budget - self.asked;
-        let p = Vec2::new(position[0], position[2]);
         match query {
-            OracleQuery::WhichWay => self.which_way(p, yaw, remaining),
-            OracleQuery::AmIClose => self.am_i_close(p, remaining),
-            OracleQuery::WhereIs(what) => Ok(self.where_is(what, p, yaw, remaining)),
+            OracleQuery::WhichWay => self.which_way(position, yaw, remaining),
+            OracleQuery::AmIClose => self.am_i_close(position, remaining),
+            OracleQuery::WhereIs(what) => Ok(self.where_is(what, position, yaw, remaining)),
         }
     }
 

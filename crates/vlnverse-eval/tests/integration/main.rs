@@ -14,4 +14,5 @@ mod eval_split_checks;
 #[cfg(feature = "llm-oracle")]
 mod oracle_llm;
 mod oracle_shortest_path;
+mod oracle_storeys;
 mod vec_env_train;
