@@ -291,8 +291,12 @@ impl SceneTaskContext<'_> {
             // (its own stream), and kept for the first half of the attempts (cross-floor paths
             // are long, so per-attempt draws would favour one floor).
             let cross = self.floors.is_some()
-                && ChaCha8Rng::seed_from_u64(derive_seed(seed, &[0xC205_5F10]))
-                    .random_bool(f64::from(self.config.sampling.cross_floor_share));
+                && ChaCha8Rng::seed_from_u64(derive_seed(seed, &[0xC205_5F10])).random_bool(
+                    f64::from(self.config.tasks.cross_floor_share(
+                        self.config.tasks.sampled_as(share.task),
+                        &self.config.sampling,
+                    )),
+                );
             let attempts = self.config.sampling.max_attempts;
             for attempt in 0..attempts {
                 let cross = cross && attempt < attempts.div_ceil(2);

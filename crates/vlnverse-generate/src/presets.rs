@@ -191,6 +191,10 @@ pub struct TaskConfig {
     /// Dialogue: questions the agent may ask.
     #[serde(default)]
     pub oracle_budget: u32,
+    /// This task's share of trajectories across floors in homes on several floors, instead of
+    /// `sampling.cross_floor_share` (absent: that one).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cross_floor_share: Option<f32>,
 }
 
 fn yes() -> bool {
@@ -233,11 +237,20 @@ impl TasksConfig {
     pub fn sampled_as(&self, task: Task) -> Task {
         let (t, c) = (self.get(task), &self.coarse);
         let same = (t.min_length, t.max_length, t.episodes, t.scenes)
-            == (c.min_length, c.max_length, c.episodes, c.scenes);
+            == (c.min_length, c.max_length, c.episodes, c.scenes)
+            && t.cross_floor_share == c.cross_floor_share;
         match task {
             Task::VisualReference | Task::Dialogue if same => Task::Coarse,
             _ => task,
         }
+    }
+
+    /// The share of `task`'s trajectories across floors in a home on several floors: its own
+    /// `cross_floor_share`, else `sampling`'s.
+    pub fn cross_floor_share(&self, task: Task, sampling: &SamplingConfig) -> f32 {
+        self.get(task)
+            .cross_floor_share
+            .unwrap_or(sampling.cross_floor_share)
     }
 
     /// Mutable settings of `task`.
@@ -496,6 +509,15 @@ impl GenerateConfig {
         for task in Task::ALL {
             let t = self.tasks.get(task);
             let f = |name: &str| format!("tasks.{}.{name}", task.name());
+            if let Some(v) = t.cross_floor_share {
+                if !(v.is_finite() && (0.0..=1.0).contains(&v)) {
+                    return Err(bad(
+                        f("cross_floor_share"),
+                        v.to_string(),
+                        "must be a share in [0, 1]",
+                    ));
+                }
+            }
             if !(t.min_length.is_finite() && t.min_length >= 0.0) {
                 return Err(bad(
                     f("min_length"),

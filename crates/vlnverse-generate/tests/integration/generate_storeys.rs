@@ -20,14 +20,23 @@ use vlnverse_score::{Episode, Split, Task};
 const HOMES: usize = 4;
 
 fn generate(out: &Path, threads: usize) {
+    let cfg = GeneratePreset::Tiny.config().unwrap().rescaled(HOMES);
+    generate_with(out, threads, &cfg, &Task::ALL);
+}
+
+fn generate_with(
+    out: &Path,
+    threads: usize,
+    cfg: &vlnverse_generate::GenerateConfig,
+    tasks: &[Task],
+) {
     let mut pc = Preset::Tiny.config().unwrap();
     pc.scenes.count = HOMES;
     pc.floors.two_storey_share = 1.0;
     let source = HomeGenerator::new(pc).unwrap();
-    let cfg = GeneratePreset::Tiny.config().unwrap().rescaled(HOMES);
     let opts = RunOptions {
         out: out.to_path_buf(),
-        tasks: Task::ALL.to_vec(),
+        tasks: tasks.to_vec(),
         shard: (0, 1),
         occupancy: OccupancyConfig::default(),
     };
@@ -38,7 +47,7 @@ fn generate(out: &Path, threads: usize) {
     pool.install(|| {
         run(
             &source,
-            &cfg,
+            cfg,
             &opts,
             &TemplateGenerator::default(),
             &StageTimes::default(),
@@ -198,4 +207,32 @@ fn two_storey_datasets_are_byte_identical_on_one_thread() {
             );
         }
     }
+}
+
+#[test]
+fn a_task_may_have_its_own_share_across_floors() {
+    let mut cfg = GeneratePreset::Tiny.config().unwrap().rescaled(HOMES);
+    cfg.sampling.cross_floor_share = 0.0;
+    cfg.tasks.get_mut(Task::Coarse).cross_floor_share = Some(1.0);
+    let d = tempfile::tempdir().unwrap();
+    generate_with(d.path(), 2, &cfg, &[Task::Fine, Task::Coarse]);
+    let share = |task| {
+        let eps: Vec<Episode> = Split::ALL
+            .into_iter()
+            .flat_map(|s| read_split(d.path(), task, s).ok().unwrap_or_default())
+            .collect();
+        let n = eps
+            .iter()
+            .filter(|e| levels_of(e).iter().any(|&l| l != levels_of(e)[0]))
+            .count();
+        n as f64 / eps.len() as f64
+    };
+    assert_eq!(share(Task::Fine), 0.0);
+    assert!(share(Task::Coarse) > 0.7, "{}", share(Task::Coarse));
+    cfg.tasks.get_mut(Task::Fine).cross_floor_share = Some(1.5);
+    let e = cfg.validate().unwrap_err().to_string();
+    assert!(
+        e.contains("tasks.fine.cross_floor_share") && e.contains("1.5"),
+        "{e}"
+    );
 }
