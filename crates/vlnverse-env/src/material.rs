@@ -283,7 +283,7 @@ impl Surface {
                         // Courses 16 texels high, bricks 32 long, every other course shifted
                         // by half a brick; mortar 2 texels wide.
                         let course = y / 16;
-                        let shift = if course % 2 == 0 { 0 } else { 16 };
+                        let shift = if course.is_multiple_of(2) { 0 } else { 16 };
                         let brick = (x + shift) / 32;
                         let mortar = y % 16 < 2 || (x + shift) % 32 < 2;
                         if mortar {
@@ -295,7 +295,7 @@ impl Surface {
                     Surface::Stone => {
                         // Blocks of 32 x 21 texels in staggered rows, each its own tone.
                         let row = y * 6 / TEX_SIZE;
-                        let shift = if row % 2 == 0 { 0 } else { 13 };
+                        let shift = if row.is_multiple_of(2) { 0 } else { 13 };
                         let block = (x + shift) / 32;
                         let joint = (y * 6) % TEX_SIZE < 6 || (x + shift) % 32 < 2;
                         if joint {
