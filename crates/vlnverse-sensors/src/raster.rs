@@ -21,13 +21,16 @@
 //! form closed, outward-oriented surfaces, seen from outside their box (with room for the near
 //! plane). Everything else is drawn two-sided, as the ray caster sees it.
 //!
-//! Objects are drawn nearest first (by distance from the eye to their box), and each band of
-//! rows keeps a coarse depth buffer (8x8 tiles, the farthest depth of each) that skips an object
-//! none of whose triangles can come nearer over its screen box: that never changes the image.
+//! Objects are drawn nearest first (by distance from the eye to their box), each cluster filled
+//! as soon as it is set up, and a coarse depth buffer (8x8 tiles, the farthest depth of each)
+//! skips an object or cluster that cannot come nearer over its screen box: before set-up by
+//! its box (projected rectangle, nearest corner), after set-up by its screen triangles. That
+//! never changes the image. The fill of a view runs on one thread; its resolve (colour, depth,
+//! ids) is split into bands of rows.
 //! Span ends are walked down the rows with exact integer steps (no division per row).
 //!
 //! Views of a batch render in parallel (rayon); a batch smaller than twice the thread count
-//! splits each view into bands of rows as well.
+//! splits each view's resolve into bands of rows as well.
 
 use crate::camera::Camera;
 use crate::error::{Result, SensorError};
@@ -304,12 +307,10 @@ struct ScreenTri {
     tag: u32,
 }
 
-/// The screen triangles of one object: a range of the setup list, their inclusive pixel bounds
-/// and the largest `1 / depth` any of them can write (each clamps to its `zhi`).
+/// The screen triangles of one cluster: their inclusive pixel bounds and the largest
+/// `1 / depth` any of them can write (each clamps to its `zhi`).
 #[derive(Clone, Copy, Debug)]
 struct Group {
-    first: usize,
-    end: usize,
     x0: i32,
     x1: i32,
     y0: i32,
@@ -317,17 +318,20 @@ struct Group {
     zmax: f32,
 }
 
-/// Triangles set up for one view, grouped by object, nearest objects first. Views with RGB
-/// write slot numbers (`slot + 1`) instead of tags; `slot_tag` maps them back.
+/// What set-up leaves of one view once it has drawn it (see [`RasterScene::setup`]). Views with
+/// RGB write slot numbers (`slot + 1`) instead of tags; `slot_tag` maps them back.
 #[derive(Default)]
 struct Setup {
+    /// Scratch list of one cluster's screen triangles (kept for its allocation).
     tris: Vec<ScreenTri>,
-    groups: Vec<Group>,
     slots: Vec<Slot>,
     slot_tag: Vec<u32>,
     /// Clusters culled whole (what the tests check culling against).
     #[cfg_attr(not(test), allow(dead_code))]
     culled: usize,
+    /// Of those, clusters culled as hidden behind what was drawn before them.
+    #[cfg_attr(not(test), allow(dead_code))]
+    occluded: usize,
 }
 
 /// Per-view constants.
@@ -704,7 +708,6 @@ impl RasterScene {
         let n = w * h;
         let ch = view.channels;
         let ids_needed = ch.rgb || ch.ids();
-        let tris = self.setup(c, &p, ch.rgb);
         let inv_far = 1.0 / p.far;
         let mut zbuf = if ch.depth {
             vec![inv_far; n]
@@ -716,6 +719,7 @@ impl RasterScene {
             (true, true) => vec![0u32; n],
             (true, false) => take(&SPARE_IDS, n, 0),
         };
+        let tris = self.setup(c, &p, ch.rgb, &mut zbuf, ids_needed.then_some(&mut ids[..]));
         let mut rgb = if ch.rgb { vec![0u8; 3 * n] } else { Vec::new() };
         let mut sem = if ch.semantic {
             vec![0u16; n]
@@ -732,7 +736,6 @@ impl RasterScene {
             for y0 in (0..h).step_by(rows) {
                 work.push(Band {
                     y0,
-                    y1: (y0 + rows).min(h),
                     zbuf: z.next().unwrap_or_default(),
                     ids: i.next(),
                     rgb: r.next(),
@@ -740,7 +743,7 @@ impl RasterScene {
                 });
             }
         }
-        let run = |b: Band<'_>| self.fill_band(&p, &tris, b, ch.depth, ch.instance);
+        let run = |b: Band<'_>| self.resolve_band(&p, &tris, b, ch.depth, ch.instance);
         if work.len() == 1 {
             work.into_iter().for_each(run);
         } else {
@@ -775,10 +778,20 @@ impl RasterScene {
         }
     }
 
-    /// Cull, clip and project every triangle that may be seen, object by object, nearest
-    /// objects (by distance from the eye to their box) first so that occlusion culling in
-    /// [`Self::fill_band`] skips many of the far ones.
-    fn setup(&self, c: &Camera, p: &ViewParams, shade: bool) -> Setup {
+    /// Cull, clip, project and fill every triangle that may be seen into `zbuf` (and `ids`),
+    /// object by object, nearest objects (by distance from the eye to their box) first; each
+    /// cluster is filled as soon as it is set up, so that an object or cluster whose box, at
+    /// its nearest depth, lies behind the coarse depth of what was drawn so far is skipped
+    /// before any of its triangles is transformed (occlusion culling; exact: the depth test
+    /// would have let none of its pixels through).
+    fn setup(
+        &self,
+        c: &Camera,
+        p: &ViewParams,
+        shade: bool,
+        zbuf: &mut [f32],
+        mut ids: Option<&mut [u32]>,
+    ) -> Setup {
         let frustum = c.frustum();
         // Distance from the eye to the near plane's corners: a back face may be culled only
         // when no part of the near plane can be inside the object.
@@ -801,16 +814,15 @@ impl RasterScene {
             .ok()
             .and_then(|mut p| p.pop())
             .unwrap_or_default();
-        let (mut out, mut groups, mut slots, mut slot_tag) =
-            (spare.tris, spare.groups, spare.slots, spare.slot_tag);
+        let (mut out, mut slots, mut slot_tag) = (spare.tris, spare.slots, spare.slot_tag);
         out.clear();
-        groups.clear();
         slots.clear();
         slot_tag.clear();
-        let mut culled = 0;
+        let (mut culled, mut occluded) = (0, 0);
         if shade {
             slot_tag.push(0);
         }
+        let mut coarse = Coarse::new(p.w, p.h, 1.0 / p.far);
         for &(_, oi) in &order {
             let o = &self.objects[oi];
             let cull = o.closed && {
@@ -818,13 +830,45 @@ impl RasterScene {
                 !(p.pos.cmpge(lo).all() && p.pos.cmple(hi).all())
             };
             let several = o.c1 > o.c0 + 1;
-            for c in &self.clusters[o.c0 as usize..o.c1 as usize] {
-                if self.cull_clusters
-                    && ((several && !frustum.intersects_aabb(&c.bbox))
-                        || !may_cover_pixel(p, &c.bbox))
+            // The whole object hidden behind what was drawn so far.
+            if self.cull_clusters && several {
+                if let Reach::Box {
+                    x0,
+                    x1,
+                    y0,
+                    y1,
+                    zmax,
+                } = screen_box(p, &o.bbox)
                 {
-                    culled += 1;
-                    continue;
+                    if coarse.hidden(zbuf, x0, x1, y0, y1, zmax) {
+                        culled += (o.c1 - o.c0) as usize;
+                        occluded += (o.c1 - o.c0) as usize;
+                        continue;
+                    }
+                }
+            }
+            for c in &self.clusters[o.c0 as usize..o.c1 as usize] {
+                if self.cull_clusters {
+                    let hidden = (several && !frustum.intersects_aabb(&c.bbox))
+                        || match screen_box(p, &c.bbox) {
+                            Reach::Near => false,
+                            Reach::Nothing => true,
+                            Reach::Box {
+                                x0,
+                                x1,
+                                y0,
+                                y1,
+                                zmax,
+                            } => {
+                                let h = coarse.hidden(zbuf, x0, x1, y0, y1, zmax);
+                                occluded += h as usize;
+                                h
+                            }
+                        };
+                    if hidden {
+                        culled += 1;
+                        continue;
+                    }
                 }
                 let first = out.len();
                 for t in c.first as usize..c.end as usize {
@@ -850,8 +894,6 @@ impl RasterScene {
                 }
                 if out.len() > first {
                     let mut g = Group {
-                        first,
-                        end: out.len(),
                         x0: i32::MAX,
                         x1: i32::MIN,
                         y0: i32::MAX,
@@ -865,16 +907,28 @@ impl RasterScene {
                         g.y1 = g.y1.max(t.y1);
                         g.zmax = g.zmax.max(t.zhi);
                     }
-                    groups.push(g);
+                    // Drawn now, so that what follows is tested against it; the triangles
+                    // are not kept.
+                    let (x0, x1, y0, y1) =
+                        (g.x0 as usize, g.x1 as usize, g.y0 as usize, g.y1 as usize);
+                    if !coarse.hidden(zbuf, x0, x1, y0, y1, g.zmax) {
+                        let tris = &out[first..];
+                        match ids.as_deref_mut() {
+                            Some(ids) => raster::<true>(p.w, 0, p.h, tris, zbuf, ids),
+                            None => raster::<false>(p.w, 0, p.h, tris, zbuf, &mut []),
+                        }
+                        coarse.touch(x0, x1, y0, y1);
+                    }
+                    out.truncate(first);
                 }
             }
         }
         Setup {
             tris: out,
-            groups,
             slots,
             slot_tag,
             culled,
+            occluded,
         }
     }
 
@@ -1002,8 +1056,8 @@ impl RasterScene {
         plane64
     }
 
-    /// Fill one band of rows with every triangle, then resolve it into the outputs.
-    fn fill_band(
+    /// Resolve one band of rows (filled by [`Self::setup`]) into the outputs.
+    fn resolve_band(
         &self,
         p: &ViewParams,
         setup: &Setup,
@@ -1013,56 +1067,12 @@ impl RasterScene {
     ) {
         let Band {
             y0,
-            y1,
             zbuf,
-            mut ids,
+            ids,
             rgb,
             semantic,
         } = b;
-        // Coarse depth buffer: the smallest `1 / depth` of each tile of the band. An object
-        // none of whose triangles can write more than that over its screen box is hidden.
         let w = p.w;
-        let (tw, th) = (w.div_ceil(TILE), (y1 - y0).div_ceil(TILE));
-        // Tiles drawn into since their minimum was taken are recomputed only when a test
-        // reads them (most are drawn into again, or never read, before that).
-        let mut hiz = vec![1.0 / p.far; tw * th];
-        let mut dirty = vec![false; tw * th];
-        let (by0, by1) = (y0 as i32, y1 as i32 - 1);
-        for g in &setup.groups {
-            let (ya, yb) = (g.y0.max(by0), g.y1.min(by1));
-            if ya > yb {
-                continue;
-            }
-            let (ty0, ty1) = ((ya as usize - y0) / TILE, (yb as usize - y0) / TILE);
-            let (tx0, tx1) = (g.x0 as usize / TILE, g.x1 as usize / TILE);
-            let hidden = (ty0..=ty1).all(|ty| {
-                (tx0..=tx1).all(|tx| {
-                    // A stale minimum is a lower bound of the true one.
-                    let i = ty * tw + tx;
-                    if g.zmax <= hiz[i] {
-                        return true;
-                    }
-                    if !dirty[i] {
-                        return false;
-                    }
-                    dirty[i] = false;
-                    let r1 = ((ty + 1) * TILE).min(y1 - y0);
-                    hiz[i] = tile_min(zbuf, w, ty * TILE, r1, tx * TILE);
-                    g.zmax <= hiz[i]
-                })
-            });
-            if hidden {
-                continue;
-            }
-            let tris = &setup.tris[g.first..g.end];
-            match ids.as_deref_mut() {
-                Some(ids) => raster::<true>(w, y0, y1, tris, zbuf, ids),
-                None => raster::<false>(w, y0, y1, tris, zbuf, &mut []),
-            }
-            for ty in ty0..=ty1 {
-                dirty[ty * tw + tx0..=ty * tw + tx1].fill(true);
-            }
-        }
         // Resolve: slots to colour (from 1/depth), then 1/depth to metres, tags to class and
         // object.
         let Some(ids) = ids else {
@@ -1251,20 +1261,37 @@ impl RasterScene {
 /// A band of rows of one view's buffers.
 struct Band<'a> {
     y0: usize,
-    y1: usize,
     zbuf: &'a mut [f32],
     ids: Option<&'a mut [u32]>,
     rgb: Option<&'a mut [u8]>,
     semantic: Option<&'a mut [u16]>,
 }
 
-/// Whether a box may cover a pixel centre: false only when the whole box is in front of the
-/// near plane and its projection's bounding rectangle holds no pixel centre, even with twice the
-/// margin [`RasterScene::setup_triangle`] gives a triangle (so every triangle inside the box
-/// would be rejected there; projection is convex in front of the eye).
-fn may_cover_pixel(p: &ViewParams, b: &Aabb) -> bool {
+/// Where a box can write in a view (see [`screen_box`]).
+#[derive(Clone, Copy, Debug)]
+enum Reach {
+    /// Part of the box is not in front of the near plane: anything may be covered.
+    Near,
+    /// No pixel of the image can be covered.
+    Nothing,
+    /// Pixels `x0..=x1`, `y0..=y1` (inclusive, within the image) hold every pixel a triangle
+    /// inside the box can cover, and no triangle inside it writes a `1 / depth` above `zmax`.
+    Box {
+        x0: usize,
+        x1: usize,
+        y0: usize,
+        y1: usize,
+        zmax: f32,
+    },
+}
+
+/// The pixels a box can cover and the largest `1 / depth` a triangle inside it can write
+/// (with margins far above the rounding of a triangle's own projection: a pixel on every side,
+/// 0.1 % on `1 / depth`), for occlusion culling before set-up.
+fn screen_box(p: &ViewParams, b: &Aabb) -> Reach {
     let (lo, hi) = (b.min_v(), b.max_v());
     let (mut x0, mut x1, mut y0, mut y1) = (f32::MAX, f32::MIN, f32::MAX, f32::MIN);
+    let mut dmin = f32::MAX;
     for k in 0..8 {
         let c = Vec3::new(
             if k & 1 == 0 { lo.x } else { hi.x },
@@ -1273,15 +1300,100 @@ fn may_cover_pixel(p: &ViewParams, b: &Aabb) -> bool {
         );
         let q = p.to_camera(c);
         if q.z > -p.near {
-            return true;
+            return Reach::Near;
         }
         let (sx, sy, _) = p.project(q);
         (x0, x1, y0, y1) = (x0.min(sx), x1.max(sx), y0.min(sy), y1.max(sy));
+        dmin = dmin.min(-q.z);
     }
+    // No pixel centre in the projection's rectangle, even with twice the margin
+    // [`RasterScene::setup_triangle`] gives a triangle (so every triangle inside the box would be
+    // rejected there; projection is convex in front of the eye): an integer in [lo, hi] when
+    // floor(hi) >= lo.
     const M: f32 = 0.02;
-    // An integer in [lo, hi] when floor(hi) >= lo.
     let some = |lo: f32, hi: f32| fast_floor(hi as f64) >= lo as f64;
-    some(x0 - 0.5 - M, x1 - 0.5 + M) && some(y0 - 0.5 - M, y1 - 0.5 + M)
+    if !(some(x0 - 0.5 - M, x1 - 0.5 + M) && some(y0 - 0.5 - M, y1 - 0.5 + M)) {
+        return Reach::Nothing;
+    }
+    // A pixel's centre `x + 0.5` inside the triangle: `x` in [x0 - 0.5, x1 - 0.5], widened.
+    let (fx0, fx1) = (fast_floor(x0 as f64 - 1.5), fast_ceil(x1 as f64 + 0.5));
+    let (fy0, fy1) = (fast_floor(y0 as f64 - 1.5), fast_ceil(y1 as f64 + 0.5));
+    let (w, h) = (p.w as f64 - 1.0, p.h as f64 - 1.0);
+    if fx1 < 0.0 || fy1 < 0.0 || fx0 > w || fy0 > h {
+        return Reach::Nothing;
+    }
+    Reach::Box {
+        x0: fx0.max(0.0) as usize,
+        x1: fx1.min(w) as usize,
+        y0: fy0.max(0.0) as usize,
+        y1: fy1.min(h) as usize,
+        zmax: (1.0 / dmin) * 1.001,
+    }
+}
+
+/// A view's coarse depth buffer: the smallest `1 / depth` of each [`TILE`] x [`TILE`] tile of
+/// the depth buffer, refreshed lazily. Anything that writes at most that over its tiles is
+/// hidden (the depth test is strict: a tie keeps what was drawn first).
+struct Coarse {
+    /// Tiles across.
+    tw: usize,
+    w: usize,
+    h: usize,
+    hiz: Vec<f32>,
+    /// Tiles drawn into since their minimum was taken: recomputed only when a test reads them
+    /// (most are drawn into again, or never read, before that).
+    dirty: Vec<bool>,
+}
+
+impl Coarse {
+    fn new(w: usize, h: usize, inv_far: f32) -> Self {
+        let (tw, th) = (w.div_ceil(TILE), h.div_ceil(TILE));
+        Coarse {
+            tw,
+            w,
+            h,
+            hiz: vec![inv_far; tw * th],
+            dirty: vec![false; tw * th],
+        }
+    }
+
+    /// Whether nothing writing at most `zmax` over pixels `x0..=x1`, `y0..=y1` can pass the
+    /// depth test of `zbuf`.
+    fn hidden(
+        &mut self,
+        zbuf: &[f32],
+        x0: usize,
+        x1: usize,
+        y0: usize,
+        y1: usize,
+        zmax: f32,
+    ) -> bool {
+        let (tx0, tx1, ty0, ty1) = (x0 / TILE, x1 / TILE, y0 / TILE, y1 / TILE);
+        (ty0..=ty1).all(|ty| {
+            (tx0..=tx1).all(|tx| {
+                // A stale minimum is a lower bound of the true one.
+                let i = ty * self.tw + tx;
+                if zmax <= self.hiz[i] {
+                    return true;
+                }
+                if !self.dirty[i] {
+                    return false;
+                }
+                self.dirty[i] = false;
+                let r1 = ((ty + 1) * TILE).min(self.h);
+                self.hiz[i] = tile_min(zbuf, self.w, ty * TILE, r1, tx * TILE);
+                zmax <= self.hiz[i]
+            })
+        })
+    }
+
+    /// Mark the tiles over pixels `x0..=x1`, `y0..=y1` as drawn into.
+    fn touch(&mut self, x0: usize, x1: usize, y0: usize, y1: usize) {
+        let (tx0, tx1) = (x0 / TILE, x1 / TILE);
+        for ty in y0 / TILE..=y1 / TILE {
+            self.dirty[ty * self.tw + tx0..=ty * self.tw + tx1].fill(true);
+        }
+    }
 }
 
 /// Clip a polygon against plane `k` of [`ViewParams::plane`] (Sutherland-Hodgman). New points
@@ -1916,7 +2028,7 @@ mod tests {
         // Standing and looking across the home at varied headings and pitches, from a grid of
         // spots (some inside furniture: near-plane cuts), RGB with ids and depth.
         let b = scene.bounds();
-        let (mut views, mut skipped) = (0, 0);
+        let (mut views, mut skipped, mut occluded) = (0, 0, 0);
         for i in 0..6 {
             for j in 0..6 {
                 let x = b.min[0] + (b.max[0] - b.min[0]) * (i as f32 + 0.5) / 6.0;
@@ -1934,8 +2046,11 @@ mod tests {
                         channels: ch,
                     };
                     let (p, c) = (ViewParams::new(&view.camera), &view.camera);
-                    skipped += culled.setup(c, &p, false).culled;
-                    assert_eq!(all.setup(c, &p, false).culled, 0);
+                    let mut z = vec![1.0 / p.far; p.w * p.h];
+                    let s = culled.setup(c, &p, false, &mut z, None);
+                    (skipped, occluded) = (skipped + s.culled, occluded + s.occluded);
+                    z.fill(1.0 / p.far);
+                    assert_eq!(all.setup(c, &p, false, &mut z, None).culled, 0);
                     for bands in [1, 3] {
                         let (x, y) = (
                             culled.render_view(&view, bands),
@@ -1950,7 +2065,7 @@ mod tests {
                 }
             }
         }
-        assert!(skipped > 0);
+        assert!(skipped > occluded && occluded > 0, "{skipped} {occluded}");
     }
 
     #[test]
