@@ -6,7 +6,9 @@
 //! The `raster_rgbd_clutter` group looks at the small objects of a generated home (cups,
 //! bottles, vases, fruit, plants, books: boxes under 40 cm) from 1 to 3 m, the views where the
 //! many small triangles of round shapes cost the most (back faces of round shapes culled, empty
-//! small triangles left out before the fill).
+//! small triangles left out before the fill, occlusion culling before set-up). The
+//! `raster_single_rgb_view` group renders the RGB view alone (a batch of one view, whose fill
+//! runs on one thread).
 //!
 //! `cargo bench -p vlnverse-sensors --bench raster -- --warm-up-time 1 --measurement-time 3`
 
@@ -73,6 +75,22 @@ fn bench(c: &mut Criterion) {
             }
             g.finish();
         }
+
+        // One view alone (a batch of one): its fill runs on one thread, only its resolve is
+        // split into bands of rows.
+        let mut g = c.benchmark_group(format!("raster_single_rgb_view/{name}"));
+        g.throughput(Throughput::Elements(1));
+        for (threads, pool) in [(1, &one), (2, &two)] {
+            let mut i = 0;
+            g.bench_function(format!("{threads}_threads"), |b| {
+                b.iter(|| {
+                    i = (i + 1) % ps.len();
+                    let views = rgbd(&ps[i]);
+                    pool.install(|| r.render(&views[..1]).expect("render"))
+                })
+            });
+        }
+        g.finish();
 
         let mut g = c.benchmark_group(format!("raster_panorama_12x224_rgbd/{name}"));
         g.throughput(Throughput::Elements(1));
