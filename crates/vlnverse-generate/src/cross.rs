@@ -172,27 +172,6 @@ impl SceneTaskContext<'_> {
         }
     }
 
-    /// A path from a point on `from` to a point on `to`: on one level through that level's
-    /// map, across levels through the stairs.
-    fn floor_path(
-        f: &Floors<'_>,
-        from: LevelId,
-        a: Vec2,
-        to: LevelId,
-        b: Vec2,
-    ) -> Result<Option<FloorPath>> {
-        f.path(
-            LevelPoint {
-                level: from,
-                point: a,
-            },
-            LevelPoint {
-                level: to,
-                point: b,
-            },
-        )
-    }
-
     /// Fine-grained episodes in a home on several floors.
     pub(crate) fn fine_floors(
         &self,
@@ -216,7 +195,22 @@ impl SceneTaskContext<'_> {
             ) else {
                 return Ok(Err(Reject::NoPath));
             };
-            let Some(p) = Self::floor_path(f, la, a, lb, b)? else {
+            // The straight line and the flight bound the walk from below: skip the rest.
+            if f.lower_bound(la, a, lb, b) > task.max_length {
+                return Ok(Err(Reject::TooLong));
+            }
+            let Some(p) = f.path_by_fields(
+                LevelPoint {
+                    level: la,
+                    point: a,
+                },
+                LevelPoint {
+                    level: lb,
+                    point: b,
+                },
+                None,
+            )?
+            else {
                 return Ok(Err(Reject::NoPath));
             };
             Ok(match check_length(p.length, task) {
@@ -291,7 +285,22 @@ impl SceneTaskContext<'_> {
                 .path_to_target(start, spot, task)?
                 .map(|p| f.on_level(to, &p.points, p.length)));
         }
-        let Some(p) = Self::floor_path(f, from, start, to, spot.goal)? else {
+        if f.lower_bound(from, start, to, spot.goal) > task.max_length {
+            return Ok(Err(Reject::TooLong));
+        }
+        let field = f.sampler(to).field(spot)?;
+        let Some(p) = f.path_by_fields(
+            LevelPoint {
+                level: from,
+                point: start,
+            },
+            LevelPoint {
+                level: to,
+                point: spot.goal,
+            },
+            Some(&field),
+        )?
+        else {
             return Ok(Err(Reject::NoPath));
         };
         Ok(match check_length(p.length, task) {

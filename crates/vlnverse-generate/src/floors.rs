@@ -12,7 +12,10 @@
 use glam::Vec2;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
-use vlnverse_env::geodesic::{LevelPoint, MultiLevelMap, Portal, RouteLeg};
+use vlnverse_env::geodesic::{
+    polyline_length, DistanceField, GeodesicPath, LevelPoint, LevelRoute, MultiLevelMap, Portal,
+    RouteLeg,
+};
 use vlnverse_env::occupancy::OccupancyMaps;
 use vlnverse_env::scene_graph::SceneGraph;
 use vlnverse_env::{LevelId, Scene, Stairs};
@@ -20,7 +23,7 @@ use vlnverse_instructions::storeys::Flight;
 use vlnverse_score::{DataError, Result};
 
 use super::presets::SamplingConfig;
-use super::sampler::{Rejections, SceneSampler};
+use super::sampler::{string_pull, Rejections, SceneSampler};
 use super::seed::derive_seed;
 
 /// One level of a home as a single-storey scene: its view, maps and graph.
@@ -231,6 +234,133 @@ impl<'a> Floors<'a> {
         else {
             return Ok(None);
         };
+        self.from_route(&route).map(Some)
+    }
+
+    /// A path from `a` to `b` on another level through one flight joining the two, found with
+    /// distance fields instead of searches (sampling tries hundreds of pairs a home): from the
+    /// flight's near end (a field cached per end) and towards `b` (`towards_b`, a field
+    /// towards `b` such as a target's, or else the flight's far end's field read at `b`). The
+    /// flight with the shortest total is taken; each walk is the field's path string-pulled,
+    /// as one-level paths are. `None` when no flight joins the levels or a walk is cut off.
+    pub fn path_by_fields(
+        &self,
+        a: LevelPoint,
+        b: LevelPoint,
+        towards_b: Option<&DistanceField>,
+    ) -> Result<Option<FloorPath>> {
+        let mut best: Option<(f32, &Portal, bool)> = None;
+        for p in self.map.portals() {
+            let up = p.lower.level == a.level && p.upper.level == b.level;
+            let down = p.upper.level == a.level && p.lower.level == b.level;
+            if !(up || down) {
+                continue;
+            }
+            let (enter, leave) = if up {
+                (p.lower, p.upper)
+            } else {
+                (p.upper, p.lower)
+            };
+            let Some(d1) = self
+                .sampler(a.level)
+                .field_at(enter.point)?
+                .distance(a.point)
+                .meters()
+            else {
+                continue;
+            };
+            let d2 = match towards_b {
+                Some(f) => f.distance(leave.point).meters(),
+                None => self
+                    .sampler(b.level)
+                    .field_at(leave.point)?
+                    .distance(b.point)
+                    .meters(),
+            };
+            let Some(d2) = d2 else { continue };
+            let total = d1 + p.cost + d2;
+            if best.is_none_or(|(t, _, _)| total < t) {
+                best = Some((total, p, up));
+            }
+        }
+        let Some((_, p, up)) = best else {
+            return Ok(None);
+        };
+        let (enter, leave) = if up {
+            (p.lower, p.upper)
+        } else {
+            (p.upper, p.lower)
+        };
+        let walk = |level: LevelId, pts: Option<GeodesicPath>, reverse: bool| {
+            pts.map(|g| {
+                let mut pts = g.points;
+                if reverse {
+                    pts.reverse();
+                }
+                let points = string_pull(&self.sampler(level).maps.navigable, &pts);
+                let length = polyline_length(&points);
+                GeodesicPath { points, length }
+            })
+        };
+        let first = walk(
+            a.level,
+            self.sampler(a.level).field_at(enter.point)?.path(a.point),
+            false,
+        );
+        let second = match towards_b {
+            Some(f) => walk(b.level, f.path(leave.point), false),
+            None => walk(
+                b.level,
+                self.sampler(b.level).field_at(leave.point)?.path(b.point),
+                true,
+            ),
+        };
+        let (Some(first), Some(second)) = (first, second) else {
+            return Ok(None);
+        };
+        let route = LevelRoute {
+            length: first.length + p.cost + second.length,
+            legs: vec![
+                RouteLeg::Walk {
+                    level: a.level,
+                    path: first,
+                },
+                RouteLeg::Stairs {
+                    stairs: p.stairs,
+                    up,
+                    length: p.cost,
+                },
+                RouteLeg::Walk {
+                    level: b.level,
+                    path: second,
+                },
+            ],
+        };
+        self.from_route(&route).map(Some)
+    }
+
+    /// A bound from below on the walk from `a` on level `from` to `b` on level `to` through
+    /// one flight: straight lines to and from its ends plus its length (infinite when no flight
+    /// joins the levels).
+    pub fn lower_bound(&self, from: LevelId, a: Vec2, to: LevelId, b: Vec2) -> f32 {
+        self.map
+            .portals()
+            .iter()
+            .filter_map(|p| {
+                if p.lower.level == from && p.upper.level == to {
+                    Some(a.distance(p.lower.point) + p.cost + p.upper.point.distance(b))
+                } else if p.upper.level == from && p.lower.level == to {
+                    Some(a.distance(p.upper.point) + p.cost + p.lower.point.distance(b))
+                } else {
+                    None
+                }
+            })
+            .fold(f32::INFINITY, f32::min)
+    }
+
+    /// The path of a route across floors: its walks' points at their floor's height and each
+    /// flight's points on the treads.
+    fn from_route(&self, route: &LevelRoute) -> Result<FloorPath> {
         let mut points: Vec<[f32; 3]> = Vec::new();
         let mut walks = Vec::new();
         let mut flights = Vec::new();
@@ -296,12 +426,12 @@ impl<'a> Floors<'a> {
                 ),
             ));
         }
-        Ok(Some(FloorPath {
+        Ok(FloorPath {
             points,
             length: route.length,
             walks,
             flights,
-        }))
+        })
     }
 
     /// A path on one level (no stairs) from sampled 2-D points.

@@ -221,15 +221,21 @@ impl<'a> SceneSampler<'a> {
 
     /// Distance field towards a target's goal point (cached).
     pub fn field(&self, spot: &TargetSpot) -> Result<Arc<DistanceField>> {
+        self.field_at(spot.goal)
+    }
+
+    /// Distance field towards a point of this map, e.g. the end of a flight of stairs (cached
+    /// by the point's cell, as the fields of targets are).
+    pub fn field_at(&self, goal: Vec2) -> Result<Arc<DistanceField>> {
         let nav = &self.maps.navigable;
         let key = nav
-            .world_to_cell(spot.goal)
+            .world_to_cell(goal)
             .map(|(c, r)| nav.index(c, r))
             .unwrap_or(usize::MAX);
         if let Some(f) = self.fields.borrow().get(&key) {
             return Ok(f.clone());
         }
-        let f = Arc::new(DistanceField::new(nav, spot.goal)?);
+        let f = Arc::new(DistanceField::new(nav, goal)?);
         self.fields.borrow_mut().insert(key, f.clone());
         Ok(f)
     }
