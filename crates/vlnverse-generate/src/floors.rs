@@ -234,7 +234,7 @@ impl<'a> Floors<'a> {
         else {
             return Ok(None);
         };
-        self.from_route(&route).map(Some)
+        self.route_path(&route).map(Some)
     }
 
     /// A path from `a` to `b` on another level through one flight joining the two, found with
@@ -336,7 +336,7 @@ impl<'a> Floors<'a> {
                 },
             ],
         };
-        self.from_route(&route).map(Some)
+        self.route_path(&route).map(Some)
     }
 
     /// A bound from below on the walk from `a` on level `from` to `b` on level `to` through
@@ -360,7 +360,7 @@ impl<'a> Floors<'a> {
 
     /// The path of a route across floors: its walks' points at their floor's height and each
     /// flight's points on the treads.
-    fn from_route(&self, route: &LevelRoute) -> Result<FloorPath> {
+    fn route_path(&self, route: &LevelRoute) -> Result<FloorPath> {
         let mut points: Vec<[f32; 3]> = Vec::new();
         let mut walks = Vec::new();
         let mut flights = Vec::new();
