@@ -14,6 +14,8 @@ use super::PathContext;
 use glam::Vec2;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
+use std::cell::RefCell;
+use std::collections::BTreeMap;
 use vlnverse_env::scene_graph::{is_landmark, side_of_heading, Relation};
 use vlnverse_env::{Door, Room, RoomId, RoomType, Scene, SceneObject, SemanticClass as C};
 use vlnverse_score::episode::{GroundedObject, Role, Side};
@@ -552,7 +554,12 @@ fn room_by_floor(scene: &Scene, r: &Room, rng: &mut ChaCha8Rng) -> Option<String
 
 /// "the kitchen", now and then "the lounge", "the big kitchen" or "the master bedroom" (room
 /// names and sizes from the room's type, floor area and what it holds).
-pub(crate) fn room_np(scene: &Scene, room: RoomId, synonym: f64, rng: &mut ChaCha8Rng) -> String {
+pub(crate) fn room_np(
+    scene: &Scene,
+    room: RoomId,
+    naming: &RoomNaming,
+    rng: &mut ChaCha8Rng,
+) -> String {
     let Some(r) = scene.room(room) else {
         return "the room".into();
     };
@@ -564,12 +571,7 @@ pub(crate) fn room_np(scene: &Scene, room: RoomId, synonym: f64, rng: &mut ChaCh
             return np;
         }
     }
-    let names = room_names(r.kind);
-    let name = if rng.random_bool(synonym) {
-        pick(rng, names)
-    } else {
-        names[0]
-    };
+    let name = naming.noun(room, r.kind, rng);
     let area = r.area();
     let adj: &[&str] = if r.kind == RoomType::Hallway && area > 6.0 {
         &["long", "narrow"]
@@ -584,6 +586,49 @@ pub(crate) fn room_np(scene: &Scene, room: RoomId, synonym: f64, rng: &mut ChaCh
         format!("the {} {name}", pick(rng, adj))
     } else {
         format!("the {name}")
+    }
+}
+
+/// The noun each room goes by in one instruction: its type's name, or now and then one of its
+/// synonyms, and then the same one every time it comes up (a living room is not "the den" two
+/// sentences later).
+pub(crate) struct RoomNaming {
+    /// How often a room goes by a synonym rather than its type's name.
+    synonym: f64,
+    nouns: RefCell<BTreeMap<RoomId, &'static str>>,
+}
+
+impl RoomNaming {
+    /// A writer who names a room by a synonym with probability `synonym`.
+    pub(crate) fn new(synonym: f64) -> Self {
+        RoomNaming {
+            synonym,
+            nouns: RefCell::new(BTreeMap::new()),
+        }
+    }
+
+    /// The noun of room `room` of type `kind`: chosen at its first mention, kept after.
+    pub(crate) fn noun(&self, room: RoomId, kind: RoomType, rng: &mut ChaCha8Rng) -> &'static str {
+        if let Some(n) = self.nouns.borrow().get(&room) {
+            return n;
+        }
+        let names = room_names(kind);
+        let n = if rng.random_bool(self.synonym) {
+            pick(rng, names)
+        } else {
+            names[0]
+        };
+        self.nouns.borrow_mut().insert(room, n);
+        n
+    }
+
+    /// The noun of a room entered, which is named by its type unless it already has a noun.
+    pub(crate) fn entered(&self, room: RoomId, kind: RoomType) -> &'static str {
+        self
+            .nouns
+            .borrow_mut()
+            .entry(room)
+            .or_insert(room_names(kind)[0])
     }
 }
 

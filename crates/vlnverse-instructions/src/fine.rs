@@ -5,7 +5,7 @@
 
 use super::describe::{
     content_name, door_between, door_np, end_place, is_closed_leaf, object_np, room_np,
-    unique_landmarks_in, NpOptions, Viewpoint,
+    unique_landmarks_in, NpOptions, RoomNaming, Viewpoint,
 };
 use super::lexicon::{number_word, object_names, ordinal_word, plural};
 use super::path::{
@@ -389,23 +389,24 @@ fn room_change(
     from: RoomId,
     to: RoomId,
     at: Vec2,
-    syn: f64,
+    naming: &RoomNaming,
     rng: &mut ChaCha8Rng,
 ) -> String {
     let scene = ctx.scene;
-    let from_np = room_np(scene, from, syn, rng);
-    // The room entered is always named by its type, so a reader can tell where they are.
+    let from_np = room_np(scene, from, naming, rng);
+    // The room entered is named by its type (unless it already has a name), so a reader can
+    // tell where they are.
     let mut to_np = scene
         .room(to)
         .map(|r| {
             content_name(scene, to, 0.3, true, rng)
-                .unwrap_or_else(|| format!("the {}", r.kind.words()))
+                .unwrap_or_else(|| format!("the {}", naming.entered(to, r.kind)))
         })
         .unwrap_or_else(|| "the next room".into());
     let same = scene.room(from).map(|r| r.kind) == scene.room(to).map(|r| r.kind);
     let by_type = scene
         .room(to)
-        .is_some_and(|r| to_np == format!("the {}", r.kind.words()));
+        .is_some_and(|r| to_np == format!("the {}", naming.entered(to, r.kind)));
     if same && by_type {
         to_np = to_np.replacen("the ", pick(rng, &["the next ", "the other "]), 1);
     }
@@ -532,8 +533,8 @@ struct Route<'c, 's> {
     /// The rooms the path runs through: (first path index in the room, room).
     rooms: Vec<(usize, RoomId)>,
     np_opts: NpOptions,
-    /// How often a room goes by a synonym rather than its type's name.
-    room_syn: f64,
+    /// The noun each room goes by.
+    rooms_named: RoomNaming,
 }
 
 impl<'c, 's> Route<'c, 's> {
@@ -575,7 +576,7 @@ impl<'c, 's> Route<'c, 's> {
             landmarks,
             rooms,
             np_opts: writer.np(),
-            room_syn: if writer == Writer::Precise { 0.15 } else { 0.4 },
+            rooms_named: RoomNaming::new(if writer == Writer::Precise { 0.15 } else { 0.4 }),
         }
     }
 
@@ -650,7 +651,7 @@ fn opening(route: &Route<'_, '_>, mut rng: ChaCha8Rng) -> Draft {
     let start_p = if writer == Writer::Terse { 0.05 } else { 0.2 };
     if let Some(&(_, r0)) = route.rooms.first() {
         if rng.random_bool(start_p) {
-            let room = room_np(route.ctx.scene, r0, route.room_syn, &mut rng);
+            let room = room_np(route.ctx.scene, r0, &route.rooms_named, &mut rng);
             let s = fill(pick(&mut rng, &ph::START_ROOM), &[("room", &room)]);
             if s.ends_with(',') {
                 if !numbered {
@@ -1092,7 +1093,7 @@ fn room_changes(route: &Route<'_, '_>, li: usize, rng: &mut ChaCha8Rng) -> Vec<S
         let kind = |k: usize| {
             ctx.scene
                 .room(rooms[k].1)
-                .map(|r| format!("the {}", r.kind.words()))
+                .map(|r| format!("the {}", route.rooms_named.entered(r.id, r.kind)))
                 .unwrap_or_else(|| "the next room".into())
         };
         let mids: Vec<String> = ks[..ks.len() - 1].iter().map(|&k| kind(k)).collect();
@@ -1105,7 +1106,7 @@ fn room_changes(route: &Route<'_, '_>, li: usize, rng: &mut ChaCha8Rng) -> Vec<S
         ks.iter()
             .map(|&k| {
                 let at = route.pts[rooms[k].0.min(route.n() - 1)];
-                room_change(ctx, rooms[k - 1].1, rooms[k].1, at, route.room_syn, rng)
+                room_change(ctx, rooms[k - 1].1, rooms[k].1, at, &route.rooms_named, rng)
             })
             .collect()
     }
@@ -1133,7 +1134,7 @@ fn movement(
     match here {
         Some(r) if changes.is_empty() && ends_hall && rng.random_bool(0.5) => {
             *hall_end_said = true;
-            let hall = room_np(scene, r, route.room_syn, rng);
+            let hall = room_np(scene, r, &route.rooms_named, rng);
             fill(pick(rng, &ph::TO_HALL_END), &[("room", &hall)])
         }
         Some(r)
@@ -1141,11 +1142,11 @@ fn movement(
                 && here_kind == Some(RoomType::Hallway)
                 && rng.random_bool(0.35) =>
         {
-            let hall = room_np(scene, r, route.room_syn, rng);
+            let hall = room_np(scene, r, &route.rooms_named, rng);
             fill(pick(rng, &ph::ALONG_HALL), &[("room", &hall)])
         }
         Some(r) if changes.is_empty() && leg.len > 2.5 && rng.random_bool(0.12) => {
-            let room = room_np(scene, r, route.room_syn, rng);
+            let room = room_np(scene, r, &route.rooms_named, rng);
             fill(pick(rng, &ph::THROUGH_ROOM), &[("room", &room)])
         }
         _ => move_clause(leg.len, route.writer, landmark, rng),
@@ -1200,7 +1201,7 @@ fn turn_prefix(route: &Route<'_, '_>, li: usize, draft: &mut Draft) -> Option<St
     let rng = &mut draft.rng;
     if let Some(hall) = hall_end_at(route, leg.first) {
         if !std::mem::take(&mut draft.hall_end_said) && rng.random_bool(0.5) {
-            let hall = room_np(route.ctx.scene, hall, route.room_syn, rng);
+            let hall = room_np(route.ctx.scene, hall, &route.rooms_named, rng);
             return Some(fill(pick(rng, &ph::HALL_END), &[("room", &hall)]));
         }
         return None;
@@ -1217,7 +1218,7 @@ fn turn_prefix(route: &Route<'_, '_>, li: usize, draft: &mut Draft) -> Option<St
             None
         };
         if let Some(bank) = bank.filter(|_| rng.random_bool(0.4)) {
-            let hall = room_np(route.ctx.scene, hall, route.room_syn, rng);
+            let hall = room_np(route.ctx.scene, hall, &route.rooms_named, rng);
             return Some(fill(pick(rng, bank), &[("room", &hall)]));
         }
     }
@@ -1414,7 +1415,7 @@ fn plan_short(
     out.extend(changes);
     if let Some(r) = entered.and_then(|r| route.ctx.scene.room(r)) {
         if rng.random_bool(0.25) {
-            let room = format!("the {}", r.kind.words());
+            let room = format!("the {}", route.rooms_named.entered(r.id, r.kind));
             out.push(fill(pick(rng, &ph::NOW_IN), &[("room", &room)]));
         }
     }
@@ -1584,7 +1585,7 @@ fn stop_sentence(route: &Route<'_, '_>, draft: &mut Draft) -> String {
             None => pick(rng, &ph::STOP).to_string(),
         }
     } else if let Some(r) = last_room {
-        let room = room_np(ctx.scene, r, route.room_syn, rng);
+        let room = room_np(ctx.scene, r, &route.rooms_named, rng);
         match end_place(ctx.scene, Some(r), end, end_heading, rng) {
             // "stop in the far left corner of the kitchen"; other places after a comma
             // ("wait just inside the kitchen, with the wall behind you").

@@ -618,3 +618,34 @@ fn closest_is_said_only_of_the_closest() {
     }
     assert!(said > 0, "no coarse instruction said closest");
 }
+
+/// A room keeps the name it was first given through an instruction: the living room is not
+/// "the lounge" or "the den" a sentence later (a home has one living room).
+#[test]
+fn the_living_room_keeps_one_name_through_an_instruction() {
+    let g = gen();
+    let names = ["living room", "lounge", "family room", "sitting room", "den"];
+    let mut seen = 0;
+    for w in worlds(6).iter() {
+        for s in paths(w, 12, 3) {
+            for seed in 0..25 {
+                let t = g.fine(&w.ctx(&s), seed).unwrap().instruction_text.to_lowercase();
+                let used: Vec<&str> = names
+                    .iter()
+                    .copied()
+                    .filter(|n| {
+                        t.match_indices(n).any(|(i, _)| {
+                            let before = t[..i].chars().next_back();
+                            let after = t[i + n.len()..].chars().next();
+                            before.is_none_or(|c| !c.is_alphanumeric())
+                                && after.is_none_or(|c| !c.is_alphanumeric())
+                        })
+                    })
+                    .collect();
+                seen += usize::from(!used.is_empty());
+                assert!(used.len() <= 1, "{used:?}: {t}");
+            }
+        }
+    }
+    assert!(seen > 0, "no instruction named the living room");
+}
