@@ -569,8 +569,9 @@ pub(crate) fn append_lifted(
         o.supported_by = o.supported_by.map(|s| s + off);
         o.room = o.room.map(|r| r + room_offset);
         o.pose.position[1] += dy;
-        o.bbox.min[1] += dy;
-        o.bbox.max[1] += dy;
+        // From the lifted pose, as every other box is made (adding `dy` to the old box rounds
+        // differently).
+        o.bbox = o.compute_bbox();
         b.objects.push(o);
     }
     off

@@ -42,6 +42,16 @@ fn two_storey_homes_are_valid_and_every_room_is_reachable_through_the_stairs() {
     for s in scenes.iter().filter(|s| s.is_multi_level()) {
         s.validate_storeys().unwrap();
         assert_eq!(s.level_count(), 2);
+        // Boxes of the lifted upper floor are made from their pose and parts, as all boxes are.
+        for o in &s.objects {
+            assert_eq!(
+                o.bbox,
+                o.compute_bbox(),
+                "{}: stale box of {}",
+                s.id,
+                o.name
+            );
+        }
         let st = &s.storeys.stairs[0];
         assert!(st.rise <= g.config().floors.max_riser + 1e-6, "{}", s.id);
         let pitch = st.pitch().to_degrees();
