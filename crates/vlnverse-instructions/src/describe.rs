@@ -624,8 +624,7 @@ impl RoomNaming {
 
     /// The noun of a room entered, which is named by its type unless it already has a noun.
     pub(crate) fn entered(&self, room: RoomId, kind: RoomType) -> &'static str {
-        self
-            .nouns
+        self.nouns
             .borrow_mut()
             .entry(room)
             .or_insert(room_names(kind)[0])
