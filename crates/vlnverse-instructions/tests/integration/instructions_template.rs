@@ -624,12 +624,22 @@ fn closest_is_said_only_of_the_closest() {
 #[test]
 fn the_living_room_keeps_one_name_through_an_instruction() {
     let g = gen();
-    let names = ["living room", "lounge", "family room", "sitting room", "den"];
+    let names = [
+        "living room",
+        "lounge",
+        "family room",
+        "sitting room",
+        "den",
+    ];
     let mut seen = 0;
     for w in worlds(6).iter() {
         for s in paths(w, 12, 3) {
             for seed in 0..25 {
-                let t = g.fine(&w.ctx(&s), seed).unwrap().instruction_text.to_lowercase();
+                let t = g
+                    .fine(&w.ctx(&s), seed)
+                    .unwrap()
+                    .instruction_text
+                    .to_lowercase();
                 let used: Vec<&str> = names
                     .iter()
                     .copied()
