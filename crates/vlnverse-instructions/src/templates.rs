@@ -380,6 +380,12 @@ fn coarse_sentence(style: Style, p: &CoarseParts, rng: &mut ChaCha8Rng) -> Strin
                 &[("desc", desc), ("sup", sup), ("rel", rel), ("room", &rc)],
             );
             let open = pick(rng, &ph::FORMAL_OPEN);
+            // "In this house, proceed to ...", not "In this house, Proceed".
+            let core = if open.ends_with(", ") {
+                decapitalize(&core)
+            } else {
+                core
+            };
             let close = closer(&core, pick(rng, &ph::FORMAL_CLOSE), ".");
             format!("{open}{core}{remark}{close}")
         }

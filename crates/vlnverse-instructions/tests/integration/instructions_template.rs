@@ -559,6 +559,9 @@ fn a_count_remark_gives_the_true_number_in_the_room() {
                         .coarse(&ctx, target, style, seed)
                         .unwrap()
                         .instruction_text;
+                    // An opener ending in a comma runs on in lower case.
+                    let mut after_comma = t.split(", ").skip(1).filter_map(|x| x.chars().next());
+                    assert!(after_comma.all(|c| !c.is_uppercase()), "{t}");
                     let t = t.replace("gray", "grey");
                     let remark = [" in the room", " in there"]
                         .iter()
