@@ -12,6 +12,7 @@
 use glam::Vec2;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
+use std::sync::Arc;
 use vlnverse_env::geodesic::{
     polyline_length, DistanceField, GeodesicPath, LevelPoint, LevelRoute, MultiLevelMap, Portal,
     RouteLeg,
@@ -123,6 +124,18 @@ pub fn flight_points(s: &Stairs) -> Vec<[f32; 3]> {
     }
     out.push(s.head);
     out
+}
+
+/// How flight `p` takes a walk from level `from` to level `to`: the end entered, the end left
+/// and whether it goes up; `None` when it does not join the two levels.
+fn crossing(p: &Portal, from: LevelId, to: LevelId) -> Option<(LevelPoint, LevelPoint, bool)> {
+    if p.lower.level == from && p.upper.level == to {
+        Some((p.lower, p.upper, true))
+    } else if p.upper.level == from && p.lower.level == to {
+        Some((p.upper, p.lower, false))
+    } else {
+        None
+    }
 }
 
 /// Per-level samplers of a multi-level home and the map across its floors.
@@ -249,48 +262,43 @@ impl<'a> Floors<'a> {
         b: LevelPoint,
         towards_b: Option<&DistanceField>,
     ) -> Result<Option<FloorPath>> {
-        let mut best: Option<(f32, &Portal, bool)> = None;
+        // The best flight so far: total length, the flight, its direction, the field from its
+        // near end and (without `towards_b`) the field from its far end.
+        type Best<'p> = (
+            f32,
+            &'p Portal,
+            bool,
+            Arc<DistanceField>,
+            Option<Arc<DistanceField>>,
+        );
+        let mut best: Option<Best<'_>> = None;
         for p in self.map.portals() {
-            let up = p.lower.level == a.level && p.upper.level == b.level;
-            let down = p.upper.level == a.level && p.lower.level == b.level;
-            if !(up || down) {
-                continue;
-            }
-            let (enter, leave) = if up {
-                (p.lower, p.upper)
-            } else {
-                (p.upper, p.lower)
-            };
-            let Some(d1) = self
-                .sampler(a.level)
-                .field_at(enter.point)?
-                .distance(a.point)
-                .meters()
-            else {
+            let Some((enter, leave, up)) = crossing(p, a.level, b.level) else {
                 continue;
             };
-            let d2 = match towards_b {
-                Some(f) => f.distance(leave.point).meters(),
-                None => self
-                    .sampler(b.level)
-                    .field_at(leave.point)?
-                    .distance(b.point)
-                    .meters(),
+            let near = self.sampler(a.level).field_at(enter.point)?;
+            let Some(d1) = near.distance(a.point).meters() else {
+                continue;
+            };
+            let far = match towards_b {
+                Some(_) => None,
+                None => Some(self.sampler(b.level).field_at(leave.point)?),
+            };
+            let d2 = match (towards_b, &far) {
+                (Some(f), _) => f.distance(leave.point).meters(),
+                (None, Some(f)) => f.distance(b.point).meters(),
+                (None, None) => None,
             };
             let Some(d2) = d2 else { continue };
             let total = d1 + p.cost + d2;
-            if best.is_none_or(|(t, _, _)| total < t) {
-                best = Some((total, p, up));
+            if best.as_ref().is_none_or(|x| total < x.0) {
+                best = Some((total, p, up, near, far));
             }
         }
-        let Some((_, p, up)) = best else {
+        let Some((_, p, up, near, far)) = best else {
             return Ok(None);
         };
-        let (enter, leave) = if up {
-            (p.lower, p.upper)
-        } else {
-            (p.upper, p.lower)
-        };
+        let leave = if up { p.upper } else { p.lower };
         let walk = |level: LevelId, pts: Option<GeodesicPath>, reverse: bool| {
             pts.map(|g| {
                 let mut pts = g.points;
@@ -302,18 +310,11 @@ impl<'a> Floors<'a> {
                 GeodesicPath { points, length }
             })
         };
-        let first = walk(
-            a.level,
-            self.sampler(a.level).field_at(enter.point)?.path(a.point),
-            false,
-        );
-        let second = match towards_b {
-            Some(f) => walk(b.level, f.path(leave.point), false),
-            None => walk(
-                b.level,
-                self.sampler(b.level).field_at(leave.point)?.path(b.point),
-                true,
-            ),
+        let first = walk(a.level, near.path(a.point), false);
+        let second = match (towards_b, &far) {
+            (Some(f), _) => walk(b.level, f.path(leave.point), false),
+            (None, Some(f)) => walk(b.level, f.path(b.point), true),
+            (None, None) => None,
         };
         let (Some(first), Some(second)) = (first, second) else {
             return Ok(None);
@@ -347,13 +348,8 @@ impl<'a> Floors<'a> {
             .portals()
             .iter()
             .filter_map(|p| {
-                if p.lower.level == from && p.upper.level == to {
-                    Some(a.distance(p.lower.point) + p.cost + p.upper.point.distance(b))
-                } else if p.upper.level == from && p.lower.level == to {
-                    Some(a.distance(p.upper.point) + p.cost + p.lower.point.distance(b))
-                } else {
-                    None
-                }
+                let (enter, leave, _) = crossing(p, from, to)?;
+                Some(a.distance(enter.point) + p.cost + leave.point.distance(b))
             })
             .fold(f32::INFINITY, f32::min)
     }
