@@ -29,7 +29,7 @@ use super::episodes::{heading_yaw, stops_the_run, yaw_quat, SceneTaskContext, St
 use super::floors::{FloorPath, Floors, Walk};
 use super::presets::TaskConfig;
 use super::reference_image::ReferenceRenderer;
-use super::sampler::{Reject, TargetSpot};
+use super::sampler::{check_length, Reject, TargetSpot};
 use super::seed::derive_seed;
 use super::splits::CellShare;
 
@@ -39,16 +39,6 @@ const MIN_WALK: f32 = 0.5;
 const GROUNDING_REACH: f32 = 3.0;
 
 type Made<T> = Result<std::result::Result<T, Reject>>;
-
-fn check_length(d: f32, task: &TaskConfig) -> Option<Reject> {
-    if d < task.min_length {
-        Some(Reject::TooShort)
-    } else if d > task.max_length {
-        Some(Reject::TooLong)
-    } else {
-        None
-    }
-}
 
 /// Keep grounding exact on the whole path. An object grounded at the last point of a walk
 /// that is not the last was placed facing along that walk's last segment; on the whole path

@@ -304,7 +304,8 @@ pub fn string_pull(map: &GridMap, pts: &[Vec2]) -> Vec<Vec2> {
     out
 }
 
-fn check_length(d: f32, task: &TaskConfig) -> Option<Reject> {
+/// Why a path of length `d` does not fit the task's length limits, if it does not.
+pub(crate) fn check_length(d: f32, task: &TaskConfig) -> Option<Reject> {
     if d < task.min_length {
         Some(Reject::TooShort)
     } else if d > task.max_length {
