@@ -474,11 +474,23 @@ impl RapierSimulator {
                     None => true,
                 }
             });
+        let landed = landed.map(|p| (p, (p - target).length()));
+        self.settle_hop(landed, behind, start, out);
+    }
+
+    /// End a hop from `start`: stand at the spot landed on (with its distance from the
+    /// commanded one), or stay where the agent was because a closed door (`behind`) or no free
+    /// spot stopped it; the agent ends at rest.
+    fn settle_hop(
+        &mut self,
+        landed: Option<(Vec3, f32)>,
+        behind: Option<u32>,
+        start: Vec3,
+        out: &mut StepOutcome,
+    ) {
         match landed {
-            Some(p) => {
-                out.hop = Some(Hop::Landed {
-                    shift: (p - target).length(),
-                });
+            Some((p, shift)) => {
+                out.hop = Some(Hop::Landed { shift });
                 self.state.base = p;
             }
             None if behind.is_some() => {

@@ -6,7 +6,7 @@
 //! their own flights. Single-level scenes never come here (the planar agent, unchanged).
 
 use super::{RapierSimulator, MIN_MOVE};
-use crate::simulator::{Hop, StepOutcome};
+use crate::simulator::StepOutcome;
 use crate::world::{standable, STAND_QUERY, STEP_QUERY};
 use glam::Vec3;
 use rapier3d::parry::query::ShapeCastOptions;
@@ -252,26 +252,8 @@ impl RapierSimulator {
                     None => true,
                 }
             });
-        match landed {
-            Some(p) => {
-                let shift = Vec3::new(p.x - target.x, 0.0, p.z - target.z).length();
-                out.hop = Some(Hop::Landed { shift });
-                self.state.base = p;
-            }
-            None if behind.is_some() => {
-                out.collided = true;
-                out.hop = behind.map(|door| Hop::ClosedDoor { door });
-            }
-            None => {
-                out.collided = true;
-                out.hop = Some(Hop::NoFreeSpot {
-                    radius: self.cfg.hop_radius,
-                });
-            }
-        }
-        self.state.speed = 0.0;
-        self.state.omega = 0.0;
-        self.sync_body(Vec3::ZERO);
-        out.achieved = [self.state.base.x - start.x, self.state.base.z - start.z];
+        // The shift is measured across the floor: landing on a step is no shift.
+        let landed = landed.map(|p| (p, Vec3::new(p.x - target.x, 0.0, p.z - target.z).length()));
+        self.settle_hop(landed, behind, start, out);
     }
 }
