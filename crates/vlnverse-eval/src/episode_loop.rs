@@ -813,6 +813,17 @@ fn level_goal_distances(
         .filter_map(|g| scene.level_field(g.position).transpose())
         .map(|f| f.map(|f| f as Arc<dyn GoalDistance>))
         .collect::<Result<_>>()?;
+    let seq = seq.iter().map(|f| f.clone() as Arc<dyn GoalDistance>);
+    Ok(distances_of(ep, goals, seq.collect()))
+}
+
+/// The goal's distance (the nearest of several goals; the last of `seq` when the episode
+/// names none) and, for long-horizon episodes, each sub-goal's in order.
+fn distances_of(
+    ep: &Episode,
+    goals: Vec<Arc<dyn GoalDistance>>,
+    seq: Vec<Arc<dyn GoalDistance>>,
+) -> GoalDistances {
     let goal: Arc<dyn GoalDistance> = match goals.len() {
         0 => seq[seq.len() - 1].clone(),
         1 => goals[0].clone(),
@@ -821,11 +832,9 @@ fn level_goal_distances(
     let sub_goals = if ep.sub_goals.is_empty() {
         Vec::new()
     } else {
-        seq.iter()
-            .map(|f| f.clone() as Arc<dyn GoalDistance>)
-            .collect()
+        seq
     };
-    Ok(GoalDistances { goal, sub_goals })
+    GoalDistances { goal, sub_goals }
 }
 
 /// Distances to the goal (the nearest of several goals) and, for long-horizon episodes, to
@@ -840,17 +849,6 @@ fn goal_distances(
         .iter()
         .map(|g| scene.field(g.position).map(|f| f as Arc<dyn GoalDistance>))
         .collect::<Result<_>>()?;
-    let goal: Arc<dyn GoalDistance> = match goals.len() {
-        0 => seq[seq.len() - 1].clone(),
-        1 => goals[0].clone(),
-        _ => Arc::new(Nearest(goals)),
-    };
-    let sub_goals = if ep.sub_goals.is_empty() {
-        Vec::new()
-    } else {
-        seq.iter()
-            .map(|f| f.clone() as Arc<dyn GoalDistance>)
-            .collect()
-    };
-    Ok(GoalDistances { goal, sub_goals })
+    let seq = seq.iter().map(|f| f.clone() as Arc<dyn GoalDistance>);
+    Ok(distances_of(ep, goals, seq.collect()))
 }
