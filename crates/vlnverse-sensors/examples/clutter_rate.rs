@@ -4,7 +4,8 @@
 //! the same seeds without it, and for profiling (`perf record` on this binary).
 //!
 //! `cargo run --release -p vlnverse-sensors --example clutter_rate -- [--frames N] [--reps R]
-//! DATASET_OR_SCENE_DIR...` (a dataset: its `scenes/*` folders). Several datasets are rendered
+//! DATASET_OR_SCENE_DIR...` (a dataset: its `scenes/*` folders; an imported home such as
+//! `xtask import` writes for the AWS house takes its poses from its navigable map). Several datasets are rendered
 //! alternately, `R` times each, so that load on the machine falls on all alike; CPU time per
 //! frame (all threads, from the scheduler's counts) is printed beside frames/s, and a hash of
 //! every image of the first rep (to check that two builds draw the same images).
@@ -44,6 +45,34 @@ fn floor_poses(scene: &Scene, n: usize, seed: u64) -> Vec<Pose> {
         }
     }
     out
+}
+
+/// `n` seeded poses on free cells of the scene's navigable map (default occupancy settings),
+/// random headings: for imported homes (the AWS house), where one box spans the whole home and
+/// [`floor_poses`] finds none.
+fn navigable_poses(
+    scene: &Scene,
+    n: usize,
+    seed: u64,
+) -> Result<Vec<Pose>, Box<dyn std::error::Error>> {
+    let bundle = vlnverse_env::io::scene_bundle(scene.clone(), &Default::default())?;
+    let nav = &bundle.maps.navigable;
+    let (lo, hi) = nav.bounds();
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    let mut out = Vec::new();
+    for _ in 0..200_000 {
+        if out.len() == n {
+            break;
+        }
+        let (x, z) = (rng.random_range(lo.x..hi.x), rng.random_range(lo.y..hi.y));
+        if nav.is_free_at(glam::Vec2::new(x, z)) {
+            out.push(Pose::from_yaw(
+                Vec3::new(x, scene.floor_height, z),
+                rng.random_range(0.0..std::f32::consts::TAU),
+            ));
+        }
+    }
+    Ok(out)
 }
 
 fn rgbd(p: &Pose) -> [View; 2] {
@@ -123,7 +152,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     small_tri += o.count as usize;
                 }
             }
-            let poses = floor_poses(&scene, frames, 1);
+            let mut poses = floor_poses(&scene, frames, 1);
+            if poses.is_empty() {
+                poses = navigable_poses(&scene, frames, 1)?;
+            }
             let mut r = RasterRenderer::new();
             r.set_scene(mesh)?;
             homes.push((r, poses));
