@@ -28,6 +28,9 @@ const CLUTTER_SWING: f32 = 0.7;
 /// Share of a room's floor that stays free in the in-room grid (whose radius is more than the
 /// agent's) when floor and wall clutter is placed.
 const CLUTTER_MIN_FREE: f32 = 0.2;
+/// The same share for furniture: a bed may not take the last of a bedroom's open floor and
+/// leave the rest of the room behind a gap narrower than the agent.
+const FURNITURE_MIN_FREE: f32 = 0.12;
 /// Random spots tried for each small object on its surface.
 const SMALL_TRIES: usize = 16;
 /// Distance kept between furniture and walls (m).
@@ -1287,7 +1290,7 @@ fn furnish_room(
         placed: Vec::new(),
         grid: NavGrid::new(interior, NAV_CELL, cfg.furniture.nav_radius),
         seeds,
-        min_free: 0,
+        min_free: (FURNITURE_MIN_FREE * interior.area() / (NAV_CELL * NAV_CELL)) as usize,
     };
     if !st.grid.connected(&st.seeds) {
         tracing::debug!(

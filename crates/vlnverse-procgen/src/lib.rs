@@ -138,9 +138,10 @@ impl SceneSource for HomeGenerator {
 }
 
 /// The box that must stay free of furniture around a door: the door's clear width along the
-/// wall and `depth` metres into each room, from the floor to `height`.
+/// wall and `depth` metres into each room, from the door's floor to `height` above it (an
+/// upstairs door's box starts at the upper floor).
 pub fn door_clearance(door: &Door, depth: f32, height: f32) -> Aabb {
-    let [x, _, z] = door.position;
+    let [x, y, z] = door.position;
     let half = door.width * 0.5;
     let (hx, hz) = if door.normal[0].abs() > door.normal[1].abs() {
         (depth, half)
@@ -148,7 +149,7 @@ pub fn door_clearance(door: &Door, depth: f32, height: f32) -> Aabb {
         (half, depth)
     };
     Aabb {
-        min: [x - hx, 0.0, z - hz],
-        max: [x + hx, height, z + hz],
+        min: [x - hx, y, z - hz],
+        max: [x + hx, y + height, z + hz],
     }
 }

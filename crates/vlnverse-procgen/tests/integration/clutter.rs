@@ -90,9 +90,10 @@ fn closets_balconies_and_entrance_halls_open_where_they_belong() {
     let homes = vlnverse_homes();
     let mut seen: BTreeMap<R, usize> = BTreeMap::new();
     for s in &homes {
-        // The house outline: the bounding box of every room.
+        // The house outline: the bounding box of the ground floor's plan (a stair hall stands
+        // outside it, on a side with a public room).
         let (mut x0, mut z0, mut x1, mut z1) = (f32::MAX, f32::MAX, f32::MIN, f32::MIN);
-        for r in &s.rooms {
+        for r in crate::support::ground_plan_rooms(s) {
             for p in &r.polygon {
                 (x0, z0, x1, z1) = (x0.min(p[0]), z0.min(p[1]), x1.max(p[0]), z1.max(p[1]));
             }

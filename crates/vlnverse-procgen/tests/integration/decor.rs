@@ -1,7 +1,7 @@
 //! Windows, skirting boards and pictures: where they stand, and that they change nothing else
 //! (object ids, occupancy, the navigable map) while windows brighten the baked light.
 
-use vlnverse_env::occupancy::{build_maps, OccupancyConfig};
+use vlnverse_env::occupancy::{build_level_maps, build_maps, OccupancyConfig};
 use vlnverse_env::{light, Scene, SceneObject, SceneSource, SemanticClass as C};
 use vlnverse_procgen::{HomeGenerator, Preset, ProcgenConfig};
 
@@ -48,7 +48,18 @@ fn decor_comes_after_every_other_object_and_changes_no_map() {
     let big = (0..6).map(|k| (vln.scene(k * 40).unwrap(), bare_vln.scene(k * 40).unwrap()));
     let occ = OccupancyConfig::default();
     let mut windows = 0;
+    let mut two = 0;
     for (with, without) in tiny.chain(big) {
+        let occ_maps = |s: &Scene| build_level_maps(s, &occ).unwrap();
+        if with.is_multi_level() {
+            // Each floor's decoration follows that floor's objects, so ids move; what is
+            // checked is that the rooms and every floor's maps are the same.
+            two += 1;
+            assert_eq!(with.rooms, without.rooms);
+            assert!(with.objects.len() > without.objects.len());
+            assert_eq!(occ_maps(&with), occ_maps(&without), "{}", with.id);
+            continue;
+        }
         let n = without.objects.len();
         assert!(with.objects.len() > n, "{}: no decoration", with.id);
         assert_eq!(
@@ -80,6 +91,7 @@ fn decor_comes_after_every_other_object_and_changes_no_map() {
         );
     }
     assert!(windows >= 10, "{windows} windows");
+    assert!(two > 0, "no two-storey home in the sample");
 }
 
 #[test]

@@ -1,11 +1,11 @@
 //! Door leaves: one per framed doorway, closed ones keep every room reachable and block the maps
 //! and geodesic routes, open ones leave the doorway free; deterministic.
 
+use crate::support;
 use glam::Vec2;
 use rayon::prelude::*;
-use std::collections::VecDeque;
 use vlnverse_env::geodesic::geodesic_distance;
-use vlnverse_env::occupancy::{build_maps, OccupancyConfig};
+use vlnverse_env::occupancy::{build_level_maps, OccupancyConfig};
 use vlnverse_env::{DoorState, Motion, Scene, SceneObject, SceneSource, SemanticClass as C};
 use vlnverse_procgen::{door_clearance, HomeGenerator, Preset};
 
@@ -31,24 +31,9 @@ fn sample() -> Vec<Scene> {
         .collect()
 }
 
-/// Whether every room reaches every other through open doors and open-plan openings.
+/// Whether every room reaches every other through open doors, open-plan openings and stairs.
 fn rooms_connected(s: &Scene) -> bool {
-    let n = s.rooms.len();
-    let mut seen = vec![false; n];
-    let mut q = VecDeque::from([0usize]);
-    seen[0] = true;
-    while let Some(r) = q.pop_front() {
-        for d in s.doors.iter().filter(|d| !d.is_closed()) {
-            let [a, b] = d.rooms.map(|x| x as usize);
-            for (p, o) in [(a, b), (b, a)] {
-                if p == r && !seen[o] {
-                    seen[o] = true;
-                    q.push_back(o);
-                }
-            }
-        }
-    }
-    seen.iter().all(|&x| x)
+    support::rooms_connected(s, false)
 }
 
 fn leaf<'a>(s: &'a Scene, d: &vlnverse_env::Door) -> &'a SceneObject {
@@ -218,8 +203,11 @@ fn a_closed_door_blocks_the_maps_and_routes_go_round_it() {
         .collect();
     let mut checked = 0;
     for s in homes {
-        let maps = build_maps(&s, &cfg).unwrap();
+        // Each door is checked on the map of its own floor.
+        let levels = build_level_maps(&s, &cfg).unwrap();
+        let maps_of = |d: &vlnverse_env::Door| &levels[support::door_level(&s, d) as usize];
         for d in s.doors.iter().filter(|d| d.is_closed()) {
+            let maps = maps_of(d);
             let c = Vec2::new(d.position[0], d.position[2]);
             let n = Vec2::from_array(d.normal);
             let t = n.perp();
@@ -246,6 +234,7 @@ fn a_closed_door_blocks_the_maps_and_routes_go_round_it() {
         }
         // An open door is passable straight through.
         for d in s.doors.iter().filter(|d| d.state == Some(DoorState::Open)) {
+            let maps = maps_of(d);
             let c = Vec2::new(d.position[0], d.position[2]);
             let n = Vec2::from_array(d.normal);
             let g = geodesic_distance(&maps.navigable, c + n * 0.6, c - n * 0.6).unwrap();

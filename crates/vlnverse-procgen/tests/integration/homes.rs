@@ -1,8 +1,9 @@
 //! Properties of generated homes: room counts, no overlaps, free doorways, connectivity,
 //! support relations, determinism, preset statistics and config errors.
 
+use crate::support;
 use rayon::prelude::*;
-use std::collections::{BTreeSet, VecDeque};
+use std::collections::BTreeSet;
 use vlnverse_env::{
     Aabb, ClassKind, EnvError, Motion, Scene, SceneObject, SceneSource, SemanticClass as C,
 };
@@ -52,12 +53,16 @@ fn room_counts_are_in_range() {
         );
     }
     for s in sample() {
-        assert!(
-            (3..=10).contains(&s.rooms.len()),
-            "{}: {} rooms",
-            s.id,
-            s.rooms.len()
-        );
+        // The floorplan's range holds for the ground floor; a second floor adds the stair hall
+        // below and a landing with bedrooms, a bathroom and sometimes an office above.
+        let ground = support::ground_plan_rooms(&s).len();
+        assert!((3..=10).contains(&ground), "{}: {ground} rooms", s.id);
+        let upper = s.rooms.len() - ground;
+        if s.is_multi_level() {
+            assert!((3..=9).contains(&upper), "{}: {upper} more rooms", s.id);
+        } else {
+            assert_eq!(upper, 0, "{}", s.id);
+        }
     }
 }
 
@@ -177,8 +182,8 @@ fn doors_are_wide_and_never_blocked() {
             }
             // The opening itself: no wall or frame inside the clear width below the head.
             let gap = Aabb {
-                min: [zone.min[0], 0.0, zone.min[2]],
-                max: [zone.max[0], 2.0, zone.max[2]],
+                min: [zone.min[0], d.position[1], zone.min[2]],
+                max: [zone.max[0], d.position[1] + 2.0, zone.max[2]],
             };
             for o in s
                 .objects
@@ -205,24 +210,36 @@ fn doors_are_wide_and_never_blocked() {
 
 #[test]
 fn every_room_is_connected_through_doors() {
+    let mut two = 0;
     for s in sample() {
-        let n = s.rooms.len();
-        let mut seen = vec![false; n];
-        let mut q = VecDeque::from([0usize]);
-        seen[0] = true;
-        while let Some(r) = q.pop_front() {
-            for d in &s.doors {
-                let [a, b] = d.rooms.map(|x| x as usize);
-                for (p, o) in [(a, b), (b, a)] {
-                    if p == r && !seen[o] {
-                        seen[o] = true;
-                        q.push_back(o);
-                    }
+        assert!(
+            support::rooms_connected(&s, true),
+            "{}: rooms not connected",
+            s.id
+        );
+        if s.is_multi_level() {
+            two += 1;
+            // Each floor on its own through its doors; the flight is the only way between.
+            for mut f in support::floors(&s) {
+                let base = f.rooms[0].id;
+                for r in f.rooms.iter_mut() {
+                    r.id -= base;
                 }
+                for d in f.doors.iter_mut() {
+                    d.rooms = d.rooms.map(|r| r - base);
+                }
+                assert!(
+                    support::rooms_connected(&f, true),
+                    "{}: a floor not connected",
+                    s.id
+                );
             }
+            let mut cut = s.clone();
+            cut.storeys.stairs.clear();
+            assert!(!support::rooms_connected(&cut, true), "{}", s.id);
         }
-        assert!(seen.iter().all(|&x| x), "{}: rooms not connected", s.id);
     }
+    assert!(two >= 3, "only {two} two-storey homes in the sample");
 }
 
 #[test]
@@ -372,11 +389,15 @@ fn vlnverse_preset_spans_the_paper_ranges() {
     let v = vlnverse();
     assert_eq!(v.len(), 263);
     assert_eq!(v.config(), &ProcgenConfig::default());
-    let stats: Vec<(usize, f32)> = (0..v.len())
+    // Rooms and area of the ground floor's plan (the paper's ranges), and whether the home has a
+    // second floor.
+    let stats: Vec<(usize, f32, bool)> = (0..v.len())
         .into_par_iter()
         .map(|i| {
             let s = v.scene(i).unwrap();
-            (s.rooms.len(), s.rooms.iter().map(|r| r.area()).sum())
+            let ground = support::ground_plan_rooms(&s);
+            let area = ground.iter().map(|r| r.area()).sum();
+            (ground.len(), area, s.is_multi_level())
         })
         .collect();
     let rooms: BTreeSet<usize> = stats.iter().map(|s| s.0).collect();
@@ -385,6 +406,9 @@ fn vlnverse_preset_spans_the_paper_ranges() {
     let max = stats.iter().map(|s| s.1).fold(0.0, f32::max);
     assert!((25.0..=60.0).contains(&min), "smallest home {min} m^2");
     assert!((200.0..=300.0).contains(&max), "largest home {max} m^2");
+    // About 30% on two floors (a home whose footprint takes no stair hall stays on one).
+    let two = stats.iter().filter(|s| s.2).count();
+    assert!((50..=95).contains(&two), "{two} of 263 homes on two floors");
 }
 
 #[test]

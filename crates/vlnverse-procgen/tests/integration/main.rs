@@ -8,4 +8,5 @@ mod homes;
 mod look;
 mod navigable;
 mod storeys;
+mod support;
 mod variants;

@@ -3,8 +3,9 @@
 //! island (the map keeps only the largest island), so every room is reachable from every other,
 //! round closed doors where there are any.
 
+use crate::support;
 use glam::Vec2;
-use vlnverse_env::occupancy::{build_maps, OccupancyConfig};
+use vlnverse_env::occupancy::{build_level_maps, OccupancyConfig};
 use vlnverse_env::SceneSource;
 use vlnverse_procgen::{HomeGenerator, Preset};
 
@@ -16,8 +17,15 @@ fn every_room_and_doorway_is_on_the_navigable_island() {
         .map(|i| tiny.scene(i).unwrap())
         .chain((0..30).map(|k| vln.scene(k * 263 / 30).unwrap()));
     let cfg = OccupancyConfig::default();
-    for s in scenes {
-        let maps = build_maps(&s, &cfg).unwrap();
+    // Each floor on its own map (the stairs join them: see storeys.rs).
+    let floors = scenes.flat_map(|s| {
+        let maps = build_level_maps(&s, &cfg).unwrap();
+        support::floors(&s)
+            .into_iter()
+            .zip(maps)
+            .collect::<Vec<_>>()
+    });
+    for (s, maps) in floors {
         let nav = &maps.navigable;
         let cell_area = nav.resolution * nav.resolution;
         for r in &s.rooms {

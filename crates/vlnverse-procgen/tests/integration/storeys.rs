@@ -140,13 +140,15 @@ fn two_storey_homes_are_the_same_on_any_thread_count() {
 #[test]
 fn share_zero_leaves_every_home_on_one_floor_and_as_it_was() {
     let preset = HomeGenerator::from_preset(Preset::Vlnverse).unwrap();
-    assert_eq!(preset.config().floors.two_storey_share, 0.0);
-    // The same config with the floors section spelled out at share 0 gives the same bytes.
+    assert_eq!(preset.config().floors.two_storey_share, 0.3);
     let mut cfg = preset.config().clone();
+    cfg.floors.two_storey_share = 0.0;
+    let flat = HomeGenerator::new(cfg.clone()).unwrap();
+    // The rest of the floors section is not drawn from at share 0: the same bytes.
     cfg.floors.max_riser = 0.15;
     let other = HomeGenerator::new(cfg).unwrap();
     for i in [0, 7, 100] {
-        let (a, b) = (preset.scene(i).unwrap(), other.scene(i).unwrap());
+        let (a, b) = (flat.scene(i).unwrap(), other.scene(i).unwrap());
         assert!(!a.is_multi_level() && a.storeys.is_empty());
         assert_eq!(
             vlnverse_env::io::json::scene_to_json(&a),
@@ -313,10 +315,12 @@ fn the_scene_graph_knows_the_floors() {
 
 #[test]
 fn a_share_gives_that_share_and_leaves_the_other_homes_as_they_were() {
-    let base = HomeGenerator::from_preset(Preset::Vlnverse).unwrap();
-    let mut cfg = base.config().clone();
-    cfg.floors.two_storey_share = 0.3;
-    let mixed = HomeGenerator::new(cfg).unwrap();
+    // The preset draws 30% two-storey homes; each home left on one floor is the home the same
+    // config gives at share 0, byte for byte.
+    let mixed = HomeGenerator::from_preset(Preset::Vlnverse).unwrap();
+    let mut cfg = mixed.config().clone();
+    cfg.floors.two_storey_share = 0.0;
+    let base = HomeGenerator::new(cfg).unwrap();
     let n = 60;
     let results: Vec<(bool, bool)> = (0..n)
         .into_par_iter()
@@ -332,6 +336,5 @@ fn a_share_gives_that_share_and_leaves_the_other_homes_as_they_were() {
         (8..=30).contains(&two),
         "{two} of {n} homes on two floors at share 0.3"
     );
-    // A home left on one floor is the preset's home, byte for byte.
     assert!(results.iter().all(|&(multi, same)| multi != same));
 }

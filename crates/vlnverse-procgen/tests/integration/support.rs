@@ -1,0 +1,74 @@
+//! Helpers for checking homes that may stand on two floors: each floor's view, the rooms a
+//! flight of stairs joins, and reachability through doors and stairs.
+
+use std::collections::VecDeque;
+use vlnverse_env::{Door, LevelId, RoomId, Scene};
+
+/// Each floor of a home as a scene of its own (`Scene::level_view`), the ground floor first.
+pub fn floors(s: &Scene) -> Vec<Scene> {
+    (0..s.level_count() as LevelId)
+        .map(|k| s.level_view(k).expect("a level the scene has"))
+        .collect()
+}
+
+/// The level a door stands on (both its rooms are on it).
+pub fn door_level(s: &Scene, d: &Door) -> LevelId {
+    s.room_level(d.rooms[0]).expect("a door's room has a level")
+}
+
+/// The two rooms each flight joins: the one at its foot and the one at its head.
+pub fn stair_links(s: &Scene) -> Vec<[RoomId; 2]> {
+    s.storeys
+        .stairs
+        .iter()
+        .map(|st| {
+            let at = |level, p: [f32; 3]| {
+                s.room_at_level(level, p[0], p[2])
+                    .unwrap_or_else(|| panic!("{}: stairs {} end in no room", s.id, st.id))
+                    .id
+            };
+            [at(st.levels[0], st.foot), at(st.levels[1], st.head)]
+        })
+        .collect()
+}
+
+/// Whether every room reaches every other through doorways (closed doors too when
+/// `through_closed`) and flights of stairs. Room ids are indices into `s.rooms`.
+pub fn rooms_connected(s: &Scene, through_closed: bool) -> bool {
+    let mut links: Vec<[RoomId; 2]> = s
+        .doors
+        .iter()
+        .filter(|d| through_closed || !d.is_closed())
+        .map(|d| d.rooms)
+        .collect();
+    links.extend(stair_links(s));
+    let n = s.rooms.len();
+    let mut seen = vec![false; n];
+    let mut q = VecDeque::from([0usize]);
+    seen[0] = true;
+    while let Some(r) = q.pop_front() {
+        for [a, b] in links.iter().map(|l| l.map(|x| x as usize)) {
+            for (p, o) in [(a, b), (b, a)] {
+                if p == r && !seen[o] {
+                    seen[o] = true;
+                    q.push_back(o);
+                }
+            }
+        }
+    }
+    seen.iter().all(|&x| x)
+}
+
+/// The ground floor's stair hall (the room at the foot of the first flight), if any.
+pub fn stair_hall(s: &Scene) -> Option<RoomId> {
+    stair_links(s).first().map(|l| l[0])
+}
+
+/// Rooms drawn by the floorplan on the ground floor: its rooms but the stair hall.
+pub fn ground_plan_rooms(s: &Scene) -> Vec<&vlnverse_env::Room> {
+    let hall = stair_hall(s);
+    s.rooms
+        .iter()
+        .filter(|r| s.room_level(r.id) == Some(0) && Some(r.id) != hall)
+        .collect()
+}
