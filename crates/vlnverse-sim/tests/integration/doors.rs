@@ -33,11 +33,12 @@ fn centre_normal(d: &Door) -> (Vec2, Vec2) {
     )
 }
 
-/// Standing `dist` in front of the door on the side `n` points to, facing it.
-fn facing(c: Vec2, n: Vec2, dist: f32) -> Pose {
+/// Standing `dist` in front of door `d` on the side `n` points to, on the door's floor, facing
+/// it.
+fn facing(d: &Door, c: Vec2, n: Vec2, dist: f32) -> Pose {
     let p = c + n * dist;
     let yaw = (n.x).atan2(n.y);
-    Pose::from_yaw(Vec3::new(p.x, 0.0, p.y), yaw)
+    Pose::from_yaw(Vec3::new(p.x, d.position[1], p.y), yaw)
 }
 
 /// Signed distance of the agent from the wall line, along `n`.
@@ -52,7 +53,7 @@ fn a_strict_agent_driving_at_a_closed_door_stops_at_it() {
     for sign in [1.0, -1.0] {
         let n = n * sign;
         let mut s = sim(CollisionSetting::Strict);
-        s.reset(&scene, facing(c, n, 1.0)).unwrap();
+        s.reset(&scene, facing(&d, c, n, 1.0)).unwrap();
         let mut stopped = false;
         for _ in 0..12 {
             let out = s.step(Action::MoveForward(0.25)).unwrap();
@@ -82,7 +83,7 @@ fn a_telhop_never_passes_a_closed_door() {
     let (scene, d) = home_with_closed_door();
     let (c, n) = centre_normal(&d);
     let mut s = sim(CollisionSetting::TelHop);
-    s.reset(&scene, facing(c, n, 0.6)).unwrap();
+    s.reset(&scene, facing(&d, c, n, 0.6)).unwrap();
     // A waypoint well behind the door (farther than the hop search reaches back to this
     // side): refused, the agent stays.
     let far = c - n * 1.5;
@@ -108,7 +109,7 @@ fn a_telhop_never_passes_a_closed_door() {
     assert!(matches!(out.hop, Some(Hop::Landed { .. })), "{out:?}");
     assert!(side(&out, c, n) > 0.3, "{out:?}");
     // Forward hops into the leaf land on this side.
-    s.reset(&scene, facing(c, n, 0.6)).unwrap();
+    s.reset(&scene, facing(&d, c, n, 0.6)).unwrap();
     for _ in 0..8 {
         let out = s.step(Action::MoveForward(0.25)).unwrap();
         assert!(side(&out, c, n) > 0.0, "{out:?}");
@@ -127,7 +128,7 @@ fn an_open_door_lets_the_agent_through() {
         .clone();
     let (c, n) = centre_normal(&d);
     let mut s = sim(CollisionSetting::Strict);
-    s.reset(&scene, facing(c, n, 1.0)).unwrap();
+    s.reset(&scene, facing(&d, c, n, 1.0)).unwrap();
     // Through and on to 0.5 m past the wall: the clearance box (1 m deep) is free.
     let mut last = 1.0;
     for _ in 0..6 {
@@ -137,7 +138,7 @@ fn an_open_door_lets_the_agent_through() {
     }
     assert!(last < -0.45, "still at {last} m from the wall");
     let mut t = sim(CollisionSetting::TelHop);
-    t.reset(&scene, facing(c, n, 0.6)).unwrap();
+    t.reset(&scene, facing(&d, c, n, 0.6)).unwrap();
     let to = c - n * 0.6;
     let out = t
         .step(Action::Waypoint {
