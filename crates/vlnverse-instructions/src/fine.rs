@@ -12,7 +12,8 @@ use super::path::{
     classify_turn, direction_of_yaw, env_side, floor_points, footprint, rect_distance,
     segment_headings, side_word, signed_turn_deg, visible, wall_rects, Turn,
 };
-use super::phrases::{self as ph, capitalize, fill, pick};
+use super::phrases::{self as ph, capitalize, fill, pick, Bank};
+use super::room_facts::{self, FloorKind};
 use super::spatial;
 use super::templates::TemplateConfig;
 use super::PathContext;
@@ -1041,9 +1042,27 @@ fn group_mates<'r>(
     }
 }
 
+/// The plural naming a group of `o`'s class: its vocabulary name, now and then another of its
+/// names ("couches"), one that takes a plain plural (not "chest of drawers", "bookshelves",
+/// "pair of shoes").
+fn group_noun(o: &SceneObject, rng: &mut ChaCha8Rng) -> String {
+    let names = object_names(o);
+    let plain: Vec<&str> = names
+        .iter()
+        .copied()
+        .filter(|n| !n.contains(" of ") && !n.ends_with('s'))
+        .collect();
+    let name = if plain.len() > 1 && rng.random_bool(0.3) {
+        pick(rng, &plain)
+    } else {
+        names[0]
+    };
+    plural(name)
+}
+
 /// A group of objects of one class: "the two chairs", "the white chairs", "three stools".
 fn group_np(o: &SceneObject, mates: &[(&SceneObject, &Landmark)], rng: &mut ChaCha8Rng) -> String {
-    let noun = plural(object_names(o)[0]);
+    let noun = group_noun(o, rng);
     let colour = mates
         .iter()
         .all(|(m, _)| m.color == o.color)
@@ -1485,7 +1504,7 @@ fn room_size_remark(
         return None;
     }
     let area = r.area();
-    let bank = if r.kind == RoomType::Hallway {
+    let size = if r.kind == RoomType::Hallway {
         (area > 6.0).then_some(ph::HALL_LONG)
     } else if area < 8.0 {
         Some(ph::ROOM_SMALL)
@@ -1494,7 +1513,24 @@ fn room_size_remark(
     } else {
         None
     };
-    bank.map(|b| pick(rng, &b).to_string())
+    // Its size, its windows or its floor, whichever the room has to say.
+    let scene = route.ctx.scene;
+    let windows = match room_facts::window_count(scene, r.id) {
+        1 => Some((ph::ROOM_WINDOW, 1)),
+        n @ 2..=4 => Some((ph::ROOM_WINDOWS, n)),
+        _ => None,
+    };
+    let floor = room_facts::floor_kind(scene, r.id).map(|k| match k {
+        FloorKind::Wood => ph::FLOOR_WOOD,
+        FloorKind::Tile => ph::FLOOR_TILE,
+    });
+    let mut said: Vec<(Bank, usize)> = size.into_iter().chain(floor).map(|b| (b, 0)).collect();
+    said.extend(windows);
+    if said.is_empty() {
+        return None;
+    }
+    let (bank, n) = said[rng.random_range(0..said.len())];
+    Some(fill(pick(rng, &bank), &[("num", &number_word(n as u32))]))
 }
 
 /// Add a leg's sentences: the first numbered ("Second, ...") or opened ("Next, ...") and
@@ -1726,6 +1762,31 @@ fn walk_time(pts: &[Vec2], rng: &mut ChaCha8Rng) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_group_is_named_by_a_plain_plural_of_one_of_its_names() {
+        use vlnverse_env::{Pose, SemanticClass as C};
+        let mut by_synonym = 0;
+        for &class in C::ALL {
+            let o = SceneObject::from_parts(0, class, Pose::IDENTITY, Vec::new());
+            let names = object_names(&o);
+            for seed in 0..40 {
+                let noun = group_noun(&o, &mut ChaCha8Rng::seed_from_u64(seed));
+                let from = names.iter().find(|n| plural(n) == noun);
+                let Some(n) = from else {
+                    panic!("{class:?}: `{noun}` is the plural of none of {names:?}");
+                };
+                if *n != names[0] {
+                    by_synonym += 1;
+                    assert!(
+                        !n.contains(" of ") && !n.ends_with('s'),
+                        "{class:?}: `{noun}`"
+                    );
+                }
+            }
+        }
+        assert!(by_synonym > 0, "never another name");
+    }
 
     #[test]
     fn simplify_keeps_corners_and_drops_zigzags() {

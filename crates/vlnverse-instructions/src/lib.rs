@@ -52,6 +52,7 @@ pub mod lexicon;
 pub mod llm;
 mod path;
 mod phrases;
+mod room_facts;
 mod spatial;
 pub mod storeys;
 mod templates;

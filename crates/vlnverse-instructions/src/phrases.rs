@@ -191,6 +191,10 @@ banks! {
     PASS_BETWEEN = pass_between,
     SEE_BETWEEN = see_between,
     SLIGHT_AGAIN = slight_again,
+    ROOM_WINDOW = room_window,
+    ROOM_WINDOWS = room_windows,
+    FLOOR_WOOD = floor_wood,
+    FLOOR_TILE = floor_tile,
 }
 
 /// A bank as written in the data file.

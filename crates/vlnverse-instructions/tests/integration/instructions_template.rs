@@ -662,3 +662,90 @@ fn the_living_room_keeps_one_name_through_an_instruction() {
     }
     assert!(seen > 0, "no instruction named the living room");
 }
+
+/// Glass panes of class window in `room` (a window is a pane and its frame).
+fn windows_in(scene: &Scene, room: u32) -> usize {
+    scene
+        .objects
+        .iter()
+        .filter(|o| {
+            o.class == vlnverse_env::SemanticClass::Window
+                && o.room == Some(room)
+                && o.material == "glass"
+        })
+        .count()
+}
+
+#[test]
+fn a_room_remark_gives_its_true_windows_and_floor() {
+    let g = gen();
+    let (mut windows, mut floors) = (0, 0);
+    for (wi, w) in worlds(5).iter().enumerate() {
+        for s in paths(w, 10, 300 + wi as u64) {
+            let path3: Vec<glam::Vec3> = s.path.iter().map(|p| glam::Vec3::from(*p)).collect();
+            let entered: Vec<u32> = rooms_along_path(&w.scene, &path3)
+                .iter()
+                .skip(1)
+                .map(|&(_, r)| r)
+                .collect();
+            let floor_of = |r: u32| {
+                w.scene
+                    .objects
+                    .iter()
+                    .filter(|o| o.class == vlnverse_env::SemanticClass::Floor && o.room == Some(r))
+                    .max_by(|a, b| {
+                        let area =
+                            |o: &vlnverse_env::SceneObject| o.bbox.size().x * o.bbox.size().z;
+                        area(a).total_cmp(&area(b))
+                    })
+                    .map(|o| o.material.clone())
+            };
+            for seed in 0..60 {
+                let t = g.fine(&w.ctx(&s), seed).unwrap().instruction_text;
+                for sentence in sentences(&t) {
+                    let sentence = sentence.to_lowercase();
+                    let n = if sentence == "there is a window in this room"
+                        || sentence == "the room has a window"
+                    {
+                        Some(1)
+                    } else {
+                        (2..=4).find(|&n| {
+                            let word = lexicon::number_word(n as u32);
+                            sentence == format!("the room has {word} windows")
+                                || sentence == format!("there are {word} windows in this room")
+                        })
+                    };
+                    if let Some(n) = n {
+                        windows += 1;
+                        assert!(
+                            entered.iter().any(|&r| windows_in(&w.scene, r) == n),
+                            "{n} windows in none of the rooms entered: {t}"
+                        );
+                    }
+                    let kind = match sentence.as_str() {
+                        "it has a tiled floor" | "the floor is tiled" | "it has a tile floor" => {
+                            Some("tile")
+                        }
+                        "it has a wooden floor"
+                        | "the floor is wooden"
+                        | "it has a hardwood floor" => Some("wood"),
+                        _ => None,
+                    };
+                    if let Some(kind) = kind {
+                        floors += 1;
+                        assert!(
+                            entered
+                                .iter()
+                                .any(|&r| floor_of(r).as_deref() == Some(kind)),
+                            "no {kind} floor in the rooms entered: {t}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        windows >= 3 && floors >= 3,
+        "only {windows} window and {floors} floor remarks"
+    );
+}
