@@ -46,6 +46,7 @@ use vlnverse_env::material::{Surface, TEX_SIZE};
 use vlnverse_env::Aabb;
 
 mod faces;
+mod lanes;
 mod prepared;
 
 use prepared::Prepared;
@@ -823,6 +824,7 @@ impl RasterScene {
             slot_tag.push(0);
         }
         let mut coarse = Coarse::new(p.w, p.h, 1.0 / p.far);
+        let mut lanes = lanes::Lanes::new();
         for &(_, oi) in &order {
             let o = &self.objects[oi];
             let cull = o.closed && {
@@ -871,25 +873,30 @@ impl RasterScene {
                     }
                 }
                 let first = out.len();
-                for t in c.first as usize..c.end as usize {
-                    let wp = &self.draw.pos[3 * t..3 * t + 3];
-                    let back = self.normal[t].dot(wp[0] - p.pos) > 0.0;
+                let tris = c.first as usize..c.end as usize;
+                // Transformed, projected and tested all at once.
+                lanes.load(p, &self.draw.pos[3 * tris.start..3 * tris.end]);
+                for (i, t) in tris.enumerate() {
+                    if !lanes.keep(i) {
+                        continue;
+                    }
+                    let back = self.normal[t].dot(self.draw.pos[3 * t] - p.pos) > 0.0;
                     if back && cull {
                         continue;
                     }
-                    let v = [p.to_camera(wp[0]), p.to_camera(wp[1]), p.to_camera(wp[2])];
+                    let (v, projected) = lanes.triangle(i);
                     let tag = 2 * self.draw.src[t] + back as u32 + 1;
                     if shade {
                         let n = out.len();
                         let slot = slots.len() as u32 + 1;
-                        if let Some(plane) = self.setup_triangle(p, v, slot, &mut out) {
+                        if let Some(plane) = self.setup_triangle(p, v, projected, slot, &mut out) {
                             if out.len() > n {
                                 slots.push(self.slot(p, t, plane));
                                 slot_tag.push(tag);
                             }
                         }
                     } else {
-                        self.setup_triangle(p, v, tag, &mut out);
+                        self.setup_triangle(p, v, projected, tag, &mut out);
                     }
                 }
                 if out.len() > first {
@@ -962,51 +969,17 @@ impl RasterScene {
         }
     }
 
-    /// Clip, project and emit one triangle; its `1 / depth` plane when it may be visible.
+    /// Clip, project and emit one triangle (corners `v` in camera space) that the tests of
+    /// its corners kept ([`lanes::Lanes`]); `projected`: its corners projected, when all are
+    /// in front of the near plane. Its `1 / depth` plane when it may be visible.
     fn setup_triangle(
         &self,
         p: &ViewParams,
         v: [Vec3; 3],
+        projected: Option<[(f32, f32); 3]>,
         tag: u32,
         out: &mut Vec<ScreenTri>,
     ) -> Option<[f64; 3]> {
-        let nz = -p.near;
-        if v.iter().all(|q| q.z > nz) || v.iter().all(|q| q.z < -p.far) {
-            return None;
-        }
-        // Entirely to one side of the view (all vertices in front of the eye plane here).
-        if v.iter().all(|q| q.z < 0.0) {
-            let side = |f: &dyn Fn(Vec3) -> bool| v.iter().all(|q| f(*q));
-            if side(&|q| p.fx * q.x < -p.cx * -q.z)
-                || side(&|q| p.fx * q.x > (p.w as f32 - p.cx) * -q.z)
-                || side(&|q| p.fy * q.y > p.cy * -q.z)
-                || side(&|q| p.fy * q.y < -(p.h as f32 - p.cy) * -q.z)
-            {
-                return None;
-            }
-        }
-        // In front of the near plane and so small that no pixel centre can be inside its box
-        // (with a margin far above snapping and rounding): most triangles of detailed far
-        // objects, rejected before the exact set-up.
-        let front = v.iter().all(|q| q.z <= nz);
-        let projected = front.then(|| v.map(|q| p.project(q)));
-        if let Some(s) = projected {
-            let (x0, x1) = (
-                s[0].0.min(s[1].0).min(s[2].0),
-                s[0].0.max(s[1].0).max(s[2].0),
-            );
-            let (y0, y1) = (
-                s[0].1.min(s[1].1).min(s[2].1),
-                s[0].1.max(s[1].1).max(s[2].1),
-            );
-            const M: f32 = 0.01;
-            // No integer in [lo, hi] (no pixel centre in the box) when floor(hi) < lo, which
-            // is ceil(lo) > floor(hi). f32 `floor` is a libm call on baseline x86-64.
-            let none = |lo: f32, hi: f32| fast_floor(hi as f64) < lo as f64;
-            if none(x0 - 0.5 - M, x1 - 0.5 + M) || none(y0 - 0.5 - M, y1 - 0.5 + M) {
-                return None;
-            }
-        }
         // The plane of the whole triangle gives 1/depth at every pixel (exact under clipping).
         let [a, b, c] = v.map(|q| q.as_dvec3());
         let nrm: DVec3 = (b - a).cross(c - a);
@@ -1027,7 +1000,7 @@ impl RasterScene {
         };
         if let Some(s) = projected {
             if s.iter()
-                .all(|(sx, sy, _)| sx.abs() < p.guard && sy.abs() < p.guard)
+                .all(|(sx, sy)| sx.abs() < p.guard && sy.abs() < p.guard)
             {
                 emit(p, [v[0], v[1], v[2]], plane, tag, out);
                 return plane64;

@@ -1,0 +1,155 @@
+//! The first tests of a cluster's triangles in one view, all of them at once in lanes the
+//! compiler vectorises (one array per corner and coordinate): corners to camera space and
+//! projected, and which triangles cannot cover a pixel centre by their corners alone (behind
+//! the near plane or beyond the far one, beside the view, or in front of the near plane and
+//! too small to hold a pixel centre). The values are those the scalar set-up computes
+//! ([`ViewParams::to_camera`], [`ViewParams::project`]: the same operations in the same order),
+//! so what is kept is set up exactly as before.
+
+use super::{ViewParams, CLUSTER};
+use glam::Vec3;
+
+/// One coordinate of corner `k` of triangle `i` at `[k][i]`.
+type Coords = [[f32; CLUSTER]; 3];
+
+/// Up to [`CLUSTER`] triangles of one view: corners in camera space, projected, and tested.
+pub(super) struct Lanes {
+    x: Coords,
+    y: Coords,
+    z: Coords,
+    sx: Coords,
+    sy: Coords,
+    /// Whether triangle `i` may cover a pixel centre (it is not rejected by its corners).
+    keep: [bool; CLUSTER],
+    /// Whether every corner of triangle `i` is in front of the near plane.
+    front: [bool; CLUSTER],
+}
+
+impl Lanes {
+    /// Lanes for a view (zeros until [`Lanes::load`]).
+    pub(super) fn new() -> Self {
+        let zero = [[0.0; CLUSTER]; 3];
+        Lanes {
+            x: zero,
+            y: zero,
+            z: zero,
+            sx: zero,
+            sy: zero,
+            keep: [false; CLUSTER],
+            front: [false; CLUSTER],
+        }
+    }
+
+    /// Transform, project and test the triangles whose corners are `pos` (three a triangle,
+    /// at most [`CLUSTER`] triangles; any further ones are ignored).
+    pub(super) fn load(&mut self, p: &ViewParams, pos: &[Vec3]) {
+        let (ex, ey, ez) = (p.pos.x, p.pos.y, p.pos.z);
+        let (mut dx, mut dy, mut dz) = (
+            [[0.0f32; CLUSTER]; 3],
+            [[0.0; CLUSTER]; 3],
+            [[0.0; CLUSTER]; 3],
+        );
+        for (i, t) in pos.chunks_exact(3).take(CLUSTER).enumerate() {
+            for k in 0..3 {
+                dx[k][i] = t[k].x - ex;
+                dy[k][i] = t[k].y - ey;
+                dz[k][i] = t[k].z - ez;
+            }
+        }
+        // `rot * d` as glam's `Mat3 * Vec3`: x axis times d.x, plus y axis times d.y, plus
+        // z axis times d.z.
+        let (ra, rb, rc) = (p.rot.x_axis, p.rot.y_axis, p.rot.z_axis);
+        let (nz, far) = (-p.near, p.far);
+        let (fx, fy, cx, cy) = (p.fx, p.fy, p.cx, p.cy);
+        let (right, bottom) = (p.w as f32 - cx, -(p.h as f32 - cy));
+        for k in 0..3 {
+            for i in 0..CLUSTER {
+                let (a, b, c) = (dx[k][i], dy[k][i], dz[k][i]);
+                let x = ra.x * a + rb.x * b + rc.x * c;
+                let y = ra.y * a + rb.y * b + rc.y * c;
+                let z = ra.z * a + rb.z * b + rc.z * c;
+                let iz = 1.0 / -z;
+                self.x[k][i] = x;
+                self.y[k][i] = y;
+                self.z[k][i] = z;
+                self.sx[k][i] = cx + fx * x * iz;
+                self.sy[k][i] = cy - fy * y * iz;
+            }
+        }
+        // Margin in pixels far above snapping and rounding.
+        const M: f32 = 0.01;
+        let (x, y, z, sx, sy) = (&self.x, &self.y, &self.z, &self.sx, &self.sy);
+        for i in 0..CLUSTER {
+            // A test passed by all three corners.
+            let all = |f: &dyn Fn(usize) -> bool| f(0) & f(1) & f(2);
+            let out = all(&|k| z[k][i] > nz)
+                | all(&|k| z[k][i] < -far)
+                | (all(&|k| z[k][i] < 0.0)
+                    & (all(&|k| fx * x[k][i] < -cx * -z[k][i])
+                        | all(&|k| fx * x[k][i] > right * -z[k][i])
+                        | all(&|k| fy * y[k][i] > cy * -z[k][i])
+                        | all(&|k| fy * y[k][i] < bottom * -z[k][i])));
+            let front = all(&|k| z[k][i] <= nz);
+            let (x0, x1) = (
+                min3(sx[0][i], sx[1][i], sx[2][i]),
+                max3(sx[0][i], sx[1][i], sx[2][i]),
+            );
+            let (y0, y1) = (
+                min3(sy[0][i], sy[1][i], sy[2][i]),
+                max3(sy[0][i], sy[1][i], sy[2][i]),
+            );
+            let small = none(x0 - 0.5 - M, x1 - 0.5 + M) | none(y0 - 0.5 - M, y1 - 0.5 + M);
+            self.keep[i] = !(out | (front & small));
+            self.front[i] = front;
+        }
+    }
+
+    /// Whether triangle `i` of the last [`Lanes::load`] may cover a pixel centre.
+    #[inline]
+    pub(super) fn keep(&self, i: usize) -> bool {
+        self.keep.get(i).copied().unwrap_or(false)
+    }
+
+    /// Triangle `i`'s corners in camera space, and projected when they are all in front of
+    /// the near plane.
+    #[inline]
+    pub(super) fn triangle(&self, i: usize) -> ([Vec3; 3], Option<[(f32, f32); 3]>) {
+        let i = i.min(CLUSTER - 1);
+        let v = [0, 1, 2].map(|k| Vec3::new(self.x[k][i], self.y[k][i], self.z[k][i]));
+        let s = self.front[i].then(|| [0, 1, 2].map(|k| (self.sx[k][i], self.sy[k][i])));
+        (v, s)
+    }
+}
+
+#[inline]
+fn min3(a: f32, b: f32, c: f32) -> f32 {
+    let m = if b < a { b } else { a };
+    if c < m {
+        c
+    } else {
+        m
+    }
+}
+
+#[inline]
+fn max3(a: f32, b: f32, c: f32) -> f32 {
+    let m = if b > a { b } else { a };
+    if c > m {
+        c
+    } else {
+        m
+    }
+}
+
+/// No integer in `[lo, hi]` (no pixel centre in a box): `floor(hi) < lo`, branch-free, for
+/// `|hi|` below 2^22 (where adding and taking away 1.5 x 2^23 rounds to an integer exactly);
+/// "not sure" (false) beyond, which only sends a triangle on to the exact set-up.
+#[inline]
+fn none(lo: f32, hi: f32) -> bool {
+    const MAGIC: f32 = 12_582_912.0;
+    const LIMIT: f32 = 4_194_304.0;
+    let r = (hi + MAGIC) - MAGIC;
+    let f = if r > hi { r - 1.0 } else { r };
+    let small = (if hi < 0.0 { -hi } else { hi }) < LIMIT;
+    small & (f < lo)
+}
