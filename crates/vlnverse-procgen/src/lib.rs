@@ -27,7 +27,8 @@ use vlnverse_env::{Aabb, Door, EnvError, Result, Scene, SceneSource};
 pub enum Preset {
     /// A handful of homes, generated in well under a second: for tests and demos.
     Tiny,
-    /// The benchmark world: 263 homes of 3-10 rooms (the documented default config).
+    /// The benchmark world: 263 homes of 3-10 rooms on the ground floor, 30% of them with an upper
+    /// floor and stairs (the documented default config).
     Vlnverse,
 }
 
