@@ -327,6 +327,9 @@ struct Setup {
     tris: Vec<ScreenTri>,
     slots: Vec<Slot>,
     slot_tag: Vec<u32>,
+    /// Class of each slot number (`slot_class[0]`: nothing), for the semantic image written
+    /// run by run with the colour.
+    slot_class: Vec<u16>,
     /// Clusters culled whole (what the tests check culling against).
     #[cfg_attr(not(test), allow(dead_code))]
     culled: usize,
@@ -930,10 +933,14 @@ impl RasterScene {
                 }
             }
         }
+        let mut slot_class = spare.slot_class;
+        slot_class.clear();
+        slot_class.extend(slot_tag.iter().map(|&t| self.tag_class[t as usize]));
         Setup {
             tris: out,
             slots,
             slot_tag,
+            slot_class,
             culled,
             occluded,
         }
@@ -1052,9 +1059,12 @@ impl RasterScene {
             self.resolve_depth(p, zbuf, want_depth);
             return;
         };
+        let mut semantic = semantic;
         if let Some(rgb) = rgb {
-            self.resolve_rgb(setup, w, y0, zbuf, ids, rgb);
-            if semantic.is_some() || want_instance {
+            // Without instance ids, the classes are written with the colour, run by run.
+            let sem = if want_instance { None } else { semantic.take() };
+            self.resolve_rgb(setup, w, y0, zbuf, ids, rgb, sem);
+            if want_instance {
                 for id in ids.iter_mut() {
                     *id = setup.slot_tag[*id as usize];
                 }
@@ -1083,7 +1093,9 @@ impl RasterScene {
         }
     }
 
-    /// Colour of every pixel of a band from its slot and `1 / depth`.
+    /// Colour of every pixel of a band from its slot and `1 / depth`, and with `sem` its
+    /// class.
+    #[allow(clippy::too_many_arguments)]
     fn resolve_rgb(
         &self,
         setup: &Setup,
@@ -1092,6 +1104,7 @@ impl RasterScene {
         zbuf: &[f32],
         ids: &[u32],
         rgb: &mut [u8],
+        mut sem: Option<&mut [u16]>,
     ) {
         // Float -> int by the magic-number trick (adding 1.5 * 2^23 leaves the rounded value
         // in the low mantissa bits): no saturating conversions, no branches in the hot loop.
@@ -1129,6 +1142,12 @@ impl RasterScene {
                     e += 1;
                 }
                 let n = e - x;
+                if let Some(s) = sem.as_deref_mut() {
+                    let class = setup.slot_class.get(id as usize).copied().unwrap_or(0);
+                    if let Some(run) = s.get_mut(row * w + x..row * w + e) {
+                        run.fill(class);
+                    }
+                }
                 let px = &mut out[3 * x..3 * e];
                 let Some(s) = (id as usize).checked_sub(1).and_then(|i| slots.get(i)) else {
                     px.fill(0);
