@@ -274,17 +274,14 @@ impl Walk {
         }
     }
 
-    /// Move to the next row.
+    /// Move to the next row (branch-free: whether `r` carries past `|a|` is data, not
+    /// pattern; for a horizontal edge `dq` and `a` are 0 and nothing carries).
     #[inline]
     fn step(&mut self) {
         self.r += self.br;
-        if self.dir != 0 {
-            self.x += self.dq;
-            if self.r >= self.a {
-                self.x += self.dir;
-                self.r -= self.a;
-            }
-        }
+        let carry = i64::from(self.dir != 0 && self.r >= self.a);
+        self.x += self.dq + carry * self.dir;
+        self.r -= carry * self.a;
     }
 }
 
@@ -1531,11 +1528,11 @@ fn raster<const IDS: bool>(
             let (mut lo, mut hi) = (t.x0 as i64, t.x1 as i64);
             let mut empty = false;
             for k in &mut walks {
-                match k.dir {
-                    -1 => lo = lo.max(k.x),
-                    1 => hi = hi.min(k.x),
-                    _ => empty |= k.r < 0,
-                }
+                // Branch-free: a left edge bounds `lo`, a right edge `hi`, a horizontal one
+                // empties the row when it is outside.
+                lo = if k.dir < 0 && k.x > lo { k.x } else { lo };
+                hi = if k.dir > 0 && k.x < hi { k.x } else { hi };
+                empty |= k.dir == 0 && k.r < 0;
                 k.step();
             }
             if empty || lo > hi {
@@ -1617,11 +1614,11 @@ fn span_ids(zs: &mut [f32], ids: &mut [u32], z0: f32, t: &ScreenTri) {
         .zip(ic.into_remainder())
         .enumerate()
     {
+        // Stores of selected values, not branches (which pixel wins is data).
         let v = (base + za * k as f32).clamp_range(lo, hi);
-        if v > *z {
-            *z = v;
-            *id = tag;
-        }
+        let m = v > *z;
+        *id = if m { tag } else { *id };
+        *z = if m { v } else { *z };
     }
 }
 
@@ -1647,9 +1644,7 @@ fn span_depth(zs: &mut [f32], z0: f32, t: &ScreenTri) {
     }
     for (k, z) in zc.into_remainder().iter_mut().enumerate() {
         let v = (base + za * k as f32).clamp_range(lo, hi);
-        if v > *z {
-            *z = v;
-        }
+        *z = if v > *z { v } else { *z };
     }
 }
 
