@@ -15,7 +15,7 @@ use super::path::{
 use super::phrases::{self as ph, capitalize, fill, pick, Bank};
 use super::room_facts::{self, FloorKind};
 use super::spatial;
-use super::templates::TemplateConfig;
+use super::templates::{same_class_in_room, TemplateConfig};
 use super::PathContext;
 use glam::{Vec2, Vec3};
 use rand::{Rng, SeedableRng};
@@ -1720,6 +1720,14 @@ fn closing_remarks(route: &Route<'_, '_>, draft: &mut Draft) {
         } else if only && rng.random_bool(p) {
             let name = o.class.words();
             sentences.push(fill(pick(rng, &ph::ONLY_ONE), &[("name", &name)]));
+        } else if rng.random_bool(p * 0.5) {
+            // "There are three chairs in the room": the count of its class in its room.
+            if let Some((n, names)) = same_class_in_room(ctx, o, &o.class.words()) {
+                sentences.push(fill(
+                    pick(rng, &ph::END_COUNT),
+                    &[("n", &n), ("names", &names)],
+                ));
+            }
         }
     }
     if writer != Writer::Terse && rng.random_bool(0.12) {

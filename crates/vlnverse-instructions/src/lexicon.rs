@@ -404,7 +404,7 @@ pub fn shape_words(o: &SceneObject, peers: &[&SceneObject]) -> Vec<&'static str>
     match o.class {
         C::Bed if d > 1.7 => out.push("king-size"),
         C::Bed if d > 1.3 => out.push("double"),
-        C::Bed if d > 0.5 && d < 1.1 => out.push("single"),
+        C::Bed if d > 0.5 && d < 1.1 => out.extend(["single", "twin"]),
         _ => {}
     }
     let largest = o.parts.iter().max_by(|a, b| {
@@ -413,7 +413,7 @@ pub fn shape_words(o: &SceneObject, peers: &[&SceneObject]) -> Vec<&'static str>
             .total_cmp(&b.shape.nominal_volume())
     });
     if let Some(Shape::Cylinder { .. } | Shape::Sphere { .. }) = largest.map(|p| &p.shape) {
-        out.push("round");
+        out.extend(["round", "circular"]);
     }
     // Bulk against the other objects of its class, when there are any.
     let vol = |x: &SceneObject| {
@@ -554,6 +554,53 @@ mod tests {
         if let Err(e) = parse_shade_rules(COLOURS_FILE, include_str!("../data/colours.toml")) {
             panic!("{e}");
         }
+    }
+
+    #[test]
+    fn a_single_bed_is_also_twin_and_a_cylinder_also_circular() {
+        use vlnverse_env::{Part, Pose, Shape};
+        let part = |shape: Shape| Part {
+            shape,
+            transform: Pose::IDENTITY,
+            color: [0.5, 0.5, 0.5],
+        };
+        let boxed = |class: C, half: [f32; 3]| {
+            SceneObject::from_parts(
+                0,
+                class,
+                Pose::IDENTITY,
+                vec![part(Shape::Cuboid {
+                    half_extents: half,
+                    bevel: 0.0,
+                })],
+            )
+        };
+        let single = shape_words(&boxed(C::Bed, [0.45, 0.25, 1.0]), &[]);
+        assert!(
+            single.contains(&"single") && single.contains(&"twin"),
+            "{single:?}"
+        );
+        let double = shape_words(&boxed(C::Bed, [0.75, 0.25, 1.0]), &[]);
+        assert!(
+            double.contains(&"double") && !double.contains(&"twin"),
+            "{double:?}"
+        );
+        let table = SceneObject::from_parts(
+            0,
+            C::SideTable,
+            Pose::IDENTITY,
+            vec![part(Shape::Cylinder {
+                radius: 0.3,
+                half_height: 0.3,
+            })],
+        );
+        let round = shape_words(&table, &[]);
+        assert!(
+            round.contains(&"round") && round.contains(&"circular"),
+            "{round:?}"
+        );
+        let square = shape_words(&boxed(C::SideTable, [0.3, 0.3, 0.3]), &[]);
+        assert!(!square.contains(&"circular"), "{square:?}");
     }
 
     #[test]

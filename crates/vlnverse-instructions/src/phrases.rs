@@ -195,6 +195,7 @@ banks! {
     ROOM_WINDOWS = room_windows,
     FLOOR_WOOD = floor_wood,
     FLOOR_TILE = floor_tile,
+    END_COUNT = end_count,
 }
 
 /// A bank as written in the data file.

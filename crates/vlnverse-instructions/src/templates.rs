@@ -579,7 +579,7 @@ fn target_remark(
 /// How many objects of `o`'s class its room holds, as a number word, and the class name
 /// `name` in the plural: `None` for one alone, for more than six (nobody counts those), and for
 /// names with no plural ("shoes", "shampoo").
-fn same_class_in_room(
+pub(crate) fn same_class_in_room(
     ctx: &PathContext<'_>,
     o: &SceneObject,
     name: &str,

@@ -749,3 +749,45 @@ fn a_room_remark_gives_its_true_windows_and_floor() {
         "only {windows} window and {floors} floor remarks"
     );
 }
+
+/// A count after the stop ("There are three chairs in the room.") gives the true number of the
+/// end object's class in its room.
+#[test]
+fn a_fine_count_remark_gives_the_true_number_in_the_room() {
+    let g = gen();
+    let mut said = 0;
+    for (wi, w) in worlds(5).iter().enumerate() {
+        for s in paths(w, 12, 500 + wi as u64) {
+            for seed in 0..60 {
+                let ins = g.fine(&w.ctx(&s), seed).unwrap();
+                let Some(end) = ins.grounding.iter().find(|x| x.role == Role::Target) else {
+                    continue;
+                };
+                let o = w.scene.object(end.object_id).unwrap();
+                let names = lexicon::plural(lexicon::class_names(o.class)[0]);
+                for sentence in sentences(&ins.instruction_text) {
+                    let told = (2..=6u32).find(|&k| {
+                        let k = lexicon::number_word(k);
+                        [
+                            format!("There are {k} {names} in the room"),
+                            format!("It is one of {k} {names} in the room"),
+                            format!("The room has {k} {names}"),
+                        ]
+                        .contains(&sentence)
+                    });
+                    if let Some(k) = told {
+                        said += 1;
+                        let n = w
+                            .scene
+                            .objects
+                            .iter()
+                            .filter(|x| x.class == o.class && x.room == o.room)
+                            .count();
+                        assert_eq!(k as usize, n, "{}", ins.instruction_text);
+                    }
+                }
+            }
+        }
+    }
+    assert!(said > 0, "no count remark in any fine instruction");
+}
