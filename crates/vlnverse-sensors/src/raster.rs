@@ -1432,25 +1432,34 @@ fn emit_tested(
     out: &mut Vec<ScreenTri>,
     small: i64,
 ) {
+    // Snapped coordinates are integers below 2^25 (`MAX_FIXED`) and every value below is an
+    // integer below 2^53: exact in i64 as it was in f64, without f64 -> i64 conversions.
+    // `sub` is a power of two, at least 1 for any image under 2^24 pixels a side (a wider
+    // one draws nothing).
     let sub = p.sub;
-    let mut s = [(0.0f64, 0.0f64); 3];
+    let si = sub as i64;
+    if si < 1 {
+        return;
+    }
+    // Floor and ceiling of `n / (2 sub)` by an arithmetic shift.
+    let shift = (2 * si).trailing_zeros();
+    let mut s = [(0i64, 0i64); 3];
     let (mut zlo, mut zhi) = (f32::INFINITY, 0.0f32);
     for (k, q) in v.iter().enumerate() {
         let iz = 1.0 / -(q.z as f64);
         let sx = p.cx as f64 + p.fx as f64 * q.x as f64 * iz;
         let sy = p.cy as f64 - p.fy as f64 * q.y as f64 * iz;
-        s[k] = (fast_floor(sx * sub + 0.5), fast_floor(sy * sub + 0.5));
+        s[k] = (floor_i64(sx * sub + 0.5), floor_i64(sy * sub + 0.5));
         zlo = zlo.min(iz as f32);
         zhi = zhi.max(iz as f32);
     }
     let area = (s[1].0 - s[0].0) * (s[2].1 - s[0].1) - (s[1].1 - s[0].1) * (s[2].0 - s[0].0);
-    if area == 0.0 {
+    if area == 0 {
         return;
     }
-    if area < 0.0 {
+    if area < 0 {
         s.swap(1, 2);
     }
-    let half = sub * 0.5;
     let (xmin, xmax) = (
         s[0].0.min(s[1].0).min(s[2].0),
         s[0].0.max(s[1].0).max(s[2].0),
@@ -1459,13 +1468,14 @@ fn emit_tested(
         s[0].1.min(s[1].1).min(s[2].1),
         s[0].1.max(s[1].1).max(s[2].1),
     );
-    // Pixels whose centres can be inside (`sub` is a power of two: times its inverse is the
-    // same as divided by it).
-    let inv = 1.0 / sub;
-    let x0 = fast_ceil((xmin - half) * inv).max(0.0);
-    let x1 = fast_floor((xmax - half) * inv).min(p.w as f64 - 1.0);
-    let y0 = fast_ceil((ymin - half) * inv).max(0.0);
-    let y1 = fast_floor((ymax - half) * inv).min(p.h as f64 - 1.0);
+    // Pixels whose centres can be inside: ceil and floor of (coordinate - sub / 2) / sub, in
+    // units of half a sub-pixel step.
+    let ceil = |n: i64| -((-n) >> shift);
+    let floor = |n: i64| n >> shift;
+    let x0 = ceil(2 * xmin - si).max(0);
+    let x1 = floor(2 * xmax - si).min(p.w as i64 - 1);
+    let y0 = ceil(2 * ymin - si).max(0);
+    let y1 = floor(2 * ymax - si).min(p.h as i64 - 1);
     if x0 > x1 || y0 > y1 {
         return;
     }
@@ -1473,20 +1483,21 @@ fn emit_tested(
         let (dx, dy) = (s[j].0 - s[i].0, s[j].1 - s[i].1);
         // Top-left rule (y down, inside on the right of i -> j): left edges go up, top edges
         // run right; pixels exactly on other edges belong to the neighbour.
-        let top_left = dy < 0.0 || (dy == 0.0 && dx > 0.0);
-        // Integers below 2^53, exact in f64 and so in i64.
+        let top_left = dy < 0 || (dy == 0 && dx > 0);
+        // c = dx (sub / 2 - y_i) - dy (sub / 2 - x_i) - (0 or 1), truncated as the f64 value
+        // was (an integer for sub >= 2).
+        let c2 = dx * (si - 2 * s[i].1) - dy * (si - 2 * s[i].0) - if top_left { 0 } else { 2 };
         Edge {
-            a: (-sub * dy) as i64,
-            b: (sub * dx) as i64,
-            c: (dx * (half - s[i].1) - dy * (half - s[i].0) - if top_left { 0.0 } else { 1.0 })
-                as i64,
+            a: -si * dy,
+            b: si * dx,
+            c: c2 / 2,
         }
     };
     let edges = [edge(0, 1), edge(1, 2), edge(2, 0)];
     // A triangle of a few pixels' box (most of a small object's far away) often holds none of
     // their centres: test them here, as the fill would, and leave out one that would fill
     // nothing (no slot, no fill, no group for it).
-    let (px0, px1, py0, py1) = (x0 as i64, x1 as i64, y0 as i64, y1 as i64);
+    let (px0, px1, py0, py1) = (x0, x1, y0, y1);
     if (px1 - px0 + 1) * (py1 - py0 + 1) <= small
         && !(py0..=py1)
             .any(|y| (px0..=px1).any(|x| edges.iter().all(|e| e.a * x + e.b * y + e.c >= 0)))
@@ -1670,6 +1681,13 @@ impl ClampRange for f32 {
 fn fast_ceil(v: f64) -> f64 {
     let t = v as i64 as f64;
     t + f64::from(u8::from(t < v))
+}
+
+/// `floor` of a snapped coordinate (|v| < 2^53) as an integer.
+#[inline]
+fn floor_i64(v: f64) -> i64 {
+    let t = v as i64;
+    t - i64::from(t as f64 > v)
 }
 
 #[inline]
