@@ -97,16 +97,24 @@ impl SceneTaskContext<'_> {
         }
     }
 
+    /// The context a walk is described in: its level's view (without the flights when
+    /// `off_flight`), maps and graph, the walk's points and heading.
     fn walk_ctx<'p>(
         f: &'p Floors<'_>,
         walk: &Walk,
         path: &'p [[f32; 3]],
         start_yaw: f32,
+        off_flight: bool,
     ) -> PathContext<'p> {
         let l = &f.levels[walk.level as usize];
+        let (scene, graph) = if off_flight {
+            (&l.off_stairs.0, &l.off_stairs.1)
+        } else {
+            (&l.scene, &l.graph)
+        };
         PathContext {
-            scene: &l.scene,
-            graph: &l.graph,
+            scene,
+            graph,
             navigable: &l.maps.navigable,
             path,
             start_yaw,
@@ -223,7 +231,10 @@ impl SceneTaskContext<'_> {
                         continue;
                     }
                     let w3 = Self::walk3(f, w);
-                    let ctx = Self::walk_ctx(f, w, &w3, Self::walk_yaw(&path, i, start_yaw));
+                    // A walk off the flight that ends the route names no stairs on its way.
+                    let off = i > 0 && i + 1 == path.walks.len();
+                    let yaw = Self::walk_yaw(&path, i, start_yaw);
+                    let ctx = Self::walk_ctx(f, w, &w3, yaw, off);
                     let mut ins = match instruction(
                         self.instructions.fine(&ctx, derive_seed(seed, &[i as u64])),
                     )? {
@@ -315,7 +326,7 @@ impl SceneTaskContext<'_> {
         let last = path.walks.len() - 1;
         let w = &path.walks[last];
         let w3 = Self::walk3(f, w);
-        let ctx = Self::walk_ctx(f, w, &w3, Self::walk_yaw(path, last, start_yaw));
+        let ctx = Self::walk_ctx(f, w, &w3, Self::walk_yaw(path, last, start_yaw), false);
         let mut ins = match instruction(self.instructions.coarse(&ctx, target, style, seed))? {
             Ok(i) => i,
             Err(r) => return Ok(Err(r)),

@@ -19,7 +19,7 @@ use vlnverse_env::geodesic::{
 };
 use vlnverse_env::occupancy::OccupancyMaps;
 use vlnverse_env::scene_graph::SceneGraph;
-use vlnverse_env::{LevelId, Scene, Stairs};
+use vlnverse_env::{LevelId, Scene, SemanticClass, Stairs};
 use vlnverse_instructions::storeys::Flight;
 use vlnverse_score::{DataError, Result};
 
@@ -35,6 +35,9 @@ pub struct LevelData {
     pub maps: OccupancyMaps,
     /// The graph of the level's view.
     pub graph: SceneGraph,
+    /// The level's view without its flights of stairs, and its graph: what a walk off a flight
+    /// is described on, so that it does not name the stairs it has just left as a landmark.
+    pub off_stairs: (Scene, SceneGraph),
 }
 
 impl LevelData {
@@ -51,10 +54,14 @@ impl LevelData {
                     )
                 })?;
                 let graph = SceneGraph::build(&view);
+                let mut bare = view.clone();
+                bare.objects.retain(|o| o.class != SemanticClass::Stairs);
+                let bare_graph = SceneGraph::build(&bare);
                 Ok(LevelData {
                     scene: view,
                     maps,
                     graph,
+                    off_stairs: (bare, bare_graph),
                 })
             })
             .collect()

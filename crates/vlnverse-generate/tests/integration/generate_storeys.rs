@@ -192,6 +192,42 @@ fn grounding_is_exact_on_the_whole_path_and_the_stairs_are_named() {
 }
 
 #[test]
+fn a_fine_walk_off_the_flight_does_not_name_the_stairs_it_left() {
+    let dir = two_storey();
+    let mut checked = 0;
+    for ep in episodes(Task::Fine) {
+        let levels = levels_of(&ep);
+        if levels[0] == levels[1] {
+            continue;
+        }
+        let scene = load_scene(dir.join("scenes").join(&ep.scene_id)).unwrap();
+        let is_stairs = |id: u32| {
+            scene
+                .object(id)
+                .is_some_and(|o| o.class == vlnverse_env::SemanticClass::Stairs)
+        };
+        // The first point on the goal's floor: where the flight ends.
+        let end_y = ep.reference_path.last().unwrap()[1];
+        let off = ep
+            .reference_path
+            .iter()
+            .position(|p| (p[1] - end_y).abs() < 0.01)
+            .unwrap();
+        for g in &ep.instruction.grounding {
+            assert!(
+                !(is_stairs(g.object_id) && g.path_index.is_some_and(|i| i as usize >= off)),
+                "episode {}: the stairs named at point {:?} after the flight (from {off}): {}",
+                ep.episode_id,
+                g.path_index,
+                ep.instruction.instruction_text
+            );
+        }
+        checked += 1;
+    }
+    assert!(checked > 5, "only {checked} fine episodes across floors");
+}
+
+#[test]
 fn two_storey_datasets_are_byte_identical_on_one_thread() {
     let one = tempfile::tempdir().unwrap();
     generate(one.path(), 1);
