@@ -874,16 +874,18 @@ impl RasterScene {
                 }
                 let first = out.len();
                 let tris = c.first as usize..c.end as usize;
-                // Transformed, projected and tested all at once.
-                lanes.load(p, &self.draw.pos[3 * tris.start..3 * tris.end]);
+                // Transformed, projected and tested (back faces where they may be culled)
+                // all at once.
+                let (pos, normals) = (
+                    &self.draw.pos[3 * tris.start..3 * tris.end],
+                    &self.normal[tris.clone()],
+                );
+                lanes.load(p, pos, normals, cull);
                 for (i, t) in tris.enumerate() {
                     if !lanes.keep(i) {
                         continue;
                     }
-                    let back = self.normal[t].dot(self.draw.pos[3 * t] - p.pos) > 0.0;
-                    if back && cull {
-                        continue;
-                    }
+                    let back = lanes.back(i);
                     let (v, projected) = lanes.triangle(i);
                     let tag = 2 * self.draw.src[t] + back as u32 + 1;
                     if shade {

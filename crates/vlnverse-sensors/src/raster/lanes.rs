@@ -23,6 +23,9 @@ pub(super) struct Lanes {
     keep: [bool; CLUSTER],
     /// Whether every corner of triangle `i` is in front of the near plane.
     front: [bool; CLUSTER],
+    /// Whether triangle `i` faces away from the eye (its normal and the eye on opposite sides
+    /// of its plane, as [`RasterScene::setup`] tests it).
+    back: [bool; CLUSTER],
 }
 
 impl Lanes {
@@ -37,24 +40,32 @@ impl Lanes {
             sy: zero,
             keep: [false; CLUSTER],
             front: [false; CLUSTER],
+            back: [false; CLUSTER],
         }
     }
 
     /// Transform, project and test the triangles whose corners are `pos` (three a triangle,
-    /// at most [`CLUSTER`] triangles; any further ones are ignored).
-    pub(super) fn load(&mut self, p: &ViewParams, pos: &[Vec3]) {
+    /// at most [`CLUSTER`] triangles; any further ones are ignored) and unit normals
+    /// `normals`; with `cull`, back faces are not kept.
+    pub(super) fn load(&mut self, p: &ViewParams, pos: &[Vec3], normals: &[Vec3], cull: bool) {
         let (ex, ey, ez) = (p.pos.x, p.pos.y, p.pos.z);
         let (mut dx, mut dy, mut dz) = (
             [[0.0f32; CLUSTER]; 3],
             [[0.0; CLUSTER]; 3],
             [[0.0; CLUSTER]; 3],
         );
-        for (i, t) in pos.chunks_exact(3).take(CLUSTER).enumerate() {
+        let (mut nx, mut ny, mut nz_) = ([0.0f32; CLUSTER], [0.0; CLUSTER], [0.0; CLUSTER]);
+        for (i, (t, n)) in pos.chunks_exact(3).zip(normals).take(CLUSTER).enumerate() {
             for k in 0..3 {
                 dx[k][i] = t[k].x - ex;
                 dy[k][i] = t[k].y - ey;
                 dz[k][i] = t[k].z - ez;
             }
+            (nx[i], ny[i], nz_[i]) = (n.x, n.y, n.z);
+        }
+        // `normal.dot(corner 0 - eye) > 0` as glam's `Vec3::dot`.
+        for i in 0..CLUSTER {
+            self.back[i] = nx[i] * dx[0][i] + ny[i] * dy[0][i] + nz_[i] * dz[0][i] > 0.0;
         }
         // `rot * d` as glam's `Mat3 * Vec3`: x axis times d.x, plus y axis times d.y, plus
         // z axis times d.z.
@@ -99,7 +110,7 @@ impl Lanes {
                 max3(sy[0][i], sy[1][i], sy[2][i]),
             );
             let small = none(x0 - 0.5 - M, x1 - 0.5 + M) | none(y0 - 0.5 - M, y1 - 0.5 + M);
-            self.keep[i] = !(out | (front & small));
+            self.keep[i] = !(out | (front & small) | (cull & self.back[i]));
             self.front[i] = front;
         }
     }
@@ -108,6 +119,12 @@ impl Lanes {
     #[inline]
     pub(super) fn keep(&self, i: usize) -> bool {
         self.keep.get(i).copied().unwrap_or(false)
+    }
+
+    /// Whether triangle `i` faces away from the eye.
+    #[inline]
+    pub(super) fn back(&self, i: usize) -> bool {
+        self.back.get(i).copied().unwrap_or(false)
     }
 
     /// Triangle `i`'s corners in camera space, and projected when they are all in front of
