@@ -1060,7 +1060,8 @@ fn group_noun(o: &SceneObject, rng: &mut ChaCha8Rng) -> String {
     plural(name)
 }
 
-/// A group of objects of one class: "the two chairs", "the white chairs", "three stools".
+/// A group of objects of one class: "the two chairs", "the white chairs", "three stools",
+/// "some chairs".
 fn group_np(o: &SceneObject, mates: &[(&SceneObject, &Landmark)], rng: &mut ChaCha8Rng) -> String {
     let noun = group_noun(o, rng);
     let colour = mates
@@ -1070,10 +1071,11 @@ fn group_np(o: &SceneObject, mates: &[(&SceneObject, &Landmark)], rng: &mut ChaC
         .filter(|c| !c.is_empty() && rng.random_bool(0.4));
     let adj = colour.map(|c| format!("{c} ")).unwrap_or_default();
     let n = number_word(mates.len() as u32 + 1);
-    match rng.random_range(0..3) {
-        0 => format!("the {adj}{noun}"),
-        1 => format!("{n} {adj}{noun}"),
-        _ => format!("the {n} {adj}{noun}"),
+    match rng.random_range(0..7) {
+        0 | 1 => format!("the {adj}{noun}"),
+        2 | 3 => format!("{n} {adj}{noun}"),
+        4 | 5 => format!("the {n} {adj}{noun}"),
+        _ => format!("some {adj}{noun}"),
     }
 }
 /// Now and then hold back this leg's last lateral landmark to open the next leg's turn.

@@ -239,7 +239,7 @@ fn fine_follows_the_turns_of_the_path() {
             .instruction_text
             .to_lowercase();
         assert!(
-            ["around", "opposite", "u-turn", "turn back"]
+            ["around", "opposite", "u-turn", "turn back", "180 degrees"]
                 .iter()
                 .any(|k| b.contains(k)),
             "{b}"
