@@ -889,6 +889,7 @@ fn write_plots(
         let img = plots::plot_episode(
             &ctx.scene,
             Some(&ctx.navigable),
+            ctx.levels().map(|l| &**l),
             ep,
             &rec.trajectory,
             &rec.metrics,
