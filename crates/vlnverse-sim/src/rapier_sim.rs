@@ -510,7 +510,8 @@ impl RapierSimulator {
         out.achieved = [self.state.base.x - start.x, self.state.base.z - start.z];
     }
 
-    /// Velocity control through the rigid-body pipeline.
+    /// Velocity control through the rigid-body pipeline (along the ground in a multi-level
+    /// scene: [`Self::drive_on_ground`]).
     fn drive(&mut self, v: f32, omega: f32, duration: f32, out: &mut StepOutcome) {
         let a = &self.cfg.agent;
         let mut v = v.clamp(-a.max_linear_speed, a.max_linear_speed);
@@ -526,6 +527,17 @@ impl RapierSimulator {
         let dt = self.params.dt;
         let steps = ((duration / dt).round() as u32).max(1);
         let (lin_acc, ang_acc) = (a.max_linear_accel * dt, a.max_angular_accel() * dt);
+        if self.follows_ground() {
+            let cmd = ground::Drive {
+                v,
+                omega: w_cmd,
+                ticks: steps,
+                dt,
+                lin_acc,
+                ang_acc,
+            };
+            return self.drive_on_ground(cmd, out);
+        }
         let max_impulse = DRIVE_MARGIN * a.mass * a.max_linear_accel * dt;
         let mass = a.mass;
         let Some(scene) = self.scene.clone() else {
@@ -585,12 +597,6 @@ impl RapierSimulator {
         {
             let t = b.translation();
             self.state.base = Vec3::new(t.x, start.y, t.z);
-        }
-        if self.follows_ground() {
-            // The body is held at its height (a riser stops it), but it falls where the floor
-            // under it ends.
-            self.state.base.y = self.fall_height(self.state.base);
-            self.sync_body(self.forward() * self.state.speed);
         }
         out.commanded = [commanded.x, commanded.z];
         out.achieved = [self.state.base.x - start.x, self.state.base.z - start.z];

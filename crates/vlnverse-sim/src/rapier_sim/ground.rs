@@ -26,6 +26,27 @@ const GRAZE: f32 = 0.05;
 /// How far below the scene's lowest point a fall is looked for (m).
 const FALL_MARGIN: f32 = 1.0;
 
+/// How a piece of a move along the ground ended.
+enum Piece {
+    /// Nothing moved, or a riser too high, a slope too steep or a top it may not stand on
+    /// stopped it.
+    Stopped,
+    /// It moved; `blocked` when something it slid along was in the way.
+    Moved { blocked: bool },
+}
+
+/// A velocity command as [`RapierSimulator::drive_on_ground`] runs it: the target speed and
+/// turn rate (clamped), the physics ticks, their length and the largest change of speed and
+/// turn rate per tick.
+pub(super) struct Drive {
+    pub v: f32,
+    pub omega: f32,
+    pub ticks: u32,
+    pub dt: f32,
+    pub lin_acc: f32,
+    pub ang_acc: f32,
+}
+
 /// The surface the agent stands on.
 struct Ground {
     /// Its height under the footprint (the agent's feet).
@@ -113,15 +134,6 @@ impl RapierSimulator {
         }
     }
 
-    /// Where an agent with its feet at `p` comes to rest going only down: the ground under it
-    /// when that is lower than `p.y` (a fall), else `p.y`.
-    pub(super) fn fall_height(&self, p: Vec3) -> f32 {
-        match self.ground_under(p, 0.0) {
-            Some(g) if g.y < p.y - FLAT => g.y,
-            _ => p.y,
-        }
-    }
-
     /// [`Self::slide_move`] following the ground: the move is cut into sub-moves of at most
     /// [`CLIMB_STEP`]; each slides with the shape raised by [`Self::lift`] (so a low step does
     /// not stop it) and then drops onto the ground under it. A step higher than
@@ -133,41 +145,12 @@ impl RapierSimulator {
         let n = (flat.length() / CLIMB_STEP).ceil().max(1.0);
         let part = flat / n;
         let start = self.state.base;
-        let max_step = self.cfg.agent.max_step_height;
         let mut handles = Vec::new();
         for _ in 0..n as usize {
-            let base = self.state.base;
-            let mut lift = self.lift();
-            // No room overhead to raise the shape: no step up from here.
-            if lift > 0.0 && !self.overlaps(base + Vec3::Y * lift).is_empty() {
-                lift = 0.0;
-            }
-            let (moved, hits) = self.slide_cast(base + Vec3::Y * lift, part, STAND_QUERY);
-            let blocked = !hits.is_empty();
-            handles.extend(hits);
-            if moved.length() < MIN_MOVE {
-                break;
-            }
-            let Some(g) = self.ground_under(base + moved, lift) else {
-                // Nothing under it at all (off the scene): keep the height.
-                self.state.base = base + moved;
-                continue;
-            };
-            let up = g.y - base.y;
-            if !g.walkable || up > max_step + FLAT {
-                handles.push(g.handle);
-                break;
-            }
-            let next = Vec3::new(base.x + moved.x, g.y, base.z + moved.z);
-            // Standing up on the step may put the head into what hangs over it (a slab's edge
-            // over a flight): no room, no step.
-            if up > FLAT && !self.overlaps(next).is_empty() {
-                handles.push(g.handle);
-                break;
-            }
-            self.state.base = next;
-            if blocked && !self.cfg.agent.allow_sliding {
-                break;
+            match self.ground_piece(part, &mut handles) {
+                Piece::Stopped => break,
+                Piece::Moved { blocked } if blocked && !self.cfg.agent.allow_sliding => break,
+                Piece::Moved { .. } => {}
             }
         }
         let hits = self.ids(handles);
@@ -175,6 +158,79 @@ impl RapierSimulator {
         self.state.omega = 0.0;
         self.sync_body(Vec3::ZERO);
         (self.state.base - start, hits)
+    }
+
+    /// One piece (at most [`CLIMB_STEP`]) of a move along the ground: slide with the shape
+    /// raised by [`Self::lift`], then stand on the ground under it. What stopped or touched the
+    /// agent goes to `handles`.
+    fn ground_piece(&mut self, part: Vec3, handles: &mut Vec<ColliderHandle>) -> Piece {
+        let base = self.state.base;
+        let max_step = self.cfg.agent.max_step_height;
+        let mut lift = self.lift();
+        // No room overhead to raise the shape: no step up from here.
+        if lift > 0.0 && !self.overlaps(base + Vec3::Y * lift).is_empty() {
+            lift = 0.0;
+        }
+        let (moved, hits) = self.slide_cast(base + Vec3::Y * lift, part, STAND_QUERY);
+        let blocked = !hits.is_empty();
+        handles.extend(hits);
+        if moved.length() < MIN_MOVE {
+            return Piece::Stopped;
+        }
+        let Some(g) = self.ground_under(base + moved, lift) else {
+            // Nothing under it at all (off the scene): keep the height.
+            self.state.base = base + moved;
+            return Piece::Moved { blocked: false };
+        };
+        let up = g.y - base.y;
+        if !g.walkable || up > max_step + FLAT {
+            handles.push(g.handle);
+            return Piece::Stopped;
+        }
+        let next = Vec3::new(base.x + moved.x, g.y, base.z + moved.z);
+        // Standing up on the step may put the head into what hangs over it (a slab's edge
+        // over a flight): no room, no step.
+        if up > FLAT && !self.overlaps(next).is_empty() {
+            handles.push(g.handle);
+            return Piece::Stopped;
+        }
+        self.state.base = next;
+        Piece::Moved { blocked }
+    }
+
+    /// Velocity control following the ground: the speed and turn rate change within the
+    /// agent's accelerations as in the rigid-body drive, and each physics tick's displacement
+    /// is moved along the ground ([`Self::ground_piece`]), so the agent walks up a flight, steps
+    /// onto what is within a step and falls where the floor ends. Something in the way takes
+    /// the speed down to what was achieved.
+    pub(super) fn drive_on_ground(&mut self, cmd: Drive, out: &mut StepOutcome) {
+        let start = self.state.base;
+        let (mut commanded, mut handles) = (Vec3::ZERO, Vec::new());
+        for _ in 0..cmd.ticks {
+            self.state.omega += (cmd.omega - self.state.omega).clamp(-cmd.ang_acc, cmd.ang_acc);
+            self.state.yaw = super::wrap(self.state.yaw + (self.state.omega * cmd.dt) as f64);
+            self.state.speed += (cmd.v - self.state.speed).clamp(-cmd.lin_acc, cmd.lin_acc);
+            let desired = self.forward() * self.state.speed * cmd.dt;
+            commanded += desired;
+            if desired.length() < MIN_MOVE {
+                continue;
+            }
+            let before = self.state.base;
+            let piece = self.ground_piece(desired, &mut handles);
+            if !matches!(piece, Piece::Moved { blocked: false }) {
+                let moved = self.state.base - before;
+                let along = Vec3::new(moved.x, 0.0, moved.z).dot(self.forward());
+                self.state.speed = along / cmd.dt;
+            }
+            if matches!(piece, Piece::Moved { blocked: true }) && !self.cfg.agent.allow_sliding {
+                self.state.speed = 0.0;
+            }
+        }
+        self.sync_body(self.forward() * self.state.speed);
+        out.commanded = [commanded.x, commanded.z];
+        out.achieved = [self.state.base.x - start.x, self.state.base.z - start.z];
+        out.hit = self.ids(handles);
+        out.collided = !out.hit.is_empty();
     }
 
     /// The feet height a walk straight from `start` to `(target.x, target.z)` would reach,

@@ -337,7 +337,7 @@ fn a_walk_in_a_two_storey_home_is_deterministic() {
 }
 
 #[test]
-fn velocity_control_falls_off_an_edge_but_climbs_nothing() {
+fn velocity_control_falls_off_an_edge_and_steps_onto_a_low_platform() {
     let scene = two_level_room();
     let mut sim = sim(CollisionSetting::Lenient, DEFAULT_MAX_STEP);
     // On the slab facing its edge at x = 1: 2.5 s at 1 m/s goes over it.
@@ -355,13 +355,32 @@ fn velocity_control_falls_off_an_edge_but_climbs_nothing() {
     let p = sim.pose().position;
     assert!(p[0] < 0.7, "{p:?}");
     assert_eq!(p[1], 0.0, "{p:?}");
-    // Facing the 0.15 m platform: the body is held at its height, the platform stops it.
+    // Facing the 0.15 m platform (within the 0.2 m step): it walks up onto it.
     sim.reset(
         &scene,
         Pose::from_yaw(Vec3::new(-0.5, 0.0, 0.0), 90f32.to_radians()),
     )
     .unwrap();
-    let out = sim
+    sim.step(Action::Velocity {
+        v: 1.0,
+        omega: 0.0,
+        duration: 2.0,
+    })
+    .unwrap();
+    assert!(
+        (sim.pose().position[1] - 0.15).abs() < 1e-3,
+        "{:?}",
+        sim.pose()
+    );
+    assert!(sim.pose().position[0] < -2.0, "{:?}", sim.pose());
+    // An agent whose step is lower than the platform is stopped at its edge.
+    let mut low = self::sim(CollisionSetting::Lenient, 0.1);
+    low.reset(
+        &scene,
+        Pose::from_yaw(Vec3::new(-0.5, 0.0, 0.0), 90f32.to_radians()),
+    )
+    .unwrap();
+    let out = low
         .step(Action::Velocity {
             v: 1.0,
             omega: 0.0,
@@ -369,8 +388,36 @@ fn velocity_control_falls_off_an_edge_but_climbs_nothing() {
         })
         .unwrap();
     assert!(out.collided, "{out:?}");
-    assert_eq!(sim.pose().position[1], 0.0);
-    assert!(sim.pose().position[0] > -1.8, "{out:?}");
+    assert_eq!(low.pose().position[1], 0.0);
+    assert!(low.pose().position[0] > -2.0, "{out:?}");
+}
+
+#[test]
+fn velocity_control_walks_up_a_generated_flight() {
+    for scene in two_storey_homes(3) {
+        let st = &scene.storeys.stairs[0];
+        let upper = scene.level_height(st.levels[1]).unwrap();
+        let (start, length) = at_foot(st);
+        let mut s = sim(CollisionSetting::Strict, DEFAULT_MAX_STEP);
+        s.reset(&scene, start).unwrap();
+        // 0.5 m/s for as long as the walk takes, in steps of a quarter second.
+        let ticks = (length / 0.5 / 0.25).ceil() as usize;
+        for _ in 0..ticks {
+            s.step(Action::Velocity {
+                v: 0.5,
+                omega: 0.0,
+                duration: 0.25,
+            })
+            .unwrap();
+        }
+        let p = s.pose().position;
+        assert!(
+            (p[1] - upper).abs() < 1e-3,
+            "{}: stopped at {p:?}",
+            scene.id
+        );
+        assert!(horizontal(p, st.head) < 0.6, "{}: {p:?}", scene.id);
+    }
 }
 
 #[test]
