@@ -113,10 +113,10 @@ struct Look {
     du: [f32; ATTRS],
     dv: [f32; ATTRS],
     /// First texel of the surface texture in [`RasterScene::texels`] (or of the face texture
-    /// in [`RasterScene::face_texels`]).
+    /// in the drawn mesh's `texels`, [`faces::DrawMesh`]).
     tex: u32,
-    /// Encoded colour ([`crate::TriLook::tone`]) scaled so that `tone x light x texel byte`
-    /// is the output byte.
+    /// Encoded colour ([`crate::scene_mesh::TriLook::tone`]) scaled so that
+    /// `tone x light x texel byte` is the output byte.
     tone: [f32; 3],
     /// How the texel is found.
     kind: Kind,

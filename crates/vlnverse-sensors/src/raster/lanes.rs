@@ -24,7 +24,7 @@ pub(super) struct Lanes {
     /// Whether every corner of triangle `i` is in front of the near plane.
     front: [bool; CLUSTER],
     /// Whether triangle `i` faces away from the eye (its normal and the eye on opposite sides
-    /// of its plane, as [`RasterScene::setup`] tests it).
+    /// of its plane, as `RasterScene::setup` tests it).
     back: [bool; CLUSTER],
 }
 
