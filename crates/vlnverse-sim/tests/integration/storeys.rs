@@ -336,60 +336,45 @@ fn a_walk_in_a_two_storey_home_is_deterministic() {
     assert_eq!(run(), run());
 }
 
+/// Drive straight ahead at `v` m/s for `seconds`, from `start` (reset) when given.
+fn drive(
+    sim: &mut RapierSimulator,
+    scene: &Scene,
+    start: Option<Pose>,
+    v: f32,
+    seconds: f32,
+) -> StepOutcome {
+    if let Some(p) = start {
+        sim.reset(scene, p).unwrap();
+    }
+    sim.step(Action::Velocity {
+        v,
+        omega: 0.0,
+        duration: seconds,
+    })
+    .unwrap()
+}
+
 #[test]
 fn velocity_control_falls_off_an_edge_and_steps_onto_a_low_platform() {
     let scene = two_level_room();
-    let mut sim = sim(CollisionSetting::Lenient, DEFAULT_MAX_STEP);
+    let facing_x = |x: f32, y: f32| Some(Pose::from_yaw(Vec3::new(x, y, 0.0), 90f32.to_radians()));
+    let mut s = sim(CollisionSetting::Lenient, DEFAULT_MAX_STEP);
     // On the slab facing its edge at x = 1: 2.5 s at 1 m/s goes over it.
-    sim.reset(
-        &scene,
-        Pose::from_yaw(Vec3::new(3.0, 1.0, 0.0), 90f32.to_radians()),
-    )
-    .unwrap();
-    sim.step(Action::Velocity {
-        v: 1.0,
-        omega: 0.0,
-        duration: 3.0,
-    })
-    .unwrap();
-    let p = sim.pose().position;
+    drive(&mut s, &scene, facing_x(3.0, 1.0), 1.0, 3.0);
+    let p = s.pose().position;
     assert!(p[0] < 0.7, "{p:?}");
     assert_eq!(p[1], 0.0, "{p:?}");
     // Facing the 0.15 m platform (within the 0.2 m step): it walks up onto it.
-    sim.reset(
-        &scene,
-        Pose::from_yaw(Vec3::new(-0.5, 0.0, 0.0), 90f32.to_radians()),
-    )
-    .unwrap();
-    sim.step(Action::Velocity {
-        v: 1.0,
-        omega: 0.0,
-        duration: 2.0,
-    })
-    .unwrap();
-    assert!(
-        (sim.pose().position[1] - 0.15).abs() < 1e-3,
-        "{:?}",
-        sim.pose()
-    );
-    assert!(sim.pose().position[0] < -2.0, "{:?}", sim.pose());
+    drive(&mut s, &scene, facing_x(-0.5, 0.0), 1.0, 2.0);
+    let p = s.pose().position;
+    assert!((p[1] - 0.15).abs() < 1e-3 && p[0] < -2.0, "{p:?}");
     // An agent whose step is lower than the platform is stopped at its edge.
-    let mut low = self::sim(CollisionSetting::Lenient, 0.1);
-    low.reset(
-        &scene,
-        Pose::from_yaw(Vec3::new(-0.5, 0.0, 0.0), 90f32.to_radians()),
-    )
-    .unwrap();
-    let out = low
-        .step(Action::Velocity {
-            v: 1.0,
-            omega: 0.0,
-            duration: 3.0,
-        })
-        .unwrap();
+    let mut low = sim(CollisionSetting::Lenient, 0.1);
+    let out = drive(&mut low, &scene, facing_x(-0.5, 0.0), 1.0, 3.0);
+    let p = low.pose().position;
     assert!(out.collided, "{out:?}");
-    assert_eq!(low.pose().position[1], 0.0);
-    assert!(low.pose().position[0] > -2.0, "{out:?}");
+    assert!(p[1] == 0.0 && p[0] > -2.0, "{p:?}");
 }
 
 #[test]
@@ -399,16 +384,10 @@ fn velocity_control_walks_up_a_generated_flight() {
         let upper = scene.level_height(st.levels[1]).unwrap();
         let (start, length) = at_foot(st);
         let mut s = sim(CollisionSetting::Strict, DEFAULT_MAX_STEP);
-        s.reset(&scene, start).unwrap();
         // 0.5 m/s for as long as the walk takes, in steps of a quarter second.
         let ticks = (length / 0.5 / 0.25).ceil() as usize;
-        for _ in 0..ticks {
-            s.step(Action::Velocity {
-                v: 0.5,
-                omega: 0.0,
-                duration: 0.25,
-            })
-            .unwrap();
+        for k in 0..ticks {
+            drive(&mut s, &scene, (k == 0).then_some(start), 0.5, 0.25);
         }
         let p = s.pose().position;
         assert!(
