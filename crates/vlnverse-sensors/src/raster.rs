@@ -8,8 +8,8 @@
 //! behind the near plane, beside the view, too small to hold a pixel centre, or culled back
 //! faces: `raster/lanes.rs`), are clipped against the near plane (and a wide guard band),
 //! projected with vertices snapped to 1/4096 pixel, and filled with exact integer edge
-//! functions sampled at pixel centres `(x + 0.5, y + 0.5)` under the top-left rule, so neighbouring triangles neither
-//! leave cracks nor overlap. Depth is `1 / z` from the triangle's plane (linear in screen space)
+//! functions sampled at pixel centres `(x + 0.5, y + 0.5)` under the top-left rule, so
+//! neighbouring triangles neither leave cracks nor overlap. Depth is `1 / z` from the triangle's plane (linear in screen space)
 //! and is kept in the depth buffer; a resolve pass turns it into metres along the optical axis
 //! and the winning triangle into colour, class and object ids. Colour is the baked light of the
 //! triangle's corners times its surface texture times its colour, in encoded space
