@@ -1,23 +1,23 @@
 //! The CPU rasteriser backend: a plain software rasteriser for the few thousand triangles of a
 //! home, several times faster than both the ray caster and wgpu on a software Vulkan driver.
 //!
-//! Per view: objects outside the frustum are skipped (bounding boxes), and so are runs of up to
-//! 32 consecutive triangles of an object (clusters, each with its own box) that are outside it
-//! or whose projected box holds no pixel centre; the rest of the triangles go to camera space
-//! (a cluster's triangles together, in lanes the compiler vectorises, which also reject those
-//! behind the near plane, beside the view, too small to hold a pixel centre, or culled back
-//! faces: `raster/lanes.rs`), are clipped against the near plane (and a wide guard band),
-//! projected with vertices snapped to 1/4096 pixel, and filled with exact integer edge
-//! functions sampled at pixel centres `(x + 0.5, y + 0.5)` under the top-left rule, so
-//! neighbouring triangles neither leave cracks nor overlap. Depth is `1 / z` from the triangle's plane (linear in screen space)
-//! and is kept in the depth buffer; a resolve pass turns it into metres along the optical axis
-//! and the winning triangle into colour, class and object ids. Colour is the baked light of the
-//! triangle's corners times its surface texture times its colour, in encoded space
-//! ([`SceneMesh::look`]): for views with RGB, each visible triangle gets a slot with three
-//! attributes (light, texture u, v) set up so that `attribute / depth` is linear in screen
-//! space; the resolve pass evaluates them at the pixel from the depth buffer
-//! (perspective-correct, one division per pixel), fetches one byte of texel and multiplies by
-//! the triangle's colour. The light is baked, so the per-pixel cost is flat and small.
+//! Per view: objects outside the frustum are skipped (bounding boxes), and so are runs of up to 32
+//! consecutive triangles of an object (clusters, each with its own box) that are outside it or
+//! whose projected box holds no pixel centre; the rest of the triangles go to camera space (a
+//! cluster's triangles together, in lanes the compiler vectorises, which also reject those behind
+//! the near plane, beside the view, too small to hold a pixel centre, or culled back faces:
+//! `raster/lanes.rs`), are clipped against the near plane (and a wide guard band), projected with
+//! vertices snapped to 1/4096 pixel, and filled with exact integer edge functions sampled at pixel
+//! centres `(x + 0.5, y + 0.5)` under the top-left rule, so neighbouring triangles neither leave
+//! cracks nor overlap. Depth is `1 / z` from the triangle's plane (linear in screen space) and is
+//! kept in the depth buffer; a resolve pass turns it into metres along the optical axis and the
+//! winning triangle into colour, class and object ids. Colour is the baked light of the triangle's
+//! corners times its surface texture times its colour, in encoded space ([`SceneMesh::look`]): for
+//! views with RGB, each visible triangle gets a slot with three attributes (light, texture u, v)
+//! set up so that `attribute / depth` is linear in screen space; the resolve pass evaluates them at
+//! the pixel from the depth buffer (perspective-correct, one division per pixel), fetches one byte
+//! of texel and multiplies by the triangle's colour. The light is baked, so the per-pixel cost is
+//! flat and small.
 //!
 //! Back faces are culled only where that cannot change the image: for objects whose triangles
 //! form closed, outward-oriented surfaces, seen from outside their box (with room for the near
