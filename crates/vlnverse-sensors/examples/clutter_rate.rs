@@ -6,9 +6,10 @@
 //! `cargo run --release -p vlnverse-sensors --example clutter_rate -- [--frames N] [--reps R]
 //! DATASET_OR_SCENE_DIR...` (a dataset: its `scenes/*` folders; an imported home, as
 //! `xtask import` writes the AWS house, takes its poses from its navigable map). Several
-//! datasets are rendered alternately, `R` times each, so that load on the machine falls on all alike; CPU time
-//! per frame (all threads, from the scheduler's counts) is printed beside frames/s, and a hash of
-//! every image of the first rep (to check that two builds draw the same images).
+//! datasets are rendered alternately, `R` times each, so that load on the machine falls on all
+//! alike; CPU time per frame (all threads, from the scheduler's counts) is printed beside
+//! frames/s, and a hash of every image of the first rep (to check that two builds draw the same
+//! images).
 
 use glam::Vec3;
 use rand::{Rng, SeedableRng};
