@@ -53,6 +53,7 @@ fn settle_grounding(f: &Floors<'_>, path: &[[f32; 3]], ins: &mut Instruction) {
         navigable: &l.maps.navigable,
         path,
         start_yaw: 0.0,
+        whole_home: None,
     };
     let holds = |g: &GroundedObject| {
         let one = Instruction {
@@ -118,6 +119,7 @@ impl SceneTaskContext<'_> {
             navigable: &l.maps.navigable,
             path,
             start_yaw,
+            whole_home: Some(f.scene),
         }
     }
 

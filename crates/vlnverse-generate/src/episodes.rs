@@ -203,6 +203,7 @@ impl SceneTaskContext<'_> {
             navigable: &self.sampler.maps.navigable,
             path,
             start_yaw,
+            whole_home: None,
         }
     }
 

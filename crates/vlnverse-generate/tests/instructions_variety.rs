@@ -67,6 +67,7 @@ fn tiny_preset_instructions_are_grounded_varied_and_human_length() {
                     navigable: nav,
                     path: &ep.reference_path,
                     start_yaw: 0.0,
+                    whole_home: None,
                 };
                 let ins = &ep.instruction;
                 let reach = if task == Task::Fine { 3.0 } else { 6.0 };

@@ -35,6 +35,7 @@ fn bench(c: &mut Criterion) {
         navigable: &maps.navigable,
         path: &path,
         start_yaw: 0.0,
+        whole_home: None,
     };
     let target = scene
         .objects

@@ -21,7 +21,7 @@ use glam::{Vec2, Vec3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use vlnverse_env::scene_graph::{is_landmark, rooms_along_path, side_of_heading, Landmark};
-use vlnverse_env::{ObjectId, RoomId, RoomType, SceneObject};
+use vlnverse_env::{ObjectId, RoomId, RoomType, Scene, SceneObject};
 use vlnverse_score::episode::{GroundedObject, Instruction, Role, Side};
 use vlnverse_score::{DataError, Result};
 
@@ -1715,7 +1715,9 @@ fn closing_remarks(route: &Route<'_, '_>, draft: &mut Draft) {
         let (lo, hi) = footprint(o);
         let size = hi - lo;
         let big = size.x * size.y > 1.0 || o.bbox.size().y > 1.6;
-        let only = ctx.graph.objects_of_class(o.class).len() == 1;
+        let in_home = |h: &Scene| h.objects.iter().filter(|x| x.class == o.class).count();
+        let only = ctx.graph.objects_of_class(o.class).len() == 1
+            && ctx.whole_home.is_none_or(|h| in_home(h) == 1);
         let p = if chatty { 0.2 } else { 0.06 };
         if big && rng.random_bool(p) {
             sentences.push(pick(rng, &ph::CANT_MISS).to_string());

@@ -32,7 +32,7 @@
 //! let free: Vec<Vec2> = maps.navigable.free_cells().map(|(c, r)| maps.navigable.cell_center(c, r)).collect();
 //! let p = shortest_path(&maps.navigable, free[0], free[free.len() - 1])?.expect("one island");
 //! let path: Vec<[f32; 3]> = p.points.iter().map(|q| [q.x, 0.0, q.y]).collect();
-//! let ctx = PathContext { scene: &scene, graph: &graph, navigable: &maps.navigable, path: &path, start_yaw: 0.0 };
+//! let ctx = PathContext { scene: &scene, graph: &graph, navigable: &maps.navigable, path: &path, start_yaw: 0.0, whole_home: None };
 //!
 //! let g = TemplateGenerator::default();
 //! let fine = g.fine(&ctx, 7)?;
@@ -80,6 +80,9 @@ pub struct PathContext<'a> {
     pub path: &'a [[f32; 3]],
     /// Heading of the agent at the start (radians, yaw 0 looks along -Z).
     pub start_yaw: f32,
+    /// The whole home when `scene` is one of its floors ([`Scene::level_view`]): what is said
+    /// to be the only one "in the house" is counted there. `None` when `scene` is the home.
+    pub whole_home: Option<&'a Scene>,
 }
 
 /// Turns a trajectory into natural-language instructions with grounding metadata.

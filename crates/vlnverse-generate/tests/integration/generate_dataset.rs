@@ -216,6 +216,7 @@ fn grounded_objects_exist_with_their_class() {
                 navigable: &sc.maps.navigable,
                 path: &ep.reference_path,
                 start_yaw: start_yaw(ep.start_rotation),
+                whole_home: None,
             };
             if task != Task::LongHorizon {
                 let problems = check_grounding(&ctx, &ep.instruction, 2.5);

@@ -168,6 +168,7 @@ fn grounding_is_exact_on_the_whole_path_and_the_stairs_are_named() {
                 navigable: &maps[0].navigable,
                 path: &ep.reference_path,
                 start_yaw: 0.0,
+                whole_home: None,
             };
             let problems = check_grounding(&ctx, &ep.instruction, 3.0);
             assert!(

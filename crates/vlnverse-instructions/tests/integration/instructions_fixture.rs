@@ -19,6 +19,7 @@ impl Ctx for World {
             navigable: &self.maps.navigable,
             path: &s.path,
             start_yaw: s.start_yaw,
+            whole_home: None,
         }
     }
 }

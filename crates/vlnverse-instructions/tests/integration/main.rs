@@ -5,3 +5,4 @@ mod instructions_fixture;
 #[cfg(feature = "llm")]
 mod instructions_llm;
 mod instructions_template;
+mod whole_home;
