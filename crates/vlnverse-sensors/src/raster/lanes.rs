@@ -170,3 +170,107 @@ fn none(lo: f32, hi: f32) -> bool {
     let small = (if hi < 0.0 { -hi } else { hi }) < LIMIT;
     small & (f < lo)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::{emit, raster, ScreenTri, ViewParams, CLUSTER};
+    use super::Lanes;
+    use glam::Vec3;
+    use rand::{Rng, SeedableRng};
+
+    fn view() -> ViewParams {
+        let pose = vlnverse_env::Pose::from_yaw(Vec3::new(1.0, 0.0, 2.0), 0.7);
+        ViewParams::new(&crate::CameraSpec::default().camera(&pose))
+    }
+
+    /// `n` random triangles (corners, world space) of every size from 0.1 mm to 3 m, all around
+    /// the camera, and their unit normals.
+    fn triangles(seed: u64, n: usize) -> (Vec<Vec3>, Vec<Vec3>) {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        let mut r = |a: f32, b: f32| rng.random_range(a..b);
+        let mut pos = Vec::with_capacity(3 * n);
+        for _ in 0..n {
+            let c = Vec3::new(r(-6.0, 8.0), r(-1.0, 3.0), r(-4.0, 8.0));
+            let size = 10f32.powf(r(-4.0, 0.5));
+            for _ in 0..3 {
+                pos.push(c + Vec3::new(r(-1.0, 1.0), r(-1.0, 1.0), r(-1.0, 1.0)) * size);
+            }
+        }
+        let normals = pos
+            .chunks_exact(3)
+            .map(|t| (t[1] - t[0]).cross(t[2] - t[0]).normalize_or(Vec3::Y))
+            .collect();
+        (pos, normals)
+    }
+
+    #[test]
+    fn corners_and_projections_are_those_of_the_scalar_set_up() {
+        let p = view();
+        let (pos, normals) = triangles(1, 40 * CLUSTER + 7);
+        let mut lanes = Lanes::new();
+        let mut front = 0;
+        for (c, n) in pos.chunks(3 * CLUSTER).zip(normals.chunks(CLUSTER)) {
+            lanes.load(&p, c, n, false);
+            for (i, t) in c.chunks_exact(3).enumerate() {
+                let (v, s) = lanes.triangle(i);
+                for k in 0..3 {
+                    let q = p.to_camera(t[k]);
+                    assert_eq!(
+                        v[k].to_array().map(f32::to_bits),
+                        q.to_array().map(f32::to_bits)
+                    );
+                    if let Some(s) = s {
+                        let (sx, sy, _) = p.project(q);
+                        assert_eq!(
+                            (s[k].0.to_bits(), s[k].1.to_bits()),
+                            (sx.to_bits(), sy.to_bits())
+                        );
+                    }
+                }
+                front += s.is_some() as usize;
+                assert_eq!(lanes.back(i), n[i].dot(t[0] - p.pos) > 0.0);
+            }
+        }
+        assert!(front > 100, "only {front} triangles in front");
+    }
+
+    #[test]
+    fn a_triangle_left_out_in_front_of_the_near_plane_writes_no_pixel() {
+        let p = view();
+        let (pos, normals) = triangles(2, 400 * CLUSTER);
+        let mut lanes = Lanes::new();
+        let (mut left_out, mut kept) = (0, 0);
+        let (mut z, mut ids) = (vec![0.0f32; p.w * p.h], vec![0u32; p.w * p.h]);
+        for (c, n) in pos.chunks(3 * CLUSTER).zip(normals.chunks(CLUSTER)) {
+            lanes.load(&p, c, n, false);
+            for i in 0..c.len() / 3 {
+                let (v, s) = lanes.triangle(i);
+                // In front and inside the guard band: what the set-up would emit unclipped.
+                let Some(s) = s.filter(|s| {
+                    s.iter()
+                        .all(|(x, y)| x.abs() < p.guard && y.abs() < p.guard)
+                }) else {
+                    continue;
+                };
+                if lanes.keep(i) {
+                    kept += 1;
+                    continue;
+                }
+                left_out += 1;
+                let mut out: Vec<ScreenTri> = Vec::new();
+                emit(&p, v, [0.0, 0.0, 0.5], 1, &mut out);
+                z.fill(0.0);
+                ids.fill(0);
+                raster::<true>(p.w, 0, p.h, &out, &mut z, &mut ids);
+                assert!(
+                    ids.iter().all(|&t| t == 0),
+                    "left out, but covers a pixel: {s:?}"
+                );
+            }
+        }
+        assert!(
+            left_out > 1000 && kept > 100,
+            "left out {left_out}, kept {kept}"
+        );
+    }
+}
