@@ -382,6 +382,8 @@ struct Named {
     group: bool,
     /// Two objects the path goes between, one on each side ("the sofa and the coffee table").
     between: bool,
+    /// Named by a plural noun ("the stairs", "the curtains", a group, a pair): "are", no "a".
+    plural: bool,
 }
 
 /// A room change as written.
@@ -840,6 +842,7 @@ fn name_landmarks(route: &Route<'_, '_>, chosen: &[&Landmark], draft: &mut Draft
                 side,
                 group: true,
                 between: false,
+                plural: true,
             });
             continue;
         }
@@ -867,11 +870,13 @@ fn name_landmarks(route: &Route<'_, '_>, chosen: &[&Landmark], draft: &mut Draft
             .grounding
             .push(grounded(o, Role::Landmark, Some(side), l.path_index));
         draft.grounding.extend(extra);
+        let plural = np_is_plural(o, &text);
         named.push(Named {
             text,
             side,
             group: false,
             between: false,
+            plural,
         });
     }
     named
@@ -931,6 +936,7 @@ fn name_between(route: &Route<'_, '_>, a: &Landmark, b: &Landmark, draft: &mut D
         side: Side::Left,
         group: false,
         between: true,
+        plural: true,
     }
 }
 
@@ -973,6 +979,7 @@ fn room_passed(route: &Route<'_, '_>, li: usize) -> Option<Named> {
                     side,
                     group: false,
                     between: false,
+                    plural: false,
                 });
             }
         }
@@ -1269,7 +1276,7 @@ fn landmark_clause(m: &Named, rng: &mut ChaCha8Rng) -> String {
 /// (one object, not a group or a pair).
 fn first_mention(m: &Named, rng: &mut ChaCha8Rng) -> String {
     match m.text.strip_prefix("the ") {
-        Some(rest) if !m.group && !m.between && rng.random_bool(0.15) => {
+        Some(rest) if !m.plural && rng.random_bool(0.15) => {
             format!("{} {rest}", indefinite_article(rest))
         }
         _ => m.text.clone(),
@@ -1281,7 +1288,8 @@ fn see_sentence(m: &Named, rng: &mut ChaCha8Rng) -> String {
     if m.between {
         fill(pick(rng, &ph::SEE_BETWEEN), &[("obj", &m.text)])
     } else if m.side == Side::Ahead {
-        format!("{} is ahead of you", m.text)
+        let verb = if m.plural { "are" } else { "is" };
+        format!("{} {verb} ahead of you", m.text)
     } else {
         let sp = fill(pick(rng, &ph::SIDE), &[("dir", side_word(m.side))]);
         if m.group {
@@ -1294,13 +1302,34 @@ fn see_sentence(m: &Named, rng: &mut ChaCha8Rng) -> String {
         if let Some(rest) = m
             .text
             .strip_prefix("the ")
-            .filter(|_| rng.random_bool(0.25))
+            .filter(|_| !m.plural && rng.random_bool(0.25))
         {
             let obj = format!("{} {rest}", indefinite_article(rest));
             return fill(pick(rng, &ph::SEE_SIDE_A), &[("obj", &obj), ("side", &sp)]);
         }
         fill(pick(rng, &ph::SEE_SIDE), &[("obj", &m.text), ("side", &sp)])
     }
+}
+
+/// Whether a name is a plural noun: its head word ("stairs", "storage shelves") ends in a
+/// plural "s"; in "X of Y" the head is X ("flight of stairs", "pair of shoes" are one thing).
+fn is_plural_name(name: &str) -> bool {
+    let head = match name.split_once(" of ") {
+        Some((h, _)) => h,
+        None => name,
+    };
+    let word = head.rsplit(' ').next().unwrap_or(head);
+    word.ends_with('s') && !word.ends_with("ss")
+}
+
+/// Whether a noun phrase naming `o` is plural: by the name of `o` it uses (the first to
+/// appear, the longest of those that start there).
+fn np_is_plural(o: &SceneObject, np: &str) -> bool {
+    object_names(o)
+        .iter()
+        .filter_map(|n| np.find(n).map(|at| (at, std::cmp::Reverse(n.len()), *n)))
+        .min()
+        .is_some_and(|(_, _, n)| is_plural_name(n))
 }
 
 /// "a" or "an" before `words`, by the sound of its first letter.
@@ -1609,9 +1638,12 @@ fn stop_sentence(route: &Route<'_, '_>, draft: &mut Draft) -> String {
         if let Some(sd @ (Side::Left | Side::Right)) = side {
             if rng.random_bool(0.35) {
                 let sp = fill(pick(rng, &ph::SIDE), &[("dir", side_word(sd))]);
-                s = match rng.random_range(0..2) {
-                    0 => format!("{s}, which is {sp}"),
-                    _ => format!("{s}. It will be {sp}"),
+                let plural = np_is_plural(o, &obj);
+                s = match (rng.random_range(0..2), plural) {
+                    (0, false) => format!("{s}, which is {sp}"),
+                    (0, true) => format!("{s}, which are {sp}"),
+                    (_, false) => format!("{s}. It will be {sp}"),
+                    (_, true) => format!("{s}. They will be {sp}"),
                 };
             }
         }
@@ -1717,7 +1749,8 @@ fn closing_remarks(route: &Route<'_, '_>, draft: &mut Draft) {
         let big = size.x * size.y > 1.0 || o.bbox.size().y > 1.6;
         let in_home = |h: &Scene| h.objects.iter().filter(|x| x.class == o.class).count();
         let only = ctx.graph.objects_of_class(o.class).len() == 1
-            && ctx.whole_home.is_none_or(|h| in_home(h) == 1);
+            && ctx.whole_home.is_none_or(|h| in_home(h) == 1)
+            && !is_plural_name(&o.class.words());
         let p = if chatty { 0.2 } else { 0.06 };
         if big && rng.random_bool(p) {
             sentences.push(pick(rng, &ph::CANT_MISS).to_string());
@@ -1774,6 +1807,31 @@ fn walk_time(pts: &[Vec2], rng: &mut ChaCha8Rng) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn plural_names_take_are_and_no_article() {
+        for n in ["stairs", "curtains", "storage shelves", "pair of slippers"] {
+            assert_eq!(is_plural_name(n), !n.starts_with("pair"), "{n}");
+        }
+        for n in [
+            "flight of stairs",
+            "box of tissues",
+            "clothes airer",
+            "glass",
+            "staircase",
+        ] {
+            assert!(!is_plural_name(n), "{n}");
+        }
+        let stairs = SceneObject::from_parts(
+            1,
+            vlnverse_env::SemanticClass::Stairs,
+            vlnverse_env::Pose::default(),
+            Vec::new(),
+        );
+        assert!(np_is_plural(&stairs, "the wooden stairs along the wall"));
+        assert!(!np_is_plural(&stairs, "the grey flight of stairs"));
+        assert!(!np_is_plural(&stairs, "the long staircase"));
+    }
 
     #[test]
     fn a_group_is_named_by_a_plain_plural_of_one_of_its_names() {
