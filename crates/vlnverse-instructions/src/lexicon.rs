@@ -413,7 +413,11 @@ pub fn shape_words(o: &SceneObject, peers: &[&SceneObject]) -> Vec<&'static str>
             .total_cmp(&b.shape.nominal_volume())
     });
     if let Some(Shape::Cylinder { .. } | Shape::Sphere { .. }) = largest.map(|p| &p.shape) {
-        out.extend(["round", "circular"]);
+        out.push("round");
+        // "the circular table", not "the circular candle".
+        if furniture {
+            out.push("circular");
+        }
     }
     // Bulk against the other objects of its class, when there are any.
     let vol = |x: &SceneObject| {
@@ -557,7 +561,7 @@ mod tests {
     }
 
     #[test]
-    fn a_single_bed_is_also_twin_and_a_cylinder_also_circular() {
+    fn a_single_bed_is_also_twin_and_round_furniture_also_circular() {
         use vlnverse_env::{Part, Pose, Shape};
         let part = |shape: Shape| Part {
             shape,
@@ -601,6 +605,20 @@ mod tests {
         );
         let square = shape_words(&boxed(C::SideTable, [0.3, 0.3, 0.3]), &[]);
         assert!(!square.contains(&"circular"), "{square:?}");
+        let candle = SceneObject::from_parts(
+            0,
+            C::Candle,
+            Pose::IDENTITY,
+            vec![part(Shape::Cylinder {
+                radius: 0.04,
+                half_height: 0.1,
+            })],
+        );
+        let small = shape_words(&candle, &[]);
+        assert!(
+            small.contains(&"round") && !small.contains(&"circular"),
+            "{small:?}"
+        );
     }
 
     #[test]

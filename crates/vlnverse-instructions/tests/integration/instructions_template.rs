@@ -723,12 +723,12 @@ fn a_room_remark_gives_its_true_windows_and_floor() {
                         );
                     }
                     let kind = match sentence.as_str() {
-                        "it has a tiled floor" | "the floor is tiled" | "it has a tile floor" => {
-                            Some("tile")
-                        }
-                        "it has a wooden floor"
+                        "the room has a tiled floor"
+                        | "the floor is tiled"
+                        | "this room has a tile floor" => Some("tile"),
+                        "the room has a wooden floor"
                         | "the floor is wooden"
-                        | "it has a hardwood floor" => Some("wood"),
+                        | "this room has a hardwood floor" => Some("wood"),
                         _ => None,
                     };
                     if let Some(kind) = kind {
