@@ -164,6 +164,10 @@ struct Cluster {
     first: u32,
     end: u32,
     bbox: Aabb,
+    /// Its corners and normals, one row per corner and coordinate:
+    /// `RasterScene::lanes[b0..b1]` ([`lanes::pack`]).
+    b0: u32,
+    b1: u32,
 }
 
 /// A scene prepared for the rasteriser (built once per [`Renderer::set_scene`]).
@@ -185,8 +189,9 @@ pub struct RasterScene {
     draw: faces::DrawMesh,
     /// Every imported image ([`SceneMesh::images`]), texels packed as `r | g << 8 | b << 16`.
     image_texels: Vec<u32>,
-    /// Unit geometric normal per draw triangle (as [`SceneMesh::normal`]).
-    normal: Vec<Vec3>,
+    /// Every cluster's corners and unit geometric normals (as [`SceneMesh::normal`]), one
+    /// row per corner and coordinate ([`lanes::pack`]), as the lanes read them.
+    lanes: Vec<f32>,
     objects: Vec<ObjInfo>,
     /// Every object's triangles in runs of at most [`CLUSTER`], object by object.
     clusters: Vec<Cluster>,
@@ -586,6 +591,7 @@ impl RasterScene {
             });
         }
         let mut clusters = Vec::new();
+        let mut packed = Vec::with_capacity(16 * n_draw);
         let objects = closed
             .iter()
             .zip(&draw.objects)
@@ -595,10 +601,14 @@ impl RasterScene {
                     let end = (s + CLUSTER).min(first + count);
                     let mut b = Aabb::EMPTY;
                     draw.pos[3 * s..3 * end].iter().for_each(|p| b.extend(*p));
+                    let b0 = packed.len() as u32;
+                    lanes::pack(&draw.pos[3 * s..3 * end], &normal[s..end], &mut packed);
                     clusters.push(Cluster {
                         first: s as u32,
                         end: end as u32,
                         bbox: b,
+                        b0,
+                        b1: packed.len() as u32,
                     });
                 }
                 ObjInfo {
@@ -627,7 +637,7 @@ impl RasterScene {
             draw,
             image_texels,
             mesh: Arc::downgrade(&mesh),
-            normal,
+            lanes: packed,
             objects,
             clusters,
             cull_clusters: true,
@@ -665,7 +675,7 @@ impl RasterScene {
             + held(&d.texels)
             + held(&self.image_texels)
             + held(&self.look)
-            + held(&self.normal)
+            + held(&self.lanes)
             + held(&self.objects)
             + held(&self.clusters)
             + held(&self.tag_class)
@@ -878,11 +888,7 @@ impl RasterScene {
                 let tris = c.first as usize..c.end as usize;
                 // Transformed, projected and tested (back faces where they may be culled)
                 // all at once.
-                let (pos, normals) = (
-                    &self.draw.pos[3 * tris.start..3 * tris.end],
-                    &self.normal[tris.clone()],
-                );
-                lanes.load(p, pos, normals, cull);
+                lanes.load_packed(p, &self.lanes[c.b0 as usize..c.b1 as usize], cull);
                 for (i, t) in tris.enumerate() {
                     if !lanes.keep(i) {
                         continue;

@@ -47,25 +47,27 @@ impl Lanes {
     /// Transform, project and test the triangles whose corners are `pos` (three a triangle,
     /// at most [`CLUSTER`] triangles; any further ones are ignored) and unit normals
     /// `normals`; with `cull`, back faces are not kept.
+    #[cfg(test)]
     pub(super) fn load(&mut self, p: &ViewParams, pos: &[Vec3], normals: &[Vec3], cull: bool) {
+        let n = (pos.len() / 3).min(normals.len()).min(CLUSTER);
+        let mut block = Vec::new();
+        pack(&pos[..3 * n], &normals[..n], &mut block);
+        self.load_packed(p, &block, cull);
+    }
+
+    /// Transform, project and test the triangles of one block made by [`pack`] (up to
+    /// [`CLUSTER`] triangles); with `cull`, back faces are not kept. Lanes past the block's
+    /// triangles hold what an earlier block left or padding: ask only for the block's own.
+    pub(super) fn load_packed(&mut self, p: &ViewParams, block: &[f32], cull: bool) {
+        let m = (block.len() / ROWS).min(CLUSTER);
+        let row = |r: usize| &block[r * m..r * m + m];
         let (ex, ey, ez) = (p.pos.x, p.pos.y, p.pos.z);
-        let (mut dx, mut dy, mut dz) = (
-            [[0.0f32; CLUSTER]; 3],
-            [[0.0; CLUSTER]; 3],
-            [[0.0; CLUSTER]; 3],
-        );
-        let (mut nx, mut ny, mut nz_) = ([0.0f32; CLUSTER], [0.0; CLUSTER], [0.0; CLUSTER]);
-        for (i, (t, n)) in pos.chunks_exact(3).zip(normals).take(CLUSTER).enumerate() {
-            for k in 0..3 {
-                dx[k][i] = t[k].x - ex;
-                dy[k][i] = t[k].y - ey;
-                dz[k][i] = t[k].z - ez;
-            }
-            (nx[i], ny[i], nz_[i]) = (n.x, n.y, n.z);
-        }
         // `normal.dot(corner 0 - eye) > 0` as glam's `Vec3::dot`.
-        for i in 0..CLUSTER {
-            self.back[i] = nx[i] * dx[0][i] + ny[i] * dy[0][i] + nz_[i] * dz[0][i] > 0.0;
+        let (px, py, pz) = (row(0), row(3), row(6));
+        let (nx, ny, nz_) = (row(9), row(10), row(11));
+        for i in 0..m {
+            let (a, b, c) = (px[i] - ex, py[i] - ey, pz[i] - ez);
+            self.back[i] = nx[i] * a + ny[i] * b + nz_[i] * c > 0.0;
         }
         // `rot * d` as glam's `Mat3 * Vec3`: x axis times d.x, plus y axis times d.y, plus
         // z axis times d.z.
@@ -74,23 +76,26 @@ impl Lanes {
         let (fx, fy, cx, cy) = (p.fx, p.fy, p.cx, p.cy);
         let (right, bottom) = (p.w as f32 - cx, -(p.h as f32 - cy));
         for k in 0..3 {
-            for i in 0..CLUSTER {
-                let (a, b, c) = (dx[k][i], dy[k][i], dz[k][i]);
+            let (px, py, pz) = (row(k), row(3 + k), row(6 + k));
+            let (ox, oy, oz) = (&mut self.x[k], &mut self.y[k], &mut self.z[k]);
+            let (osx, osy) = (&mut self.sx[k], &mut self.sy[k]);
+            for i in 0..m {
+                let (a, b, c) = (px[i] - ex, py[i] - ey, pz[i] - ez);
                 let x = ra.x * a + rb.x * b + rc.x * c;
                 let y = ra.y * a + rb.y * b + rc.y * c;
                 let z = ra.z * a + rb.z * b + rc.z * c;
                 let iz = 1.0 / -z;
-                self.x[k][i] = x;
-                self.y[k][i] = y;
-                self.z[k][i] = z;
-                self.sx[k][i] = cx + fx * x * iz;
-                self.sy[k][i] = cy - fy * y * iz;
+                ox[i] = x;
+                oy[i] = y;
+                oz[i] = z;
+                osx[i] = cx + fx * x * iz;
+                osy[i] = cy - fy * y * iz;
             }
         }
         // Margin in pixels far above snapping and rounding.
         const M: f32 = 0.01;
         let (x, y, z, sx, sy) = (&self.x, &self.y, &self.z, &self.sx, &self.sy);
-        for i in 0..CLUSTER {
+        for i in 0..m {
             // A test passed by all three corners.
             let all = |f: &dyn Fn(usize) -> bool| f(0) & f(1) & f(2);
             let out = all(&|k| z[k][i] > nz)
@@ -136,6 +141,35 @@ impl Lanes {
         let s = self.front[i].then(|| [0, 1, 2].map(|k| (self.sx[k][i], self.sy[k][i])));
         (v, s)
     }
+}
+
+/// Rows of a block made by [`pack`]: x of corners 0, 1, 2, then y, then z, then the normal's
+/// x, y, z.
+const ROWS: usize = 12;
+
+/// Lanes a block is padded to (a multiple of the SSE2 width).
+const PAD: usize = 4;
+
+/// Append the block of one cluster (its triangles' corners `pos`, three a triangle, and unit
+/// normals, at most [`CLUSTER`] triangles) that [`Lanes::load_packed`] reads: [`ROWS`] rows,
+/// each of the triangle count rounded up to [`PAD`] values (padding zero). Its length.
+pub(super) fn pack(pos: &[Vec3], normals: &[Vec3], out: &mut Vec<f32>) -> usize {
+    let n = (pos.len() / 3).min(normals.len()).min(CLUSTER);
+    let m = n.div_ceil(PAD) * PAD;
+    let start = out.len();
+    out.resize(start + ROWS * m, 0.0);
+    let block = &mut out[start..];
+    for (i, (t, nrm)) in pos.chunks_exact(3).zip(normals).take(n).enumerate() {
+        for k in 0..3 {
+            block[k * m + i] = t[k].x;
+            block[(3 + k) * m + i] = t[k].y;
+            block[(6 + k) * m + i] = t[k].z;
+        }
+        block[9 * m + i] = nrm.x;
+        block[10 * m + i] = nrm.y;
+        block[11 * m + i] = nrm.z;
+    }
+    ROWS * m
 }
 
 #[inline]
