@@ -995,19 +995,19 @@ impl RasterScene {
         out: &mut Vec<ScreenTri>,
     ) -> Option<[f64; 3]> {
         // The plane of the whole triangle gives 1/depth at every pixel (exact under clipping).
-        let [a, b, c] = v.map(|q| q.as_dvec3());
-        let nrm: DVec3 = (b - a).cross(c - a);
-        let d = nrm.dot(a);
-        if d.abs() <= 1e-7 * nrm.length() {
-            return None; // Edge-on: the plane passes through the eye.
-        }
-        let (fx, fy, cx, cy) = (p.fx as f64, p.fy as f64, p.cx as f64, p.cy as f64);
-        let za = nrm.x / (fx * d);
-        let zb = -nrm.y / (fy * d);
-        let zc = (-nrm.x * cx / fx + nrm.y * cy / fy - nrm.z) / d + 0.5 * (za + zb);
-        let plane = [za as f32, zb as f32, zc as f32];
-        let plane64 = Some([za, zb, zc]);
-
+        let plane_of = || {
+            let [a, b, c] = v.map(|q| q.as_dvec3());
+            let nrm: DVec3 = (b - a).cross(c - a);
+            let d = nrm.dot(a);
+            if d.abs() <= 1e-7 * nrm.length() {
+                return None; // Edge-on: the plane passes through the eye.
+            }
+            let (fx, fy, cx, cy) = (p.fx as f64, p.fy as f64, p.cx as f64, p.cy as f64);
+            let za = nrm.x / (fx * d);
+            let zb = -nrm.y / (fy * d);
+            let zc = (-nrm.x * cx / fx + nrm.y * cy / fy - nrm.z) / d + 0.5 * (za + zb);
+            Some([za, zb, zc])
+        };
         let in_guard = |q: &Vec3| {
             let (sx, sy, _) = p.project(*q);
             sx.abs() < p.guard && sy.abs() < p.guard
@@ -1016,10 +1016,19 @@ impl RasterScene {
             if s.iter()
                 .all(|(sx, sy)| sx.abs() < p.guard && sy.abs() < p.guard)
             {
-                emit(p, [v[0], v[1], v[2]], plane, tag, out);
+                // The plane only for a triangle that covers a pixel centre (a third of those
+                // projected here cover none).
+                let mut plane64 = None;
+                emit_with(p, v, tag, out, SMALL_BOX, || {
+                    plane64 = plane_of();
+                    plane64.map(|q| q.map(|z| z as f32))
+                });
                 return plane64;
             }
         }
+        let plane64 = plane_of()?;
+        let plane = plane64.map(|z| z as f32);
+        let plane64 = Some(plane64);
         let mut poly = Poly {
             v: [Vec3::ZERO; 9],
             n: 3,
@@ -1436,7 +1445,6 @@ fn emit(p: &ViewParams, v: [Vec3; 3], plane: [f32; 3], tag: u32, out: &mut Vec<S
 }
 
 /// [`emit`], testing the pixel centres of boxes of at most `small` pixels.
-#[inline]
 fn emit_tested(
     p: &ViewParams,
     v: [Vec3; 3],
@@ -1444,6 +1452,20 @@ fn emit_tested(
     tag: u32,
     out: &mut Vec<ScreenTri>,
     small: i64,
+) {
+    emit_with(p, v, tag, out, small, || Some(plane));
+}
+
+/// [`emit_tested`] with the `1 / depth` plane asked for only once the triangle is found to
+/// cover a pixel centre it may hold (none: nothing is emitted).
+#[inline]
+fn emit_with(
+    p: &ViewParams,
+    v: [Vec3; 3],
+    tag: u32,
+    out: &mut Vec<ScreenTri>,
+    small: i64,
+    plane: impl FnOnce() -> Option<[f32; 3]>,
 ) {
     // Snapped coordinates are integers below 2^25 (`MAX_FIXED`) and every value below is an
     // integer below 2^53: exact in i64 as it was in f64, without f64 -> i64 conversions.
@@ -1517,6 +1539,9 @@ fn emit_tested(
     {
         return;
     }
+    let Some(plane) = plane() else {
+        return;
+    };
     out.push(ScreenTri {
         edges,
         x0: x0 as i32,
