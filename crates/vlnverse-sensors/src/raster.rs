@@ -592,7 +592,16 @@ impl RasterScene {
             });
         }
         let mut clusters = Vec::new();
-        let mut packed = Vec::with_capacity(16 * n_draw);
+        // Exactly the blocks' length.
+        let mut packed = Vec::with_capacity(
+            draw.objects
+                .iter()
+                .map(|&(_, count, _)| {
+                    (count / CLUSTER) * lanes::block_len(CLUSTER)
+                        + lanes::block_len(count % CLUSTER)
+                })
+                .sum(),
+        );
         let objects = closed
             .iter()
             .zip(&draw.objects)
@@ -1986,6 +1995,8 @@ mod tests {
         let bits = |v: &[f32]| v.iter().map(|c| c.to_bits()).collect::<Vec<_>>();
         assert_eq!(bits(&loaded.lanes), bits(&made.lanes));
         assert!(!made.lanes.is_empty());
+        // Allocated exactly (the cache accounts what is held).
+        assert_eq!(made.lanes.capacity(), made.lanes.len());
         assert_eq!(loaded.draw.src, made.draw.src);
         assert_eq!(format!("{:?}", loaded.look), format!("{:?}", made.look));
         assert_eq!(loaded.draw.objects, made.draw.objects);

@@ -150,12 +150,17 @@ const ROWS: usize = 12;
 /// Lanes a block is padded to (a multiple of the SSE2 width).
 const PAD: usize = 4;
 
+/// Length of the block of a cluster of `n` triangles ([`pack`]).
+pub(super) fn block_len(n: usize) -> usize {
+    ROWS * n.min(CLUSTER).div_ceil(PAD) * PAD
+}
+
 /// Append the block of one cluster (its triangles' corners `pos`, three a triangle, and unit
 /// normals, at most [`CLUSTER`] triangles) that [`Lanes::load_packed`] reads: [`ROWS`] rows,
 /// each of the triangle count rounded up to [`PAD`] values (padding zero). Its length.
 pub(super) fn pack(pos: &[Vec3], normals: &[Vec3], out: &mut Vec<f32>) -> usize {
     let n = (pos.len() / 3).min(normals.len()).min(CLUSTER);
-    let m = n.div_ceil(PAD) * PAD;
+    let m = block_len(n) / ROWS;
     let start = out.len();
     out.resize(start + ROWS * m, 0.0);
     let block = &mut out[start..];
@@ -235,6 +240,20 @@ mod tests {
             .map(|t| (t[1] - t[0]).cross(t[2] - t[0]).normalize_or(Vec3::Y))
             .collect();
         (pos, normals)
+    }
+
+    #[test]
+    fn a_block_holds_twelve_rows_padded_to_four_lanes() {
+        let (pos, normals) = triangles(3, 5);
+        let mut block = vec![7.0];
+        assert_eq!(super::pack(&pos, &normals, &mut block), 12 * 8);
+        assert_eq!(block.len(), 1 + 12 * 8);
+        assert_eq!(super::block_len(5), 12 * 8);
+        assert_eq!(super::block_len(CLUSTER), 12 * CLUSTER);
+        // Row 4 is y of corner 1; lanes 5..8 are padding.
+        assert_eq!(block[1 + 4 * 8 + 2], pos[3 * 2 + 1].y);
+        assert_eq!(block[1 + 11 * 8 + 4], normals[4].z);
+        assert!(block[1 + 8 * 8 + 5..1 + 9 * 8].iter().all(|&v| v == 0.0));
     }
 
     #[test]
