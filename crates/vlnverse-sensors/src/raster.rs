@@ -901,10 +901,12 @@ impl RasterScene {
                 // Transformed, projected and tested (back faces where they may be culled)
                 // all at once.
                 lanes.load_packed(p, &self.lanes[c.b0 as usize..c.b1 as usize], cull);
-                for (i, t) in tris.enumerate() {
-                    if !lanes.keep(i) {
-                        continue;
-                    }
+                // The kept ones, in order, without a branch per left-out triangle.
+                let mut kept = lanes.kept(tris.len());
+                while kept != 0 {
+                    let i = kept.trailing_zeros() as usize;
+                    kept &= kept - 1;
+                    let t = tris.start + i;
                     let back = lanes.back(i);
                     let (v, projected) = lanes.triangle(i);
                     let tag = 2 * self.draw.src[t] + back as u32 + 1;

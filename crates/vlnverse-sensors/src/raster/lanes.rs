@@ -121,9 +121,21 @@ impl Lanes {
     }
 
     /// Whether triangle `i` of the last [`Lanes::load`] may cover a pixel centre.
-    #[inline]
+    #[cfg(test)]
     pub(super) fn keep(&self, i: usize) -> bool {
         self.keep.get(i).copied().unwrap_or(false)
+    }
+
+    /// Which of the first `n` triangles of the last [`Lanes::load_packed`] may cover a pixel
+    /// centre, as bits (bit `i` for triangle `i`).
+    #[inline]
+    pub(super) fn kept(&self, n: usize) -> u32 {
+        const _: () = assert!(CLUSTER <= 32);
+        self.keep
+            .iter()
+            .take(n)
+            .enumerate()
+            .fold(0, |m, (i, &k)| m | (k as u32) << i)
     }
 
     /// Whether triangle `i` faces away from the eye.
