@@ -526,16 +526,15 @@ impl RapierSimulator {
         }
         let dt = self.params.dt;
         let steps = ((duration / dt).round() as u32).max(1);
-        let (lin_acc, ang_acc) = (a.max_linear_accel * dt, a.max_angular_accel() * dt);
+        let cmd = ground::Drive {
+            v,
+            omega: w_cmd,
+            ticks: steps,
+            dt,
+            lin_acc: a.max_linear_accel * dt,
+            ang_acc: a.max_angular_accel() * dt,
+        };
         if self.follows_ground() {
-            let cmd = ground::Drive {
-                v,
-                omega: w_cmd,
-                ticks: steps,
-                dt,
-                lin_acc,
-                ang_acc,
-            };
             return self.drive_on_ground(cmd, out);
         }
         let max_impulse = DRIVE_MARGIN * a.mass * a.max_linear_accel * dt;
@@ -548,9 +547,7 @@ impl RapierSimulator {
         let mut touched = Vec::new();
         self.sync_body(self.forward() * self.state.speed);
         for _ in 0..steps {
-            self.state.omega += (w_cmd - self.state.omega).clamp(-ang_acc, ang_acc);
-            self.state.yaw = wrap(self.state.yaw + (self.state.omega * dt) as f64);
-            self.state.speed += (v - self.state.speed).clamp(-lin_acc, lin_acc);
+            self.accelerate(&cmd);
             let desired = self.forward() * self.state.speed;
             commanded += desired * dt;
             let rot = self.quat();

@@ -35,9 +35,9 @@ enum Piece {
     Moved { blocked: bool },
 }
 
-/// A velocity command as [`RapierSimulator::drive_on_ground`] runs it: the target speed and
-/// turn rate (clamped), the physics ticks, their length and the largest change of speed and
-/// turn rate per tick.
+/// A velocity command as both drives run it ([`RapierSimulator::accelerate`] each tick): the
+/// target speed and turn rate (clamped), the physics ticks, their length and the largest change
+/// of speed and turn rate per tick.
 pub(super) struct Drive {
     pub v: f32,
     pub omega: f32,
@@ -198,6 +198,14 @@ impl RapierSimulator {
         Piece::Moved { blocked }
     }
 
+    /// One physics tick of a velocity command: turn rate and speed move towards the command
+    /// by at most the tick's change, and the heading turns by the new rate.
+    pub(super) fn accelerate(&mut self, cmd: &Drive) {
+        self.state.omega += (cmd.omega - self.state.omega).clamp(-cmd.ang_acc, cmd.ang_acc);
+        self.state.yaw = super::wrap(self.state.yaw + (self.state.omega * cmd.dt) as f64);
+        self.state.speed += (cmd.v - self.state.speed).clamp(-cmd.lin_acc, cmd.lin_acc);
+    }
+
     /// Velocity control following the ground: the speed and turn rate change within the
     /// agent's accelerations as in the rigid-body drive, and each physics tick's displacement
     /// is moved along the ground ([`Self::ground_piece`]), so the agent walks up a flight, steps
@@ -207,9 +215,7 @@ impl RapierSimulator {
         let start = self.state.base;
         let (mut commanded, mut handles) = (Vec3::ZERO, Vec::new());
         for _ in 0..cmd.ticks {
-            self.state.omega += (cmd.omega - self.state.omega).clamp(-cmd.ang_acc, cmd.ang_acc);
-            self.state.yaw = super::wrap(self.state.yaw + (self.state.omega * cmd.dt) as f64);
-            self.state.speed += (cmd.v - self.state.speed).clamp(-cmd.lin_acc, cmd.lin_acc);
+            self.accelerate(&cmd);
             let desired = self.forward() * self.state.speed * cmd.dt;
             commanded += desired;
             if desired.length() < MIN_MOVE {
