@@ -32,18 +32,12 @@ pub fn plot_episode(
     traj: &Trajectory,
     m: &EpisodeMetrics,
 ) -> RgbImage {
-    let opts = TopdownOptions {
-        px_per_m: 40.0,
-        max_size: 1200,
-        labels: false,
-        title: format!(
-            "ep {} {} NE {}",
-            ep.episode_id,
-            if m.success { "success" } else { "failure" },
-            m.ne.map_or_else(|| "-".into(), |v| format!("{v:.2} m"))
-        ),
-        ..Default::default()
-    };
+    let opts = plot_options(format!(
+        "ep {} {} NE {}",
+        ep.episode_id,
+        if m.success { "success" } else { "failure" },
+        m.ne.map_or_else(|| "-".into(), |v| format!("{v:.2} m"))
+    ));
     let Some(levels) = levels.filter(|_| scene.is_multi_level()) else {
         let mut td = render_topdown(scene, navigable, &opts);
         draw_episode(&mut td, None, ep, traj, m.success);
@@ -68,6 +62,17 @@ pub fn plot_episode(
         })
         .collect();
     side_by_side(&pictures)
+}
+
+/// The picture of an episode plot: 40 px a metre (at most 1,200 px), no class labels.
+fn plot_options(title: String) -> TopdownOptions {
+    TopdownOptions {
+        px_per_m: 40.0,
+        max_size: 1200,
+        labels: false,
+        title,
+        ..Default::default()
+    }
 }
 
 /// The reference path (green), the agent's path (blue, red on failure), the start (white) and
@@ -229,28 +234,9 @@ mod tests {
             &one,
             &m,
         );
-        let ground = render_topdown_level(
-            &scene,
-            0,
-            nav,
-            &TopdownOptions {
-                px_per_m: 40.0,
-                max_size: 1200,
-                ..Default::default()
-            },
-        )
-        .unwrap();
-        let upper = render_topdown_level(
-            &scene,
-            1,
-            levels.level(1),
-            &TopdownOptions {
-                px_per_m: 40.0,
-                max_size: 1200,
-                ..Default::default()
-            },
-        )
-        .unwrap();
+        let ground = render_topdown_level(&scene, 0, nav, &plot_options(String::new())).unwrap();
+        let upper =
+            render_topdown_level(&scene, 1, levels.level(1), &plot_options(String::new())).unwrap();
         assert_eq!(below.width(), ground.image.width());
         assert_eq!(across.width(), ground.image.width() + upper.image.width());
     }
