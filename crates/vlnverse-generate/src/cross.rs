@@ -109,7 +109,8 @@ impl SceneTaskContext<'_> {
     ) -> PathContext<'p> {
         let l = &f.levels[walk.level as usize];
         let (scene, graph) = if off_flight {
-            (&l.off_stairs.0, &l.off_stairs.1)
+            let (s, g) = l.off_stairs();
+            (s, g)
         } else {
             (&l.scene, &l.graph)
         };

@@ -12,7 +12,7 @@
 use glam::Vec2;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 use vlnverse_env::geodesic::{
     polyline_length, DistanceField, GeodesicPath, LevelPoint, LevelRoute, MultiLevelMap, Portal,
     RouteLeg,
@@ -35,9 +35,8 @@ pub struct LevelData {
     pub maps: OccupancyMaps,
     /// The graph of the level's view.
     pub graph: SceneGraph,
-    /// The level's view without its flights of stairs, and its graph: what a walk off a flight
-    /// is described on, so that it does not name the stairs it has just left as a landmark.
-    pub off_stairs: (Scene, SceneGraph),
+    /// [`LevelData::off_stairs`], built when first asked for.
+    off_stairs: OnceLock<(Scene, SceneGraph)>,
 }
 
 impl LevelData {
@@ -54,17 +53,27 @@ impl LevelData {
                     )
                 })?;
                 let graph = SceneGraph::build(&view);
-                let mut bare = view.clone();
-                bare.objects.retain(|o| o.class != SemanticClass::Stairs);
-                let bare_graph = SceneGraph::build(&bare);
                 Ok(LevelData {
                     scene: view,
                     maps,
                     graph,
-                    off_stairs: (bare, bare_graph),
+                    off_stairs: OnceLock::new(),
                 })
             })
             .collect()
+    }
+}
+
+impl LevelData {
+    /// The level's view without its flights of stairs, and its graph: what a walk off a flight
+    /// is described on, so that it does not name the stairs it has just left as a landmark.
+    pub fn off_stairs(&self) -> &(Scene, SceneGraph) {
+        self.off_stairs.get_or_init(|| {
+            let mut bare = self.scene.clone();
+            bare.objects.retain(|o| o.class != SemanticClass::Stairs);
+            let graph = SceneGraph::build(&bare);
+            (bare, graph)
+        })
     }
 }
 
