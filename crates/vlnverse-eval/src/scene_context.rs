@@ -69,7 +69,7 @@ impl SceneContext {
                 ),
             ));
         }
-        let portals = scene.storeys.stairs.iter().map(Portal::of_stairs).collect();
+        let portals: Vec<Portal> = scene.storeys.stairs.iter().map(Portal::of_stairs).collect();
         let multi = MultiLevelMap::new(levels.clone(), portals)?;
         let ground = levels.into_iter().next().expect("checked non-empty");
         Ok(SceneContext {
@@ -95,7 +95,8 @@ impl SceneContext {
     }
 
     /// The field toward a goal across floors (cached), in a home on several floors; `None` in
-    /// a single-storey scene (use [`SceneContext::field`]).
+    /// a single-storey scene (use [`SceneContext::field`]). It shares the goal's
+    /// [`SceneContext::field`] and the home's fields toward the stairs' ends.
     pub fn level_field(&self, goal: [f32; 3]) -> Result<Option<Arc<LevelField>>> {
         let Some(multi) = &self.levels else {
             return Ok(None);
@@ -118,11 +119,15 @@ impl SceneContext {
             .iter()
             .map(|s| 0.5 * s.width)
             .collect();
-        let f = Arc::new(LevelField::new(
+        // The goal's own field is the one `field` caches (the same map and point), and the
+        // fields toward the stairs' ends are built once per home by `multi`: a new goal costs
+        // one sweep, not one per flight end besides.
+        let f = Arc::new(LevelField::with_goal_field(
             multi,
             &heights,
             &half,
             LevelPoint::from_world(&self.scene, goal),
+            self.field(goal)?,
         )?);
         let mut c = lock(&self.level_fields);
         if c.len() >= FIELD_CACHE {
@@ -271,5 +276,62 @@ impl SceneCache {
     /// Scene loads so far (reloads after eviction included).
     pub fn loads(&self) -> usize {
         self.loads.load(std::sync::atomic::Ordering::Relaxed)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use vlnverse_env::geodesic::GeodesicDistance;
+    use vlnverse_env::occupancy::{build_level_maps, OccupancyConfig};
+    use vlnverse_env::SceneSource;
+    use vlnverse_procgen::{HomeGenerator, Preset};
+
+    /// A goal upstairs in a two-storey home: the field across floors is built on the goal's
+    /// cached field (the same one, not a second sweep) and measures what a field built alone
+    /// measures, at every free cell of both floors.
+    #[test]
+    fn a_field_across_floors_shares_the_goal_field_and_measures_the_same() {
+        let mut pc = Preset::Tiny.config().unwrap();
+        pc.scenes.count = 1;
+        pc.floors.two_storey_share = 1.0;
+        let scene = HomeGenerator::new(pc).unwrap().scene(0).unwrap();
+        assert!(scene.is_multi_level());
+        let navigable: Vec<GridMap> = build_level_maps(&scene, &OccupancyConfig::default())
+            .unwrap()
+            .into_iter()
+            .map(|m| m.navigable)
+            .collect();
+        let ctx = SceneContext::with_levels(scene.clone(), navigable.clone()).unwrap();
+        let h1 = scene.level_height(1).unwrap();
+        let up: Vec<Vec2> = {
+            let n = &navigable[1];
+            n.free_cells().map(|(c, r)| n.cell_center(c, r)).collect()
+        };
+        let heights = [scene.floor_height, h1];
+        let half: Vec<f32> = scene.storeys.stairs.iter().map(|s| 0.5 * s.width).collect();
+        let portals: Vec<Portal> = scene.storeys.stairs.iter().map(Portal::of_stairs).collect();
+        for g in [up[up.len() / 4], up[3 * up.len() / 4]] {
+            let goal = [g.x, h1, g.y];
+            let shared = ctx.level_field(goal).unwrap().unwrap();
+            assert!(Arc::ptr_eq(shared.goal_field(), &ctx.field(goal).unwrap()));
+            let alone_map = MultiLevelMap::new(navigable.clone(), portals.clone()).unwrap();
+            let alone =
+                LevelField::new(&alone_map, &heights, &half, LevelPoint::new(1, g.x, g.y)).unwrap();
+            let mut reachable = 0;
+            for (l, y) in [(0, scene.floor_height), (1, h1)] {
+                let n = &navigable[l];
+                for (c, r) in n.free_cells() {
+                    let p = n.cell_center(c, r);
+                    let d = shared.distance([p.x, y, p.y]);
+                    assert_eq!(d, alone.distance([p.x, y, p.y]), "level {l} at {p}");
+                    reachable += usize::from(matches!(d, GeodesicDistance::Reachable(_)));
+                }
+            }
+            assert!(
+                reachable > up.len(),
+                "the ground floor reaches the goal too"
+            );
+        }
     }
 }

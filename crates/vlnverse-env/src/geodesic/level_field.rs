@@ -111,6 +111,17 @@ impl FlightInfo {
     }
 }
 
+/// The navigable map of the goal's level; an error naming the level when `map` has none.
+fn goal_map(map: &MultiLevelMap, goal: LevelPoint) -> Result<&crate::occupancy::GridMap> {
+    map.level(goal.level).ok_or_else(|| {
+        crate::EnvError::invalid(
+            "goal level",
+            goal.level,
+            format!("the scene has {} levels", map.level_count()),
+        )
+    })
+}
+
 impl LevelField {
     /// The field toward `goal` in `map`; `heights` are the levels' floor heights (lowest first)
     /// and `half_widths` each portal's half width (m), in the order of `map.portals()`.
@@ -120,14 +131,22 @@ impl LevelField {
         half_widths: &[f32],
         goal: LevelPoint,
     ) -> Result<LevelField> {
-        let goal_map = map.level(goal.level).ok_or_else(|| {
-            crate::EnvError::invalid(
-                "goal level",
-                goal.level,
-                format!("the scene has {} levels", map.level_count()),
-            )
-        })?;
-        let goal_field = Arc::new(DistanceField::new(goal_map, goal.point)?);
+        let goal_field = Arc::new(DistanceField::new(goal_map(map, goal)?, goal.point)?);
+        Self::with_goal_field(map, heights, half_widths, goal, goal_field)
+    }
+
+    /// [`LevelField::new`] with the goal's field on its level already built (e.g. cached by
+    /// an evaluation): `goal_field` must be `DistanceField::new(level map, goal.point)` on the
+    /// map of `goal.level`. The fields toward the stairs' ends come from `map`, which builds
+    /// each once ([`MultiLevelMap::end_field`]), so a new goal costs no sweep at all here.
+    pub fn with_goal_field(
+        map: &MultiLevelMap,
+        heights: &[f32],
+        half_widths: &[f32],
+        goal: LevelPoint,
+        goal_field: Arc<DistanceField>,
+    ) -> Result<LevelField> {
+        goal_map(map, goal)?;
         let mut exits = Vec::new();
         let mut flights = Vec::new();
         for (i, p) in map.portals().iter().enumerate() {
@@ -139,14 +158,14 @@ impl LevelField {
                 let Some(beyond) = to_goal[other] else {
                     continue;
                 };
-                let Some(level_map) = map.level(here.level) else {
+                let Some(field) = map.end_field(i, !foot) else {
                     continue;
                 };
                 exits.push(Exit {
                     level: here.level,
                     portal: i,
                     foot,
-                    field: Arc::new(DistanceField::new(level_map, here.point)?),
+                    field,
                     rest: p.cost + beyond,
                 });
             }
@@ -318,5 +337,104 @@ impl LevelField {
             .into_iter()
             .min_by(|a, b| a.0.total_cmp(&b.0))
             .map(|o| o.1)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geodesic::Portal;
+    use crate::occupancy::{CellState, GridMap};
+
+    /// Two 6 m floors, a wall across each with a gap, one flight between them.
+    fn two_floors() -> MultiLevelMap {
+        let floor = || {
+            let mut m = GridMap::new(60, 60, 0.1, Vec2::ZERO, CellState::Free).unwrap();
+            for col in 0..45 {
+                m.set(col, 30, CellState::Occupied);
+            }
+            m
+        };
+        let portal = Portal {
+            stairs: 7,
+            lower: LevelPoint::new(0, 1.0, 5.0),
+            upper: LevelPoint::new(1, 5.0, 1.0),
+            cost: 4.0,
+        };
+        MultiLevelMap::new(vec![floor(), floor()], vec![portal]).unwrap()
+    }
+
+    fn probes() -> Vec<[f32; 3]> {
+        let mut out = Vec::new();
+        for y in [0.0, 1.5, 3.0] {
+            for i in 0..12 {
+                for j in 0..12 {
+                    out.push([0.25 + 0.5 * i as f32, y, 0.25 + 0.5 * j as f32]);
+                }
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn a_given_goal_field_and_shared_stair_fields_give_the_same_field() {
+        let heights = [0.0, 3.0];
+        let half = [0.5];
+        for goal in [LevelPoint::new(1, 2.0, 5.0), LevelPoint::new(0, 5.5, 0.5)] {
+            // Alone on a fresh map, as before the sharing.
+            let alone = LevelField::new(&two_floors(), &heights, &half, goal).unwrap();
+            let shared_map = two_floors();
+            // Another goal first, so the stairs' fields are already built.
+            LevelField::new(&shared_map, &heights, &half, LevelPoint::new(0, 0.5, 0.5)).unwrap();
+            let level = shared_map.level(goal.level).unwrap();
+            let given = Arc::new(DistanceField::new(level, goal.point).unwrap());
+            let shared =
+                LevelField::with_goal_field(&shared_map, &heights, &half, goal, given).unwrap();
+            for p in probes() {
+                assert_eq!(alone.distance(p), shared.distance(p), "at {p:?}");
+                let kind = |g: Option<Guide>| {
+                    g.map(|g| match g {
+                        Guide::Walk { rest, .. } => (0, rest.to_bits()),
+                        Guide::Flight { up, aim, .. } => (1 + u32::from(up), aim.x.to_bits()),
+                    })
+                };
+                assert_eq!(kind(alone.guide(p)), kind(shared.guide(p)), "at {p:?}");
+            }
+            assert!(alone.distance([0.5, 3.0, 5.5]).meters().is_some());
+        }
+    }
+
+    #[test]
+    fn the_stairs_fields_are_built_once_per_map() {
+        let m = two_floors();
+        let a = LevelField::new(&m, &[0.0, 3.0], &[0.5], LevelPoint::new(1, 2.0, 5.0)).unwrap();
+        let b = LevelField::new(&m, &[0.0, 3.0], &[0.5], LevelPoint::new(1, 4.0, 5.5)).unwrap();
+        // Both ends of the flight lead to either goal: the same two fields in both.
+        assert_eq!((a.exits.len(), b.exits.len()), (2, 2));
+        for (x, y) in a.exits.iter().zip(&b.exits) {
+            assert!(Arc::ptr_eq(&x.field, &y.field));
+            assert!(Arc::ptr_eq(&x.field, &m.end_field(0, !x.foot).unwrap()));
+        }
+        assert_eq!(
+            m.end_field(0, false).unwrap().goal(),
+            Some(Vec2::new(1.0, 5.0))
+        );
+        assert!(m.end_field(1, false).is_none());
+    }
+
+    #[test]
+    fn a_goal_on_a_missing_level_is_an_error_naming_it() {
+        let m = two_floors();
+        let field = m.end_field(0, true).unwrap();
+        let e = LevelField::with_goal_field(
+            &m,
+            &[0.0, 3.0],
+            &[0.5],
+            LevelPoint::new(4, 1.0, 1.0),
+            field,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("goal level") && e.contains('4'), "{e}");
     }
 }

@@ -7,7 +7,9 @@
 //! [`shortest_path`] queries on that level's map (computed once each, on demand). With both
 //! points on one level and no stairs this is exactly [`shortest_path`] on that level.
 
-use super::{check_finite, shortest_path, GeodesicDistance, GeodesicPath};
+use std::sync::{Arc, OnceLock};
+
+use super::{check_finite, shortest_path, DistanceField, GeodesicDistance, GeodesicPath};
 use crate::error::{EnvError, Result};
 use crate::occupancy::{build_level_maps, GridMap, OccupancyConfig};
 use crate::scene::{LevelId, Scene, Stairs};
@@ -118,6 +120,10 @@ impl LevelRoute {
 pub struct MultiLevelMap {
     levels: Vec<GridMap>,
     portals: Vec<Portal>,
+    /// Per portal, the fields toward its `[lower, upper]` end on that end's level, built when
+    /// first asked for ([`MultiLevelMap::end_field`]): they do not depend on any goal, so every
+    /// goal's [`super::LevelField`] in the home shares them.
+    end_fields: Vec<[OnceLock<Arc<DistanceField>>; 2]>,
 }
 
 impl MultiLevelMap {
@@ -143,7 +149,12 @@ impl MultiLevelMap {
                 ));
             }
         }
-        Ok(MultiLevelMap { levels, portals })
+        let end_fields = portals.iter().map(|_| Default::default()).collect();
+        Ok(MultiLevelMap {
+            levels,
+            portals,
+            end_fields,
+        })
     }
 
     /// Build every level's maps of a scene ([`build_level_maps`]) and join them by its stairs.
@@ -169,6 +180,26 @@ impl MultiLevelMap {
     /// The portals (stairs).
     pub fn portals(&self) -> &[Portal] {
         &self.portals
+    }
+
+    /// The distance field toward end `upper` (false: the foot on the lower level, true: the
+    /// head on the upper one) of portal `portal`, on that end's level; built on first use and
+    /// kept, so it is computed once per home whatever the goals. `None` for a portal index out
+    /// of range.
+    pub fn end_field(&self, portal: usize, upper: bool) -> Option<Arc<DistanceField>> {
+        let p = self.portals.get(portal)?;
+        let end = if upper { p.upper } else { p.lower };
+        let cell = &self.end_fields.get(portal)?[usize::from(upper)];
+        let map = self.levels.get(end.level as usize)?;
+        let field = cell.get_or_init(|| {
+            // `new` checked the level and that the point is finite, the only error of
+            // `DistanceField::new`; were it to fail anyway, the end is unreachable.
+            Arc::new(
+                DistanceField::new(map, end.point)
+                    .unwrap_or_else(|_| DistanceField::from_root(map, None)),
+            )
+        });
+        Some(field.clone())
     }
 
     /// Geodesic distance between two points, across levels through the stairs.
