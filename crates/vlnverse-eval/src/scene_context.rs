@@ -196,6 +196,13 @@ impl SceneContext {
         Ok(self.mesh.get_or_init(|| m).clone())
     }
 
+    /// Whether the distance field to a goal point is cached now (built by
+    /// [`SceneContext::field`] and not cleared since).
+    pub fn has_field(&self, goal: [f32; 3]) -> bool {
+        let key = (goal[0].to_bits(), goal[1].to_bits(), goal[2].to_bits());
+        lock(&self.fields).contains_key(&key)
+    }
+
     /// The distance field to a goal point (cached), on the goal's level's map.
     pub fn field(&self, goal: [f32; 3]) -> Result<Arc<DistanceField>> {
         let key = (goal[0].to_bits(), goal[1].to_bits(), goal[2].to_bits());

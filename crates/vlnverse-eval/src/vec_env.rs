@@ -11,8 +11,9 @@
 //!   `len` resets of the whole batch visit every episode exactly once; after that it starts
 //!   another pass (`StepInfo::pass`). [`EpisodeOrder::Train`] draws episodes uniformly with a
 //!   per-environment seeded generator, one episode ahead: the home of each environment's next
-//!   episode is read and prepared for the renderer on a thread of its own while the batch
-//!   steps, so a reset rarely waits for a home (the draws, and so the episodes, are the same).
+//!   episode is read and prepared for the renderer, and the episode checked (its goals'
+//!   distance fields built), on a thread of its own while the batch steps, so a reset rarely
+//!   waits for a home or a field (the draws, and so the episodes, are the same).
 //! - Autoreset: none inside. An environment whose episode is over refuses further actions
 //!   until [`VecEnv::reset_env`] (the Python layer implements Gymnasium's next-step autoreset
 //!   on top: the action after the end resets).
@@ -201,22 +202,29 @@ pub struct VecEnv<S: Simulator> {
 /// Episodes drawn ahead per environment in train order (their homes are prepared meanwhile).
 const AHEAD: usize = 1;
 
-/// A thread that loads the homes of episodes drawn ahead into the scene cache and prepares
-/// them for the renderer ([`SensorRig::scene_preparer`]). What it prepares is only cached:
-/// results never depend on it, and its errors show when an environment loads the home itself.
+/// A thread that loads the homes of episodes drawn ahead into the scene cache, checks the
+/// episodes there ([`check_episode`], which builds and caches their goals' distance fields)
+/// and prepares the homes for the renderer ([`SensorRig::scene_preparer`]). What it prepares
+/// is only cached: results never depend on it, and its errors show when an environment's reset
+/// loads and checks the episode itself (then finding the fields built).
 struct Prefetch {
-    tx: Option<mpsc::Sender<String>>,
+    tx: Option<mpsc::Sender<Arc<Episode>>>,
     worker: Option<std::thread::JoinHandle<()>>,
 }
 
 impl Prefetch {
     fn start(scenes: Arc<SceneCache>, prepare: Option<fn(Arc<SceneMesh>)>) -> Option<Self> {
-        let (tx, rx) = mpsc::channel::<String>();
+        let (tx, rx) = mpsc::channel::<Arc<Episode>>();
         let worker = std::thread::Builder::new()
             .name("vlnverse-prefetch".into())
             .spawn(move || {
-                for id in rx {
-                    let Ok(ctx) = scenes.get(&id) else { continue };
+                for ep in rx {
+                    let Ok(ctx) = scenes.get(&ep.scene_id) else {
+                        continue;
+                    };
+                    // The goals' fields first: a reset that does not find them builds them on
+                    // the serial part of a batch, a home not prepared is prepared in parallel.
+                    let _ = check_episode(&ep, &ctx);
                     if let (Some(prepare), Ok(mesh)) = (prepare, ctx.mesh()) {
                         prepare(mesh);
                     }
@@ -229,9 +237,9 @@ impl Prefetch {
         })
     }
 
-    fn request(&self, scene_id: &str) {
+    fn request(&self, episode: &Arc<Episode>) {
         if let Some(tx) = &self.tx {
-            let _ = tx.send(scene_id.to_string());
+            let _ = tx.send(episode.clone());
         }
     }
 }
@@ -408,7 +416,7 @@ impl<S: Simulator> VecEnv<S> {
                     let ep = self.episodes[slot.rng.random_range(0..n)].clone();
                     // The first draw is begun now; later ones are prepared meanwhile.
                     if let (Some(p), false) = (&self.prefetch, slot.ahead.is_empty()) {
-                        p.request(&ep.scene_id);
+                        p.request(&ep);
                     }
                     slot.ahead.push_back(ep);
                 }
@@ -673,4 +681,37 @@ struct Extra {
     collided: bool,
     noticeable: bool,
     progress: f32,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An episode requested ahead is loaded and checked on the prefetch thread: its home is in
+    /// the cache (loaded once) and its goals' fields are built, so its reset finds them.
+    #[test]
+    fn the_prefetch_thread_builds_the_goal_fields_of_an_episode_drawn_ahead() {
+        let dir = tempfile::tempdir().unwrap();
+        let episodes = vlnverse_testkit::datasets::make_dataset(dir.path(), Task::Fine, 2, 2, 3);
+        let scenes = Arc::new(SceneCache::new(dir.path(), 4));
+        let ep = Arc::new(episodes[1].clone());
+        let prefetch = Prefetch::start(scenes.clone(), None).unwrap();
+        prefetch.request(&ep);
+        // Dropping it waits for the requests sent.
+        drop(prefetch);
+        assert_eq!(scenes.loads(), 1);
+        let ctx = scenes.get(&ep.scene_id).unwrap();
+        assert_eq!(scenes.loads(), 1, "the reset finds the home loaded");
+        let goals = ep.goal_sequence();
+        assert!(!goals.is_empty());
+        for g in goals {
+            assert!(ctx.has_field(g.position), "{:?}", g.position);
+        }
+        // An episode not requested: no field for its goal yet.
+        let other = episodes
+            .iter()
+            .find(|e| e.scene_id == ep.scene_id && e.goals[0].position != ep.goals[0].position)
+            .unwrap();
+        assert!(!ctx.has_field(other.goals[0].position));
+    }
 }
