@@ -166,7 +166,7 @@ pub(crate) fn object_np(
         let uses = object_uses(o);
         if !uses.is_empty() {
             s.push(' ');
-            s.push_str(pick(rng, uses));
+            s.push_str(pick(rng, &uses));
         }
     }
     (s, extra)
@@ -445,8 +445,8 @@ fn edge_distance(room: &Room, lo: Vec2, hi: Vec2) -> f32 {
 }
 
 /// What people call a room from what it holds and how it sits in the home ("master bedroom",
-/// "nursery", "en suite bathroom", "walk-in closet"): the bank of such names, `None` when none
-/// holds.
+/// "nursery", "en suite bathroom", "half bath", "walk-in closet"): the bank of such names,
+/// `None` when none holds.
 pub(crate) fn room_by_content(scene: &Scene, room: RoomId) -> Option<ph::Bank> {
     let r = scene.room(room)?;
     let of_kind = |k: RoomType| scene.rooms.iter().filter(move |x| x.kind == k);
@@ -491,6 +491,9 @@ pub(crate) fn room_by_content(scene: &Scene, room: RoomId) -> Option<ph::Bank> {
             }
         }
         RoomType::Bathroom if off_a_bedroom(room) => Some(ph::ROOM_EN_SUITE),
+        RoomType::Bathroom if super::openings::is_half_bath(scene, room) => {
+            Some(ph::ROOM_HALF_BATH)
+        }
         RoomType::Bathroom => {
             let tubs = of_kind(RoomType::Bathroom)
                 .filter(|x| holds(x.id, C::Bathtub))

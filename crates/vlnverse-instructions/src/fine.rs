@@ -7,7 +7,9 @@ use super::describe::{
     content_name, door_between, door_np, end_place, is_closed_leaf, object_np, room_np,
     unique_landmarks_in, NpOptions, RoomNaming, Viewpoint,
 };
+use super::door_order;
 use super::lexicon::{number_word, object_names, ordinal_word, plural};
+use super::openings::{self, OpeningCount};
 use super::path::{
     classify_turn, direction_of_yaw, env_side, floor_points, footprint, rect_distance,
     segment_headings, side_word, signed_turn_deg, visible, wall_rects, Turn,
@@ -386,12 +388,33 @@ struct Named {
     plural: bool,
 }
 
-/// A room change as written.
+/// "the second door on your left", "the last doorway on your right", "the door on your left"
+/// (the only one on that side): a door taken out of a room, counted along the walk to it;
+/// `None` past the fifth.
+fn nth_door_np(n: door_order::NthDoor, rng: &mut ChaCha8Rng) -> Option<String> {
+    let noun = if n.leaf { "door" } else { "doorway" };
+    let side = side_word(n.side);
+    let ord = if n.ordinal == 1 && n.last {
+        None
+    } else if n.last && rng.random_bool(0.5) {
+        Some("last")
+    } else {
+        Some(ordinal_word(n.ordinal as u32).filter(|_| n.ordinal <= 5)?)
+    };
+    Some(match ord {
+        Some(o) => format!("the {o} {noun} on your {side}"),
+        None => format!("the {noun} on your {side}"),
+    })
+}
+
+/// A room change as written; `nth` is the door taken, counted along the walk to it ("the
+/// second door on your left"), said now and then when there is one.
 fn room_change(
     ctx: &PathContext<'_>,
     from: RoomId,
     to: RoomId,
     at: Vec2,
+    nth: Option<String>,
     naming: &RoomNaming,
     rng: &mut ChaCha8Rng,
 ) -> String {
@@ -419,6 +442,12 @@ fn room_change(
     }
     if scene.room(to).map(|r| r.kind) == Some(RoomType::Balcony) && rng.random_bool(0.6) {
         return fill(pick(rng, &ph::GO_OUTSIDE), &[("room", &to_np)]);
+    }
+    if let Some(d) = nth.filter(|_| rng.random_bool(0.5)) {
+        return fill(
+            pick(rng, &ph::THROUGH_DOOR),
+            &[("door", &d), ("room", &to_np)],
+        );
     }
     let door = door_np(scene, from, to, at, rng);
     // Mostly just the room entered, as people say it ("go into the kitchen").
@@ -1134,7 +1163,11 @@ fn room_changes(route: &Route<'_, '_>, li: usize, rng: &mut ChaCha8Rng) -> Vec<S
         ks.iter()
             .map(|&k| {
                 let at = route.pts[rooms[k].0.min(route.n() - 1)];
-                room_change(ctx, rooms[k - 1].1, rooms[k].1, at, &route.rooms_named, rng)
+                let (from, to) = (rooms[k - 1].1, rooms[k].1);
+                let nth = door_between(ctx.scene, from, to, at)
+                    .and_then(|d| door_order::nth_door(ctx.scene, &route.pts, rooms[k].0, from, d))
+                    .and_then(|n| nth_door_np(n, rng));
+                room_change(ctx, from, to, at, nth, &route.rooms_named, rng)
             })
             .collect()
     }
@@ -1555,13 +1588,29 @@ fn room_size_remark(
         FloorKind::Wood => ph::FLOOR_WOOD,
         FloorKind::Tile => ph::FLOOR_TILE,
     });
+    // Its openings, counted as doors, doorways or openings.
+    let (openings, closed) = match openings::opening_count(scene, r.id) {
+        Some(OpeningCount::Doors { total, closed }) => (Some((ph::ROOM_DOORS, total)), closed),
+        Some(OpeningCount::Doorways(n)) => (Some((ph::ROOM_DOORWAYS, n)), 0),
+        Some(OpeningCount::Openings(n)) => (Some((ph::ROOM_OPENINGS, n)), 0),
+        None => (None, 0),
+    };
     let mut said: Vec<(Bank, usize)> = size.into_iter().chain(floor).map(|b| (b, 0)).collect();
     said.extend(windows);
+    said.extend(openings);
     if said.is_empty() {
         return None;
     }
     let (bank, n) = said[rng.random_range(0..said.len())];
-    Some(fill(pick(rng, &bank), &[("num", &number_word(n as u32))]))
+    let s = fill(pick(rng, &bank), &[("num", &number_word(n as u32))]);
+    if bank == ph::ROOM_DOORS && closed > 0 {
+        let shut = fill(
+            pick(rng, &ph::ROOM_DOORS_CLOSED),
+            &[("n", &number_word(closed as u32))],
+        );
+        return Some(format!("{}, {shut}.", s.trim_end_matches('.')));
+    }
+    Some(s)
 }
 
 /// Add a leg's sentences: the first numbered ("Second, ...") or opened ("Next, ...") and

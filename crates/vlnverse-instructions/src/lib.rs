@@ -46,10 +46,12 @@
 
 mod data;
 mod describe;
+mod door_order;
 mod fine;
 pub mod lexicon;
 #[cfg(feature = "llm")]
 pub mod llm;
+mod openings;
 mod path;
 mod phrases;
 mod room_facts;

@@ -196,6 +196,11 @@ banks! {
     FLOOR_WOOD = floor_wood,
     FLOOR_TILE = floor_tile,
     END_COUNT = end_count,
+    ROOM_DOORS = room_doors,
+    ROOM_DOORS_CLOSED = room_doors_closed,
+    ROOM_DOORWAYS = room_doorways,
+    ROOM_OPENINGS = room_openings,
+    ROOM_HALF_BATH = room_half_bath,
 }
 
 /// A bank as written in the data file.

@@ -1,0 +1,126 @@
+//! What a room's openings and fixtures say about it, as people put it: how many doorways lead
+//! out of a room just entered ("The room has three doors.", "Two of them are closed.") and
+//! whether a bathroom is a half bath (a toilet and a sink, no bathtub or shower: "the powder
+//! room").
+
+use vlnverse_env::{Door, RoomId, RoomType, Scene, SemanticClass as C};
+
+/// How the openings of a room are counted in a remark.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum OpeningCount {
+    /// Every opening has a door leaf: `total` doors, `closed` of them shut.
+    Doors { total: usize, closed: usize },
+    /// No leaf in some, but none is an open-plan connection: doorways.
+    Doorways(usize),
+    /// Some are open-plan connections: openings.
+    Openings(usize),
+}
+
+/// The openings of `room` (doors, doorways, open-plan connections), in the scene's order.
+pub(crate) fn openings_of(scene: &Scene, room: RoomId) -> impl Iterator<Item = &Door> {
+    scene.doors.iter().filter(move |d| d.rooms.contains(&room))
+}
+
+/// The openings of `room` as a remark counts them, when there are two to five (one goes
+/// without saying, more is a list nobody reads); `None` otherwise.
+pub(crate) fn opening_count(scene: &Scene, room: RoomId) -> Option<OpeningCount> {
+    let doors: Vec<&Door> = openings_of(scene, room).collect();
+    if !(2..=5).contains(&doors.len()) {
+        return None;
+    }
+    let n = doors.len();
+    Some(if doors.iter().all(|d| d.leaf.is_some()) {
+        OpeningCount::Doors {
+            total: n,
+            closed: doors.iter().filter(|d| d.is_closed()).count(),
+        }
+    } else if doors.iter().any(|d| d.open_plan) {
+        OpeningCount::Openings(n)
+    } else {
+        OpeningCount::Doorways(n)
+    })
+}
+
+/// Whether `room` is a bathroom with a toilet and a sink but neither a bathtub nor a shower:
+/// what people call a half bath or a powder room.
+pub(crate) fn is_half_bath(scene: &Scene, room: RoomId) -> bool {
+    if scene.room(room).map(|r| r.kind) != Some(RoomType::Bathroom) {
+        return false;
+    }
+    let holds = |c: C| {
+        scene
+            .objects
+            .iter()
+            .any(|o| o.room == Some(room) && o.class == c)
+    };
+    holds(C::Toilet) && holds(C::Sink) && !holds(C::Bathtub) && !holds(C::Shower)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use vlnverse_env::SceneSource;
+    use vlnverse_procgen::{HomeGenerator, Preset};
+
+    fn scenes() -> Vec<Scene> {
+        let g = HomeGenerator::from_preset(Preset::Tiny).unwrap();
+        (0..g.len()).map(|i| g.scene(i).unwrap()).collect()
+    }
+
+    #[test]
+    fn a_count_names_every_opening_of_the_room_and_its_closed_doors() {
+        let mut seen = 0;
+        for scene in scenes() {
+            for r in &scene.rooms {
+                let all: Vec<&Door> = openings_of(&scene, r.id).collect();
+                assert!(all.iter().all(|d| d.rooms.contains(&r.id)));
+                match opening_count(&scene, r.id) {
+                    None => assert!(!(2..=5).contains(&all.len())),
+                    Some(OpeningCount::Doors { total, closed }) => {
+                        seen += 1;
+                        assert_eq!(total, all.len());
+                        assert!(all.iter().all(|d| d.leaf.is_some()));
+                        assert_eq!(closed, all.iter().filter(|d| d.is_closed()).count());
+                    }
+                    Some(OpeningCount::Doorways(n)) => {
+                        seen += 1;
+                        assert_eq!(n, all.len());
+                        assert!(all.iter().all(|d| !d.open_plan));
+                        assert!(all.iter().any(|d| d.leaf.is_none()));
+                    }
+                    Some(OpeningCount::Openings(n)) => {
+                        seen += 1;
+                        assert_eq!(n, all.len());
+                        assert!(all.iter().any(|d| d.open_plan));
+                    }
+                }
+            }
+        }
+        assert!(
+            seen > 0,
+            "no room with two to five openings in the tiny homes"
+        );
+    }
+
+    #[test]
+    fn a_half_bath_is_a_bathroom_without_a_tub_or_a_shower() {
+        for scene in scenes() {
+            for r in &scene.rooms {
+                let has = |c: C| {
+                    scene
+                        .objects
+                        .iter()
+                        .any(|o| o.room == Some(r.id) && o.class == c)
+                };
+                let half = is_half_bath(&scene, r.id);
+                if half {
+                    assert_eq!(r.kind, RoomType::Bathroom);
+                    assert!(has(C::Toilet) && has(C::Sink));
+                }
+                if has(C::Bathtub) || has(C::Shower) || r.kind != RoomType::Bathroom {
+                    assert!(!half);
+                }
+            }
+        }
+    }
+}
