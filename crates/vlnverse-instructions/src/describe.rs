@@ -674,14 +674,31 @@ pub(crate) fn door_np(
     let door = door_between(scene, a, b, at)?;
     // A doorway with a leaf in it is a door, and people name its colour now and then.
     if let Some(leaf) = door_leaf(scene, door) {
-        let coloured = format!("the {} door", leaf.color);
-        let bank = [
-            "the door",
-            "the open door",
-            "the doorway",
-            coloured.as_str(),
-        ];
-        return Some(pick(rng, &bank).to_string());
+        let plain = match rng.random_range(0..5) {
+            0 => Some("the door".to_string()),
+            1 => Some("the open door".to_string()),
+            2 => Some("the doorway".to_string()),
+            3 => Some(format!("the {} door", leaf.color)),
+            _ => None,
+        };
+        if plain.is_some() {
+            return plain;
+        }
+        // Its shade, now and then its material, and that it stands open.
+        let shades = color_phrases(leaf);
+        let c = match shades.len() {
+            0 => leaf.color.clone(),
+            n => shades[rng.random_range(0..n)].clone(),
+        };
+        let m = material_words(leaf)
+            .first()
+            .copied()
+            .filter(|m| !c.contains(m) && rng.random_bool(0.4));
+        let open = if rng.random_bool(0.4) { "open " } else { "" };
+        return Some(match m {
+            Some(m) => format!("the {open}{c} {m} door"),
+            None => format!("the {open}{c} door"),
+        });
     }
     let bank: &[&str] = if door.open_plan {
         &[
