@@ -17,6 +17,7 @@ use super::path::{
 use super::phrases::{self as ph, capitalize, fill, pick, Bank};
 use super::room_facts::{self, FloorKind};
 use super::spatial;
+use super::stairwell;
 use super::templates::{same_class_in_room, TemplateConfig};
 use super::PathContext;
 use glam::{Vec2, Vec3};
@@ -723,6 +724,25 @@ fn leg_sentences(route: &Route<'_, '_>, li: usize, draft: &mut Draft) {
     // With nothing else to name on the way, a room passed by its open doorway.
     if named.is_empty() && route.writer != Writer::Terse && draft.rng.random_bool(0.35) {
         named.extend(room_passed(route, li));
+    }
+    // Or, upstairs, the stairwell's railing beside the path.
+    if named.is_empty() && route.writer != Writer::Terse {
+        let beside = stairwell::railing_beside(
+            route.ctx.scene,
+            &route.pts,
+            &route.headings,
+            leg.first,
+            leg.last,
+        );
+        if let Some((_, side)) = beside.filter(|_| draft.rng.random_bool(0.5)) {
+            named.push(Named {
+                text: stairwell::railing_np(&mut draft.rng),
+                side,
+                group: false,
+                between: false,
+                plural: false,
+            });
+        }
     }
     // A slight bend on the way into another room or past a landmark often goes unsaid.
     let unsaid = matches!(leg.turn, Turn::Slight(_))

@@ -56,6 +56,7 @@ mod path;
 mod phrases;
 mod room_facts;
 mod spatial;
+mod stairwell;
 pub mod storeys;
 mod templates;
 

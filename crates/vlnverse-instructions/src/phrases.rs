@@ -201,6 +201,7 @@ banks! {
     ROOM_DOORWAYS = room_doorways,
     ROOM_OPENINGS = room_openings,
     ROOM_HALF_BATH = room_half_bath,
+    STAIRWELL = stairwell,
 }
 
 /// A bank as written in the data file.
