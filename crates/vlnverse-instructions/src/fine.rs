@@ -677,6 +677,14 @@ fn opening(route: &Route<'_, '_>, mut rng: ChaCha8Rng) -> Draft {
     if rng.random_bool(if route.chatty() { 0.15 } else { 0.02 }) {
         sentences.push(pick(&mut rng, &ph::OPEN).to_string());
     }
+    // Now and then how many rooms the route goes through (three or more).
+    let mut rooms: Vec<RoomId> = route.rooms.iter().map(|&(_, r)| r).collect();
+    rooms.sort_unstable();
+    rooms.dedup();
+    if rooms.len() >= 3 && writer != Writer::Terse && rng.random_bool(0.05) {
+        let num = number_word(rooms.len() as u32);
+        sentences.push(fill(pick(&mut rng, &ph::ROUTE_ROOMS), &[("num", &num)]));
+    }
     // Some writers number their steps ("First, ...", "Step two: ...").
     let numbered = matches!(writer, Writer::Plain | Writer::Precise) && rng.random_bool(0.06);
     let number_form = pick(&mut rng, &ph::NUMBERED);

@@ -62,17 +62,20 @@ impl Deref for Bank {
 
 /// Declares the banks: `CONST = table_name`, in the data file's order. Gives a [`Bank`]
 /// constant for each and [`KEYS`], the table names by bank index.
+/// The indices come from an enum of the constants' names (no recursion, so no limit on the
+/// number of banks).
 macro_rules! banks {
     ($($konst:ident = $key:ident,)*) => {
         /// The table names of the banks, by [`Bank`] index.
         const KEYS: &[&str] = &[$(stringify!($key)),*];
-        banks!(@index 0usize; $($konst)*);
+        /// The index of each bank, in the data file's order.
+        #[allow(non_camel_case_types, clippy::upper_case_acronyms)]
+        #[derive(Clone, Copy)]
+        enum BankIndex {
+            $($konst,)*
+        }
+        $(pub(crate) const $konst: Bank = Bank(BankIndex::$konst as usize);)*
     };
-    (@index $i:expr; $first:ident $($rest:ident)*) => {
-        pub(crate) const $first: Bank = Bank($i);
-        banks!(@index $i + 1; $($rest)*);
-    };
-    (@index $i:expr;) => {};
 }
 
 banks! {
@@ -202,6 +205,7 @@ banks! {
     ROOM_OPENINGS = room_openings,
     ROOM_HALF_BATH = room_half_bath,
     STAIRWELL = stairwell,
+    ROUTE_ROOMS = route_rooms,
 }
 
 /// A bank as written in the data file.
