@@ -445,8 +445,8 @@ fn edge_distance(room: &Room, lo: Vec2, hi: Vec2) -> f32 {
 }
 
 /// What people call a room from what it holds and how it sits in the home ("master bedroom",
-/// "nursery", "en suite bathroom", "half bath", "walk-in closet"): the bank of such names,
-/// `None` when none holds.
+/// "nursery", "en suite bathroom", "half bath", "walk-in closet", "the kitchen area" of an
+/// open-plan space): the bank of such names, `None` when none holds.
 pub(crate) fn room_by_content(scene: &Scene, room: RoomId) -> Option<ph::Bank> {
     let r = scene.room(room)?;
     let of_kind = |k: RoomType| scene.rooms.iter().filter(move |x| x.kind == k);
@@ -465,6 +465,12 @@ pub(crate) fn room_by_content(scene: &Scene, room: RoomId) -> Option<ph::Bank> {
                 }
             })
             .collect()
+    };
+    let open_plan = |id: RoomId| {
+        scene
+            .doors
+            .iter()
+            .any(|d| d.open_plan && d.rooms.contains(&id))
     };
     let off_a_bedroom = |id: RoomId| {
         let n = neighbours(id);
@@ -502,6 +508,10 @@ pub(crate) fn room_by_content(scene: &Scene, room: RoomId) -> Option<ph::Bank> {
             (baths >= 2 && tubs == 1 && holds(room, C::Bathtub)).then_some(ph::ROOM_MAIN_BATH)
         }
         RoomType::Closet if off_a_bedroom(room) => Some(ph::ROOM_WALK_IN),
+        // A room open to the next one, with no doorway between: an area of one open space.
+        RoomType::Kitchen if open_plan(room) => Some(ph::ROOM_OPEN_KITCHEN),
+        RoomType::DiningRoom if open_plan(room) => Some(ph::ROOM_OPEN_DINING),
+        RoomType::LivingRoom if open_plan(room) => Some(ph::ROOM_OPEN_LIVING),
         _ => None,
     }
 }
@@ -779,4 +789,45 @@ pub(crate) fn end_place(
         });
     }
     None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use vlnverse_env::SceneSource;
+    use vlnverse_procgen::{HomeGenerator, Preset};
+
+    #[test]
+    fn rooms_open_to_the_next_are_areas_and_half_baths_have_no_tub() {
+        let g = HomeGenerator::from_preset(Preset::Vlnverse).unwrap();
+        let mut areas = 0;
+        for i in 0..8 {
+            let scene = g.scene(i).unwrap();
+            for r in &scene.rooms {
+                let open = scene
+                    .doors
+                    .iter()
+                    .any(|d| d.open_plan && d.rooms.contains(&r.id));
+                let bank = room_by_content(&scene, r.id);
+                let area = [
+                    ph::ROOM_OPEN_KITCHEN,
+                    ph::ROOM_OPEN_DINING,
+                    ph::ROOM_OPEN_LIVING,
+                ];
+                if bank.is_some_and(|b| area.contains(&b)) {
+                    areas += 1;
+                    assert!(open, "{} room {} is no area", scene.id, r.id);
+                }
+                if bank == Some(ph::ROOM_HALF_BATH) {
+                    assert!(
+                        !scene
+                            .items()
+                            .any(|o| o.room == Some(r.id)
+                                && matches!(o.class, C::Bathtub | C::Shower))
+                    );
+                }
+            }
+        }
+        assert!(areas > 0, "no open-plan room in the first homes");
+    }
 }

@@ -206,6 +206,9 @@ banks! {
     ROOM_HALF_BATH = room_half_bath,
     STAIRWELL = stairwell,
     ROUTE_ROOMS = route_rooms,
+    ROOM_OPEN_KITCHEN = room_open_kitchen,
+    ROOM_OPEN_DINING = room_open_dining,
+    ROOM_OPEN_LIVING = room_open_living,
 }
 
 /// A bank as written in the data file.
