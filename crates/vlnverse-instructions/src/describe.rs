@@ -446,7 +446,7 @@ fn edge_distance(room: &Room, lo: Vec2, hi: Vec2) -> f32 {
 
 /// What people call a room from what it holds and how it sits in the home ("master bedroom",
 /// "nursery", "en suite bathroom", "half bath", "walk-in closet", "the kitchen area" of an
-/// open-plan space): the bank of such names, `None` when none holds.
+/// open-plan space, "the landing" upstairs): the bank of such names, `None` when none holds.
 pub(crate) fn room_by_content(scene: &Scene, room: RoomId) -> Option<ph::Bank> {
     let r = scene.room(room)?;
     let of_kind = |k: RoomType| scene.rooms.iter().filter(move |x| x.kind == k);
@@ -508,6 +508,15 @@ pub(crate) fn room_by_content(scene: &Scene, room: RoomId) -> Option<ph::Bank> {
             (baths >= 2 && tubs == 1 && holds(room, C::Bathtub)).then_some(ph::ROOM_MAIN_BATH)
         }
         RoomType::Closet if off_a_bedroom(room) => Some(ph::ROOM_WALK_IN),
+        // The upstairs hallway round the stairwell (its railings stand in it).
+        RoomType::Hallway
+            if scene
+                .objects
+                .iter()
+                .any(|o| o.class == C::Railing && o.room == Some(room)) =>
+        {
+            Some(ph::ROOM_LANDING)
+        }
         // A room open to the next one, with no doorway between: an area of one open space.
         RoomType::Kitchen if open_plan(room) => Some(ph::ROOM_OPEN_KITCHEN),
         RoomType::DiningRoom if open_plan(room) => Some(ph::ROOM_OPEN_DINING),

@@ -1597,6 +1597,12 @@ fn room_size_remark(
     if route.writer == Writer::Terse || !rng.random_bool(0.05) {
         return None;
     }
+    // A hallway by the rooms off it, now and then.
+    if r.kind == RoomType::Hallway && rng.random_bool(0.4) {
+        if let Some(list) = openings::rooms_off(route.ctx.scene, r.id) {
+            return Some(fill(pick(rng, &ph::HALL_LEADS), &[("obj", &list)]));
+        }
+    }
     let area = r.area();
     let size = if r.kind == RoomType::Hallway {
         (area > 6.0).then_some(ph::HALL_LONG)

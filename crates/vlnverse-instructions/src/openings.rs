@@ -1,8 +1,9 @@
 //! What a room's openings and fixtures say about it, as people put it: how many doorways lead
-//! out of a room just entered ("The room has three doors.", "Two of them are closed.") and
-//! whether a bathroom is a half bath (a toilet and a sink, no bathtub or shower: "the powder
+//! out of a room just entered ("The room has three doors, two of them closed."), the rooms
+//! they lead to ("two bedrooms and a bathroom"), and whether a bathroom is a half bath (a toilet and a sink, no bathtub or shower: "the powder
 //! room").
 
+use super::lexicon::{number_word, plural};
 use vlnverse_env::{Door, RoomId, RoomType, Scene, SemanticClass as C};
 
 /// How the openings of a room are counted in a remark.
@@ -38,6 +39,52 @@ pub(crate) fn opening_count(scene: &Scene, room: RoomId) -> Option<OpeningCount>
         OpeningCount::Openings(n)
     } else {
         OpeningCount::Doorways(n)
+    })
+}
+
+/// The rooms the openings of `room` lead to, said as people list them ("two bedrooms, a
+/// bathroom and a closet"): by type in the order of the openings, a number and the plural
+/// for several of one type. `None` unless two to five other rooms open off it.
+pub(crate) fn rooms_off(scene: &Scene, room: RoomId) -> Option<String> {
+    let mut others: Vec<RoomId> = Vec::new();
+    for d in openings_of(scene, room) {
+        for &r in &d.rooms {
+            if r != room && !others.contains(&r) {
+                others.push(r);
+            }
+        }
+    }
+    if !(2..=5).contains(&others.len()) {
+        return None;
+    }
+    let mut kinds: Vec<(RoomType, u32)> = Vec::new();
+    for r in others {
+        let kind = scene.room(r)?.kind;
+        match kinds.iter_mut().find(|(k, _)| *k == kind) {
+            Some((_, n)) => *n += 1,
+            None => kinds.push((kind, 1)),
+        }
+    }
+    let items: Vec<String> = kinds
+        .iter()
+        .map(|&(k, n)| {
+            let w = k.words();
+            if n == 1 {
+                let an = if w.starts_with(['a', 'e', 'i', 'o', 'u']) {
+                    "an"
+                } else {
+                    "a"
+                };
+                format!("{an} {w}")
+            } else {
+                format!("{} {}", number_word(n), plural(&w))
+            }
+        })
+        .collect();
+    Some(match items.split_last() {
+        Some((last, [])) => last.clone(),
+        Some((last, rest)) => format!("{} and {last}", rest.join(", ")),
+        None => return None,
     })
 }
 
@@ -100,6 +147,33 @@ mod tests {
             seen > 0,
             "no room with two to five openings in the tiny homes"
         );
+    }
+
+    #[test]
+    fn the_rooms_off_a_room_are_listed_by_type_with_their_numbers() {
+        let g = HomeGenerator::from_preset(Preset::Vlnverse).unwrap();
+        let mut listed = 0;
+        for i in 0..6 {
+            let scene = g.scene(i).unwrap();
+            for r in &scene.rooms {
+                let Some(list) = rooms_off(&scene, r.id) else {
+                    continue;
+                };
+                listed += 1;
+                let mut others: Vec<RoomId> = openings_of(&scene, r.id)
+                    .flat_map(|d| d.rooms)
+                    .filter(|&x| x != r.id)
+                    .collect();
+                others.sort_unstable();
+                others.dedup();
+                assert!((2..=5).contains(&others.len()), "{list}");
+                for x in others {
+                    let w = scene.room(x).unwrap().kind.words();
+                    assert!(list.contains(&w), "{list} lacks {w}");
+                }
+            }
+        }
+        assert!(listed > 0);
     }
 
     #[test]

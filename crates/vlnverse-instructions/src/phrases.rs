@@ -209,6 +209,8 @@ banks! {
     ROOM_OPEN_KITCHEN = room_open_kitchen,
     ROOM_OPEN_DINING = room_open_dining,
     ROOM_OPEN_LIVING = room_open_living,
+    HALL_LEADS = hall_leads,
+    ROOM_LANDING = room_landing,
 }
 
 /// A bank as written in the data file.
