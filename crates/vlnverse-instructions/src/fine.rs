@@ -1236,6 +1236,17 @@ fn movement(
             let hall = room_np(scene, r, &route.rooms_named, rng);
             fill(pick(rng, &ph::ALONG_HALL), &[("room", &hall)])
         }
+        Some(r)
+            if changes.is_empty()
+                && scene.room(r).is_some_and(|room| {
+                    let end = route.pts.get(leg.last + 1);
+                    end.is_some_and(|&b| spatial::diagonal_across(room, route.pts[leg.first], b))
+                })
+                && rng.random_bool(0.3) =>
+        {
+            let room = room_np(scene, r, &route.rooms_named, rng);
+            fill(pick(rng, &ph::DIAGONAL), &[("room", &room)])
+        }
         Some(r) if changes.is_empty() && leg.len > 2.5 && rng.random_bool(0.12) => {
             let room = room_np(scene, r, &route.rooms_named, rng);
             fill(pick(rng, &ph::THROUGH_ROOM), &[("room", &room)])

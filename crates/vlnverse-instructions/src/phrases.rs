@@ -211,6 +211,7 @@ banks! {
     ROOM_OPEN_LIVING = room_open_living,
     HALL_LEADS = hall_leads,
     ROOM_LANDING = room_landing,
+    DIAGONAL = diagonal,
 }
 
 /// A bank as written in the data file.

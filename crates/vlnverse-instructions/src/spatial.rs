@@ -187,6 +187,29 @@ pub(crate) fn doorway_at(scene: &Scene, p: Vec2) -> Option<&Door> {
         .find(|d| Vec2::new(d.position[0], d.position[2]).distance(p) < 0.45)
 }
 
+/// Whether the walk `a -> b` crosses `room` diagonally, as people say "walk diagonally across
+/// the room": both ends in the room, at 30 to 60 degrees to its longest wall, and at least
+/// 0.6 times the side of a square of the room's area long.
+pub(crate) fn diagonal_across(room: &Room, a: Vec2, b: Vec2) -> bool {
+    let n = room.polygon.len();
+    if n < 3 || !room.contains(a.x, a.y) || !room.contains(b.x, b.y) {
+        return false;
+    }
+    let ab = b - a;
+    if ab.length() < 0.6 * room.area().sqrt() {
+        return false;
+    }
+    let wall = (0..n)
+        .map(|i| Vec2::from(room.polygon[(i + 1) % n]) - Vec2::from(room.polygon[i]))
+        .max_by(|x, y| x.length().total_cmp(&y.length()));
+    let Some(wall) = wall.filter(|w| w.length() > 1e-3) else {
+        return false;
+    };
+    let cos = (ab.normalize().dot(wall.normalize())).abs().clamp(0.0, 1.0);
+    let deg = cos.acos().to_degrees();
+    (30.0..=60.0).contains(&deg)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -295,5 +318,17 @@ mod tests {
         assert!(between(&mid, &a, &b));
         assert!(!between(&end, &a, &b));
         assert!(!between(&off, &a, &b));
+    }
+
+    #[test]
+    fn a_walk_corner_to_corner_is_diagonal_and_one_along_a_wall_is_not() {
+        let r = room();
+        let v = |x: f32, y: f32| Vec2::new(x, y);
+        assert!(diagonal_across(&r, v(0.5, 0.5), v(3.5, 3.5)));
+        assert!(diagonal_across(&r, v(3.5, 0.5), v(0.5, 3.0)));
+        // Along a wall, too short, or leaving the room.
+        assert!(!diagonal_across(&r, v(0.5, 0.5), v(3.5, 0.5)));
+        assert!(!diagonal_across(&r, v(1.0, 1.0), v(2.0, 2.0)));
+        assert!(!diagonal_across(&r, v(0.5, 0.5), v(5.0, 5.0)));
     }
 }
