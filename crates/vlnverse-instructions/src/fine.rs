@@ -9,7 +9,7 @@ use super::describe::{
 };
 use super::door_order;
 use super::lexicon::{number_word, object_names, ordinal_word, plural};
-use super::openings::{self, OpeningCount};
+use super::openings::{self, Nearest, OpeningCount};
 use super::path::{
     classify_turn, direction_of_yaw, env_side, floor_points, footprint, rect_distance,
     segment_headings, side_word, signed_turn_deg, visible, wall_rects, Turn,
@@ -1194,9 +1194,20 @@ fn room_changes(route: &Route<'_, '_>, li: usize, rng: &mut ChaCha8Rng) -> Vec<S
             .map(|&k| {
                 let at = route.pts[rooms[k].0.min(route.n() - 1)];
                 let (from, to) = (rooms[k - 1].1, rooms[k].1);
-                let nth = door_between(ctx.scene, from, to, at)
+                let door = door_between(ctx.scene, from, to, at);
+                let nth = door
                     .and_then(|d| door_order::nth_door(ctx.scene, &route.pts, rooms[k].0, from, d))
-                    .and_then(|n| nth_door_np(n, rng));
+                    .and_then(|n| nth_door_np(n, rng))
+                    .or_else(|| {
+                        // Leaving the start room: its only door, or the nearest.
+                        let d = door.filter(|d| k == 1 && !d.open_plan)?;
+                        let near = openings::nearest_opening(ctx.scene, from, d, route.pts[0])?;
+                        let noun = if d.leaf.is_some() { "door" } else { "doorway" };
+                        Some(match near {
+                            Nearest::Only => format!("the only {noun}"),
+                            Nearest::Nearest => format!("the nearest {noun}"),
+                        })
+                    });
                 room_change(ctx, from, to, at, nth, &route.rooms_named, rng)
             })
             .collect()

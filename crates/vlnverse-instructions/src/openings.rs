@@ -4,6 +4,7 @@
 //! room").
 
 use super::lexicon::{number_word, plural};
+use glam::Vec2;
 use vlnverse_env::{Door, RoomId, RoomType, Scene, SemanticClass as C};
 
 /// How the openings of a room are counted in a remark.
@@ -86,6 +87,36 @@ pub(crate) fn rooms_off(scene: &Scene, room: RoomId) -> Option<String> {
         Some((last, rest)) => format!("{} and {last}", rest.join(", ")),
         None => return None,
     })
+}
+
+/// How the opening `door` of `room` stands among the room's openings seen from `p` (a point
+/// in the room): the only one, or the nearest by at least a metre.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Nearest {
+    /// The room's only opening.
+    Only,
+    /// The nearest to `p`, every other at least a metre further.
+    Nearest,
+}
+
+/// Whether `door` is the only opening of `room` or the clearly nearest one to `p`.
+pub(crate) fn nearest_opening(
+    scene: &Scene,
+    room: RoomId,
+    door: &Door,
+    p: Vec2,
+) -> Option<Nearest> {
+    let dist = |d: &Door| Vec2::new(d.position[0], d.position[2]).distance(p);
+    let mut others = openings_of(scene, room)
+        .filter(|d| d.id != door.id)
+        .peekable();
+    if others.peek().is_none() {
+        return Some(Nearest::Only);
+    }
+    let own = dist(door);
+    others
+        .all(|d| dist(d) >= own + 1.0)
+        .then_some(Nearest::Nearest)
 }
 
 /// Whether `room` is a bathroom with a toilet and a sink but neither a bathtub nor a shower:
@@ -174,6 +205,27 @@ mod tests {
             }
         }
         assert!(listed > 0);
+    }
+
+    #[test]
+    fn the_nearest_opening_is_a_metre_nearer_than_every_other() {
+        for scene in scenes() {
+            for r in &scene.rooms {
+                let all: Vec<&Door> = openings_of(&scene, r.id).collect();
+                let Some(first) = all.first() else { continue };
+                let c = Vec2::new(first.position[0], first.position[2]);
+                // Standing in its doorway, an opening is the nearest unless another is close.
+                let got = nearest_opening(&scene, r.id, first, c);
+                if all.len() == 1 {
+                    assert_eq!(got, Some(Nearest::Only));
+                    continue;
+                }
+                let clear = all[1..]
+                    .iter()
+                    .all(|d| Vec2::new(d.position[0], d.position[2]).distance(c) >= 1.0);
+                assert_eq!(got == Some(Nearest::Nearest), clear);
+            }
+        }
     }
 
     #[test]
