@@ -517,12 +517,25 @@ pub(crate) fn room_by_content(scene: &Scene, room: RoomId) -> Option<ph::Bank> {
         {
             Some(ph::ROOM_LANDING)
         }
+        // A long, narrow hallway.
+        RoomType::Hallway if narrow_and_long(r) => Some(ph::ROOM_PASSAGE),
         // A room open to the next one, with no doorway between: an area of one open space.
         RoomType::Kitchen if open_plan(room) => Some(ph::ROOM_OPEN_KITCHEN),
         RoomType::DiningRoom if open_plan(room) => Some(ph::ROOM_OPEN_DINING),
         RoomType::LivingRoom if open_plan(room) => Some(ph::ROOM_OPEN_LIVING),
         _ => None,
     }
+}
+
+/// Whether `room` is under 1.3 m across and over 3 m long (its outline's bounding box).
+fn narrow_and_long(room: &Room) -> bool {
+    let (mut lo, mut hi) = (Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY));
+    for p in &room.polygon {
+        lo = lo.min(Vec2::from(*p));
+        hi = hi.max(Vec2::from(*p));
+    }
+    let size = hi - lo;
+    size.min_element() < 1.3 && size.max_element() > 3.0
 }
 
 /// A name for the room from [`room_by_content`] now and then (with probability `p`), else
@@ -838,5 +851,19 @@ mod tests {
             }
         }
         assert!(areas > 0, "no open-plan room in the first homes");
+    }
+
+    #[test]
+    fn a_passage_is_narrow_and_long() {
+        let room = |w: f32, l: f32| Room {
+            id: 0,
+            kind: RoomType::Hallway,
+            name: "hallway_0".into(),
+            polygon: vec![[0.0, 0.0], [w, 0.0], [w, l], [0.0, l]],
+        };
+        assert!(narrow_and_long(&room(1.1, 5.0)));
+        assert!(narrow_and_long(&room(6.0, 1.2)));
+        assert!(!narrow_and_long(&room(1.5, 5.0)));
+        assert!(!narrow_and_long(&room(1.1, 2.5)));
     }
 }

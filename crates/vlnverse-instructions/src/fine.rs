@@ -1736,13 +1736,23 @@ fn stop_sentence(route: &Route<'_, '_>, draft: &mut Draft) -> String {
         );
         draft.grounding.push(grounded(o, Role::Target, side, n - 1));
         draft.grounding.extend(extra);
-        let bank = if spatial::at_foot_of(ctx.scene, end, o) && rng.random_bool(0.5) {
+        // A rug is stood on, or at its edge.
+        let rug = (o.class == vlnverse_env::SemanticClass::Rug)
+            .then(|| rect_distance(end, lo, hi))
+            .filter(|&d| d < 0.6 && rng.random_bool(0.6));
+        let bank = if let Some(d) = rug {
+            if d <= 0.0 {
+                &ph::STOP_ON
+            } else {
+                &ph::STOP_EDGE
+            }
+        } else if spatial::at_foot_of(ctx.scene, end, o) && rng.random_bool(0.5) {
             &ph::STOP_FOOT
         } else {
             &ph::STOP_AT
         };
         let mut s = fill(pick(rng, bank), &[("obj", &obj)]);
-        if let Some(sd @ (Side::Left | Side::Right)) = side {
+        if let Some(sd @ (Side::Left | Side::Right)) = side.filter(|_| *bank != ph::STOP_ON) {
             if rng.random_bool(0.35) {
                 let sp = fill(pick(rng, &ph::SIDE), &[("dir", side_word(sd))]);
                 let plural = np_is_plural(o, &obj);

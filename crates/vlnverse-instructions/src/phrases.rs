@@ -212,6 +212,9 @@ banks! {
     HALL_LEADS = hall_leads,
     ROOM_LANDING = room_landing,
     DIAGONAL = diagonal,
+    STOP_ON = stop_on,
+    STOP_EDGE = stop_edge,
+    ROOM_PASSAGE = room_passage,
 }
 
 /// A bank as written in the data file.
