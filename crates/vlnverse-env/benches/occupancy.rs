@@ -49,6 +49,8 @@ fn load_glb_as_meshes(path: &Path) -> Option<Scene> {
                     bbox: Aabb::EMPTY,
                     color: String::new(),
                     material: String::new(),
+                    shade: None,
+                    features: Vec::new(),
                     physics: Physics {
                         mass: 1.0,
                         friction: 0.5,

@@ -47,6 +47,8 @@ fn object(
         bbox: Aabb::new(lo, hi),
         color: COLORS[rng.random_range(0..COLORS.len())].into(),
         material: "wood".into(),
+        shade: None,
+        features: Vec::new(),
         physics: Physics {
             mass: 10.0,
             friction: 0.5,

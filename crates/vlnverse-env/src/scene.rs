@@ -332,6 +332,14 @@ pub struct SceneObject {
     pub color: String,
     /// Material word ("wood", "metal", "fabric", ...).
     pub material: String,
+    /// The shade of the colour word that the object's maker chose ("navy" for a blue sofa,
+    /// "oak" for a wooden one), when it chose one; language reads its words from it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shade: Option<String>,
+    /// Features of the object's model that tell it from others of its class, as the maker
+    /// names them ("footboard", "armless"); language turns them into phrases.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub features: Vec<String>,
     /// Mass, friction, static/dynamic.
     pub physics: Physics,
     /// The object this one stands on (`X on Y`), if any.
@@ -354,6 +362,8 @@ impl SceneObject {
             bbox: Aabb::EMPTY,
             color: "white".into(),
             material: "plaster".into(),
+            shade: None,
+            features: Vec::new(),
             physics: Physics {
                 mass: 10.0,
                 friction: 0.5,

@@ -596,6 +596,8 @@ pub fn import_scene_full(path: &Path, opts: &ImportOptions) -> Result<ImportOutp
                 .material
                 .clone()
                 .unwrap_or_else(|| material.to_string()),
+            shade: None,
+            features: Vec::new(),
             physics: Physics {
                 mass: label.mass.unwrap_or(mass),
                 friction: label.friction.unwrap_or(friction),

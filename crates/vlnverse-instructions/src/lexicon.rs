@@ -17,11 +17,32 @@ pub fn class_names(class: C) -> &'static [&'static str] {
     &CLASS_WORDS[class_index(class)].0
 }
 
+/// The least seat height of a stool called a bar stool (m): counter height.
+const BAR_STOOL_HEIGHT: f32 = 0.62;
+
 /// The names of one object: its class's names, narrowed where objects of a class differ in
 /// what people call them (a framed canvas on a wall is a painting, a frame on a shelf a photo
 /// frame). The first is the one used by default.
 pub fn object_names(o: &SceneObject) -> Vec<&'static str> {
     let names = class_names(o.class);
+    // A loveseat is a sofa for two.
+    if o.class == C::Sofa {
+        let for_two = o.features.iter().any(|f| f == "two seats");
+        return names
+            .iter()
+            .copied()
+            .filter(|n| for_two || *n != "loveseat")
+            .collect();
+    }
+    // A bar stool is one tall enough for a counter.
+    if o.class == C::Stool {
+        let tall = o.bbox.size().y >= BAR_STOOL_HEIGHT;
+        return names
+            .iter()
+            .copied()
+            .filter(|n| tall || *n != "bar stool")
+            .collect();
+    }
     if o.class != C::PictureFrame {
         return names.to_vec();
     }
@@ -41,14 +62,71 @@ pub fn object_names(o: &SceneObject) -> Vec<&'static str> {
     }
 }
 
-/// What one object is for ([`class_uses`]), none for a framed canvas (its class's uses are a
-/// photo frame's).
-pub fn object_uses(o: &SceneObject) -> &'static [&'static str] {
-    if o.class == C::PictureFrame && o.material == "canvas" {
-        &[]
+/// Phrases after the name of one object: what it is for ([`class_uses`]; for a framed canvas,
+/// whose class's uses are a photo frame's, what it shows), then what it has that others of its
+/// class may not (its recorded features, `data/features.toml`).
+pub fn object_uses(o: &SceneObject) -> Vec<&'static str> {
+    let mut out = if o.class == C::PictureFrame && o.material == "canvas" {
+        // Every canvas shows hills under a sky (vlnverse_env::material, `Surface::Painting`).
+        FEATURES
+            .get("landscape")
+            .map(|p| p.iter().map(String::as_str).collect())
+            .unwrap_or_default()
     } else {
-        class_uses(o.class)
+        class_uses(o.class).to_vec()
+    };
+    for f in &o.features {
+        if let Some(p) = FEATURES.get(f.as_str()) {
+            out.extend(p.iter().map(String::as_str));
+        }
     }
+    out
+}
+
+/// The features file, as errors name it.
+const FEATURES_FILE: &str = "data/features.toml";
+
+/// `data/features.toml`: phrases by feature name.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FeatureFile {
+    phrases: BTreeMap<String, Vec<String>>,
+}
+
+/// The feature phrases, parsed and checked once.
+static FEATURES: LazyLock<BTreeMap<String, Vec<String>>> = LazyLock::new(|| {
+    expect_embedded(parse_features(
+        FEATURES_FILE,
+        include_str!("../data/features.toml"),
+    ))
+});
+
+/// Parse and check a features file: no list empty, no phrase blank or listed twice.
+fn parse_features(
+    file: &'static str,
+    text: &str,
+) -> Result<BTreeMap<String, Vec<String>>, DataFileError> {
+    let f: FeatureFile = parse_toml(file, text)?;
+    for (key, phrases) in &f.phrases {
+        let at = format!("phrases.{key}");
+        if phrases.is_empty() {
+            return Err(DataFileError::new(
+                file,
+                at,
+                "empty (leave the feature out instead)",
+            ));
+        }
+        for (i, p) in phrases.iter().enumerate() {
+            if p.trim().is_empty() || phrases[..i].contains(p) {
+                return Err(DataFileError::new(
+                    file,
+                    at,
+                    format!("entry {i} ({p:?}) is blank or listed twice"),
+                ));
+            }
+        }
+    }
+    Ok(f.phrases)
 }
 
 /// The classes whose names include `name` (for checks: a synonym names one class, or a class
@@ -197,6 +275,10 @@ pub fn color_phrases(o: &SceneObject) -> Vec<String> {
         return Vec::new();
     }
     let mut out = vec![c.to_string()];
+    if let Some(words) = o.shade.as_deref().and_then(|s| SHADES.words.get(s)) {
+        out.extend(words.iter().cloned());
+        return out;
+    }
     let Some(rgb) = main_rgb(o) else {
         return out;
     };
@@ -207,19 +289,23 @@ pub fn color_phrases(o: &SceneObject) -> Vec<String> {
 /// The colour file, as errors name it.
 const COLOURS_FILE: &str = "data/colours.toml";
 
-/// The shade rules of [`color_phrases`], parsed and checked once from `data/colours.toml`.
-static SHADE_RULES: LazyLock<Vec<ShadeRule>> = LazyLock::new(|| {
+/// The shade rules and words of [`color_phrases`], parsed and checked once from
+/// `data/colours.toml`.
+static SHADES: LazyLock<ShadeFile> = LazyLock::new(|| {
     expect_embedded(parse_shade_rules(
         COLOURS_FILE,
         include_str!("../data/colours.toml"),
     ))
 });
 
-/// `data/colours.toml`: the shade rules, in order.
+/// `data/colours.toml`: the shade rules, in order, and the words of recorded shades.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct ShadeFile {
     rule: Vec<ShadeRule>,
+    /// Words for an object's recorded shade (`SceneObject::shade`), by shade name.
+    #[serde(default)]
+    words: BTreeMap<String, Vec<String>>,
 }
 
 /// One shade rule: when it holds (colour word and thresholds on the part's RGB), and the shades
@@ -255,7 +341,7 @@ fn shades_for(colour: &str, rgb: [f32; 3]) -> &'static [String] {
     let hi = rgb.iter().copied().fold(0.0f32, f32::max);
     let lo = rgb.iter().copied().fold(1.0f32, f32::min);
     let sat = if hi > 0.0 { (hi - lo) / hi } else { 0.0 };
-    let Some(rule) = SHADE_RULES.iter().find(|r| r.holds(colour, rgb, hi, sat)) else {
+    let Some(rule) = SHADES.rule.iter().find(|r| r.holds(colour, rgb, hi, sat)) else {
         return &[];
     };
     if rule.by_colour.is_empty() {
@@ -271,8 +357,28 @@ fn shades_for(colour: &str, rgb: [f32; 3]) -> &'static [String] {
 /// numbers (and hi / sat ones within 0..=1), a colour word that is not blank, and either
 /// shades or sub-rules by colour (which have shades and no sub-rules of their own); no shade
 /// blank, none listed twice in one rule.
-fn parse_shade_rules(file: &'static str, text: &str) -> Result<Vec<ShadeRule>, DataFileError> {
-    let rules = parse_toml::<ShadeFile>(file, text)?.rule;
+fn parse_shade_rules(file: &'static str, text: &str) -> Result<ShadeFile, DataFileError> {
+    let shades = parse_toml::<ShadeFile>(file, text)?;
+    for (name, words) in &shades.words {
+        let at = format!("words.{name}");
+        if words.is_empty() {
+            return Err(DataFileError::new(
+                file,
+                at,
+                "empty (leave the shade out instead)",
+            ));
+        }
+        for (i, w) in words.iter().enumerate() {
+            if w.trim().is_empty() || words[..i].contains(w) {
+                return Err(DataFileError::new(
+                    file,
+                    at,
+                    format!("entry {i} ({w:?}) is blank or listed twice"),
+                ));
+            }
+        }
+    }
+    let rules = &shades.rule;
     if rules.is_empty() {
         return Err(DataFileError::new(file, "", "no rules"));
     }
@@ -299,7 +405,7 @@ fn parse_shade_rules(file: &'static str, text: &str) -> Result<Vec<ShadeRule>, D
             }
         }
     }
-    Ok(rules)
+    Ok(shades)
 }
 
 /// " (white)" for a rule about "white", "" for a rule about any colour.
@@ -350,6 +456,12 @@ pub fn material_words(o: &SceneObject) -> &'static [&'static str] {
         "fabric" if upholstered => &["fabric", "cloth", "padded", "upholstered"],
         "fabric" => &["fabric", "cloth"],
         "leather" => &["leather"],
+        // Silver metal is steel on an appliance and chrome on a fitting; gold metal is brass.
+        "metal" if o.color == "silver" && is_appliance(o.class) => {
+            &["metal", "metallic", "steel", "stainless steel"]
+        }
+        "metal" if o.color == "silver" => &["metal", "metallic", "chrome"],
+        "metal" if o.color == "gold" => &["metal", "metallic", "brass"],
         "metal" => &["metal", "metallic"],
         "plastic" => &["plastic"],
         "ceramic" => &["ceramic", "porcelain"],
@@ -364,12 +476,31 @@ pub fn material_words(o: &SceneObject) -> &'static [&'static str] {
     }
 }
 
+/// Kitchen and laundry appliances, which people call steel when they are silver metal.
+fn is_appliance(class: C) -> bool {
+    matches!(
+        class,
+        C::Fridge
+            | C::Stove
+            | C::Dishwasher
+            | C::WashingMachine
+            | C::Toaster
+            | C::Kettle
+            | C::Microwave
+            | C::Pot
+            | C::Pan
+            | C::CoffeeMachine
+            | C::Blender
+    )
+}
+
 /// The plain material noun behind a material adjective ("made of wood").
 pub fn material_noun(word: &str) -> &str {
     match word {
         "wooden" => "wood",
         "cloth" | "padded" | "upholstered" => "fabric",
-        "metallic" => "metal",
+        "metallic" | "chrome" => "metal",
+        "stainless steel" => "steel",
         "porcelain" => "ceramic",
         other => other,
     }
@@ -556,6 +687,96 @@ mod tests {
     #[test]
     fn the_embedded_colour_file_is_valid() {
         if let Err(e) = parse_shade_rules(COLOURS_FILE, include_str!("../data/colours.toml")) {
+            panic!("{e}");
+        }
+    }
+
+    #[test]
+    fn a_recorded_shade_gives_its_words_and_every_generated_tone_has_words() {
+        use vlnverse_env::Pose;
+        let mut sofa = SceneObject::from_parts(1, C::Sofa, Pose::IDENTITY, Vec::new());
+        sofa.color = "blue".into();
+        sofa.shade = Some("navy".into());
+        assert_eq!(color_phrases(&sofa), ["blue", "navy", "navy blue"]);
+        // A shade without words falls back to the rules on the RGB (none here: no parts).
+        sofa.shade = Some("no such shade".into());
+        assert_eq!(color_phrases(&sofa), ["blue"]);
+        // The generator's tones (vlnverse-procgen) all have words here.
+        let tones: toml::Value =
+            toml::from_str(include_str!("../../vlnverse-procgen/data/tones.toml")).unwrap();
+        let tones = tones["tone"].as_array().unwrap();
+        assert!(tones.len() > 30);
+        for t in tones {
+            let shade = t["shade"].as_str().unwrap();
+            assert!(
+                SHADES.words.contains_key(shade),
+                "no words for the tone {shade:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn features_add_phrases_a_sofa_for_two_is_a_loveseat_a_tall_stool_a_bar_stool() {
+        use vlnverse_env::Pose;
+        let mut sofa = SceneObject::from_parts(1, C::Sofa, Pose::IDENTITY, Vec::new());
+        assert!(!object_names(&sofa).contains(&"loveseat"));
+        let uses = class_uses(C::Sofa);
+        assert_eq!(object_uses(&sofa), uses);
+        sofa.features = vec![
+            "two seats".into(),
+            "low arms".into(),
+            "no such feature".into(),
+        ];
+        assert!(object_names(&sofa).contains(&"loveseat"));
+        assert_eq!(
+            object_uses(&sofa)[uses.len()..],
+            [
+                "with two seats",
+                "for two people",
+                "with low arms",
+                "with low armrests"
+            ]
+        );
+        let stool = |h: f32| {
+            let mut o = SceneObject::from_parts(3, C::Stool, Pose::IDENTITY, Vec::new());
+            o.bbox = vlnverse_env::Aabb::new(glam::Vec3::ZERO, glam::Vec3::new(0.3, h, 0.3));
+            object_names(&o)
+        };
+        assert!(stool(0.7).contains(&"bar stool"));
+        assert_eq!(stool(0.45), ["stool"]);
+        let mut kettle = SceneObject::from_parts(2, C::Kettle, Pose::IDENTITY, Vec::new());
+        kettle.features = vec!["four legs".into()];
+        assert_eq!(object_uses(&kettle)[0], class_uses(C::Kettle)[0]);
+        assert_eq!(object_uses(&kettle).last(), Some(&"on four legs"));
+        let err = parse_features("f.toml", "[phrases]\nfootboard = [\"a\", \"a\"]\n")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("f.toml") && err.contains("phrases.footboard"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn silver_metal_is_steel_on_appliances_and_chrome_elsewhere() {
+        use vlnverse_env::Pose;
+        let metal = |class: C, color: &str| {
+            let mut o = SceneObject::from_parts(1, class, Pose::IDENTITY, Vec::new());
+            o.color = color.into();
+            o.material = "metal".into();
+            material_words(&o)
+        };
+        assert!(metal(C::Fridge, "silver").contains(&"stainless steel"));
+        assert!(!metal(C::Fridge, "silver").contains(&"chrome"));
+        assert!(metal(C::FloorLamp, "silver").contains(&"chrome"));
+        assert!(metal(C::Mirror, "gold").contains(&"brass"));
+        assert!(!metal(C::Fridge, "white").contains(&"steel"));
+        assert_eq!(material_noun("stainless steel"), "steel");
+    }
+
+    #[test]
+    fn the_embedded_feature_file_is_valid() {
+        if let Err(e) = parse_features(FEATURES_FILE, include_str!("../data/features.toml")) {
             panic!("{e}");
         }
     }

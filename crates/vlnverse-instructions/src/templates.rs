@@ -556,7 +556,7 @@ fn target_remark(
         }
         2 => fill(
             pick(rng, &use_b),
-            &[("use", pick(rng, uses)), ("name", name)],
+            &[("use", pick(rng, &uses)), ("name", name)],
         ),
         3 => fill(
             pick(rng, &place_b),

@@ -359,13 +359,12 @@ fn add_window(
         3.0 * pw * ph,
         None,
     );
-    b.add(
+    b.add_finish(
         C::Window,
         Some(room),
         pose,
         parts,
-        frame.color,
-        frame.material,
+        frame,
         8.0 * w,
         None,
     );
@@ -383,13 +382,12 @@ fn add_window(
                 )
             })
             .collect();
-        b.add(
+        b.add_finish(
             C::Curtain,
             Some(room),
             pose,
             parts,
-            cur.color,
-            cur.material,
+            cur,
             2.0,
             None,
         );

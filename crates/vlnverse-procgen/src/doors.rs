@@ -377,13 +377,12 @@ pub(crate) fn add_leaves(
             ),
         };
         leaves.push(obj.bbox);
-        let id = b.add(
+        let id = b.add_finish(
             C::Door,
             Some(room as RoomId),
             obj.pose,
             obj.parts,
-            fin.color,
-            fin.material,
+            fin,
             28.0,
             None,
         );

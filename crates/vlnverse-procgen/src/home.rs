@@ -51,6 +51,8 @@ impl Builder {
             bbox: vlnverse_env::Aabb::EMPTY,
             color: color.to_string(),
             material: material.to_string(),
+            shade: None,
+            features: Vec::new(),
             physics: Physics {
                 mass,
                 friction: palette::friction(material),
@@ -64,6 +66,35 @@ impl Builder {
         id
     }
 
+    /// Add an object in a finish: its colour and material words, and its shade if it took a
+    /// tone; returns its id.
+    #[allow(clippy::too_many_arguments)]
+    pub fn add_finish(
+        &mut self,
+        class: C,
+        room: Option<RoomId>,
+        pose: Pose,
+        parts: Vec<Part>,
+        fin: Finish,
+        mass: f32,
+        supported_by: Option<ObjectId>,
+    ) -> ObjectId {
+        let id = self.add(
+            class,
+            room,
+            pose,
+            parts,
+            fin.color,
+            fin.material,
+            mass,
+            supported_by,
+        );
+        if let Some(o) = self.objects.last_mut() {
+            o.shade = fin.shade.map(String::from);
+        }
+        id
+    }
+
     /// Add a placed model.
     pub fn add_model(
         &mut self,
@@ -72,16 +103,19 @@ impl Builder {
         pose: Pose,
         supported_by: Option<ObjectId>,
     ) -> ObjectId {
-        self.add(
+        let id = self.add_finish(
             m.class,
             Some(room),
             pose,
             m.parts.clone(),
-            m.finish.color,
-            m.finish.material,
+            m.finish,
             m.mass,
             supported_by,
-        )
+        );
+        if let Some(o) = self.objects.last_mut() {
+            o.features = m.features.iter().map(|f| f.to_string()).collect();
+        }
+        id
     }
 }
 
@@ -186,13 +220,12 @@ fn build_structure(
         let fin = floor_finish(room.kind, rng);
         let (cx, cz) = room.rect.center();
         let size = Vec3::new(room.rect.w(), 0.05, room.rect.d());
-        b.add(
+        b.add_finish(
             C::Floor,
             Some(i as RoomId),
             Pose::from_yaw(Vec3::new(cx, 0.0, cz), 0.0),
             vec![box_part(Vec3::new(0.0, -0.025, 0.0), size, fin.rgb)],
-            fin.color,
-            fin.material,
+            fin,
             size.x * size.z * 50.0,
             None,
         );
@@ -236,13 +269,12 @@ fn build_structure(
                 } else {
                     (Vec3::new(mid, 0.0, *line), Vec3::new(len, h, t))
                 };
-                b.add(
+                b.add_finish(
                     C::Wall,
                     None,
                     Pose::from_yaw(pos, 0.0),
                     vec![box_part(Vec3::new(0.0, h * 0.5, 0.0), size, wall.rgb)],
-                    wall.color,
-                    wall.material,
+                    wall,
                     size.x * size.y * size.z * 1500.0,
                     None,
                 );
@@ -263,13 +295,12 @@ fn add_ceilings(cfg: &ProcgenConfig, plan: &Plan, wall: Finish, b: &mut Builder)
     for (i, room) in plan.rooms.iter().enumerate() {
         let (cx, cz) = room.rect.center();
         let size = Vec3::new(room.rect.w(), 0.05, room.rect.d());
-        b.add(
+        b.add_finish(
             C::Ceiling,
             Some(i as RoomId),
             Pose::from_yaw(Vec3::new(cx, h, cz), 0.0),
             vec![box_part(Vec3::new(0.0, 0.025, 0.0), size, wall.rgb)],
-            wall.color,
-            wall.material,
+            wall,
             size.x * size.z * 30.0,
             None,
         );
@@ -304,13 +335,12 @@ fn add_door_frame(cfg: &ProcgenConfig, o: &Opening, rng: &mut ChaCha8Rng, b: &mu
     } else {
         0.0
     };
-    b.add(
+    b.add_finish(
         C::DoorFrame,
         None,
         Pose::from_yaw(Vec3::new(x, 0.0, z), yaw),
         parts,
-        fin.color,
-        fin.material,
+        fin,
         25.0,
         None,
     );

@@ -11,6 +11,7 @@ mod navgrid;
 mod palette;
 mod rect;
 mod storeys;
+mod tones;
 
 pub use config::{
     DoorsConfig, FloorsConfig, FurnitureConfig, ProcgenConfig, RoomKindConfig, RoomsConfig,

@@ -24,6 +24,10 @@ pub(crate) struct Model {
     pub top: Option<Rect>,
     pub finish: Finish,
     pub mass: f32,
+    /// What tells this model from the other variants of its class ("footboard", "two
+    /// drawers"), recorded on the object for language (`data/features` keys of
+    /// vlnverse-instructions).
+    pub features: Vec<&'static str>,
 }
 
 impl Model {
@@ -39,9 +43,16 @@ impl Model {
             top: None,
             finish,
             mass,
+            features: Vec::new(),
         };
         recentre(&mut m);
         m
+    }
+
+    /// The model with `features` recorded.
+    fn with_features(mut self, features: &[&'static str]) -> Model {
+        self.features = features.to_vec();
+        self
     }
 
     /// Mark the whole top (inset by `m`) as a support surface.
@@ -264,7 +275,17 @@ pub(crate) fn bed(rng: &mut ChaCha8Rng, double: bool) -> Model {
             head_rgb,
         );
     }
-    Model::new(C::Bed, fin, [w, head_h, d], 60.0 + 20.0 * w, p)
+    let head = if v & 1 == 0 {
+        "panel headboard"
+    } else {
+        "slatted headboard"
+    };
+    let features: &[&str] = if v & 2 != 0 {
+        &[head, "footboard"]
+    } else {
+        &[head]
+    };
+    Model::new(C::Bed, fin, [w, head_h, d], 60.0 + 20.0 * w, p).with_features(features)
 }
 
 /// A nightstand: body, drawer fronts with handles; small objects on top. Variants: one
@@ -305,7 +326,14 @@ pub(crate) fn nightstand(rng: &mut ChaCha8Rng) -> Model {
         ),
         _ => {}
     }
-    Model::new(C::Nightstand, fin, [w, h, d + 0.02], 12.0, p).with_top(0.04)
+    let features = match v {
+        1 => "two drawers",
+        2 => "open shelf",
+        _ => "one drawer",
+    };
+    Model::new(C::Nightstand, fin, [w, h, d + 0.02], 12.0, p)
+        .with_top(0.04)
+        .with_features(&[features])
 }
 
 /// A wardrobe: body, doors, handles. Variants: two doors; two doors over a row of drawers;
@@ -369,7 +397,13 @@ pub(crate) fn wardrobe(rng: &mut ChaCha8Rng) -> Model {
             tone::METAL,
         );
     }
-    Model::new(C::Wardrobe, fin, [w, h, d], 70.0, p)
+    let features: &[&str] = match v {
+        1 => &["two doors", "drawers below"],
+        2 => &["three doors", "mirror door"],
+        3 => &["two doors", "top cupboards"],
+        _ => &["two doors"],
+    };
+    Model::new(C::Wardrobe, fin, [w, h, d], 70.0, p).with_features(features)
 }
 
 /// A dresser: body with drawer fronts; small objects on top. Variants: three full-width rows;
@@ -423,7 +457,15 @@ pub(crate) fn dresser(rng: &mut ChaCha8Rng) -> Model {
             shade(rgb, 0.7),
         );
     }
-    Model::new(C::Dresser, fin, [w, h, d], 45.0, p).with_top(0.05)
+    let drawers = match v {
+        1 => "six drawers",
+        2 => "five drawers",
+        3 => "four drawers",
+        _ => "three drawers",
+    };
+    Model::new(C::Dresser, fin, [w, h, d], 45.0, p)
+        .with_top(0.05)
+        .with_features(&[drawers])
 }
 
 /// A toilet: base, bowl, seat, tank.
@@ -721,6 +763,21 @@ struct Seating {
 }
 
 impl Seating {
+    /// The features of a seat in this variant whose legs are `legs`.
+    fn features(self, legs: &'static str) -> Vec<&'static str> {
+        let mut out = Vec::new();
+        if !self.plinth {
+            out.push(legs);
+        }
+        if self.low_arms {
+            out.push("low arms");
+        }
+        if self.bench {
+            out.push("one long cushion");
+        }
+        out
+    }
+
     fn of(v: usize) -> Seating {
         Seating {
             plinth: v & 1 != 0,
@@ -813,7 +870,9 @@ pub(crate) fn sofa(rng: &mut ChaCha8Rng, w: f32) -> Model {
             cushion,
         );
     }
-    Model::new(C::Sofa, fin, [w, h, d], 30.0 + 25.0 * w, p)
+    let mut features = vec![if w > 1.7 { "three seats" } else { "two seats" }];
+    features.extend(v.features("metal legs"));
+    Model::new(C::Sofa, fin, [w, h, d], 30.0 + 25.0 * w, p).with_features(&features)
 }
 
 /// An armchair: a one-seat sofa (plinth or legs, high or low arms).
@@ -864,7 +923,7 @@ pub(crate) fn armchair(rng: &mut ChaCha8Rng) -> Model {
             shade(fin.rgb, 0.95),
         );
     }
-    Model::new(C::Armchair, fin, [w, h, d], 25.0, p)
+    Model::new(C::Armchair, fin, [w, h, d], 25.0, p).with_features(&v.features("wooden legs"))
 }
 
 /// A flat-screen TV on a foot: panel, screen, neck, foot.
@@ -932,7 +991,8 @@ fn table(class: C, fin: Finish, w: f32, h: f32, d: f32, leg_rgb: [f32; 3], mass:
     let top = 0.04;
     let under = h - top;
     bcube(&mut p, 0.0, under, 0.0, [w, top, d], 0.008, fin.rgb);
-    match table_variant(fin, w, h, d, leg_rgb) {
+    let v = table_variant(fin, w, h, d, leg_rgb);
+    match v {
         1 => {
             let r = (w.min(d) * 0.1).clamp(0.03, 0.05);
             let xs: &[f32] = if w > 1.3 { &[-0.3, 0.3] } else { &[0.0] };
@@ -987,7 +1047,15 @@ fn table(class: C, fin: Finish, w: f32, h: f32, d: f32, leg_rgb: [f32; 3], mass:
         }
         _ => legs(&mut p, w - 0.06, d - 0.06, under, 0.05, leg_rgb),
     }
-    Model::new(class, fin, [w, h, d], mass, p).with_top(0.05)
+    let support = match v {
+        1 => "pedestal",
+        2 => "trestle legs",
+        3 => "braced legs",
+        _ => "four legs",
+    };
+    Model::new(class, fin, [w, h, d], mass, p)
+        .with_top(0.05)
+        .with_features(&[support])
 }
 
 /// A coffee table (with a lower shelf when it stands on legs).
@@ -1139,7 +1207,13 @@ pub(crate) fn chair(rng: &mut ChaCha8Rng) -> Model {
         }
         _ => {}
     }
-    Model::new(C::Chair, fin, [w, h, d], 5.0, p)
+    let features: &[&str] = match v {
+        1 => &["spindle back"],
+        2 => &["solid back"],
+        3 => &["arms"],
+        _ => &[],
+    };
+    Model::new(C::Chair, fin, [w, h, d], 5.0, p).with_features(features)
 }
 
 /// An office chair: five-star base (two crossed bars), column, seat, backrest.
@@ -1217,7 +1291,14 @@ pub(crate) fn bookshelf(rng: &mut ChaCha8Rng) -> Model {
             rgb,
         );
     }
-    Model::new(C::Bookshelf, fin, [w, h, d], 35.0, p).with_top(0.03)
+    let count = match shelves {
+        0..=3 => "three shelves",
+        4 => "four shelves",
+        _ => "five shelves",
+    };
+    Model::new(C::Bookshelf, fin, [w, h, d], 35.0, p)
+        .with_top(0.03)
+        .with_features(&[count])
 }
 
 /// A potted plant: pot, soil, stem, foliage. Variants: one round bush; a bush with smaller
@@ -1259,7 +1340,8 @@ pub(crate) fn potted_plant(rng: &mut ChaCha8Rng) -> Model {
         _ => {}
     }
     let s = 2.0 * fol.max(pot_r);
-    Model::new(C::PottedPlant, fin, [s, h, s], 10.0, p)
+    let features: &[&str] = if v == 2 { &["broad leaves"] } else { &[] };
+    Model::new(C::PottedPlant, fin, [s, h, s], 10.0, p).with_features(features)
 }
 
 /// A floor lamp: base, pole, shade. Variants: a drum shade; a tapered shade (a narrow drum over
@@ -1300,7 +1382,12 @@ pub(crate) fn floor_lamp(rng: &mut ChaCha8Rng) -> Model {
             turned(&mut p, leg, c, rot, tone::METAL);
         }
     }
-    Model::new(C::FloorLamp, fin, [0.34, h, 0.34], 5.0, p)
+    let features = match v {
+        1 => "tapered shade",
+        2 => "tripod",
+        _ => "drum shade",
+    };
+    Model::new(C::FloorLamp, fin, [0.34, h, 0.34], 5.0, p).with_features(&[features])
 }
 
 /// A flat rug of the given size (under 2 cm high).
@@ -1316,7 +1403,8 @@ pub(crate) fn rug(rng: &mut ChaCha8Rng, w: f32, d: f32) -> Model {
         [w * 0.7, 0.012, d * 0.6],
         shade(fin.rgb, 1.4),
     );
-    Model::new(C::Rug, fin, [w, 0.012, d], 3.0 * w * d, p)
+    // The renderer weaves every rug's diamond lattice (vlnverse_env::material, `Surface::Rug`).
+    Model::new(C::Rug, fin, [w, 0.012, d], 3.0 * w * d, p).with_features(&["diamond pattern"])
 }
 
 /// A low cabinet: body, two doors, handles; small objects on top.

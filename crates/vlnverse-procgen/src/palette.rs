@@ -11,6 +11,8 @@ pub(crate) struct Finish {
     pub color: &'static str,
     pub material: &'static str,
     pub rgb: [f32; 3],
+    /// The tone of the colour word, if one was taken (`crate::tones`).
+    pub shade: Option<&'static str>,
 }
 
 /// A finish from its colour word, material word and linear RGB.
@@ -19,6 +21,7 @@ pub(crate) const fn f(color: &'static str, material: &'static str, rgb: [f32; 3]
         color,
         material,
         rgb,
+        shade: None,
     }
 }
 
@@ -229,10 +232,11 @@ fn choices(class: C) -> &'static [Finish] {
     }
 }
 
-/// Draw a finish for an object of `class`.
+/// Draw a finish for an object of `class`, in one of its colour word's tones or its own.
 pub(crate) fn pick(class: C, rng: &mut ChaCha8Rng) -> Finish {
     let list = choices(class);
-    *list.choose(rng).unwrap_or(&list[0])
+    let fin = *list.choose(rng).unwrap_or(&list[0]);
+    crate::tones::toned(fin, rng)
 }
 
 /// Draw a fabric colour (bedding, cushions).

@@ -419,13 +419,12 @@ pub(crate) fn add_flight(
         parts.push(box_part(center, size, fin.rgb));
     }
     let mass = s.flight.area() * 300.0;
-    b.add(
+    b.add_finish(
         C::Stairs,
         Some(room),
         Pose::from_yaw(Vec3::new(cx, 0.0, cz), 0.0),
         parts,
-        fin.color,
-        fin.material,
+        fin,
         mass,
         None,
     )
@@ -482,13 +481,12 @@ pub(crate) fn add_railings(s: &Staircase, room: RoomId, rng: &mut ChaCha8Rng, b:
                 fin.rgb,
             ));
         }
-        b.add(
+        b.add_finish(
             C::Railing,
             Some(room),
             Pose::from_yaw(Vec3::new(x, 0.0, z), 0.0),
             parts,
-            fin.color,
-            fin.material,
+            fin,
             len * 8.0,
             None,
         );

@@ -46,6 +46,8 @@ pub fn demo_scene(seed: u64) -> Scene {
             bbox: vlnverse_env::Aabb::EMPTY,
             color: "grey".into(),
             material: "wood".into(),
+            shade: None,
+            features: Vec::new(),
             physics: Physics {
                 mass: 10.0,
                 friction: 0.6,

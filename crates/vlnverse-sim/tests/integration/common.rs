@@ -23,6 +23,8 @@ pub fn boxed(
         bbox: Aabb::new(center - half, center + half),
         color: "white".into(),
         material: "wood".into(),
+        shade: None,
+        features: Vec::new(),
         physics: Physics {
             mass,
             friction,
