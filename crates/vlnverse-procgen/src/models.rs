@@ -477,7 +477,7 @@ pub(crate) fn toilet(rng: &mut ChaCha8Rng) -> Model {
     cyl(&mut p, 0.0, 0.3, -0.08, 0.19, 0.1, fin.rgb);
     cyl(&mut p, 0.0, 0.4, -0.08, 0.2, 0.03, shade(fin.rgb, 0.9));
     bcube(&mut p, 0.0, 0.3, 0.26, [w, 0.5, 0.18], 0.03, fin.rgb);
-    Model::new(C::Toilet, fin, [w, 0.8, d], 30.0, p)
+    Model::new(C::Toilet, fin, [w, 0.8, d], 30.0, p).with_features(&["tank"])
 }
 
 /// A bathroom sink: vanity cabinet, basin, faucet.
@@ -506,7 +506,7 @@ pub(crate) fn sink(rng: &mut ChaCha8Rng) -> Model {
         [0.03, 0.03, 0.12],
         tone::STEEL,
     );
-    Model::new(C::Sink, fin, [w, h + 0.2, d], 35.0, p)
+    Model::new(C::Sink, fin, [w, h + 0.2, d], 35.0, p).with_features(&["vanity cabinet"])
 }
 
 /// A bathtub: shell walls, floor, faucet.
@@ -551,7 +551,7 @@ pub(crate) fn bathtub(rng: &mut ChaCha8Rng) -> Model {
         shade(fin.rgb, 0.85),
     );
     cyl(&mut p, -w * 0.5 + 0.04, h, 0.0, 0.02, 0.12, tone::STEEL);
-    Model::new(C::Bathtub, fin, [w, h + 0.12, d], 60.0, p)
+    Model::new(C::Bathtub, fin, [w, h + 0.12, d], 60.0, p).with_features(&["faucet"])
 }
 
 /// A shower: tray, two glass panels, pole and head.
@@ -592,7 +592,7 @@ pub(crate) fn shower(rng: &mut ChaCha8Rng) -> Model {
         [0.15, 0.03, 0.2],
         tone::STEEL,
     );
-    Model::new(C::Shower, fin, [s, 1.98, s], 40.0, p)
+    Model::new(C::Shower, fin, [s, 1.98, s], 40.0, p).with_features(&["glass panels"])
 }
 
 /// A fridge: body, freezer and fridge doors, handles.
@@ -629,7 +629,7 @@ pub(crate) fn fridge(rng: &mut ChaCha8Rng) -> Model {
         [0.025, 0.2, 0.02],
         tone::METAL,
     );
-    Model::new(C::Fridge, fin, [w, h, d + 0.02], 80.0, p)
+    Model::new(C::Fridge, fin, [w, h, d + 0.02], 80.0, p).with_features(&["freezer door"])
 }
 
 /// A kitchen counter of width `w`: plinth, cabinet body, door lines, worktop.
@@ -697,6 +697,7 @@ pub(crate) fn stove(rng: &mut ChaCha8Rng) -> Model {
         }
     }
     Model::new(C::Stove, fin, [w, h + 0.01, d + 0.02], 50.0, p)
+        .with_features(&["four burners", "oven door"])
 }
 
 /// A dishwasher: body, door, handle.
@@ -749,7 +750,7 @@ pub(crate) fn kitchen_cabinet(rng: &mut ChaCha8Rng) -> Model {
         [0.02, 0.15, 0.02],
         tone::STEEL,
     );
-    Model::new(C::KitchenCabinet, fin, [w, h, d], 50.0, p)
+    Model::new(C::KitchenCabinet, fin, [w, h, d], 50.0, p).with_features(&["two doors"])
 }
 
 /// Sofa and armchair variants, from three bits of a hash: a plinth instead of legs; low arms
@@ -962,7 +963,9 @@ pub(crate) fn tv_stand(rng: &mut ChaCha8Rng) -> Model {
             shade(fin.rgb, 0.75),
         );
     }
-    Model::new(C::TvStand, fin, [w, h, d + 0.01], 30.0, p).with_top(0.02)
+    Model::new(C::TvStand, fin, [w, h, d + 0.01], 30.0, p)
+        .with_top(0.02)
+        .with_features(&["two compartments"])
 }
 
 /// Height of the feet of table variants. Parts standing on the floor set the bottom of an
@@ -1073,6 +1076,7 @@ pub(crate) fn coffee_table(rng: &mut ChaCha8Rng) -> Model {
             [w - 0.1, 0.02, d - 0.1],
             shade(fin.rgb, 0.8),
         );
+        m.features.push("lower shelf");
     }
     m
 }
@@ -1143,7 +1147,9 @@ pub(crate) fn desk(rng: &mut ChaCha8Rng) -> Model {
         [0.4, 0.16, d - 0.1],
         shade(fin.rgb, 0.9),
     );
-    Model::new(C::Desk, fin, [w, h, d], 30.0, p).with_top(0.05)
+    Model::new(C::Desk, fin, [w, h, d], 30.0, p)
+        .with_top(0.05)
+        .with_features(&["drawer block"])
 }
 
 /// A chair: four legs, seat, backrest on two posts. Variants: a top panel; spindles under
@@ -1429,7 +1435,9 @@ pub(crate) fn cabinet(rng: &mut ChaCha8Rng) -> Model {
             tone::STEEL,
         );
     }
-    Model::new(C::Cabinet, fin, [w, h, d], 25.0, p).with_top(0.04)
+    Model::new(C::Cabinet, fin, [w, h, d], 25.0, p)
+        .with_top(0.04)
+        .with_features(&["two doors"])
 }
 
 /// A shoe rack: sides and three shelves with shoes.
@@ -1476,7 +1484,9 @@ pub(crate) fn shoe_rack(rng: &mut ChaCha8Rng) -> Model {
             palette::fabric(rng),
         );
     }
-    Model::new(C::ShoeRack, fin, [w, h, d], 8.0, p).with_top(0.04)
+    Model::new(C::ShoeRack, fin, [w, h, d], 8.0, p)
+        .with_top(0.04)
+        .with_features(&["three shelves with shoes"])
 }
 
 /// A coat rack: base, pole, hooks, a coat.
@@ -1497,7 +1507,7 @@ pub(crate) fn coat_rack(rng: &mut ChaCha8Rng) -> Model {
         [0.08, 0.8, 0.3],
         palette::fabric(rng),
     );
-    Model::new(C::CoatRack, fin, [0.45, h, 0.45], 6.0, p)
+    Model::new(C::CoatRack, fin, [0.45, h, 0.45], 6.0, p).with_features(&["coat"])
 }
 
 /// A washing machine: body, round door, control strip.
@@ -1527,7 +1537,9 @@ pub(crate) fn washing_machine(rng: &mut ChaCha8Rng) -> Model {
         [w - 0.04, 0.1, 0.01],
         shade(fin.rgb, 0.8),
     );
-    Model::new(C::WashingMachine, fin, [w, h, d + 0.07], 65.0, p).with_top(0.05)
+    Model::new(C::WashingMachine, fin, [w, h, d + 0.07], 65.0, p)
+        .with_top(0.05)
+        .with_features(&["round door"])
 }
 
 /// An upright piano: body, keyboard shelf, keys, legs.
@@ -1548,7 +1560,7 @@ pub(crate) fn piano(rng: &mut ChaCha8Rng) -> Model {
             fin.rgb,
         );
     }
-    Model::new(C::Piano, fin, [w, h, d], 200.0, p)
+    Model::new(C::Piano, fin, [w, h, d], 200.0, p).with_features(&["keys"])
 }
 
 /// A bench: seat on two solid sides.
@@ -1568,7 +1580,7 @@ pub(crate) fn bench(rng: &mut ChaCha8Rng) -> Model {
         );
     }
     bcube(&mut p, 0.0, h - 0.06, 0.0, [w, 0.06, d], 0.012, fin.rgb);
-    Model::new(C::Bench, fin, [w, h, d], 12.0, p)
+    Model::new(C::Bench, fin, [w, h, d], 12.0, p).with_features(&["solid sides"])
 }
 
 /// A stool: round seat on four legs.
@@ -1578,7 +1590,7 @@ pub(crate) fn stool(rng: &mut ChaCha8Rng) -> Model {
     let mut p = Vec::new();
     legs(&mut p, 0.3, 0.3, h - 0.04, 0.03, tone::METAL);
     cyl(&mut p, 0.0, h - 0.04, 0.0, 0.17, 0.04, fin.rgb);
-    Model::new(C::Stool, fin, [0.34, h, 0.34], 3.0, p)
+    Model::new(C::Stool, fin, [0.34, h, 0.34], 3.0, p).with_features(&["round seat"])
 }
 
 /// A trash can: bin and lid.
@@ -1588,7 +1600,7 @@ pub(crate) fn trash_can(rng: &mut ChaCha8Rng) -> Model {
     let mut p = Vec::new();
     cyl(&mut p, 0.0, 0.0, 0.0, 0.14, h - 0.02, fin.rgb);
     cyl(&mut p, 0.0, h - 0.02, 0.0, 0.15, 0.02, shade(fin.rgb, 0.7));
-    Model::new(C::TrashCan, fin, [0.3, h, 0.3], 2.0, p)
+    Model::new(C::TrashCan, fin, [0.3, h, 0.3], 2.0, p).with_features(&["lid"])
 }
 
 /// A small object that stands on furniture. The footprint is its local bounding box.

@@ -131,7 +131,7 @@ mod tests {
     fn toning_keeps_the_word_and_material_and_draws_nothing() {
         let blue = f("blue", "fabric", [0.08, 0.16, 0.5]);
         let mut shades = std::collections::BTreeSet::new();
-        for seed in 0..200 {
+        for seed in 0..400 {
             let rng = ChaCha8Rng::seed_from_u64(seed);
             let before = rng.get_word_pos();
             let t = toned(blue, &rng);
@@ -140,8 +140,9 @@ mod tests {
             assert_eq!(t.shade.is_none(), t.rgb == blue.rgb);
             shades.insert(t.shade);
         }
-        // Navy, royal blue, sky blue, teal and the finish itself all occur.
-        assert_eq!(shades.len(), 5, "{shades:?}");
+        // Every tone of blue and the finish itself occur.
+        let blues = TONES.iter().filter(|t| t.of == "blue").count();
+        assert_eq!(shades.len(), blues + 1, "{shades:?}");
         // A material-limited tone: terracotta is for ceramic only.
         let paper = f("orange", "paper", [0.8, 0.35, 0.08]);
         assert!((0..200)
