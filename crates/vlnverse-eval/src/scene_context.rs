@@ -19,6 +19,9 @@ use vlnverse_score::score::navigable_map_path;
 /// Distance fields kept per scene (coarse styles share goals); the cache is cleared beyond it.
 const FIELD_CACHE: usize = 48;
 
+/// A goal's distance field, built by the first thread that asks for it.
+type FieldCell = Arc<OnceLock<Option<Arc<DistanceField>>>>;
+
 fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
     m.lock().unwrap_or_else(PoisonError::into_inner)
 }
@@ -33,7 +36,8 @@ pub struct SceneContext {
     mesh: OnceLock<Arc<SceneMesh>>,
     /// The scene's folder, when loaded from one (the renderer may find it prepared there).
     dir: Option<PathBuf>,
-    fields: Mutex<BTreeMap<(u32, u32, u32), Arc<DistanceField>>>,
+    /// Per goal, its field once built (`None`: it could not be).
+    fields: Mutex<BTreeMap<(u32, u32, u32), FieldCell>>,
     /// A home on several floors: every level's navigable map joined by the stairs (level 0's
     /// is `navigable`); `None` for a single-storey scene.
     levels: Option<Arc<MultiLevelMap>>,
@@ -200,25 +204,36 @@ impl SceneContext {
     /// [`SceneContext::field`] and not cleared since).
     pub fn has_field(&self, goal: [f32; 3]) -> bool {
         let key = (goal[0].to_bits(), goal[1].to_bits(), goal[2].to_bits());
-        lock(&self.fields).contains_key(&key)
+        lock(&self.fields)
+            .get(&key)
+            .is_some_and(|c| c.get().is_some_and(Option::is_some))
     }
 
     /// The distance field to a goal point (cached), on the goal's level's map.
+    ///
+    /// A field is built once: a thread asking for one that another thread is building (the
+    /// prefetch thread of a vector environment, a reset) waits for it instead of building it
+    /// again.
     pub fn field(&self, goal: [f32; 3]) -> Result<Arc<DistanceField>> {
         let key = (goal[0].to_bits(), goal[1].to_bits(), goal[2].to_bits());
-        if let Some(f) = lock(&self.fields).get(&key) {
-            return Ok(f.clone());
+        let cell = {
+            let mut c = lock(&self.fields);
+            match c.get(&key) {
+                Some(cell) => cell.clone(),
+                None => {
+                    if c.len() >= FIELD_CACHE {
+                        c.clear();
+                    }
+                    c.entry(key).or_default().clone()
+                }
+            }
+        };
+        let (map, at) = (self.navigable_at(goal), Vec2::new(goal[0], goal[2]));
+        match cell.get_or_init(|| DistanceField::new(map, at).ok().map(Arc::new)) {
+            Some(f) => Ok(f.clone()),
+            // Not built (non-finite coordinates): the field's own error, built again to say so.
+            None => Ok(Arc::new(DistanceField::new(map, at)?)),
         }
-        let f = Arc::new(DistanceField::new(
-            self.navigable_at(goal),
-            Vec2::new(goal[0], goal[2]),
-        )?);
-        let mut c = lock(&self.fields);
-        if c.len() >= FIELD_CACHE {
-            c.clear();
-        }
-        c.insert(key, f.clone());
-        Ok(f)
     }
 }
 
@@ -293,6 +308,41 @@ mod tests {
     use vlnverse_env::occupancy::{build_level_maps, OccupancyConfig};
     use vlnverse_env::SceneSource;
     use vlnverse_procgen::{HomeGenerator, Preset};
+
+    /// Threads asking for one goal's field at once share one field (built once); a goal with
+    /// non-finite coordinates is the field's error, every time, and nothing is cached for it.
+    #[test]
+    fn a_goal_field_is_built_once_for_threads_asking_together() {
+        let mut pc = Preset::Tiny.config().unwrap();
+        pc.scenes.count = 1;
+        pc.floors.two_storey_share = 0.0;
+        let scene = HomeGenerator::new(pc).unwrap().scene(0).unwrap();
+        let maps = build_level_maps(&scene, &OccupancyConfig::default()).unwrap();
+        let nav = maps[0].navigable.clone();
+        let cells: Vec<Vec2> = nav
+            .free_cells()
+            .map(|(c, r)| nav.cell_center(c, r))
+            .collect();
+        let at = cells[cells.len() / 2];
+        let goal = [at.x, scene.floor_height, at.y];
+        let ctx = SceneContext::new(scene, nav);
+        assert!(!ctx.has_field(goal));
+        let fields: Vec<Arc<DistanceField>> = std::thread::scope(|s| {
+            let asks: Vec<_> = (0..4)
+                .map(|_| s.spawn(|| ctx.field(goal).unwrap()))
+                .collect();
+            asks.into_iter().map(|h| h.join().unwrap()).collect()
+        });
+        assert!(fields.iter().all(|f| Arc::ptr_eq(f, &fields[0])));
+        assert!(ctx.has_field(goal));
+        assert_eq!(fields[0].goal(), Some(at));
+        let bad = [f32::NAN, 0.0, at.y];
+        for _ in 0..2 {
+            let e = ctx.field(bad).unwrap_err().to_string();
+            assert!(e.contains("finite"), "{e}");
+        }
+        assert!(!ctx.has_field(bad));
+    }
 
     /// A goal upstairs in a two-storey home: the field across floors is built on the goal's
     /// cached field (the same one, not a second sweep) and measures what a field built alone
