@@ -14,6 +14,7 @@
 //! `TEXCOORD_0` and a material whose `baseColorTexture` is that image (an RGB PNG in the BIN
 //! chunk); [`restore_mesh_parts`] reads both back.
 
+use super::glb_light::GlbColours;
 use crate::error::{EnvError, Result};
 use crate::geometry::{mesh_with_normals, triangulate_cells, TriMesh};
 use crate::light::{bake, cell_of, BakedLight};
@@ -541,6 +542,17 @@ pub fn write_glb_with(scene: &Scene, light: &BakedLight) -> Vec<u8> {
 /// when the file's primitives do not fit the scene's parts (a file of another scene, or not
 /// written by this writer): the caller then bakes. Errors only for a file that is not glTF.
 pub fn read_baked_light(scene: &Scene, bytes: &[u8], path: &Path) -> Result<Option<BakedLight>> {
+    // The colours read without the whole document where they are of the kind this writer
+    // writes; through the `gltf` crate otherwise (the same colours either way).
+    let colours = match GlbColours::read(bytes) {
+        Some(c) => c,
+        None => gltf_colours(bytes, path)?,
+    };
+    Ok(light_from(scene, &colours))
+}
+
+/// Every primitive's `COLOR_0` of a glTF file, read with the `gltf` crate.
+pub(crate) fn gltf_colours(bytes: &[u8], path: &Path) -> Result<GlbColours> {
     let (gltf, blob) = parse_gltf(bytes, path)?;
     let blob = blob.as_deref();
     let get = |b: gltf::Buffer<'_>| match b.source() {
@@ -551,14 +563,21 @@ pub fn read_baked_light(scene: &Scene, bytes: &[u8], path: &Path) -> Result<Opti
         let c = p.reader(get).read_colors(0)?.into_rgba_u8();
         Some(c.map(|[r, g, b, _]| [r, g, b]).collect())
     };
-    let nodes: Vec<gltf::Node<'_>> = gltf.nodes().collect();
-    let meshes: Vec<gltf::Mesh<'_>> = gltf.meshes().collect();
+    Ok(GlbColours::new(
+        gltf.nodes().map(|n| n.mesh().map(|m| m.index())).collect(),
+        gltf.meshes()
+            .map(|m| m.primitives().map(|p| colours(&p)).collect())
+            .collect(),
+    ))
+}
+
+/// The baked light of `scene` from its file's colours; `None` when they do not fit its parts.
+fn light_from(scene: &Scene, colours: &GlbColours) -> Option<BakedLight> {
     let n_parts: usize = scene.objects.iter().map(|o| o.parts.len()).sum();
     let mut parts: Vec<Vec<[u8; 3]>> = Vec::with_capacity(n_parts);
     for (i, o) in scene.objects.iter().enumerate() {
-        let Some(node) = nodes.get(i) else {
-            return Ok(None);
-        };
+        // Node `i` is object `i`.
+        let mesh = colours.node_mesh(i)?;
         let cell = cell_of(scene, o);
         // Parts grouped by colour in order of first appearance, as the writer groups them
         // (one surface per object); each group is one primitive unless it has no triangles.
@@ -567,16 +586,16 @@ pub fn read_baked_light(scene: &Scene, bytes: &[u8], path: &Path) -> Result<Opti
         for p in &o.parts {
             let k = parts.len();
             if let Shape::Mesh(m) = &p.shape {
+                // A mesh part's light: the first primitive of its own glTF mesh.
                 let light = m
                     .glb_mesh
-                    .and_then(|g| meshes.get(g as usize))
-                    .and_then(|g| g.primitives().next())
-                    .and_then(|p| colours(&p));
+                    .and_then(|g| colours.primitives(g as usize).first())
+                    .and_then(Option::as_ref);
                 let tri = mesh_with_normals(&m.positions, &m.indices);
                 match light {
-                    Some(l) if l.len() == tri.positions.len() => parts.push(l),
+                    Some(l) if l.len() == tri.positions.len() => parts.push(l.clone()),
                     _ if tri.indices.is_empty() => parts.push(Vec::new()),
-                    _ => return Ok(None),
+                    _ => return None,
                 }
                 continue;
             }
@@ -593,13 +612,11 @@ pub fn read_baked_light(scene: &Scene, bytes: &[u8], path: &Path) -> Result<Opti
             groups[g].1.push((k, tri.positions.len(), drawn));
             parts.push(Vec::new());
         }
-        let mut prims = node.mesh().into_iter().flat_map(|m| m.primitives());
+        let mut prims = mesh.map_or(&[][..], |m| colours.primitives(m)).iter();
         for (_, members) in groups.iter().filter(|g| g.1.iter().any(|m| m.2)) {
-            let Some(light) = prims.next().and_then(|p| colours(&p)) else {
-                return Ok(None);
-            };
+            let light = prims.next()?.as_ref()?;
             if light.len() != members.iter().map(|m| m.1).sum::<usize>() {
-                return Ok(None);
+                return None;
             }
             let mut at = 0;
             for &(k, n, _) in members {
@@ -608,14 +625,14 @@ pub fn read_baked_light(scene: &Scene, bytes: &[u8], path: &Path) -> Result<Opti
             }
         }
         if prims.next().is_some() {
-            return Ok(None);
+            return None;
         }
         debug_assert_eq!(parts.len() - first, o.parts.len());
     }
-    Ok(Some(BakedLight {
+    Some(BakedLight {
         parts,
         tint: crate::light::tint_of(scene),
-    }))
+    })
 }
 
 /// A binary glTF container: the header, the JSON chunk (padded with spaces) and, when `bin`

@@ -4,6 +4,7 @@
 
 pub mod bundle;
 pub mod glb;
+mod glb_light;
 pub mod json;
 pub mod scene_dir;
 
