@@ -1073,7 +1073,6 @@ fn door_by_room(
         "the door to the {r}",
         "the door into the {r}",
         "the door that opens into the {r}",
-        "the door leading to the {r}",
     ];
     Some(pick(rng, &bank).replace("{r}", &room))
 }
