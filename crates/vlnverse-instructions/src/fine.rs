@@ -681,7 +681,7 @@ fn opening(route: &Route<'_, '_>, mut rng: ChaCha8Rng) -> Draft {
     let mut rooms: Vec<RoomId> = route.rooms.iter().map(|&(_, r)| r).collect();
     rooms.sort_unstable();
     rooms.dedup();
-    if rooms.len() >= 3 && writer != Writer::Terse && rng.random_bool(0.05) {
+    if rooms.len() >= 3 && writer != Writer::Terse && rng.random_bool(0.02) {
         let num = number_word(rooms.len() as u32);
         sentences.push(fill(pick(&mut rng, &ph::ROUTE_ROOMS), &[("num", &num)]));
     }
