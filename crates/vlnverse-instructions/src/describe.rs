@@ -598,7 +598,7 @@ pub(crate) fn room_np(
     let Some(r) = scene.room(room) else {
         return "the room".into();
     };
-    if let Some(name) = content_name(scene, room, 0.3, false, rng) {
+    if let Some(name) = naming.content(scene, room, false, rng) {
         return name;
     }
     if rng.random_bool(0.06) {
@@ -655,6 +655,31 @@ impl RoomNaming {
         };
         self.nouns.borrow_mut().insert(room, n);
         n
+    }
+
+    /// A name for `room` from what it holds ([`content_name`], now and then), when the room has
+    /// no noun yet; kept as its noun after, so it goes by that name every time it comes up.
+    pub(crate) fn content(
+        &self,
+        scene: &Scene,
+        room: RoomId,
+        keep_kind: bool,
+        rng: &mut ChaCha8Rng,
+    ) -> Option<String> {
+        if self.nouns.borrow().contains_key(&room) {
+            return None;
+        }
+        let bank = room_by_content(scene, room)?;
+        if !rng.random_bool(0.3) {
+            return None;
+        }
+        let name: &'static str = pick(rng, &bank.entries());
+        let kind = scene.room(room)?.kind.words();
+        if keep_kind && !name.contains(kind.as_str()) {
+            return None;
+        }
+        self.nouns.borrow_mut().insert(room, name);
+        Some(format!("the {name}"))
     }
 
     /// The noun of a room entered, which is named by its type unless it already has a noun.

@@ -4,8 +4,8 @@
 //! the way people do. Every object named is grounded.
 
 use super::describe::{
-    content_name, door_between, door_np, end_place, is_closed_leaf, object_np, room_np,
-    unique_landmarks_in, NpOptions, RoomNaming, Viewpoint,
+    door_between, door_np, end_place, is_closed_leaf, object_np, room_np, unique_landmarks_in,
+    NpOptions, RoomNaming, Viewpoint,
 };
 use super::door_order;
 use super::lexicon::{number_word, object_names, ordinal_word, plural};
@@ -426,7 +426,8 @@ fn room_change(
     let mut to_np = scene
         .room(to)
         .map(|r| {
-            content_name(scene, to, 0.3, true, rng)
+            naming
+                .content(scene, to, true, rng)
                 .unwrap_or_else(|| format!("the {}", naming.entered(to, r.kind)))
         })
         .unwrap_or_else(|| "the next room".into());
