@@ -673,7 +673,7 @@ impl RoomNaming {
         if !rng.random_bool(0.3) {
             return None;
         }
-        let name: &'static str = pick(rng, &bank.entries());
+        let name: &'static str = pick(rng, bank.entries());
         let kind = scene.room(room)?.kind.words();
         if keep_kind && !name.contains(kind.as_str()) {
             return None;
