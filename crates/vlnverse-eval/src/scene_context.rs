@@ -285,6 +285,24 @@ impl SceneCache {
         Ok(ctx)
     }
 
+    /// Scene `id` as `ctx` (loaded from this cache's dataset earlier and still held by its
+    /// caller), marked most recently used: the one cached when the cache holds it, else `ctx`,
+    /// put back without loading it again.
+    pub fn keep(&self, id: &str, ctx: Arc<SceneContext>) -> Arc<SceneContext> {
+        let mut e = lock(&self.entries);
+        if let Some(i) = e.iter().position(|(k, _)| k == id) {
+            let hit = e.remove(i).expect("index from position");
+            let cached = hit.1.clone();
+            e.push_back(hit);
+            return cached;
+        }
+        while e.len() >= self.capacity {
+            e.pop_front();
+        }
+        e.push_back((id.to_string(), ctx.clone()));
+        ctx
+    }
+
     /// Scenes held now.
     pub fn len(&self) -> usize {
         lock(&self.entries).len()

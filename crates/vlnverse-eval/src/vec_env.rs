@@ -22,7 +22,7 @@
 
 use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
-use std::sync::{mpsc, Arc};
+use std::sync::{mpsc, Arc, OnceLock};
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -182,7 +182,7 @@ struct Slot<S> {
     teacher: OracleAgent,
     rng: ChaCha8Rng,
     /// Train order: episodes drawn from `rng` but not yet begun, oldest first.
-    ahead: VecDeque<Arc<Episode>>,
+    ahead: VecDeque<(Arc<Episode>, Pinned)>,
     run: Option<Running>,
 }
 
@@ -202,26 +202,32 @@ pub struct VecEnv<S: Simulator> {
 /// Episodes drawn ahead per environment in train order (their homes are prepared meanwhile).
 const AHEAD: usize = 1;
 
+/// The home of an episode drawn ahead, once the prefetch thread has loaded it: held by the
+/// environment until the episode begins, so the scene cache evicting it meanwhile (another
+/// environment's homes are newer) does not make the reset load it and build its fields again.
+type Pinned = Arc<OnceLock<Arc<SceneContext>>>;
+
 /// A thread that loads the homes of episodes drawn ahead into the scene cache, checks the
 /// episodes there ([`check_episode`], which builds and caches their goals' distance fields)
 /// and prepares the homes for the renderer ([`SensorRig::scene_preparer`]). What it prepares
 /// is only cached: results never depend on it, and its errors show when an environment's reset
 /// loads and checks the episode itself (then finding the fields built).
 struct Prefetch {
-    tx: Option<mpsc::Sender<Arc<Episode>>>,
+    tx: Option<mpsc::Sender<(Arc<Episode>, Pinned)>>,
     worker: Option<std::thread::JoinHandle<()>>,
 }
 
 impl Prefetch {
     fn start(scenes: Arc<SceneCache>, prepare: Option<fn(Arc<SceneMesh>)>) -> Option<Self> {
-        let (tx, rx) = mpsc::channel::<Arc<Episode>>();
+        let (tx, rx) = mpsc::channel::<(Arc<Episode>, Pinned)>();
         let worker = std::thread::Builder::new()
             .name("vlnverse-prefetch".into())
             .spawn(move || {
-                for ep in rx {
+                for (ep, pin) in rx {
                     let Ok(ctx) = scenes.get(&ep.scene_id) else {
                         continue;
                     };
+                    let _ = pin.set(ctx.clone());
                     // The goals' fields first: a reset that does not find them builds them on
                     // the serial part of a batch, a home not prepared is prepared in parallel.
                     let _ = check_episode(&ep, &ctx);
@@ -237,9 +243,9 @@ impl Prefetch {
         })
     }
 
-    fn request(&self, episode: &Arc<Episode>) {
+    fn request(&self, episode: &Arc<Episode>, pin: &Pinned) {
         if let Some(tx) = &self.tx {
-            let _ = tx.send(episode.clone());
+            let _ = tx.send((episode.clone(), pin.clone()));
         }
     }
 }
@@ -401,27 +407,29 @@ impl<S: Simulator> VecEnv<S> {
         self.cursor = 0;
     }
 
-    /// The next episode for environment `i`, and its pass.
-    fn next_episode(&mut self, i: usize) -> (Arc<Episode>, u32) {
+    /// The next episode for environment `i`, its pass, and its home when the prefetch thread
+    /// has loaded it.
+    fn next_episode(&mut self, i: usize) -> (Arc<Episode>, u32, Option<Arc<SceneContext>>) {
         let n = self.episodes.len();
         match self.cfg.order {
             EpisodeOrder::Eval => {
                 let k = self.cursor;
                 self.cursor += 1;
-                (self.episodes[k % n].clone(), (k / n) as u32)
+                (self.episodes[k % n].clone(), (k / n) as u32, None)
             }
             EpisodeOrder::Train => {
                 let slot = &mut self.slots[i];
                 while slot.ahead.len() <= AHEAD {
                     let ep = self.episodes[slot.rng.random_range(0..n)].clone();
+                    let pin = Pinned::default();
                     // The first draw is begun now; later ones are prepared meanwhile.
                     if let (Some(p), false) = (&self.prefetch, slot.ahead.is_empty()) {
-                        p.request(&ep);
+                        p.request(&ep, &pin);
                     }
-                    slot.ahead.push_back(ep);
+                    slot.ahead.push_back((ep, pin));
                 }
-                let ep = slot.ahead.pop_front().expect("drawn above");
-                (ep, 0)
+                let (ep, pin) = slot.ahead.pop_front().expect("drawn above");
+                (ep, 0, pin.get().cloned())
             }
         }
     }
@@ -511,8 +519,8 @@ impl<S: Simulator> VecEnv<S> {
             jobs[i] = Some(match a {
                 Some(a) => Job::Step(a),
                 None => {
-                    let (ep, pass) = self.next_episode(i);
-                    let scene = self.load_checked(&ep)?;
+                    let (ep, pass, loaded) = self.next_episode(i);
+                    let scene = self.load_checked(&ep, loaded)?;
                     Job::Reset(ep, scene, pass)
                 }
             });
@@ -537,9 +545,19 @@ impl<S: Simulator> VecEnv<S> {
         results.into_iter().flatten().collect()
     }
 
-    fn load_checked(&self, ep: &Episode) -> Result<Arc<SceneContext>> {
+    /// The episode's home (`loaded`: as the prefetch thread loaded it, put back in the scene
+    /// cache if it was evicted meanwhile), and the episode checked in it.
+    fn load_checked(
+        &self,
+        ep: &Episode,
+        loaded: Option<Arc<SceneContext>>,
+    ) -> Result<Arc<SceneContext>> {
         let locate = || format!("{}: episode {}", self.split_file.display(), ep.episode_id);
-        let ctx = self.scenes.get(&ep.scene_id).map_err(|e| {
+        let got = match loaded {
+            Some(ctx) => Ok(self.scenes.keep(&ep.scene_id, ctx)),
+            None => self.scenes.get(&ep.scene_id),
+        };
+        let ctx = got.map_err(|e| {
             invalid(
                 &format!("{}.scene_id", locate()),
                 &ep.scene_id,
@@ -688,7 +706,8 @@ mod tests {
     use super::*;
 
     /// An episode requested ahead is loaded and checked on the prefetch thread: its home is in
-    /// the cache (loaded once) and its goals' fields are built, so its reset finds them.
+    /// the cache (loaded once) and pinned for the environment, and its goals' fields are
+    /// built, so its reset finds them; a pinned home evicted meanwhile is put back, not loaded.
     #[test]
     fn the_prefetch_thread_builds_the_goal_fields_of_an_episode_drawn_ahead() {
         let dir = tempfile::tempdir().unwrap();
@@ -696,12 +715,22 @@ mod tests {
         let scenes = Arc::new(SceneCache::new(dir.path(), 4));
         let ep = Arc::new(episodes[1].clone());
         let prefetch = Prefetch::start(scenes.clone(), None).unwrap();
-        prefetch.request(&ep);
+        let pin = Pinned::default();
+        prefetch.request(&ep, &pin);
         // Dropping it waits for the requests sent.
         drop(prefetch);
         assert_eq!(scenes.loads(), 1);
         let ctx = scenes.get(&ep.scene_id).unwrap();
         assert_eq!(scenes.loads(), 1, "the reset finds the home loaded");
+        // The environment holds the home it was loaded as, whatever the cache evicts.
+        assert!(Arc::ptr_eq(pin.get().unwrap(), &ctx));
+        let other_home = episodes.iter().find(|e| e.scene_id != ep.scene_id).unwrap();
+        let small = SceneCache::new(dir.path(), 1);
+        small.get(&other_home.scene_id).unwrap();
+        let kept = small.keep(&ep.scene_id, ctx.clone());
+        assert!(Arc::ptr_eq(&kept, &ctx), "put back, not loaded again");
+        assert_eq!((small.loads(), small.len()), (1, 1));
+        assert!(Arc::ptr_eq(&small.get(&ep.scene_id).unwrap(), &ctx));
         let goals = ep.goal_sequence();
         assert!(!goals.is_empty());
         for g in goals {
