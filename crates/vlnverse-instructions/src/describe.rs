@@ -559,13 +559,12 @@ pub(crate) fn content_name(
 
 /// "the kitchen with the tiled floor", "the carpeted bedroom": a room by the floor one sees
 /// in it (its floor surface, as rendered); `None` for a plain floor.
-fn room_by_floor(scene: &Scene, r: &Room, rng: &mut ChaCha8Rng) -> Option<String> {
+fn room_by_floor(scene: &Scene, r: &Room, name: &str, rng: &mut ChaCha8Rng) -> Option<String> {
     use vlnverse_env::material::{surface_of, Surface};
     let floor = scene
         .objects
         .iter()
         .find(|o| o.class == C::Floor && o.room == Some(r.id))?;
-    let name = r.kind.words();
     let bank: &[&str] = match surface_of(scene, floor) {
         Surface::Tiles => &[
             "the {r} with the tiled floor",
@@ -602,7 +601,9 @@ pub(crate) fn room_np(
         return name;
     }
     if rng.random_bool(0.06) {
-        if let Some(np) = room_by_floor(scene, r, rng) {
+        // By the noun it already goes by ("the lounge with the wooden floor").
+        let name = naming.noun(room, r.kind, rng);
+        if let Some(np) = room_by_floor(scene, r, name, rng) {
             return np;
         }
     }

@@ -1200,7 +1200,7 @@ fn room_changes(route: &Route<'_, '_>, li: usize, rng: &mut ChaCha8Rng) -> Vec<S
                     .and_then(|n| nth_door_np(n, rng))
                     .or_else(|| {
                         // Leaving the start room: its only door, or the nearest.
-                        let d = door.filter(|d| k == 1 && !d.open_plan)?;
+                        let d = door.filter(|d| k == 1 && !d.open_plan && rng.random_bool(0.5))?;
                         let near = openings::nearest_opening(ctx.scene, from, d, route.pts[0])?;
                         let noun = if d.leaf.is_some() { "door" } else { "doorway" };
                         Some(match near {
