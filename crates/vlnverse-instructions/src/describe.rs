@@ -583,7 +583,7 @@ fn room_by_floor(scene: &Scene, r: &Room, name: &str, rng: &mut ChaCha8Rng) -> O
         ],
         _ => return None,
     };
-    Some(pick(rng, bank).replace("{r}", &name))
+    Some(pick(rng, bank).replace("{r}", name))
 }
 
 /// "the kitchen", now and then "the lounge", "the big kitchen" or "the master bedroom" (room
