@@ -359,15 +359,7 @@ fn add_window(
         3.0 * pw * ph,
         None,
     );
-    b.add_finish(
-        C::Window,
-        Some(room),
-        pose,
-        parts,
-        frame,
-        8.0 * w,
-        None,
-    );
+    b.add_finish(C::Window, Some(room), pose, parts, frame, 8.0 * w, None);
     if rng.random_bool(0.6) {
         let cur = *CURTAINS.choose(rng).unwrap_or(&CURTAINS[0]);
         let cw = (w * 0.28).clamp(0.25, 0.45);
@@ -382,15 +374,7 @@ fn add_window(
                 )
             })
             .collect();
-        b.add_finish(
-            C::Curtain,
-            Some(room),
-            pose,
-            parts,
-            cur,
-            2.0,
-            None,
-        );
+        b.add_finish(C::Curtain, Some(room), pose, parts, cur, 2.0, None);
     }
 }
 
