@@ -107,26 +107,38 @@ fn parse_features(
     text: &str,
 ) -> Result<BTreeMap<String, Vec<String>>, DataFileError> {
     let f: FeatureFile = parse_toml(file, text)?;
-    for (key, phrases) in &f.phrases {
-        let at = format!("phrases.{key}");
-        if phrases.is_empty() {
+    check_word_lists(file, "phrases", &f.phrases, "feature")?;
+    Ok(f.phrases)
+}
+
+/// Check the lists of a `table` of words by name: none empty (`what` names what to leave out
+/// instead), no entry blank or listed twice in its list.
+fn check_word_lists(
+    file: &'static str,
+    table: &str,
+    lists: &BTreeMap<String, Vec<String>>,
+    what: &str,
+) -> Result<(), DataFileError> {
+    for (key, words) in lists {
+        let at = format!("{table}.{key}");
+        if words.is_empty() {
             return Err(DataFileError::new(
                 file,
                 at,
-                "empty (leave the feature out instead)",
+                format!("empty (leave the {what} out instead)"),
             ));
         }
-        for (i, p) in phrases.iter().enumerate() {
-            if p.trim().is_empty() || phrases[..i].contains(p) {
+        for (i, w) in words.iter().enumerate() {
+            if w.trim().is_empty() || words[..i].contains(w) {
                 return Err(DataFileError::new(
                     file,
                     at,
-                    format!("entry {i} ({p:?}) is blank or listed twice"),
+                    format!("entry {i} ({w:?}) is blank or listed twice"),
                 ));
             }
         }
     }
-    Ok(f.phrases)
+    Ok(())
 }
 
 /// The classes whose names include `name` (for checks: a synonym names one class, or a class
@@ -359,25 +371,7 @@ fn shades_for(colour: &str, rgb: [f32; 3]) -> &'static [String] {
 /// blank, none listed twice in one rule.
 fn parse_shade_rules(file: &'static str, text: &str) -> Result<ShadeFile, DataFileError> {
     let shades = parse_toml::<ShadeFile>(file, text)?;
-    for (name, words) in &shades.words {
-        let at = format!("words.{name}");
-        if words.is_empty() {
-            return Err(DataFileError::new(
-                file,
-                at,
-                "empty (leave the shade out instead)",
-            ));
-        }
-        for (i, w) in words.iter().enumerate() {
-            if w.trim().is_empty() || words[..i].contains(w) {
-                return Err(DataFileError::new(
-                    file,
-                    at,
-                    format!("entry {i} ({w:?}) is blank or listed twice"),
-                ));
-            }
-        }
-    }
+    check_word_lists(file, "words", &shades.words, "shade")?;
     let rules = &shades.rule;
     if rules.is_empty() {
         return Err(DataFileError::new(file, "", "no rules"));
