@@ -4,7 +4,7 @@
 //! middle, doorway). Every other object a description names is returned as grounding.
 
 use super::lexicon::{
-    color_phrases, material_noun, material_words, object_names, object_uses, room_names,
+    color_phrases, distinct_uses, material_noun, material_words, object_names, room_names,
     shape_words,
 };
 use super::path::{env_side, footprint, rect_distance};
@@ -163,7 +163,7 @@ pub(crate) fn object_np(
             s.push_str(&r);
         }
     } else if rng.random_bool(0.12) {
-        let uses = object_uses(o);
+        let uses = distinct_uses(o, &peers);
         if !uses.is_empty() {
             s.push(' ');
             s.push_str(pick(rng, &uses));

@@ -1202,6 +1202,10 @@ fn room_changes(route: &Route<'_, '_>, li: usize, rng: &mut ChaCha8Rng) -> Vec<S
                         // Leaving the start room: its only door, or the nearest.
                         let d = door.filter(|d| k == 1 && !d.open_plan && rng.random_bool(0.5))?;
                         let near = openings::nearest_opening(ctx.scene, from, d, route.pts[0])?;
+                        // Nearest to the start: only true while the walk is still there.
+                        if near == Nearest::Nearest && li != 0 {
+                            return None;
+                        }
                         let noun = if d.leaf.is_some() { "door" } else { "doorway" };
                         Some(match near {
                             Nearest::Only => format!("the only {noun}"),

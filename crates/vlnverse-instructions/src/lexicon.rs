@@ -66,21 +66,36 @@ pub fn object_names(o: &SceneObject) -> Vec<&'static str> {
 /// whose class's uses are a photo frame's, what it shows), then what it has that others of its
 /// class may not (its recorded features, `data/features.toml`).
 pub fn object_uses(o: &SceneObject) -> Vec<&'static str> {
+    distinct_uses(o, &[])
+}
+
+/// [`object_uses`] without the phrases of features that another object of `peers` (any
+/// objects; those of `o`'s class in its room count) shares: "the one with a spindle back" must
+/// tell it from the chairs around it.
+pub fn distinct_uses(o: &SceneObject, peers: &[&SceneObject]) -> Vec<&'static str> {
     let mut out = if o.class == C::PictureFrame && o.material == "canvas" {
         // Every canvas shows hills under a sky (vlnverse_env::material, `Surface::Painting`).
-        FEATURES
-            .get("landscape")
-            .map(|p| p.iter().map(String::as_str).collect())
-            .unwrap_or_default()
+        feature_phrases("landscape")
     } else {
         class_uses(o.class).to_vec()
     };
-    for f in &o.features {
-        if let Some(p) = FEATURES.get(f.as_str()) {
-            out.extend(p.iter().map(String::as_str));
-        }
+    let shared = |f: &String| {
+        peers.iter().any(|p| {
+            p.id != o.id && p.class == o.class && p.room == o.room && p.features.contains(f)
+        })
+    };
+    for f in o.features.iter().filter(|f| !shared(f)) {
+        out.extend(feature_phrases(f));
     }
     out
+}
+
+/// The phrases of one feature (none for a feature the file does not name).
+fn feature_phrases(feature: &str) -> Vec<&'static str> {
+    FEATURES
+        .get(feature)
+        .map(|p| p.iter().map(String::as_str).collect())
+        .unwrap_or_default()
 }
 
 /// The features file, as errors name it.
@@ -695,18 +710,32 @@ mod tests {
         // A shade without words falls back to the rules on the RGB (none here: no parts).
         sofa.shade = Some("no such shade".into());
         assert_eq!(color_phrases(&sofa), ["blue"]);
-        // The generator's tones (vlnverse-procgen) all have words here.
-        let tones: toml::Value =
-            toml::from_str(include_str!("../../vlnverse-procgen/data/tones.toml")).unwrap();
-        let tones = tones["tone"].as_array().unwrap();
-        assert!(tones.len() > 30);
-        for t in tones {
-            let shade = t["shade"].as_str().unwrap();
+        // The generator's tones all have words here.
+        let shades = vlnverse_procgen::shades();
+        assert!(shades.len() > 30);
+        for shade in shades {
             assert!(
                 SHADES.words.contains_key(shade),
                 "no words for the tone {shade:?}"
             );
         }
+    }
+
+    #[test]
+    fn every_feature_the_generator_records_has_phrases() {
+        use vlnverse_env::SceneSource;
+        let homes =
+            vlnverse_procgen::HomeGenerator::from_preset(vlnverse_procgen::Preset::Tiny).unwrap();
+        let mut seen = std::collections::BTreeSet::new();
+        for i in 0..homes.len() {
+            for o in &homes.scene(i).unwrap().objects {
+                for f in &o.features {
+                    assert!(FEATURES.contains_key(f), "no phrases for the feature {f:?}");
+                    seen.insert(f.clone());
+                }
+            }
+        }
+        assert!(seen.len() > 20, "{seen:?}");
     }
 
     #[test]
@@ -738,6 +767,13 @@ mod tests {
         };
         assert!(stool(0.7).contains(&"bar stool"));
         assert_eq!(stool(0.45), ["stool"]);
+        // A feature another sofa in the room shares does not tell this one apart.
+        let mut other = SceneObject::from_parts(9, C::Sofa, Pose::IDENTITY, Vec::new());
+        other.features = vec!["low arms".into()];
+        let told = distinct_uses(&sofa, &[&sofa, &other]);
+        assert!(told.contains(&"with two seats") && !told.contains(&"with low arms"));
+        other.room = Some(7);
+        assert!(distinct_uses(&sofa, &[&other]).contains(&"with low arms"));
         let mut kettle = SceneObject::from_parts(2, C::Kettle, Pose::IDENTITY, Vec::new());
         kettle.features = vec!["four legs".into()];
         assert_eq!(object_uses(&kettle)[0], class_uses(C::Kettle)[0]);

@@ -2,7 +2,7 @@
 
 use super::describe::{content_name, places, Place};
 use super::lexicon::{
-    color_phrases, material_noun, material_words, number_word, object_uses, plural, shape_words,
+    color_phrases, distinct_uses, material_noun, material_words, number_word, plural, shape_words,
 };
 use super::path::{env_side, floor_points, footprint, rect_distance, segment_headings, TurnConfig};
 use super::phrases::{self as ph, capitalize, decapitalize, fill, pick};
@@ -514,7 +514,17 @@ fn target_remark(
     let mats = material_words(o);
     // Shades only: the plain colour word is already in the description when it is needed.
     let shades: Vec<String> = color_phrases(o).into_iter().skip(1).collect();
-    let uses = object_uses(o);
+    let peers: Vec<&SceneObject> = o
+        .room
+        .map(|r| {
+            ctx.scene
+                .objects
+                .iter()
+                .filter(|x| x.class == o.class && x.room == Some(r))
+                .collect()
+        })
+        .unwrap_or_default();
+    let uses = distinct_uses(o, &peers);
     let place = super::describe::room_feature(ctx.scene, o);
     // Places the goal can be seen from: the path ends within reach of the target, and the
     // pieces a place names stand within a few metres of it.

@@ -18,6 +18,7 @@ pub use config::{
     ScenesConfig, WallsConfig,
 };
 pub use rect::Rect;
+pub use tones::shades;
 
 use std::fmt;
 use std::str::FromStr;

@@ -1051,6 +1051,8 @@ fn table(class: C, fin: Finish, w: f32, h: f32, d: f32, leg_rgb: [f32; 3], mass:
         _ => legs(&mut p, w - 0.06, d - 0.06, under, 0.05, leg_rgb),
     }
     let support = match v {
+        // Long tables stand on two (see the pedestal variant above).
+        1 if w > 1.3 => "two pedestals",
         1 => "pedestal",
         2 => "trestle legs",
         3 => "braced legs",

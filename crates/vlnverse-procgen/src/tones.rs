@@ -66,6 +66,12 @@ fn parse(text: &str) -> Result<Vec<Tone>, String> {
     Ok(tones)
 }
 
+/// Every shade a generated object may record (`SceneObject::shade`), in file order: what a
+/// language crate needs words for.
+pub fn shades() -> Vec<&'static str> {
+    TONES.iter().map(|t| t.shade.as_str()).collect()
+}
+
 /// `fin`, or one of its colour word's tones, chosen by a hash of the generator's seed and
 /// stream position (so choosing draws nothing and moves no later draw).
 pub(crate) fn toned(fin: Finish, rng: &ChaCha8Rng) -> Finish {
