@@ -134,8 +134,9 @@ mod tests {
     use vlnverse_procgen::{HomeGenerator, Preset};
 
     /// Every door counted on the shortest paths between the rooms of the first homes of the
-    /// preset (the tiny homes have no hallways, where most doors are counted): its side is the door's seen from
-    /// the turn, and the doors before it on that side number one less than its ordinal.
+    /// preset (the tiny homes have no hallways, where most doors are counted): its side is the
+    /// door's seen from the turn, and the doors before it on that side number one less than its
+    /// ordinal.
     #[test]
     fn a_door_is_counted_on_its_own_side_among_the_doors_passed() {
         let g = HomeGenerator::from_preset(Preset::Vlnverse).unwrap();

@@ -64,14 +64,9 @@ pub fn object_names(o: &SceneObject) -> Vec<&'static str> {
 
 /// Phrases after the name of one object: what it is for ([`class_uses`]; for a framed canvas,
 /// whose class's uses are a photo frame's, what it shows), then what it has that others of its
-/// class may not (its recorded features, `data/features.toml`).
-pub fn object_uses(o: &SceneObject) -> Vec<&'static str> {
-    distinct_uses(o, &[])
-}
-
-/// [`object_uses`] without the phrases of features that another object of `peers` (any
-/// objects; those of `o`'s class in its room count) shares: "the one with a spindle back" must
-/// tell it from the chairs around it.
+/// class may not (its recorded features, `data/features.toml`), less the phrases of features
+/// that another object of `peers` (any objects; those of `o`'s class in its room count)
+/// shares: "the one with a spindle back" must tell it from the chairs around it.
 pub fn distinct_uses(o: &SceneObject, peers: &[&SceneObject]) -> Vec<&'static str> {
     let mut out = if o.class == C::PictureFrame && o.material == "canvas" {
         // Every canvas shows hills under a sky (vlnverse_env::material, `Surface::Painting`).
@@ -744,7 +739,7 @@ mod tests {
         let mut sofa = SceneObject::from_parts(1, C::Sofa, Pose::IDENTITY, Vec::new());
         assert!(!object_names(&sofa).contains(&"loveseat"));
         let uses = class_uses(C::Sofa);
-        assert_eq!(object_uses(&sofa), uses);
+        assert_eq!(distinct_uses(&sofa, &[]), uses);
         sofa.features = vec![
             "two seats".into(),
             "low arms".into(),
@@ -752,7 +747,7 @@ mod tests {
         ];
         assert!(object_names(&sofa).contains(&"loveseat"));
         assert_eq!(
-            object_uses(&sofa)[uses.len()..],
+            distinct_uses(&sofa, &[])[uses.len()..],
             [
                 "with two seats",
                 "for two people",
@@ -776,8 +771,8 @@ mod tests {
         assert!(distinct_uses(&sofa, &[&other]).contains(&"with low arms"));
         let mut kettle = SceneObject::from_parts(2, C::Kettle, Pose::IDENTITY, Vec::new());
         kettle.features = vec!["four legs".into()];
-        assert_eq!(object_uses(&kettle)[0], class_uses(C::Kettle)[0]);
-        assert_eq!(object_uses(&kettle).last(), Some(&"on four legs"));
+        assert_eq!(distinct_uses(&kettle, &[])[0], class_uses(C::Kettle)[0]);
+        assert_eq!(distinct_uses(&kettle, &[]).last(), Some(&"on four legs"));
         let err = parse_features("f.toml", "[phrases]\nfootboard = [\"a\", \"a\"]\n")
             .unwrap_err()
             .to_string();

@@ -14,7 +14,7 @@ use serde::{Deserialize, Serialize};
 use vlnverse_env::scene_graph::{
     side_of_heading, Mention, ReferringExpression, Relation, RoomMention,
 };
-use vlnverse_env::{ObjectId, SceneObject};
+use vlnverse_env::{ObjectId, Scene, SceneObject};
 use vlnverse_score::episode::{GroundedObject, Instruction, Role, Side, Style};
 use vlnverse_score::{DataError, Result};
 
@@ -514,16 +514,7 @@ fn target_remark(
     let mats = material_words(o);
     // Shades only: the plain colour word is already in the description when it is needed.
     let shades: Vec<String> = color_phrases(o).into_iter().skip(1).collect();
-    let peers: Vec<&SceneObject> = o
-        .room
-        .map(|r| {
-            ctx.scene
-                .objects
-                .iter()
-                .filter(|x| x.class == o.class && x.room == Some(r))
-                .collect()
-        })
-        .unwrap_or_default();
+    let peers = class_in_room(ctx.scene, o);
     let uses = distinct_uses(o, &peers);
     let place = super::describe::room_feature(ctx.scene, o);
     // Places the goal can be seen from: the path ends within reach of the target, and the
@@ -538,7 +529,7 @@ fn target_remark(
             })
         })
         .collect();
-    let count = same_class_in_room(ctx, o, name);
+    let count = count_phrase(peers.len(), name);
     let mut kinds: Vec<u8> = Vec::new();
     for (k, ok) in [
         (0u8, !mats.is_empty()),
@@ -594,16 +585,26 @@ pub(crate) fn same_class_in_room(
     o: &SceneObject,
     name: &str,
 ) -> Option<(String, String)> {
-    let room = o.room?;
-    if name.ends_with('s') || NO_PLURAL.contains(&name) {
-        return None;
-    }
-    let n = ctx
-        .scene
+    count_phrase(class_in_room(ctx.scene, o).len(), name)
+}
+
+/// The objects of `o`'s class in its room, `o` among them (none when it is in no room).
+fn class_in_room<'a>(scene: &'a Scene, o: &SceneObject) -> Vec<&'a SceneObject> {
+    let Some(room) = o.room else {
+        return Vec::new();
+    };
+    scene
         .objects
         .iter()
         .filter(|x| x.class == o.class && x.room == Some(room))
-        .count();
+        .collect()
+}
+
+/// [`same_class_in_room`] for `n` objects of the class in the room.
+fn count_phrase(n: usize, name: &str) -> Option<(String, String)> {
+    if name.ends_with('s') || NO_PLURAL.contains(&name) {
+        return None;
+    }
     (2..=6)
         .contains(&n)
         .then(|| (number_word(n as u32), plural(name)))
