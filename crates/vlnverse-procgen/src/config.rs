@@ -165,6 +165,10 @@ pub struct FurnitureConfig {
     /// Factor on the probability of each piece of floor and wall clutter (shoes, laundry
     /// baskets, wall shelves, radiators...; 0 = none), in `[0, 4]`.
     pub clutter: f32,
+    /// Factor on the chance of each feature piece (pool table, grandfather clock, kitchen
+    /// island, console table, dryer...; 0 = none), in `[0, 4]`. Pieces are placed last from an
+    /// rng of their own, so they never move the rest of a home.
+    pub pieces: f32,
     /// Most small objects on one surface, in `[0, 8]`.
     pub small_objects_max: usize,
     /// Probability that a surface gets small objects at all.
@@ -267,6 +271,7 @@ impl Default for FurnitureConfig {
             density: 1.0,
             attempts: 24,
             clutter: 1.0,
+            pieces: 0.0,
             small_objects_max: 7,
             small_object_probability: 0.95,
             nav_radius: 0.4,
@@ -601,6 +606,12 @@ impl ProcgenConfig {
             f.clutter.is_finite() && (0.0..=4.0).contains(&f.clutter),
             "furniture.clutter",
             f.clutter,
+            "must be in [0, 4]",
+        )?;
+        check(
+            f.pieces.is_finite() && (0.0..=4.0).contains(&f.pieces),
+            "furniture.pieces",
+            f.pieces,
             "must be in [0, 4]",
         )?;
         check(

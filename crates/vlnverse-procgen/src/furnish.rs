@@ -12,10 +12,11 @@ use crate::floorplan::{Plan, PlanRoom};
 use crate::home::{clearance_rect, Builder};
 use crate::models::{self, Model};
 use crate::navgrid::NavGrid;
+use crate::pieces::{self, Spot};
 use crate::rect::Rect;
 use glam::{Quat, Vec3};
 use rand::seq::IndexedRandom;
-use rand::Rng;
+use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::f32::consts::{FRAC_PI_2, PI};
 use vlnverse_env::{ObjectId, Pose, RoomId, RoomType, SemanticClass as C};
@@ -1102,7 +1103,26 @@ fn small_choices(support: C, room: RoomType) -> &'static [C] {
             C::Globe,
             C::Toy,
         ],
-        (C::WashingMachine, _) => &[C::Towel, C::Bottle, C::Basket],
+        (C::WashingMachine | C::Dryer, _) => &[C::Towel, C::Bottle, C::Basket],
+        (C::KitchenIsland, _) => &[
+            C::FruitBowl,
+            C::Bowl,
+            C::CuttingBoard,
+            C::Mug,
+            C::Plate,
+            C::Bottle,
+            C::SmallPlant,
+        ],
+        (C::ConsoleTable, _) => &[
+            C::Vase,
+            C::TableLamp,
+            C::Bowl,
+            C::PictureFrame,
+            C::Clock,
+            C::SmallPlant,
+            C::Basket,
+            C::Candle,
+        ],
         (C::ShoeRack, _) => &[C::SmallPlant, C::Vase, C::Basket],
         (C::Vanity, _) => &[
             C::JewelryBox,
@@ -1323,23 +1343,63 @@ fn furnish_room(
             if fridge && has_fridge {
                 break;
             }
-            let Some(placed) = st.place(&mut g, rng) else {
+            if !add_group(&mut st, &mut g, room.kind, rng, b) {
                 continue;
-            };
-            let mut ids: Vec<ObjectId> = Vec::with_capacity(placed.len());
-            for p in &placed {
-                let support = p.on.map(|k| ids[k]);
-                let id = b.add_model(&p.model, st.id, p.pose, support);
-                ids.push(id);
-            }
-            for (p, &id) in placed.iter().zip(&ids) {
-                if !p.bare {
-                    add_smalls(cfg, rng, b, st.id, room.kind, &p.model, &p.pose, id);
-                }
             }
             has_fridge |= fridge;
             break;
         }
     }
+    if cfg.furniture.pieces > 0.0 {
+        add_pieces(&mut st, room.kind, rng, b);
+    }
     tracing::trace!(room = i, free = st.grid.free_cells(), "room furnished");
+}
+
+/// Place group `g` in the room and add it and the small objects on its tops to the home;
+/// false when it found no place.
+fn add_group(
+    st: &mut RoomState,
+    g: &mut Group,
+    kind: RoomType,
+    rng: &mut ChaCha8Rng,
+    b: &mut Builder,
+) -> bool {
+    let Some(placed) = st.place(g, rng) else {
+        return false;
+    };
+    let mut ids: Vec<ObjectId> = Vec::with_capacity(placed.len());
+    for p in &placed {
+        let support = p.on.map(|k| ids[k]);
+        let id = b.add_model(&p.model, st.id, p.pose, support);
+        ids.push(id);
+    }
+    for (p, &id) in placed.iter().zip(&ids) {
+        if !p.bare {
+            add_smalls(st.cfg, rng, b, st.id, kind, &p.model, &p.pose, id);
+        }
+    }
+    true
+}
+
+/// The room's feature pieces ([`pieces`]), drawn from an rng of their own seeded by the home's
+/// stream and the room, so that the main stream, and every room furnished after this one, is
+/// the same with or without them.
+fn add_pieces(st: &mut RoomState, kind: RoomType, rng: &ChaCha8Rng, b: &mut Builder) {
+    let salt = u64::from(st.id).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    let mut own = ChaCha8Rng::seed_from_u64(crate::tones::stream_hash(rng) ^ salt);
+    let area = st.interior.area();
+    for piece in pieces::pieces(kind) {
+        let chance = (piece.chance * st.cfg.furniture.pieces).clamp(0.0, 1.0);
+        if area < piece.min_area || !own.random_bool(f64::from(chance)) {
+            continue;
+        }
+        let mode = match piece.spot {
+            Spot::Wall => Mode::Wall,
+            Spot::Corner => Mode::Corner,
+            Spot::Centre => Mode::Center,
+        };
+        let mut g = Group::one(pieces::model(piece.class, &mut own), mode);
+        add_group(st, &mut g, kind, &mut own, b);
+    }
 }

@@ -9,6 +9,7 @@ mod home;
 mod models;
 mod navgrid;
 mod palette;
+mod pieces;
 mod rect;
 mod storeys;
 mod tones;

@@ -33,7 +33,7 @@ pub(crate) struct Model {
 impl Model {
     /// Model from parts; the footprint and height are measured from the parts (`size` is only
     /// the nominal size) so that placement is exact even where handles stick out.
-    fn new(class: C, finish: Finish, size: [f32; 3], mass: f32, parts: Vec<Part>) -> Model {
+    pub(crate) fn new(class: C, finish: Finish, size: [f32; 3], mass: f32, parts: Vec<Part>) -> Model {
         let mut m = Model {
             class,
             parts,
@@ -50,26 +50,26 @@ impl Model {
     }
 
     /// The model with `features` recorded.
-    fn with_features(mut self, features: &[&'static str]) -> Model {
+    pub(crate) fn with_features(mut self, features: &[&'static str]) -> Model {
         self.features = features.to_vec();
         self
     }
 
     /// Mark the whole top (inset by `m`) as a support surface.
-    fn with_top(mut self, m: f32) -> Model {
+    pub(crate) fn with_top(mut self, m: f32) -> Model {
         self.top = Some(Rect::centered(0.0, 0.0, self.w, self.d).inset(m));
         self
     }
 }
 
 /// Box with its bottom centre at `(x, y0, z)`.
-fn cube(p: &mut Vec<Part>, x: f32, y0: f32, z: f32, size: [f32; 3], rgb: [f32; 3]) {
+pub(crate) fn cube(p: &mut Vec<Part>, x: f32, y0: f32, z: f32, size: [f32; 3], rgb: [f32; 3]) {
     bcube(p, x, y0, z, size, 0.0, rgb);
 }
 
 /// Box with its bottom centre at `(x, y0, z)` and its edges chamfered by `bevel` metres (only
 /// the drawn mesh: physics and occupancy keep the full box).
-fn bcube(p: &mut Vec<Part>, x: f32, y0: f32, z: f32, size: [f32; 3], bevel: f32, rgb: [f32; 3]) {
+pub(crate) fn bcube(p: &mut Vec<Part>, x: f32, y0: f32, z: f32, size: [f32; 3], bevel: f32, rgb: [f32; 3]) {
     p.push(Part {
         shape: Shape::Cuboid {
             half_extents: [size[0] * 0.5, size[1] * 0.5, size[2] * 0.5],
@@ -85,12 +85,12 @@ fn bcube(p: &mut Vec<Part>, x: f32, y0: f32, z: f32, size: [f32; 3], bevel: f32,
 
 /// Thin panel on the front face (z = -d/2) of a body of depth `d`: door, drawer front, handle.
 /// `at` is (x, bottom y, z offset from the front face).
-fn front(p: &mut Vec<Part>, d: f32, at: [f32; 3], size: [f32; 3], rgb: [f32; 3]) {
+pub(crate) fn front(p: &mut Vec<Part>, d: f32, at: [f32; 3], size: [f32; 3], rgb: [f32; 3]) {
     cube(p, at[0], at[1], -d * 0.5 + at[2], size, rgb);
 }
 
 /// Upright cylinder with its bottom centre at `(x, y0, z)`.
-fn cyl(p: &mut Vec<Part>, x: f32, y0: f32, z: f32, r: f32, h: f32, rgb: [f32; 3]) {
+pub(crate) fn cyl(p: &mut Vec<Part>, x: f32, y0: f32, z: f32, r: f32, h: f32, rgb: [f32; 3]) {
     p.push(Part {
         shape: Shape::Cylinder {
             radius: r,
@@ -105,7 +105,7 @@ fn cyl(p: &mut Vec<Part>, x: f32, y0: f32, z: f32, r: f32, h: f32, rgb: [f32; 3]
 }
 
 /// Cylinder lying along z (a disc facing the front when short), centred at `c`.
-fn disc_z(p: &mut Vec<Part>, c: [f32; 3], r: f32, len: f32, rgb: [f32; 3]) {
+pub(crate) fn disc_z(p: &mut Vec<Part>, c: [f32; 3], r: f32, len: f32, rgb: [f32; 3]) {
     p.push(Part {
         shape: Shape::Cylinder {
             radius: r,
@@ -120,7 +120,7 @@ fn disc_z(p: &mut Vec<Part>, c: [f32; 3], r: f32, len: f32, rgb: [f32; 3]) {
 }
 
 /// Sphere centred at `c`.
-fn ball(p: &mut Vec<Part>, c: [f32; 3], r: f32, rgb: [f32; 3]) {
+pub(crate) fn ball(p: &mut Vec<Part>, c: [f32; 3], r: f32, rgb: [f32; 3]) {
     p.push(Part {
         shape: Shape::Sphere { radius: r },
         transform: Pose {
@@ -132,7 +132,7 @@ fn ball(p: &mut Vec<Part>, c: [f32; 3], r: f32, rgb: [f32; 3]) {
 }
 
 /// Four square legs at the corners of a `w` x `d` footprint.
-fn legs(p: &mut Vec<Part>, w: f32, d: f32, h: f32, s: f32, rgb: [f32; 3]) {
+pub(crate) fn legs(p: &mut Vec<Part>, w: f32, d: f32, h: f32, s: f32, rgb: [f32; 3]) {
     for sx in [-1.0, 1.0] {
         for sz in [-1.0, 1.0] {
             cube(
@@ -148,7 +148,7 @@ fn legs(p: &mut Vec<Part>, w: f32, d: f32, h: f32, s: f32, rgb: [f32; 3]) {
 }
 
 /// A shape centred at `c`, turned by `rot`.
-fn turned(p: &mut Vec<Part>, shape: Shape, c: [f32; 3], rot: Quat, rgb: [f32; 3]) {
+pub(crate) fn turned(p: &mut Vec<Part>, shape: Shape, c: [f32; 3], rot: Quat, rgb: [f32; 3]) {
     p.push(Part {
         shape,
         transform: Pose {
@@ -181,7 +181,7 @@ fn variant(n: usize, drawn: &[f32]) -> usize {
     (z % n as u64) as usize
 }
 
-fn r(rng: &mut ChaCha8Rng, lo: f32, hi: f32) -> f32 {
+pub(crate) fn r(rng: &mut ChaCha8Rng, lo: f32, hi: f32) -> f32 {
     rng.random_range(lo..=hi)
 }
 

@@ -96,7 +96,7 @@ pub(crate) fn toned(fin: Finish, rng: &ChaCha8Rng) -> Finish {
 }
 
 /// A hash of the generator's seed and stream position.
-fn stream_hash(rng: &ChaCha8Rng) -> u64 {
+pub(crate) fn stream_hash(rng: &ChaCha8Rng) -> u64 {
     let mut z: u64 = 0x94D0_49BB_1331_11EB;
     for chunk in rng.get_seed().chunks(8) {
         let mut b = [0u8; 8];

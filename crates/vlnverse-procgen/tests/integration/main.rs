@@ -7,6 +7,7 @@ mod doors;
 mod homes;
 mod look;
 mod navigable;
+mod pieces;
 mod storeys;
 mod support;
 mod variants;

@@ -1,0 +1,113 @@
+//! Feature pieces (pool tables, grandfather clocks, kitchen islands...): placed from an rng of
+//! their own, so turning them on adds objects and moves no furniture.
+
+use rayon::prelude::*;
+use std::collections::BTreeSet;
+use vlnverse_env::{ClassKind, Scene, SemanticClass as C};
+use vlnverse_procgen::{scene_seed, HomeGenerator, Preset};
+
+const PIECES: [C; 18] = [
+    C::Recliner,
+    C::RockingChair,
+    C::PoolTable,
+    C::PingPongTable,
+    C::FoosballTable,
+    C::GrandfatherClock,
+    C::Guitar,
+    C::DrumKit,
+    C::Statue,
+    C::FireExtinguisher,
+    C::Dryer,
+    C::Easel,
+    C::Birdcage,
+    C::Grill,
+    C::KitchenIsland,
+    C::ConsoleTable,
+    C::ChinaCabinet,
+    C::Ladder,
+];
+
+fn homes(pieces: f32, n: usize) -> Vec<Scene> {
+    let mut cfg = Preset::Vlnverse.config().expect("vlnverse preset");
+    cfg.furniture.pieces = pieces;
+    let base = cfg.scenes.seed;
+    let g = HomeGenerator::new(cfg).expect("config");
+    (0..n)
+        .into_par_iter()
+        .map(|i| {
+            g.generate(scene_seed(base, i), &format!("home_{i:04}"))
+                .expect("scene")
+        })
+        .collect()
+}
+
+/// The furniture and small objects but the pieces, as (class, room, box) in scene order.
+/// Door leaves, windows, curtains and paintings are placed after the furniture, where it
+/// leaves room (a door is shut only where the home stays connected, a window goes on a wall
+/// free of tall furniture), so a piece may change them.
+fn others(s: &Scene) -> Vec<String> {
+    s.objects
+        .iter()
+        .filter(|o| !PIECES.contains(&o.class) && !on_a_piece(s, o))
+        .filter(|o| matches!(o.class.kind(), ClassKind::Furniture | ClassKind::Small))
+        .filter(|o| !matches!(o.class, C::Door | C::Curtain | C::PictureFrame))
+        .map(|o| format!("{:?} {:?} {:?}", o.class, o.room, o.bbox))
+        .collect()
+}
+
+/// Whether `o` stands on a piece (a bowl on the island): it comes and goes with the piece.
+fn on_a_piece(s: &Scene, o: &vlnverse_env::SceneObject) -> bool {
+    o.supported_by
+        .and_then(|id| s.object(id))
+        .is_some_and(|sup| PIECES.contains(&sup.class))
+}
+
+#[test]
+fn pieces_add_objects_and_move_no_furniture() {
+    let without = homes(0.0, 16);
+    let with = homes(1.0, 16);
+    let mut added = 0;
+    for (a, b) in without.iter().zip(&with) {
+        assert!(
+            a.objects.iter().all(|o| !PIECES.contains(&o.class)),
+            "{}: a piece with pieces = 0",
+            a.id
+        );
+        let (oa, ob) = (others(a), others(b));
+        let first = oa.iter().zip(&ob).position(|(x, y)| x != y);
+        assert!(
+            first.is_none() && oa.len() == ob.len(),
+            "{}: other objects moved, first {:?}: {:?} / {:?}",
+            a.id,
+            first,
+            first.map(|i| &oa[i]),
+            first.map(|i| &ob[i])
+        );
+        added += b.objects.len() - a.objects.len();
+    }
+    assert!(
+        added >= 16,
+        "only {added} pieces and their small objects in 16 homes"
+    );
+}
+
+#[test]
+fn most_piece_kinds_turn_up_in_the_rooms_that_list_them() {
+    let with = homes(1.0, 60);
+    let mut seen = BTreeSet::new();
+    for s in &with {
+        for o in s.objects.iter().filter(|o| PIECES.contains(&o.class)) {
+            seen.insert(o.class);
+            let room = o
+                .room
+                .and_then(|r| s.room(r))
+                .expect("a piece stands in a room");
+            let (x, z) = (
+                (o.bbox.min[0] + o.bbox.max[0]) * 0.5,
+                (o.bbox.min[2] + o.bbox.max[2]) * 0.5,
+            );
+            assert!(room.contains(x, z), "{}: {} outside its room", s.id, o.name);
+        }
+    }
+    assert!(seen.len() >= 15, "{} kinds placed: {seen:?}", seen.len());
+}
