@@ -14,6 +14,9 @@ use crate::vocab::{RoomType, SemanticClass};
 use glam::Vec3;
 use std::sync::OnceLock;
 
+mod patterns;
+mod pictures;
+
 /// Side of every texture in texels (a power of two: renderers wrap with a mask).
 pub const TEX_SIZE: usize = 128;
 
@@ -52,11 +55,45 @@ pub enum Surface {
     Brick,
     /// Stone blocks of uneven tone with mortar joints (fireplaces).
     Stone,
+    /// A painted sailboat on the sea (a framed canvas: see [`Surface::is_picture`]).
+    PaintingSailboat,
+    /// A painted beach at sunset with a palm tree.
+    PaintingBeach,
+    /// A painted lake under snow-capped mountains.
+    PaintingLake,
+    /// Painted flowers in a vase.
+    PaintingFlowers,
+    /// A painted tree in a field.
+    PaintingTree,
+    /// Abstract art: discs and a ring.
+    PaintingCircles,
+    /// Abstract art: blocks of tone between black lines.
+    PaintingSquares,
+    /// A painted portrait: head and shoulders.
+    PaintingPortrait,
+    /// A painted horse in a field.
+    PaintingHorse,
+    /// A painted zebra in a field.
+    PaintingZebra,
+    /// Striped fabric.
+    Striped,
+    /// Checkered fabric (squares of two tones).
+    Checkered,
+    /// Plaid fabric (crossing bands).
+    Plaid,
+    /// Fabric printed with flowers.
+    Floral,
+    /// Fabric with polka dots.
+    PolkaDot,
+    /// Marble: pale stone with dark veins (worktops).
+    Marble,
+    /// Granite: speckled stone (worktops).
+    Granite,
 }
 
 impl Surface {
     /// Every surface, in index order.
-    pub const ALL: [Surface; 16] = [
+    pub const ALL: [Surface; 33] = [
         Surface::Plain,
         Surface::Plaster,
         Surface::Wallpaper,
@@ -73,6 +110,23 @@ impl Surface {
         Surface::Painting,
         Surface::Brick,
         Surface::Stone,
+        Surface::PaintingSailboat,
+        Surface::PaintingBeach,
+        Surface::PaintingLake,
+        Surface::PaintingFlowers,
+        Surface::PaintingTree,
+        Surface::PaintingCircles,
+        Surface::PaintingSquares,
+        Surface::PaintingPortrait,
+        Surface::PaintingHorse,
+        Surface::PaintingZebra,
+        Surface::Striped,
+        Surface::Checkered,
+        Surface::Plaid,
+        Surface::Floral,
+        Surface::PolkaDot,
+        Surface::Marble,
+        Surface::Granite,
     ];
 
     /// Position in [`Surface::ALL`].
@@ -99,6 +153,23 @@ impl Surface {
             Surface::Painting => "painting",
             Surface::Brick => "brick",
             Surface::Stone => "stone",
+            Surface::PaintingSailboat => "painting_sailboat",
+            Surface::PaintingBeach => "painting_beach",
+            Surface::PaintingLake => "painting_lake",
+            Surface::PaintingFlowers => "painting_flowers",
+            Surface::PaintingTree => "painting_tree",
+            Surface::PaintingCircles => "painting_circles",
+            Surface::PaintingSquares => "painting_squares",
+            Surface::PaintingPortrait => "painting_portrait",
+            Surface::PaintingHorse => "painting_horse",
+            Surface::PaintingZebra => "painting_zebra",
+            Surface::Striped => "striped",
+            Surface::Checkered => "checkered",
+            Surface::Plaid => "plaid",
+            Surface::Floral => "floral",
+            Surface::PolkaDot => "polka_dot",
+            Surface::Marble => "marble",
+            Surface::Granite => "granite",
         }
     }
 
@@ -112,8 +183,20 @@ impl Surface {
             Surface::Rug => 1.6,
             Surface::Painting => 0.5,
             Surface::Brick | Surface::Stone => 0.8,
+            Surface::Striped | Surface::Checkered => 0.6,
+            Surface::Plaid => 0.8,
+            Surface::Floral | Surface::PolkaDot => 0.5,
+            Surface::Marble => 1.2,
+            Surface::Granite => 0.6,
             _ => 1.0,
         }
+    }
+
+    /// Whether it is a picture on a framed canvas, drawn once over the canvas (see
+    /// [`picture_uv`]) rather than repeated every [`Surface::repeat`] metres.
+    pub fn is_picture(self) -> bool {
+        self.index() >= Surface::PaintingSailboat.index()
+            && self.index() <= Surface::PaintingZebra.index()
     }
 
     /// Whether glTF should call it metallic.
@@ -304,6 +387,23 @@ impl Surface {
                             0.72 + 0.2 * hash01(seed, block, row) + 0.08 * fbm(seed, fx, fy, 8.0)
                         }
                     }
+                    Surface::PaintingSailboat
+                    | Surface::PaintingBeach
+                    | Surface::PaintingLake
+                    | Surface::PaintingFlowers
+                    | Surface::PaintingTree
+                    | Surface::PaintingCircles
+                    | Surface::PaintingSquares
+                    | Surface::PaintingPortrait
+                    | Surface::PaintingHorse
+                    | Surface::PaintingZebra => pictures::texel(self, seed, x, y).unwrap_or(0.9),
+                    Surface::Striped
+                    | Surface::Checkered
+                    | Surface::Plaid
+                    | Surface::Floral
+                    | Surface::PolkaDot
+                    | Surface::Marble
+                    | Surface::Granite => patterns::texel(self, seed, x, y).unwrap_or(0.9),
                 };
                 out.push((v.clamp(0.0, 1.0) * 255.0).round() as u8);
             }
@@ -316,7 +416,7 @@ fn grey(v: f32) -> f32 {
     v
 }
 
-fn hash(seed: u32, x: usize, y: usize) -> u32 {
+pub(crate) fn hash(seed: u32, x: usize, y: usize) -> u32 {
     let mut h = seed ^ (x as u32).wrapping_mul(0x27d4_eb2d) ^ (y as u32).wrapping_mul(0x1656_67b1);
     h ^= h >> 15;
     h = h.wrapping_mul(0x2c1b_3c6d);
@@ -325,13 +425,13 @@ fn hash(seed: u32, x: usize, y: usize) -> u32 {
     h ^ (h >> 15)
 }
 
-fn hash01(seed: u32, x: usize, y: usize) -> f32 {
+pub(crate) fn hash01(seed: u32, x: usize, y: usize) -> f32 {
     (hash(seed, x, y) >> 8) as f32 / (1u32 << 24) as f32
 }
 
 /// Tileable value noise with period [`TEX_SIZE`] at lattice spacing `cell` texels, in
 /// `[-0.5, 0.5]`, two octaves.
-fn fbm(seed: u32, x: f32, y: f32, cell: f32) -> f32 {
+pub(crate) fn fbm(seed: u32, x: f32, y: f32, cell: f32) -> f32 {
     let mut sum = 0.0;
     let mut amp = 0.65;
     let mut c = cell;
@@ -357,10 +457,134 @@ fn fbm(seed: u32, x: f32, y: f32, cell: f32) -> f32 {
     sum
 }
 
+/// Which parts of an object a feature's surface covers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Covers {
+    /// Every part (an upholstered sofa, a rug).
+    Object,
+    /// The canvas of a framed picture: its last part (the generator adds the canvas after the
+    /// frame); the frame is wood.
+    Canvas,
+    /// The worktop: the highest thin slab that spans the object's footprint ([`worktop`]).
+    Top,
+}
+
+/// The recorded features (`SceneObject::features`) that change how an object is drawn: what a
+/// framed canvas shows, the pattern of a fabric, the stone of a worktop; with the surface each
+/// draws and the parts it covers. A generator that records one of these must record at most
+/// one per object; the first listed wins otherwise.
+pub const FEATURE_SURFACES: &[(&str, Surface, Covers)] = &[
+    ("landscape", Surface::Painting, Covers::Canvas),
+    ("sailboat", Surface::PaintingSailboat, Covers::Canvas),
+    ("beach", Surface::PaintingBeach, Covers::Canvas),
+    ("lake", Surface::PaintingLake, Covers::Canvas),
+    (
+        "flowers in a vase",
+        Surface::PaintingFlowers,
+        Covers::Canvas,
+    ),
+    ("tree", Surface::PaintingTree, Covers::Canvas),
+    ("abstract circles", Surface::PaintingCircles, Covers::Canvas),
+    ("abstract squares", Surface::PaintingSquares, Covers::Canvas),
+    ("portrait", Surface::PaintingPortrait, Covers::Canvas),
+    ("horse", Surface::PaintingHorse, Covers::Canvas),
+    ("zebra", Surface::PaintingZebra, Covers::Canvas),
+    ("striped", Surface::Striped, Covers::Object),
+    ("checkered", Surface::Checkered, Covers::Object),
+    ("plaid", Surface::Plaid, Covers::Object),
+    ("floral", Surface::Floral, Covers::Object),
+    ("polka dots", Surface::PolkaDot, Covers::Object),
+    ("marble top", Surface::Marble, Covers::Top),
+    ("granite top", Surface::Granite, Covers::Top),
+];
+
+/// The surface a feature of `o` draws, and the parts it covers ([`FEATURE_SURFACES`]).
+pub fn feature_surface(o: &SceneObject) -> Option<(Surface, Covers)> {
+    FEATURE_SURFACES
+        .iter()
+        .find(|(f, _, _)| o.features.iter().any(|g| g == f))
+        .map(|&(_, s, c)| (s, c))
+}
+
+/// The surface of each part of `o`, in part order: [`surface_of`], except where a recorded
+/// feature draws a canvas's picture or a worktop's stone ([`feature_surface`]).
+pub fn part_surfaces(scene: &Scene, o: &SceneObject) -> Vec<Surface> {
+    let base = surface_of(scene, o);
+    let mut out = vec![base; o.parts.len()];
+    match feature_surface(o) {
+        Some((s, Covers::Canvas)) => {
+            out.fill(Surface::Wood);
+            if let Some(last) = out.last_mut() {
+                *last = s;
+            }
+        }
+        Some((s, Covers::Top)) => {
+            if let Some(i) = worktop(o) {
+                out[i] = s;
+            }
+        }
+        Some((_, Covers::Object)) | None => {}
+    }
+    out
+}
+
+/// The index of `o`'s worktop: of its box parts no thicker than 8 cm that cover at least 60%
+/// of the largest box part's footprint, the one whose top is highest (in the object's frame);
+/// `None` when there is none.
+pub fn worktop(o: &SceneObject) -> Option<usize> {
+    let boxes: Vec<(usize, [f32; 3], f32)> = o
+        .parts
+        .iter()
+        .enumerate()
+        .filter_map(|(i, p)| match p.shape {
+            crate::scene::Shape::Cuboid { half_extents, .. } => {
+                Some((i, half_extents, p.transform.position[1] + half_extents[1]))
+            }
+            _ => None,
+        })
+        .collect();
+    let widest = boxes
+        .iter()
+        .map(|(_, h, _)| h[0] * h[2])
+        .fold(0.0f32, f32::max);
+    boxes
+        .iter()
+        .filter(|(_, h, _)| h[1] <= 0.04 && h[0] * h[2] >= 0.6 * widest)
+        .max_by(|a, b| a.2.total_cmp(&b.2))
+        .map(|&(i, _, _)| i)
+}
+
+/// Texture coordinates in `[0, 1]` of a world point `p` on a picture whose canvas spans the
+/// world box `lo..hi`, seen from the side its normal `n` faces: `u` to the viewer's right, `v`
+/// down, so the picture reads the same way round on every wall.
+pub fn picture_uv(p: Vec3, n: Vec3, lo: Vec3, hi: Vec3) -> [f32; 2] {
+    let size = (hi - lo).max(Vec3::splat(1e-6));
+    let f = (p - lo) / size;
+    let v = 1.0 - f.y;
+    let u = if n.x.abs() > n.z.abs() {
+        // Facing +x the viewer looks along -x, with -z to the right.
+        if n.x > 0.0 {
+            1.0 - f.z
+        } else {
+            f.z
+        }
+    } else if n.z >= 0.0 {
+        f.x
+    } else {
+        1.0 - f.x
+    };
+    [u.clamp(0.0, 1.0), v.clamp(0.0, 1.0)]
+}
+
 /// The material of an object's surfaces: from its class (walls, floors, ceilings), its
 /// material word, and for walls and bedroom floors a choice seeded by the scene seed, so homes
-/// differ in look as they differ in layout.
+/// differ in look as they differ in layout; a recorded feature's surface where it draws one
+/// ([`feature_surface`]: for a worktop's stone see [`part_surfaces`]).
 pub fn surface_of(scene: &Scene, o: &SceneObject) -> Surface {
+    match feature_surface(o) {
+        Some((s, Covers::Object | Covers::Canvas)) => return s,
+        Some((_, Covers::Top)) | None => {}
+    }
     let seed = scene.seed.unwrap_or(0);
     let pick = |salt: u64| {
         let h = hash((seed ^ (seed >> 32)) as u32, salt as usize, 0x5eed);
@@ -444,6 +668,166 @@ mod tests {
             let distinct: std::collections::BTreeSet<_> = t.iter().collect();
             assert_eq!(distinct.len() == 1, s == Surface::Plain, "{s:?}");
         }
+    }
+
+    /// Mean and standard deviation of a grey texture (0..=255).
+    fn stats(t: &[u8]) -> (f32, f32) {
+        let n = t.len() as f32;
+        let mean = t.iter().map(|&g| g as f32).sum::<f32>() / n;
+        let var = t.iter().map(|&g| (g as f32 - mean).powi(2)).sum::<f32>() / n;
+        (mean, var.sqrt())
+    }
+
+    /// The grey value at texel `(x, y)` of `s`.
+    fn at(s: Surface, x: usize, y: usize) -> u8 {
+        s.luma()[y * TEX_SIZE + x]
+    }
+
+    #[test]
+    fn every_picture_and_pattern_has_contrast_and_differs_from_the_others() {
+        let drawn: Vec<Surface> = FEATURE_SURFACES.iter().map(|f| f.1).collect();
+        for (i, &a) in drawn.iter().enumerate() {
+            let (mean, sd) = stats(a.luma());
+            assert!(sd > 18.0, "{a:?}: flat (sd {sd:.1})");
+            assert!((40.0..235.0).contains(&mean), "{a:?}: mean {mean:.1}");
+            for &b in &drawn[..i] {
+                let diff = a
+                    .luma()
+                    .iter()
+                    .zip(b.luma())
+                    .map(|(&x, &y)| (x as f32 - y as f32).abs())
+                    .sum::<f32>()
+                    / (TEX_SIZE * TEX_SIZE) as f32;
+                assert!(diff > 15.0, "{a:?} and {b:?} differ by {diff:.1} a texel");
+            }
+        }
+        let pictures = Surface::ALL.iter().filter(|s| s.is_picture()).count();
+        assert_eq!(pictures, 10);
+        assert!(!Surface::Painting.is_picture() && !Surface::Marble.is_picture());
+    }
+
+    #[test]
+    fn pictures_show_their_subjects() {
+        // The sailboat: a white sail over a dark hull, the sea darker than the sky.
+        assert!(at(Surface::PaintingSailboat, 80, 60) > 240);
+        assert!(at(Surface::PaintingSailboat, 64, 76) < 60);
+        assert!(
+            at(Surface::PaintingSailboat, 10, 110) + 60 < at(Surface::PaintingSailboat, 10, 30)
+        );
+        // The beach: the sun bright on the horizon, the palm dark.
+        assert!(at(Surface::PaintingBeach, 64, 55) > 240);
+        assert!(at(Surface::PaintingBeach, 21, 110) < 50);
+        // The portrait: dark eyes in a light face.
+        assert!(at(Surface::PaintingPortrait, 56, 54) < 50);
+        assert!(at(Surface::PaintingPortrait, 64, 60) > 200);
+        // The zebra: black and white across its body, the horse dark all over.
+        let row: Vec<u8> = (40..76)
+            .map(|x| at(Surface::PaintingZebra, x, 66))
+            .collect();
+        let flips = row.windows(2).filter(|w| w[0].abs_diff(w[1]) > 150).count();
+        assert!(flips >= 6, "{row:?}");
+        assert!((40..76).all(|x| at(Surface::PaintingHorse, x, 66) < 60));
+        // Flowers: a white head with a dark centre above a dark vase.
+        assert!(at(Surface::PaintingFlowers, 64, 20) > 230);
+        assert!(at(Surface::PaintingFlowers, 64, 26) < 70);
+        assert!(at(Surface::PaintingFlowers, 70, 96) < 70);
+    }
+
+    #[test]
+    fn patterns_repeat_every_cell() {
+        // Stripes, checks and dots repeat every 32 texels across (their weave and noise
+        // apart), so they tile across the texture's edge like anywhere else.
+        for s in [Surface::Striped, Surface::Checkered, Surface::PolkaDot] {
+            let t = s.luma();
+            let off = (0..TEX_SIZE * TEX_SIZE)
+                .filter(|i| {
+                    t[*i].abs_diff(t[(i / TEX_SIZE) * TEX_SIZE + (i % TEX_SIZE + 64) % TEX_SIZE])
+                        > 30
+                })
+                .count();
+            assert!(
+                off < TEX_SIZE,
+                "{s:?}: {off} texels differ from the cell beside"
+            );
+        }
+    }
+
+    #[test]
+    fn features_pick_the_surface_of_a_canvas_a_fabric_and_a_worktop() {
+        use crate::scene::{Part, Pose, Shape};
+        let slab = |y: f32, h: f32, w: f32| Part {
+            shape: Shape::Cuboid {
+                half_extents: [w * 0.5, h * 0.5, 0.3],
+                bevel: 0.0,
+            },
+            transform: Pose {
+                position: [0.0, y, 0.0],
+                rotation: [0.0, 0.0, 0.0, 1.0],
+            },
+            color: [0.7; 3],
+        };
+        let scene = Scene {
+            format_version: crate::SCENE_FORMAT_VERSION,
+            id: "t".into(),
+            source: "test".into(),
+            seed: None,
+            floor_height: 0.0,
+            rooms: vec![],
+            doors: vec![],
+            objects: vec![],
+            storeys: Default::default(),
+        };
+        let mut counter = SceneObject::from_parts(
+            1,
+            SemanticClass::Counter,
+            Pose::IDENTITY,
+            vec![
+                slab(0.05, 0.1, 1.1),
+                slab(0.5, 0.76, 1.2),
+                slab(0.88, 0.04, 1.2),
+            ],
+        );
+        counter.material = "wood".into();
+        assert_eq!(part_surfaces(&scene, &counter), vec![Surface::Wood; 3]);
+        counter.features = vec!["granite top".into()];
+        assert_eq!(worktop(&counter), Some(2));
+        assert_eq!(
+            part_surfaces(&scene, &counter),
+            [Surface::Wood, Surface::Wood, Surface::Granite]
+        );
+        let mut painting = SceneObject::from_parts(
+            2,
+            SemanticClass::PictureFrame,
+            Pose::IDENTITY,
+            vec![slab(1.5, 0.5, 0.8), slab(1.5, 0.44, 0.74)],
+        );
+        painting.material = "canvas".into();
+        assert_eq!(part_surfaces(&scene, &painting), [Surface::Painting; 2]);
+        painting.features = vec!["zebra".into()];
+        assert_eq!(
+            part_surfaces(&scene, &painting),
+            [Surface::Wood, Surface::PaintingZebra]
+        );
+        let mut sofa = SceneObject::from_parts(3, SemanticClass::Sofa, Pose::IDENTITY, vec![]);
+        sofa.material = "fabric".into();
+        assert_eq!(surface_of(&scene, &sofa), Surface::Fabric);
+        sofa.features = vec!["two seats".into(), "floral".into()];
+        assert_eq!(surface_of(&scene, &sofa), Surface::Floral);
+    }
+
+    #[test]
+    fn a_picture_reads_left_to_right_from_the_side_it_faces() {
+        let (lo, hi) = (Vec3::new(-1.0, 1.0, -1.0), Vec3::new(1.0, 2.0, 1.0));
+        // Facing +z the viewer's right is +x; facing -z it is -x.
+        let right = Vec3::new(0.9, 1.9, 0.0);
+        assert_eq!(picture_uv(right, Vec3::Z, lo, hi)[0].round(), 1.0);
+        assert_eq!(picture_uv(right, Vec3::NEG_Z, lo, hi)[0].round(), 0.0);
+        // The top row is v = 0.
+        assert!(picture_uv(right, Vec3::Z, lo, hi)[1] < 0.15);
+        // Facing +x the viewer's right is -z.
+        let p = Vec3::new(0.0, 1.5, -0.9);
+        assert!(picture_uv(p, Vec3::X, lo, hi)[0] > 0.9);
+        assert!(picture_uv(p, Vec3::NEG_X, lo, hi)[0] < 0.1);
     }
 
     #[test]

@@ -69,8 +69,15 @@ pub fn object_names(o: &SceneObject) -> Vec<&'static str> {
 /// shares: "the one with a spindle back" must tell it from the chairs around it.
 pub fn distinct_uses(o: &SceneObject, peers: &[&SceneObject]) -> Vec<&'static str> {
     let mut out = if o.class == C::PictureFrame && o.material == "canvas" {
-        // Every canvas shows hills under a sky (vlnverse_env::material, `Surface::Painting`).
-        feature_phrases("landscape")
+        // A canvas shows its recorded subject (phrased with the features below); one of an
+        // older scene file, with none recorded, hills under a sky (vlnverse_env::material,
+        // `Surface::Painting`).
+        let subject = vlnverse_env::material::feature_surface(o).is_some();
+        if subject {
+            Vec::new()
+        } else {
+            feature_phrases("landscape")
+        }
     } else {
         class_uses(o.class).to_vec()
     };
@@ -88,37 +95,69 @@ pub fn distinct_uses(o: &SceneObject, peers: &[&SceneObject]) -> Vec<&'static st
 /// The phrases of one feature (none for a feature the file does not name).
 fn feature_phrases(feature: &str) -> Vec<&'static str> {
     FEATURES
+        .phrases
         .get(feature)
         .map(|p| p.iter().map(String::as_str).collect())
         .unwrap_or_default()
 }
 
+/// Words before the name of `o` for its recorded features ("striped", "marble", "zebra";
+/// `data/features.toml` `adjectives`), less any word that another object of `peers` of `o`'s
+/// class in its room has too: "the striped armchair" must tell it from the armchairs around it.
+pub fn feature_adjectives(o: &SceneObject, peers: &[&SceneObject]) -> Vec<&'static str> {
+    let words = |x: &SceneObject| -> Vec<&'static str> {
+        x.features
+            .iter()
+            .filter_map(|f| FEATURES.adjectives.get(f))
+            .flatten()
+            .map(String::as_str)
+            .collect()
+    };
+    let mut out = words(o);
+    out.dedup();
+    let shared: Vec<&'static str> = peers
+        .iter()
+        .filter(|p| p.id != o.id && p.class == o.class && p.room == o.room)
+        .flat_map(|p| words(p))
+        .collect();
+    out.retain(|w| !shared.contains(w));
+    out
+}
+
 /// The features file, as errors name it.
 const FEATURES_FILE: &str = "data/features.toml";
 
-/// `data/features.toml`: phrases by feature name.
+/// `data/features.toml`: phrases by feature name, and words before the name.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct FeatureFile {
     phrases: BTreeMap<String, Vec<String>>,
+    #[serde(default)]
+    adjectives: BTreeMap<String, Vec<String>>,
 }
 
-/// The feature phrases, parsed and checked once.
-static FEATURES: LazyLock<BTreeMap<String, Vec<String>>> = LazyLock::new(|| {
+/// The feature phrases and adjectives, parsed and checked once.
+static FEATURES: LazyLock<FeatureFile> = LazyLock::new(|| {
     expect_embedded(parse_features(
         FEATURES_FILE,
         include_str!("../data/features.toml"),
     ))
 });
 
-/// Parse and check a features file: no list empty, no phrase blank or listed twice.
-fn parse_features(
-    file: &'static str,
-    text: &str,
-) -> Result<BTreeMap<String, Vec<String>>, DataFileError> {
+/// Parse and check a features file: no list empty, no phrase blank or listed twice, every
+/// feature with adjectives also with phrases.
+fn parse_features(file: &'static str, text: &str) -> Result<FeatureFile, DataFileError> {
     let f: FeatureFile = parse_toml(file, text)?;
     check_word_lists(file, "phrases", &f.phrases, "feature")?;
-    Ok(f.phrases)
+    check_word_lists(file, "adjectives", &f.adjectives, "feature")?;
+    if let Some(k) = f.adjectives.keys().find(|k| !f.phrases.contains_key(*k)) {
+        return Err(DataFileError::new(
+            file,
+            format!("adjectives.{k}"),
+            "a feature without phrases",
+        ));
+    }
+    Ok(f)
 }
 
 /// Check the lists of a `table` of words by name: none empty (`what` names what to leave out
@@ -511,7 +550,8 @@ pub fn material_noun(word: &str) -> &str {
 }
 
 /// Size and shape words an object's geometry supports: height, footprint, bulk relative to
-/// others of its class in the scene, and the shape of its largest part.
+/// others of its class in the scene, and the shape of its largest part; then the words its
+/// recorded features put before its name ([`feature_adjectives`]: "striped", "marble").
 pub fn shape_words(o: &SceneObject, peers: &[&SceneObject]) -> Vec<&'static str> {
     let s = o.bbox.size();
     let (w, h, d) = (s.x.max(s.z), s.y, s.x.min(s.z));
@@ -593,6 +633,7 @@ pub fn shape_words(o: &SceneObject, peers: &[&SceneObject]) -> Vec<&'static str>
             out.push(if one { "shorter" } else { "shortest" });
         }
     }
+    out.extend(feature_adjectives(o, peers));
     out
 }
 
@@ -725,12 +766,75 @@ mod tests {
         for i in 0..homes.len() {
             for o in &homes.scene(i).unwrap().objects {
                 for f in &o.features {
-                    assert!(FEATURES.contains_key(f), "no phrases for the feature {f:?}");
+                    assert!(
+                        FEATURES.phrases.contains_key(f),
+                        "no phrases for the feature {f:?}"
+                    );
                     seen.insert(f.clone());
                 }
             }
         }
         assert!(seen.len() > 20, "{seen:?}");
+    }
+
+    #[test]
+    fn every_motif_the_generator_may_record_has_phrases_and_draws_a_surface() {
+        for f in vlnverse_procgen::motifs() {
+            assert!(
+                !feature_phrases(f).is_empty(),
+                "no phrases for the motif {f:?}"
+            );
+            let mut o = SceneObject::from_parts(1, C::Sofa, vlnverse_env::Pose::IDENTITY, vec![]);
+            o.features = vec![f.to_string()];
+            assert!(
+                vlnverse_env::material::feature_surface(&o).is_some(),
+                "{f:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_canvas_is_phrased_by_its_subject_and_patterns_go_before_the_name() {
+        use vlnverse_env::Pose;
+        let mut canvas = SceneObject::from_parts(1, C::PictureFrame, Pose::IDENTITY, vec![]);
+        canvas.material = "canvas".into();
+        // An older scene's canvas, with no subject, shows the landscape.
+        assert_eq!(distinct_uses(&canvas, &[]), feature_phrases("landscape"));
+        canvas.features = vec!["sailboat".into()];
+        let uses = distinct_uses(&canvas, &[]);
+        assert!(uses.contains(&"of a sailboat"), "{uses:?}");
+        assert!(!uses.iter().any(|u| u.contains("landscape")), "{uses:?}");
+        assert_eq!(feature_adjectives(&canvas, &[]), ["sailboat"]);
+        // Grounding: no picture word for a canvas without that subject.
+        let mut other = SceneObject::from_parts(2, C::PictureFrame, Pose::IDENTITY, vec![]);
+        other.material = "canvas".into();
+        other.features = vec!["zebra".into()];
+        let told = distinct_uses(&other, &[&canvas, &other]);
+        assert!(told.iter().all(|u| !u.contains("sailboat")), "{told:?}");
+        assert_eq!(feature_adjectives(&other, &[&canvas, &other]), ["zebra"]);
+        // Two abstract paintings in a room: "abstract" tells neither apart, their phrases do.
+        canvas.features = vec!["abstract circles".into()];
+        other.features = vec!["abstract squares".into()];
+        assert!(feature_adjectives(&canvas, &[&canvas, &other]).is_empty());
+        assert!(distinct_uses(&canvas, &[&canvas, &other]).contains(&"with circles on it"));
+        // A striped armchair is the striped one; among striped armchairs it is not.
+        let mut chair = SceneObject::from_parts(3, C::Armchair, Pose::IDENTITY, vec![]);
+        chair.features = vec!["striped".into()];
+        let plain = SceneObject::from_parts(4, C::Armchair, Pose::IDENTITY, vec![]);
+        assert!(shape_words(&chair, &[&chair, &plain]).contains(&"striped"));
+        assert!(!shape_words(&plain, &[&chair, &plain]).contains(&"striped"));
+        let mut twin = plain.clone();
+        twin.features = vec!["striped".into()];
+        assert!(!shape_words(&chair, &[&chair, &twin]).contains(&"striped"));
+        // A marble counter.
+        let mut counter = SceneObject::from_parts(5, C::Counter, Pose::IDENTITY, vec![]);
+        counter.features = vec!["marble top".into()];
+        assert_eq!(feature_adjectives(&counter, &[]), ["marble"]);
+        assert!(distinct_uses(&counter, &[]).contains(&"with a marble top"));
+        let e = parse_features("f.toml", "[phrases]\n[adjectives]\nzebra = [\"zebra\"]\n")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("adjectives.zebra"), "{e}");
     }
 
     #[test]

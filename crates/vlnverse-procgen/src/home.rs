@@ -471,6 +471,7 @@ pub(crate) fn generate(cfg: &ProcgenConfig, seed: u64, id: &str) -> Result<Scene
     if cfg.walls.ceiling && cfg.walls.decor {
         crate::decor::add_light_panels(&mut scene);
     }
+    crate::motifs::record(&mut scene);
     Ok(scene)
 }
 

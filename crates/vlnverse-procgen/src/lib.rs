@@ -7,6 +7,7 @@ mod floorplan;
 mod furnish;
 mod home;
 mod models;
+mod motifs;
 mod navgrid;
 mod palette;
 mod pieces;
@@ -18,6 +19,7 @@ pub use config::{
     DoorsConfig, FloorsConfig, FurnitureConfig, ProcgenConfig, RoomKindConfig, RoomsConfig,
     ScenesConfig, WallsConfig,
 };
+pub use motifs::motifs;
 pub use rect::Rect;
 pub use tones::shades;
 

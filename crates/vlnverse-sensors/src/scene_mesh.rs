@@ -22,7 +22,7 @@ use glam::Vec3;
 use std::path::PathBuf;
 use vlnverse_env::geometry::triangulate_part_cells;
 use vlnverse_env::light::{bake, cell_of, BakedLight};
-use vlnverse_env::material::{box_uv, surface_of, Surface, TEX_SIZE};
+use vlnverse_env::material::{box_uv, part_surfaces, picture_uv, Surface, TEX_SIZE};
 use vlnverse_env::scene::MeshTexture;
 use vlnverse_env::{Aabb, Scene, Shape};
 
@@ -208,12 +208,22 @@ impl SceneMesh {
             light.tint
         };
         for o in &scene.objects {
-            let surface = surface_of(scene, o);
-            let texels = TEX_SIZE as f32 / surface.repeat();
-            let tint = surface.tint();
+            let surfaces = part_surfaces(scene, o);
             let cell = cell_of(scene, o);
-            for part in &o.parts {
+            for (part, &surface) in o.parts.iter().zip(&surfaces) {
+                let texels = TEX_SIZE as f32 / surface.repeat();
+                let tint = surface.tint();
                 let tm = triangulate_part_cells(part, &o.pose, cell);
+                // A picture spans its canvas once: the part's world box.
+                let canvas = surface.is_picture().then(|| {
+                    tm.positions.iter().fold(
+                        (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
+                        |(lo, hi), p| {
+                            let p = Vec3::from_array(*p);
+                            (lo.min(p), hi.max(p))
+                        },
+                    )
+                });
                 let lights = light
                     .parts
                     .get(part_index)
@@ -264,10 +274,17 @@ impl SceneMesh {
                         t.map(|i| encoded[lights.map_or(200, |l| l[i as usize][1]) as usize]);
                     let uv = t.map(|i| {
                         let i = i as usize;
-                        let [u, v] = box_uv(
+                        let (p, n) = (
                             Vec3::from_array(tm.positions[i]),
                             Vec3::from_array(tm.normals[i]),
                         );
+                        if let Some((lo, hi)) = canvas {
+                            // Half a texel in from each edge, so no edge wraps round.
+                            let span = TEX_SIZE as f32 - 1.0;
+                            let [u, v] = picture_uv(p, n, lo, hi);
+                            return [0.5 + u * span, 0.5 + v * span];
+                        }
+                        let [u, v] = box_uv(p, n);
                         [u * texels, v * texels]
                     });
                     m.push(v, o.id, part.color);

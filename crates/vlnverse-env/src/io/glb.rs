@@ -18,7 +18,7 @@ use super::glb_light::GlbColours;
 use crate::error::{EnvError, Result};
 use crate::geometry::{mesh_with_normals, triangulate_cells, TriMesh};
 use crate::light::{bake, cell_of, BakedLight};
-use crate::material::{box_uv, surface_of, Surface, TEX_SIZE};
+use crate::material::{box_uv, part_surfaces, picture_uv, Surface, TEX_SIZE};
 use crate::scene::{MeshData, MeshTexture, Motion, Pose, Scene, SceneObject, Shape};
 use glam::Vec3;
 use serde_json::{json, Value};
@@ -195,11 +195,30 @@ impl Lit {
         self.mesh.append_transformed(tri, local);
         let q = object.quat();
         let r = surface.repeat();
-        for i in start..self.mesh.positions.len() {
-            let w = object.transform_point(Vec3::from_array(self.mesh.positions[i]));
+        let world: Vec<Vec3> = self.mesh.positions[start..]
+            .iter()
+            .map(|p| object.transform_point(Vec3::from_array(*p)))
+            .collect();
+        // A picture spans its canvas once (half a texel in from each edge): the part's box.
+        let canvas = surface.is_picture().then(|| {
+            world.iter().fold(
+                (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
+                |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+            )
+        });
+        let edge = 0.5 / TEX_SIZE as f32;
+        for (i, w) in (start..self.mesh.positions.len()).zip(world) {
             let n = q * Vec3::from_array(self.mesh.normals[i]);
-            let [u, v] = box_uv(w, n);
-            self.uv.push([u / r, v / r]);
+            self.uv.push(match canvas {
+                Some((lo, hi)) => {
+                    let [u, v] = picture_uv(w, n, lo, hi);
+                    [edge + u * (1.0 - 2.0 * edge), edge + v * (1.0 - 2.0 * edge)]
+                }
+                None => {
+                    let [u, v] = box_uv(w, n);
+                    [u / r, v / r]
+                }
+            });
         }
         // Light is per vertex of the part's triangulation; grey if it does not fit.
         let n = self.mesh.positions.len() - start;
@@ -389,8 +408,9 @@ pub fn write_glb_with(scene: &Scene, light: &BakedLight) -> Vec<u8> {
     // Mesh parts first so their glTF mesh index is their canonical index.
     let mut part_index = 0usize;
     for o in &scene.objects {
-        let surface = surface_of(scene, o);
+        let surfaces = part_surfaces(scene, o);
         for (k, p) in o.parts.iter().enumerate() {
+            let surface = surfaces[k];
             if let Shape::Mesh(m) = &p.shape {
                 // An imported image replaces the surface texture when it fits the vertices.
                 let image = m
@@ -428,11 +448,12 @@ pub fn write_glb_with(scene: &Scene, light: &BakedLight) -> Vec<u8> {
     let mut mesh_part = 0usize;
     let mut part_index = 0usize;
     for o in &scene.objects {
-        let surface = surface_of(scene, o);
+        let surfaces = part_surfaces(scene, o);
         // Group primitive parts by material, in order of first appearance.
         let mut groups: Vec<(usize, Lit)> = Vec::new();
         let mut children = Vec::new();
         for (k, p) in o.parts.iter().enumerate() {
+            let surface = surfaces[k];
             let part_light = light_of(part_index);
             part_index += 1;
             let mat = mats.lit(p.color, surface);

@@ -5,5 +5,6 @@ mod common;
 mod backends;
 mod imported_textures;
 mod look;
+mod pictures;
 mod raster_backends;
 mod rig;
