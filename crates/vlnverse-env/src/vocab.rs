@@ -246,6 +246,14 @@ vocabulary! {
         ConsoleTable = (142, "console_table", Furniture),
         ChinaCabinet = (143, "china_cabinet", Furniture),
         Ladder = (144, "ladder", Furniture),
+        Column = (145, "column", Furniture),
+        Chandelier = (146, "chandelier", Furniture),
+        MassageTable = (147, "massage_table", Furniture),
+        Hammock = (148, "hammock", Furniture),
+        ChaiseLounge = (149, "chaise_lounge", Furniture),
+        Cactus = (150, "cactus", Furniture),
+        Urn = (151, "urn", Furniture),
+        Lounger = (152, "lounger", Furniture),
     }
 }
 

@@ -82,6 +82,12 @@ pub fn class_defaults(class: SemanticClass) -> (f32, f32, &'static str) {
         C::Grill => (30.0, 0.4, "metal"),
         C::KitchenIsland => (120.0, 0.5, "wood"),
         C::ConsoleTable => (15.0, 0.5, "wood"),
+        C::Column => (200.0, 0.6, "stone"),
+        C::Chandelier => (10.0, 0.4, "metal"),
+        C::MassageTable | C::ChaiseLounge => (25.0, 0.7, "fabric"),
+        C::Hammock => (12.0, 0.7, "fabric"),
+        C::Cactus | C::Urn => (8.0, 0.6, "ceramic"),
+        C::Lounger => (10.0, 0.5, "wood"),
         C::Unknown => (10.0, 0.5, "unknown"),
     }
 }

@@ -1389,9 +1389,16 @@ fn add_pieces(st: &mut RoomState, kind: RoomType, rng: &ChaCha8Rng, b: &mut Buil
     let salt = u64::from(st.id).wrapping_mul(0x9E37_79B9_7F4A_7C15);
     let mut own = ChaCha8Rng::seed_from_u64(crate::tones::stream_hash(rng) ^ salt);
     let area = st.interior.area();
+    // The underside of the ceiling slab (`decor.rs` hangs it from the top of the walls).
+    let ceiling = st.cfg.walls.height - 0.03;
     for piece in pieces::pieces(kind) {
         let chance = (piece.chance * st.cfg.furniture.pieces).clamp(0.0, 1.0);
         if area < piece.min_area || !own.random_bool(f64::from(chance)) {
+            continue;
+        }
+        let m = pieces::model(piece.class, ceiling, &mut own);
+        if piece.class == C::Chandelier {
+            hang_over_table(st, m, ceiling, b);
             continue;
         }
         let mode = match piece.spot {
@@ -1399,7 +1406,28 @@ fn add_pieces(st: &mut RoomState, kind: RoomType, rng: &ChaCha8Rng, b: &mut Buil
             Spot::Corner => Mode::Corner,
             Spot::Centre => Mode::Center,
         };
-        let mut g = Group::one(pieces::model(piece.class, &mut own), mode);
-        add_group(st, &mut g, kind, &mut own, b);
+        add_group(st, &mut Group::one(m, mode), kind, &mut own, b);
     }
+}
+
+/// Hang `m` from the ceiling over the middle of the room's dining table, if it has one. It
+/// hangs above the agent's height, so it takes no floor.
+fn hang_over_table(st: &RoomState, m: Model, ceiling: f32, b: &mut Builder) {
+    let Some(table) = b
+        .objects
+        .iter()
+        .rev()
+        .find(|o| o.class == C::DiningTable && o.room == Some(st.id))
+    else {
+        return;
+    };
+    let (x, z) = (
+        (table.bbox.min[0] + table.bbox.max[0]) * 0.5,
+        (table.bbox.min[2] + table.bbox.max[2]) * 0.5,
+    );
+    let pose = Pose {
+        position: [x, ceiling - m.h, z],
+        rotation: [0.0, 0.0, 0.0, 1.0],
+    };
+    b.add_model(&m, st.id, pose, None);
 }

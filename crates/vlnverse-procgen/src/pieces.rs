@@ -59,6 +59,11 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::FoosballTable, 0.06, Wall, 24.0),
                 p(C::Birdcage, 0.06, Corner, 0.0),
                 p(C::DrumKit, 0.04, Corner, 24.0),
+                p(C::PingPongTable, 0.06, Centre, 32.0),
+                p(C::Column, 0.1, Centre, 32.0),
+                p(C::ChaiseLounge, 0.06, Wall, 0.0),
+                p(C::Cactus, 0.08, Corner, 0.0),
+                p(C::Urn, 0.05, Corner, 0.0),
             ];
             L
         }
@@ -74,6 +79,8 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::ChinaCabinet, 0.4, Wall, 0.0),
                 p(C::GrandfatherClock, 0.1, Wall, 0.0),
                 p(C::Statue, 0.06, Corner, 14.0),
+                p(C::Chandelier, 0.45, Centre, 0.0),
+                p(C::Column, 0.05, Centre, 18.0),
             ];
             L
         }
@@ -83,6 +90,7 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::Guitar, 0.1, Corner, 0.0),
                 p(C::Easel, 0.05, Corner, 0.0),
                 p(C::DrumKit, 0.03, Corner, 14.0),
+                p(C::ChaiseLounge, 0.06, Wall, 12.0),
             ];
             L
         }
@@ -93,6 +101,8 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::Guitar, 0.1, Corner, 0.0),
                 p(C::Recliner, 0.1, Corner, 0.0),
                 p(C::FoosballTable, 0.08, Wall, 9.0),
+                p(C::MassageTable, 0.05, Wall, 9.0),
+                p(C::Cactus, 0.1, Corner, 0.0),
             ];
             L
         }
@@ -103,6 +113,7 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::FoosballTable, 0.25, Wall, 0.0),
                 p(C::DrumKit, 0.15, Corner, 0.0),
                 p(C::Easel, 0.15, Corner, 0.0),
+                p(C::MassageTable, 0.15, Wall, 0.0),
             ];
             L
         }
@@ -112,6 +123,7 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::GrandfatherClock, 0.1, Wall, 0.0),
                 p(C::Statue, 0.08, Corner, 0.0),
                 p(C::FireExtinguisher, 0.1, Wall, 0.0),
+                p(C::Urn, 0.06, Corner, 0.0),
             ];
             L
         }
@@ -120,6 +132,8 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::ConsoleTable, 0.5, Wall, 0.0),
                 p(C::Statue, 0.15, Corner, 0.0),
                 p(C::GrandfatherClock, 0.1, Wall, 0.0),
+                p(C::Urn, 0.15, Corner, 0.0),
+                p(C::Cactus, 0.06, Corner, 0.0),
             ];
             L
         }
@@ -136,7 +150,11 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
             L
         }
         RoomType::Balcony => {
-            const L: &[Piece] = &[p(C::Grill, 0.35, Wall, 0.0)];
+            const L: &[Piece] = &[
+                p(C::Grill, 0.35, Wall, 0.0),
+                p(C::Lounger, 0.2, Wall, 0.0),
+                p(C::Hammock, 0.12, Wall, 6.0),
+            ];
             L
         }
         RoomType::Bathroom => &[],
@@ -205,6 +223,30 @@ const LADDER: &[Finish] = &[
     f("wooden", "wood", [0.5, 0.32, 0.16]),
 ];
 const RED: &[Finish] = &[f("red", "metal", [0.6, 0.04, 0.04])];
+const PLASTER: &[Finish] = &[
+    f("white", "stone", [0.86, 0.85, 0.82]),
+    f("grey", "stone", [0.55, 0.55, 0.56]),
+    f("beige", "stone", [0.72, 0.64, 0.5]),
+];
+const BRASS: &[Finish] = &[
+    f("gold", "metal", [0.75, 0.58, 0.2]),
+    f("black", "metal", [0.05, 0.05, 0.05]),
+    f("silver", "metal", [0.62, 0.62, 0.64]),
+];
+const CUSHION: &[Finish] = &[
+    f("white", "fabric", [0.85, 0.85, 0.85]),
+    f("beige", "fabric", [0.7, 0.6, 0.45]),
+    f("blue", "fabric", [0.08, 0.16, 0.5]),
+    f("green", "fabric", [0.12, 0.38, 0.14]),
+    f("red", "fabric", [0.55, 0.06, 0.06]),
+    f("grey", "fabric", [0.3, 0.3, 0.32]),
+];
+const POT: &[Finish] = &[
+    f("terracotta", "ceramic", [0.55, 0.25, 0.12]),
+    f("white", "ceramic", [0.9, 0.9, 0.9]),
+    f("blue", "ceramic", [0.1, 0.2, 0.5]),
+    f("black", "ceramic", [0.05, 0.05, 0.05]),
+];
 
 /// Draw a finish from `list`, in one of its colour word's tones or its own.
 fn pick(list: &[Finish], rng: &mut ChaCha8Rng) -> Finish {
@@ -212,8 +254,9 @@ fn pick(list: &[Finish], rng: &mut ChaCha8Rng) -> Finish {
     crate::tones::toned(fin, rng)
 }
 
-/// The model of a piece of class `class`.
-pub(crate) fn model(class: C, rng: &mut ChaCha8Rng) -> Model {
+/// The model of a piece of class `class`, in a room whose ceiling is `ceiling` metres above
+/// its floor.
+pub(crate) fn model(class: C, ceiling: f32, rng: &mut ChaCha8Rng) -> Model {
     match class {
         C::Recliner => recliner(rng),
         C::RockingChair => rocking_chair(rng),
@@ -233,6 +276,14 @@ pub(crate) fn model(class: C, rng: &mut ChaCha8Rng) -> Model {
         C::ConsoleTable => console_table(rng),
         C::ChinaCabinet => china_cabinet(rng),
         C::Ladder => ladder(rng),
+        C::Column => column(ceiling, rng),
+        C::Chandelier => chandelier(rng),
+        C::MassageTable => massage_table(rng),
+        C::Hammock => hammock(rng),
+        C::ChaiseLounge => chaise_lounge(rng),
+        C::Cactus => cactus(rng),
+        C::Urn => urn(rng),
+        C::Lounger => lounger(rng),
         // Every class of `pieces` is above; anything else gets the clutter model.
         _ => crate::models::clutter(class, rng),
     }
@@ -760,6 +811,201 @@ fn ladder(rng: &mut ChaCha8Rng) -> Model {
     Model::new(C::Ladder, fin, [0.46, h, 0.12], 6.0, p)
 }
 
+/// A round column from floor to ceiling, with a square base and capital.
+fn column(h: f32, rng: &mut ChaCha8Rng) -> Model {
+    let fin = pick(PLASTER, rng);
+    let c = fin.rgb;
+    let rad = r(rng, 0.13, 0.18);
+    let mut p = Vec::new();
+    cube(
+        &mut p,
+        0.0,
+        0.0,
+        0.0,
+        [rad * 2.6, 0.12, rad * 2.6],
+        shade(c, 0.9),
+    );
+    cyl(&mut p, 0.0, 0.12, 0.0, rad, h - 0.27, c);
+    cube(
+        &mut p,
+        0.0,
+        h - 0.15,
+        0.0,
+        [rad * 2.6, 0.15, rad * 2.6],
+        shade(c, 0.9),
+    );
+    Model::new(C::Column, fin, [rad * 2.6, h, rad * 2.6], 200.0, p)
+}
+
+/// A chandelier: a stem from the ceiling, a hub and a ring of arms with candle bulbs. Built
+/// from its top down to `h`; it hangs with its top at the ceiling.
+fn chandelier(rng: &mut ChaCha8Rng) -> Model {
+    let fin = pick(BRASS, rng);
+    let c = fin.rgb;
+    let (arms, span) = (5 + rng.random_range(0..3usize), r(rng, 0.3, 0.42));
+    let h = 0.75;
+    let mut p = Vec::new();
+    cyl(&mut p, 0.0, 0.3, 0.0, 0.012, h - 0.3, c);
+    cyl(&mut p, 0.0, h - 0.02, 0.0, 0.06, 0.02, c);
+    ball(&mut p, [0.0, 0.22, 0.0], 0.07, c);
+    for i in 0..arms {
+        let a = i as f32 * std::f32::consts::TAU / arms as f32;
+        let (x, z) = (span * 0.5 * a.cos(), span * 0.5 * a.sin());
+        turned(
+            &mut p,
+            Shape::Cuboid {
+                half_extents: [span * 0.25, 0.008, 0.008],
+                bevel: 0.0,
+            },
+            [x * 0.5, 0.2, z * 0.5],
+            Quat::from_rotation_y(-a),
+            c,
+        );
+        cyl(&mut p, x, 0.16, z, 0.03, 0.04, c);
+        cyl(&mut p, x, 0.2, z, 0.012, 0.07, tone::WHITE);
+        ball(&mut p, [x, 0.29, z], 0.02, [1.0, 0.93, 0.75]);
+    }
+    Model::new(C::Chandelier, fin, [span, h, span], 10.0, p)
+}
+
+/// A padded treatment table with a face cradle at one end.
+fn massage_table(rng: &mut ChaCha8Rng) -> Model {
+    let fin = pick(CUSHION, rng);
+    let mut p = Vec::new();
+    legs(&mut p, 1.7, 0.6, 0.62, 0.05, tone::WOOD);
+    bcube(&mut p, 0.0, 0.62, 0.0, [1.85, 0.08, 0.7], 0.03, fin.rgb);
+    cube(&mut p, 1.0, 0.6, 0.0, [0.16, 0.04, 0.05], tone::METAL);
+    bcube(&mut p, 1.2, 0.62, 0.0, [0.28, 0.07, 0.3], 0.03, fin.rgb);
+    Model::new(C::MassageTable, fin, [2.34, 0.7, 0.7], 25.0, p)
+}
+
+/// A hammock slung between the two curved ends of its stand.
+fn hammock(rng: &mut ChaCha8Rng) -> Model {
+    let fin = pick(CUSHION, rng);
+    let w = r(rng, 2.4, 2.8);
+    let mut p = Vec::new();
+    cube(&mut p, 0.0, 0.0, 0.0, [w, 0.05, 0.08], tone::WOOD);
+    for sx in [-1.0f32, 1.0] {
+        cube(
+            &mut p,
+            sx * (w * 0.5 - 0.3),
+            0.0,
+            0.0,
+            [0.08, 0.05, 0.8],
+            tone::WOOD,
+        );
+        turned(
+            &mut p,
+            Shape::Cuboid {
+                half_extents: [0.04, 0.6, 0.04],
+                bevel: 0.0,
+            },
+            [sx * (w * 0.5 - 0.22), 0.55, 0.0],
+            Quat::from_rotation_z(sx * 0.35),
+            tone::WOOD,
+        );
+    }
+    for (x, y, len, a) in [
+        (-0.55f32, 0.72f32, 0.7f32, 0.45f32),
+        (0.0, 0.5, 0.55, 0.0),
+        (0.55, 0.72, 0.7, -0.45),
+    ] {
+        turned(
+            &mut p,
+            Shape::Cuboid {
+                half_extents: [len * 0.5, 0.015, 0.38],
+                bevel: 0.0,
+            },
+            [x, y, 0.0],
+            Quat::from_rotation_z(a),
+            fin.rgb,
+        );
+    }
+    Model::new(C::Hammock, fin, [w, 1.1, 0.8], 12.0, p)
+}
+
+/// A long upholstered seat with a raised, sloping back at one end.
+fn chaise_lounge(rng: &mut ChaCha8Rng) -> Model {
+    let fin = pick(LEATHER, rng);
+    let c = fin.rgb;
+    let (w, d) = (r(rng, 1.5, 1.75), r(rng, 0.6, 0.7));
+    let mut p = Vec::new();
+    legs(&mut p, w - 0.1, d - 0.1, 0.12, 0.05, tone::WOOD);
+    bcube(&mut p, 0.0, 0.12, 0.0, [w, 0.3, d], 0.04, c);
+    turned(
+        &mut p,
+        Shape::Cuboid {
+            half_extents: [0.1, 0.3, d * 0.5],
+            bevel: 0.0,
+        },
+        [w * 0.5 - 0.18, 0.62, 0.0],
+        Quat::from_rotation_z(0.45),
+        c,
+    );
+    Model::new(C::ChaiseLounge, fin, [w, 0.9, d], 30.0, p)
+}
+
+/// A tall cactus with two arms in a pot.
+fn cactus(rng: &mut ChaCha8Rng) -> Model {
+    let fin = pick(POT, rng);
+    let green = [0.12, 0.36, 0.14];
+    let h = r(rng, 0.9, 1.4);
+    let mut p = Vec::new();
+    cyl(&mut p, 0.0, 0.0, 0.0, 0.17, 0.3, fin.rgb);
+    cyl(&mut p, 0.0, 0.27, 0.0, 0.15, 0.03, tone::SOIL);
+    cyl(&mut p, 0.0, 0.3, 0.0, 0.07, h - 0.37, green);
+    ball(&mut p, [0.0, h - 0.07, 0.0], 0.07, green);
+    for (sx, y0, up) in [(-1.0f32, 0.55f32, 0.3f32), (1.0, 0.75, 0.22)] {
+        let x = sx * 0.14;
+        cube(&mut p, sx * 0.09, y0, 0.0, [0.1, 0.07, 0.07], green);
+        cyl(&mut p, x, y0, 0.0, 0.045, up, green);
+        ball(&mut p, [x, y0 + up, 0.0], 0.045, green);
+    }
+    Model::new(C::Cactus, fin, [0.34, h, 0.34], 8.0, p)
+}
+
+/// A tall floor vase, wide in the middle, with a narrow neck.
+fn urn(rng: &mut ChaCha8Rng) -> Model {
+    let fin = pick(POT, rng);
+    let c = fin.rgb;
+    let h = r(rng, 0.6, 0.85);
+    let mut p = Vec::new();
+    cyl(&mut p, 0.0, 0.0, 0.0, 0.11, 0.06, c);
+    cyl(&mut p, 0.0, 0.06, 0.0, 0.16, h * 0.45, c);
+    ball(&mut p, [0.0, 0.06 + h * 0.45, 0.0], 0.16, c);
+    cyl(&mut p, 0.0, h * 0.6, 0.0, 0.07, h * 0.4, c);
+    cyl(&mut p, 0.0, h - 0.03, 0.0, 0.1, 0.03, shade(c, 0.85));
+    Model::new(C::Urn, fin, [0.32, h, 0.32], 8.0, p)
+}
+
+/// A reclining outdoor sun lounger on a low frame.
+fn lounger(rng: &mut ChaCha8Rng) -> Model {
+    let fin = pick(WOOD, rng);
+    let c = fin.rgb;
+    let mut p = Vec::new();
+    legs(&mut p, 0.6, 1.8, 0.25, 0.05, c);
+    cube(&mut p, 0.0, 0.25, 0.15, [0.6, 0.04, 1.5], c);
+    cube(
+        &mut p,
+        0.0,
+        0.29,
+        0.15,
+        [0.56, 0.05, 1.45],
+        pick(CUSHION, rng).rgb,
+    );
+    turned(
+        &mut p,
+        Shape::Cuboid {
+            half_extents: [0.3, 0.03, 0.3],
+            bevel: 0.0,
+        },
+        [0.0, 0.45, -0.72],
+        Quat::from_rotation_x(-0.9),
+        c,
+    );
+    Model::new(C::Lounger, fin, [0.6, 0.75, 1.9], 10.0, p)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -771,7 +1017,7 @@ mod tests {
         let mut rng = ChaCha8Rng::seed_from_u64(5);
         for &k in kinds {
             for piece in pieces(k) {
-                let m = model(piece.class, &mut rng);
+                let m = model(piece.class, 2.67, &mut rng);
                 assert_eq!(m.class, piece.class, "{:?}", piece.class);
                 assert!(!m.parts.is_empty());
                 assert!(
@@ -782,7 +1028,7 @@ mod tests {
                     m.h,
                     m.d
                 );
-                assert!(m.w < 3.0 && m.d < 2.0 && m.h < 2.3, "{:?}", m.class);
+                assert!(m.w < 3.0 && m.d < 2.0 && m.h <= 2.67, "{:?}", m.class);
             }
         }
     }

@@ -6,7 +6,7 @@ use std::collections::BTreeSet;
 use vlnverse_env::{ClassKind, Scene, SemanticClass as C};
 use vlnverse_procgen::{scene_seed, HomeGenerator, Preset};
 
-const PIECES: [C; 18] = [
+const PIECES: [C; 26] = [
     C::Recliner,
     C::RockingChair,
     C::PoolTable,
@@ -25,6 +25,14 @@ const PIECES: [C; 18] = [
     C::ConsoleTable,
     C::ChinaCabinet,
     C::Ladder,
+    C::Column,
+    C::Chandelier,
+    C::MassageTable,
+    C::Hammock,
+    C::ChaiseLounge,
+    C::Cactus,
+    C::Urn,
+    C::Lounger,
 ];
 
 fn homes(pieces: f32, n: usize) -> Vec<Scene> {
@@ -107,7 +115,26 @@ fn most_piece_kinds_turn_up_in_the_rooms_that_list_them() {
                 (o.bbox.min[2] + o.bbox.max[2]) * 0.5,
             );
             assert!(room.contains(x, z), "{}: {} outside its room", s.id, o.name);
+            if o.class == C::Chandelier {
+                let table = s
+                    .objects
+                    .iter()
+                    .find(|t| t.class == C::DiningTable && t.room == o.room)
+                    .expect("a chandelier hangs over a dining table");
+                assert!(
+                    table.bbox.max[1] < o.bbox.min[1] - 0.6,
+                    "{}: {}",
+                    s.id,
+                    o.name
+                );
+                assert!(
+                    o.bbox.min[1] > table.bbox.min[1] + 1.5,
+                    "{}: low {}",
+                    s.id,
+                    o.name
+                );
+            }
         }
     }
-    assert!(seen.len() >= 15, "{} kinds placed: {seen:?}", seen.len());
+    assert!(seen.len() >= 20, "{} kinds placed: {seen:?}", seen.len());
 }
