@@ -75,6 +75,12 @@ pub enum Surface {
     PaintingHorse,
     /// A painted zebra in a field.
     PaintingZebra,
+    /// A painted house: walls, a roof, a door and windows.
+    PaintingHouse,
+    /// A painted giraffe: a long neck and a coat of patches.
+    PaintingGiraffe,
+    /// A painted elephant: a big ear, a trunk and a tusk.
+    PaintingElephant,
     /// Striped fabric.
     Striped,
     /// Checkered fabric (squares of two tones).
@@ -93,7 +99,7 @@ pub enum Surface {
 
 impl Surface {
     /// Every surface, in index order.
-    pub const ALL: [Surface; 33] = [
+    pub const ALL: [Surface; 36] = [
         Surface::Plain,
         Surface::Plaster,
         Surface::Wallpaper,
@@ -120,6 +126,9 @@ impl Surface {
         Surface::PaintingPortrait,
         Surface::PaintingHorse,
         Surface::PaintingZebra,
+        Surface::PaintingHouse,
+        Surface::PaintingGiraffe,
+        Surface::PaintingElephant,
         Surface::Striped,
         Surface::Checkered,
         Surface::Plaid,
@@ -163,6 +172,9 @@ impl Surface {
             Surface::PaintingPortrait => "painting_portrait",
             Surface::PaintingHorse => "painting_horse",
             Surface::PaintingZebra => "painting_zebra",
+            Surface::PaintingHouse => "painting_house",
+            Surface::PaintingGiraffe => "painting_giraffe",
+            Surface::PaintingElephant => "painting_elephant",
             Surface::Striped => "striped",
             Surface::Checkered => "checkered",
             Surface::Plaid => "plaid",
@@ -195,8 +207,22 @@ impl Surface {
     /// Whether it is a picture on a framed canvas, drawn once over the canvas (see
     /// [`picture_uv`]) rather than repeated every [`Surface::repeat`] metres.
     pub fn is_picture(self) -> bool {
-        self.index() >= Surface::PaintingSailboat.index()
-            && self.index() <= Surface::PaintingZebra.index()
+        matches!(
+            self,
+            Surface::PaintingSailboat
+                | Surface::PaintingBeach
+                | Surface::PaintingLake
+                | Surface::PaintingFlowers
+                | Surface::PaintingTree
+                | Surface::PaintingCircles
+                | Surface::PaintingSquares
+                | Surface::PaintingPortrait
+                | Surface::PaintingHorse
+                | Surface::PaintingZebra
+                | Surface::PaintingHouse
+                | Surface::PaintingGiraffe
+                | Surface::PaintingElephant
+        )
     }
 
     /// Whether glTF should call it metallic.
@@ -396,7 +422,10 @@ impl Surface {
                     | Surface::PaintingSquares
                     | Surface::PaintingPortrait
                     | Surface::PaintingHorse
-                    | Surface::PaintingZebra => pictures::texel(self, seed, x, y).unwrap_or(0.9),
+                    | Surface::PaintingZebra
+                    | Surface::PaintingHouse
+                    | Surface::PaintingGiraffe
+                    | Surface::PaintingElephant => pictures::texel(self, seed, x, y).unwrap_or(0.9),
                     Surface::Striped
                     | Surface::Checkered
                     | Surface::Plaid
@@ -489,6 +518,9 @@ pub const FEATURE_SURFACES: &[(&str, Surface, Covers)] = &[
     ("portrait", Surface::PaintingPortrait, Covers::Canvas),
     ("horse", Surface::PaintingHorse, Covers::Canvas),
     ("zebra", Surface::PaintingZebra, Covers::Canvas),
+    ("house", Surface::PaintingHouse, Covers::Canvas),
+    ("giraffe", Surface::PaintingGiraffe, Covers::Canvas),
+    ("elephant", Surface::PaintingElephant, Covers::Canvas),
     ("striped", Surface::Striped, Covers::Object),
     ("checkered", Surface::Checkered, Covers::Object),
     ("plaid", Surface::Plaid, Covers::Object),
@@ -702,7 +734,7 @@ mod tests {
             }
         }
         let pictures = Surface::ALL.iter().filter(|s| s.is_picture()).count();
-        assert_eq!(pictures, 10);
+        assert_eq!(pictures, 13);
         assert!(!Surface::Painting.is_picture() && !Surface::Marble.is_picture());
     }
 
@@ -731,6 +763,20 @@ mod tests {
         assert!(at(Surface::PaintingFlowers, 64, 20) > 230);
         assert!(at(Surface::PaintingFlowers, 64, 26) < 70);
         assert!(at(Surface::PaintingFlowers, 70, 96) < 70);
+        // The house: a dark roof over light walls; the elephant grey with a white tusk; the
+        // giraffe patched.
+        assert!(at(Surface::PaintingHouse, 64, 50) < 80);
+        assert!(at(Surface::PaintingHouse, 45, 95) > 200);
+        assert!((90..150).contains(&at(Surface::PaintingElephant, 60, 66)));
+        assert!(at(Surface::PaintingElephant, 103, 74) > 220);
+        let coat: Vec<u8> = (40..72)
+            .map(|x| at(Surface::PaintingGiraffe, x, 68))
+            .collect();
+        let flips = coat
+            .windows(2)
+            .filter(|w| w[0].abs_diff(w[1]) > 100)
+            .count();
+        assert!(flips >= 4, "{coat:?}");
     }
 
     #[test]

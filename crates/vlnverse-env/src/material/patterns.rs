@@ -10,7 +10,11 @@ use std::f32::consts::TAU;
 pub(super) fn texel(s: Surface, seed: u32, x: usize, y: usize) -> Option<f32> {
     let (fx, fy) = (x as f32, y as f32);
     // The weave under every fabric.
-    let weave = if (x + y).is_multiple_of(2) { 0.02 } else { -0.02 };
+    let weave = if (x + y).is_multiple_of(2) {
+        0.02
+    } else {
+        -0.02
+    };
     Some(match s {
         Surface::Striped => {
             // Four stripes a repeat: wide light, dark edge, wide mid, dark edge.

@@ -25,6 +25,9 @@ pub(super) fn texel(s: Surface, seed: u32, x: usize, y: usize) -> Option<f32> {
         Surface::PaintingPortrait => portrait(p),
         Surface::PaintingHorse => horse(p),
         Surface::PaintingZebra => zebra(p),
+        Surface::PaintingHouse => house(p),
+        Surface::PaintingGiraffe => giraffe(p),
+        Surface::PaintingElephant => elephant(p),
         _ => return None,
     };
     // Brush strokes: faint, horizontal-ish.
@@ -407,4 +410,106 @@ fn zebra(p: P) -> f32 {
     } else {
         0.97
     }
+}
+
+/// A house on a lawn: light walls under a dark pitched roof, a chimney, a door and two
+/// windows with crossed bars.
+fn house(p: P) -> f32 {
+    let (x, y) = p;
+    if rect(p, (80.0, 36.0), (88.0, 56.0)) {
+        return 0.3;
+    }
+    if tri(p, (26.0, 64.0), (64.0, 32.0), (102.0, 64.0)) {
+        return 0.24;
+    }
+    if rect(p, (34.0, 64.0), (94.0, 104.0)) {
+        if rect(p, (58.0, 80.0), (70.0, 104.0)) {
+            return if (66.0..68.0).contains(&x) && (91.0..93.0).contains(&y) {
+                0.85
+            } else {
+                0.3
+            };
+        }
+        for wx in [40.0, 76.0] {
+            if rect(p, (wx, 72.0), (wx + 12.0, 84.0)) {
+                let bar = (x - wx - 6.0).abs() < 0.8 || (y - 78.0).abs() < 0.8;
+                return if bar { 0.85 } else { 0.35 };
+            }
+        }
+        return 0.86;
+    }
+    if y > 102.0 {
+        // A path from the door.
+        let half = 6.0 + (y - 104.0) * 0.4;
+        return if (x - 64.0).abs() < half {
+            0.78
+        } else {
+            0.52 + 0.06 * (x * 1.3).sin() * (y * 0.9).cos()
+        };
+    }
+    0.93 - 0.2 * (y / 102.0)
+}
+
+/// A giraffe's silhouette, facing right: a long neck rising from a short body on long legs.
+fn giraffe_shape(p: P) -> bool {
+    ellipse(p, (56.0, 68.0), (22.0, 11.0))
+        || stroke(p, (70.0, 64.0), (90.0, 24.0), 5.0)
+        || ellipse(p, (97.0, 21.0), (9.0, 4.5))
+        || stroke(p, (90.0, 17.0), (89.0, 10.0), 1.2)
+        || stroke(p, (94.0, 17.0), (94.0, 10.0), 1.2)
+        || stroke(p, (40.0, 74.0), (37.0, 110.0), 2.6)
+        || stroke(p, (47.0, 76.0), (50.0, 110.0), 2.6)
+        || stroke(p, (66.0, 76.0), (64.0, 110.0), 2.6)
+        || stroke(p, (72.0, 74.0), (76.0, 110.0), 2.6)
+        || stroke(p, (35.0, 64.0), (29.0, 84.0), 1.3)
+}
+
+/// A giraffe on the savanna: its coat dark patches between light lines.
+fn giraffe(p: P) -> f32 {
+    let (x, y) = p;
+    if giraffe_shape(p) {
+        let row = (y / 9.0).floor();
+        let shift = if row as i32 % 2 == 0 { 0.0 } else { 4.5 };
+        let (u, v) = ((x + shift).rem_euclid(9.0), y.rem_euclid(9.0));
+        let line = u < 1.8 || v < 1.8;
+        return if line { 0.88 } else { 0.34 };
+    }
+    if y > 108.0 {
+        return 0.66 + 0.06 * ((x * 1.1).sin() * (y * 0.8).cos());
+    }
+    // A flat-topped tree far off on the left.
+    if ellipse(p, (18.0, 60.0), (14.0, 4.0)) || rect(p, (16.5, 60.0), (19.5, 108.0)) {
+        return 0.3;
+    }
+    0.92 - 0.18 * (y / 108.0)
+}
+
+/// An elephant facing right: a big grey body, a dark-edged ear, a trunk and a white tusk.
+fn elephant(p: P) -> f32 {
+    if stroke(p, (97.0, 71.0), (108.0, 77.0), 1.6) {
+        return 0.95;
+    }
+    if ellipse(p, (84.0, 58.0), (10.0, 14.0)) {
+        return if ellipse(p, (84.0, 58.0), (8.0, 12.0)) {
+            0.36
+        } else {
+            0.16
+        };
+    }
+    if circle(p, (97.0, 52.0), 1.8) {
+        return 0.1;
+    }
+    let body = ellipse(p, (58.0, 66.0), (31.0, 21.0))
+        || circle(p, (92.0, 58.0), 14.0)
+        || stroke(p, (102.0, 62.0), (106.0, 88.0), 4.0)
+        || stroke(p, (106.0, 88.0), (100.0, 98.0), 3.0)
+        || rect(p, (34.0, 76.0), (45.0, 106.0))
+        || rect(p, (49.0, 78.0), (60.0, 106.0))
+        || rect(p, (68.0, 78.0), (79.0, 106.0))
+        || rect(p, (81.0, 74.0), (90.0, 106.0))
+        || stroke(p, (28.0, 60.0), (24.0, 80.0), 1.3);
+    if body {
+        return 0.46;
+    }
+    field(p)
 }
