@@ -51,7 +51,7 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
         RoomType::LivingRoom => {
             const L: &[Piece] = &[
                 p(C::PoolTable, 0.18, Centre, 30.0),
-                p(C::Recliner, 0.3, Corner, 0.0),
+                p(C::Recliner, 0.3, Wall, 0.0),
                 p(C::GrandfatherClock, 0.12, Wall, 0.0),
                 p(C::Guitar, 0.15, Corner, 0.0),
                 p(C::Statue, 0.12, Corner, 20.0),
@@ -151,9 +151,9 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
         }
         RoomType::Balcony => {
             const L: &[Piece] = &[
+                p(C::Hammock, 0.2, Wall, 0.0),
                 p(C::Grill, 0.35, Wall, 0.0),
-                p(C::Lounger, 0.2, Wall, 0.0),
-                p(C::Hammock, 0.12, Wall, 6.0),
+                p(C::Lounger, 0.25, Wall, 0.0),
             ];
             L
         }
@@ -882,7 +882,7 @@ fn massage_table(rng: &mut ChaCha8Rng) -> Model {
 /// A hammock slung between the two curved ends of its stand.
 fn hammock(rng: &mut ChaCha8Rng) -> Model {
     let fin = pick(CUSHION, rng);
-    let w = r(rng, 2.4, 2.8);
+    let w = r(rng, 1.9, 2.1);
     let mut p = Vec::new();
     cube(&mut p, 0.0, 0.0, 0.0, [w, 0.05, 0.08], tone::WOOD);
     for sx in [-1.0f32, 1.0] {
