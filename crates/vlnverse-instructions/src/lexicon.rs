@@ -101,14 +101,32 @@ fn feature_phrases(feature: &str) -> Vec<&'static str> {
         .unwrap_or_default()
 }
 
-/// Words before the name of `o` for its recorded features ("striped", "marble", "zebra";
-/// `data/features.toml` `adjectives`), less any word that another object of `peers` of `o`'s
-/// class in its room has too: "the striped armchair" must tell it from the armchairs around it.
+/// Adjectives for the recorded features of `o`, said before its colour ("striped",
+/// "abstract"; `data/features.toml` `adjectives`), less any word that another object of `peers`
+/// of `o`'s class in its room has too: "the striped armchair" must tell it from the armchairs
+/// around it.
 pub fn feature_adjectives(o: &SceneObject, peers: &[&SceneObject]) -> Vec<&'static str> {
+    distinct_feature_words(&FEATURES.adjectives, o, peers)
+}
+
+/// Nouns that name a recorded feature of `o` right before its name, after any colour ("the
+/// blue zebra painting", "the grey marble counter"; `data/features.toml` `modifiers`), under
+/// the rule of [`feature_adjectives`].
+pub fn feature_modifiers(o: &SceneObject, peers: &[&SceneObject]) -> Vec<&'static str> {
+    distinct_feature_words(&FEATURES.modifiers, o, peers)
+}
+
+/// The words `table` gives the features of `o`, less those another object of `peers` of `o`'s
+/// class in its room is given too.
+fn distinct_feature_words(
+    table: &'static BTreeMap<String, Vec<String>>,
+    o: &SceneObject,
+    peers: &[&SceneObject],
+) -> Vec<&'static str> {
     let words = |x: &SceneObject| -> Vec<&'static str> {
         x.features
             .iter()
-            .filter_map(|f| FEATURES.adjectives.get(f))
+            .filter_map(|f| table.get(f))
             .flatten()
             .map(String::as_str)
             .collect()
@@ -134,6 +152,8 @@ struct FeatureFile {
     phrases: BTreeMap<String, Vec<String>>,
     #[serde(default)]
     adjectives: BTreeMap<String, Vec<String>>,
+    #[serde(default)]
+    modifiers: BTreeMap<String, Vec<String>>,
 }
 
 /// The feature phrases and adjectives, parsed and checked once.
@@ -145,17 +165,19 @@ static FEATURES: LazyLock<FeatureFile> = LazyLock::new(|| {
 });
 
 /// Parse and check a features file: no list empty, no phrase blank or listed twice, every
-/// feature with adjectives also with phrases.
+/// feature with adjectives or modifiers also with phrases.
 fn parse_features(file: &'static str, text: &str) -> Result<FeatureFile, DataFileError> {
     let f: FeatureFile = parse_toml(file, text)?;
     check_word_lists(file, "phrases", &f.phrases, "feature")?;
-    check_word_lists(file, "adjectives", &f.adjectives, "feature")?;
-    if let Some(k) = f.adjectives.keys().find(|k| !f.phrases.contains_key(*k)) {
-        return Err(DataFileError::new(
-            file,
-            format!("adjectives.{k}"),
-            "a feature without phrases",
-        ));
+    for (table, lists) in [("adjectives", &f.adjectives), ("modifiers", &f.modifiers)] {
+        check_word_lists(file, table, lists, "feature")?;
+        if let Some(k) = lists.keys().find(|k| !f.phrases.contains_key(*k)) {
+            return Err(DataFileError::new(
+                file,
+                format!("{table}.{k}"),
+                "a feature without phrases",
+            ));
+        }
     }
     Ok(f)
 }
@@ -490,9 +512,19 @@ fn check_shade_rule(file: &'static str, at: &str, r: &ShadeRule) -> Result<(), D
     Ok(())
 }
 
-/// Material adjectives for an object's material word (what it is made of); empty when none
-/// reads naturally for its class.
+/// Material adjectives for an object's material word (what it is made of), or for a counter
+/// the stone of its worktop (a recorded feature); empty when none reads naturally for its
+/// class.
 pub fn material_words(o: &SceneObject) -> &'static [&'static str] {
+    // A counter is called after the stone of its worktop ("the marble counter").
+    if o.class == C::Counter {
+        if o.features.iter().any(|f| f == "marble top") {
+            return &["marble"];
+        }
+        if o.features.iter().any(|f| f == "granite top") {
+            return &["granite"];
+        }
+    }
     let upholstered = matches!(o.class, C::Sofa | C::Armchair | C::OfficeChair | C::Bench);
     match o.material.as_str() {
         "wood" if o.color != "wooden" => &["wooden", "wood"],
@@ -804,18 +836,22 @@ mod tests {
         let uses = distinct_uses(&canvas, &[]);
         assert!(uses.contains(&"of a sailboat"), "{uses:?}");
         assert!(!uses.iter().any(|u| u.contains("landscape")), "{uses:?}");
-        assert_eq!(feature_adjectives(&canvas, &[]), ["sailboat"]);
+        assert!(feature_adjectives(&canvas, &[]).is_empty());
+        assert_eq!(feature_modifiers(&canvas, &[]), ["sailboat"]);
         // Grounding: no picture word for a canvas without that subject.
         let mut other = SceneObject::from_parts(2, C::PictureFrame, Pose::IDENTITY, vec![]);
         other.material = "canvas".into();
         other.features = vec!["zebra".into()];
         let told = distinct_uses(&other, &[&canvas, &other]);
         assert!(told.iter().all(|u| !u.contains("sailboat")), "{told:?}");
-        assert_eq!(feature_adjectives(&other, &[&canvas, &other]), ["zebra"]);
+        assert_eq!(feature_modifiers(&other, &[&canvas, &other]), ["zebra"]);
+        // The subject is a noun before the name, never an adjective before the colour.
+        assert!(!shape_words(&other, &[&canvas, &other]).contains(&"zebra"));
         // Two abstract paintings in a room: "abstract" tells neither apart, their phrases do.
         canvas.features = vec!["abstract circles".into()];
         other.features = vec!["abstract squares".into()];
         assert!(feature_adjectives(&canvas, &[&canvas, &other]).is_empty());
+        assert_eq!(feature_adjectives(&canvas, &[&canvas]), ["abstract"]);
         assert!(distinct_uses(&canvas, &[&canvas, &other]).contains(&"with circles on it"));
         // A striped armchair is the striped one; among striped armchairs it is not.
         let mut chair = SceneObject::from_parts(3, C::Armchair, Pose::IDENTITY, vec![]);
@@ -829,8 +865,15 @@ mod tests {
         // A marble counter.
         let mut counter = SceneObject::from_parts(5, C::Counter, Pose::IDENTITY, vec![]);
         counter.features = vec!["marble top".into()];
-        assert_eq!(feature_adjectives(&counter, &[]), ["marble"]);
+        counter.material = "wood".into();
+        assert_eq!(feature_modifiers(&counter, &[]), ["marble"]);
+        assert_eq!(material_words(&counter), ["marble"]);
         assert!(distinct_uses(&counter, &[]).contains(&"with a marble top"));
+        // A sink with a marble top is still a ceramic sink.
+        let mut sink = SceneObject::from_parts(6, C::Sink, Pose::IDENTITY, vec![]);
+        sink.material = "ceramic".into();
+        sink.features = vec!["marble top".into()];
+        assert_eq!(material_words(&sink), ["ceramic", "porcelain"]);
         let e = parse_features("f.toml", "[phrases]\n[adjectives]\nzebra = [\"zebra\"]\n")
             .unwrap_err()
             .to_string();
