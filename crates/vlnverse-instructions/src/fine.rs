@@ -23,8 +23,9 @@ use super::PathContext;
 use glam::{Vec2, Vec3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use std::collections::BTreeMap;
 use vlnverse_env::scene_graph::{is_landmark, rooms_along_path, side_of_heading, Landmark};
-use vlnverse_env::{ObjectId, RoomId, RoomType, Scene, SceneObject};
+use vlnverse_env::{ClassKind, ObjectId, RoomId, RoomType, Scene, SceneObject, SemanticClass as C};
 use vlnverse_score::episode::{GroundedObject, Instruction, Role, Side};
 use vlnverse_score::{DataError, Result};
 
@@ -1657,13 +1658,24 @@ fn room_size_remark(
         Some(OpeningCount::Openings(n)) => (Some((ph::ROOM_OPENINGS, n)), 0),
         None => (None, 0),
     };
+    // A kind of furniture it holds several of.
+    let several = furniture_counts(scene, r.id);
     let mut said: Vec<(Bank, usize)> = size.into_iter().chain(floor).map(|b| (b, 0)).collect();
     said.extend(windows);
     said.extend(openings);
+    if !several.is_empty() {
+        said.push((ph::ROOM_HAS, 0));
+    }
     if said.is_empty() {
         return None;
     }
     let (bank, n) = said[rng.random_range(0..said.len())];
+    if bank == ph::ROOM_HAS {
+        let (o, count) = several[rng.random_range(0..several.len())];
+        let obj = group_noun(o, rng);
+        let num = number_word(count as u32);
+        return Some(fill(pick(rng, &bank), &[("num", &num), ("obj", &obj)]));
+    }
     let s = fill(pick(rng, &bank), &[("num", &number_word(n as u32))]);
     if bank == ph::ROOM_DOORS && closed > 0 {
         let shut = fill(
@@ -1673,6 +1685,25 @@ fn room_size_remark(
         return Some(format!("{}, {shut}.", s.trim_end_matches('.')));
     }
     Some(s)
+}
+
+/// The kinds of furniture room `room` holds two to six of, each as one of its objects and the
+/// count, in class order. Doors, stairs, railings, curtains and windows are counted elsewhere
+/// or not at all, and a class named in the plural ("shoes", "curtains") has no plural to say.
+fn furniture_counts(scene: &Scene, room: RoomId) -> Vec<(&SceneObject, usize)> {
+    let mut by_class: BTreeMap<C, (&SceneObject, usize)> = BTreeMap::new();
+    for o in scene.items().filter(|o| o.room == Some(room)) {
+        if o.class.kind() != ClassKind::Furniture
+            || matches!(o.class, C::Door | C::Stairs | C::Curtain | C::Rug)
+        {
+            continue;
+        }
+        by_class.entry(o.class).or_insert((o, 0)).1 += 1;
+    }
+    by_class
+        .into_values()
+        .filter(|(o, n)| (2..=6).contains(n) && !is_plural_name(object_names(o)[0]))
+        .collect()
 }
 
 /// Add a leg's sentences: the first numbered ("Second, ...") or opened ("Next, ...") and

@@ -196,6 +196,7 @@ banks! {
     SLIGHT_AGAIN = slight_again,
     ROOM_WINDOW = room_window,
     ROOM_WINDOWS = room_windows,
+    ROOM_HAS = room_has,
     FLOOR_WOOD = floor_wood,
     FLOOR_TILE = floor_tile,
     END_COUNT = end_count,
