@@ -776,7 +776,9 @@ fn leg_sentences(route: &Route<'_, '_>, li: usize, draft: &mut Draft) {
     if let (Some(t), Some(a)) = (turn.as_mut(), draft.after.take()) {
         *t = format!("{a}, {t}");
     } else if let Some(t) = turn.as_mut().filter(|_| li > 0) {
-        if let Some(w) = turn_prefix(route, li, draft) {
+        if let Some(now) = immediate_turn(route, li, draft) {
+            *t = now;
+        } else if let Some(w) = turn_prefix(route, li, draft) {
             *t = format!("{w} {t}");
         }
     }
@@ -1340,11 +1342,29 @@ fn turn_prefix(route: &Route<'_, '_>, li: usize, draft: &mut Draft) -> Option<St
             return Some(fill(pick(rng, bank), &[("room", &hall)]));
         }
     }
-    let turn_at = route.pts[leg.first];
-    let entered_just_before = route
+    (entered_just_before(route, li) && rng.random_bool(0.3))
+        .then(|| pick(rng, &ph::AT_ONCE).to_string())
+}
+
+/// Whether the leg before `li` entered a room within a step or so of the turn opening `li`.
+fn entered_just_before(route: &Route<'_, '_>, li: usize) -> bool {
+    let turn_at = route.pts[route.legs[li].first];
+    route
         .rooms_entered_on(li - 1)
-        .any(|k| route.pts[route.rooms[k].0.min(route.n() - 1)].distance(turn_at) < 1.2);
-    (entered_just_before && rng.random_bool(0.3)).then(|| pick(rng, &ph::AT_ONCE).to_string())
+        .any(|k| route.pts[route.rooms[k].0.min(route.n() - 1)].distance(turn_at) < 1.2)
+}
+
+/// "take an immediate left", now and then, for a clear turn right after entering a room.
+fn immediate_turn(route: &Route<'_, '_>, li: usize, draft: &mut Draft) -> Option<String> {
+    let Turn::Turn(side) = route.legs[li].turn else {
+        return None;
+    };
+    if hall_end_at(route, route.legs[li].first).is_some() || !entered_just_before(route, li) {
+        return None;
+    }
+    let rng = &mut draft.rng;
+    rng.random_bool(0.2)
+        .then(|| fill(pick(rng, &ph::IMMEDIATE_TURN), &[("dir", side_word(side))]))
 }
 
 /// A landmark as a clause of a movement: "towards the lamp", "passing the sofa on your left".

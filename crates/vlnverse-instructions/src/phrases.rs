@@ -197,6 +197,7 @@ banks! {
     ROOM_WINDOW = room_window,
     ROOM_WINDOWS = room_windows,
     ROOM_HAS = room_has,
+    IMMEDIATE_TURN = immediate_turn,
     FLOOR_WOOD = floor_wood,
     FLOOR_TILE = floor_tile,
     END_COUNT = end_count,
