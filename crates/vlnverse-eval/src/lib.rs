@@ -27,10 +27,11 @@ pub use resume::{
     RETIRED_KEYS, RUN_FILE,
 };
 pub use runner::{
-    check_run_folder, check_split, configured_renderer, evaluate, evaluate_with, finish_run,
-    open_run, rapier_simulator, run_identity, select_episodes, sim_config, DefaultRenderers,
-    DefaultSimulators, EvalOutcome, EvalRequest, LayerIdentity, Layers, RendererFactory,
-    SimulatorFactory, MAX_THREADS, RUN_FILES,
+    check_run_folder, check_split, configured_renderer, evaluate, evaluate_with,
+    evaluation_renderer, evaluation_simulator, finish_run, open_run, rapier_simulator,
+    run_identity, select_episodes, sim_config, DefaultRenderers, DefaultSimulators, EvalOutcome,
+    EvalRequest, LayerIdentity, Layers, RendererFactory, SimulatorFactory, EVAL_PHYSICS_CACHE_MB,
+    MAX_THREADS, RUN_FILES,
 };
 pub use scene_context::{SceneCache, SceneContext};
 pub use vec_env::{

@@ -25,11 +25,11 @@
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex, OnceLock};
 
 use rayon::prelude::*;
-use vlnverse_sensors::{create_renderer, Renderer, RigConfig, SensorRig};
-use vlnverse_sim::{RapierSimulator, SimConfig, Simulator};
+use vlnverse_sensors::{create_renderer, RasterRenderer, Renderer, RigConfig, SensorRig};
+use vlnverse_sim::{PhysicsCache, RapierSimulator, SimConfig, Simulator};
 
 use crate::agent::{Agent, AgentFactory};
 use crate::episode_loop::{check_episode, run_episode, EpisodeSettings};
@@ -42,7 +42,7 @@ use vlnverse_score::dataset;
 use vlnverse_score::episode::{Episode, Split, Task};
 use vlnverse_score::report::{write_run, RunSummary};
 use vlnverse_score::sample::{sample_episodes, Sample};
-use vlnverse_score::trajectory::{write_jsonl, Trajectory};
+use vlnverse_score::trajectory::to_json_line;
 use vlnverse_score::OutputLock;
 
 /// What to evaluate and where the results go: [`EvalRequest::new`] and the chainable
@@ -212,14 +212,59 @@ pub fn rapier_simulator(cfg: &SimConfig) -> Result<RapierSimulator> {
     Ok(RapierSimulator::new(cfg.clone())?)
 }
 
+/// Megabytes of physics worlds kept for the simulators of [`evaluation_simulator`] (unless
+/// [`vlnverse_sim::physics_cache::PHYSICS_CACHE_MB_VAR`] says otherwise). An evaluation runs a
+/// split in scene order, so a home's world is asked for again only while workers are still in
+/// that home: a few homes' worth is all it uses. (The process-wide cache of
+/// [`RapierSimulator::new`] keeps 512 MB for training, which comes back to homes; an
+/// evaluation on it kept every home it had visited, growing with the split.)
+pub const EVAL_PHYSICS_CACHE_MB: usize = 16;
+
+/// The physics worlds of [`evaluation_simulator`]s, process-wide (budget read once).
+fn evaluation_physics() -> Arc<PhysicsCache> {
+    static CACHE: OnceLock<Arc<PhysicsCache>> = OnceLock::new();
+    CACHE
+        .get_or_init(|| {
+            Arc::new(PhysicsCache::new(vlnverse_env::cache::budget_from_env(
+                vlnverse_sim::physics_cache::PHYSICS_CACHE_MB_VAR,
+                EVAL_PHYSICS_CACHE_MB,
+            )))
+        })
+        .clone()
+}
+
+/// The default simulator of an evaluation ([`Layers::default`]): a [`RapierSimulator`] whose
+/// physics worlds come from a cache of [`EVAL_PHYSICS_CACHE_MB`], so that an evaluation's
+/// memory stays flat in the number of homes of its split (same worlds, same results as
+/// [`rapier_simulator`]).
+pub fn evaluation_simulator(cfg: &SimConfig) -> Result<RapierSimulator> {
+    Ok(RapierSimulator::with_cache(
+        cfg.clone(),
+        evaluation_physics(),
+    )?)
+}
+
 /// The default renderer: the backend the rig (or the protocol's override) names.
 pub fn configured_renderer(rig: &RigConfig) -> Result<Box<dyn Renderer>> {
     Ok(create_renderer(rig.backend)?)
 }
 
-/// Type of [`rapier_simulator`], the default simulator factory of [`Layers`].
+/// Type of [`evaluation_simulator`], the default simulator factory of [`Layers`].
 pub type DefaultSimulators = fn(&SimConfig) -> Result<RapierSimulator>;
-/// Type of [`configured_renderer`], the default renderer factory of [`Layers`].
+/// The default renderer of an evaluation ([`Layers::default`]): [`configured_renderer`], except
+/// that the CPU rasteriser keeps its prepared scenes in the small cache of
+/// [`RasterRenderer::visiting_once`] (an evaluation runs a split in scene order and does not come
+/// back to a home it left), so that its memory stays flat in the number of homes. The same
+/// backend and images.
+pub fn evaluation_renderer(rig: &RigConfig) -> Result<Box<dyn Renderer>> {
+    let r = configured_renderer(rig)?;
+    if r.name() == RasterRenderer::new().name() {
+        return Ok(Box::new(RasterRenderer::visiting_once()));
+    }
+    Ok(r)
+}
+
+/// Type of [`evaluation_renderer`], the default renderer factory of [`Layers`].
 pub type DefaultRenderers = fn(&RigConfig) -> Result<Box<dyn Renderer>>;
 
 /// The layers an evaluation runs on besides the agent, for [`evaluate_with`]: a simulator
@@ -238,8 +283,8 @@ pub struct Layers<'a, SF = DefaultSimulators, RF = DefaultRenderers> {
 impl Default for Layers<'_> {
     fn default() -> Self {
         Layers {
-            simulators: rapier_simulator,
-            renderers: configured_renderer,
+            simulators: evaluation_simulator,
+            renderers: evaluation_renderer,
             on_episode: None,
         }
     }
@@ -777,10 +822,40 @@ pub fn finish_run(
         &metrics,
     );
     write_run(&req.out, &summary, &metrics)?;
-    let trajs: Vec<Trajectory> = records.iter().map(|r| r.trajectory.clone()).collect();
-    write_jsonl(&req.out.join("trajectories.jsonl"), &trajs)?;
+    write_trajectories(&req.out.join("trajectories.jsonl"), &records)?;
     write_plots(req, scenes, episodes, &records)?;
     Ok((summary, records))
+}
+
+/// Write the records' trajectories as JSON lines (the bytes of
+/// [`vlnverse_score::trajectory::write_jsonl`]), atomically: line by line into a temporary
+/// file beside `path`, then renamed. Neither a copy of the trajectories nor the whole file's
+/// text is held (a train split's file runs to tens of megabytes).
+fn write_trajectories(path: &Path, records: &[EpisodeRecord]) -> Result<()> {
+    use std::io::Write;
+    let dir = path.parent().unwrap_or(Path::new("."));
+    std::fs::create_dir_all(dir).map_err(|e| TaskError::io(dir, e))?;
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let tmp = dir.join(format!(".{name}.tmp{}", std::process::id()));
+    let written = std::fs::File::create(&tmp).and_then(|f| {
+        let mut w = std::io::BufWriter::new(f);
+        for r in records {
+            w.write_all(to_json_line(&r.trajectory).as_bytes())?;
+            w.write_all(b"\n")?;
+        }
+        w.flush()
+    });
+    if let Err(e) = written {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(TaskError::io(&tmp, e));
+    }
+    std::fs::rename(&tmp, path).map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        TaskError::io(path, e)
+    })
 }
 
 /// `--fresh`: delete an earlier run's files (and only those) from `out`.
@@ -897,4 +972,53 @@ fn write_plots(
         plots::save_png(&dir.join(format!("episode_{}.png", ep.episode_id)), &img)?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use vlnverse_score::trajectory::{write_jsonl, Trajectory};
+
+    fn metrics() -> vlnverse_score::metrics::EpisodeMetrics {
+        serde_json::from_value(serde_json::json!({
+            "episode_id": 1, "trajectory_id": 1, "scene_id": "s", "task": "fine",
+            "split": null, "style": null, "geodesic_distance": 1.0, "tl": 1.0, "ne": 0.5,
+            "oracle_ne": 0.5, "success": true, "oracle_success": true, "spl": 1.0, "ndtw": 1.0,
+            "sdtw": 1.0, "collisions": 0, "steps": 2, "cr": 0.0, "stuck": null,
+            "unreachable": false, "sub_goals": 0, "sub_goals_reached": 0,
+        }))
+        .unwrap()
+    }
+
+    /// The trajectories file written from the records, line by line, is the file
+    /// `write_jsonl` writes from the trajectories, byte for byte; no temporary file is left.
+    #[test]
+    fn trajectories_are_written_as_write_jsonl_writes_them() {
+        let dir = std::env::temp_dir().join(format!("vlnverse-eval-traj-{}", std::process::id()));
+        let trajs: Vec<Trajectory> = (0..5u64)
+            .map(|i| {
+                let mut t = Trajectory::from_positions(
+                    i,
+                    (0..=i).map(|k| [k as f32 * 0.25, 0.0, -0.5]).collect(),
+                    i % 2 == 0,
+                );
+                t.actions = Some(vec!["MOVE_FORWARD".into(); i as usize]);
+                t
+            })
+            .collect();
+        let records: Vec<EpisodeRecord> = trajs
+            .iter()
+            .map(|t| EpisodeRecord::new(t.episode_id, t.clone(), metrics(), None))
+            .collect();
+        let (ours, theirs) = (dir.join("a.jsonl"), dir.join("b.jsonl"));
+        write_trajectories(&ours, &records).unwrap();
+        write_jsonl(&theirs, &trajs).unwrap();
+        assert_eq!(
+            std::fs::read(&ours).unwrap(),
+            std::fs::read(&theirs).unwrap()
+        );
+        let left: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
+        assert_eq!(left.len(), 2, "only the two files");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

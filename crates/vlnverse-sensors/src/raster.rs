@@ -73,6 +73,17 @@ pub const SCENE_CACHE_MB: usize = 256;
 /// Environment variable with the megabytes of prepared scenes kept by [`RasterScene::shared`]
 /// (0: none).
 pub const SCENE_CACHE_MB_VAR: &str = "VLNVERSE_RASTER_CACHE_MB";
+/// Megabytes of prepared scenes kept by [`RasterScene::shared_once`] (renderers made by
+/// [`RasterRenderer::visiting_once`]): the homes in use and a few more, for users that finish
+/// with a home before going to the next, as an evaluation in scene order does. Their memory
+/// stays flat in the number of homes visited, where the [`SCENE_CACHE_MB`] cache fills first.
+pub const ONCE_CACHE_MB: usize = 32;
+
+/// The cache of [`RasterScene::shared_once`].
+fn once_cache() -> &'static SharedLru<RasterScene> {
+    static CACHE: OnceLock<SharedLru<RasterScene>> = OnceLock::new();
+    CACHE.get_or_init(|| cache::shared_lru(ONCE_CACHE_MB << 20))
+}
 
 /// Projected vertices stay within `[-guard, guard]` pixels (else they are clipped); `guard` is at
 /// least this and twice the image size.
@@ -703,6 +714,20 @@ impl RasterScene {
         let cache = CACHE.get_or_init(|| {
             cache::shared_lru(cache::budget_from_env(SCENE_CACHE_MB_VAR, SCENE_CACHE_MB))
         });
+        Self::shared_in(cache, mesh)
+    }
+
+    /// [`RasterScene::shared`] from a process-wide cache of its own, of [`ONCE_CACHE_MB`]
+    /// megabytes, for users that do not come back to a home once they left it (an evaluation
+    /// runs a split in scene order): environments in one home still share one prepared scene,
+    /// and what is kept does not grow with the homes visited. The same scene as
+    /// [`RasterScene::shared`] gives.
+    pub fn shared_once(mesh: Arc<SceneMesh>) -> Arc<Self> {
+        Self::shared_in(once_cache(), mesh)
+    }
+
+    /// A prepared scene of `mesh` from `cache`, prepared (or loaded) and kept there if missing.
+    fn shared_in(cache: &SharedLru<RasterScene>, mesh: Arc<SceneMesh>) -> Arc<Self> {
         // The very mesh a kept scene was prepared from (environments sharing one loaded home):
         // no need to hash it. A kept scene's weak reference keeps the mesh's block allocated
         // even after the mesh is dropped, so no other mesh can be at that address.
@@ -1828,12 +1853,24 @@ fn closed_outward(pos: &[Vec3]) -> bool {
 #[derive(Default)]
 pub struct RasterRenderer {
     scene: Option<Arc<RasterScene>>,
+    /// Prepared scenes from [`RasterScene::shared_once`] instead of [`RasterScene::shared`].
+    once: bool,
 }
 
 impl RasterRenderer {
     /// A renderer with no scene yet.
     pub fn new() -> Self {
         RasterRenderer::default()
+    }
+
+    /// A renderer with no scene yet whose prepared scenes come from the small cache of
+    /// [`RasterScene::shared_once`]: for users that finish with a home before the next (an
+    /// evaluation in scene order). The same images as [`RasterRenderer::new`]'s.
+    pub fn visiting_once() -> Self {
+        RasterRenderer {
+            scene: None,
+            once: true,
+        }
     }
 
     /// The prepared scene, once set.
@@ -1848,12 +1885,20 @@ impl Renderer for RasterRenderer {
     }
 
     fn set_scene(&mut self, mesh: Arc<SceneMesh>) -> Result<()> {
-        self.scene = Some(RasterScene::shared(mesh));
+        self.scene = Some(if self.once {
+            RasterScene::shared_once(mesh)
+        } else {
+            RasterScene::shared(mesh)
+        });
         Ok(())
     }
 
     fn scene_preparer(&self) -> Option<fn(Arc<SceneMesh>)> {
-        Some(|mesh| drop(RasterScene::shared(mesh)))
+        if self.once {
+            Some(|mesh| drop(RasterScene::shared_once(mesh)))
+        } else {
+            Some(|mesh| drop(RasterScene::shared(mesh)))
+        }
     }
 
     fn render(&mut self, views: &[View]) -> Result<Vec<Frame>> {
@@ -1982,6 +2027,43 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("vlnverse-raster-{}", std::process::id()));
         std::fs::create_dir_all(&dir).expect("temp dir");
         dir.join(name)
+    }
+
+    /// The visit-once cache: renderers in one home share one prepared scene, it draws what the
+    /// main cache's scene draws, and it keeps to its budget however many homes pass through it.
+    #[test]
+    fn the_visit_once_cache_shares_a_home_and_keeps_its_budget() {
+        use crate::{CameraSpec, Channels};
+        use vlnverse_env::Pose;
+        let (scene, mesh) = home_mesh(0);
+        let (mut a, mut b) = (
+            RasterRenderer::visiting_once(),
+            RasterRenderer::visiting_once(),
+        );
+        a.set_scene(mesh.clone()).expect("scene");
+        b.set_scene(mesh.clone()).expect("scene");
+        let (sa, sb) = (a.scene().expect("set"), b.scene().expect("set"));
+        assert!(Arc::ptr_eq(sa, sb), "one prepared scene for the home");
+        let main = RasterScene::shared(mesh.clone());
+        assert!(!Arc::ptr_eq(sa, &main), "a cache of its own");
+        let at = Vec3::new(0.0, scene.floor_height, 0.0);
+        let view = View {
+            camera: CameraSpec::default().camera(&Pose::from_yaw(at, 0.7)),
+            channels: Channels::ALL,
+        };
+        let (got, want) = (sa.render_view(&view, 1), main.render_view(&view, 1));
+        assert_eq!(got.rgb, want.rgb);
+        assert_eq!(got.depth, want.depth);
+        assert_eq!(got.instance, want.instance);
+        // Homes passing through: each is kept, accounted by what it holds, within the budget.
+        let mut held = sa.bytes();
+        for i in 1..4 {
+            let (_, m) = home_mesh(i);
+            held += RasterScene::shared_once(m).bytes();
+        }
+        let c = once_cache().lock().expect("lock");
+        assert_eq!((c.len(), c.bytes()), (4, held));
+        assert!(c.bytes() <= ONCE_CACHE_MB << 20);
     }
 
     #[test]
