@@ -693,7 +693,7 @@ fn birdcage(rng: &mut ChaCha8Rng) -> Model {
     cyl(&mut p, 0.0, 0.93, 0.0, 0.22, 0.02, c);
     for i in 0..10 {
         let a = i as f32 * std::f32::consts::TAU / 10.0;
-        cyl(&mut p, 0.21 * a.cos(), 0.95, 0.21 * a.sin(), 0.006, 0.42, c);
+        cyl(&mut p, 0.21 * a.cos(), 0.95, 0.21 * a.sin(), 0.012, 0.42, c);
     }
     cyl(&mut p, 0.0, 1.37, 0.0, 0.22, 0.02, c);
     ball(&mut p, [0.0, 1.43, 0.0], 0.07, c);
@@ -879,41 +879,36 @@ fn massage_table(rng: &mut ChaCha8Rng) -> Model {
     Model::new(C::MassageTable, fin, [2.34, 0.7, 0.7], 25.0, p)
 }
 
-/// A hammock slung between the two curved ends of its stand.
+/// A hammock slung between the two outward-leaning posts of its stand.
 fn hammock(rng: &mut ChaCha8Rng) -> Model {
     let fin = pick(CUSHION, rng);
-    let w = r(rng, 1.9, 2.1);
+    let wood = pick(WOOD, rng).rgb;
     let mut p = Vec::new();
-    cube(&mut p, 0.0, 0.0, 0.0, [w, 0.05, 0.08], tone::WOOD);
+    cube(&mut p, 0.0, 0.0, 0.0, [1.5, 0.05, 0.08], wood);
     for sx in [-1.0f32, 1.0] {
-        cube(
-            &mut p,
-            sx * (w * 0.5 - 0.3),
-            0.0,
-            0.0,
-            [0.08, 0.05, 0.8],
-            tone::WOOD,
-        );
+        cube(&mut p, sx * 0.72, 0.0, 0.0, [0.08, 0.05, 0.8], wood);
+        // From the foot at x = 0.72 up to the top at x = 0.97, 1.1 m high.
         turned(
             &mut p,
             Shape::Cuboid {
-                half_extents: [0.04, 0.6, 0.04],
+                half_extents: [0.035, 0.565, 0.035],
                 bevel: 0.0,
             },
-            [sx * (w * 0.5 - 0.22), 0.55, 0.0],
-            Quat::from_rotation_z(sx * 0.35),
-            tone::WOOD,
+            [sx * 0.845, 0.55, 0.0],
+            Quat::from_rotation_z(-sx * 0.223),
+            wood,
         );
     }
+    // The bed of the hammock: two sloping ends and a flat middle.
     for (x, y, len, a) in [
-        (-0.55f32, 0.72f32, 0.7f32, 0.45f32),
-        (0.0, 0.5, 0.55, 0.0),
-        (0.55, 0.72, 0.7, -0.45),
+        (-0.65f32, 0.8f32, 0.78f32, -0.695f32),
+        (0.0, 0.55, 0.7, 0.0),
+        (0.65, 0.8, 0.78, 0.695),
     ] {
         turned(
             &mut p,
             Shape::Cuboid {
-                half_extents: [len * 0.5, 0.015, 0.38],
+                half_extents: [len * 0.5, 0.015, 0.36],
                 bevel: 0.0,
             },
             [x, y, 0.0],
@@ -921,7 +916,7 @@ fn hammock(rng: &mut ChaCha8Rng) -> Model {
             fin.rgb,
         );
     }
-    Model::new(C::Hammock, fin, [w, 1.1, 0.8], 12.0, p)
+    Model::new(C::Hammock, fin, [2.0, 1.1, 0.8], 12.0, p)
 }
 
 /// A long upholstered seat with a raised, sloping back at one end.

@@ -56,4 +56,5 @@ def main(scene_dir):
         yaw = math.degrees(math.atan2(-(cx - x), -(cz - z)))
         print(f"{room['name']} {x:.2f},0,{z:.2f} {yaw:.1f}")
 
-main(sys.argv[1])
+if __name__ == "__main__":
+    main(sys.argv[1])

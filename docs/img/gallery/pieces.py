@@ -1,0 +1,83 @@
+#!/usr/bin/env python3
+"""Render the feature pieces (vlnverse-procgen `pieces.rs`): for each piece class, its first
+object on a ground floor in a scenes folder, seen by the RGB camera from a navigable cell of its
+room about two metres away, and one labelled contact sheet of them all.
+
+    python3 docs/img/gallery/pieces.py SCENES_DIR OUT.png   (needs Pillow; XTASK to override)
+"""
+import json, math, os, subprocess, sys
+from PIL import Image, ImageDraw
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from views import inside, read_pgm  # noqa: E402
+
+PIECES = ["recliner", "rocking_chair", "chaise_lounge", "pool_table", "ping_pong_table",
+          "foosball_table", "grandfather_clock", "guitar", "drum_kit", "statue", "column",
+          "birdcage", "cactus", "urn", "china_cabinet", "chandelier", "kitchen_island",
+          "console_table", "fire_extinguisher", "dryer", "ladder", "easel", "massage_table",
+          "grill", "lounger", "hammock"]
+XTASK = os.environ.get("XTASK", "target/release/xtask")
+TILE = 168
+
+
+def first_objects(scenes):
+    found = {}
+    for name in sorted(os.listdir(scenes)):
+        scene = json.load(open(f"{scenes}/{name}/scene.json"))
+        for o in scene["objects"]:
+            c = o["class"]
+            # Ground floor only (the navigable map below is the ground floor's); a chandelier
+            # hangs from its ceiling.
+            low = 2.6 if c == "chandelier" else 1.0
+            if c in PIECES and c not in found and o["bbox"]["min"][1] < low:
+                found[c] = (f"{scenes}/{name}", scene, o)
+    return found
+
+
+def viewpoint(scene_dir, scene, o):
+    """A free cell of the object's room 1.5-2.8 m from its centre, nearest 2.1 m."""
+    room = next(r for r in scene["rooms"] if r["id"] == o["room"])
+    yaml = dict(l.split(":", 1) for l in open(f"{scene_dir}/navigable.yaml") if ":" in l)
+    res = float(yaml["resolution"]); ox, oy = json.loads(yaml["origin"])[:2]
+    w, h, px = read_pgm(f"{scene_dir}/navigable.pgm")
+    b = o["bbox"]; cx = (b["min"][0] + b["max"][0]) / 2; cz = (b["min"][2] + b["max"][2]) / 2
+    best = None
+    for j in range(h):
+        for i in range(w):
+            if px[j * w + i] != 254:
+                continue
+            x = ox + (i + 0.5) * res; z = -(oy + (h - j - 0.5) * res)
+            d = math.hypot(x - cx, z - cz)
+            if 1.5 <= d <= 2.8 and inside(room["polygon"], x, z):
+                if best is None or abs(d - 2.1) < best[0]:
+                    best = (abs(d - 2.1), x, z)
+    if best is None:
+        return None
+    _, x, z = best
+    return x, z, math.degrees(math.atan2(-(cx - x), -(cz - z)))
+
+
+def main(scenes, out):
+    tiles = []
+    for c, (scene_dir, scene, o) in sorted(first_objects(scenes).items(),
+                                           key=lambda kv: PIECES.index(kv[0])):
+        view = viewpoint(scene_dir, scene, o)
+        if view is None:
+            continue
+        x, z, yaw = view
+        subprocess.run([XTASK, "render", "--scene", scene_dir, "--position", f"{x:.2f},0,{z:.2f}",
+                        "--yaw", f"{yaw:.1f}", "--out", "/tmp/pieces-view"], check=True,
+                       capture_output=True)
+        im = Image.open("/tmp/pieces-view/rgb.png").convert("RGB").resize((TILE, TILE))
+        ImageDraw.Draw(im).text((4, 4), c.replace("_", " "), fill=(255, 255, 255))
+        tiles.append(im)
+    cols = 7
+    sheet = Image.new("RGB", (cols * TILE, -(-len(tiles) // cols) * TILE))
+    for k, im in enumerate(tiles):
+        sheet.paste(im, ((k % cols) * TILE, (k // cols) * TILE))
+    sheet.save(out, optimize=True)
+    print(f"{len(tiles)} pieces -> {out}")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1], sys.argv[2])
