@@ -110,8 +110,10 @@ pub fn feature_adjectives(o: &SceneObject, peers: &[&SceneObject]) -> Vec<&'stat
 }
 
 /// Nouns that name a recorded feature of `o` right before its name, after any colour ("the
-/// blue zebra painting", "the grey marble counter"; `data/features.toml` `modifiers`), under
-/// the rule of [`feature_adjectives`].
+/// blue zebra painting"; `data/features.toml` `modifiers`), under the rule of
+/// [`feature_adjectives`]. A stone worktop's word ("marble", "granite") is said without the
+/// counter's colour, which is its cabinet's: "the marble counter", not "the light maple marble
+/// counter".
 pub fn feature_modifiers(o: &SceneObject, peers: &[&SceneObject]) -> Vec<&'static str> {
     distinct_feature_words(&FEATURES.modifiers, o, peers)
 }
@@ -512,19 +514,11 @@ fn check_shade_rule(file: &'static str, at: &str, r: &ShadeRule) -> Result<(), D
     Ok(())
 }
 
-/// Material adjectives for an object's material word (what it is made of), or for a counter
-/// the stone of its worktop (a recorded feature); empty when none reads naturally for its
-/// class.
+/// Material adjectives for an object's material word (what it is made of); empty when none
+/// reads naturally for its class. (A stone worktop is a recorded feature, not the material:
+/// the colour and shade words describe the cabinet under it, so "the light maple counter made
+/// of granite" would mislead; see [`feature_modifiers`].)
 pub fn material_words(o: &SceneObject) -> &'static [&'static str] {
-    // A counter is called after the stone of its worktop ("the marble counter").
-    if o.class == C::Counter {
-        if o.features.iter().any(|f| f == "marble top") {
-            return &["marble"];
-        }
-        if o.features.iter().any(|f| f == "granite top") {
-            return &["granite"];
-        }
-    }
     let upholstered = matches!(o.class, C::Sofa | C::Armchair | C::OfficeChair | C::Bench);
     match o.material.as_str() {
         "wood" if o.color != "wooden" => &["wooden", "wood"],
@@ -867,9 +861,9 @@ mod tests {
         counter.features = vec!["marble top".into()];
         counter.material = "wood".into();
         assert_eq!(feature_modifiers(&counter, &[]), ["marble"]);
-        assert_eq!(material_words(&counter), ["marble"]);
+        assert_eq!(material_words(&counter), ["wooden", "wood"]);
         assert!(distinct_uses(&counter, &[]).contains(&"with a marble top"));
-        // A sink with a marble top is still a ceramic sink.
+        // A sink with a marble top is a ceramic sink.
         let mut sink = SceneObject::from_parts(6, C::Sink, Pose::IDENTITY, vec![]);
         sink.material = "ceramic".into();
         sink.features = vec!["marble top".into()];
