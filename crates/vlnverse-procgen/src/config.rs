@@ -271,7 +271,7 @@ impl Default for FurnitureConfig {
             density: 1.0,
             attempts: 24,
             clutter: 1.0,
-            pieces: 0.0,
+            pieces: 1.0,
             small_objects_max: 7,
             small_object_probability: 0.95,
             nav_radius: 0.4,

@@ -303,7 +303,7 @@ fn recliner(rng: &mut ChaCha8Rng) -> Model {
         0.45,
         -0.02,
         [w - 0.3, 0.14, d - 0.25],
-        0.05,
+        0.03,
         dark,
     );
     bcube(&mut p, 0.0, 0.45, d * 0.5 - 0.14, [w, 0.62, 0.28], 0.06, c);
@@ -314,7 +314,7 @@ fn recliner(rng: &mut ChaCha8Rng) -> Model {
             0.45,
             -0.05,
             [0.16, 0.22, d - 0.3],
-            0.04,
+            0.03,
             c,
         );
     }
@@ -359,7 +359,7 @@ fn rocking_chair(rng: &mut ChaCha8Rng) -> Model {
         cube(&mut p, x, 0.6, 0.0, [0.04, 0.04, 0.42], c);
         cube(&mut p, x, 0.45, 0.22, [0.04, 0.7, 0.04], c);
     }
-    bcube(&mut p, 0.0, 0.45, 0.0, [0.52, 0.04, 0.46], 0.01, c);
+    bcube(&mut p, 0.0, 0.45, 0.0, [0.52, 0.04, 0.46], 0.008, c);
     cube(&mut p, 0.0, 1.08, 0.22, [0.52, 0.07, 0.04], c);
     for i in 0..5 {
         let x = -0.16 + i as f32 * 0.08;
@@ -588,7 +588,7 @@ fn statue(rng: &mut ChaCha8Rng) -> Model {
     let mut p = Vec::new();
     if bust {
         bcube(&mut p, 0.0, 0.0, 0.0, [0.4, 1.05, 0.4], 0.01, plinth);
-        bcube(&mut p, 0.0, 1.05, 0.0, [0.34, 0.16, 0.2], 0.04, c);
+        bcube(&mut p, 0.0, 1.05, 0.0, [0.34, 0.16, 0.2], 0.03, c);
         cyl(&mut p, 0.0, 1.21, 0.0, 0.05, 0.08, c);
         ball(&mut p, [0.0, 1.38, 0.0], 0.11, c);
         Model::new(C::Statue, fin, [0.4, 1.49, 0.4], 70.0, p)
@@ -598,7 +598,7 @@ fn statue(rng: &mut ChaCha8Rng) -> Model {
         for sx in [-1.0, 1.0] {
             cube(&mut p, sx * 0.06, 0.54, 0.0, [0.09, 0.7, 0.12], c);
         }
-        bcube(&mut p, 0.0, 1.24, 0.0, [0.3, 0.5, 0.16], 0.04, c);
+        bcube(&mut p, 0.0, 1.24, 0.0, [0.3, 0.5, 0.16], 0.03, c);
         for sx in [-1.0, 1.0] {
             cube(&mut p, sx * 0.19, 1.12, 0.0, [0.07, 0.58, 0.08], c);
         }
@@ -710,7 +710,7 @@ fn grill(rng: &mut ChaCha8Rng) -> Model {
     legs(&mut p, w - 0.4, 0.45, 0.55, 0.04, tone::METAL);
     cube(&mut p, 0.0, 0.15, 0.0, [w - 0.4, 0.02, 0.45], tone::METAL);
     bcube(&mut p, 0.0, 0.55, 0.0, [w - 0.4, 0.25, 0.5], 0.02, c);
-    bcube(&mut p, 0.0, 0.8, 0.03, [w - 0.4, 0.22, 0.44], 0.06, c);
+    bcube(&mut p, 0.0, 0.8, 0.03, [w - 0.4, 0.22, 0.44], 0.04, c);
     for sx in [-1.0, 1.0] {
         cube(
             &mut p,
@@ -873,9 +873,9 @@ fn massage_table(rng: &mut ChaCha8Rng) -> Model {
     let fin = pick(CUSHION, rng);
     let mut p = Vec::new();
     legs(&mut p, 1.7, 0.6, 0.62, 0.05, tone::WOOD);
-    bcube(&mut p, 0.0, 0.62, 0.0, [1.85, 0.08, 0.7], 0.03, fin.rgb);
+    bcube(&mut p, 0.0, 0.62, 0.0, [1.85, 0.08, 0.7], 0.015, fin.rgb);
     cube(&mut p, 1.0, 0.6, 0.0, [0.16, 0.04, 0.05], tone::METAL);
-    bcube(&mut p, 1.2, 0.62, 0.0, [0.28, 0.07, 0.3], 0.03, fin.rgb);
+    bcube(&mut p, 1.2, 0.62, 0.0, [0.28, 0.07, 0.3], 0.015, fin.rgb);
     Model::new(C::MassageTable, fin, [2.34, 0.7, 0.7], 25.0, p)
 }
 
