@@ -764,8 +764,22 @@ fn a_fine_count_remark_gives_the_true_number_in_the_room() {
                     continue;
                 };
                 let o = w.scene.object(end.object_id).unwrap();
-                let names = lexicon::plural(lexicon::class_names(o.class)[0]);
-                for sentence in sentences(&ins.instruction_text) {
+                let name = lexicon::class_names(o.class)[0];
+                let names = lexicon::plural(name);
+                // The remark follows the goal's description; a room entered on the way may be
+                // counted too ("The room has two doors."), of its own doors.
+                let all = sentences(&ins.instruction_text);
+                let mentions = |t: &str| {
+                    t.to_lowercase()
+                        .split(|c: char| !c.is_alphanumeric())
+                        .collect::<Vec<_>>()
+                        .windows(name.split(' ').count())
+                        .any(|w| w.join(" ") == name)
+                };
+                let Some(goal) = all.iter().rposition(|t| mentions(t)) else {
+                    continue;
+                };
+                for sentence in &all[goal..] {
                     let told = (2..=6u32).find(|&k| {
                         let k = lexicon::number_word(k);
                         [
@@ -773,7 +787,7 @@ fn a_fine_count_remark_gives_the_true_number_in_the_room() {
                             format!("It is one of {k} {names} in the room"),
                             format!("The room has {k} {names}"),
                         ]
-                        .contains(&sentence)
+                        .contains(sentence)
                     });
                     if let Some(k) = told {
                         said += 1;
