@@ -33,7 +33,13 @@ pub(crate) struct Model {
 impl Model {
     /// Model from parts; the footprint and height are measured from the parts (`size` is only
     /// the nominal size) so that placement is exact even where handles stick out.
-    pub(crate) fn new(class: C, finish: Finish, size: [f32; 3], mass: f32, parts: Vec<Part>) -> Model {
+    pub(crate) fn new(
+        class: C,
+        finish: Finish,
+        size: [f32; 3],
+        mass: f32,
+        parts: Vec<Part>,
+    ) -> Model {
         let mut m = Model {
             class,
             parts,
@@ -69,7 +75,15 @@ pub(crate) fn cube(p: &mut Vec<Part>, x: f32, y0: f32, z: f32, size: [f32; 3], r
 
 /// Box with its bottom centre at `(x, y0, z)` and its edges chamfered by `bevel` metres (only
 /// the drawn mesh: physics and occupancy keep the full box).
-pub(crate) fn bcube(p: &mut Vec<Part>, x: f32, y0: f32, z: f32, size: [f32; 3], bevel: f32, rgb: [f32; 3]) {
+pub(crate) fn bcube(
+    p: &mut Vec<Part>,
+    x: f32,
+    y0: f32,
+    z: f32,
+    size: [f32; 3],
+    bevel: f32,
+    rgb: [f32; 3],
+) {
     p.push(Part {
         shape: Shape::Cuboid {
             half_extents: [size[0] * 0.5, size[1] * 0.5, size[2] * 0.5],
