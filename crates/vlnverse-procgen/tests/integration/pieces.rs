@@ -91,12 +91,13 @@ fn pieces_add_objects_and_move_no_furniture() {
             first.map(|i| &oa[i]),
             first.map(|i| &ob[i])
         );
-        added += b.objects.iter().filter(|o| PIECES.contains(&o.class)).count();
+        added += b
+            .objects
+            .iter()
+            .filter(|o| PIECES.contains(&o.class))
+            .count();
     }
-    assert!(
-        added >= 16,
-        "only {added} pieces in 16 homes"
-    );
+    assert!(added >= 16, "only {added} pieces in 16 homes");
 }
 
 #[test]
