@@ -4,8 +4,8 @@
 //! middle, doorway). Every other object a description names is returned as grounding.
 
 use super::lexicon::{
-    color_phrases, distinct_uses, material_noun, material_words, object_names, room_names,
-    shape_words,
+    color_phrases, distinct_uses, feature_modifiers, material_noun, material_words, object_names,
+    room_names, shape_words,
 };
 use super::path::{env_side, footprint, rect_distance};
 use super::phrases::{self as ph, pick};
@@ -146,6 +146,16 @@ pub(crate) fn object_np(
             adj.push(m.to_string());
         }
     }
+    // A painting's subject or a worktop's stone as a noun before the name ("the blue zebra
+    // painting", "the marble counter"), now and then.
+    if let Some(m) = noun_modifier(o, &peers, name, &adj, rng) {
+        if STONE_TOPS.contains(&m) {
+            // The colour and material words are the cabinet's under the stone top.
+            adj.clear();
+            material_after = None;
+        }
+        adj.push(m.to_string());
+    }
     let mut s = String::from("the ");
     for a in &adj {
         s.push_str(a);
@@ -170,6 +180,31 @@ pub(crate) fn object_np(
         }
     }
     (s, extra)
+}
+
+/// Modifier words of a stone worktop (`data/features.toml` `[modifiers]`), which describe the
+/// top and not the cabinet the colour and material words describe.
+const STONE_TOPS: [&str; 2] = ["marble", "granite"];
+
+/// One of `o`'s feature nouns to say before `name` (a third of the time): a painting's subject
+/// only before "painting" or "picture" (not "the zebra photo frame"), never a word already said.
+fn noun_modifier(
+    o: &SceneObject,
+    peers: &[&SceneObject],
+    name: &str,
+    adj: &[String],
+    rng: &mut ChaCha8Rng,
+) -> Option<&'static str> {
+    let words: Vec<&'static str> = feature_modifiers(o, peers)
+        .into_iter()
+        .filter(|w| !adj.iter().any(|a| a == w))
+        .collect();
+    let fits =
+        o.class != C::PictureFrame || name.ends_with("painting") || name.ends_with("picture");
+    if words.is_empty() || !fits || !rng.random_bool(0.35) {
+        return None;
+    }
+    Some(pick(rng, &words))
 }
 
 /// A relation of `o` to another object ("next to the sofa", "on the desk", "with the lamp on
