@@ -9,7 +9,7 @@ import json, math, os, subprocess, sys
 from PIL import Image, ImageDraw
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from views import inside, read_pgm  # noqa: E402
+from views import free_cells, inside
 
 PIECES = ["recliner", "rocking_chair", "chaise_lounge", "pool_table", "ping_pong_table",
           "foosball_table", "grandfather_clock", "guitar", "drum_kit", "statue", "column",
@@ -37,20 +37,13 @@ def first_objects(scenes):
 def viewpoint(scene_dir, scene, o):
     """A free cell of the object's room 1.5-2.8 m from its centre, nearest 2.1 m."""
     room = next(r for r in scene["rooms"] if r["id"] == o["room"])
-    yaml = dict(l.split(":", 1) for l in open(f"{scene_dir}/navigable.yaml") if ":" in l)
-    res = float(yaml["resolution"]); ox, oy = json.loads(yaml["origin"])[:2]
-    w, h, px = read_pgm(f"{scene_dir}/navigable.pgm")
     b = o["bbox"]; cx = (b["min"][0] + b["max"][0]) / 2; cz = (b["min"][2] + b["max"][2]) / 2
     best = None
-    for j in range(h):
-        for i in range(w):
-            if px[j * w + i] != 254:
-                continue
-            x = ox + (i + 0.5) * res; z = -(oy + (h - j - 0.5) * res)
-            d = math.hypot(x - cx, z - cz)
-            if 1.5 <= d <= 2.8 and inside(room["polygon"], x, z):
-                if best is None or abs(d - 2.1) < best[0]:
-                    best = (abs(d - 2.1), x, z)
+    for x, z in free_cells(scene_dir):
+        d = math.hypot(x - cx, z - cz)
+        if 1.5 <= d <= 2.8 and inside(room["polygon"], x, z):
+            if best is None or abs(d - 2.1) < best[0]:
+                best = (abs(d - 2.1), x, z)
     if best is None:
         return None
     _, x, z = best

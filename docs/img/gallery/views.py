@@ -29,26 +29,30 @@ def inside(poly, x, z):
             c = not c
     return c
 
-def main(scene_dir):
-    scene = json.load(open(f"{scene_dir}/scene.json"))
+def free_cells(scene_dir):
+    """The centres (x, z) of the free cells of the scene's navigable map, in metres."""
     yaml = dict(l.split(":", 1) for l in open(f"{scene_dir}/navigable.yaml") if ":" in l)
     res = float(yaml["resolution"]); ox, oy = json.loads(yaml["origin"])[:2]
     w, h, px = read_pgm(f"{scene_dir}/navigable.pgm")
+    for j in range(h):
+        for i in range(w):
+            if px[j * w + i] == 254:
+                yield ox + (i + 0.5) * res, -(oy + (h - j - 0.5) * res)
+
+def main(scene_dir):
+    scene = json.load(open(f"{scene_dir}/scene.json"))
+    cells = list(free_cells(scene_dir))
     for room in scene["rooms"]:
         poly = room["polygon"]
         cx = sum(p[0] for p in poly) / len(poly); cz = sum(p[1] for p in poly) / len(poly)
         tx = cx + 0.6 * (poly[0][0] - cx); tz = cz + 0.6 * (poly[0][1] - cz)
         best = None
-        for j in range(h):
-            for i in range(w):
-                if px[j * w + i] != 254:
-                    continue
-                x = ox + (i + 0.5) * res; z = -(oy + (h - j - 0.5) * res)
-                if not inside(poly, x, z):
-                    continue
-                d = (x - tx) ** 2 + (z - tz) ** 2
-                if best is None or d < best[0]:
-                    best = (d, x, z)
+        for x, z in cells:
+            if not inside(poly, x, z):
+                continue
+            d = (x - tx) ** 2 + (z - tz) ** 2
+            if best is None or d < best[0]:
+                best = (d, x, z)
         if best is None:
             continue
         _, x, z = best
