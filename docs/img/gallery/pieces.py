@@ -5,7 +5,12 @@ room about two metres away, and one labelled contact sheet of them all.
 
     python3 docs/img/gallery/pieces.py SCENES_DIR OUT.png   (needs Pillow; XTASK to override)
 """
-import json, math, os, subprocess, sys
+import json
+import math
+import os
+import subprocess
+import sys
+
 from PIL import Image, ImageDraw
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -41,9 +46,9 @@ def viewpoint(scene_dir, scene, o):
     best = None
     for x, z in free_cells(scene_dir):
         d = math.hypot(x - cx, z - cz)
-        if 1.5 <= d <= 2.8 and inside(room["polygon"], x, z):
-            if best is None or abs(d - 2.1) < best[0]:
-                best = (abs(d - 2.1), x, z)
+        near = best is None or abs(d - 2.1) < best[0]
+        if 1.5 <= d <= 2.8 and near and inside(room["polygon"], x, z):
+            best = (abs(d - 2.1), x, z)
     if best is None:
         return None
     _, x, z = best
