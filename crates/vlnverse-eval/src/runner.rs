@@ -252,10 +252,10 @@ pub fn configured_renderer(rig: &RigConfig) -> Result<Box<dyn Renderer>> {
 /// Type of [`evaluation_simulator`], the default simulator factory of [`Layers`].
 pub type DefaultSimulators = fn(&SimConfig) -> Result<RapierSimulator>;
 /// The default renderer of an evaluation ([`Layers::default`]): [`configured_renderer`], except
-/// that the CPU rasteriser is a [`RasterRenderer::visiting_once`], which keeps the prepared
-/// scenes of the homes its workers show and no others (an evaluation runs a split in scene
-/// order and does not come back to a home it left), so that its memory stays flat in the
-/// number of homes. The same backend and images.
+/// that the CPU rasteriser keeps its prepared scenes in the small cache of
+/// [`RasterRenderer::visiting_once`] (an evaluation runs a split in scene order and does not come
+/// back to a home it left), so that its memory stays flat in the number of homes. The same
+/// backend and images.
 pub fn evaluation_renderer(rig: &RigConfig) -> Result<Box<dyn Renderer>> {
     let r = configured_renderer(rig)?;
     if r.name() == RasterRenderer::new().name() {

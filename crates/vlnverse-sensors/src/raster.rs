@@ -73,15 +73,16 @@ pub const SCENE_CACHE_MB: usize = 256;
 /// Environment variable with the megabytes of prepared scenes kept by [`RasterScene::shared`]
 /// (0: none).
 pub const SCENE_CACHE_MB_VAR: &str = "VLNVERSE_RASTER_CACHE_MB";
-/// The prepared scenes of [`RasterScene::shared_once`] that something still holds, by content
-/// key: found while a renderer shows them, kept alive by nothing here.
-fn scenes_in_use() -> std::sync::MutexGuard<'static, Vec<(u64, Weak<RasterScene>)>> {
-    static IN_USE: Mutex<Vec<(u64, Weak<RasterScene>)>> = Mutex::new(Vec::new());
-    let mut v = IN_USE
-        .lock()
-        .unwrap_or_else(std::sync::PoisonError::into_inner);
-    v.retain(|(_, w)| w.strong_count() > 0);
-    v
+/// Megabytes of prepared scenes kept by [`RasterScene::shared_once`] (renderers made by
+/// [`RasterRenderer::visiting_once`]): the homes in use and a few more, for users that finish
+/// with a home before going to the next, as an evaluation in scene order does. Their memory
+/// stays flat in the number of homes visited, where the [`SCENE_CACHE_MB`] cache fills first.
+pub const ONCE_CACHE_MB: usize = 32;
+
+/// The cache of [`RasterScene::shared_once`].
+fn once_cache() -> &'static SharedLru<RasterScene> {
+    static CACHE: OnceLock<SharedLru<RasterScene>> = OnceLock::new();
+    CACHE.get_or_init(|| cache::shared_lru(ONCE_CACHE_MB << 20))
 }
 
 /// Projected vertices stay within `[-guard, guard]` pixels (else they are clipped); `guard` is at
@@ -716,38 +717,13 @@ impl RasterScene {
         Self::shared_in(cache, mesh)
     }
 
-    /// [`RasterScene::shared`] for users that do not come back to a home once they left it (an
-    /// evaluation runs a split in scene order): the scene another caller of this function still
-    /// holds for the same mesh (environments in one home share one prepared scene), else one
-    /// loaded or prepared now; nothing is kept once no caller holds it, so what is held is the
-    /// homes in use, whatever the number of homes visited. The same scene as
-    /// [`RasterScene::shared`] gives; the training cache is neither read nor filled.
+    /// [`RasterScene::shared`] from a process-wide cache of its own, of [`ONCE_CACHE_MB`]
+    /// megabytes, for users that do not come back to a home once they left it (an evaluation
+    /// runs a split in scene order): environments in one home still share one prepared scene,
+    /// and what is kept does not grow with the homes visited. The same scene as
+    /// [`RasterScene::shared`] gives.
     pub fn shared_once(mesh: Arc<SceneMesh>) -> Arc<Self> {
-        let same = |s: &RasterScene| std::ptr::eq(s.mesh.as_ptr(), Arc::as_ptr(&mesh));
-        let find = |v: &[(u64, Weak<RasterScene>)], hit: &dyn Fn(u64, &RasterScene) -> bool| {
-            v.iter()
-                .filter_map(|(k, w)| w.upgrade().map(|s| (*k, s)))
-                .find(|(k, s)| hit(*k, s))
-                .map(|(_, s)| s)
-        };
-        // A live scene's weak reference keeps its mesh's block allocated: no other mesh can be
-        // at that address.
-        if let Some(s) = find(&scenes_in_use(), &|_, s| same(s)) {
-            return s;
-        }
-        let key = mesh.content_key();
-        if let Some(s) = find(&scenes_in_use(), &|k, _| k == key) {
-            return s;
-        }
-        // Prepared outside the lock (as `cache::get_or_insert`: never waits on another thread);
-        // two callers at once may both prepare it, the first one recorded is kept.
-        let made = Arc::new(RasterScene::load_or_new_keyed(mesh, Some(key)));
-        let mut v = scenes_in_use();
-        if let Some(s) = find(&v, &|k, _| k == key) {
-            return s;
-        }
-        v.push((key, Arc::downgrade(&made)));
-        made
+        Self::shared_in(once_cache(), mesh)
     }
 
     /// A prepared scene of `mesh` from `cache`, prepared (or loaded) and kept there if missing.
@@ -1887,10 +1863,9 @@ impl RasterRenderer {
         RasterRenderer::default()
     }
 
-    /// A renderer with no scene yet whose prepared scenes come from
-    /// [`RasterScene::shared_once`] (shared with the other renderers showing the same home,
-    /// kept by nothing else): for users that finish with a home before the next (an evaluation
-    /// in scene order). The same images as [`RasterRenderer::new`]'s.
+    /// A renderer with no scene yet whose prepared scenes come from the small cache of
+    /// [`RasterScene::shared_once`]: for users that finish with a home before the next (an
+    /// evaluation in scene order). The same images as [`RasterRenderer::new`]'s.
     pub fn visiting_once() -> Self {
         RasterRenderer {
             scene: None,
@@ -1920,10 +1895,10 @@ impl Renderer for RasterRenderer {
 
     fn scene_preparer(&self) -> Option<fn(Arc<SceneMesh>)> {
         if self.once {
-            // It keeps nothing it does not show: nothing to prepare ahead.
-            return None;
+            Some(|mesh| drop(RasterScene::shared_once(mesh)))
+        } else {
+            Some(|mesh| drop(RasterScene::shared(mesh)))
         }
-        Some(|mesh| drop(RasterScene::shared(mesh)))
     }
 
     fn render(&mut self, views: &[View]) -> Result<Vec<Frame>> {
@@ -2054,10 +2029,10 @@ mod tests {
         dir.join(name)
     }
 
-    /// Visiting once: renderers in one home share one prepared scene (not the training
-    /// cache's), drawing the same pixels, and a home no renderer shows any more is not kept.
+    /// The visit-once cache: renderers in one home share one prepared scene, it draws what the
+    /// main cache's scene draws, and it keeps to its budget however many homes pass through it.
     #[test]
-    fn visiting_once_renderers_share_a_home_and_keep_nothing_they_left() {
+    fn the_visit_once_cache_shares_a_home_and_keeps_its_budget() {
         use crate::{CameraSpec, Channels};
         use vlnverse_env::Pose;
         let (scene, mesh) = home_mesh(0);
@@ -2065,19 +2040,12 @@ mod tests {
             RasterRenderer::visiting_once(),
             RasterRenderer::visiting_once(),
         );
-        assert!(a.scene_preparer().is_none());
         a.set_scene(mesh.clone()).expect("scene");
         b.set_scene(mesh.clone()).expect("scene");
-        let sa = a.scene().expect("set").clone();
-        assert!(
-            Arc::ptr_eq(&sa, b.scene().expect("set")),
-            "one prepared scene"
-        );
-        // An equal mesh (another load of the home) finds it by content.
-        let again = RasterScene::shared_once(Arc::new((*mesh).clone()));
-        assert!(Arc::ptr_eq(&sa, &again));
+        let (sa, sb) = (a.scene().expect("set"), b.scene().expect("set"));
+        assert!(Arc::ptr_eq(sa, sb), "one prepared scene for the home");
         let main = RasterScene::shared(mesh.clone());
-        assert!(!Arc::ptr_eq(&sa, &main), "not the training cache's");
+        assert!(!Arc::ptr_eq(sa, &main), "a cache of its own");
         let at = Vec3::new(0.0, scene.floor_height, 0.0);
         let view = View {
             camera: CameraSpec::default().camera(&Pose::from_yaw(at, 0.7)),
@@ -2087,17 +2055,15 @@ mod tests {
         assert_eq!(got.rgb, want.rgb);
         assert_eq!(got.depth, want.depth);
         assert_eq!(got.instance, want.instance);
-        // Both renderers move to another home: the first is held by nobody, so freed.
-        let left = Arc::downgrade(&sa);
-        drop((sa, again));
-        let (_, next) = home_mesh(1);
-        a.set_scene(next.clone()).expect("scene");
-        b.set_scene(next).expect("scene");
-        assert!(left.upgrade().is_none(), "the home left is not kept");
-        assert!(Arc::ptr_eq(
-            a.scene().expect("set"),
-            b.scene().expect("set")
-        ));
+        // Homes passing through: each is kept, accounted by what it holds, within the budget.
+        let mut held = sa.bytes();
+        for i in 1..4 {
+            let (_, m) = home_mesh(i);
+            held += RasterScene::shared_once(m).bytes();
+        }
+        let c = once_cache().lock().expect("lock");
+        assert_eq!((c.len(), c.bytes()), (4, held));
+        assert!(c.bytes() <= ONCE_CACHE_MB << 20);
     }
 
     #[test]
