@@ -73,7 +73,8 @@ def main(scenes, out):
     sheet = Image.new("RGB", (cols * TILE, -(-len(tiles) // cols) * TILE))
     for k, im in enumerate(tiles):
         sheet.paste(im, ((k % cols) * TILE, (k // cols) * TILE))
-    sheet.save(out, optimize=True)
+    # An adaptive palette keeps the sheet a few hundred kB.
+    sheet.convert("P", palette=Image.Palette.ADAPTIVE, colors=256).save(out, optimize=True)
     print(f"{len(tiles)} pieces -> {out}")
 
 
