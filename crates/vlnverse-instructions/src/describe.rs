@@ -558,7 +558,6 @@ pub(crate) fn room_by_content(scene: &Scene, room: RoomId) -> Option<ph::Bank> {
         RoomType::Kitchen if open_plan(room) => Some(ph::ROOM_OPEN_KITCHEN),
         RoomType::DiningRoom if open_plan(room) => Some(ph::ROOM_OPEN_DINING),
         RoomType::LivingRoom if open_plan(room) => Some(ph::ROOM_OPEN_LIVING),
-        RoomType::Kitchen if holds(room, C::KitchenIsland) => Some(ph::ROOM_ISLAND_KITCHEN),
         RoomType::Office
             if [C::PoolTable, C::PingPongTable, C::FoosballTable]
                 .iter()

@@ -213,7 +213,6 @@ banks! {
     ROOM_OPEN_LIVING = room_open_living,
     ROOM_GAME = room_game,
     ROOM_STUDIO = room_studio,
-    ROOM_ISLAND_KITCHEN = room_island_kitchen,
     HALL_LEADS = hall_leads,
     ROOM_LANDING = room_landing,
     DIAGONAL = diagonal,
