@@ -171,7 +171,7 @@ pub fn save_png(path: &Path, img: &RgbImage) -> Result<()> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use vlnverse_env::occupancy::OccupancyConfig;
     use vlnverse_env::SceneSource;
@@ -185,7 +185,8 @@ mod tests {
         .unwrap()
     }
 
-    fn metrics() -> EpisodeMetrics {
+    /// One episode's metrics, for tests that need some (also `runner`'s).
+    pub(crate) fn metrics() -> EpisodeMetrics {
         serde_json::from_value(serde_json::json!({
             "episode_id": 1, "trajectory_id": 1, "scene_id": "s", "task": "fine",
             "split": null, "style": null, "geodesic_distance": 1.0, "tl": 1.0, "ne": 0.5,

@@ -979,16 +979,7 @@ mod tests {
     use super::*;
     use vlnverse_score::trajectory::{write_jsonl, Trajectory};
 
-    fn metrics() -> vlnverse_score::metrics::EpisodeMetrics {
-        serde_json::from_value(serde_json::json!({
-            "episode_id": 1, "trajectory_id": 1, "scene_id": "s", "task": "fine",
-            "split": null, "style": null, "geodesic_distance": 1.0, "tl": 1.0, "ne": 0.5,
-            "oracle_ne": 0.5, "success": true, "oracle_success": true, "spl": 1.0, "ndtw": 1.0,
-            "sdtw": 1.0, "collisions": 0, "steps": 2, "cr": 0.0, "stuck": null,
-            "unreachable": false, "sub_goals": 0, "sub_goals_reached": 0,
-        }))
-        .unwrap()
-    }
+    use crate::plots::tests::metrics;
 
     /// The trajectories file written from the records, line by line, is the file
     /// `write_jsonl` writes from the trajectories, byte for byte; no temporary file is left.
