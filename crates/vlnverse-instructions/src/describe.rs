@@ -187,7 +187,8 @@ pub(crate) fn object_np(
 const STONE_TOPS: [&str; 2] = ["marble", "granite"];
 
 /// One of `o`'s feature nouns to say before `name` (a third of the time): a painting's subject
-/// only before "painting" or "picture" (not "the zebra photo frame"), never a word already said.
+/// only before "painting" or "picture" (not "the zebra photo frame"), a stone only before a
+/// counter's name, never a word already said.
 fn noun_modifier(
     o: &SceneObject,
     peers: &[&SceneObject],
@@ -199,12 +200,13 @@ fn noun_modifier(
         .into_iter()
         .filter(|w| !adj.iter().any(|a| a == w))
         .collect();
-    let fits =
-        o.class != C::PictureFrame || name.ends_with("painting") || name.ends_with("picture");
+    let fits = o.class != C::PictureFrame || matches!(name, "painting" | "picture");
     if words.is_empty() || !fits || !rng.random_bool(0.35) {
         return None;
     }
-    Some(pick(rng, &words))
+    let m = pick(rng, &words);
+    // A sink's marble top is not the basin: "the sink with a marble top", not "the marble sink".
+    (!STONE_TOPS.contains(&m) || matches!(o.class, C::Counter | C::KitchenIsland)).then_some(m)
 }
 
 /// A relation of `o` to another object ("next to the sofa", "on the desk", "with the lamp on

@@ -8,7 +8,7 @@ use super::describe::{
     NpOptions, RoomNaming, Viewpoint,
 };
 use super::door_order;
-use super::lexicon::{number_word, object_names, ordinal_word, plural};
+use super::lexicon::{class_names, number_word, object_names, ordinal_word, plural};
 use super::openings::{self, Nearest, OpeningCount};
 use super::path::{
     classify_turn, direction_of_yaw, env_side, floor_points, footprint, rect_distance,
@@ -1356,9 +1356,15 @@ fn entered_just_before(route: &Route<'_, '_>, li: usize) -> bool {
 
 /// "take an immediate left", now and then, for a clear turn right after entering a room.
 fn immediate_turn(route: &Route<'_, '_>, li: usize, draft: &mut Draft) -> Option<String> {
-    let Turn::Turn(side) = route.legs[li].turn else {
+    let leg = &route.legs[li];
+    let Turn::Turn(side) = leg.turn else {
         return None;
     };
+    // A sharp turn or a second turn the same way has words of its own.
+    let again = li > 0 && route.legs[li - 1].turn == leg.turn;
+    if leg.angle.abs() >= SHARP_TURN_DEG || again {
+        return None;
+    }
     if hall_end_at(route, route.legs[li].first).is_some() || !entered_just_before(route, li) {
         return None;
     }
@@ -1429,7 +1435,8 @@ fn is_plural_name(name: &str) -> bool {
         None => name,
     };
     let word = head.rsplit(' ').next().unwrap_or(head);
-    word.ends_with('s') && !word.ends_with("ss")
+    // "glass" and "cactus" are one thing.
+    word.ends_with('s') && !word.ends_with("ss") && !word.ends_with("us")
 }
 
 /// Whether a noun phrase naming `o` is plural: by the name of `o` it uses (the first to
@@ -1692,7 +1699,8 @@ fn room_size_remark(
     let (bank, n) = said[rng.random_range(0..said.len())];
     if bank == ph::ROOM_HAS {
         let (o, count) = several[rng.random_range(0..several.len())];
-        let obj = group_noun(o, rng);
+        // The class's own name: a narrowed one ("loveseat") may not hold of every object.
+        let obj = plural(class_names(o.class)[0]);
         let num = number_word(count as u32);
         return Some(fill(pick(rng, &bank), &[("num", &num), ("obj", &obj)]));
     }
@@ -1720,9 +1728,26 @@ fn furniture_counts(scene: &Scene, room: RoomId) -> Vec<(&SceneObject, usize)> {
         }
         by_class.entry(o.class).or_insert((o, 0)).1 += 1;
     }
+    // The head noun of each class in the room ("chair" of "office chair"): a count of chairs
+    // must not leave out the office chairs or rocking chairs beside them.
+    let head = |c: C| class_names(c)[0].rsplit(' ').next().unwrap_or_default();
+    let mut classes_by_head: BTreeMap<&str, std::collections::BTreeSet<C>> = BTreeMap::new();
+    for o in scene.items().filter(|o| o.room == Some(room)) {
+        classes_by_head
+            .entry(head(o.class))
+            .or_default()
+            .insert(o.class);
+    }
     by_class
         .into_values()
-        .filter(|(o, n)| (2..=6).contains(n) && !is_plural_name(object_names(o)[0]))
+        .filter(|(o, n)| {
+            let name = class_names(o.class)[0];
+            (2..=6).contains(n)
+                && !is_plural_name(name)
+                && classes_by_head
+                    .get(head(o.class))
+                    .is_some_and(|c| c.len() == 1)
+        })
         .collect()
 }
 

@@ -142,8 +142,27 @@ fn fine_grounding_exists_near_path_and_on_stated_side() {
                     // The text names the landmark's class (by one of its names).
                     let class = vlnverse_env::SemanticClass::from_name(&gr.class).unwrap();
                     let names = vlnverse_instructions::lexicon::class_names(class);
+                    // As whole words: "urn" is in "turn".
+                    let words: Vec<&str> = ins
+                        .instruction_text
+                        .split(|c: char| !c.is_alphanumeric() && c != '\'')
+                        .collect();
+                    // A group is named in the plural ("the two doors").
+                    let plurals: Vec<String> = names
+                        .iter()
+                        .map(|n| vlnverse_instructions::lexicon::plural(n))
+                        .collect();
+                    let forms = names
+                        .iter()
+                        .copied()
+                        .chain(plurals.iter().map(String::as_str));
                     assert!(
-                        names.iter().any(|n| ins.instruction_text.contains(n)),
+                        forms.clone().any(|n| {
+                            let k = n.split(' ').count();
+                            words
+                                .windows(k)
+                                .any(|w| w.join(" ").eq_ignore_ascii_case(n))
+                        }),
                         "{names:?}: {}",
                         ins.instruction_text
                     );
