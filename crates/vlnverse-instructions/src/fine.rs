@@ -541,7 +541,7 @@ pub(crate) fn fine(cfg: &TemplateConfig, ctx: &PathContext<'_>, seed: u64) -> Re
     draft.sentences.push(sentence(&stop));
     closing_remarks(&route, &mut draft);
     Ok(Instruction {
-        instruction_text: draft.sentences.join(" "),
+        instruction_text: mend_joins(&draft.sentences.join(" ")),
         instruction_tokens: None,
         style: None,
         grounding: draft.grounding,
@@ -1427,6 +1427,25 @@ fn see_sentence(m: &Named, rng: &mut ChaCha8Rng) -> String {
     }
 }
 
+/// Mend a word said twice where two phrases meet: "keep going going by the sofa" and "proceed
+/// straight straight towards" lose the second word; "the bean bag to sit on on the left" takes
+/// a comma.
+fn mend_joins(text: &str) -> String {
+    let words: Vec<&str> = text.split(' ').collect();
+    let mut out: Vec<String> = Vec::with_capacity(words.len());
+    for w in words {
+        match out.last_mut() {
+            Some(prev) if prev.as_str() == w && matches!(w, "going" | "walking" | "straight") => {}
+            Some(prev) if prev.as_str() == "on" && w == "on" => {
+                prev.push(',');
+                out.push(w.to_string());
+            }
+            _ => out.push(w.to_string()),
+        }
+    }
+    out.join(" ")
+}
+
 /// Whether a name is a plural noun: its head word ("stairs", "storage shelves") ends in a
 /// plural "s"; in "X of Y" the head is X ("flight of stairs", "pair of shoes" are one thing).
 fn is_plural_name(name: &str) -> bool {
@@ -2003,6 +2022,19 @@ fn walk_time(pts: &[Vec2], rng: &mut ChaCha8Rng) -> String {
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn a_word_said_twice_at_a_join_is_mended() {
+        assert_eq!(
+            mend_joins("Keep going going by the sofa and proceed straight straight towards it."),
+            "Keep going by the sofa and proceed straight towards it."
+        );
+        assert_eq!(
+            mend_joins("Pass the bean bag to sit on on the left."),
+            "Pass the bean bag to sit on, on the left."
+        );
+        assert_eq!(mend_joins("Walk on. On the left"), "Walk on. On the left");
+    }
     use super::*;
 
     #[test]
