@@ -4,7 +4,7 @@
 use glam::Vec3;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use vlnverse_env::{ObjectId, Pose, Scene};
+use vlnverse_env::{ObjectId, Pose, Room, RoomType, Scene, SceneObject};
 use vlnverse_sensors::demo::demo_scene;
 use vlnverse_sensors::{Camera, CameraSpec, Channels, Frame, GpuRenderer, SensorError, View};
 
@@ -134,5 +134,26 @@ pub fn assert_one_box_image(f: &Frame, cam: &Camera, id: ObjectId, what: &str) {
         // Red where the box is, black elsewhere.
         assert_eq!(px[0] > 0, *i == id, "{what}: rgb {px:?}");
         assert_eq!(px[1], 0, "{what}: rgb {px:?}");
+    }
+}
+
+/// A procedural-style scene `id` (seed 3) of one 4 m x 4 m living room centred on the origin
+/// holding `objects`.
+pub fn living_room(id: &str, objects: Vec<SceneObject>) -> Scene {
+    Scene {
+        format_version: 1,
+        id: id.into(),
+        source: "procgen".into(),
+        seed: Some(3),
+        floor_height: 0.0,
+        rooms: vec![Room {
+            id: 0,
+            kind: RoomType::LivingRoom,
+            name: "living_room_1".into(),
+            polygon: vec![[-2.0, -2.0], [2.0, -2.0], [2.0, 2.0], [-2.0, 2.0]],
+        }],
+        doors: vec![],
+        objects,
+        storeys: Default::default(),
     }
 }

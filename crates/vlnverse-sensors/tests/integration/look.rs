@@ -5,9 +5,7 @@ use crate::common;
 use glam::Vec3;
 use std::sync::Arc;
 use vlnverse_env::light::{bake, bake_fresh};
-use vlnverse_env::{
-    Part, Pose, Room, RoomType, Scene, SceneObject, SceneSource, SemanticClass, Shape,
-};
+use vlnverse_env::{Part, Pose, Scene, SceneObject, SceneSource, SemanticClass, Shape};
 use vlnverse_procgen::{HomeGenerator, Preset};
 use vlnverse_sensors::{Channels, RasterRenderer, RasterScene, Renderer, SceneMesh};
 
@@ -78,22 +76,7 @@ fn room_with_table() -> Scene {
             [0.4, 0.25, 0.12],
         ),
     ];
-    Scene {
-        format_version: 1,
-        id: "room".into(),
-        source: "procgen".into(),
-        seed: Some(3),
-        floor_height: 0.0,
-        rooms: vec![Room {
-            id: 0,
-            kind: RoomType::LivingRoom,
-            name: "living_room_1".into(),
-            polygon: vec![[-2.0, -2.0], [2.0, -2.0], [2.0, 2.0], [-2.0, 2.0]],
-        }],
-        doors: vec![],
-        objects,
-        storeys: Default::default(),
-    }
+    common::living_room("room", objects)
 }
 
 /// Linear luminance of the colour the renderers give to object `id` at world point `q` (on its

@@ -5,7 +5,7 @@ use crate::common;
 
 use glam::Vec3;
 use std::sync::Arc;
-use vlnverse_env::{Part, Pose, Room, RoomType, Scene, SceneObject, SemanticClass, Shape};
+use vlnverse_env::{Part, Pose, Scene, SceneObject, SemanticClass, Shape};
 use vlnverse_sensors::{Channels, RasterRenderer, Renderer, SceneMesh};
 
 /// A box part centred at `c` (object frame) of size `s`.
@@ -68,26 +68,7 @@ fn room_with_painting(subject: Option<&str>) -> Scene {
         wall(5, Vec3::new(0.0, 1.3, 2.0), Vec3::new(4.1, 2.6, 0.1)),
         painting,
     ];
-    let mut scene = Scene {
-        format_version: 1,
-        id: "gallery".into(),
-        source: "procgen".into(),
-        seed: Some(3),
-        floor_height: 0.0,
-        rooms: vec![Room {
-            id: 0,
-            kind: RoomType::LivingRoom,
-            name: "living_room_1".into(),
-            polygon: vec![[-2.0, -2.0], [2.0, -2.0], [2.0, 2.0], [-2.0, 2.0]],
-        }],
-        doors: vec![],
-        objects,
-        storeys: Default::default(),
-    };
-    for o in &mut scene.objects {
-        o.bbox = o.compute_bbox();
-    }
-    scene
+    common::living_room("gallery", objects)
 }
 
 /// The grey values (0..=255) of the canvas's pixels, in raster order, seen from the middle of
