@@ -23,7 +23,7 @@ use super::PathContext;
 use glam::{Vec2, Vec3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use vlnverse_env::scene_graph::{is_landmark, rooms_along_path, side_of_heading, Landmark};
 use vlnverse_env::{ClassKind, ObjectId, RoomId, RoomType, Scene, SceneObject, SemanticClass as C};
 use vlnverse_score::episode::{GroundedObject, Instruction, Role, Side};
@@ -1738,34 +1738,28 @@ fn room_size_remark(
 /// count, in class order. Doors, stairs, railings, curtains and windows are counted elsewhere
 /// or not at all, and a class named in the plural ("shoes", "curtains") has no plural to say.
 fn furniture_counts(scene: &Scene, room: RoomId) -> Vec<(&SceneObject, usize)> {
-    let mut by_class: BTreeMap<C, (&SceneObject, usize)> = BTreeMap::new();
-    for o in scene.items().filter(|o| o.room == Some(room)) {
-        if o.class.kind() != ClassKind::Furniture
-            || matches!(o.class, C::Door | C::Stairs | C::Curtain | C::Rug)
-        {
-            continue;
-        }
-        by_class.entry(o.class).or_insert((o, 0)).1 += 1;
-    }
-    // The head noun of each class in the room ("chair" of "office chair"): a count of chairs
-    // must not leave out the office chairs or rocking chairs beside them.
+    // The head noun of a class ("chair" of "office chair"): a count of chairs must not leave
+    // out the office chairs or rocking chairs beside them.
     let head = |c: C| class_names(c)[0].rsplit(' ').next().unwrap_or_default();
-    let mut classes_by_head: BTreeMap<&str, std::collections::BTreeSet<C>> = BTreeMap::new();
+    let mut by_class: BTreeMap<C, (&SceneObject, usize)> = BTreeMap::new();
+    let mut classes_by_head: BTreeMap<&str, BTreeSet<C>> = BTreeMap::new();
     for o in scene.items().filter(|o| o.room == Some(room)) {
         classes_by_head
             .entry(head(o.class))
             .or_default()
             .insert(o.class);
+        let counted = o.class.kind() == ClassKind::Furniture
+            && !matches!(o.class, C::Door | C::Stairs | C::Curtain | C::Rug);
+        if counted {
+            by_class.entry(o.class).or_insert((o, 0)).1 += 1;
+        }
     }
     by_class
         .into_values()
         .filter(|(o, n)| {
-            let name = class_names(o.class)[0];
             (2..=6).contains(n)
-                && !is_plural_name(name)
-                && classes_by_head
-                    .get(head(o.class))
-                    .is_some_and(|c| c.len() == 1)
+                && !is_plural_name(class_names(o.class)[0])
+                && classes_by_head[head(o.class)].len() == 1
         })
         .collect()
 }
