@@ -25,7 +25,8 @@ pub(crate) const fn f(color: &'static str, material: &'static str, rgb: [f32; 3]
     }
 }
 
-const WOOD: &[Finish] = &[
+/// Wood finishes, the plain ones first (`pieces.rs` takes the first four).
+pub(crate) const WOOD: &[Finish] = &[
     f("wooden", "wood", [0.45, 0.27, 0.13]),
     f("brown", "wood", [0.26, 0.15, 0.07]),
     f("white", "wood", [0.85, 0.85, 0.82]),

@@ -8,7 +8,7 @@
 //! where it was, and `furniture.pieces = 0` gives the homes of before.
 
 use crate::models::{ball, bcube, cube, cyl, disc_z, front, legs, r, turned, Model};
-use crate::palette::{f, shade, tone, Finish};
+use crate::palette::{self, f, shade, tone, Finish};
 use glam::Quat;
 use rand::seq::IndexedRandom;
 use rand::Rng;
@@ -168,12 +168,8 @@ const LEATHER: &[Finish] = &[
     f("beige", "fabric", [0.7, 0.6, 0.45]),
     f("blue", "fabric", [0.08, 0.16, 0.5]),
 ];
-const WOOD: &[Finish] = &[
-    f("wooden", "wood", [0.45, 0.27, 0.13]),
-    f("brown", "wood", [0.26, 0.15, 0.07]),
-    f("white", "wood", [0.85, 0.85, 0.82]),
-    f("black", "wood", [0.05, 0.05, 0.05]),
-];
+/// The furniture's wood finishes without the painted colours: wooden, brown, white, black.
+const WOOD: &[Finish] = palette::WOOD.split_at(4).0;
 const DARK_WOOD: &[Finish] = &[
     f("brown", "wood", [0.26, 0.15, 0.07]),
     f("wooden", "wood", [0.45, 0.27, 0.13]),
