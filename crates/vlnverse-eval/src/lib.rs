@@ -2,6 +2,7 @@
 
 mod agent;
 pub mod agents;
+mod end_fields;
 mod episode_loop;
 mod error;
 pub mod oracle;

@@ -13,6 +13,7 @@ use vlnverse_env::scene_graph::SceneGraph;
 use vlnverse_env::Scene;
 use vlnverse_sensors::SceneMesh;
 
+use crate::end_fields::EndFieldStore;
 use crate::error::{Result, TaskError};
 use vlnverse_score::score::navigable_map_path;
 
@@ -246,6 +247,9 @@ pub struct SceneCache {
     /// Most recently used last.
     entries: Mutex<VecDeque<(String, Arc<SceneContext>)>>,
     loads: std::sync::atomic::AtomicUsize,
+    /// The stairs' end fields of homes let go, given back when they are loaded again
+    /// ([`SceneCache::keeping_end_fields`]; none kept by default).
+    end_fields: Mutex<EndFieldStore>,
 }
 
 impl SceneCache {
@@ -256,6 +260,38 @@ impl SceneCache {
             capacity: capacity.max(1),
             entries: Mutex::new(VecDeque::new()),
             loads: std::sync::atomic::AtomicUsize::new(0),
+            end_fields: Mutex::new(EndFieldStore::new(0)),
+        }
+    }
+
+    /// This cache, keeping up to `budget` bytes of the fields toward the stairs' ends of the
+    /// homes on several floors it lets go ([`MultiLevelMap::end_field`], built once per home
+    /// whatever the goals), and giving them back when such a home is loaded again: for a
+    /// workload that comes back to homes (train order), not one that leaves them for good
+    /// (an evaluation in scene order).
+    pub fn keeping_end_fields(self, budget: usize) -> Self {
+        SceneCache {
+            end_fields: Mutex::new(EndFieldStore::new(budget)),
+            ..self
+        }
+    }
+
+    /// Bytes of the stairs' end fields kept for homes let go
+    /// ([`SceneCache::keeping_end_fields`]).
+    pub fn end_field_bytes(&self) -> usize {
+        lock(&self.end_fields).bytes()
+    }
+
+    /// Let the least recently used scenes go until one more fits, keeping their stairs' end
+    /// fields.
+    fn make_room(&self, e: &mut VecDeque<(String, Arc<SceneContext>)>) {
+        while e.len() >= self.capacity {
+            let Some((id, ctx)) = e.pop_front() else {
+                break;
+            };
+            if let Some(m) = ctx.levels() {
+                lock(&self.end_fields).keep(&id, m);
+            }
         }
     }
 
@@ -272,15 +308,16 @@ impl SceneCache {
         }
         // Loaded outside the lock: other scenes stay available meanwhile.
         let ctx = Arc::new(SceneContext::load(&self.dataset, id)?);
+        if let Some(m) = ctx.levels() {
+            lock(&self.end_fields).give(id, m);
+        }
         self.loads
             .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         let mut e = lock(&self.entries);
         if let Some((_, c)) = e.iter().find(|(k, _)| k == id) {
             return Ok(c.clone());
         }
-        while e.len() >= self.capacity {
-            e.pop_front();
-        }
+        self.make_room(&mut e);
         e.push_back((id.to_string(), ctx.clone()));
         Ok(ctx)
     }
@@ -296,9 +333,7 @@ impl SceneCache {
             e.push_back(hit);
             return cached;
         }
-        while e.len() >= self.capacity {
-            e.pop_front();
-        }
+        self.make_room(&mut e);
         e.push_back((id.to_string(), ctx.clone()));
         ctx
     }
@@ -326,6 +361,72 @@ mod tests {
     use vlnverse_env::occupancy::{build_level_maps, OccupancyConfig};
     use vlnverse_env::SceneSource;
     use vlnverse_procgen::{HomeGenerator, Preset};
+
+    /// A home on two floors let go by a cache keeping end fields gets its stairs' end fields
+    /// back when loaded again (the same fields, not swept again); without the budget, or for
+    /// another home, nothing is given.
+    #[test]
+    fn a_home_visited_again_gets_its_stairs_end_fields_back() {
+        let mut pc = Preset::Tiny.config().unwrap();
+        pc.scenes.count = 2;
+        pc.floors.two_storey_share = 1.0;
+        let gen = HomeGenerator::new(pc).unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let ids: Vec<String> = (0..2)
+            .map(|i| {
+                let scene = gen.scene(i).unwrap();
+                assert!(scene.is_multi_level());
+                let id = scene.id.clone();
+                vlnverse_env::io::write_scene_bundle(
+                    dir.path().join("scenes"),
+                    scene,
+                    &OccupancyConfig::default(),
+                )
+                .unwrap();
+                id
+            })
+            .collect();
+        let ends = |ctx: &SceneContext| -> Vec<Arc<DistanceField>> {
+            let m = ctx.levels().unwrap();
+            (0..m.portals().len())
+                .flat_map(|p| [false, true].map(|u| m.end_field(p, u).unwrap()))
+                .collect()
+        };
+        let keeping = SceneCache::new(dir.path(), 1).keeping_end_fields(64 << 20);
+        let first = ends(&keeping.get(&ids[0]).unwrap());
+        assert!(!first.is_empty());
+        assert_eq!(keeping.end_field_bytes(), 0, "nothing let go yet");
+        let other = ends(&keeping.get(&ids[1]).unwrap());
+        let kept = keeping.end_field_bytes();
+        assert_eq!(kept, first.iter().map(|f| f.bytes()).sum::<usize>());
+        let again = keeping.get(&ids[0]).unwrap();
+        assert_eq!(keeping.loads(), 3, "loaded again");
+        let m = again.levels().unwrap();
+        let given = m.built_end_fields();
+        assert!(
+            given.iter().flatten().all(Option::is_some),
+            "every end given"
+        );
+        for (a, b) in first.iter().zip(ends(&again)) {
+            assert!(Arc::ptr_eq(a, &b), "the kept field, not a new sweep");
+        }
+        // Another home's fields do not fit this one; a field is not given twice.
+        assert!(!m.give_end_field(0, false, other[0].clone()));
+        assert!(!m.give_end_field(0, false, first[0].clone()));
+        // A cache without the budget keeps nothing.
+        let plain = SceneCache::new(dir.path(), 1);
+        ends(&plain.get(&ids[0]).unwrap());
+        plain.get(&ids[1]).unwrap();
+        let fresh = plain.get(&ids[0]).unwrap();
+        assert_eq!(plain.end_field_bytes(), 0);
+        assert!(fresh
+            .levels()
+            .unwrap()
+            .built_end_fields()
+            .iter()
+            .flatten()
+            .all(Option::is_none));
+    }
 
     /// Threads asking for one goal's field at once share one field (built once); a goal with
     /// non-finite coordinates is the field's error, every time, and nothing is cached for it.

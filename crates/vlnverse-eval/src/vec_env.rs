@@ -202,6 +202,11 @@ pub struct VecEnv<S: Simulator> {
 /// Episodes drawn ahead per environment in train order (their homes are prepared meanwhile).
 const AHEAD: usize = 1;
 
+/// Bytes of stairs' end fields kept for homes the scene cache lets go, in train order: a
+/// `vlnverse` home on two floors holds two of ~0.8 MB (~60k cells of ~13 bytes), so this keeps
+/// those of ~80 such homes (the whole preset's).
+const END_FIELD_BUDGET: usize = 128 << 20;
+
 /// The home of an episode drawn ahead, once the prefetch thread has loaded it: held by the
 /// environment until the episode begins, so the scene cache evicting it meanwhile (another
 /// environment's homes are newer) does not make the reset load it and build its fields again.
@@ -351,7 +356,11 @@ impl<S: Simulator> VecEnv<S> {
         let train = cfg.order == EpisodeOrder::Train;
         // Room for the homes shown and, in train order, those prepared ahead.
         let capacity = cfg.num_envs * if train { 1 + AHEAD } else { 1 } + 2;
-        let scenes = Arc::new(SceneCache::new(&cfg.dataset, capacity));
+        // Train order comes back to homes the cache has let go: their stairs' end fields are
+        // kept for the next visit.
+        let end_fields = if train { END_FIELD_BUDGET } else { 0 };
+        let scenes =
+            Arc::new(SceneCache::new(&cfg.dataset, capacity).keeping_end_fields(end_fields));
         let prepare = slots
             .first()
             .and_then(|s| s.rig.as_ref())

@@ -81,6 +81,15 @@ impl DistanceField {
         self.goal.map(|e| e.point)
     }
 
+    /// Bytes the field holds (its map's cells and its per-cell arrays, by capacity).
+    pub fn bytes(&self) -> usize {
+        std::mem::size_of::<Self>()
+            + self.map.len() * std::mem::size_of::<crate::occupancy::CellState>()
+            + self.g.capacity() * 4
+            + self.parent.capacity() * 4
+            + self.first.capacity() * 4
+    }
+
     /// Number of cells with a finite distance.
     pub fn reachable_cells(&self) -> usize {
         self.g.iter().filter(|d| d.is_finite()).count()

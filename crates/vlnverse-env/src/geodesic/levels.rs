@@ -202,6 +202,31 @@ impl MultiLevelMap {
         Some(field.clone())
     }
 
+    /// The fields toward the portals' ends built so far, per portal `[lower, upper]` (`None`:
+    /// not built), to keep beyond this map ([`MultiLevelMap::give_end_field`]).
+    pub fn built_end_fields(&self) -> Vec<[Option<Arc<DistanceField>>; 2]> {
+        self.end_fields
+            .iter()
+            .map(|ends| ends.each_ref().map(|c| c.get().cloned()))
+            .collect()
+    }
+
+    /// Give end `upper` of portal `portal` a field built earlier, by another map of the same
+    /// home (a home visited again): it is taken only when it is the field
+    /// [`MultiLevelMap::end_field`] would build here (on this end's level map, toward this end's
+    /// point) and none is built yet. Whether it was taken.
+    pub fn give_end_field(&self, portal: usize, upper: bool, field: Arc<DistanceField>) -> bool {
+        let (Some(p), Some(ends)) = (self.portals.get(portal), self.end_fields.get(portal)) else {
+            return false;
+        };
+        let end = if upper { p.upper } else { p.lower };
+        let fits = self
+            .levels
+            .get(end.level as usize)
+            .is_some_and(|map| field.goal() == Some(end.point) && field.map() == map);
+        fits && ends[usize::from(upper)].set(field).is_ok()
+    }
+
     /// Geodesic distance between two points, across levels through the stairs.
     pub fn geodesic_distance(&self, a: LevelPoint, b: LevelPoint) -> Result<GeodesicDistance> {
         Ok(match self.shortest_route(a, b)? {
