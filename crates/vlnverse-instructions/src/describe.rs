@@ -656,6 +656,8 @@ pub(crate) fn room_np(
     let area = r.area();
     let adj: &[&str] = if r.kind == RoomType::Hallway && area > 6.0 {
         &["long", "narrow"]
+    } else if area > 45.0 {
+        &["large", "big", "huge"]
     } else if area > 24.0 {
         &["large", "big"]
     } else if area < 8.0 {

@@ -399,7 +399,11 @@ fn nth_door_np(n: door_order::NthDoor, rng: &mut ChaCha8Rng) -> Option<String> {
     let ord = if n.ordinal == 1 && n.last {
         None
     } else if n.last && rng.random_bool(0.5) {
-        Some("last")
+        Some(if rng.random_bool(0.3) {
+            "farthest"
+        } else {
+            "last"
+        })
     } else {
         Some(ordinal_word(n.ordinal as u32).filter(|_| n.ordinal <= 5)?)
     };
@@ -732,8 +736,12 @@ fn leg_sentences(route: &Route<'_, '_>, li: usize, draft: &mut Draft) {
         None => name_landmarks(route, &chosen, draft),
     };
     // With nothing else to name on the way, a room passed by its open doorway.
+    let mut passed_room = None;
     if named.is_empty() && route.writer != Writer::Terse && draft.rng.random_bool(0.35) {
-        named.extend(room_passed(route, li));
+        if let Some(m) = room_passed(route, li) {
+            passed_room = Some(m.text.clone());
+            named.push(m);
+        }
     }
     // Or, upstairs, the stairwell's railing beside the path.
     if named.is_empty() && route.writer != Writer::Terse {
@@ -807,6 +815,13 @@ fn leg_sentences(route: &Route<'_, '_>, li: usize, draft: &mut Draft) {
         &mut draft.rng,
     );
     out.extend(room_size_remark(route, entered, &mut draft.rng));
+    // A room passed by its doorway is not the way: now and then said so.
+    if let Some(room) = passed_room.filter(|_| draft.rng.random_bool(0.4)) {
+        out.push(fill(
+            pick(&mut draft.rng, &ph::NOT_INTO),
+            &[("room", &room)],
+        ));
+    }
     number_and_add(li, out, draft);
     if route.chatty() && draft.rng.random_bool(0.08) {
         draft
@@ -1342,8 +1357,49 @@ fn turn_prefix(route: &Route<'_, '_>, li: usize, draft: &mut Draft) -> Option<St
             return Some(fill(pick(rng, bank), &[("room", &hall)]));
         }
     }
-    (entered_just_before(route, li) && rng.random_bool(0.3))
-        .then(|| pick(rng, &ph::AT_ONCE).to_string())
+    if entered_just_before(route, li) {
+        if rng.random_bool(0.3) {
+            return Some(pick(rng, &ph::AT_ONCE).to_string());
+        }
+        // Or by the room just left: "after leaving the bedroom, turn left".
+        let left = left_just_before(route, li).filter(|_| rng.random_bool(0.15))?;
+        let room = room_np(route.ctx.scene, left, &route.rooms_named, rng);
+        return Some(fill(pick(rng, &ph::AFTER_LEAVING), &[("room", &room)]));
+    }
+    still_in(route, li)
+        .filter(|_| rng.random_bool(0.2))
+        .map(|r| {
+            let room = room_np(route.ctx.scene, r, &route.rooms_named, rng);
+            fill(pick(rng, &ph::STILL_IN), &[("room", &room)])
+        })
+}
+
+/// The room left by the last room change of the leg before `li`, when that change is within a
+/// step or so of the turn opening `li`.
+fn left_just_before(route: &Route<'_, '_>, li: usize) -> Option<RoomId> {
+    let turn_at = route.pts[route.legs[li].first];
+    let k = route.rooms_entered_on(li - 1).next_back()?;
+    let at = route.pts[route.rooms[k].0.min(route.n() - 1)];
+    (k > 0 && at.distance(turn_at) < 1.2).then(|| route.rooms[k - 1].1)
+}
+
+/// The room a turn opening leg `li` is made in, when the leg before it was a long one (3 m or
+/// more) walked all within that room: where "still in the hallway, turn left" helps.
+fn still_in(route: &Route<'_, '_>, li: usize) -> Option<RoomId> {
+    let prev = &route.legs[li - 1];
+    if prev.len < 3.0 || route.rooms_entered_on(li - 1).next().is_some() {
+        return None;
+    }
+    let room_at = |i: usize| {
+        route
+            .rooms
+            .iter()
+            .rev()
+            .find(|(s, _)| *s <= i)
+            .map(|&(_, r)| r)
+    };
+    let here = room_at(route.legs[li].first)?;
+    (room_at(prev.first) == Some(here)).then_some(here)
 }
 
 /// Whether the leg before `li` entered a room within a step or so of the turn opening `li`.

@@ -219,6 +219,9 @@ banks! {
     STOP_ON = stop_on,
     STOP_EDGE = stop_edge,
     ROOM_PASSAGE = room_passage,
+    NOT_INTO = not_into,
+    STILL_IN = still_in,
+    AFTER_LEAVING = after_leaving,
 }
 
 /// A bank as written in the data file.

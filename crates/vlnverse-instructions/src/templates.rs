@@ -2,7 +2,8 @@
 
 use super::describe::{content_name, places, Place};
 use super::lexicon::{
-    color_phrases, distinct_uses, material_noun, material_words, number_word, plural, shape_words,
+    color_phrases, distinct_uses, material_noun, material_words, number_word, object_names, plural,
+    shape_words,
 };
 use super::path::{env_side, floor_points, footprint, rect_distance, segment_headings, TurnConfig};
 use super::phrases::{self as ph, capitalize, decapitalize, fill, pick};
@@ -140,7 +141,11 @@ impl InstructionGenerator for TemplateGenerator {
         let mut rng = ChaCha8Rng::seed_from_u64(
             seed ^ salt ^ u64::from(target).wrapping_mul(0x9E37_79B9_7F4A_7C15),
         );
-        let desc = coarse_description(ctx, target, &expr, &mut rng);
+        let name = match ctx.scene.object(target) {
+            Some(o) => coarse_name(o, style, &mut rng),
+            None => expr.class.words(),
+        };
+        let desc = coarse_description(ctx, target, &expr, &name, &mut rng);
         let (sup, rel) = coarse_relations(ctx, &expr, style, &mut rng);
         let room = coarse_room(ctx, &expr, &mut rng);
         // Now and then a remark on the target from what the scene model holds: its material,
@@ -150,10 +155,7 @@ impl InstructionGenerator for TemplateGenerator {
             .scene
             .object(target)
             .filter(|_| rng.random_bool(0.2))
-            .and_then(|o| {
-                let name = expr.class.words();
-                target_remark(ctx, o, &name, style, &mut rng, &mut grounding)
-            })
+            .and_then(|o| target_remark(ctx, o, &name, style, &mut rng, &mut grounding))
             .unwrap_or_default();
         let parts = CoarseParts {
             desc,
@@ -253,12 +255,38 @@ fn mention_words(m: &Mention) -> String {
     format!("the {}", m.words())
 }
 
-/// The target described: size and shape words the geometry supports may precede the colour;
-/// the class keeps its vocabulary name (agents look for it) and the colour stays next to it.
+/// How often a coarse target goes by another of its names ("the couch", "the refrigerator")
+/// rather than its class's vocabulary name, by style: a formal request keeps to the plainest.
+fn coarse_synonym(style: Style) -> f64 {
+    match style {
+        Style::Formal => 0.15,
+        Style::Natural | Style::Casual => 0.3,
+    }
+}
+
+/// The noun a coarse instruction names its target by: its class's vocabulary name, now and
+/// then another name people use for it (one true of this object: "loveseat" only for a sofa
+/// for two).
+fn coarse_name(o: &SceneObject, style: Style, rng: &mut ChaCha8Rng) -> String {
+    let plain = o.class.words();
+    let others: Vec<&str> = object_names(o)
+        .into_iter()
+        .filter(|n| *n != plain)
+        .collect();
+    if !others.is_empty() && rng.random_bool(coarse_synonym(style)) {
+        pick(rng, &others).to_string()
+    } else {
+        plain
+    }
+}
+
+/// The target described: size and shape words the geometry supports may precede the colour,
+/// which stays next to the noun `name` (see [`coarse_name`]).
 fn coarse_description(
     ctx: &PathContext<'_>,
     target: ObjectId,
     expr: &ReferringExpression,
+    name: &str,
     rng: &mut ChaCha8Rng,
 ) -> String {
     let shape = ctx.scene.object(target).and_then(|o| {
@@ -268,7 +296,12 @@ fn coarse_description(
             .iter()
             .filter_map(|&id| ctx.scene.object(id))
             .collect();
-        let w = shape_words(o, &peers);
+        // Never an adjective the name already says ("the low coffee table" stays, "the
+        // low-slung low table" does not).
+        let w: Vec<&str> = shape_words(o, &peers)
+            .into_iter()
+            .filter(|a| !name.split(' ').any(|n| a.contains(n) || n.contains(a)))
+            .collect();
         (!w.is_empty() && rng.random_bool(0.3)).then(|| pick(rng, &w).to_string())
     });
     let mut desc = String::from("the ");
@@ -280,7 +313,7 @@ fn coarse_description(
         desc.push_str(c);
         desc.push(' ');
     }
-    desc.push_str(&expr.class.words());
+    desc.push_str(name);
     desc
 }
 
@@ -529,7 +562,13 @@ fn target_remark(
             })
         })
         .collect();
-    let count = count_phrase(peers.len(), name);
+    // Counted by a name true of each of them ("two loveseats" only when both are for two).
+    let count_name = if peers.iter().all(|p| object_names(p).contains(&name)) {
+        name.to_string()
+    } else {
+        o.class.words()
+    };
+    let count = count_phrase(peers.len(), &count_name);
     let mut kinds: Vec<u8> = Vec::new();
     for (k, ok) in [
         (0u8, !mats.is_empty()),
