@@ -113,6 +113,9 @@ pub fn room_color(kind: RoomType) -> [u8; 3] {
         RoomType::Room => [234, 234, 234],
         RoomType::EntranceHall => [226, 220, 240],
         RoomType::Balcony => [214, 236, 240],
+        RoomType::Pantry => [244, 232, 200],
+        RoomType::HomeTheater => [218, 206, 236],
+        RoomType::Library => [232, 222, 204],
     }
 }
 

@@ -254,6 +254,12 @@ vocabulary! {
         Cactus = (150, "cactus", Furniture),
         Urn = (151, "urn", Furniture),
         Lounger = (152, "lounger", Furniture),
+        WeightBench = (153, "weight_bench", Furniture),
+        PunchingBag = (154, "punching_bag", Furniture),
+        ProjectorScreen = (155, "projector_screen", Furniture),
+        Projector = (156, "projector", Small),
+        PopcornMachine = (157, "popcorn_machine", Furniture),
+        Jar = (158, "jar", Small),
     }
 }
 
@@ -290,6 +296,9 @@ vocabulary! {
         Room = (11, "room", Structure),
         EntranceHall = (12, "entrance_hall", Structure),
         Balcony = (13, "balcony", Structure),
+        Pantry = (14, "pantry", Structure),
+        HomeTheater = (15, "home_theater", Structure),
+        Library = (16, "library", Structure),
     }
 }
 

@@ -88,6 +88,12 @@ pub fn class_defaults(class: SemanticClass) -> (f32, f32, &'static str) {
         C::Hammock => (12.0, 0.7, "fabric"),
         C::Cactus | C::Urn => (8.0, 0.6, "ceramic"),
         C::Lounger => (10.0, 0.5, "wood"),
+        C::WeightBench => (20.0, 0.6, "metal"),
+        C::PunchingBag => (30.0, 0.7, "leather"),
+        C::ProjectorScreen => (8.0, 0.5, "fabric"),
+        C::Projector => (3.0, 0.5, "plastic"),
+        C::PopcornMachine => (25.0, 0.5, "metal"),
+        C::Jar => (0.5, 0.4, "glass"),
         C::Unknown => (10.0, 0.5, "unknown"),
     }
 }

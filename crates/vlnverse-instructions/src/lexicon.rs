@@ -246,6 +246,9 @@ pub fn room_names(kind: RoomType) -> &'static [&'static str] {
         RoomType::Room => &["room", "spare room", "empty room"],
         RoomType::EntranceHall => &["entrance hall", "entryway", "front hall", "foyer", "entry"],
         RoomType::Balcony => &["balcony"],
+        RoomType::Pantry => &["pantry"],
+        RoomType::HomeTheater => &["home theater", "media room", "movie room", "theater room"],
+        RoomType::Library => &["library", "reading room"],
     }
 }
 

@@ -229,6 +229,10 @@ impl Default for RoomsConfig {
                 kind(RoomType::EntranceHall, 0, 1, 0.6, 5.0, 9.0),
                 kind(RoomType::Closet, 0, 1, 0.5, 4.8, 7.0),
                 kind(RoomType::Balcony, 0, 1, 0.6, 4.8, 8.0),
+                kind(RoomType::Pantry, 0, 1, 0.5, 4.8, 6.5),
+                kind(RoomType::Gym, 0, 1, 0.4, 8.0, 14.0),
+                kind(RoomType::HomeTheater, 0, 1, 0.35, 13.0, 20.0),
+                kind(RoomType::Library, 0, 1, 0.35, 9.0, 15.0),
             ],
         }
     }

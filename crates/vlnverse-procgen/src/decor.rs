@@ -497,8 +497,8 @@ const CANVASES: &[(&str, [f32; 3])] = &[
     ("beige", [0.8, 0.72, 0.6]),
 ];
 
-/// Paintings on the walls of living rooms, bedrooms, hallways, dining rooms, offices and
-/// entrance halls: a frame and a painted canvas (material `canvas`: a painting texture), one or
+/// Paintings on the walls of living rooms, bedrooms, hallways, dining rooms, offices, entrance
+/// halls, libraries and home theaters: a frame and a painted canvas (material `canvas`: a painting texture), one or
 /// two per room, at eye height, clear of windows, doorways and tall furniture (above a sofa, a
 /// bed or a low cabinet, as people hang them). At 0.4 to 0.9 m across they are landmarks
 /// instructions name ("the painting above the sofa").
@@ -517,7 +517,9 @@ fn add_pictures(
             | RoomType::Hallway
             | RoomType::DiningRoom
             | RoomType::Office
-            | RoomType::EntranceHall => 1,
+            | RoomType::EntranceHall
+            | RoomType::Library
+            | RoomType::HomeTheater => 1,
             _ => continue,
         };
         let mut placed = 0;

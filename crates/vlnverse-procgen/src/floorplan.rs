@@ -86,12 +86,14 @@ pub(crate) fn is_public(k: RoomType) -> bool {
 }
 
 /// Rooms that are only ever reached through one neighbour of the kinds given (a closet off a
-/// bedroom or hallway, a balcony off the living room or a bedroom); `None` for other rooms.
+/// bedroom or hallway, a balcony off the living room or a bedroom, a pantry off the kitchen);
+/// `None` for other rooms.
 fn leaf_of(k: RoomType) -> Option<&'static [RoomType]> {
     use RoomType as R;
     match k {
         R::Closet => Some(&[R::Bedroom, R::Hallway, R::EntranceHall]),
         R::Balcony => Some(&[R::LivingRoom, R::Bedroom]),
+        R::Pantry => Some(&[R::Kitchen]),
         _ => None,
     }
 }
@@ -103,10 +105,10 @@ pub(crate) fn may_join(a: RoomType, b: RoomType) -> bool {
 }
 
 /// Zone rank: public rooms first, then the hallway, then private rooms, so that recursive
-/// splitting keeps each zone together.
+/// splitting keeps each zone together (a pantry goes with the kitchen it opens off).
 fn zone(k: RoomType) -> u8 {
     match k {
-        RoomType::LivingRoom | RoomType::Kitchen | RoomType::DiningRoom => 0,
+        RoomType::LivingRoom | RoomType::Kitchen | RoomType::DiningRoom | RoomType::Pantry => 0,
         RoomType::Hallway | RoomType::EntranceHall => 1,
         _ => 2,
     }
@@ -293,7 +295,11 @@ fn hub_weight(k: RoomType) -> f32 {
         RoomType::LivingRoom => 4.0,
         RoomType::DiningRoom => 2.0,
         RoomType::Kitchen => 1.2,
-        RoomType::Bathroom | RoomType::LaundryRoom | RoomType::Closet | RoomType::Balcony => 0.03,
+        RoomType::Bathroom
+        | RoomType::LaundryRoom
+        | RoomType::Closet
+        | RoomType::Balcony
+        | RoomType::Pantry => 0.03,
         RoomType::Bedroom => 0.15,
         _ => 0.5,
     }

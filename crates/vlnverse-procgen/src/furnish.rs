@@ -551,6 +551,33 @@ fn patio_group(rng: &mut ChaCha8Rng, chairs: usize) -> Group {
     }
 }
 
+/// A projector screen on the wall and, `dist` metres in front of it, a row of `seats`
+/// recliners facing it, with a side table between neighbours when `tables`. The gap between
+/// the screen and the row stays part of the group's footprint, so nothing else stands in it.
+fn theater_group(rng: &mut ChaCha8Rng, seats: usize, dist: f32, tables: bool) -> Group {
+    let screen = models::clutter(C::ProjectorScreen, rng);
+    let chair = pieces::model(C::Recliner, 0.0, rng);
+    let table = models::side_table(rng);
+    let z = -(screen.d * 0.5 + dist + chair.d * 0.5);
+    let between = if tables { table.w + 0.1 } else { 0.1 };
+    let row = seats as f32 * chair.w + (seats.max(1) - 1) as f32 * between;
+    let mut items = vec![Item::at(screen, 0.0, 0.0, 0.0)];
+    let mut x = -row * 0.5 + chair.w * 0.5;
+    for k in 0..seats {
+        // Turned round: the seat's front faces the screen at +Z.
+        items.push(Item::at(chair.clone(), x, z, PI));
+        if tables && k + 1 < seats {
+            let tx = x + chair.w * 0.5 + between * 0.5;
+            items.push(Item::at(table.clone(), tx, z, 0.0));
+        }
+        x += chair.w + between;
+    }
+    Group {
+        items,
+        mode: Mode::Wall,
+    }
+}
+
 fn wall(m: Model) -> Group {
     Group::one(m, Mode::Wall)
 }
@@ -844,6 +871,110 @@ fn recipe(
                 out.push(vec![corner(models::potted_plant(rng))]);
             }
         }
+        RoomType::Gym => {
+            out.push(vec![
+                wall(models::clutter(C::Treadmill, rng)),
+                wall(models::clutter(C::ExerciseBike, rng)),
+            ]);
+            if maybe(cfg, rng, 0.6) {
+                out.push(vec![wall(models::clutter(C::ExerciseBike, rng))]);
+            }
+            if maybe(cfg, rng, 0.8) {
+                let bench = models::clutter(C::WeightBench, rng);
+                out.push(vec![wall(bench.clone()), Group::one(bench, Mode::Center)]);
+            }
+            if maybe(cfg, rng, 0.6) {
+                out.push(vec![corner(models::clutter(C::PunchingBag, rng))]);
+            }
+            for (p, class) in [
+                (0.7, C::YogaMat),
+                (0.6, C::Dumbbells),
+                (0.5, C::Mirror),
+                (0.3, C::YogaMat),
+            ] {
+                if maybe(cfg, rng, p) {
+                    out.push(vec![wall(models::clutter(class, rng))]);
+                }
+            }
+            for (p, f) in [
+                (0.3, models::potted_plant as fn(&mut ChaCha8Rng) -> Model),
+                (0.3, models::trash_can),
+            ] {
+                if maybe(cfg, rng, p) {
+                    let m = f(rng);
+                    out.push(vec![corner(m)]);
+                }
+            }
+        }
+        RoomType::Pantry => {
+            out.push(vec![
+                wall(models::clutter(C::ShelvingUnit, rng)),
+                wall(models::kitchen_cabinet(rng)),
+            ]);
+            if maybe(cfg, rng, 0.8) {
+                out.push(vec![wall(models::clutter(C::ShelvingUnit, rng))]);
+            }
+            if maybe(cfg, rng, 0.4) {
+                out.push(vec![wall(models::clutter(C::ShelvingUnit, rng))]);
+            }
+            if maybe(cfg, rng, 0.3) {
+                out.push(vec![wall(models::kitchen_cabinet(rng))]);
+            }
+            if maybe(cfg, rng, 0.3) {
+                out.push(vec![corner(models::stool(rng))]);
+            }
+        }
+        RoomType::HomeTheater => {
+            let seats = if area > 16.0 { 3 } else { 2 };
+            out.push(vec![
+                theater_group(rng, seats, 2.4, true),
+                theater_group(rng, 2, 2.2, true),
+                theater_group(rng, 2, 1.8, false),
+                theater_group(rng, 1, 1.6, false),
+                wall(models::clutter(C::ProjectorScreen, rng)),
+            ]);
+            if maybe(cfg, rng, 0.5) {
+                out.push(vec![wall(models::cabinet(rng))]);
+            }
+            if maybe(cfg, rng, 0.2) {
+                out.push(vec![wall(models::bookshelf(rng))]);
+            }
+            for (p, f) in [
+                (0.3, models::floor_lamp as fn(&mut ChaCha8Rng) -> Model),
+                (0.3, models::potted_plant),
+            ] {
+                if maybe(cfg, rng, p) {
+                    let m = f(rng);
+                    out.push(vec![corner(m)]);
+                }
+            }
+        }
+        RoomType::Library => {
+            out.push(vec![wall(models::bookshelf(rng))]);
+            for p in [0.9, 0.8, 0.6, 0.4] {
+                if maybe(cfg, rng, p) {
+                    out.push(vec![wall(models::bookshelf(rng))]);
+                }
+            }
+            out.push(vec![corner(models::armchair(rng))]);
+            if maybe(cfg, rng, 0.7) {
+                out.push(vec![corner(models::floor_lamp(rng))]);
+            }
+            if maybe(cfg, rng, 0.5) {
+                out.push(vec![wall(models::side_table(rng))]);
+            }
+            if maybe(cfg, rng, 0.3) {
+                out.push(vec![corner(models::armchair(rng))]);
+            }
+            if maybe(cfg, rng, 0.35) {
+                out.push(vec![desk_group(rng, false)]);
+            }
+            if maybe(cfg, rng, 0.4) {
+                let (w, d) = (rng.random_range(1.2f32..2.0), rng.random_range(1.0f32..1.6));
+                let r = models::rug(rng, w, d);
+                out.push(vec![Group::one(r, Mode::Center)]);
+            }
+        }
         _ => {
             for (p, f) in [
                 (0.6, models::cabinet as fn(&mut ChaCha8Rng) -> Model),
@@ -974,6 +1105,32 @@ fn clutter_recipe(cfg: &ProcgenConfig, kind: RoomType, rng: &mut ChaCha8Rng) -> 
             (C::Slippers, 0.3, W),
         ],
         R::Balcony => &[(C::DryingRack, 0.3, W), (C::Bicycle, 0.1, W)],
+        R::Gym => &[
+            (C::WallShelf, 0.3, W),
+            (C::Dumbbells, 0.4, W),
+            (C::Fan, 0.3, K),
+            (C::Backpack, 0.2, W),
+            (C::Radiator, 0.2, W),
+        ],
+        R::Pantry => &[
+            (C::WallShelf, 0.5, W),
+            (C::WallShelf, 0.3, W),
+            (C::Box, 0.4, K),
+            (C::Box, 0.3, K),
+        ],
+        R::HomeTheater => &[
+            (C::WallShelf, 0.3, W),
+            (C::BeanBag, 0.3, K),
+            (C::Ottoman, 0.2, W),
+            (C::Radiator, 0.2, W),
+            (C::Box, 0.1, K),
+        ],
+        R::Library => &[
+            (C::WallShelf, 0.4, W),
+            (C::Ottoman, 0.3, W),
+            (C::Radiator, 0.25, W),
+            (C::Box, 0.2, K),
+        ],
         _ => &[(C::WallShelf, 0.3, W), (C::Box, 0.2, K)],
     };
     let mut out = Vec::new();
@@ -1028,6 +1185,7 @@ fn small_choices(support: C, room: RoomType) -> &'static [C] {
             C::CoffeeMachine,
             C::Blender,
             C::DishRack,
+            C::Jar,
         ],
         (C::CoffeeTable, _) => &[
             C::Remote,
@@ -1055,6 +1213,23 @@ fn small_choices(support: C, room: RoomType) -> &'static [C] {
             C::Candle,
             C::FruitBowl,
             C::Teapot,
+        ],
+        (C::SideTable | C::Cabinet, RoomType::HomeTheater) => &[
+            C::Projector,
+            C::Remote,
+            C::Speaker,
+            C::Bowl,
+            C::Cup,
+            C::Bottle,
+        ],
+        (C::ShelvingUnit | C::WallShelf | C::KitchenCabinet | C::Box, RoomType::Pantry) => &[
+            C::Jar,
+            C::Jar,
+            C::Jar,
+            C::Bottle,
+            C::Basket,
+            C::Bowl,
+            C::Pot,
         ],
         (C::SideTable, _) => &[
             C::TableLamp,
@@ -1142,7 +1317,9 @@ fn small_choices(support: C, room: RoomType) -> &'static [C] {
             C::SoapDispenser,
             C::Candle,
         ],
-        (C::WallShelf, RoomType::Kitchen) => &[C::Bowl, C::Plate, C::Mug, C::Teapot, C::Bottle],
+        (C::WallShelf, RoomType::Kitchen) => {
+            &[C::Bowl, C::Plate, C::Mug, C::Teapot, C::Bottle, C::Jar]
+        }
         (C::WallShelf, _) => &[
             C::Book,
             C::Vase,

@@ -5,6 +5,7 @@ mod decor;
 mod doors;
 mod floorplan;
 mod furnish;
+mod gear;
 mod home;
 mod models;
 mod motifs;

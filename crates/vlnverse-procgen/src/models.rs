@@ -1621,6 +1621,9 @@ pub(crate) fn trash_can(rng: &mut ChaCha8Rng) -> Model {
 
 /// A small object that stands on furniture. The footprint is its local bounding box.
 pub(crate) fn small(class: C, rng: &mut ChaCha8Rng) -> Model {
+    if let Some(m) = crate::gear::model(class, rng) {
+        return m;
+    }
     let fin = palette::pick(class, rng);
     let c = fin.rgb;
     let mut p = Vec::new();
@@ -1943,6 +1946,9 @@ pub(crate) fn small(class: C, rng: &mut ChaCha8Rng) -> Model {
 /// laundry baskets, wall shelves, radiators, a fireplace, balcony furniture...). Mostly plain
 /// boxes: a home holds many of them, and each box is 12 triangles (20 bevelled).
 pub(crate) fn clutter(class: C, rng: &mut ChaCha8Rng) -> Model {
+    if let Some(m) = crate::gear::model(class, rng) {
+        return m;
+    }
     let fin = palette::pick(class, rng);
     let c = fin.rgb;
     let dark = shade(c, 0.7);

@@ -106,7 +106,40 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
             ];
             L
         }
-        RoomType::Room | RoomType::Gym => {
+        RoomType::Gym => {
+            const L: &[Piece] = &[
+                p(C::MassageTable, 0.08, Wall, 12.0),
+                p(C::FireExtinguisher, 0.1, Wall, 0.0),
+            ];
+            L
+        }
+        RoomType::Pantry => {
+            const L: &[Piece] = &[
+                p(C::Ladder, 0.25, Wall, 0.0),
+                p(C::FireExtinguisher, 0.05, Wall, 0.0),
+            ];
+            L
+        }
+        RoomType::HomeTheater => {
+            const L: &[Piece] = &[
+                p(C::PopcornMachine, 0.6, Corner, 0.0),
+                p(C::FoosballTable, 0.1, Wall, 16.0),
+                p(C::Guitar, 0.08, Corner, 0.0),
+                p(C::DrumKit, 0.25, Corner, 0.0),
+            ];
+            L
+        }
+        RoomType::Library => {
+            const L: &[Piece] = &[
+                p(C::Ladder, 0.5, Wall, 0.0),
+                p(C::GrandfatherClock, 0.2, Wall, 0.0),
+                p(C::RockingChair, 0.15, Corner, 0.0),
+                p(C::Statue, 0.1, Corner, 12.0),
+                p(C::ChaiseLounge, 0.1, Wall, 12.0),
+            ];
+            L
+        }
+        RoomType::Room => {
             const L: &[Piece] = &[
                 p(C::PingPongTable, 0.35, Centre, 0.0),
                 p(C::PoolTable, 0.3, Centre, 0.0),

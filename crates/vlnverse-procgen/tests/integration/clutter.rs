@@ -107,6 +107,7 @@ fn closets_balconies_and_entrance_halls_open_where_they_belong() {
             let allowed: &[R] = match r.kind {
                 R::Closet => &[R::Bedroom, R::Hallway, R::EntranceHall],
                 R::Balcony => &[R::LivingRoom, R::Bedroom],
+                R::Pantry => &[R::Kitchen],
                 _ => continue,
             };
             let doors: Vec<_> = s.doors.iter().filter(|d| d.rooms.contains(&r.id)).collect();
@@ -143,7 +144,71 @@ fn closets_balconies_and_entrance_halls_open_where_they_belong() {
         R::EntranceHall,
         R::Office,
         R::LaundryRoom,
+        R::Pantry,
+        R::Gym,
+        R::HomeTheater,
+        R::Library,
     ] {
         assert!(seen.get(&k).copied().unwrap_or(0) >= 10, "{k:?}: {seen:?}");
     }
+}
+
+/// The room kinds issue 26 added hold what gives them their name: a gym its exercise machines,
+/// a pantry jars on its shelves, a home theater a projector screen with seats facing it, a
+/// library its bookcases. A room cut by several doorways may miss its row of seats; keep that
+/// rare.
+#[test]
+fn gyms_pantries_theaters_and_libraries_hold_their_things() {
+    let homes = vlnverse_homes();
+    let (mut rooms, mut short) = (0, Vec::new());
+    for s in &homes {
+        for r in &s.rooms {
+            let has = |c: C| {
+                s.items()
+                    .filter(|o| o.room == Some(r.id) && o.class == c)
+                    .count()
+            };
+            let ok = match r.kind {
+                R::Gym => has(C::Treadmill) + has(C::ExerciseBike) >= 1,
+                R::Pantry => has(C::ShelvingUnit) + has(C::KitchenCabinet) >= 1,
+                R::HomeTheater => has(C::ProjectorScreen) == 1 && has(C::Recliner) >= 1,
+                R::Library => has(C::Bookshelf) >= 2 && has(C::Armchair) >= 1,
+                _ => continue,
+            };
+            rooms += 1;
+            if !ok {
+                short.push(format!("{} {}", s.id, r.name));
+            }
+        }
+    }
+    assert!(rooms >= 60, "{rooms} rooms of the new kinds");
+    assert!(
+        short.len() * 10 <= rooms,
+        "{} of {rooms}: {short:?}",
+        short.len()
+    );
+    // Recliners in a home theater face its screen.
+    let mut facing = 0;
+    for s in &homes {
+        for r in s.rooms.iter().filter(|r| r.kind == R::HomeTheater) {
+            let inside = |o: &&vlnverse_env::SceneObject| o.room == Some(r.id);
+            let Some(screen) = s
+                .items()
+                .filter(inside)
+                .find(|o| o.class == C::ProjectorScreen)
+            else {
+                continue;
+            };
+            let sc = screen.bbox.center();
+            for seat in s.items().filter(inside).filter(|o| o.class == C::Recliner) {
+                // A model's front is its -Z: after the pose's yaw it points at the screen.
+                let fwd = seat.pose.quat() * glam::Vec3::NEG_Z;
+                let to = sc - seat.bbox.center();
+                if fwd.x * to.x + fwd.z * to.z > 0.0 {
+                    facing += 1;
+                }
+            }
+        }
+    }
+    assert!(facing >= 10, "{facing} recliners face a screen");
 }

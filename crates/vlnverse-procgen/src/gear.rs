@@ -1,0 +1,273 @@
+//! Models of the classes the gym, the pantry and the home theater brought (issue 26): a weight
+//! bench, a punching bag, a projector screen, a popcorn machine, a projector and a jar.
+//!
+//! Like every model (`models.rs`), each is built in its own frame with its front at -Z and its
+//! back (the side that goes to the wall) at +Z, and draws its colour from a finish list of its
+//! own, so that the colour word instructions use is the colour of its largest part.
+
+use crate::models::{bcube, cube, cyl, disc_z, front, r, turned, Model};
+use crate::palette::{f, shade, tone, Finish};
+use glam::Quat;
+use rand::seq::IndexedRandom;
+use rand_chacha::ChaCha8Rng;
+use std::f32::consts::FRAC_PI_2;
+use vlnverse_env::{SemanticClass as C, Shape};
+
+/// Gym padding and punching bags: the colours sports gear comes in.
+const PADDING: &[Finish] = &[
+    f("black", "leather", [0.04, 0.04, 0.04]),
+    f("red", "leather", [0.5, 0.05, 0.05]),
+    f("blue", "leather", [0.08, 0.16, 0.5]),
+    f("grey", "fabric", [0.3, 0.3, 0.32]),
+];
+/// A projector screen's surface: matt white or light grey.
+const SCREEN_CLOTH: &[Finish] = &[
+    f("white", "fabric", [0.9, 0.9, 0.88]),
+    f("white", "fabric", [0.86, 0.86, 0.86]),
+    f("grey", "fabric", [0.62, 0.62, 0.64]),
+];
+/// Popcorn machines are fairground red, now and then black or silver.
+const CART: &[Finish] = &[
+    f("red", "metal", [0.6, 0.05, 0.04]),
+    f("red", "metal", [0.6, 0.05, 0.04]),
+    f("black", "metal", [0.05, 0.05, 0.05]),
+    f("silver", "metal", [0.6, 0.6, 0.62]),
+];
+const PROJECTOR: &[Finish] = &[
+    f("white", "plastic", [0.88, 0.88, 0.88]),
+    f("black", "plastic", [0.04, 0.04, 0.04]),
+    f("grey", "plastic", [0.4, 0.4, 0.42]),
+];
+/// A jar's glass, named by what shows through it.
+const JAR: &[Finish] = &[
+    f("white", "glass", [0.8, 0.85, 0.85]),
+    f("brown", "glass", [0.3, 0.15, 0.05]),
+    f("green", "glass", [0.1, 0.4, 0.15]),
+    f("orange", "glass", [0.75, 0.32, 0.08]),
+    f("red", "glass", [0.55, 0.08, 0.06]),
+];
+/// Popcorn behind the machine's glass.
+const POPCORN: [f32; 3] = [0.92, 0.82, 0.45];
+
+/// Draw a finish from `list`, in one of its colour word's tones or its own.
+fn pick(list: &[Finish], rng: &mut ChaCha8Rng) -> Finish {
+    let fin = *list.choose(rng).unwrap_or(&list[0]);
+    crate::tones::toned(fin, rng)
+}
+
+/// The model of one of this module's classes; `None` for any other class.
+pub(crate) fn model(class: C, rng: &mut ChaCha8Rng) -> Option<Model> {
+    Some(match class {
+        C::WeightBench => weight_bench(rng),
+        C::PunchingBag => punching_bag(rng),
+        C::ProjectorScreen => projector_screen(rng),
+        C::PopcornMachine => popcorn_machine(rng),
+        C::Projector => projector(rng),
+        C::Jar => jar(rng),
+        _ => return None,
+    })
+}
+
+/// A padded bench on a steel frame, its head at the back under a rack with a loaded barbell.
+fn weight_bench(rng: &mut ChaCha8Rng) -> Model {
+    let fin = pick(PADDING, rng);
+    let c = fin.rgb;
+    let len = r(rng, 1.15, 1.3);
+    let bar = r(rng, 1.5, 1.7);
+    let mut p = Vec::new();
+    // Frame: a foot at each end and a spine under the pad.
+    cube(
+        &mut p,
+        0.0,
+        0.0,
+        -len * 0.5 + 0.05,
+        [0.5, 0.05, 0.08],
+        tone::METAL,
+    );
+    cube(
+        &mut p,
+        0.0,
+        0.0,
+        len * 0.5 - 0.05,
+        [0.6, 0.05, 0.08],
+        tone::METAL,
+    );
+    cube(&mut p, 0.0, 0.05, 0.0, [0.06, 0.32, len - 0.1], tone::METAL);
+    bcube(&mut p, 0.0, 0.37, -0.05, [0.3, 0.08, len - 0.15], 0.015, c);
+    // Two uprights with hooks at the head, and the bar across them.
+    let z = len * 0.5 - 0.1;
+    for sx in [-1.0, 1.0] {
+        cube(&mut p, sx * 0.27, 0.05, z, [0.05, 1.0, 0.05], tone::METAL);
+    }
+    let rod = Quat::from_rotation_z(FRAC_PI_2);
+    turned(
+        &mut p,
+        Shape::Cylinder {
+            radius: 0.015,
+            half_height: bar * 0.5,
+        },
+        [0.0, 1.0, z - 0.05],
+        rod,
+        tone::STEEL,
+    );
+    for sx in [-1.0, 1.0] {
+        turned(
+            &mut p,
+            Shape::Cylinder {
+                radius: 0.2,
+                half_height: 0.03,
+            },
+            [sx * (bar * 0.5 - 0.12), 1.0, z - 0.05],
+            rod,
+            tone::SOOT,
+        );
+    }
+    Model::new(C::WeightBench, fin, [bar, 1.2, len], 60.0, p)
+}
+
+/// A standing punching bag: a weighted round base and the bag on a short post.
+fn punching_bag(rng: &mut ChaCha8Rng) -> Model {
+    let fin = pick(PADDING, rng);
+    let c = fin.rgb;
+    let h = r(rng, 1.45, 1.7);
+    let mut p = Vec::new();
+    cyl(&mut p, 0.0, 0.0, 0.0, 0.3, 0.22, tone::SOOT);
+    cyl(&mut p, 0.0, 0.22, 0.0, 0.05, 0.2, tone::METAL);
+    cyl(&mut p, 0.0, 0.42, 0.0, 0.18, h - 0.46, c);
+    cyl(&mut p, 0.0, h - 0.04, 0.0, 0.15, 0.04, shade(c, 0.7));
+    Model::new(C::PunchingBag, fin, [0.6, h, 0.6], 35.0, p)
+}
+
+/// A wide screen on the wall: a black frame round a matt surface, its roller case on top. It
+/// hangs from the wall above a low piece of furniture, so its bottom edge is 0.6 to 0.8 m up.
+fn projector_screen(rng: &mut ChaCha8Rng) -> Model {
+    let fin = pick(SCREEN_CLOTH, rng);
+    let (w, h) = (r(rng, 1.8, 2.6), r(rng, 1.05, 1.35));
+    let y = r(rng, 0.6, 0.8);
+    let mut p = Vec::new();
+    // A thin black backing shows as a border round the surface (the surface is the largest
+    // part, so its colour is the one instructions name).
+    cube(&mut p, 0.0, y, 0.03, [w + 0.08, h + 0.08, 0.01], tone::SOOT);
+    cube(&mut p, 0.0, y + 0.04, 0.0, [w, h, 0.05], fin.rgb);
+    cube(
+        &mut p,
+        0.0,
+        y + h + 0.08,
+        0.0,
+        [w + 0.2, 0.09, 0.07],
+        tone::METAL,
+    );
+    Model::new(
+        C::ProjectorScreen,
+        fin,
+        [w + 0.2, y + h + 0.17, 0.09],
+        12.0,
+        p,
+    )
+}
+
+/// A popcorn cart: a cabinet on four wheels, a glass case full of popcorn and a roof.
+fn popcorn_machine(rng: &mut ChaCha8Rng) -> Model {
+    let fin = pick(CART, rng);
+    let c = fin.rgb;
+    let (w, d) = (r(rng, 0.5, 0.6), r(rng, 0.45, 0.5));
+    let mut p = Vec::new();
+    for sx in [-1.0, 1.0] {
+        for sz in [-1.0, 1.0] {
+            cyl(
+                &mut p,
+                sx * (w * 0.5 - 0.06),
+                0.0,
+                sz * (d * 0.5 - 0.06),
+                0.05,
+                0.1,
+                tone::SOOT,
+            );
+        }
+    }
+    bcube(&mut p, 0.0, 0.1, 0.0, [w, 0.7, d], 0.015, c);
+    front(
+        &mut p,
+        d,
+        [0.0, 0.3, -0.004],
+        [w * 0.6, 0.3, 0.008],
+        shade(c, 0.75),
+    );
+    // The glass case: corner posts, popcorn heaped in it, and a roof.
+    let case = 0.5;
+    for sx in [-1.0, 1.0] {
+        for sz in [-1.0, 1.0] {
+            cube(
+                &mut p,
+                sx * (w * 0.5 - 0.02),
+                0.8,
+                sz * (d * 0.5 - 0.02),
+                [0.03, case, 0.03],
+                c,
+            );
+        }
+    }
+    cube(&mut p, 0.0, 0.8, 0.0, [w - 0.04, 0.22, d - 0.04], POPCORN);
+    cube(
+        &mut p,
+        0.0,
+        1.02,
+        0.0,
+        [w - 0.04, case - 0.22, d - 0.04],
+        tone::GLASS,
+    );
+    bcube(
+        &mut p,
+        0.0,
+        0.8 + case,
+        0.0,
+        [w + 0.04, 0.1, d + 0.04],
+        0.02,
+        c,
+    );
+    Model::new(C::PopcornMachine, fin, [w + 0.04, 1.4, d + 0.04], 30.0, p)
+}
+
+/// A box projector with its round lens at the front.
+fn projector(rng: &mut ChaCha8Rng) -> Model {
+    let fin = pick(PROJECTOR, rng);
+    let mut p = Vec::new();
+    bcube(&mut p, 0.0, 0.0, 0.0, [0.3, 0.1, 0.24], 0.01, fin.rgb);
+    disc_z(&mut p, [0.08, 0.05, -0.125], 0.035, 0.02, tone::SCREEN);
+    Model::new(C::Projector, fin, [0.3, 0.1, 0.26], 3.0, p)
+}
+
+/// A glass storage jar with a lid.
+fn jar(rng: &mut ChaCha8Rng) -> Model {
+    let fin = pick(JAR, rng);
+    let (rad, h) = (r(rng, 0.045, 0.07), r(rng, 0.12, 0.22));
+    let mut p = Vec::new();
+    cyl(&mut p, 0.0, 0.0, 0.0, rad, h, fin.rgb);
+    cyl(&mut p, 0.0, h, 0.0, rad * 0.85, 0.03, tone::METAL);
+    Model::new(C::Jar, fin, [rad * 2.0, h + 0.03, rad * 2.0], 0.5, p)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::SeedableRng;
+
+    #[test]
+    fn every_class_builds_its_own_model_and_others_none() {
+        let mut rng = ChaCha8Rng::seed_from_u64(3);
+        for class in [
+            C::WeightBench,
+            C::PunchingBag,
+            C::ProjectorScreen,
+            C::PopcornMachine,
+            C::Projector,
+            C::Jar,
+        ] {
+            let m = model(class, &mut rng).expect("a model");
+            assert_eq!(m.class, class);
+            assert!(m.w > 0.05 && m.d > 0.05 && m.h > 0.05, "{class:?}");
+            assert!(m.h < 2.3, "{class:?} {}", m.h);
+        }
+        assert!(model(C::Sofa, &mut rng).is_none());
+    }
+}
