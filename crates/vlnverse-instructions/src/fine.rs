@@ -816,7 +816,7 @@ fn leg_sentences(route: &Route<'_, '_>, li: usize, draft: &mut Draft) {
     );
     out.extend(room_size_remark(route, entered, &mut draft.rng));
     // A room passed by its doorway is not the way: now and then said so.
-    if let Some(room) = passed_room.filter(|_| draft.rng.random_bool(0.4)) {
+    if let Some(room) = passed_room.filter(|_| draft.rng.random_bool(0.6)) {
         out.push(fill(
             pick(&mut draft.rng, &ph::NOT_INTO),
             &[("room", &room)],
@@ -1708,7 +1708,17 @@ fn plan_walk_on(
             cl.push(format!("{} {}", pick(rng, GO_ON), landmark_clause(m, rng)));
         } else {
             out.push(join(&cl, rng));
-            cl = vec![see_sentence(m, rng)];
+            // A sentence of its own after the first landmark: "You will also pass ...".
+            let also = !m.between && !m.group && m.side != Side::Ahead && rng.random_bool(0.3);
+            cl = vec![if also {
+                let sp = fill(pick(rng, &ph::SIDE), &[("dir", side_word(m.side))]);
+                fill(
+                    pick(rng, &ph::SEE_SIDE_ALSO),
+                    &[("obj", &m.text), ("side", &sp)],
+                )
+            } else {
+                see_sentence(m, rng)
+            }];
         }
     }
     cl.extend(changes);
@@ -1774,8 +1784,7 @@ fn room_size_remark(
     let (bank, n) = said[rng.random_range(0..said.len())];
     if bank == ph::ROOM_HAS {
         let (o, count) = several[rng.random_range(0..several.len())];
-        // The class's own name: a narrowed one ("loveseat") may not hold of every object.
-        let obj = plural(class_names(o.class)[0]);
+        let obj = plural(count_noun(scene, r.id, o, rng));
         let num = number_word(count as u32);
         return Some(fill(pick(rng, &bank), &[("num", &num), ("obj", &obj)]));
     }
@@ -1788,6 +1797,28 @@ fn room_size_remark(
         return Some(format!("{}, {shut}.", s.trim_end_matches('.')));
     }
     Some(s)
+}
+
+/// The noun to count the objects of `o`'s class in room `room` by: the class's own name, now
+/// and then another of its names that holds of every one of them ("couches"; not "loveseats"
+/// beside a sofa for three), one that takes a plain plural.
+fn count_noun(scene: &Scene, room: RoomId, o: &SceneObject, rng: &mut ChaCha8Rng) -> &'static str {
+    let plain = class_names(o.class)[0];
+    let mates: Vec<&SceneObject> = scene
+        .objects
+        .iter()
+        .filter(|x| x.class == o.class && x.room == Some(room))
+        .collect();
+    let others: Vec<&'static str> = object_names(o)
+        .into_iter()
+        .filter(|n| *n != plain && !n.contains(" of ") && !n.ends_with('s'))
+        .filter(|n| mates.iter().all(|x| object_names(x).contains(n)))
+        .collect();
+    if !others.is_empty() && rng.random_bool(0.3) {
+        pick(rng, &others)
+    } else {
+        plain
+    }
 }
 
 /// The kinds of furniture room `room` holds two to six of, each as one of its objects and the

@@ -222,6 +222,7 @@ banks! {
     NOT_INTO = not_into,
     STILL_IN = still_in,
     AFTER_LEAVING = after_leaving,
+    SEE_SIDE_ALSO = see_side_also,
 }
 
 /// A bank as written in the data file.

@@ -737,7 +737,7 @@ fn a_room_remark_gives_its_true_windows_and_floor() {
                     })
                     .map(|o| o.material.clone())
             };
-            for seed in 0..60 {
+            for seed in 0..90 {
                 let t = g.fine(&w.ctx(&s), seed).unwrap().instruction_text;
                 for sentence in sentences(&t) {
                     let sentence = sentence.to_lowercase();
