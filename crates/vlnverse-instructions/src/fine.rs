@@ -959,14 +959,13 @@ fn name_landmarks(route: &Route<'_, '_>, chosen: &[&Landmark], draft: &mut Draft
 }
 
 /// Two landmarks a leg within one room goes between: one on each side, passed within a metre
-/// of each other along the path, each within 1.5 m of it, of two classes (the closest pair).
+/// of each other along the path, each within 1.5 m of it (the closest pair).
 fn between_pair<'r>(route: &'r Route<'_, '_>, li: usize) -> Option<(&'r Landmark, &'r Landmark)> {
     // Only on a leg within one room: a clause after a room change would place them in the
     // room entered.
     if route.rooms_entered_on(li).next().is_some() {
         return None;
     }
-    let scene = route.ctx.scene;
     let end = route.end_obj.map(|o| o.id);
     let on_leg: Vec<&Landmark> = route
         .landmarks
@@ -974,12 +973,11 @@ fn between_pair<'r>(route: &'r Route<'_, '_>, li: usize) -> Option<(&'r Landmark
         .filter(|l| route.leg_of(l.path_index) == li && Some(l.object) != end)
         .filter(|l| l.distance < 1.5)
         .collect();
-    let class = |l: &Landmark| scene.object(l.object).map(|o| o.class);
     let mut best: Option<(f32, &Landmark, &Landmark)> = None;
     for a in on_leg.iter().filter(|l| env_side(l.side) == Side::Left) {
         for b in on_leg.iter().filter(|l| env_side(l.side) == Side::Right) {
             let gap = a.point.distance(b.point);
-            if gap < 1.0 && class(a) != class(b) && best.is_none_or(|(g, _, _)| gap < g) {
+            if gap < 1.0 && best.is_none_or(|(g, _, _)| gap < g) {
                 best = Some((gap, a, b));
             }
         }
@@ -987,28 +985,43 @@ fn between_pair<'r>(route: &'r Route<'_, '_>, li: usize) -> Option<(&'r Landmark
     best.map(|(_, a, b)| (a, b))
 }
 
-/// "the sofa and the coffee table": the pair a leg goes between, grounded, in path order.
+/// "the sofa and the coffee table", or "the two armchairs" for two of one class: the pair a leg
+/// goes between, grounded, in path order.
 fn name_between(route: &Route<'_, '_>, a: &Landmark, b: &Landmark, draft: &mut Draft) -> Named {
-    let mut texts = Vec::new();
-    for l in [a, b] {
-        if let Some(o) = route.ctx.scene.object(l.object) {
-            // Plain names, the colour only where the class alone is not enough.
-            let twins = route.ctx.graph.objects_of_class(o.class).len() > 1;
-            let colour = if twins && !o.color.is_empty() {
-                format!("{} ", o.color)
-            } else {
-                String::new()
-            };
-            texts.push(format!("the {colour}{}", object_names(o)[0]));
-            let side = Some(env_side(l.side));
-            draft
-                .grounding
-                .push(grounded(o, Role::Landmark, side, l.path_index));
+    let objs: Vec<(&SceneObject, &Landmark)> = [a, b]
+        .into_iter()
+        .filter_map(|l| Some((route.ctx.scene.object(l.object)?, l)))
+        .collect();
+    let text = match objs.as_slice() {
+        [(x, _), (y, _)] if x.class == y.class => {
+            format!("the two {}", plural(group_noun(&[x, y], &mut draft.rng)))
         }
+        _ => {
+            let texts: Vec<String> = objs
+                .iter()
+                .map(|(o, _)| {
+                    // Plain names, the colour only where the class alone is not enough.
+                    let twins = route.ctx.graph.objects_of_class(o.class).len() > 1;
+                    let colour = if twins && !o.color.is_empty() {
+                        format!("{} ", o.color)
+                    } else {
+                        String::new()
+                    };
+                    format!("the {colour}{}", object_names(o)[0])
+                })
+                .collect();
+            texts.join(" and ")
+        }
+    };
+    for (o, l) in &objs {
+        let side = Some(env_side(l.side));
+        draft
+            .grounding
+            .push(grounded(o, Role::Landmark, side, l.path_index));
     }
     draft.budget = draft.budget.saturating_sub(1);
     Named {
-        text: texts.join(" and "),
+        text,
         side: Side::Left,
         group: false,
         between: true,
@@ -1126,28 +1139,41 @@ fn group_mates<'r>(
     }
 }
 
-/// The plural naming a group of `o`'s class: its vocabulary name, now and then another of its
-/// names ("couches"), one that takes a plain plural (not "chest of drawers", "bookshelves",
-/// "pair of shoes").
-fn group_noun(o: &SceneObject, rng: &mut ChaCha8Rng) -> String {
-    let names = object_names(o);
-    let plain: Vec<&str> = names
+/// The noun a group of objects of one class goes by: the first name of `objs[0]` that holds of
+/// them all, now and then another such name ("couches"; "loveseats" only when each is a sofa
+/// for two), one that takes a plain plural (not "chest of drawers", "bookshelves", "pair of
+/// shoes").
+fn group_noun(objs: &[&SceneObject], rng: &mut ChaCha8Rng) -> &'static str {
+    let Some((first, rest)) = objs.split_first() else {
+        return "things";
+    };
+    let shared: Vec<&'static str> = object_names(first)
+        .into_iter()
+        .filter(|n| rest.iter().all(|x| object_names(x).contains(n)))
+        .collect();
+    let default = shared
+        .first()
+        .copied()
+        .unwrap_or(class_names(first.class)[0]);
+    let plain: Vec<&'static str> = shared
         .iter()
         .copied()
-        .filter(|n| !n.contains(" of ") && !n.ends_with('s'))
+        .filter(|n| *n != default && !n.contains(" of ") && !n.ends_with('s'))
         .collect();
-    let name = if plain.len() > 1 && rng.random_bool(0.3) {
+    if !plain.is_empty() && rng.random_bool(0.3) {
         pick(rng, &plain)
     } else {
-        names[0]
-    };
-    plural(name)
+        default
+    }
 }
 
 /// A group of objects of one class: "the two chairs", "the white chairs", "three stools",
 /// "some chairs".
 fn group_np(o: &SceneObject, mates: &[(&SceneObject, &Landmark)], rng: &mut ChaCha8Rng) -> String {
-    let noun = group_noun(o, rng);
+    let objs: Vec<&SceneObject> = std::iter::once(o)
+        .chain(mates.iter().map(|m| m.0))
+        .collect();
+    let noun = plural(group_noun(&objs, rng));
     let colour = mates
         .iter()
         .all(|(m, _)| m.color == o.color)
@@ -1799,26 +1825,17 @@ fn room_size_remark(
     Some(s)
 }
 
-/// The noun to count the objects of `o`'s class in room `room` by: the class's own name, now
-/// and then another of its names that holds of every one of them ("couches"; not "loveseats"
-/// beside a sofa for three), one that takes a plain plural.
+/// The noun to count the objects of `o`'s class in room `room` by ([`group_noun`] of them all,
+/// `o` first).
 fn count_noun(scene: &Scene, room: RoomId, o: &SceneObject, rng: &mut ChaCha8Rng) -> &'static str {
-    let plain = class_names(o.class)[0];
-    let mates: Vec<&SceneObject> = scene
-        .objects
-        .iter()
-        .filter(|x| x.class == o.class && x.room == Some(room))
-        .collect();
-    let others: Vec<&'static str> = object_names(o)
-        .into_iter()
-        .filter(|n| *n != plain && !n.contains(" of ") && !n.ends_with('s'))
-        .filter(|n| mates.iter().all(|x| object_names(x).contains(n)))
-        .collect();
-    if !others.is_empty() && rng.random_bool(0.3) {
-        pick(rng, &others)
-    } else {
-        plain
-    }
+    let mut mates: Vec<&SceneObject> = vec![o];
+    mates.extend(
+        scene
+            .objects
+            .iter()
+            .filter(|x| x.class == o.class && x.room == Some(room) && x.id != o.id),
+    );
+    group_noun(&mates, rng)
 }
 
 /// The kinds of furniture room `room` holds two to six of, each as one of its objects and the
@@ -2151,7 +2168,7 @@ mod tests {
             let o = SceneObject::from_parts(0, class, Pose::IDENTITY, Vec::new());
             let names = object_names(&o);
             for seed in 0..40 {
-                let noun = group_noun(&o, &mut ChaCha8Rng::seed_from_u64(seed));
+                let noun = plural(group_noun(&[&o], &mut ChaCha8Rng::seed_from_u64(seed)));
                 let from = names.iter().find(|n| plural(n) == noun);
                 let Some(n) = from else {
                     panic!("{class:?}: `{noun}` is the plural of none of {names:?}");
@@ -2166,6 +2183,25 @@ mod tests {
             }
         }
         assert!(by_synonym > 0, "never another name");
+    }
+
+    #[test]
+    fn a_group_noun_holds_of_every_object_in_it() {
+        use vlnverse_env::{Pose, SemanticClass as C};
+        let sofa = |features: Vec<String>| {
+            let mut o = SceneObject::from_parts(0, C::Sofa, Pose::IDENTITY, Vec::new());
+            o.features = features;
+            o
+        };
+        let (two, three) = (sofa(vec!["two seats".into()]), sofa(Vec::new()));
+        let (mut mixed, mut pair) = (0, 0);
+        for seed in 0..60 {
+            let mut rng = ChaCha8Rng::seed_from_u64(seed);
+            mixed += usize::from(group_noun(&[&two, &three], &mut rng) == "loveseat");
+            pair += usize::from(group_noun(&[&two, &two.clone()], &mut rng) == "loveseat");
+        }
+        assert_eq!(mixed, 0, "a sofa for three counted among loveseats");
+        assert!(pair > 0, "two sofas for two never called loveseats");
     }
 
     #[test]
