@@ -260,6 +260,11 @@ vocabulary! {
         Projector = (156, "projector", Small),
         PopcornMachine = (157, "popcorn_machine", Furniture),
         Jar = (158, "jar", Small),
+        WineRack = (159, "wine_rack", Furniture),
+        Lockers = (160, "lockers", Furniture),
+        ArcadeMachine = (161, "arcade_machine", Furniture),
+        Car = (162, "car", Furniture),
+        Workbench = (163, "workbench", Furniture),
     }
 }
 
@@ -299,6 +304,7 @@ vocabulary! {
         Pantry = (14, "pantry", Structure),
         HomeTheater = (15, "home_theater", Structure),
         Library = (16, "library", Structure),
+        Garage = (17, "garage", Structure),
     }
 }
 

@@ -94,6 +94,11 @@ pub fn class_defaults(class: SemanticClass) -> (f32, f32, &'static str) {
         C::Projector => (3.0, 0.5, "plastic"),
         C::PopcornMachine => (25.0, 0.5, "metal"),
         C::Jar => (0.5, 0.4, "glass"),
+        C::WineRack => (15.0, 0.5, "wood"),
+        C::Lockers => (40.0, 0.4, "metal"),
+        C::ArcadeMachine => (90.0, 0.5, "wood"),
+        C::Car => (1300.0, 0.8, "metal"),
+        C::Workbench => (40.0, 0.5, "wood"),
         C::Unknown => (10.0, 0.5, "unknown"),
     }
 }

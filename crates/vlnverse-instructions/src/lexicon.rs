@@ -249,6 +249,7 @@ pub fn room_names(kind: RoomType) -> &'static [&'static str] {
         RoomType::Pantry => &["pantry"],
         RoomType::HomeTheater => &["home theater", "media room", "movie room", "theater room"],
         RoomType::Library => &["library", "reading room"],
+        RoomType::Garage => &["garage"],
     }
 }
 

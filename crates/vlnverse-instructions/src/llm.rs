@@ -1510,7 +1510,7 @@ mod tests {
             "spaceship",
             "dragon",
             "submarine",
-            "car",
+            "volcano",
             "tree",
             "horse",
             "robe",

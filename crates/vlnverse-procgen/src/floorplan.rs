@@ -86,14 +86,15 @@ pub(crate) fn is_public(k: RoomType) -> bool {
 }
 
 /// Rooms that are only ever reached through one neighbour of the kinds given (a closet off a
-/// bedroom or hallway, a balcony off the living room or a bedroom, a pantry off the kitchen);
-/// `None` for other rooms.
+/// bedroom or hallway, a balcony off the living room or a bedroom, a pantry off the kitchen, a
+/// garage off the kitchen, a hall or the laundry room); `None` for other rooms.
 fn leaf_of(k: RoomType) -> Option<&'static [RoomType]> {
     use RoomType as R;
     match k {
         R::Closet => Some(&[R::Bedroom, R::Hallway, R::EntranceHall]),
         R::Balcony => Some(&[R::LivingRoom, R::Bedroom]),
         R::Pantry => Some(&[R::Kitchen]),
+        R::Garage => Some(&[R::Kitchen, R::Hallway, R::EntranceHall, R::LaundryRoom]),
         _ => None,
     }
 }
@@ -109,7 +110,7 @@ pub(crate) fn may_join(a: RoomType, b: RoomType) -> bool {
 fn zone(k: RoomType) -> u8 {
     match k {
         RoomType::LivingRoom | RoomType::Kitchen | RoomType::DiningRoom | RoomType::Pantry => 0,
-        RoomType::Hallway | RoomType::EntranceHall => 1,
+        RoomType::Hallway | RoomType::EntranceHall | RoomType::Garage => 1,
         _ => 2,
     }
 }
@@ -299,8 +300,10 @@ fn hub_weight(k: RoomType) -> f32 {
         | RoomType::LaundryRoom
         | RoomType::Closet
         | RoomType::Balcony
-        | RoomType::Pantry => 0.03,
-        RoomType::Bedroom => 0.15,
+        | RoomType::Pantry
+        | RoomType::Garage => 0.03,
+        // Rooms kept for one use: reached, rarely walked through.
+        RoomType::Bedroom | RoomType::Gym | RoomType::HomeTheater | RoomType::Library => 0.15,
         _ => 0.5,
     }
 }
@@ -344,8 +347,9 @@ fn try_layout(
     let min_len = d.width_min + 2.0 * (d.frame_width + d.corner_margin) + cfg.walls.thickness;
     let mut shared = shared_walls(&rects, min_len);
     shared.retain(|s| may_join(list[s.a].0, list[s.b].0));
-    // Leaf rooms (closets, balconies) must hang off an allowed neighbour, and the other rooms
-    // must connect without passing through one; a balcony also needs an outside wall.
+    // Leaf rooms (closets, balconies, pantries, garages) must hang off an allowed neighbour,
+    // and the other rooms must connect without passing through one; a balcony and a garage
+    // also need an outside wall.
     let inner: Vec<Shared> = shared
         .iter()
         .filter(|s| leaf_of(list[s.a].0).is_none() && leaf_of(list[s.b].0).is_none())
@@ -359,7 +363,8 @@ fn try_layout(
         if is_leaf[i] && !shared.iter().any(|s| s.a == i || s.b == i) {
             return None;
         }
-        if *k == RoomType::Balcony && !touches_outside(&rects[i], &footprint) {
+        let outdoor = matches!(k, RoomType::Balcony | RoomType::Garage);
+        if outdoor && !touches_outside(&rects[i], &footprint) {
             return None;
         }
     }

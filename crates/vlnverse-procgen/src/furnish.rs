@@ -975,6 +975,19 @@ fn recipe(
                 out.push(vec![Group::one(r, Mode::Center)]);
             }
         }
+        RoomType::Garage => {
+            let car = models::clutter(C::Car, rng);
+            out.push(vec![wall(car.clone()), Group::one(car, Mode::Center)]);
+            if maybe(cfg, rng, 0.8) {
+                out.push(vec![wall(models::clutter(C::Workbench, rng))]);
+            }
+            if maybe(cfg, rng, 0.7) {
+                out.push(vec![wall(models::clutter(C::ShelvingUnit, rng))]);
+            }
+            if maybe(cfg, rng, 0.5) {
+                out.push(vec![corner(models::trash_can(rng))]);
+            }
+        }
         _ => {
             for (p, f) in [
                 (0.6, models::cabinet as fn(&mut ChaCha8Rng) -> Model),
@@ -1125,6 +1138,12 @@ fn clutter_recipe(cfg: &ProcgenConfig, kind: RoomType, rng: &mut ChaCha8Rng) -> 
             (C::Radiator, 0.2, W),
             (C::Box, 0.1, K),
         ],
+        R::Garage => &[
+            (C::Box, 0.5, K),
+            (C::Box, 0.3, K),
+            (C::Bicycle, 0.3, W),
+            (C::WallShelf, 0.3, W),
+        ],
         R::Library => &[
             (C::WallShelf, 0.4, W),
             (C::Ottoman, 0.3, W),
@@ -1214,6 +1233,7 @@ fn small_choices(support: C, room: RoomType) -> &'static [C] {
             C::FruitBowl,
             C::Teapot,
         ],
+        (C::ShelvingUnit | C::WallShelf, RoomType::Garage) => &[C::Basket, C::Bottle, C::Pot],
         (C::SideTable | C::Cabinet, RoomType::HomeTheater) => &[
             C::Projector,
             C::Remote,

@@ -1,5 +1,6 @@
-//! Models of the classes the gym, the pantry and the home theater brought (issue 26): a weight
-//! bench, a punching bag, a projector screen, a popcorn machine, a projector and a jar.
+//! Models of the classes the gym, the pantry, the home theater and the garage brought (issue
+//! 26): a weight bench, a punching bag, a projector screen, a popcorn machine, a projector, a
+//! jar, a wine rack, lockers, an arcade machine, a car and a workbench.
 //!
 //! Like every model (`models.rs`), each is built in its own frame with its front at -Z and its
 //! back (the side that goes to the wall) at +Z, and draws its colour from a finish list of its
@@ -46,6 +47,46 @@ const JAR: &[Finish] = &[
     f("orange", "glass", [0.75, 0.32, 0.08]),
     f("red", "glass", [0.55, 0.08, 0.06]),
 ];
+/// Wood of wine racks and workbench tops.
+const RACK_WOOD: &[Finish] = &[
+    f("wooden", "wood", [0.45, 0.27, 0.13]),
+    f("brown", "wood", [0.26, 0.15, 0.07]),
+    f("black", "wood", [0.05, 0.05, 0.05]),
+    f("white", "wood", [0.85, 0.85, 0.82]),
+];
+/// Painted steel of lockers.
+const LOCKER: &[Finish] = &[
+    f("grey", "metal", [0.4, 0.42, 0.44]),
+    f("blue", "metal", [0.1, 0.22, 0.5]),
+    f("red", "metal", [0.55, 0.07, 0.05]),
+    f("green", "metal", [0.14, 0.36, 0.18]),
+    f("white", "metal", [0.86, 0.86, 0.86]),
+];
+/// Arcade cabinets: black, or a loud colour.
+const ARCADE: &[Finish] = &[
+    f("black", "wood", [0.04, 0.04, 0.05]),
+    f("red", "wood", [0.55, 0.05, 0.05]),
+    f("blue", "wood", [0.08, 0.16, 0.5]),
+    f("yellow", "wood", [0.85, 0.68, 0.08]),
+];
+/// Car paint.
+const PAINT: &[Finish] = &[
+    f("red", "metal", [0.55, 0.04, 0.03]),
+    f("blue", "metal", [0.06, 0.16, 0.45]),
+    f("silver", "metal", [0.6, 0.6, 0.62]),
+    f("black", "metal", [0.04, 0.04, 0.04]),
+    f("white", "metal", [0.88, 0.88, 0.88]),
+    f("grey", "metal", [0.32, 0.33, 0.35]),
+];
+/// Wine bottles seen end on.
+const BOTTLE_ENDS: [[f32; 3]; 3] = [[0.06, 0.2, 0.08], [0.25, 0.05, 0.06], [0.04, 0.1, 0.05]];
+/// Tools hanging on a workbench's board.
+const TOOLS: [[f32; 3]; 4] = [
+    [0.6, 0.06, 0.04],
+    [0.85, 0.6, 0.05],
+    [0.1, 0.25, 0.6],
+    [0.12, 0.12, 0.13],
+];
 /// Popcorn behind the machine's glass.
 const POPCORN: [f32; 3] = [0.92, 0.82, 0.45];
 
@@ -64,6 +105,11 @@ pub(crate) fn model(class: C, rng: &mut ChaCha8Rng) -> Option<Model> {
         C::PopcornMachine => popcorn_machine(rng),
         C::Projector => projector(rng),
         C::Jar => jar(rng),
+        C::WineRack => wine_rack(rng),
+        C::Lockers => lockers(rng),
+        C::ArcadeMachine => arcade_machine(rng),
+        C::Car => car(rng),
+        C::Workbench => workbench(rng),
         _ => return None,
     })
 }
@@ -247,6 +293,214 @@ fn jar(rng: &mut ChaCha8Rng) -> Model {
     Model::new(C::Jar, fin, [rad * 2.0, h + 0.03, rad * 2.0], 0.5, p)
 }
 
+/// A wooden rack of square cells, most holding a bottle seen end on.
+fn wine_rack(rng: &mut ChaCha8Rng) -> Model {
+    let fin = pick(RACK_WOOD, rng);
+    let c = fin.rgb;
+    let (cols, rows) = (if r(rng, 0.0, 1.0) < 0.5 { 4 } else { 5 }, 4);
+    let cell = 0.16;
+    let (w, h, d) = (cols as f32 * cell + 0.04, rows as f32 * cell + 0.14, 0.32);
+    let mut p = Vec::new();
+    // Back panel and frame: the largest part is the wood the rack is named by.
+    cube(&mut p, 0.0, 0.0, d * 0.5 - 0.02, [w, h, 0.04], c);
+    for sx in [-1.0, 1.0] {
+        cube(&mut p, sx * (w - 0.02) * 0.5, 0.0, 0.0, [0.02, h, d], c);
+    }
+    for k in 0..=rows {
+        let y = 0.1 + k as f32 * cell;
+        cube(&mut p, 0.0, y - 0.02, 0.0, [w, 0.02, d], c);
+    }
+    for row in 0..rows {
+        for col in 0..cols {
+            if (row * 7 + col * 3) % 5 == 4 {
+                continue;
+            }
+            let x = -w * 0.5 + 0.02 + (col as f32 + 0.5) * cell;
+            let y = 0.1 + row as f32 * cell + 0.03;
+            let glass = BOTTLE_ENDS[(row + col) % BOTTLE_ENDS.len()];
+            cube(&mut p, x, y, -0.02, [0.08, 0.08, d - 0.1], glass);
+        }
+    }
+    Model::new(C::WineRack, fin, [w, h, d], 15.0, p)
+}
+
+/// A bank of two to four tall steel lockers, each door with vent slits and a handle.
+fn lockers(rng: &mut ChaCha8Rng) -> Model {
+    let fin = pick(LOCKER, rng);
+    let c = fin.rgb;
+    let n = if r(rng, 0.0, 1.0) < 0.5 { 3 } else { 2 };
+    let (lw, h, d) = (0.38, r(rng, 1.7, 1.85), 0.45);
+    let w = n as f32 * lw;
+    let mut p = Vec::new();
+    bcube(&mut p, 0.0, 0.0, 0.0, [w, h, d], 0.01, c);
+    let dark = shade(c, 0.6);
+    for k in 0..n {
+        let x = -w * 0.5 + (k as f32 + 0.5) * lw;
+        if k + 1 < n {
+            // The seam between this door and the next.
+            let seam = [x + lw * 0.5, 0.08, -0.003];
+            front(&mut p, d, seam, [0.012, h - 0.12, 0.006], dark);
+        }
+        for v in 0..3 {
+            let y = h - 0.25 + v as f32 * 0.05;
+            front(&mut p, d, [x, y, -0.004], [lw * 0.5, 0.015, 0.008], dark);
+        }
+        front(
+            &mut p,
+            d,
+            [x + lw * 0.3, h * 0.5, -0.012],
+            [0.03, 0.1, 0.02],
+            tone::STEEL,
+        );
+    }
+    Model::new(C::Lockers, fin, [w, h, d], 40.0, p)
+}
+
+/// An upright arcade cabinet: a screen tilted back in the top, a control panel with a stick
+/// and buttons, a lit marquee.
+fn arcade_machine(rng: &mut ChaCha8Rng) -> Model {
+    let fin = pick(ARCADE, rng);
+    let c = fin.rgb;
+    let (w, h, d) = (r(rng, 0.6, 0.7), r(rng, 1.7, 1.85), 0.75);
+    let mut p = Vec::new();
+    bcube(&mut p, 0.0, 0.0, 0.1, [w, h, d - 0.2], 0.015, c);
+    // Control panel sticking out at the front.
+    bcube(&mut p, 0.0, 0.85, -0.3, [w, 0.12, 0.2], 0.01, shade(c, 0.8));
+    cyl(&mut p, -0.12, 0.97, -0.3, 0.015, 0.08, tone::SOOT);
+    for (k, col) in [tone::FRUIT_RED, tone::FRUIT_YELLOW, [0.1, 0.3, 0.8]]
+        .into_iter()
+        .enumerate()
+    {
+        cyl(&mut p, 0.02 + k as f32 * 0.07, 0.97, -0.3, 0.02, 0.015, col);
+    }
+    // Screen and marquee on the body's front face.
+    let face = 0.1 - (d - 0.2) * 0.5 - 0.006;
+    cube(
+        &mut p,
+        0.0,
+        1.03,
+        face,
+        [w * 0.8, 0.45, 0.012],
+        tone::SCREEN,
+    );
+    cube(
+        &mut p,
+        0.0,
+        h - 0.2,
+        face,
+        [w * 0.85, 0.14, 0.012],
+        tone::FRUIT_YELLOW,
+    );
+    Model::new(C::ArcadeMachine, fin, [w, h, d], 90.0, p)
+}
+
+/// A car seen as people draw one: a body on four wheels, a cabin with dark windows, lights
+/// at both ends. Its front faces -Z.
+fn car(rng: &mut ChaCha8Rng) -> Model {
+    let fin = pick(PAINT, rng);
+    let c = fin.rgb;
+    let (w, len) = (r(rng, 1.7, 1.85), r(rng, 3.9, 4.5));
+    let mut p = Vec::new();
+    bcube(&mut p, 0.0, 0.25, 0.0, [w, 0.6, len], 0.08, c);
+    let cabin = len * 0.5;
+    bcube(
+        &mut p,
+        0.0,
+        0.85,
+        0.1,
+        [w - 0.16, 0.55, cabin],
+        0.08,
+        shade(c, 0.95),
+    );
+    // Windows: a band along both sides, the windscreen and the rear window.
+    cube(
+        &mut p,
+        0.0,
+        0.9,
+        0.1,
+        [w - 0.12, 0.4, cabin - 0.3],
+        tone::SCREEN,
+    );
+    cube(
+        &mut p,
+        0.0,
+        0.9,
+        0.1,
+        [w - 0.3, 0.4, cabin + 0.02],
+        tone::SCREEN,
+    );
+    let wheel = Quat::from_rotation_z(FRAC_PI_2);
+    for sx in [-1.0, 1.0] {
+        for sz in [-1.0, 1.0] {
+            turned(
+                &mut p,
+                Shape::Cylinder {
+                    radius: 0.31,
+                    half_height: 0.1,
+                },
+                [sx * (w * 0.5 - 0.08), 0.31, sz * (len * 0.5 - 0.75)],
+                wheel,
+                tone::SOOT,
+            );
+        }
+        front(
+            &mut p,
+            len,
+            [sx * (w * 0.5 - 0.25), 0.6, -0.005],
+            [0.3, 0.1, 0.01],
+            tone::WHITE,
+        );
+        cube(
+            &mut p,
+            sx * (w * 0.5 - 0.25),
+            0.6,
+            len * 0.5 - 0.005,
+            [0.3, 0.1, 0.01],
+            tone::FRUIT_RED,
+        );
+    }
+    Model::new(C::Car, fin, [w, 1.4, len], 1300.0, p)
+}
+
+/// A workbench: a thick wooden top on steel legs with a shelf below, and a board of tools on
+/// the wall behind it.
+fn workbench(rng: &mut ChaCha8Rng) -> Model {
+    let fin = pick(RACK_WOOD, rng);
+    let c = fin.rgb;
+    let (w, d) = (r(rng, 1.4, 2.0), r(rng, 0.6, 0.75));
+    let h = 0.9;
+    let mut p = Vec::new();
+    for sx in [-1.0, 1.0] {
+        for sz in [-1.0, 1.0] {
+            cube(
+                &mut p,
+                sx * (w * 0.5 - 0.05),
+                0.0,
+                sz * (d * 0.5 - 0.05),
+                [0.05, h - 0.06, 0.05],
+                tone::METAL,
+            );
+        }
+    }
+    bcube(&mut p, 0.0, h - 0.06, 0.0, [w, 0.06, d], 0.01, c);
+    cube(
+        &mut p,
+        0.0,
+        0.15,
+        0.0,
+        [w - 0.1, 0.03, d - 0.1],
+        shade(c, 0.8),
+    );
+    // The tool board, standing on the back edge of the top.
+    let board = [w - 0.1, 0.7, 0.02];
+    cube(&mut p, 0.0, h, d * 0.5 - 0.02, board, tone::LINEN);
+    for (k, col) in TOOLS.into_iter().enumerate() {
+        let x = -w * 0.35 + k as f32 * w * 0.22;
+        cube(&mut p, x, h + 0.3, d * 0.5 - 0.045, [0.06, 0.3, 0.03], col);
+    }
+    Model::new(C::Workbench, fin, [w, h + 0.8, d], 45.0, p)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -262,11 +516,22 @@ mod tests {
             C::PopcornMachine,
             C::Projector,
             C::Jar,
+            C::WineRack,
+            C::Lockers,
+            C::ArcadeMachine,
+            C::Car,
+            C::Workbench,
         ] {
             let m = model(class, &mut rng).expect("a model");
             assert_eq!(m.class, class);
             assert!(m.w > 0.05 && m.d > 0.05 && m.h > 0.05, "{class:?}");
-            assert!(m.h < 2.3, "{class:?} {}", m.h);
+            assert!(
+                m.h < 2.3 && m.w < 2.9 && m.d < 4.8,
+                "{class:?} {} {} {}",
+                m.w,
+                m.h,
+                m.d
+            );
         }
         assert!(model(C::Sofa, &mut rng).is_none());
     }

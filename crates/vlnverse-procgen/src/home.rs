@@ -146,8 +146,14 @@ fn floor_finish(kind: RoomType, rng: &mut ChaCha8Rng) -> Finish {
         f("grey", "tile", [0.5, 0.5, 0.52]),
         f("beige", "tile", [0.75, 0.7, 0.6]),
     ];
+    // A garage's bare concrete.
+    const CONCRETE: &[Finish] = &[
+        f("grey", "stone", [0.42, 0.42, 0.43]),
+        f("grey", "stone", [0.55, 0.55, 0.54]),
+    ];
     let list = match kind {
-        RoomType::Kitchen | RoomType::Bathroom | RoomType::LaundryRoom => TILE,
+        RoomType::Kitchen | RoomType::Bathroom | RoomType::LaundryRoom | RoomType::Pantry => TILE,
+        RoomType::Garage => CONCRETE,
         _ => WOOD,
     };
     *list.choose(rng).unwrap_or(&list[0])

@@ -64,6 +64,8 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::ChaiseLounge, 0.06, Wall, 0.0),
                 p(C::Cactus, 0.08, Corner, 0.0),
                 p(C::Urn, 0.05, Corner, 0.0),
+                p(C::WineRack, 0.06, Wall, 0.0),
+                p(C::ArcadeMachine, 0.04, Wall, 24.0),
             ];
             L
         }
@@ -71,6 +73,7 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
             const L: &[Piece] = &[
                 p(C::KitchenIsland, 0.55, Centre, 11.0),
                 p(C::FireExtinguisher, 0.2, Wall, 0.0),
+                p(C::WineRack, 0.15, Wall, 0.0),
             ];
             L
         }
@@ -81,6 +84,7 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::Statue, 0.06, Corner, 14.0),
                 p(C::Chandelier, 0.45, Centre, 0.0),
                 p(C::Column, 0.05, Centre, 18.0),
+                p(C::WineRack, 0.3, Wall, 0.0),
             ];
             L
         }
@@ -103,6 +107,7 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::FoosballTable, 0.08, Wall, 9.0),
                 p(C::MassageTable, 0.05, Wall, 9.0),
                 p(C::Cactus, 0.1, Corner, 0.0),
+                p(C::ArcadeMachine, 0.04, Wall, 0.0),
             ];
             L
         }
@@ -110,6 +115,7 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
             const L: &[Piece] = &[
                 p(C::MassageTable, 0.08, Wall, 12.0),
                 p(C::FireExtinguisher, 0.1, Wall, 0.0),
+                p(C::Lockers, 0.4, Wall, 0.0),
             ];
             L
         }
@@ -117,6 +123,7 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
             const L: &[Piece] = &[
                 p(C::Ladder, 0.25, Wall, 0.0),
                 p(C::FireExtinguisher, 0.05, Wall, 0.0),
+                p(C::WineRack, 0.4, Wall, 0.0),
             ];
             L
         }
@@ -126,6 +133,8 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::FoosballTable, 0.1, Wall, 16.0),
                 p(C::Guitar, 0.08, Corner, 0.0),
                 p(C::DrumKit, 0.25, Corner, 0.0),
+                p(C::ArcadeMachine, 0.35, Wall, 0.0),
+                p(C::WineRack, 0.1, Wall, 0.0),
             ];
             L
         }
@@ -139,6 +148,15 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
             ];
             L
         }
+        RoomType::Garage => {
+            const L: &[Piece] = &[
+                p(C::Ladder, 0.4, Wall, 0.0),
+                p(C::Lockers, 0.3, Wall, 0.0),
+                p(C::FireExtinguisher, 0.3, Wall, 0.0),
+                p(C::Grill, 0.15, Wall, 0.0),
+            ];
+            L
+        }
         RoomType::Room => {
             const L: &[Piece] = &[
                 p(C::PingPongTable, 0.35, Centre, 0.0),
@@ -147,6 +165,7 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::DrumKit, 0.15, Corner, 0.0),
                 p(C::Easel, 0.15, Corner, 0.0),
                 p(C::MassageTable, 0.15, Wall, 0.0),
+                p(C::ArcadeMachine, 0.3, Wall, 0.0),
             ];
             L
         }
@@ -167,6 +186,7 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::GrandfatherClock, 0.1, Wall, 0.0),
                 p(C::Urn, 0.15, Corner, 0.0),
                 p(C::Cactus, 0.06, Corner, 0.0),
+                p(C::Lockers, 0.12, Wall, 0.0),
             ];
             L
         }
@@ -175,6 +195,7 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::Dryer, 0.7, Wall, 0.0),
                 p(C::Ladder, 0.3, Wall, 0.0),
                 p(C::FireExtinguisher, 0.1, Wall, 0.0),
+                p(C::Lockers, 0.12, Wall, 0.0),
             ];
             L
         }

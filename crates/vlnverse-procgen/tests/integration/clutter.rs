@@ -1,6 +1,7 @@
-//! Clutter and the added room kinds (issue 30): how many classes and objects the `vlnverse`
-//! preset holds, where small objects and floor clutter stand, and where closets, balconies and
-//! entrance halls open.
+//! Clutter and the added room kinds (issues 30 and 26): how many classes and objects the
+//! `vlnverse` preset holds, where small objects and floor clutter stand, where closets,
+//! balconies, entrance halls, pantries and garages open, and what the gyms, pantries, home
+//! theaters, libraries and garages hold.
 
 use rayon::prelude::*;
 use std::collections::{BTreeMap, BTreeSet};
@@ -108,6 +109,7 @@ fn closets_balconies_and_entrance_halls_open_where_they_belong() {
                 R::Closet => &[R::Bedroom, R::Hallway, R::EntranceHall],
                 R::Balcony => &[R::LivingRoom, R::Bedroom],
                 R::Pantry => &[R::Kitchen],
+                R::Garage => &[R::Kitchen, R::Hallway, R::EntranceHall, R::LaundryRoom],
                 _ => continue,
             };
             let doors: Vec<_> = s.doors.iter().filter(|d| d.rooms.contains(&r.id)).collect();
@@ -127,7 +129,7 @@ fn closets_balconies_and_entrance_halls_open_where_they_belong() {
                 s.id,
                 r.name
             );
-            if r.kind == R::Balcony {
+            if matches!(r.kind, R::Balcony | R::Garage) {
                 let on_edge = r.polygon.iter().any(|p| {
                     (p[0] - x0).abs() < 0.1
                         || (p[0] - x1).abs() < 0.1
@@ -148,17 +150,18 @@ fn closets_balconies_and_entrance_halls_open_where_they_belong() {
         R::Gym,
         R::HomeTheater,
         R::Library,
+        R::Garage,
     ] {
         assert!(seen.get(&k).copied().unwrap_or(0) >= 10, "{k:?}: {seen:?}");
     }
 }
 
 /// The room kinds issue 26 added hold what gives them their name: a gym its exercise machines,
-/// a pantry jars on its shelves, a home theater a projector screen with seats facing it, a
-/// library its bookcases. A room cut by several doorways may miss its row of seats; keep that
-/// rare.
+/// a pantry its shelves, a home theater a projector screen with seats facing it, a library its
+/// bookcases and a reading chair, a garage its car. A room cut by several doorways may miss
+/// its row of seats; keep that rare.
 #[test]
-fn gyms_pantries_theaters_and_libraries_hold_their_things() {
+fn gyms_pantries_theaters_libraries_and_garages_hold_their_things() {
     let homes = vlnverse_homes();
     let (mut rooms, mut short) = (0, Vec::new());
     for s in &homes {
@@ -173,6 +176,7 @@ fn gyms_pantries_theaters_and_libraries_hold_their_things() {
                 R::Pantry => has(C::ShelvingUnit) + has(C::KitchenCabinet) >= 1,
                 R::HomeTheater => has(C::ProjectorScreen) == 1 && has(C::Recliner) >= 1,
                 R::Library => has(C::Bookshelf) >= 2 && has(C::Armchair) >= 1,
+                R::Garage => has(C::Car) == 1,
                 _ => continue,
             };
             rooms += 1;

@@ -6,7 +6,7 @@ use std::collections::BTreeSet;
 use vlnverse_env::{ClassKind, RoomType, Scene, SemanticClass as C};
 use vlnverse_procgen::{scene_seed, HomeGenerator, Preset};
 
-const PIECES: [C; 27] = [
+const PIECES: [C; 30] = [
     C::Recliner,
     C::RockingChair,
     C::PoolTable,
@@ -34,6 +34,9 @@ const PIECES: [C; 27] = [
     C::Urn,
     C::Lounger,
     C::PopcornMachine,
+    C::WineRack,
+    C::Lockers,
+    C::ArcadeMachine,
 ];
 
 /// Whether `o` was placed by the pieces stage: a piece class, but not a recliner of a home
