@@ -250,9 +250,17 @@ struct CoarseParts {
     remark: String,
 }
 
-/// "the " and a mention's words.
-fn mention_words(m: &Mention) -> String {
-    format!("the {}", m.words())
+/// "the " and a mention's words: its colour, if any, and its class's vocabulary name or, now and
+/// then, another name of the object ("the shelf" for the wall shelf), as for the target.
+fn mention_words(ctx: &PathContext<'_>, m: &Mention, rng: &mut ChaCha8Rng) -> String {
+    let name = match ctx.scene.object(m.object) {
+        Some(o) => other_name(o, 0.3, rng),
+        None => m.class.words(),
+    };
+    match &m.color {
+        Some(c) => format!("the {c} {name}"),
+        None => format!("the {name}"),
+    }
 }
 
 /// How often a coarse target goes by another of its names ("the couch", "the refrigerator")
@@ -268,12 +276,17 @@ fn coarse_synonym(style: Style) -> f64 {
 /// then another name people use for it (one true of this object: "loveseat" only for a sofa
 /// for two).
 fn coarse_name(o: &SceneObject, style: Style, rng: &mut ChaCha8Rng) -> String {
+    other_name(o, coarse_synonym(style), rng)
+}
+
+/// The class's vocabulary name of `o`, or with probability `p` another of the object's names.
+fn other_name(o: &SceneObject, p: f64, rng: &mut ChaCha8Rng) -> String {
     let plain = o.class.words();
     let others: Vec<&str> = object_names(o)
         .into_iter()
         .filter(|n| *n != plain)
         .collect();
-    if !others.is_empty() && rng.random_bool(coarse_synonym(style)) {
+    if !others.is_empty() && rng.random_bool(p) {
         pick(rng, &others).to_string()
     } else {
         plain
@@ -333,7 +346,10 @@ fn coarse_relations(
     let sup = expr
         .support
         .as_ref()
-        .map(|m| fill(pick(rng, &sup_bank), &[("obj", &mention_words(m))]))
+        .map(|m| {
+            let obj = mention_words(ctx, m, rng);
+            fill(pick(rng, &sup_bank), &[("obj", &obj)])
+        })
         .unwrap_or_default();
     let rel = match (&expr.reference, expr.relation) {
         (Some(m), Some(r)) => {
@@ -344,7 +360,8 @@ fn coarse_relations(
             } else {
                 near_bank
             };
-            fill(pick(rng, &bank), &[("obj", &mention_words(m))])
+            let obj = mention_words(ctx, m, rng);
+            fill(pick(rng, &bank), &[("obj", &obj)])
         }
         _ => String::new(),
     };

@@ -294,11 +294,16 @@ fn coarse_descriptions_pick_out_exactly_the_target() {
                 if let Some(c) = &expr.color {
                     assert!(names.iter().any(|n| t.contains(&format!("{c} {n}"))), "{t}");
                 }
-                if let Some(m) = &expr.support {
-                    assert!(t.contains(&m.words()), "{t}");
-                }
-                if let Some(m) = &expr.reference {
-                    assert!(t.contains(&m.words()), "{t}");
+                // Support and reference by their colour and any of their names.
+                for m in expr.support.iter().chain(&expr.reference) {
+                    let o = w.scene.object(m.object).unwrap();
+                    let said = vlnverse_instructions::lexicon::object_names(o)
+                        .iter()
+                        .any(|n| match &m.color {
+                            Some(c) => t.contains(&format!("{c} {n}")),
+                            None => t.contains(n),
+                        });
+                    assert!(said, "{t}");
                 }
                 if let Some(r) = &expr.room {
                     assert!(t.contains(&r.kind.words()), "{t}");
