@@ -107,6 +107,18 @@ impl<T> ByteLru<T> {
         self.evict();
     }
 
+    /// Measure every entry again with `bytes` (for values that grow after they were kept,
+    /// such as a prepared scene unpacking its face textures as views draw them), dropping the
+    /// least recently used entries past the budget.
+    pub fn remeasure(&mut self, bytes: impl Fn(&T) -> usize) {
+        self.used = 0;
+        for e in &mut self.entries {
+            e.2 = bytes(&e.1);
+            self.used += e.2;
+        }
+        self.evict();
+    }
+
     /// Number of entries.
     pub fn len(&self) -> usize {
         self.entries.len()
@@ -202,6 +214,19 @@ mod tests {
         let mut none = ByteLru::new(0);
         none.insert(1, Arc::new(1), 1);
         assert!(none.is_empty());
+    }
+
+    #[test]
+    fn remeasured_entries_that_grew_push_the_oldest_out() {
+        use std::sync::atomic::{AtomicUsize, Ordering};
+        let mut c = ByteLru::new(10);
+        for k in 1..=3 {
+            c.insert(k, Arc::new(AtomicUsize::new(3)), 3);
+        }
+        c.get(1).unwrap().store(5, Ordering::Relaxed); // 1 grew, and is the most recent
+        c.remeasure(|v| v.load(Ordering::Relaxed));
+        assert!(c.get(2).is_none(), "the oldest left");
+        assert_eq!((c.len(), c.bytes()), (2, 8));
     }
 
     #[test]

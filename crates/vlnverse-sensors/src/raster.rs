@@ -47,6 +47,7 @@ use vlnverse_env::cache::{self, SharedLru};
 use vlnverse_env::material::{Surface, TEX_SIZE};
 use vlnverse_env::Aabb;
 
+mod face_store;
 mod faces;
 mod lanes;
 mod prepared;
@@ -125,8 +126,8 @@ struct Look {
     at: [f32; ATTRS],
     du: [f32; ATTRS],
     dv: [f32; ATTRS],
-    /// First texel of the surface texture in [`RasterScene::texels`] (or of the face texture
-    /// in the drawn mesh's `texels`, [`faces::DrawMesh`]).
+    /// First texel of the surface texture in [`RasterScene::texels`] (or the face texture's
+    /// index in [`RasterScene::faces`], or the image's first texel).
     tex: u32,
     /// Encoded colour ([`crate::scene_mesh::TriLook::tone`]) scaled so that
     /// `tone x light x texel byte` is the output byte.
@@ -197,8 +198,11 @@ pub struct RasterScene {
     /// other ([`Surface::ALL`] order); tints are in the triangle colours. Shared.
     texels: &'static [u8],
     /// The triangles drawn (the mesh's, with faces cut into cells merged back); their corners
-    /// and faces are dropped once the clusters' blocks and the looks hold them.
+    /// and faces are dropped once the clusters' blocks and the looks hold them, their face
+    /// textures are in `faces`.
     draw: faces::DrawMesh,
+    /// The merged faces' textures (kept as stored when loaded: unpacked when first drawn).
+    faces: face_store::FaceTexels,
     /// Every imported image ([`SceneMesh::images`]), texels packed as `r | g << 8 | b << 16`.
     image_texels: Vec<u32>,
     /// Every cluster's corners and unit geometric normals (as [`SceneMesh::normal`]), one
@@ -438,7 +442,11 @@ impl RasterScene {
     /// The part of the preparation that costs, and that [`PREPARED_FILE`] stores: merged faces
     /// with their face textures, and which objects are closed surfaces.
     fn prepare(mesh: &SceneMesh) -> Prepared {
-        let draw = faces::build(mesh, surface_luma());
+        let mut draw = faces::build(mesh, surface_luma());
+        // `build` lays the faces out one after the other: they always tile the texels.
+        let spans = prepared::face_spans(&draw).unwrap_or_default();
+        let origin = std::mem::take(&mut draw.origin);
+        let faces = face_store::FaceTexels::raw(std::mem::take(&mut draw.texels), &spans, &origin);
         // Closed surfaces are judged on the mesh's own triangles (merged faces meet their
         // neighbours' cells at T-junctions, but bound the same solid).
         let closed = mesh
@@ -449,7 +457,11 @@ impl RasterScene {
                 closed_outward(&mesh.positions[3 * f..3 * (f + n)])
             })
             .collect();
-        Prepared { draw, closed }
+        Prepared {
+            draw,
+            closed,
+            faces,
+        }
     }
 
     /// [`RasterScene::new`], the merged faces and face textures read from a prepared file
@@ -504,7 +516,8 @@ impl RasterScene {
             message,
         };
         let p = Self::prepare(mesh);
-        let bytes = prepared::encode(&p.draw, &p.closed, mesh, surface_luma()).map_err(err)?;
+        let bytes =
+            prepared::encode(&p.draw, &p.faces, &p.closed, mesh, surface_luma()).map_err(err)?;
         let tmp = file.with_extension("bin.tmp");
         let err = |e: std::io::Error| err(e.to_string());
         std::fs::write(&tmp, &bytes).map_err(err)?;
@@ -525,7 +538,17 @@ impl RasterScene {
 
     /// The rest of the preparation, from the merged faces: looks, clusters, ids.
     fn from_parts(mesh: Arc<SceneMesh>, p: Prepared) -> Self {
-        let Prepared { mut draw, closed } = p;
+        let Prepared {
+            mut draw,
+            closed,
+            faces: face_texels,
+        } = p;
+        // Face texture `i` of `face_texels` by its first texel.
+        let face_base: Vec<u32> = prepared::face_spans(&draw)
+            .unwrap_or_default()
+            .into_iter()
+            .map(|f| f.base)
+            .collect();
         let texels = surface_luma();
         let n_tri = mesh.triangle_count();
         let mut image_texels = Vec::new();
@@ -577,7 +600,10 @@ impl RasterScene {
                 .and_then(|i| Some((*image_base.get(i as usize)?, mesh.images.get(i as usize)?)))
                 .filter(|(_, im)| im.width.is_power_of_two() && im.height.is_power_of_two());
             let (tex, kind) = match (face, image) {
-                (Some((f, _)), _) => (f.base, Kind::Face { w: f.w, h: f.h }),
+                (Some((f, _)), _) => (
+                    face_base.binary_search(&f.base).unwrap_or(usize::MAX) as u32,
+                    Kind::Face { w: f.w, h: f.h },
+                ),
                 (None, Some((base, im))) => (
                     base,
                     Kind::Image {
@@ -658,6 +684,7 @@ impl RasterScene {
             look,
             texels,
             draw,
+            faces: face_texels,
             image_texels,
             mesh: Arc::downgrade(&mesh),
             lanes: packed,
@@ -678,14 +705,24 @@ impl RasterScene {
         self.draw.src.len()
     }
 
-    /// Bytes of the face textures of the merged faces.
+    /// Bytes of the face textures of the merged faces, unpacked (one per texel).
     pub fn face_texture_bytes(&self) -> usize {
-        self.draw.texels.len()
+        self.faces.texel_count()
     }
 
-    /// Bytes held (allocated, not only used): drawn triangles, looks, face textures and
-    /// images (not the mesh, which it does not keep: [`SceneMesh::bytes`]).
+    /// Bytes held now (allocated, not only used): drawn triangles, looks, face textures as
+    /// held (a loaded scene keeps the larger ones packed until a view draws them) and images
+    /// (not the mesh, which it does not keep: [`SceneMesh::bytes`]).
     pub fn bytes(&self) -> usize {
+        self.bytes_besides_faces() + self.faces.held()
+    }
+
+    /// Bytes held once every face texture is unpacked.
+    pub fn bytes_at_most(&self) -> usize {
+        self.bytes_besides_faces() + self.faces.held_at_most()
+    }
+
+    fn bytes_besides_faces(&self) -> usize {
         use crate::scene_mesh::held;
         let d = &self.draw;
         // The mesh's own block stays allocated while a weak reference to it lives.
@@ -736,6 +773,11 @@ impl RasterScene {
             return hit;
         }
         let key = mesh.content_key();
+        // Kept scenes grow as views unpack their face textures: accounted by what they hold
+        // now whenever a home is added.
+        if let Ok(mut c) = cache.lock() {
+            c.remeasure(RasterScene::bytes);
+        }
         cache::get_or_insert(
             cache,
             key,
@@ -1254,10 +1296,14 @@ impl RasterScene {
                     }
                     Kind::Image { w: iw, h: ih } => repeating(iw, ih, s.tex),
                     Kind::Face { w: fw, h: fh } => {
-                        // A clamped index needs no bounds check (every face's texels lie
+                        // A clamped index needs no bounds check (the face's texels are all
                         // inside, so the clamp never changes one).
-                        let all = &self.draw.texels[..];
-                        let last = all.len().saturating_sub(1);
+                        let all = self.faces.texels(s.tex as usize);
+                        let Some(last) = all.len().checked_sub(1) else {
+                            px.fill(0);
+                            x = e;
+                            continue;
+                        };
                         // Coordinates clamped into the face texture (rounding at its edges).
                         let (umax, vmax) = (fw as f32 - 0.5, fh as f32 - 0.5);
                         for ((i, iz), j) in index[..n].iter_mut().zip(&zr[x..e]).zip(&lanes[..n]) {
@@ -1266,7 +1312,7 @@ impl RasterScene {
                             let v = ((a2 * j + b2) * inv).clamp_range(0.0, vmax);
                             let tu = (u - 0.5 + MAGIC).to_bits() & 0x3f_ffff;
                             let tv = (v - 0.5 + MAGIC).to_bits() & 0x3f_ffff;
-                            *i = s.tex + tv * fw + tu;
+                            *i = tv * fw + tu;
                         }
                         for (l, i) in light[..n].iter_mut().zip(&index[..n]) {
                             *l = all[(*i as usize).min(last)] as f32;
@@ -2066,6 +2112,13 @@ mod tests {
         assert!(c.bytes() <= ONCE_CACHE_MB << 20);
     }
 
+    /// Every face texture's texels, one after the other.
+    fn face_texels(s: &RasterScene) -> Vec<u8> {
+        (0..s.faces.len())
+            .flat_map(|i| s.faces.texels(i).to_vec())
+            .collect()
+    }
+
     #[test]
     fn a_prepared_file_loads_the_same_scene_and_the_same_pixels() {
         use crate::{CameraSpec, Channels};
@@ -2084,7 +2137,15 @@ mod tests {
         assert_eq!(loaded.draw.src, made.draw.src);
         assert_eq!(format!("{:?}", loaded.look), format!("{:?}", made.look));
         assert_eq!(loaded.draw.objects, made.draw.objects);
-        assert_eq!(loaded.draw.texels, made.draw.texels);
+        // A loaded scene holds its larger faces packed until they are drawn (or read).
+        assert!(loaded.bytes() < made.bytes());
+        assert_eq!(made.bytes(), made.bytes_at_most());
+        assert_eq!(face_texels(&loaded), face_texels(&made));
+        assert_eq!(
+            loaded.bytes(),
+            loaded.bytes_at_most(),
+            "every face unpacked"
+        );
         let closed = |s: &RasterScene| s.objects.iter().map(|o| o.closed).collect::<Vec<_>>();
         assert_eq!(closed(&loaded), closed(&made));
         assert!(made.closed_objects() > 0);
@@ -2146,7 +2207,7 @@ mod tests {
         let mut named = (*other).clone();
         named.prepared_file = Some(file.clone());
         let fresh = RasterScene::load_or_new(Arc::new(named));
-        assert_eq!(fresh.draw.texels, RasterScene::new(other).draw.texels);
+        assert_eq!(face_texels(&fresh), face_texels(&RasterScene::new(other)));
         let _ = std::fs::remove_file(&file);
     }
 

@@ -586,6 +586,7 @@ fn home_switch(scale: Scale) -> anyhow::Result<Repetition> {
     let afresh = format!("{n} vlnverse homes: scene folder read, mesh, scene prepared afresh");
     Ok(Box::new(move || {
         let (mut secs, mut secs_afresh, mut bytes, mut mesh_bytes) = (0.0, 0.0, 0, 0);
+        let mut bytes_at_most = 0;
         for d in &folders.dirs {
             let (s, prepared) = timed(|| -> anyhow::Result<_> {
                 let scene = vlnverse_env::io::load_scene(d)?;
@@ -599,7 +600,9 @@ fn home_switch(scale: Scale) -> anyhow::Result<Repetition> {
             });
             let (scene, mesh, prepared) = prepared?;
             secs += s;
-            bytes += prepared.bytes() + vlnverse_env::light::bake(&scene).bytes();
+            let light = vlnverse_env::light::bake(&scene).bytes();
+            bytes += prepared.bytes() + light;
+            bytes_at_most += prepared.bytes_at_most() + light;
             mesh_bytes += mesh.bytes();
             let (s, fresh) = timed(|| -> anyhow::Result<_> {
                 let scene = vlnverse_env::io::load_scene(d)?;
@@ -623,7 +626,14 @@ fn home_switch(scale: Scale) -> anyhow::Result<Repetition> {
                 bytes,
                 n,
                 "home",
-                "the prepared scene (what the raster cache holds) and the light".into(),
+                "the prepared scene as loaded (larger face textures packed) and the light".into(),
+            ),
+            Sample::size(
+                "home_switch/renderer_bytes_unpacked",
+                bytes_at_most,
+                n,
+                "home",
+                "the same once every face texture is drawn (what the raster cache budgets)".into(),
             ),
             Sample::size(
                 "home_switch/mesh_bytes",

@@ -31,6 +31,16 @@ pub(crate) struct FaceTexture {
     pub h: u32,
 }
 
+/// Where a face texture's texels take the surface texture from: texel `(i, j)` is the light
+/// there times texel `((tu0 + i) mod TEX_SIZE, (tv0 + j) mod TEX_SIZE)` of surface `surface`
+/// ([`vlnverse_env::material::Surface::ALL`] order).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct FaceOrigin {
+    pub surface: u32,
+    pub tu0: u32,
+    pub tv0: u32,
+}
+
 /// The triangles the rasteriser draws: the mesh's, with cut faces merged.
 #[derive(Debug, Default)]
 pub(crate) struct DrawMesh {
@@ -44,6 +54,8 @@ pub(crate) struct DrawMesh {
     pub objects: Vec<(usize, usize, Aabb)>,
     /// Every face texture, one after the other (at least one byte).
     pub texels: Vec<u8>,
+    /// Each face texture's surface texture and offset in it, in the order of `texels`.
+    pub origin: Vec<FaceOrigin>,
 }
 
 /// Texture coordinates as an affine function of a point on a triangle's plane.
@@ -424,6 +436,11 @@ fn merge(d: &mut DrawMesh, mesh: &SceneMesh, tris: &[usize], luma: &[u8]) -> boo
         w: w as u32,
         h: h as u32,
     };
+    d.origin.push(FaceOrigin {
+        surface: look.surface.index() as u32,
+        tu0: (u0i & (TEX_SIZE - 1)) as u32,
+        tv0: ((v0 as i64) as usize & (TEX_SIZE - 1)) as u32,
+    });
     let local = cuv.map(|c| [c.x - u0, c.y - v0]);
     for (a, b, c) in [(0, 1, 2), (0, 2, 3)] {
         d.pos.extend_from_slice(&[corner[a], corner[b], corner[c]]);

@@ -9,16 +9,20 @@
 //! byte before it, so a stale or damaged file is refused rather than drawn.
 //!
 //! Layout, little-endian: magic `VLNRAST\0`, version (u32), 0 (u32), the lengths of the body
-//! and of the face textures (u64 each), the length of the packed body (u64), then the body and
-//! the face textures, each packed with zstd (level 1: face textures shrink ~4x and unpack at
-//! over a gigabyte a second; on their own, so that they unpack straight into the buffer the
-//! scene keeps). The body: mesh key (u64), texture key (u64), mesh triangles, draw triangles,
-//! objects, face-texture bytes (u32 each); per draw triangle its 9 corner coordinates (f32);
+//! and of the face textures' texels (u64 each), the length of the packed body (u64), then the
+//! body packed with zstd (level 1), then the face textures as [`super::face_store`] stores them:
+//! per face (in the order of their `base`) its stored length and how it is stored (u32 each: 0
+//! as it is, 1 packed with zstd on its own), then every face's stored bytes. Faces are packed
+//! one by one so that a loaded scene keeps them packed and unpacks a face when a view first
+//! draws it. The body: mesh key (u64), texture key (u64), mesh triangles, draw triangles,
+//! objects, face-texture texels (u32 each); per draw triangle its 9 corner coordinates (f32);
 //! per draw triangle its mesh triangle (u32); per draw triangle its face texture (`base, w, h`
-//! as u32, `w = 0` for none, then 6 f32 of face-texture coordinates); per object its first
-//! draw triangle and count (u32), box (6 f32) and whether it is closed (u32); the checksum of
-//! the body before it and of the face textures (u64).
+//! as u32, `w = 0` for none, then 6 f32 of face-texture coordinates; the faces tile the texels
+//! one after the other in the order of their `base`); per object its first draw triangle and
+//! count (u32), box (6 f32) and whether it is closed (u32); the checksum of the body before it
+//! and of the stored face textures (u64).
 
+use super::face_store::FaceTexels;
 use super::faces::{DrawMesh, FaceTexture};
 use crate::scene_mesh::SceneMesh;
 use glam::Vec3;
@@ -29,8 +33,9 @@ pub const PREPARED_FILE: &str = "raster.bin";
 /// Format of [`PREPARED_FILE`]; raise it whenever what the rasteriser prepares changes (how
 /// faces merge, how face textures are baked), so files of the old kind are refused.
 /// (3: triangles with two equal corners are left out, and the seams of round shapes no longer
-/// keep them from counting as closed surfaces.)
-pub const PREPARED_VERSION: u32 = 3;
+/// keep them from counting as closed surfaces. 4: face textures stored face by face, the larger
+/// ones packed each on its own; the same texels.)
+pub const PREPARED_VERSION: u32 = 4;
 
 const MAGIC: &[u8; 8] = b"VLNRAST\0";
 /// Bytes before the packed body: magic, version, 0, three lengths.
@@ -51,10 +56,34 @@ const PER_TRIANGLE: usize = 9 * 4 + 4 + 3 * 4 + 6 * 4;
 /// Bytes per object: range, box, closed.
 const PER_OBJECT: usize = 2 * 4 + 6 * 4 + 4;
 
-/// What is stored: the triangles drawn and whether each object is a closed surface.
+/// What is stored: the triangles drawn (their face textures in `faces`, not in
+/// `draw.texels`) and whether each object is a closed surface.
 pub(crate) struct Prepared {
     pub draw: DrawMesh,
     pub closed: Vec<bool>,
+    pub faces: FaceTexels,
+}
+
+/// The face textures of `draw`'s triangles, once each, in the order of their first texel. An
+/// error when they do not tile the texels one after the other (as [`super::faces::build`] lays
+/// them out) or two triangles give one base different sizes.
+pub(crate) fn face_spans(draw: &DrawMesh) -> Result<Vec<FaceTexture>, String> {
+    let mut f: Vec<FaceTexture> = draw.face.iter().flatten().map(|(t, _)| *t).collect();
+    f.sort_unstable_by_key(|t| t.base);
+    f.dedup_by(|a, b| a.base == b.base && (a.w, a.h) == (b.w, b.h));
+    let mut next = 0u64;
+    f.iter()
+        .map(|t| {
+            if u64::from(t.base) != next {
+                return Err(format!(
+                    "face texture {}x{} at {}: expected at {next} (faces must tile the texels)",
+                    t.w, t.h, t.base
+                ));
+            }
+            next += u64::from(t.w) * u64::from(t.h);
+            Ok(*t)
+        })
+        .collect()
 }
 
 /// A hash of bytes, eight at a time on four independent lanes (a few megabytes of face
@@ -90,10 +119,11 @@ fn texture_key(luma: &[u8]) -> u64 {
     checksum(luma)
 }
 
-/// The file's bytes for `draw` and `closed`, prepared from `mesh` with the surface textures
-/// `luma`.
+/// The file's bytes for `draw`, its face textures `faces` and `closed`, prepared from `mesh`
+/// with the surface textures `luma`.
 pub(crate) fn encode(
     draw: &DrawMesh,
+    faces: &FaceTexels,
     closed: &[bool],
     mesh: &SceneMesh,
     luma: &[u8],
@@ -108,7 +138,7 @@ pub(crate) fn encode(
         mesh.triangle_count(),
         n,
         draw.objects.len(),
-        draw.texels.len(),
+        faces.texel_count(),
     ] {
         u32s(&mut b, c as u32);
     }
@@ -133,15 +163,15 @@ pub(crate) fn encode(
         f32s(&mut b, &bbox.max);
         u32s(&mut b, u32::from(c));
     }
-    let sum = body_checksum(&b, &draw.texels);
+    let texels = faces.write()?;
+    let sum = body_checksum(&b, &texels);
     b.extend_from_slice(&sum.to_le_bytes());
-    let pack = |v: &[u8]| zstd::bulk::compress(v, LEVEL).map_err(|e| e.to_string());
-    let (body, texels) = (pack(&b)?, pack(&draw.texels)?);
+    let body = zstd::bulk::compress(&b, LEVEL).map_err(|e| e.to_string())?;
     let mut file = Vec::with_capacity(FILE_HEADER + body.len() + texels.len());
     file.extend_from_slice(MAGIC);
     file.extend_from_slice(&PREPARED_VERSION.to_le_bytes());
     file.extend_from_slice(&0u32.to_le_bytes());
-    for len in [b.len(), draw.texels.len(), body.len()] {
+    for len in [b.len(), faces.texel_count(), body.len()] {
         file.extend_from_slice(&(len as u64).to_le_bytes());
     }
     file.extend_from_slice(&body);
@@ -234,11 +264,11 @@ pub(crate) fn decode(
         Ok(out)
     };
     let b = unpack("body", &rest[..split], len)?;
-    let texels = unpack("face textures", &rest[split..], tex_len)?;
+    let texels = &rest[split..];
     let (body, sum) = b.split_at(b.len() - 8);
     let mut r = Reader { b: body, at: 0 };
     let want = u64::from_le_bytes(sum.try_into().expect("8 bytes"));
-    if body_checksum(body, &texels) != want {
+    if body_checksum(body, texels) != want {
         return Err("checksum does not match (the file is damaged)".into());
     }
     let (found, tex_key) = (r.u64()?, r.u64()?);
@@ -265,12 +295,11 @@ pub(crate) fn decode(
         ));
     }
     let need = HEADER + n * PER_TRIANGLE + n_obj * PER_OBJECT;
-    if body.len() != need || texels.len() != n_tex {
+    if body.len() != need || n_tex as u64 != tex_len {
         return Err(format!(
-            "{} bytes before the checksum and {} of face textures, {need} and {n_tex} expected \
-             for {n} triangles and {n_obj} objects",
+            "{} bytes before the checksum and {tex_len} face-texture texels, {need} and {n_tex} \
+             expected for {n} triangles and {n_obj} objects",
             body.len(),
-            texels.len()
         ));
     }
     let mut d = DrawMesh {
@@ -279,6 +308,7 @@ pub(crate) fn decode(
         face: Vec::with_capacity(n),
         objects: Vec::with_capacity(n_obj),
         texels: Vec::new(),
+        origin: Vec::new(),
     };
     for _ in 0..3 * n {
         d.pos.push(Vec3::from_array(r.f32s::<3>()?));
@@ -329,11 +359,18 @@ pub(crate) fn decode(
     if next != n {
         return Err(format!("objects cover {next} of {n} draw triangles"));
     }
-    d.texels = texels;
-    if d.texels.is_empty() {
-        return Err("no face-texture bytes (at least one is written)".into());
+    let faces = FaceTexels::read(texels, &face_spans(&d)?)?;
+    if faces.texel_count() != n_tex {
+        return Err(format!(
+            "faces of {} texels, {n_tex} written",
+            faces.texel_count()
+        ));
     }
-    Ok(Prepared { draw: d, closed })
+    Ok(Prepared {
+        draw: d,
+        closed,
+        faces,
+    })
 }
 
 #[cfg(test)]
@@ -400,10 +437,11 @@ mod tests {
         let luma = super::super::surface_luma();
         let d = super::super::faces::build(&m, luma);
         assert!(d.face.iter().all(|f| f.is_some()), "the cells merge");
-        let body = encode(&d, &[false], &m, luma).expect("encoded");
+        let faces = FaceTexels::raw(d.texels.clone(), &face_spans(&d).unwrap(), &d.origin);
+        let body = encode(&d, &faces, &[false], &m, luma).expect("encoded");
         let mut b = Vec::new();
         let r = decode(&body, &m, m.content_key(), luma).expect("decoded");
-        b.extend_from_slice(&r.draw.texels);
+        (0..r.faces.len()).for_each(|i| b.extend_from_slice(r.faces.texels(i)));
         r.draw.pos.iter().for_each(|p| {
             p.to_array()
                 .iter()
@@ -412,7 +450,7 @@ mod tests {
         b.extend_from_slice(format!("{:?}{:?}", r.draw.face, r.draw.src).as_bytes());
         assert_eq!(
             (PREPARED_VERSION, checksum(&b)),
-            (3, 14_747_998_955_599_738_887),
+            (4, 14_747_998_955_599_738_887),
             "faces::build changed: raise PREPARED_VERSION"
         );
     }

@@ -1,0 +1,448 @@
+//! The face textures of a prepared scene ([`super::faces`]), kept as they were stored: small
+//! faces as they are, the others packed each on its own and unpacked the first time a view
+//! draws them. A home switch then reads and holds the packed bytes and unpacks only the faces
+//! its views show; the texels drawn are the baked ones, byte for byte.
+//!
+//! A face texel is the light there times a texel of its surface texture, shared by every home
+//! ([`FaceOrigin`]). Packing predicts each texel from the row above it: the light of the three
+//! texels above (their sum over the sum of their surface texels) times this texel's surface
+//! texel, rounded. What is stored is the difference from the prediction (mostly 0 or +-1, as
+//! the light varies slowly), packed with zstd. Unpacking computes the same prediction from the
+//! rows already unpacked, with the same float operations, so it gives back every texel exactly.
+
+use super::faces::{FaceOrigin, FaceTexture};
+use std::sync::OnceLock;
+use vlnverse_env::material::TEX_SIZE;
+
+/// Faces of fewer texels are stored as they are (packing them gains little).
+const RAW_BELOW: usize = 4096;
+/// zstd level of a face's differences.
+const LEVEL: i32 = 3;
+
+/// How a face's texels are stored: as they are, or as differences from the prediction, packed.
+const RAW: u32 = 0;
+const PREDICTED: u32 = 1;
+/// Bytes per face in the stored table: length, how, surface, origin.
+const TABLE: usize = 16;
+
+/// One face texture: its stored bytes `data[at..at + len]`.
+#[derive(Debug)]
+struct Face {
+    at: usize,
+    len: usize,
+    w: usize,
+    h: usize,
+    origin: FaceOrigin,
+    /// For a packed face: its texels once unpacked.
+    unpacked: Option<OnceLock<Box<[u8]>>>,
+}
+
+/// Every face texture of a scene, face `i` being the `i`-th in the order of their first texel
+/// in [`super::faces::DrawMesh::texels`].
+#[derive(Debug, Default)]
+pub(crate) struct FaceTexels {
+    data: Vec<u8>,
+    faces: Vec<Face>,
+}
+
+/// The surface texels under texel row `j` of a face: `out[i]` for texel `(i, j)`.
+fn surface_row(luma: &[u8], o: FaceOrigin, j: usize, out: &mut [f32]) {
+    const N: usize = TEX_SIZE * TEX_SIZE;
+    let tex = luma.get(o.surface as usize * N..(o.surface as usize + 1) * N);
+    let Some(tex) = tex else {
+        out.fill(0.0);
+        return;
+    };
+    let tv = (o.tv0 as usize + j) & (TEX_SIZE - 1);
+    let row = &tex[tv * TEX_SIZE..(tv + 1) * TEX_SIZE];
+    let mut i = 0;
+    while i < out.len() {
+        let tu = (o.tu0 as usize + i) & (TEX_SIZE - 1);
+        let n = (TEX_SIZE - tu).min(out.len() - i);
+        for (d, s) in out[i..i + n].iter_mut().zip(&row[tu..tu + n]) {
+            *d = *s as f32;
+        }
+        i += n;
+    }
+}
+
+/// `v.round().clamp(0.0, 255.0) as u8` (0 for NaN), as [`super::faces`] rounds a texel.
+#[inline]
+fn round_byte(v: f32) -> u8 {
+    const MAGIC: f32 = 12_582_912.0;
+    let v = if v > 0.0 { v.min(255.0) } else { 0.0 };
+    let r = v + MAGIC;
+    let n = r.to_bits() & 0xff;
+    (n + u32::from(v - (r - MAGIC) >= 0.5)) as u8
+}
+
+/// The prediction of row `j > 0` from the row above: `prev` its texels, `tprev` and `t` the
+/// surface texels of the row above and of this one. The sums run over the three texels above
+/// (the edge ones counted twice at the ends), in one order, so every caller gets the same
+/// bytes.
+fn predict(prev: &[u8], tprev: &[f32], t: &[f32], out: &mut [u8]) {
+    let w = prev.len();
+    let at = |i: usize, k: isize| (i as isize + k).clamp(0, w as isize - 1) as usize;
+    let one = |i: usize| {
+        let (a, b, c) = (at(i, -1), i, at(i, 1));
+        let sx = prev[a] as f32 + prev[b] as f32 + prev[c] as f32;
+        let st = tprev[a] + tprev[b] + tprev[c];
+        round_byte(sx * t[i] / st)
+    };
+    if w < 3 {
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = one(i);
+        }
+        return;
+    }
+    out[0] = one(0);
+    out[w - 1] = one(w - 1);
+    // The inner texels branch-free, on vector lanes (the same operations as `one`).
+    for (k, o) in out[1..w - 1].iter_mut().enumerate() {
+        let sx = prev[k] as f32 + prev[k + 1] as f32 + prev[k + 2] as f32;
+        let st = tprev[k] + tprev[k + 1] + tprev[k + 2];
+        *o = round_byte(sx * t[k + 1] / st);
+    }
+}
+
+/// The differences of a `w`-wide face's texels from their predictions (the first row as it
+/// is).
+fn differences(texels: &[u8], w: usize, o: FaceOrigin, luma: &[u8]) -> Vec<u8> {
+    let mut out = texels.to_vec();
+    let (mut tprev, mut t, mut p) = (vec![0.0; w], vec![0.0; w], vec![0u8; w]);
+    surface_row(luma, o, 0, &mut tprev);
+    for (j, (prev, row)) in texels
+        .chunks_exact(w)
+        .zip(texels.chunks_exact(w).skip(1))
+        .enumerate()
+    {
+        surface_row(luma, o, j + 1, &mut t);
+        predict(prev, &tprev, &t, &mut p);
+        for ((d, x), q) in out[(j + 1) * w..(j + 2) * w].iter_mut().zip(row).zip(&p) {
+            *d = x.wrapping_sub(*q);
+        }
+        std::mem::swap(&mut tprev, &mut t);
+    }
+    out
+}
+
+/// The texels of a `w`-wide face from their differences (in place).
+fn undo_differences(d: &mut [u8], w: usize, o: FaceOrigin, luma: &[u8]) {
+    let (mut tprev, mut t, mut p) = (vec![0.0; w], vec![0.0; w], vec![0u8; w]);
+    surface_row(luma, o, 0, &mut tprev);
+    for j in 1..d.len() / w {
+        surface_row(luma, o, j, &mut t);
+        let (done, rest) = d.split_at_mut(j * w);
+        predict(&done[(j - 1) * w..], &tprev, &t, &mut p);
+        for (x, q) in rest[..w].iter_mut().zip(&p) {
+            *x = x.wrapping_add(*q);
+        }
+        std::mem::swap(&mut tprev, &mut t);
+    }
+}
+
+impl FaceTexels {
+    /// The baked texels as they are: `texels` of `faces` (one after the other, in order of
+    /// `base`) with their surface textures `origin`.
+    pub(crate) fn raw(
+        mut texels: Vec<u8>,
+        faces: &[FaceTexture],
+        origin: &[FaceOrigin],
+    ) -> FaceTexels {
+        let mut at = 0;
+        let faces: Vec<Face> = faces
+            .iter()
+            .enumerate()
+            .map(|(i, f)| {
+                let (w, h) = (f.w as usize, f.h as usize);
+                let face = Face {
+                    at,
+                    len: w * h,
+                    w,
+                    h,
+                    origin: origin.get(i).copied().unwrap_or_default(),
+                    unpacked: None,
+                };
+                at += w * h;
+                face
+            })
+            .collect();
+        texels.truncate(at);
+        texels.shrink_to_fit();
+        FaceTexels {
+            data: texels,
+            faces,
+        }
+    }
+
+    /// Number of faces.
+    #[cfg(test)]
+    pub(crate) fn len(&self) -> usize {
+        self.faces.len()
+    }
+
+    /// The texels of face `i` (empty for an index out of range).
+    pub(crate) fn texels(&self, i: usize) -> &[u8] {
+        let Some(f) = self.faces.get(i) else {
+            return &[];
+        };
+        let stored = &self.data[f.at..f.at + f.len];
+        match &f.unpacked {
+            None => stored,
+            Some(cell) => cell.get_or_init(|| {
+                // The frame's size was checked when read ([`FaceTexels::read`]).
+                let mut t = zstd::bulk::decompress(stored, f.w * f.h)
+                    .ok()
+                    .filter(|t| t.len() == f.w * f.h)
+                    .unwrap_or_else(|| {
+                        tracing::warn!("face texture {i} does not unpack; drawn black");
+                        vec![0; f.w * f.h]
+                    });
+                undo_differences(&mut t, f.w, f.origin, super::surface_luma());
+                t.into_boxed_slice()
+            }),
+        }
+    }
+
+    /// Bytes held now: the stored bytes and the faces unpacked so far.
+    pub(crate) fn held(&self) -> usize {
+        self.data.capacity()
+            + self.faces.capacity() * std::mem::size_of::<Face>()
+            + self
+                .faces
+                .iter()
+                .filter_map(|f| f.unpacked.as_ref()?.get().map(|t| t.len()))
+                .sum::<usize>()
+    }
+
+    /// Bytes held once every face is unpacked.
+    pub(crate) fn held_at_most(&self) -> usize {
+        self.data.capacity()
+            + self.faces.capacity() * std::mem::size_of::<Face>()
+            + self
+                .faces
+                .iter()
+                .filter(|f| f.unpacked.is_some())
+                .map(|f| f.w * f.h)
+                .sum::<usize>()
+    }
+
+    /// Texels of every face.
+    pub(crate) fn texel_count(&self) -> usize {
+        self.faces.iter().map(|f| f.w * f.h).sum()
+    }
+
+    /// The stored form: per face its stored length, how it is stored, its surface and its
+    /// origin in it (`tu0 | tv0 << 16`) (u32 each), then every face's stored bytes; faces of
+    /// [`RAW_BELOW`] texels or more stored as packed differences from their prediction.
+    pub(crate) fn write(&self) -> Result<Vec<u8>, String> {
+        let luma = super::surface_luma();
+        let mut table = Vec::with_capacity(TABLE * self.faces.len());
+        let mut data = Vec::new();
+        for (i, f) in self.faces.iter().enumerate() {
+            let t = self.texels(i);
+            let (how, stored) = if t.len() >= RAW_BELOW {
+                let d = differences(t, f.w, f.origin, luma);
+                let p = zstd::bulk::compress(&d, LEVEL).map_err(|e| e.to_string())?;
+                (PREDICTED, p)
+            } else {
+                (RAW, t.to_vec())
+            };
+            let o = f.origin;
+            for v in [stored.len() as u32, how, o.surface, o.tu0 | o.tv0 << 16] {
+                table.extend_from_slice(&v.to_le_bytes());
+            }
+            data.extend_from_slice(&stored);
+        }
+        table.extend_from_slice(&data);
+        Ok(table)
+    }
+
+    /// The faces stored in `b` ([`FaceTexels::write`]) for `faces` (in order of `base`); what
+    /// is wrong otherwise (the face and the values found).
+    pub(crate) fn read(b: &[u8], faces: &[FaceTexture]) -> Result<FaceTexels, String> {
+        let surfaces = (super::surface_luma().len() / (TEX_SIZE * TEX_SIZE)) as u32;
+        let table = faces
+            .len()
+            .checked_mul(TABLE)
+            .filter(|&n| n <= b.len())
+            .ok_or_else(|| {
+                format!(
+                    "{} bytes of face textures for {} faces",
+                    b.len(),
+                    faces.len()
+                )
+            })?;
+        let (head, data) = b.split_at(table);
+        let mut out = Vec::with_capacity(faces.len());
+        let mut at = 0usize;
+        for (i, (row, f)) in head.chunks_exact(TABLE).zip(faces).enumerate() {
+            let word = |k: usize| u32::from_le_bytes(row[4 * k..4 * k + 4].try_into().expect("4"));
+            let (len, how, surface, origin) = (word(0) as usize, word(1), word(2), word(3));
+            let (w, h) = (f.w as usize, f.h as usize);
+            let n = w * h;
+            if data.get(at..at + len).is_none() {
+                return Err(format!(
+                    "face texture {i}: {len} bytes at {at}, past the end (truncated)"
+                ));
+            }
+            let (tu0, tv0) = (origin & 0xffff, origin >> 16);
+            if surface >= surfaces || tu0 as usize >= TEX_SIZE || tv0 as usize >= TEX_SIZE {
+                return Err(format!(
+                    "face texture {i}: surface {surface} at ({tu0}, {tv0}) (there are \
+                     {surfaces} surfaces of {TEX_SIZE}x{TEX_SIZE} texels)"
+                ));
+            }
+            let unpacked = match how {
+                RAW if len == n => None,
+                PREDICTED => {
+                    let size = zstd::zstd_safe::get_frame_content_size(&data[at..at + len])
+                        .ok()
+                        .flatten();
+                    if size != Some(n as u64) {
+                        return Err(format!(
+                            "face texture {i}: packed size {size:?}, {n} texels expected"
+                        ));
+                    }
+                    Some(OnceLock::new())
+                }
+                _ => {
+                    return Err(format!(
+                        "face texture {i}: stored as {how} in {len} bytes, {n} texels expected"
+                    ))
+                }
+            };
+            out.push(Face {
+                at,
+                len,
+                w,
+                h,
+                origin: FaceOrigin { surface, tu0, tv0 },
+                unpacked,
+            });
+            at += len;
+        }
+        if at != data.len() {
+            return Err(format!(
+                "face textures of {at} bytes, {} stored",
+                data.len()
+            ));
+        }
+        Ok(FaceTexels {
+            data: data.to_vec(),
+            faces: out,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Faces of `(w, h)` one after the other, their texels a light varying across them times
+    /// their surface texture, with a few texels off (a shadow's edge).
+    fn faces(dims: &[(u32, u32)]) -> (Vec<u8>, Vec<FaceTexture>, Vec<FaceOrigin>) {
+        let luma = super::super::surface_luma();
+        let (mut texels, mut f, mut o) = (Vec::new(), Vec::new(), Vec::new());
+        for (k, &(w, h)) in dims.iter().enumerate() {
+            let origin = FaceOrigin {
+                surface: k as u32 % 3,
+                tu0: (17 * k as u32) % 128,
+                tv0: (5 + 31 * k as u32) % 128,
+            };
+            f.push(FaceTexture {
+                base: texels.len() as u32,
+                w,
+                h,
+            });
+            let mut t = vec![0.0; w as usize];
+            for j in 0..h as usize {
+                surface_row(luma, origin, j, &mut t);
+                for (i, s) in t.iter().enumerate() {
+                    let light = 0.3 + 0.5 * (i as f32 / w as f32) + 0.2 * (j as f32 / h as f32);
+                    let shadow = if (i + j) % 97 < 3 { 0.4 } else { 1.0 };
+                    texels.push(round_byte(light * shadow * s));
+                }
+            }
+            o.push(origin);
+        }
+        (texels, f, o)
+    }
+
+    #[test]
+    fn stored_faces_read_back_the_same_texels_unpacked_when_first_asked_for() {
+        let dims = [
+            (2, 5),
+            (100, 50),
+            (1, 1),
+            (64, 63),
+            (300, 240),
+            (1, 5000),
+            (5000, 1),
+        ];
+        let (t, f, o) = faces(&dims);
+        let raw = FaceTexels::raw(t.clone(), &f, &o);
+        let stored = raw.write().unwrap();
+        assert!(
+            stored.len() < t.len() / 3,
+            "{} bytes stored for {} texels",
+            stored.len(),
+            t.len()
+        );
+        let read = FaceTexels::read(&stored, &f).unwrap();
+        assert_eq!(read.len(), dims.len());
+        assert!(read.held() < raw.held(), "packed faces held packed");
+        let packed: usize = dims
+            .iter()
+            .map(|&(w, h)| (w * h) as usize)
+            .filter(|&n| n >= RAW_BELOW)
+            .sum();
+        assert_eq!(read.held_at_most(), read.held() + packed);
+        for (i, face) in f.iter().enumerate() {
+            let want = &t[face.base as usize..(face.base + face.w * face.h) as usize];
+            assert_eq!(read.texels(i), want, "face {i}");
+            assert_eq!(raw.texels(i), want, "face {i}");
+        }
+        assert_eq!(read.held(), read.held_at_most(), "every face unpacked");
+        assert!(read.texels(dims.len()).is_empty());
+    }
+
+    #[test]
+    fn any_texels_come_back_exactly_whatever_the_surface_under_them() {
+        // Texels that are not light times the surface (the prediction is off everywhere).
+        let (_, f, o) = faces(&[(70, 90)]);
+        let t: Vec<u8> = (0..70 * 90)
+            .map(|i| ((i * 7 + i / 300) % 256) as u8)
+            .collect();
+        let stored = FaceTexels::raw(t.clone(), &f, &o).write().unwrap();
+        assert_eq!(FaceTexels::read(&stored, &f).unwrap().texels(0), &t[..]);
+    }
+
+    #[test]
+    fn damaged_stored_faces_are_refused_naming_the_face() {
+        let (t, f, o) = faces(&[(2, 5), (100, 50)]);
+        let stored = FaceTexels::raw(t, &f, &o).write().unwrap();
+        let mut other = f.clone();
+        other[1].h = 49;
+        let e = FaceTexels::read(&stored, &other).unwrap_err();
+        assert!(e.contains("face texture 1") && e.contains("4900"), "{e}");
+        let e = FaceTexels::read(&stored[..stored.len() - 1], &f).unwrap_err();
+        assert!(
+            e.contains("face texture 1") && e.contains("truncated"),
+            "{e}"
+        );
+        let e = FaceTexels::read(&stored[..7], &f).unwrap_err();
+        assert!(e.contains("2 faces"), "{e}");
+        let mut longer = stored.clone();
+        longer.push(0);
+        let e = FaceTexels::read(&longer, &f).unwrap_err();
+        assert!(e.contains("stored"), "{e}");
+        let mut surface = stored.clone();
+        surface[8..12].copy_from_slice(&999u32.to_le_bytes());
+        let e = FaceTexels::read(&surface, &f).unwrap_err();
+        assert!(
+            e.contains("face texture 0") && e.contains("surface 999"),
+            "{e}"
+        );
+    }
+}
