@@ -863,6 +863,12 @@ pub fn chain_parts(parts: &[Instruction], seed: u64) -> Result<Instruction> {
                 } else {
                     body
                 };
+                // "..., then can you go to ..." reads as two requests run together: a later
+                // part drops its "can you".
+                let body = match body.strip_prefix("can you ") {
+                    Some(rest) if i > 0 => rest.to_string(),
+                    _ => body,
+                };
                 pieces.push(format!("{join}{body}"));
                 continue;
             }
@@ -931,6 +937,29 @@ mod tests {
             outdoor_prepositions("Walk in the kitchen, then into the balcony"),
             "Walk in the kitchen, then out onto the balcony"
         );
+    }
+
+    #[test]
+    fn a_casual_chain_asks_once() {
+        let part = |t: &str| Instruction {
+            instruction_text: t.into(),
+            style: Some(Style::Casual),
+            ..Instruction::default()
+        };
+        for seed in 0..20 {
+            let c = chain_parts(
+                &[
+                    part("can you go to the sofa"),
+                    part("can you go to the bed"),
+                ],
+                seed,
+            )
+            .unwrap();
+            let t = &c.instruction_text;
+            assert!(t.starts_with("can you go to the sofa"), "{t}");
+            assert_eq!(t.matches("can you").count(), 1, "{t}");
+            assert!(t.ends_with("go to the bed"), "{t}");
+        }
     }
 
     #[test]
