@@ -297,7 +297,8 @@ fn move_clause(len: f32, w: Writer, landmark: bool, rng: &mut ChaCha8Rng) -> Str
     let p = if landmark { 0.5 } else { 1.0 } * w.distance();
     if rng.random_bool(p) {
         let d = distance_phrase(len, w, rng);
-        let join = if d.starts_with("a ") || rng.random_bool(0.5) {
+        // "walk on for three metres" reads worse than "walk on three metres".
+        let join = if d.starts_with("a ") || verb.ends_with(" on") || rng.random_bool(0.5) {
             " "
         } else {
             " for "
