@@ -60,6 +60,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     println!("shared physics world:            {:8.3} MiB", m1 - m0);
     println!(
+        "  the physics cache's estimate:   {:8.3} MiB",
+        PhysicsScene::estimated_bytes(&scene) as f64 / (1024.0 * 1024.0)
+    );
+    println!(
         "per environment (shared world):  {:8.3} MiB",
         (m2 - m1) / n as f64
     );
