@@ -265,6 +265,8 @@ vocabulary! {
         ArcadeMachine = (161, "arcade_machine", Furniture),
         Car = (162, "car", Furniture),
         Workbench = (163, "workbench", Furniture),
+        ChristmasTree = (164, "christmas_tree", Furniture),
+        WallSconce = (165, "wall_sconce", Furniture),
     }
 }
 

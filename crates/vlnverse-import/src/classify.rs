@@ -99,6 +99,8 @@ pub fn class_defaults(class: SemanticClass) -> (f32, f32, &'static str) {
         C::ArcadeMachine => (90.0, 0.5, "wood"),
         C::Car => (1300.0, 0.8, "metal"),
         C::Workbench => (40.0, 0.5, "wood"),
+        C::ChristmasTree => (15.0, 0.7, "plastic"),
+        C::WallSconce => (1.5, 0.5, "metal"),
         C::Unknown => (10.0, 0.5, "unknown"),
     }
 }

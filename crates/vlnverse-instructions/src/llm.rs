@@ -1511,7 +1511,7 @@ mod tests {
             "dragon",
             "submarine",
             "volcano",
-            "tree",
+            "rocket",
             "horse",
             "robe",
         ] {

@@ -1,6 +1,7 @@
 //! Models of the classes the gym, the pantry, the home theater and the garage brought (issue
 //! 26): a weight bench, a punching bag, a projector screen, a popcorn machine, a projector, a
-//! jar, a wine rack, lockers, an arcade machine, a car and a workbench.
+//! jar, a wine rack, lockers, an arcade machine, a car, a workbench, a Christmas tree and a
+//! wall sconce.
 //!
 //! Like every model (`models.rs`), each is built in its own frame with its front at -Z and its
 //! back (the side that goes to the wall) at +Z, and draws its colour from a finish list of its
@@ -87,6 +88,20 @@ const TOOLS: [[f32; 3]; 4] = [
     [0.1, 0.25, 0.6],
     [0.12, 0.12, 0.13],
 ];
+/// Baubles on a Christmas tree.
+const BAUBLES: [[f32; 3]; 3] = [[0.7, 0.05, 0.05], [0.8, 0.6, 0.12], [0.1, 0.2, 0.7]];
+/// Fir green.
+const FIR: &[Finish] = &[
+    f("green", "plastic", [0.05, 0.28, 0.08]),
+    f("green", "plastic", [0.08, 0.34, 0.12]),
+];
+/// Wall sconce shades.
+const SHADE: &[Finish] = &[
+    f("white", "fabric", [0.9, 0.88, 0.82]),
+    f("gold", "metal", [0.75, 0.58, 0.2]),
+    f("black", "metal", [0.05, 0.05, 0.05]),
+    f("beige", "fabric", [0.72, 0.62, 0.45]),
+];
 /// Popcorn behind the machine's glass.
 const POPCORN: [f32; 3] = [0.92, 0.82, 0.45];
 
@@ -110,6 +125,8 @@ pub(crate) fn model(class: C, rng: &mut ChaCha8Rng) -> Option<Model> {
         C::ArcadeMachine => arcade_machine(rng),
         C::Car => car(rng),
         C::Workbench => workbench(rng),
+        C::ChristmasTree => christmas_tree(rng),
+        C::WallSconce => wall_sconce(rng),
         _ => return None,
     })
 }
@@ -501,6 +518,51 @@ fn workbench(rng: &mut ChaCha8Rng) -> Model {
     Model::new(C::Workbench, fin, [w, h + 0.8, d], 45.0, p)
 }
 
+/// A Christmas tree: four green tiers narrowing to the top on a red skirt, coloured baubles
+/// and a gold star.
+fn christmas_tree(rng: &mut ChaCha8Rng) -> Model {
+    let fin = pick(FIR, rng);
+    let h = r(rng, 1.6, 2.0);
+    let rad = r(rng, 0.5, 0.6);
+    let mut p = Vec::new();
+    cyl(&mut p, 0.0, 0.0, 0.0, rad * 0.7, 0.08, [0.6, 0.05, 0.05]);
+    cyl(&mut p, 0.0, 0.08, 0.0, 0.05, 0.2, tone::WOOD);
+    let tier = (h - 0.4) / 4.0;
+    for k in 0..4 {
+        let t = k as f32;
+        let rk = rad * (1.0 - t * 0.22);
+        let y = 0.25 + t * tier * 0.9;
+        cyl(&mut p, 0.0, y, 0.0, rk, tier * 1.1, fin.rgb);
+        // Two baubles on each tier's rim, turned a quarter further each tier.
+        for side in [-1.0f32, 1.0] {
+            let a = t * 0.8 + if side > 0.0 { 0.0 } else { 3.1 };
+            let c = [a.sin() * rk, y + tier * 0.3, -a.cos() * rk];
+            crate::models::ball(&mut p, c, 0.045, BAUBLES[k % BAUBLES.len()]);
+        }
+    }
+    let top = 0.25 + 3.0 * tier * 0.9 + tier * 1.1;
+    crate::models::ball(&mut p, [0.0, top + 0.06, 0.0], 0.07, [0.9, 0.72, 0.15]);
+    Model::new(
+        C::ChristmasTree,
+        fin,
+        [rad * 2.0, top + 0.13, rad * 2.0],
+        15.0,
+        p,
+    )
+}
+
+/// A wall light at about head height: a back plate, a short arm and a shade. Only the
+/// hanging parts are up there; its footprint is a strip along the wall.
+fn wall_sconce(rng: &mut ChaCha8Rng) -> Model {
+    let fin = pick(SHADE, rng);
+    let y = r(rng, 1.65, 1.8);
+    let mut p = Vec::new();
+    cube(&mut p, 0.0, y, 0.07, [0.1, 0.18, 0.02], tone::METAL);
+    cube(&mut p, 0.0, y + 0.07, 0.02, [0.02, 0.02, 0.08], tone::METAL);
+    cyl(&mut p, 0.0, y + 0.02, -0.04, 0.08, 0.16, fin.rgb);
+    Model::new(C::WallSconce, fin, [0.16, y + 0.18, 0.16], 1.5, p)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -521,6 +583,8 @@ mod tests {
             C::ArcadeMachine,
             C::Car,
             C::Workbench,
+            C::ChristmasTree,
+            C::WallSconce,
         ] {
             let m = model(class, &mut rng).expect("a model");
             assert_eq!(m.class, class);

@@ -66,6 +66,8 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::Urn, 0.05, Corner, 0.0),
                 p(C::WineRack, 0.06, Wall, 0.0),
                 p(C::ArcadeMachine, 0.04, Wall, 24.0),
+                p(C::ChristmasTree, 0.2, Wall, 0.0),
+                p(C::WallSconce, 0.3, Wall, 0.0),
             ];
             L
         }
@@ -85,6 +87,8 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::Chandelier, 0.45, Centre, 0.0),
                 p(C::Column, 0.05, Centre, 18.0),
                 p(C::WineRack, 0.3, Wall, 0.0),
+                p(C::WallSconce, 0.3, Wall, 0.0),
+                p(C::ChristmasTree, 0.1, Wall, 0.0),
             ];
             L
         }
@@ -95,6 +99,7 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::Easel, 0.05, Corner, 0.0),
                 p(C::DrumKit, 0.03, Corner, 14.0),
                 p(C::ChaiseLounge, 0.06, Wall, 12.0),
+                p(C::WallSconce, 0.2, Wall, 0.0),
             ];
             L
         }
@@ -135,6 +140,7 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::DrumKit, 0.25, Corner, 0.0),
                 p(C::ArcadeMachine, 0.35, Wall, 0.0),
                 p(C::WineRack, 0.1, Wall, 0.0),
+                p(C::WallSconce, 0.5, Wall, 0.0),
             ];
             L
         }
@@ -145,6 +151,7 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::RockingChair, 0.15, Corner, 0.0),
                 p(C::Statue, 0.1, Corner, 12.0),
                 p(C::ChaiseLounge, 0.1, Wall, 12.0),
+                p(C::WallSconce, 0.35, Wall, 0.0),
             ];
             L
         }
@@ -176,6 +183,7 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::Statue, 0.08, Corner, 0.0),
                 p(C::FireExtinguisher, 0.1, Wall, 0.0),
                 p(C::Urn, 0.06, Corner, 0.0),
+                p(C::WallSconce, 0.3, Wall, 0.0),
             ];
             L
         }
@@ -187,6 +195,8 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::Urn, 0.15, Corner, 0.0),
                 p(C::Cactus, 0.06, Corner, 0.0),
                 p(C::Lockers, 0.12, Wall, 0.0),
+                p(C::WallSconce, 0.35, Wall, 0.0),
+                p(C::ChristmasTree, 0.05, Wall, 0.0),
             ];
             L
         }

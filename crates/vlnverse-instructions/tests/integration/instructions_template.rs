@@ -692,8 +692,11 @@ fn the_living_room_keeps_one_name_through_an_instruction() {
                         t.match_indices(n).any(|(i, _)| {
                             let before = t[..i].chars().next_back();
                             let after = t[i + n.len()..].chars().next();
+                            // "lounge" in "chaise lounge" names a seat, not the room.
+                            let seat = *n == "lounge" && t[..i].ends_with("chaise ");
                             before.is_none_or(|c| !c.is_alphanumeric())
                                 && after.is_none_or(|c| !c.is_alphanumeric())
+                                && !seat
                         })
                     })
                     .collect();

@@ -6,7 +6,7 @@ use std::collections::BTreeSet;
 use vlnverse_env::{ClassKind, RoomType, Scene, SemanticClass as C};
 use vlnverse_procgen::{scene_seed, HomeGenerator, Preset};
 
-const PIECES: [C; 30] = [
+const PIECES: [C; 32] = [
     C::Recliner,
     C::RockingChair,
     C::PoolTable,
@@ -37,6 +37,8 @@ const PIECES: [C; 30] = [
     C::WineRack,
     C::Lockers,
     C::ArcadeMachine,
+    C::ChristmasTree,
+    C::WallSconce,
 ];
 
 /// Whether `o` was placed by the pieces stage: a piece class, but not a recliner of a home
