@@ -20,6 +20,7 @@ use vlnverse_score::episode::{Instruction, Style};
 use vlnverse_score::{DataError, Result};
 
 use crate::data::{expect_embedded, parse_toml, DataFileError};
+use crate::phrases::{self as ph, capitalize, Bank};
 
 /// The stair phrase file, as errors name it.
 const FILE: &str = "data/stairs.toml";
@@ -132,18 +133,18 @@ pub fn join_walks(
     let mut grounding = Vec::new();
     for (i, walk) in walks.iter().enumerate() {
         let arrived = i.checked_sub(1).map(|j| flights[j]);
-        match (walk, arrived) {
-            (Some(w), Some(f)) => {
+        let body = walk
+            .as_ref()
+            .map(|w| walk_body(&w.instruction_text, i + 1 == walks.len()));
+        match (&body, arrived) {
+            (Some(b), Some(f)) => {
                 let opener = match f {
                     Flight::Up => pick(&mut rng, &p.up_opener),
                     Flight::Down => pick(&mut rng, &p.down_opener),
                 };
-                text.push(format!(
-                    "{opener}{}",
-                    lower_first(w.instruction_text.trim())
-                ));
+                text.push(format!("{opener}{}", lower_first(b)));
             }
-            (Some(w), None) => text.push(w.instruction_text.trim().to_string()),
+            (Some(b), None) => text.push(b.clone()),
             (None, Some(f)) if i + 1 == walks.len() => text.push(
                 match f {
                     Flight::Up => pick(&mut rng, &p.up_stop),
@@ -170,6 +171,69 @@ pub fn join_walks(
         instruction_text: text.join(" "),
         grounding,
         ..Instruction::default()
+    })
+}
+
+/// A walk's instruction as a part of a route across floors: without the sentences that give
+/// one walk's length as the route's ("It is not far.", "The walk takes a minute."), and, for a
+/// walk the route goes on from (`last` false), without those that close it ("You are almost
+/// there.", "That's it.", "If you reach the kitchen, you have gone too far.") or a "Finally,"
+/// before its stop, since the stairs come next.
+fn walk_body(text: &str, last: bool) -> String {
+    let whole_route: [Bank; 2] = [ph::OPEN, ph::WALK_TIME];
+    let closing: [Bank; 3] = [ph::CLOSE, ph::OVERSHOOT, ph::ASIDE];
+    let kept: Vec<String> = sentences(text.trim())
+        .into_iter()
+        .filter(|s| !whole_route.iter().any(|&b| said_from(s, b)))
+        .filter(|s| last || !closing.iter().any(|&b| said_from(s, b)))
+        .map(|s| match s.strip_prefix("Finally, ") {
+            Some(rest) if !last => capitalize(rest),
+            _ => s.to_string(),
+        })
+        .collect();
+    kept.join(" ")
+}
+
+/// The sentences of `text`, each with its closing full stop (a full stop followed by a space
+/// ends one; "2.5 metres" does not).
+fn sentences(text: &str) -> Vec<&str> {
+    let mut out = Vec::new();
+    let mut start = 0;
+    for (i, _) in text.match_indices(". ") {
+        out.push(&text[start..=i]);
+        start = i + 2;
+    }
+    if start < text.len() {
+        out.push(&text[start..]);
+    }
+    out
+}
+
+/// Whether sentence `s` is an entry of `bank` as filled in: its text around the placeholders,
+/// in order (the first letter in either case).
+fn said_from(s: &str, bank: Bank) -> bool {
+    bank.iter().any(|entry| {
+        let pieces: Vec<&str> = entry
+            .split('{')
+            .map(|p| p.split_once('}').map_or(p, |(_, rest)| rest))
+            .collect();
+        let lowered = lower_first(s);
+        let mut rest = lowered.as_str();
+        for (k, piece) in pieces.iter().enumerate() {
+            let piece = lower_first(piece);
+            let found = if k == 0 {
+                rest.starts_with(&piece).then_some(0)
+            } else if k + 1 == pieces.len() {
+                rest.ends_with(&piece).then(|| rest.len() - piece.len())
+            } else {
+                rest.find(&piece)
+            };
+            match found {
+                Some(at) => rest = &rest[at + piece.len()..],
+                None => return false,
+            }
+        }
+        pieces.len() > 1 || rest.is_empty()
     })
 }
 
@@ -266,6 +330,28 @@ mod tests {
             )
             .unwrap()
         );
+    }
+
+    #[test]
+    fn only_the_last_walk_closes_the_route() {
+        let a = ins(
+            "It is not far. Walk 2.5 metres to the stairs. You are almost there. Finally, stop \
+             by the stairs. If you reach the kitchen, you have gone too far. That's it.",
+            1,
+        );
+        let b = ins("Turn left. Finally, stop by the bed. That's it.", 7);
+        let j = join_walks(&[Some(a), Some(b)], &[Flight::Up], 3).unwrap();
+        let t = &j.instruction_text;
+        assert!(
+            t.starts_with("Walk 2.5 metres to the stairs. Stop by the stairs. "),
+            "{t}"
+        );
+        for gone in ["not far", "almost there", "too far"] {
+            assert!(!t.contains(gone), "{t}");
+        }
+        assert_eq!(t.matches("That's it.").count(), 1, "{t}");
+        assert!(t.ends_with("Finally, stop by the bed. That's it."), "{t}");
+        assert_eq!(j.grounding.len(), 2);
     }
 
     #[test]
