@@ -829,11 +829,11 @@ pub fn chain_parts(parts: &[Instruction], seed: u64) -> Result<Instruction> {
         parts
             .iter()
             .map(|p| {
-                let t = without_opener(p.instruction_text.trim());
+                let t = without_openers(p.instruction_text.trim());
                 if p.style == Some(Style::Casual) {
-                    t.to_string()
+                    t
                 } else {
-                    capitalize(t)
+                    capitalize(&t)
                 }
             })
             .collect()
@@ -854,9 +854,17 @@ pub fn chain_parts(parts: &[Instruction], seed: u64) -> Result<Instruction> {
                 // One line: "go to ..., then ... and then ..."; a "please" closes the line,
                 // not a part in the middle of it.
                 let join = if i == 0 {
-                    ""
+                    String::new()
                 } else {
-                    pick(&mut rng, &ph::CHAIN_CASUAL)
+                    let j = pick(&mut rng, &ph::CHAIN_CASUAL);
+                    // After a part with a clause of its own ("..., it's against the wall"),
+                    // the next one is set off by a comma too.
+                    let clause = subs[i - 1].contains(", ");
+                    if clause && !j.starts_with(',') {
+                        format!(",{j}")
+                    } else {
+                        j.to_string()
+                    }
                 };
                 let body = if i + 1 < subs.len() {
                     body.strip_suffix(" please").unwrap_or(&body).to_string()
@@ -873,7 +881,16 @@ pub fn chain_parts(parts: &[Instruction], seed: u64) -> Result<Instruction> {
                 continue;
             }
             let opener = if i == 0 {
-                pick(&mut rng, &ph::CHAIN_FIRST)
+                // No "First, take the stairs up first."
+                let first = pick(&mut rng, &ph::CHAIN_FIRST);
+                if body
+                    .split(|c: char| !c.is_alphanumeric())
+                    .any(|w| w == "first")
+                {
+                    ""
+                } else {
+                    first
+                }
             } else if i + 1 == subs.len() {
                 pick(&mut rng, &ph::CHAIN_LAST)
             } else {
@@ -900,6 +917,22 @@ fn without_opener(t: &str) -> &str {
         .filter(|o| !o.trim().is_empty())
         .find_map(|o| t.strip_prefix(o).filter(|r| !r.trim().is_empty()))
         .unwrap_or(t)
+}
+
+/// `t` without a coarse opener at the start of any of its sentences: a part led by "Go
+/// upstairs." opens its second sentence ("Go upstairs. In this house, find ..."), and the
+/// chain opens each part itself.
+fn without_openers(t: &str) -> String {
+    let mut out: Vec<String> = Vec::new();
+    for (k, sentence) in t.split(". ").enumerate() {
+        let bare = without_opener(sentence);
+        out.push(if k > 0 && bare.len() < sentence.len() {
+            capitalize(bare)
+        } else {
+            bare.to_string()
+        });
+    }
+    out.join(". ")
 }
 
 #[cfg(test)]
@@ -937,6 +970,48 @@ mod tests {
             outdoor_prepositions("Walk in the kitchen, then into the balcony"),
             "Walk in the kitchen, then out onto the balcony"
         );
+    }
+
+    #[test]
+    fn a_chain_says_first_once_and_opens_its_parts_itself() {
+        let part = |t: &str, style: Style| Instruction {
+            instruction_text: t.into(),
+            style: Some(style),
+            ..Instruction::default()
+        };
+        for seed in 0..30 {
+            let c = chain_parts(
+                &[
+                    part(
+                        "Take the stairs to the upper level first. In this house, please go to \
+                         the bed.",
+                        Style::Formal,
+                    ),
+                    part("Please go to the sofa.", Style::Formal),
+                ],
+                seed,
+            )
+            .unwrap();
+            let t = &c.instruction_text;
+            assert!(
+                t.starts_with("Take the stairs to the upper level first. Please go"),
+                "{t}"
+            );
+            assert!(!t.contains("In this house"), "{t}");
+            let casual = chain_parts(
+                &[
+                    part("go to the shelf, it's against the wall", Style::Casual),
+                    part("go to the bed", Style::Casual),
+                ],
+                seed,
+            )
+            .unwrap();
+            let t = &casual.instruction_text;
+            assert!(
+                t.starts_with("go to the shelf, it's against the wall, "),
+                "{t}"
+            );
+        }
     }
 
     #[test]
