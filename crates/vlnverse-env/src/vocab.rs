@@ -267,6 +267,7 @@ vocabulary! {
         Workbench = (163, "workbench", Furniture),
         ChristmasTree = (164, "christmas_tree", Furniture),
         WallSconce = (165, "wall_sconce", Furniture),
+        Poster = (166, "poster", Furniture),
     }
 }
 

@@ -101,6 +101,7 @@ pub fn class_defaults(class: SemanticClass) -> (f32, f32, &'static str) {
         C::Workbench => (40.0, 0.5, "wood"),
         C::ChristmasTree => (15.0, 0.7, "plastic"),
         C::WallSconce => (1.5, 0.5, "metal"),
+        C::Poster => (0.3, 0.6, "paper"),
         C::Unknown => (10.0, 0.5, "unknown"),
     }
 }

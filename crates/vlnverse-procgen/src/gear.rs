@@ -1,7 +1,7 @@
 //! Models of the classes the gym, the pantry, the home theater and the garage brought (issue
 //! 26): a weight bench, a punching bag, a projector screen, a popcorn machine, a projector, a
 //! jar, a wine rack, lockers, an arcade machine, a car, a workbench, a Christmas tree and a
-//! wall sconce.
+//! wall sconce and a poster.
 //!
 //! Like every model (`models.rs`), each is built in its own frame with its front at -Z and its
 //! back (the side that goes to the wall) at +Z, and draws its colour from a finish list of its
@@ -102,6 +102,14 @@ const SHADE: &[Finish] = &[
     f("black", "metal", [0.05, 0.05, 0.05]),
     f("beige", "fabric", [0.72, 0.62, 0.45]),
 ];
+/// A poster's background colour, the one people name it by.
+const PRINT: &[Finish] = &[
+    f("black", "paper", [0.04, 0.04, 0.05]),
+    f("white", "paper", [0.88, 0.88, 0.85]),
+    f("red", "paper", [0.55, 0.07, 0.07]),
+    f("blue", "paper", [0.08, 0.18, 0.5]),
+    f("yellow", "paper", [0.85, 0.7, 0.12]),
+];
 /// Popcorn behind the machine's glass.
 const POPCORN: [f32; 3] = [0.92, 0.82, 0.45];
 
@@ -127,6 +135,7 @@ pub(crate) fn model(class: C, rng: &mut ChaCha8Rng) -> Option<Model> {
         C::Workbench => workbench(rng),
         C::ChristmasTree => christmas_tree(rng),
         C::WallSconce => wall_sconce(rng),
+        C::Poster => poster(rng),
         _ => return None,
     })
 }
@@ -563,6 +572,28 @@ fn wall_sconce(rng: &mut ChaCha8Rng) -> Model {
     Model::new(C::WallSconce, fin, [0.16, y + 0.18, 0.16], 1.5, p)
 }
 
+/// A framed poster on the wall: a thin frame, the print and two blocks of colour on it (a
+/// title and a picture). Its footprint is a strip along the wall.
+fn poster(rng: &mut ChaCha8Rng) -> Model {
+    let fin = pick(PRINT, rng);
+    let (w, h) = (r(rng, 0.5, 0.7), r(rng, 0.7, 1.0));
+    let y = r(rng, 1.0, 1.15);
+    let mut p = Vec::new();
+    // A box frame round a print mounted on a board (the largest part: its colour names it).
+    let frame = [w + 0.03, h + 0.03, 0.04];
+    cube(&mut p, 0.0, y, 0.01, frame, tone::SOOT);
+    cube(&mut p, 0.0, y + 0.015, 0.0, [w, h, 0.05], fin.rgb);
+    let ink = if fin.color == "yellow" || fin.color == "white" {
+        [BOTTLE_ENDS[1], tone::SOOT]
+    } else {
+        [tone::FRUIT_YELLOW, tone::WHITE]
+    };
+    let (title, picture) = ([w * 0.7, h * 0.12, 0.003], [w * 0.6, h * 0.4, 0.003]);
+    cube(&mut p, 0.0, y + h * 0.72, -0.026, title, ink[0]);
+    cube(&mut p, 0.0, y + h * 0.2, -0.026, picture, ink[1]);
+    Model::new(C::Poster, fin, [w + 0.03, y + h + 0.03, 0.058], 0.5, p)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -585,6 +616,7 @@ mod tests {
             C::Workbench,
             C::ChristmasTree,
             C::WallSconce,
+            C::Poster,
         ] {
             let m = model(class, &mut rng).expect("a model");
             assert_eq!(m.class, class);

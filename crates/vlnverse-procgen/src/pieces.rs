@@ -100,6 +100,7 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::DrumKit, 0.03, Corner, 14.0),
                 p(C::ChaiseLounge, 0.06, Wall, 12.0),
                 p(C::WallSconce, 0.2, Wall, 0.0),
+                p(C::Poster, 0.1, Wall, 0.0),
             ];
             L
         }
@@ -118,9 +119,10 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
         }
         RoomType::Gym => {
             const L: &[Piece] = &[
-                p(C::MassageTable, 0.08, Wall, 12.0),
+                p(C::MassageTable, 0.25, Wall, 10.0),
                 p(C::FireExtinguisher, 0.1, Wall, 0.0),
                 p(C::Lockers, 0.4, Wall, 0.0),
+                p(C::Poster, 0.3, Wall, 0.0),
             ];
             L
         }
@@ -141,6 +143,8 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::ArcadeMachine, 0.35, Wall, 0.0),
                 p(C::WineRack, 0.1, Wall, 0.0),
                 p(C::WallSconce, 0.5, Wall, 0.0),
+                p(C::Poster, 0.6, Wall, 0.0),
+                p(C::Poster, 0.3, Wall, 0.0),
             ];
             L
         }
@@ -161,6 +165,7 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::Lockers, 0.3, Wall, 0.0),
                 p(C::FireExtinguisher, 0.3, Wall, 0.0),
                 p(C::Grill, 0.15, Wall, 0.0),
+                p(C::Poster, 0.15, Wall, 0.0),
             ];
             L
         }
