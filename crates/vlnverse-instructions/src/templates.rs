@@ -254,7 +254,7 @@ struct CoarseParts {
 /// then, another name of the object ("the shelf" for the wall shelf), as for the target.
 fn mention_words(ctx: &PathContext<'_>, m: &Mention, rng: &mut ChaCha8Rng) -> String {
     let name = match ctx.scene.object(m.object) {
-        Some(o) => other_name(o, 0.3, rng),
+        Some(o) => other_name(o, 0.2, rng),
         None => m.class.words(),
     };
     match &m.color {
@@ -880,6 +880,17 @@ pub fn chain_parts(parts: &[Instruction], seed: u64) -> Result<Instruction> {
                 pieces.push(format!("{join}{body}"));
                 continue;
             }
+            // One "please" to a request: a later part drops its own ("Then, navigate to ...",
+            // not "Then, please navigate to ..."), a part before the last its closing one.
+            let body = match body.strip_prefix("please ") {
+                Some(rest) if i > 0 => rest.to_string(),
+                _ => body,
+            };
+            let body = if i + 1 < subs.len() {
+                body.replace(", please", "")
+            } else {
+                body
+            };
             let opener = if i == 0 {
                 // No "First, take the stairs up first."
                 let first = pick(&mut rng, &ph::CHAIN_FIRST);
@@ -998,6 +1009,18 @@ mod tests {
                 "{t}"
             );
             assert!(!t.contains("In this house"), "{t}");
+            assert_eq!(t.to_lowercase().matches("please").count(), 1, "{t}");
+            let natural = chain_parts(
+                &[
+                    part("Go to the kitchen, please.", Style::Natural),
+                    part("Go to the sofa, please.", Style::Natural),
+                ],
+                seed,
+            )
+            .unwrap();
+            let t = &natural.instruction_text;
+            assert!(t.contains("o to the kitchen. "), "{t}");
+            assert!(t.ends_with("go to the sofa, please."), "{t}");
             let casual = chain_parts(
                 &[
                     part("go to the shelf, it's against the wall", Style::Casual),
