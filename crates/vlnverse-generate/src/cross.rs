@@ -250,7 +250,7 @@ impl SceneTaskContext<'_> {
                 if !path.crosses() {
                     return Ok(Ok(walks.pop().flatten().unwrap_or_default()));
                 }
-                let flights: Vec<_> = path.flights.iter().map(|x| x.0).collect();
+                let flights: Vec<_> = path.flights.iter().map(|x| (x.0, x.2)).collect();
                 instruction(join_walks(&walks, &flights, seed))
             })?;
         let mut ins = match ins {
@@ -335,7 +335,7 @@ impl SceneTaskContext<'_> {
             Err(r) => return Ok(Err(r)),
         };
         offset_grounding(&mut ins, w.first as u32 + offset);
-        if let Some((flight, _)) = path.flights.last() {
+        if let Some((flight, _, _)) = path.flights.last() {
             ins = goal_across(&ins, *flight, seed);
         }
         Ok(Ok(ins))

@@ -99,8 +99,9 @@ pub struct FloorPath {
     pub length: f32,
     /// The walks in order; `walks.len() == flights.len() + 1`.
     pub walks: Vec<Walk>,
-    /// The flights between the walks, in order, with the heading of the walk off each one.
-    pub flights: Vec<(Flight, Vec2)>,
+    /// The flights between the walks, in order, with the heading of the walk off each one and
+    /// the flight's number of steps.
+    pub flights: Vec<(Flight, Vec2, u32)>,
 }
 
 impl FloorPath {
@@ -423,7 +424,7 @@ impl<'a> Floors<'a> {
                         push(&mut points, p);
                     }
                     let flight = if *up { Flight::Up } else { Flight::Down };
-                    flights.push((flight, off.normalize_or_zero()));
+                    flights.push((flight, off.normalize_or_zero(), s.steps));
                 }
             }
         }

@@ -20,6 +20,7 @@ use vlnverse_score::episode::{Instruction, Style};
 use vlnverse_score::{DataError, Result};
 
 use crate::data::{expect_embedded, parse_toml, DataFileError};
+use crate::lexicon::number_word;
 use crate::phrases::{self as ph, capitalize, Bank};
 
 /// The stair phrase file, as errors name it.
@@ -51,10 +52,12 @@ struct StairPhrases {
     down_goal: Vec<String>,
     up_casual: Vec<String>,
     down_casual: Vec<String>,
+    up_steps: Vec<String>,
+    down_steps: Vec<String>,
 }
 
 impl StairPhrases {
-    fn banks(&self) -> [(&'static str, &[String]); 10] {
+    fn banks(&self) -> [(&'static str, &[String]); 12] {
         [
             ("up", &self.up),
             ("down", &self.down),
@@ -66,6 +69,8 @@ impl StairPhrases {
             ("down_goal", &self.down_goal),
             ("up_casual", &self.up_casual),
             ("down_casual", &self.down_casual),
+            ("up_steps", &self.up_steps),
+            ("down_steps", &self.down_steps),
         ]
     }
 }
@@ -109,11 +114,12 @@ fn lower_first(s: &str) -> String {
 
 /// A fine instruction across floors: `walks[i]` is the instruction of the i-th walk (its
 /// grounding already offset into the whole path), `None` for a walk too short to describe;
-/// `flights[i]` is the flight between walk `i` and walk `i + 1`, so `walks.len() ==
-/// flights.len() + 1`. An error when the counts do not fit or nothing at all is described.
+/// `flights[i]` is the flight between walk `i` and walk `i + 1` and its number of steps (0 when
+/// not known), so `walks.len() == flights.len() + 1`. An error when the counts do not fit or
+/// nothing at all is described.
 pub fn join_walks(
     walks: &[Option<Instruction>],
-    flights: &[Flight],
+    flights: &[(Flight, u32)],
     seed: u64,
 ) -> Result<Instruction> {
     if walks.len() != flights.len() + 1 {
@@ -132,7 +138,7 @@ pub fn join_walks(
     let mut text: Vec<String> = Vec::new();
     let mut grounding = Vec::new();
     for (i, walk) in walks.iter().enumerate() {
-        let arrived = i.checked_sub(1).map(|j| flights[j]);
+        let arrived = i.checked_sub(1).map(|j| flights[j].0);
         let body = walk
             .as_ref()
             .map(|w| walk_body(&w.instruction_text, i + 1 == walks.len()));
@@ -157,14 +163,8 @@ pub fn join_walks(
         if let Some(w) = walk {
             grounding.extend(w.grounding.iter().cloned());
         }
-        if let Some(&f) = flights.get(i) {
-            text.push(
-                match f {
-                    Flight::Up => pick(&mut rng, &p.up),
-                    Flight::Down => pick(&mut rng, &p.down),
-                }
-                .to_string(),
-            );
+        if let Some(&(f, steps)) = flights.get(i) {
+            text.push(flight_sentence(f, steps, &mut rng));
         }
     }
     Ok(Instruction {
@@ -172,6 +172,20 @@ pub fn join_walks(
         grounding,
         ..Instruction::default()
     })
+}
+
+/// The sentence for walking a flight of `steps` steps (0: not known) way `f`; now and then it
+/// counts them ("Walk up the sixteen steps.").
+fn flight_sentence(f: Flight, steps: u32, rng: &mut ChaCha8Rng) -> String {
+    let p = &*PHRASES;
+    let counted = (3..=30).contains(&steps) && rng.random_bool(0.15);
+    let bank = match (f, counted) {
+        (Flight::Up, false) => &p.up,
+        (Flight::Down, false) => &p.down,
+        (Flight::Up, true) => &p.up_steps,
+        (Flight::Down, true) => &p.down_steps,
+    };
+    pick(rng, bank).replace("{n}", &number_word(steps))
 }
 
 /// A walk's instruction as a part of a route across floors: without the sentences that give
@@ -310,7 +324,7 @@ mod tests {
     fn a_fine_walk_up_says_the_stairs_and_keeps_both_walks_grounding() {
         let a = ins("Walk past the sofa and stop at the stairs.", 1);
         let b = ins("Turn left and stop by the bed.", 7);
-        let j = join_walks(&[Some(a), Some(b)], &[Flight::Up], 3).unwrap();
+        let j = join_walks(&[Some(a), Some(b)], &[(Flight::Up, 0)], 3).unwrap();
         let t = &j.instruction_text;
         assert!(t.starts_with("Walk past the sofa"), "{t}");
         assert!(t.contains("stairs."), "{t}");
@@ -325,7 +339,7 @@ mod tests {
                     Some(ins("Walk past the sofa and stop at the stairs.", 1)),
                     Some(ins("Turn left and stop by the bed.", 7))
                 ],
-                &[Flight::Up],
+                &[(Flight::Up, 0)],
                 3
             )
             .unwrap()
@@ -340,7 +354,7 @@ mod tests {
             1,
         );
         let b = ins("Turn left. Finally, stop by the bed. That's it.", 7);
-        let j = join_walks(&[Some(a), Some(b)], &[Flight::Up], 3).unwrap();
+        let j = join_walks(&[Some(a), Some(b)], &[(Flight::Up, 0)], 3).unwrap();
         let t = &j.instruction_text;
         assert!(
             t.starts_with("Walk 2.5 metres to the stairs. Stop by the stairs. "),
@@ -355,13 +369,31 @@ mod tests {
     }
 
     #[test]
+    fn a_flight_is_now_and_then_counted_in_its_true_steps() {
+        let (mut counted, mut any) = (0, 0);
+        for seed in 0..80 {
+            let walks = [Some(ins("Walk to the stairs.", 1)), Some(ins("Stop.", 4))];
+            let t = join_walks(&walks, &[(Flight::Down, 16)], seed)
+                .unwrap()
+                .instruction_text;
+            counted += usize::from(t.contains("sixteen steps"));
+            let unknown = join_walks(&walks, &[(Flight::Down, 0)], seed)
+                .unwrap()
+                .instruction_text;
+            any += usize::from(unknown.contains("{n}") || unknown.contains("zero"));
+        }
+        assert!(counted > 0 && counted < 40, "{counted} of 80 counted");
+        assert_eq!(any, 0);
+    }
+
+    #[test]
     fn a_walk_ending_where_the_flight_arrives_stops_there() {
         let a = ins("Walk to the hall.", 1);
-        let j = join_walks(&[Some(a), None], &[Flight::Down], 1).unwrap();
+        let j = join_walks(&[Some(a), None], &[(Flight::Down, 0)], 1).unwrap();
         let t = &j.instruction_text;
         assert!(t.contains("down"), "{t}");
         assert!(t.ends_with("stairs."), "{t}");
-        assert!(join_walks(&[None], &[Flight::Up], 1).is_err());
+        assert!(join_walks(&[None], &[(Flight::Up, 0)], 1).is_err());
     }
 
     #[test]
