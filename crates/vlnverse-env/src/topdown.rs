@@ -117,6 +117,7 @@ pub fn room_color(kind: RoomType) -> [u8; 3] {
         RoomType::HomeTheater => [218, 206, 236],
         RoomType::Library => [232, 222, 204],
         RoomType::Garage => [216, 216, 210],
+        RoomType::Porch => [222, 238, 214],
     }
 }
 

@@ -268,6 +268,7 @@ vocabulary! {
         ChristmasTree = (164, "christmas_tree", Furniture),
         WallSconce = (165, "wall_sconce", Furniture),
         Poster = (166, "poster", Furniture),
+        PorchSwing = (167, "porch_swing", Furniture),
     }
 }
 
@@ -308,6 +309,7 @@ vocabulary! {
         HomeTheater = (15, "home_theater", Structure),
         Library = (16, "library", Structure),
         Garage = (17, "garage", Structure),
+        Porch = (18, "porch", Structure),
     }
 }
 

@@ -102,6 +102,7 @@ pub fn class_defaults(class: SemanticClass) -> (f32, f32, &'static str) {
         C::ChristmasTree => (15.0, 0.7, "plastic"),
         C::WallSconce => (1.5, 0.5, "metal"),
         C::Poster => (0.3, 0.6, "paper"),
+        C::PorchSwing => (30.0, 0.5, "wood"),
         C::Unknown => (10.0, 0.5, "unknown"),
     }
 }

@@ -256,6 +256,7 @@ pub fn room_names(kind: RoomType) -> &'static [&'static str] {
         RoomType::HomeTheater => &["home theater", "media room", "movie room", "theater room"],
         RoomType::Library => &["library", "reading room"],
         RoomType::Garage => &["garage"],
+        RoomType::Porch => &["porch", "sun porch"],
     }
 }
 

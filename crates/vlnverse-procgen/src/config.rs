@@ -232,8 +232,9 @@ impl Default for RoomsConfig {
                 kind(RoomType::Pantry, 0, 1, 0.5, 4.8, 6.5),
                 kind(RoomType::Gym, 0, 1, 0.4, 8.0, 14.0),
                 kind(RoomType::HomeTheater, 0, 1, 0.35, 13.0, 20.0),
-                kind(RoomType::Library, 0, 1, 0.35, 9.0, 15.0),
+                kind(RoomType::Library, 0, 1, 0.4, 9.0, 15.0),
                 kind(RoomType::Garage, 0, 1, 0.35, 18.0, 24.0),
+                kind(RoomType::Porch, 0, 1, 0.3, 5.0, 9.0),
             ],
         }
     }

@@ -87,7 +87,8 @@ pub(crate) fn is_public(k: RoomType) -> bool {
 
 /// Rooms that are only ever reached through one neighbour of the kinds given (a closet off a
 /// bedroom or hallway, a balcony off the living room or a bedroom, a pantry off the kitchen, a
-/// garage off the kitchen, a hall or the laundry room); `None` for other rooms.
+/// garage off the kitchen, a hall or the laundry room, a porch off a hall or the living room);
+/// `None` for other rooms.
 fn leaf_of(k: RoomType) -> Option<&'static [RoomType]> {
     use RoomType as R;
     match k {
@@ -95,6 +96,7 @@ fn leaf_of(k: RoomType) -> Option<&'static [RoomType]> {
         R::Balcony => Some(&[R::LivingRoom, R::Bedroom]),
         R::Pantry => Some(&[R::Kitchen]),
         R::Garage => Some(&[R::Kitchen, R::Hallway, R::EntranceHall, R::LaundryRoom]),
+        R::Porch => Some(&[R::EntranceHall, R::LivingRoom, R::Hallway]),
         _ => None,
     }
 }
@@ -110,7 +112,7 @@ pub(crate) fn may_join(a: RoomType, b: RoomType) -> bool {
 fn zone(k: RoomType) -> u8 {
     match k {
         RoomType::LivingRoom | RoomType::Kitchen | RoomType::DiningRoom | RoomType::Pantry => 0,
-        RoomType::Hallway | RoomType::EntranceHall | RoomType::Garage => 1,
+        RoomType::Hallway | RoomType::EntranceHall | RoomType::Garage | RoomType::Porch => 1,
         _ => 2,
     }
 }
@@ -301,7 +303,8 @@ fn hub_weight(k: RoomType) -> f32 {
         | RoomType::Closet
         | RoomType::Balcony
         | RoomType::Pantry
-        | RoomType::Garage => 0.03,
+        | RoomType::Garage
+        | RoomType::Porch => 0.03,
         // Rooms kept for one use: reached, rarely walked through.
         RoomType::Bedroom | RoomType::Gym | RoomType::HomeTheater | RoomType::Library => 0.15,
         _ => 0.5,
@@ -348,8 +351,8 @@ fn try_layout(
     let mut shared = shared_walls(&rects, min_len);
     shared.retain(|s| may_join(list[s.a].0, list[s.b].0));
     // Leaf rooms (closets, balconies, pantries, garages) must hang off an allowed neighbour,
-    // and the other rooms must connect without passing through one; a balcony and a garage
-    // also need an outside wall.
+    // and the other rooms must connect without passing through one; a balcony, a garage and a
+    // porch also need an outside wall.
     let inner: Vec<Shared> = shared
         .iter()
         .filter(|s| leaf_of(list[s.a].0).is_none() && leaf_of(list[s.b].0).is_none())
@@ -363,7 +366,7 @@ fn try_layout(
         if is_leaf[i] && !shared.iter().any(|s| s.a == i || s.b == i) {
             return None;
         }
-        let outdoor = matches!(k, RoomType::Balcony | RoomType::Garage);
+        let outdoor = matches!(k, RoomType::Balcony | RoomType::Garage | RoomType::Porch);
         if outdoor && !touches_outside(&rects[i], &footprint) {
             return None;
         }

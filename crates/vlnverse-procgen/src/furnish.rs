@@ -975,6 +975,19 @@ fn recipe(
                 out.push(vec![Group::one(r, Mode::Center)]);
             }
         }
+        RoomType::Porch => {
+            // A small table and a chair; the swing or hammock comes with the pieces.
+            out.push(vec![
+                patio_group(rng, 1),
+                wall(models::clutter(C::PatioChair, rng)),
+            ]);
+            if maybe(cfg, rng, 0.6) {
+                out.push(vec![wall(models::clutter(C::Planter, rng))]);
+            }
+            if maybe(cfg, rng, 0.4) {
+                out.push(vec![corner(models::potted_plant(rng))]);
+            }
+        }
         RoomType::Garage => {
             let car = models::clutter(C::Car, rng);
             out.push(vec![wall(car.clone()), Group::one(car, Mode::Center)]);
@@ -1138,6 +1151,7 @@ fn clutter_recipe(cfg: &ProcgenConfig, kind: RoomType, rng: &mut ChaCha8Rng) -> 
             (C::Radiator, 0.2, W),
             (C::Box, 0.1, K),
         ],
+        R::Porch => &[(C::Shoes, 0.3, W), (C::UmbrellaStand, 0.3, K)],
         R::Garage => &[
             (C::Box, 0.5, K),
             (C::Box, 0.3, K),

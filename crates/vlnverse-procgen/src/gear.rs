@@ -1,7 +1,7 @@
 //! Models of the classes the gym, the pantry, the home theater and the garage brought (issue
 //! 26): a weight bench, a punching bag, a projector screen, a popcorn machine, a projector, a
 //! jar, a wine rack, lockers, an arcade machine, a car, a workbench, a Christmas tree and a
-//! wall sconce and a poster.
+//! wall sconce, a poster and a porch swing.
 //!
 //! Like every model (`models.rs`), each is built in its own frame with its front at -Z and its
 //! back (the side that goes to the wall) at +Z, and draws its colour from a finish list of its
@@ -136,6 +136,7 @@ pub(crate) fn model(class: C, rng: &mut ChaCha8Rng) -> Option<Model> {
         C::ChristmasTree => christmas_tree(rng),
         C::WallSconce => wall_sconce(rng),
         C::Poster => poster(rng),
+        C::PorchSwing => porch_swing(rng),
         _ => return None,
     })
 }
@@ -594,6 +595,46 @@ fn poster(rng: &mut ChaCha8Rng) -> Model {
     Model::new(C::Poster, fin, [w + 0.03, y + h + 0.03, 0.058], 0.5, p)
 }
 
+/// A porch swing: a slatted bench seat with a back, hanging on two chains from the beam of a
+/// frame that stands on A-shaped legs at both ends.
+fn porch_swing(rng: &mut ChaCha8Rng) -> Model {
+    let fin = pick(RACK_WOOD, rng);
+    let c = fin.rgb;
+    let (w, d, h) = (r(rng, 1.7, 2.0), 1.1, r(rng, 1.9, 2.05));
+    let mut p = Vec::new();
+    for sx in [-1.0, 1.0] {
+        let x = sx * (w * 0.5 - 0.04);
+        // Each end: two legs leaning in to meet under the beam.
+        for sz in [-1.0, 1.0] {
+            turned(
+                &mut p,
+                Shape::Cuboid {
+                    half_extents: [0.035, h * 0.5, 0.035],
+                    bevel: 0.0,
+                },
+                [x, h * 0.5, sz * d * 0.2],
+                Quat::from_rotation_x(-sz * 0.23),
+                c,
+            );
+        }
+    }
+    cube(&mut p, 0.0, h - 0.08, 0.0, [w, 0.08, 0.08], c);
+    let seat = w - 0.45;
+    for sx in [-1.0, 1.0] {
+        cube(
+            &mut p,
+            sx * seat * 0.45,
+            0.5,
+            0.0,
+            [0.015, h - 0.58, 0.015],
+            tone::METAL,
+        );
+    }
+    bcube(&mut p, 0.0, 0.42, 0.0, [seat, 0.08, 0.5], 0.01, c);
+    cube(&mut p, 0.0, 0.5, 0.22, [seat, 0.45, 0.05], c);
+    Model::new(C::PorchSwing, fin, [w, h, d], 30.0, p)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -617,6 +658,7 @@ mod tests {
             C::ChristmasTree,
             C::WallSconce,
             C::Poster,
+            C::PorchSwing,
         ] {
             let m = model(class, &mut rng).expect("a model");
             assert_eq!(m.class, class);

@@ -169,6 +169,15 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
             ];
             L
         }
+        RoomType::Porch => {
+            const L: &[Piece] = &[
+                p(C::Hammock, 0.3, Wall, 0.0),
+                p(C::PorchSwing, 0.9, Wall, 0.0),
+                p(C::RockingChair, 0.4, Corner, 0.0),
+                p(C::Lounger, 0.1, Wall, 0.0),
+            ];
+            L
+        }
         RoomType::Room => {
             const L: &[Piece] = &[
                 p(C::PingPongTable, 0.35, Centre, 0.0),

@@ -110,6 +110,7 @@ fn closets_balconies_and_entrance_halls_open_where_they_belong() {
                 R::Balcony => &[R::LivingRoom, R::Bedroom],
                 R::Pantry => &[R::Kitchen],
                 R::Garage => &[R::Kitchen, R::Hallway, R::EntranceHall, R::LaundryRoom],
+                R::Porch => &[R::EntranceHall, R::LivingRoom, R::Hallway],
                 _ => continue,
             };
             let doors: Vec<_> = s.doors.iter().filter(|d| d.rooms.contains(&r.id)).collect();
@@ -129,7 +130,7 @@ fn closets_balconies_and_entrance_halls_open_where_they_belong() {
                 s.id,
                 r.name
             );
-            if matches!(r.kind, R::Balcony | R::Garage) {
+            if matches!(r.kind, R::Balcony | R::Garage | R::Porch) {
                 let on_edge = r.polygon.iter().any(|p| {
                     (p[0] - x0).abs() < 0.1
                         || (p[0] - x1).abs() < 0.1
@@ -151,6 +152,7 @@ fn closets_balconies_and_entrance_halls_open_where_they_belong() {
         R::HomeTheater,
         R::Library,
         R::Garage,
+        R::Porch,
     ] {
         assert!(seen.get(&k).copied().unwrap_or(0) >= 10, "{k:?}: {seen:?}");
     }

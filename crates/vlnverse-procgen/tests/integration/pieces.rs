@@ -6,7 +6,7 @@ use std::collections::BTreeSet;
 use vlnverse_env::{ClassKind, RoomType, Scene, SemanticClass as C};
 use vlnverse_procgen::{scene_seed, HomeGenerator, Preset};
 
-const PIECES: [C; 33] = [
+const PIECES: [C; 34] = [
     C::Recliner,
     C::RockingChair,
     C::PoolTable,
@@ -40,6 +40,7 @@ const PIECES: [C; 33] = [
     C::ChristmasTree,
     C::WallSconce,
     C::Poster,
+    C::PorchSwing,
 ];
 
 /// Whether `o` was placed by the pieces stage: a piece class, but not a recliner of a home
