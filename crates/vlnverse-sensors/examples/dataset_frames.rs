@@ -2,7 +2,8 @@
 //! generated dataset, loaded as an environment loads them (the scene folder, its mesh, the
 //! prepared scene from `raster.bin`): the load per home, then `P` seeded poses on the ground
 //! floor's free cells twice (the first pass draws each face for the first time, the second
-//! finds them drawn), frames per second of each pass.
+//! finds them drawn), frames per second of each pass; the bytes the prepared scene holds as
+//! loaded, after the poses, and once every face texture is unpacked.
 //!
 //! `cargo run --release -p vlnverse-sensors --example dataset_frames -- DATASET [HOMES] [P]`
 
@@ -12,7 +13,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
 use vlnverse_env::occupancy::GridMap;
-use vlnverse_sensors::{AgentState, Backend, RigConfig, SceneMesh, SensorRig};
+use vlnverse_sensors::{AgentState, Backend, RasterScene, RigConfig, SceneMesh, SensorRig};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -34,6 +35,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     })?;
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
     let (mut load, mut first, mut second) = (0.0, 0.0, 0.0);
+    let (mut loaded, mut seen, mut most) = (0, 0, 0);
     for d in &dirs {
         let nav = GridMap::load_ros(d.join("navigable.yaml"))?;
         let free: Vec<_> = nav.free_cells().collect();
@@ -41,8 +43,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let scene = vlnverse_env::io::load_scene(d)?;
         let mut mesh = SceneMesh::new(&scene)?;
         mesh.prepared_file = Some(d.join(vlnverse_sensors::raster::PREPARED_FILE));
-        rig.set_mesh(Arc::new(mesh))?;
+        let mesh = Arc::new(mesh);
+        rig.set_mesh(mesh.clone())?;
         load += t.elapsed().as_secs_f64();
+        // The scene the rig draws (the shared cache's).
+        let prepared = RasterScene::shared(mesh);
+        loaded += prepared.bytes();
         let states: Vec<AgentState> = (0..poses)
             .map(|_| {
                 let (c, r) = free[rng.random_range(0..free.len())];
@@ -58,6 +64,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             }
             *pass += t.elapsed().as_secs_f64();
         }
+        seen += prepared.bytes();
+        most += prepared.bytes_at_most();
     }
     let (n, frames) = (dirs.len(), (dirs.len() * poses) as f64);
     println!(
@@ -66,6 +74,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         1e3 * load / n as f64,
         frames / first,
         frames / second
+    );
+    let mb = |b: usize| b as f64 / n as f64 / 1e6;
+    println!(
+        "prepared scene: {:.2} MB/home as loaded, {:.2} MB/home after the poses, {:.2} MB/home \
+         with every face texture unpacked",
+        mb(loaded),
+        mb(seen),
+        mb(most)
     );
     Ok(())
 }

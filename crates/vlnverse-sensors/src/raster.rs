@@ -68,8 +68,9 @@ fn surface_luma() -> &'static [u8] {
 }
 
 /// Megabytes of prepared scenes kept by [`RasterScene::shared`] unless [`SCENE_CACHE_MB_VAR`]
-/// says otherwise (a generated `vlnverse` home holds about 8 MB, mesh and face textures
-/// included: `cargo xtask bench --filter home_switch`).
+/// says otherwise (a generated `vlnverse` home loaded from `raster.bin` holds about 3.5 MB, up
+/// to about 12 MB once views have unpacked all its face textures: `cargo xtask bench --filter
+/// home_switch`).
 pub const SCENE_CACHE_MB: usize = 256;
 /// Environment variable with the megabytes of prepared scenes kept by [`RasterScene::shared`]
 /// (0: none).

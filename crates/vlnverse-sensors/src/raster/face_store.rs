@@ -7,8 +7,10 @@
 //! ([`FaceOrigin`]). Packing predicts each texel from the row above it: the light of the three
 //! texels above (their sum over the sum of their surface texels) times this texel's surface
 //! texel, rounded. What is stored is the difference from the prediction (mostly 0 or +-1, as
-//! the light varies slowly), packed with zstd. Unpacking computes the same prediction from the
-//! rows already unpacked, with the same float operations, so it gives back every texel exactly.
+//! the light varies slowly) in two bits a texel (0, +1, -1, or "the next of the other
+//! differences", which follow), packed with zstd. Unpacking computes the same prediction from
+//! the rows already unpacked, with the same float operations, so it gives back every texel
+//! exactly.
 
 use super::faces::{FaceOrigin, FaceTexture};
 use std::sync::OnceLock;
@@ -22,8 +24,8 @@ const LEVEL: i32 = 3;
 /// How a face's texels are stored: as they are, or as differences from the prediction, packed.
 const RAW: u32 = 0;
 const PREDICTED: u32 = 1;
-/// Bytes per face in the stored table: length, how, surface, origin.
-const TABLE: usize = 16;
+/// Bytes per face in the stored table: length, how, surface, origin, other differences.
+const TABLE: usize = 20;
 
 /// One face texture: its stored bytes `data[at..at + len]`.
 #[derive(Debug)]
@@ -126,6 +128,72 @@ fn differences(texels: &[u8], w: usize, o: FaceOrigin, luma: &[u8]) -> Vec<u8> {
     out
 }
 
+/// Difference of each two-bit code: 0, +1, -1, or 0 for "the next of the other differences".
+const CODE: [u8; 4] = [0, 1, 255, 0];
+
+/// The four differences of a byte of codes.
+const QUADS: [[u8; 4]; 256] = {
+    let mut t = [[0u8; 4]; 256];
+    let mut b = 0;
+    while b < 256 {
+        let mut k = 0;
+        while k < 4 {
+            t[b][k] = CODE[(b >> (2 * k)) & 3];
+            k += 1;
+        }
+        b += 1;
+    }
+    t
+};
+
+/// Differences in two bits each (four to a byte, the first in the low bits), then those that
+/// are not 0, +1 or -1, in order.
+fn two_bits(d: &[u8]) -> Vec<u8> {
+    let mut codes = vec![0u8; d.len().div_ceil(4)];
+    let mut other = Vec::new();
+    for (i, &v) in d.iter().enumerate() {
+        let c = match v {
+            0 => 0,
+            1 => 1,
+            255 => 2,
+            _ => {
+                other.push(v);
+                3
+            }
+        };
+        codes[i / 4] |= c << (2 * (i % 4));
+    }
+    codes.extend_from_slice(&other);
+    codes
+}
+
+/// The `n` differences of [`two_bits`]'s bytes; `None` when they do not fit `n`.
+fn from_two_bits(b: &[u8], n: usize) -> Option<Vec<u8>> {
+    let (codes, other) = b.split_at_checked(n.div_ceil(4))?;
+    let mut out = vec![0u8; 4 * codes.len()];
+    for (o, c) in out.chunks_exact_mut(4).zip(codes) {
+        o.copy_from_slice(&QUADS[*c as usize]);
+    }
+    let mut other = other.iter();
+    for (q, c) in codes.iter().enumerate() {
+        // Codes 3 ("another difference"): both bits set.
+        let m = c & (c >> 1) & 0x55;
+        if m == 0 {
+            continue;
+        }
+        for k in 0..4 {
+            if m >> (2 * k) & 1 != 0 {
+                out[4 * q + k] = *other.next()?;
+            }
+        }
+    }
+    if other.next().is_some() || out[n..].iter().any(|&v| v != 0) {
+        return None;
+    }
+    out.truncate(n);
+    Some(out)
+}
+
 /// The texels of a `w`-wide face from their differences (in place).
 fn undo_differences(d: &mut [u8], w: usize, o: FaceOrigin, luma: &[u8]) {
     let (mut tprev, mut t, mut p) = (vec![0.0; w], vec![0.0; w], vec![0u8; w]);
@@ -191,9 +259,10 @@ impl FaceTexels {
             None => stored,
             Some(cell) => cell.get_or_init(|| {
                 // The frame's size was checked when read ([`FaceTexels::read`]).
-                let mut t = zstd::bulk::decompress(stored, f.w * f.h)
+                let n = f.w * f.h;
+                let mut t = zstd::bulk::decompress(stored, n.div_ceil(4) + n)
                     .ok()
-                    .filter(|t| t.len() == f.w * f.h)
+                    .and_then(|b| from_two_bits(&b, n))
                     .unwrap_or_else(|| {
                         tracing::warn!("face texture {i} does not unpack; drawn black");
                         vec![0; f.w * f.h]
@@ -232,24 +301,32 @@ impl FaceTexels {
         self.faces.iter().map(|f| f.w * f.h).sum()
     }
 
-    /// The stored form: per face its stored length, how it is stored, its surface and its
-    /// origin in it (`tu0 | tv0 << 16`) (u32 each), then every face's stored bytes; faces of
-    /// [`RAW_BELOW`] texels or more stored as packed differences from their prediction.
+    /// The stored form: per face its stored length, how it is stored, its surface, its origin
+    /// in it (`tu0 | tv0 << 16`) and the number of its differences that two bits do not hold
+    /// (u32 each), then every face's stored bytes; faces of [`RAW_BELOW`] texels or more stored
+    /// as packed differences from their prediction.
     pub(crate) fn write(&self) -> Result<Vec<u8>, String> {
         let luma = super::surface_luma();
         let mut table = Vec::with_capacity(TABLE * self.faces.len());
         let mut data = Vec::new();
         for (i, f) in self.faces.iter().enumerate() {
             let t = self.texels(i);
-            let (how, stored) = if t.len() >= RAW_BELOW {
-                let d = differences(t, f.w, f.origin, luma);
+            let (how, stored, other) = if t.len() >= RAW_BELOW {
+                let d = two_bits(&differences(t, f.w, f.origin, luma));
+                let other = d.len() - t.len().div_ceil(4);
                 let p = zstd::bulk::compress(&d, LEVEL).map_err(|e| e.to_string())?;
-                (PREDICTED, p)
+                (PREDICTED, p, other as u32)
             } else {
-                (RAW, t.to_vec())
+                (RAW, t.to_vec(), 0)
             };
             let o = f.origin;
-            for v in [stored.len() as u32, how, o.surface, o.tu0 | o.tv0 << 16] {
+            for v in [
+                stored.len() as u32,
+                how,
+                o.surface,
+                o.tu0 | o.tv0 << 16,
+                other,
+            ] {
                 table.extend_from_slice(&v.to_le_bytes());
             }
             data.extend_from_slice(&stored);
@@ -279,6 +356,7 @@ impl FaceTexels {
         for (i, (row, f)) in head.chunks_exact(TABLE).zip(faces).enumerate() {
             let word = |k: usize| u32::from_le_bytes(row[4 * k..4 * k + 4].try_into().expect("4"));
             let (len, how, surface, origin) = (word(0) as usize, word(1), word(2), word(3));
+            let other = word(4) as u64;
             let (w, h) = (f.w as usize, f.h as usize);
             let n = w * h;
             if data.get(at..at + len).is_none() {
@@ -299,9 +377,11 @@ impl FaceTexels {
                     let size = zstd::zstd_safe::get_frame_content_size(&data[at..at + len])
                         .ok()
                         .flatten();
-                    if size != Some(n as u64) {
+                    // Two bits a texel, and the differences those do not hold.
+                    if other > n as u64 || size != Some(n.div_ceil(4) as u64 + other) {
                         return Err(format!(
-                            "face texture {i}: packed size {size:?}, {n} texels expected"
+                            "face texture {i}: packed size {size:?} for {n} texels and {other} \
+                             other differences"
                         ));
                     }
                     Some(OnceLock::new())
@@ -416,6 +496,29 @@ mod tests {
             .collect();
         let stored = FaceTexels::raw(t.clone(), &f, &o).write().unwrap();
         assert_eq!(FaceTexels::read(&stored, &f).unwrap().texels(0), &t[..]);
+    }
+
+    #[test]
+    fn differences_in_two_bits_come_back_and_misfits_are_refused() {
+        let d: Vec<u8> = (0..1001u32)
+            .map(|i| match i % 7 {
+                0..=2 => 0,
+                3 => 1,
+                4 => 255,
+                _ => (i % 251) as u8,
+            })
+            .collect();
+        let b = two_bits(&d);
+        assert_eq!(from_two_bits(&b, d.len()), Some(d.clone()));
+        assert!(
+            from_two_bits(&b[..b.len() - 1], d.len()).is_none(),
+            "one missing"
+        );
+        let mut more = b.clone();
+        more.push(9);
+        assert!(from_two_bits(&more, d.len()).is_none(), "one too many");
+        assert!(from_two_bits(&b[..10], d.len()).is_none());
+        assert_eq!(from_two_bits(&two_bits(&[]), 0), Some(vec![]));
     }
 
     #[test]
