@@ -28,16 +28,28 @@ impl EndFieldStore {
         }
     }
 
-    /// Keep the end fields `map` of home `id` has built (replacing what was kept for it), the
-    /// least recently kept homes let go beyond the budget.
+    /// Keep the end fields `map` of home `id` has built (with those kept for it that `map` has
+    /// not built), the least recently kept homes let go beyond the budget.
     pub(crate) fn keep(&mut self, id: &str, map: &MultiLevelMap) {
         if self.budget == 0 {
             return;
         }
-        let ends = map.built_end_fields();
+        let mut ends = map.built_end_fields();
+        if let Some((_, old, _)) = self.entries.iter().find(|(k, _, _)| k == id) {
+            for (new, old) in ends.iter_mut().zip(old) {
+                for (n, o) in new.iter_mut().zip(old) {
+                    if n.is_none() {
+                        n.clone_from(o);
+                    }
+                }
+            }
+        }
         let bytes: usize = ends.iter().flatten().flatten().map(|f| f.bytes()).sum();
+        if bytes == 0 {
+            return;
+        }
         self.remove(id);
-        if bytes == 0 || bytes > self.budget {
+        if bytes > self.budget {
             return;
         }
         while self.held + bytes > self.budget {

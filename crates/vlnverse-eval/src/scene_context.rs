@@ -248,8 +248,9 @@ pub struct SceneCache {
     entries: Mutex<VecDeque<(String, Arc<SceneContext>)>>,
     loads: std::sync::atomic::AtomicUsize,
     /// The stairs' end fields of homes let go, given back when they are loaded again
-    /// ([`SceneCache::keeping_end_fields`]; none kept by default).
-    end_fields: Mutex<EndFieldStore>,
+    /// ([`SceneCache::keeping_end_fields`], [`SceneCache::sharing_end_fields`]; none kept by
+    /// default), by the home's folder.
+    end_fields: Arc<Mutex<EndFieldStore>>,
 }
 
 impl SceneCache {
@@ -260,7 +261,7 @@ impl SceneCache {
             capacity: capacity.max(1),
             entries: Mutex::new(VecDeque::new()),
             loads: std::sync::atomic::AtomicUsize::new(0),
-            end_fields: Mutex::new(EndFieldStore::new(0)),
+            end_fields: Arc::new(Mutex::new(EndFieldStore::new(0))),
         }
     }
 
@@ -269,11 +270,25 @@ impl SceneCache {
     /// whatever the goals), and giving them back when such a home is loaded again: for a
     /// workload that comes back to homes (train order), not one that leaves them for good
     /// (an evaluation in scene order).
-    pub fn keeping_end_fields(self, budget: usize) -> Self {
-        SceneCache {
-            end_fields: Mutex::new(EndFieldStore::new(budget)),
-            ..self
-        }
+    pub fn keeping_end_fields(mut self, budget: usize) -> Self {
+        self.end_fields = Arc::new(Mutex::new(EndFieldStore::new(budget)));
+        self
+    }
+
+    /// [`SceneCache::keeping_end_fields`] into one store for the whole process (the first
+    /// call's `budget`), shared by every cache made so, as prepared raster scenes are: vector
+    /// environments made one after another over a dataset find the fields the earlier ones
+    /// built (kept by the home's folder, and checked against the home's maps when given back).
+    pub fn sharing_end_fields(mut self, budget: usize) -> Self {
+        static SHARED: OnceLock<Arc<Mutex<EndFieldStore>>> = OnceLock::new();
+        let store = SHARED.get_or_init(|| Arc::new(Mutex::new(EndFieldStore::new(budget))));
+        self.end_fields = store.clone();
+        self
+    }
+
+    /// The key of home `id` in the end-field store: its folder.
+    fn end_key(&self, id: &str) -> String {
+        self.dataset.join("scenes").join(id).display().to_string()
     }
 
     /// Bytes of the stairs' end fields kept for homes let go
@@ -290,7 +305,7 @@ impl SceneCache {
                 break;
             };
             if let Some(m) = ctx.levels() {
-                lock(&self.end_fields).keep(&id, m);
+                lock(&self.end_fields).keep(&self.end_key(&id), m);
             }
         }
     }
@@ -309,7 +324,7 @@ impl SceneCache {
         // Loaded outside the lock: other scenes stay available meanwhile.
         let ctx = Arc::new(SceneContext::load(&self.dataset, id)?);
         if let Some(m) = ctx.levels() {
-            lock(&self.end_fields).give(id, m);
+            lock(&self.end_fields).give(&self.end_key(id), m);
         }
         self.loads
             .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
@@ -351,6 +366,19 @@ impl SceneCache {
     /// Scene loads so far (reloads after eviction included).
     pub fn loads(&self) -> usize {
         self.loads.load(std::sync::atomic::Ordering::Relaxed)
+    }
+}
+
+impl Drop for SceneCache {
+    /// The homes still held leave too: their stairs' end fields are kept like those of homes
+    /// let go (for the next cache sharing the store).
+    fn drop(&mut self) {
+        let entries = std::mem::take(&mut *lock(&self.entries));
+        for (id, ctx) in entries {
+            if let Some(m) = ctx.levels() {
+                lock(&self.end_fields).keep(&self.end_key(&id), m);
+            }
+        }
     }
 }
 
@@ -413,6 +441,23 @@ mod tests {
         // Another home's fields do not fit this one; a field is not given twice.
         assert!(!m.give_end_field(0, false, other[0].clone()));
         assert!(!m.give_end_field(0, false, first[0].clone()));
+        // Caches sharing the process's store find each other's fields.
+        let (a, b) = (
+            SceneCache::new(dir.path(), 1).sharing_end_fields(64 << 20),
+            SceneCache::new(dir.path(), 1).sharing_end_fields(64 << 20),
+        );
+        let built = ends(&a.get(&ids[0]).unwrap());
+        a.get(&ids[1]).unwrap();
+        let found = ends(&b.get(&ids[0]).unwrap());
+        assert!(built.iter().zip(&found).all(|(x, y)| Arc::ptr_eq(x, y)));
+        // A cache dropped keeps the fields of the homes it still held.
+        let held = ends(&b.get(&ids[1]).unwrap());
+        // (`a` still holds home 1 without its end fields: leaving after `b`, it loses none.)
+        drop(b);
+        drop(a);
+        let c = SceneCache::new(dir.path(), 1).sharing_end_fields(64 << 20);
+        let again = ends(&c.get(&ids[1]).unwrap());
+        assert!(held.iter().zip(&again).all(|(x, y)| Arc::ptr_eq(x, y)));
         // A cache without the budget keeps nothing.
         let plain = SceneCache::new(dir.path(), 1);
         ends(&plain.get(&ids[0]).unwrap());

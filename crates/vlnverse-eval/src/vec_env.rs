@@ -357,10 +357,13 @@ impl<S: Simulator> VecEnv<S> {
         // Room for the homes shown and, in train order, those prepared ahead.
         let capacity = cfg.num_envs * if train { 1 + AHEAD } else { 1 } + 2;
         // Train order comes back to homes the cache has let go: their stairs' end fields are
-        // kept for the next visit.
-        let end_fields = if train { END_FIELD_BUDGET } else { 0 };
-        let scenes =
-            Arc::new(SceneCache::new(&cfg.dataset, capacity).keeping_end_fields(end_fields));
+        // kept for the next visit (in the process's store, which later environments share).
+        let scenes = SceneCache::new(&cfg.dataset, capacity);
+        let scenes = Arc::new(if train {
+            scenes.sharing_end_fields(END_FIELD_BUDGET)
+        } else {
+            scenes
+        });
         let prepare = slots
             .first()
             .and_then(|s| s.rig.as_ref())
