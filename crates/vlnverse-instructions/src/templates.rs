@@ -166,13 +166,30 @@ impl InstructionGenerator for TemplateGenerator {
         };
         let text = capitalize_sentence(&coarse_sentence(style, &parts, &mut rng), style);
         let text = spelled(&outdoor_prepositions(&text), writes_american(seed ^ salt));
-        Ok(Instruction {
+        let ins = Instruction {
             instruction_text: text,
             instruction_tokens: None,
             style: Some(style),
             grounding,
             sub_instructions: Vec::new(),
-        })
+        };
+        // On a path that leads to the target, a reference out of reach of its end (a
+        // nightstand beyond the far end of the long bed it describes) is no help there: an
+        // error, so the pipeline samples again.
+        let target_only = Instruction {
+            grounding: ins.grounding.iter().take(1).cloned().collect(),
+            ..Instruction::default()
+        };
+        let leads_there = super::check_grounding(ctx, &target_only, COARSE_REACH).is_empty();
+        let problems = super::check_grounding(ctx, &ins, COARSE_REACH);
+        if let Some(p) = problems.first().filter(|_| leads_there) {
+            return Err(DataError::invalid(
+                "target",
+                target,
+                format!("scene `{}`: {p}", ctx.scene.id),
+            ));
+        }
+        Ok(ins)
     }
 
     fn chain(&self, parts: &[Instruction], seed: u64) -> Result<Instruction> {
@@ -262,6 +279,10 @@ fn mention_words(ctx: &PathContext<'_>, m: &Mention, rng: &mut ChaCha8Rng) -> St
         None => format!("the {name}"),
     }
 }
+
+/// How far from the path's end every object a coarse instruction names may stand (m, to its
+/// footprint).
+pub(crate) const COARSE_REACH: f32 = 2.5;
 
 /// How often a coarse target goes by another of its names ("the couch", "the refrigerator")
 /// rather than its class's vocabulary name, by style: a formal request keeps to the plainest.
