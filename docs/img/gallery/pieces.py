@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
-"""Render the feature pieces (vlnverse-procgen `pieces.rs`): for each piece class, its first
-object on a ground floor in a scenes folder, seen by the RGB camera from a navigable cell of its
-room about two metres away, and one labelled contact sheet of them all.
+"""Render the feature pieces (vlnverse-procgen `pieces.rs`), or the classes named after OUT:
+for each class, its first object on a ground floor in a scenes folder, seen by the RGB camera
+from a navigable cell of its room about two metres away, and one labelled contact sheet of them.
 
-    python3 docs/img/gallery/pieces.py SCENES_DIR OUT.png   (needs Pillow; XTASK to override)
+    python3 docs/img/gallery/pieces.py SCENES_DIR OUT.png [CLASS ...]
+    (needs Pillow; XTASK to override)
 """
 import json
 import math
@@ -25,16 +26,16 @@ XTASK = os.environ.get("XTASK", "target/release/xtask")
 TILE = 168
 
 
-def first_objects(scenes):
+def first_objects(scenes, classes):
     found = {}
     for name in sorted(os.listdir(scenes)):
         scene = json.load(open(f"{scenes}/{name}/scene.json"))
         for o in scene["objects"]:
             c = o["class"]
             # Ground floor only (the navigable map below is the ground floor's); a chandelier
-            # hangs from its ceiling.
-            low = 2.6 if c == "chandelier" else 1.0
-            if c in PIECES and c not in found and o["bbox"]["min"][1] < low:
+            # hangs from its ceiling, a sconce on a wall.
+            low = 2.6 if c in ("chandelier", "wall_sconce") else 1.0
+            if c in classes and c not in found and o["bbox"]["min"][1] < low:
                 found[c] = (f"{scenes}/{name}", scene, o)
     return found
 
@@ -55,10 +56,10 @@ def viewpoint(scene_dir, scene, o):
     return x, z, math.degrees(math.atan2(-(cx - x), -(cz - z)))
 
 
-def main(scenes, out):
+def main(scenes, out, classes):
     tiles = []
-    for c, (scene_dir, scene, o) in sorted(first_objects(scenes).items(),
-                                           key=lambda kv: PIECES.index(kv[0])):
+    for c, (scene_dir, scene, o) in sorted(first_objects(scenes, classes).items(),
+                                           key=lambda kv: classes.index(kv[0])):
         view = viewpoint(scene_dir, scene, o)
         if view is None:
             continue
@@ -75,8 +76,8 @@ def main(scenes, out):
         sheet.paste(im, ((k % cols) * TILE, (k // cols) * TILE))
     # An adaptive palette keeps the sheet a few hundred kB.
     sheet.convert("P", palette=Image.Palette.ADAPTIVE, colors=256).save(out, optimize=True)
-    print(f"{len(tiles)} pieces -> {out}")
+    print(f"{len(tiles)} classes -> {out}")
 
 
 if __name__ == "__main__":
-    main(sys.argv[1], sys.argv[2])
+    main(sys.argv[1], sys.argv[2], sys.argv[3:] or PIECES)
