@@ -531,7 +531,8 @@ fn workbench(rng: &mut ChaCha8Rng) -> Model {
 /// A Christmas tree: four green tiers narrowing to the top on a red skirt, coloured baubles
 /// and a gold star.
 fn christmas_tree(rng: &mut ChaCha8Rng) -> Model {
-    let fin = pick(FIR, rng);
+    // Fir green as it is: no tone (an olive or mint tree reads as another thing).
+    let fin = *FIR.choose(rng).unwrap_or(&FIR[0]);
     let h = r(rng, 1.6, 2.0);
     let rad = r(rng, 0.5, 0.6);
     let mut p = Vec::new();
