@@ -62,8 +62,21 @@ fn the_dialogue_oracle_sends_an_agent_downstairs_up_the_stairs() {
         .unwrap();
     let got = close.distance_m.unwrap();
     assert!((got - want).abs() < 0.3, "{got} vs {want}");
-    // On the goal's floor: no stairs.
-    let near = up[up.len() / 2 + 3];
+    // On the goal's floor, a step or so from the goal (by the walk, not through a wall): no
+    // stairs.
+    let walk_to_goal = |p: Vec2| {
+        multi
+            .geodesic_distance(
+                LevelPoint::new(1, p.x, p.y),
+                LevelPoint::new(1, goal.x, goal.y),
+            )
+            .ok()
+            .and_then(|d| d.meters())
+    };
+    let near = *up
+        .iter()
+        .find(|p| walk_to_goal(**p).is_some_and(|d| (0.3..1.5).contains(&d)))
+        .expect("a free cell a step from the goal");
     let ans = o
         .ask(&OracleQuery::WhichWay, [near.x, h1, near.y], 0.0)
         .unwrap();
