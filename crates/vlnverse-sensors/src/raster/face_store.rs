@@ -12,7 +12,7 @@
 //! the rows already unpacked, with the same float operations, so it gives back every texel
 //! exactly.
 
-use super::faces::{FaceOrigin, FaceTexture};
+use super::faces::{round_byte, FaceOrigin, FaceTexture};
 use std::sync::OnceLock;
 use vlnverse_env::material::TEX_SIZE;
 
@@ -66,16 +66,6 @@ fn surface_row(luma: &[u8], o: FaceOrigin, j: usize, out: &mut [f32]) {
         }
         i += n;
     }
-}
-
-/// `v.round().clamp(0.0, 255.0) as u8` (0 for NaN), as [`super::faces`] rounds a texel.
-#[inline]
-fn round_byte(v: f32) -> u8 {
-    const MAGIC: f32 = 12_582_912.0;
-    let v = if v > 0.0 { v.min(255.0) } else { 0.0 };
-    let r = v + MAGIC;
-    let n = r.to_bits() & 0xff;
-    (n + u32::from(v - (r - MAGIC) >= 0.5)) as u8
 }
 
 /// The prediction of row `j > 0` from the row above: `prev` its texels, `tprev` and `t` the

@@ -213,7 +213,7 @@ fn fill_gaps(t: &mut [f32], w: usize, h: usize) {
 /// loop of it runs on vector lanes: adding 1.5 * 2^23 rounds to the nearest integer `n`, ties
 /// to even, in the low mantissa bits; `v - n` is exact, and a tie below `v` goes up.
 #[inline]
-fn round_byte(v: f32) -> u8 {
+pub(super) fn round_byte(v: f32) -> u8 {
     const MAGIC: f32 = 12_582_912.0;
     let v = if v > 0.0 { v.min(255.0) } else { 0.0 };
     let r = v + MAGIC;
