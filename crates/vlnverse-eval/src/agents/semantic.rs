@@ -98,9 +98,7 @@ const SYNONYMS: &[(&str, SemanticClass)] = &[
 ];
 
 /// The target class an instruction names: the class phrase that occurs first in the text
-/// (longest phrase on ties; plural `s` accepted), a phrase being any of the names people use
-/// for the class (`vlnverse_instructions::lexicon::class_names`: "couch", "refrigerator",
-/// "night table") or a word of [`SYNONYMS`]. Structure classes are not targets.
+/// (longest phrase on ties; plural `s` accepted). Structure classes are not targets.
 pub fn parse_target_class(text: &str) -> Option<SemanticClass> {
     let words: Vec<String> = text
         .to_lowercase()
@@ -111,12 +109,7 @@ pub fn parse_target_class(text: &str) -> Option<SemanticClass> {
     let mut phrases: Vec<(Vec<String>, SemanticClass)> = SemanticClass::ALL
         .iter()
         .filter(|c| !c.is_structure() && **c != SemanticClass::Unknown)
-        .flat_map(|&c| {
-            let names = vlnverse_instructions::lexicon::class_names(c);
-            std::iter::once(c.words())
-                .chain(names.iter().map(|n| n.to_string()))
-                .map(move |n| (n.split(' ').map(str::to_string).collect(), c))
-        })
+        .map(|c| (c.words().split(' ').map(str::to_string).collect(), *c))
         .collect();
     phrases.extend(
         SYNONYMS
@@ -989,16 +982,6 @@ mod tests {
             Some(SemanticClass::OfficeChair)
         );
         assert_eq!(parse_target_class("walk past the wall"), None);
-        // The names people use, not only the vocabulary's: the end table is the target here,
-        // not the couch it is near.
-        assert_eq!(
-            parse_target_class("stand by the brown end table not far from the couch"),
-            Some(SemanticClass::SideTable)
-        );
-        assert_eq!(
-            parse_target_class("go to the night table by the bed"),
-            Some(SemanticClass::Nightstand)
-        );
     }
 
     /// A scripted oracle that answers by the kind of question, within a budget.
