@@ -205,6 +205,10 @@ fn walk_body(text: &str, last: bool) -> String {
             _ => s.to_string(),
         })
         .collect();
+    if kept.is_empty() {
+        // Nothing but remarks (not made by this crate's generator): keep the walk as written.
+        return text.trim().to_string();
+    }
     kept.join(" ")
 }
 
