@@ -974,11 +974,13 @@ fn between_pair<'r>(route: &'r Route<'_, '_>, li: usize) -> Option<(&'r Landmark
         .filter(|l| route.leg_of(l.path_index) == li && Some(l.object) != end)
         .filter(|l| l.distance < 1.5)
         .collect();
+    let class = |l: &Landmark| route.ctx.scene.object(l.object).map(|o| o.class);
     let mut best: Option<(f32, &Landmark, &Landmark)> = None;
     for a in on_leg.iter().filter(|l| env_side(l.side) == Side::Left) {
         for b in on_leg.iter().filter(|l| env_side(l.side) == Side::Right) {
             let gap = a.point.distance(b.point);
-            if gap < 1.0 && best.is_none_or(|(g, _, _)| gap < g) {
+            let plural_twins = class(a) == class(b) && class(a).is_some_and(plural_class);
+            if gap < 1.0 && !plural_twins && best.is_none_or(|(g, _, _)| gap < g) {
                 best = Some((gap, a, b));
             }
         }
@@ -994,6 +996,8 @@ fn name_between(route: &Route<'_, '_>, a: &Landmark, b: &Landmark, draft: &mut D
         .filter_map(|l| Some((route.ctx.scene.object(l.object)?, l)))
         .collect();
     let text = match objs.as_slice() {
+        // (`between_pair` gives no two of a class named in the plural: "the two dumbbells"
+        // would not say how many pairs.)
         [(x, _), (y, _)] if x.class == y.class => {
             format!("the two {}", plural(group_noun(&[x, y], &mut draft.rng)))
         }
@@ -1118,7 +1122,8 @@ fn group_mates<'r>(
     o: &SceneObject,
 ) -> Vec<(&'r SceneObject, &'r Landmark)> {
     let side = env_side(l.side);
-    if !matches!(side, Side::Left | Side::Right) {
+    // A class named in the plural ("dumbbells", "shoes") has no plural to group by.
+    if !matches!(side, Side::Left | Side::Right) || plural_class(o.class) {
         return Vec::new();
     }
     let li = route.leg_of(l.path_index);
@@ -1527,6 +1532,11 @@ fn mend_joins(text: &str) -> String {
         }
     }
     out.join(" ")
+}
+
+/// Whether class `c` goes by a plural name ("dumbbells", "shoes", "lockers").
+fn plural_class(c: vlnverse_env::SemanticClass) -> bool {
+    is_plural_name(class_names(c)[0])
 }
 
 /// Whether a name is a plural noun: its head word ("stairs", "storage shelves") ends in a
@@ -2184,6 +2194,13 @@ mod tests {
             }
         }
         assert!(by_synonym > 0, "never another name");
+    }
+
+    #[test]
+    fn classes_named_in_the_plural_are_never_grouped_or_paired() {
+        use vlnverse_env::SemanticClass as C;
+        assert!(plural_class(C::Dumbbells) && plural_class(C::Lockers));
+        assert!(!plural_class(C::Chair) && !plural_class(C::Sofa));
     }
 
     #[test]

@@ -351,7 +351,7 @@ fn wine_rack(rng: &mut ChaCha8Rng) -> Model {
     Model::new(C::WineRack, fin, [w, h, d], 15.0, p)
 }
 
-/// A bank of two to four tall steel lockers, each door with vent slits and a handle.
+/// A bank of two or three tall steel lockers, each door with vent slits and a handle.
 fn lockers(rng: &mut ChaCha8Rng) -> Model {
     let fin = pick(LOCKER, rng);
     let c = fin.rgb;

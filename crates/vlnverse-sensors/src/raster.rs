@@ -770,15 +770,16 @@ impl RasterScene {
         // no need to hash it. A kept scene's weak reference keeps the mesh's block allocated
         // even after the mesh is dropped, so no other mesh can be at that address.
         let same = |s: &RasterScene| std::ptr::eq(s.mesh.as_ptr(), Arc::as_ptr(&mesh));
-        if let Some(hit) = cache.lock().ok().and_then(|mut c| c.find(same)) {
+        // Kept scenes grow as views unpack their face textures: accounted by what they hold
+        // now on every visit, a hit too (a working set of hits alone would outgrow the budget).
+        if let Some(hit) = cache.lock().ok().and_then(|mut c| {
+            let hit = c.find(same);
+            c.remeasure(RasterScene::bytes);
+            hit
+        }) {
             return hit;
         }
         let key = mesh.content_key();
-        // Kept scenes grow as views unpack their face textures: accounted by what they hold
-        // now whenever a home is added.
-        if let Ok(mut c) = cache.lock() {
-            c.remeasure(RasterScene::bytes);
-        }
         cache::get_or_insert(
             cache,
             key,

@@ -11,8 +11,9 @@
 //! Layout, little-endian: magic `VLNRAST\0`, version (u32), 0 (u32), the lengths of the body
 //! and of the face textures' texels (u64 each), the length of the packed body (u64), then the
 //! body packed with zstd (level 1), then the face textures as [`super::face_store`] stores them:
-//! per face (in the order of their `base`) its stored length and how it is stored (u32 each: 0
-//! as it is, 1 packed with zstd on its own), then every face's stored bytes. Faces are packed
+//! per face (in the order of their `base`) its stored length, how it is stored (0 as it is, 1
+//! as two-bit differences from a prediction packed with zstd), its surface, its origin and the
+//! count of its other differences (five u32), then every face's stored bytes. Faces are packed
 //! one by one so that a loaded scene keeps them packed and unpacks a face when a view first
 //! draws it. The body: mesh key (u64), texture key (u64), mesh triangles, draw triangles,
 //! objects, face-texture texels (u32 each); per draw triangle its 9 corner coordinates (f32);
