@@ -1873,7 +1873,7 @@ fn furniture_counts(scene: &Scene, room: RoomId) -> Vec<(&SceneObject, usize)> {
         .into_values()
         .filter(|(o, n)| {
             (2..=6).contains(n)
-                && !is_plural_name(class_names(o.class)[0])
+                && !plural_class(o.class)
                 && classes_by_head[head(o.class)].len() == 1
         })
         .collect()
@@ -2075,7 +2075,7 @@ fn closing_remarks(route: &Route<'_, '_>, draft: &mut Draft) {
         let in_home = |h: &Scene| h.objects.iter().filter(|x| x.class == o.class).count();
         let only = ctx.graph.objects_of_class(o.class).len() == 1
             && ctx.whole_home.is_none_or(|h| in_home(h) == 1)
-            && !is_plural_name(&o.class.words());
+            && !plural_class(o.class);
         let p = if chatty { 0.2 } else { 0.06 };
         if big && rng.random_bool(p) {
             sentences.push(pick(rng, &ph::CANT_MISS).to_string());

@@ -142,7 +142,7 @@ impl InstructionGenerator for TemplateGenerator {
             seed ^ salt ^ u64::from(target).wrapping_mul(0x9E37_79B9_7F4A_7C15),
         );
         let name = match ctx.scene.object(target) {
-            Some(o) => coarse_name(o, style, &mut rng),
+            Some(o) => other_name(o, coarse_synonym(style), &mut rng),
             None => expr.class.words(),
         };
         let desc = coarse_description(ctx, target, &expr, &name, &mut rng);
@@ -176,13 +176,16 @@ impl InstructionGenerator for TemplateGenerator {
         // On a path that leads to the target, a reference out of reach of its end (a
         // nightstand beyond the far end of the long bed it describes) is no help there: an
         // error, so the pipeline samples again.
-        let target_only = Instruction {
-            grounding: ins.grounding.iter().take(1).cloned().collect(),
-            ..Instruction::default()
-        };
-        let leads_there = super::check_grounding(ctx, &target_only, COARSE_REACH).is_empty();
         let problems = super::check_grounding(ctx, &ins, COARSE_REACH);
-        if let Some(p) = problems.first().filter(|_| leads_there) {
+        // Checked on the target alone only when something is out of reach (rarely).
+        let leads_there = || {
+            let target_only = Instruction {
+                grounding: ins.grounding.iter().take(1).cloned().collect(),
+                ..Instruction::default()
+            };
+            super::check_grounding(ctx, &target_only, COARSE_REACH).is_empty()
+        };
+        if let Some(p) = problems.first().filter(|_| leads_there()) {
             return Err(DataError::invalid(
                 "target",
                 target,
@@ -293,14 +296,8 @@ fn coarse_synonym(style: Style) -> f64 {
     }
 }
 
-/// The noun a coarse instruction names its target by: its class's vocabulary name, now and
-/// then another name people use for it (one true of this object: "loveseat" only for a sofa
-/// for two).
-fn coarse_name(o: &SceneObject, style: Style, rng: &mut ChaCha8Rng) -> String {
-    other_name(o, coarse_synonym(style), rng)
-}
-
-/// The class's vocabulary name of `o`, or with probability `p` another of the object's names.
+/// The class's vocabulary name of `o`, or with probability `p` another of the object's names
+/// (one true of this object: "loveseat" only for a sofa for two).
 fn other_name(o: &SceneObject, p: f64, rng: &mut ChaCha8Rng) -> String {
     let plain = o.class.words();
     let others: Vec<&str> = object_names(o)
@@ -315,7 +312,7 @@ fn other_name(o: &SceneObject, p: f64, rng: &mut ChaCha8Rng) -> String {
 }
 
 /// The target described: size and shape words the geometry supports may precede the colour,
-/// which stays next to the noun `name` (see [`coarse_name`]).
+/// which stays next to the noun `name` (see [`other_name`]).
 fn coarse_description(
     ctx: &PathContext<'_>,
     target: ObjectId,
@@ -971,6 +968,15 @@ fn without_openers(t: &str) -> String {
 mod tests {
     use super::*;
 
+    /// A chain part: text `t` in `style`, grounding nothing.
+    fn part(t: &str, style: Style) -> Instruction {
+        Instruction {
+            instruction_text: t.into(),
+            style: Some(style),
+            ..Instruction::default()
+        }
+    }
+
     #[test]
     fn a_closer_does_not_repeat_the_stop() {
         let core = "Find the desk and stop there";
@@ -1006,11 +1012,6 @@ mod tests {
 
     #[test]
     fn a_chain_says_first_once_and_opens_its_parts_itself() {
-        let part = |t: &str, style: Style| Instruction {
-            instruction_text: t.into(),
-            style: Some(style),
-            ..Instruction::default()
-        };
         for seed in 0..30 {
             let c = chain_parts(
                 &[
@@ -1060,11 +1061,7 @@ mod tests {
 
     #[test]
     fn a_casual_chain_asks_once() {
-        let part = |t: &str| Instruction {
-            instruction_text: t.into(),
-            style: Some(Style::Casual),
-            ..Instruction::default()
-        };
+        let part = |t: &str| part(t, Style::Casual);
         for seed in 0..20 {
             let c = chain_parts(
                 &[
@@ -1083,13 +1080,7 @@ mod tests {
 
     #[test]
     fn a_casual_chain_says_please_once_at_the_end() {
-        let part = |t: &str| Instruction {
-            instruction_text: t.to_string(),
-            instruction_tokens: None,
-            style: Some(Style::Casual),
-            grounding: Vec::new(),
-            sub_instructions: Vec::new(),
-        };
+        let part = |t: &str| part(t, Style::Casual);
         let parts = [
             part("go to the desk please"),
             part("find the red mug please"),
