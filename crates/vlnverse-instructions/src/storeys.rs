@@ -21,7 +21,7 @@ use vlnverse_score::{DataError, Result};
 
 use crate::data::{expect_embedded, parse_toml, DataFileError};
 use crate::lexicon::number_word;
-use crate::phrases::{self as ph, capitalize, Bank};
+use crate::phrases::{self as ph, capitalize, decapitalize, fill, Bank};
 
 /// The stair phrase file, as errors name it.
 const FILE: &str = "data/stairs.toml";
@@ -103,15 +103,6 @@ fn pick<'a>(rng: &mut ChaCha8Rng, bank: &'a [String]) -> &'a str {
     &bank[rng.random_range(0..bank.len())]
 }
 
-/// `s` with its first letter lowered ("Turn left" -> "turn left").
-fn lower_first(s: &str) -> String {
-    let mut c = s.chars();
-    match c.next() {
-        Some(f) => f.to_lowercase().chain(c).collect(),
-        None => String::new(),
-    }
-}
-
 /// A fine instruction across floors: `walks[i]` is the instruction of the i-th walk (its
 /// grounding already offset into the whole path), `None` for a walk too short to describe;
 /// `flights[i]` is the flight between walk `i` and walk `i + 1` and its number of steps (0 when
@@ -148,7 +139,7 @@ pub fn join_walks(
                     Flight::Up => pick(&mut rng, &p.up_opener),
                     Flight::Down => pick(&mut rng, &p.down_opener),
                 };
-                text.push(format!("{opener}{}", lower_first(b)));
+                text.push(format!("{opener}{}", decapitalize(b)));
             }
             (Some(b), None) => text.push(b.clone()),
             (None, Some(f)) if i + 1 == walks.len() => text.push(
@@ -185,7 +176,7 @@ fn flight_sentence(f: Flight, steps: u32, rng: &mut ChaCha8Rng) -> String {
         (Flight::Up, true) => &p.up_steps,
         (Flight::Down, true) => &p.down_steps,
     };
-    pick(rng, bank).replace("{n}", &number_word(steps))
+    fill(pick(rng, bank), &[("n", &number_word(steps))])
 }
 
 /// A walk's instruction as a part of a route across floors: without the sentences that give
@@ -236,10 +227,10 @@ fn said_from(s: &str, bank: Bank) -> bool {
             .split('{')
             .map(|p| p.split_once('}').map_or(p, |(_, rest)| rest))
             .collect();
-        let lowered = lower_first(s);
+        let lowered = decapitalize(s);
         let mut rest = lowered.as_str();
         for (k, piece) in pieces.iter().enumerate() {
-            let piece = lower_first(piece);
+            let piece = decapitalize(piece);
             let found = if k == 0 {
                 rest.starts_with(&piece).then_some(0)
             } else if k + 1 == pieces.len() {
