@@ -539,7 +539,8 @@ pub fn feature_surface(o: &SceneObject) -> Option<(Surface, Covers)> {
 }
 
 /// The surface of each part of `o`, in part order: [`surface_of`], except where a recorded
-/// feature draws a canvas's picture or a worktop's stone ([`feature_surface`]).
+/// feature draws a canvas's picture or a worktop's stone ([`feature_surface`]), and on a glass
+/// door (class `door`, material `glass`), whose panes are glass and whose frame is not.
 pub fn part_surfaces(scene: &Scene, o: &SceneObject) -> Vec<Surface> {
     let base = surface_of(scene, o);
     let mut out = vec![base; o.parts.len()];
@@ -557,8 +558,29 @@ pub fn part_surfaces(scene: &Scene, o: &SceneObject) -> Vec<Surface> {
         }
         Some((_, Covers::Object)) | None => {}
     }
+    if o.class == SemanticClass::Door && o.material == "glass" {
+        // A glass door: its panes glass, its frame painted or (in wood tones) wood.
+        let frame = if matches!(o.color.as_str(), "wooden" | "brown") {
+            Surface::Wood
+        } else {
+            Surface::Plain
+        };
+        for (s, p) in out.iter_mut().zip(&o.parts) {
+            let pane = match p.shape {
+                crate::scene::Shape::Cuboid { half_extents, .. } => {
+                    half_extents.iter().copied().fold(f32::MAX, f32::min) <= PANE_HALF
+                }
+                _ => false,
+            };
+            *s = if pane { Surface::Glass } else { frame };
+        }
+    }
     out
 }
+
+/// Half the thickness of the thickest part of a glass door drawn as glass (m): its panes are
+/// 1 cm thick, its frame 4 cm.
+const PANE_HALF: f32 = 0.006;
 
 /// The index of `o`'s worktop: of its box parts no thicker than 8 cm that cover at least 60%
 /// of the largest box part's footprint, the one whose top is highest (in the object's frame);

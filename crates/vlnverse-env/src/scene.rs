@@ -486,9 +486,60 @@ pub struct Door {
     /// without a leaf (scenes written before doors had leaves).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub state: Option<DoorState>,
-    /// The object (class `door`) that is the hinged leaf, if the doorway has one.
+    /// The object (class `door`) that is the leaf, if the doorway has one (of a pair of french
+    /// doors the first; see `second_leaf` and [`Door::leaves`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub leaf: Option<ObjectId>,
+    /// The other leaf of a pair of french doors (class `door`, in the same state); `None` for
+    /// every other kind.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub second_leaf: Option<ObjectId>,
+    /// What kind of doorway this is (`hinged` in scenes written before doors had kinds, and for
+    /// open-plan openings, which have no door).
+    #[serde(default)]
+    pub kind: DoorKind,
+}
+
+/// The kind of a doorway: how its leaf opens, or an arched doorway without one.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DoorKind {
+    /// One solid leaf on hinges that swings into a room when open.
+    #[default]
+    Hinged,
+    /// A glass panel (class `door`, material `glass`) that slides along the wall: open, it lies
+    /// flat against the wall beside the opening.
+    Sliding,
+    /// Two glass-paned leaves, each half the width, hinged at the two jambs (`leaf` and
+    /// `second_leaf`); open, both swing into the same room.
+    French,
+    /// No leaf: the wall above the opening is shaped as a round arch, clear of the door head.
+    Arched,
+}
+
+impl DoorKind {
+    /// Every kind, in order.
+    pub const ALL: [DoorKind; 4] = [
+        DoorKind::Hinged,
+        DoorKind::Sliding,
+        DoorKind::French,
+        DoorKind::Arched,
+    ];
+
+    /// The word used in files and text: `hinged`, `sliding`, `french` or `arched`.
+    pub fn name(self) -> &'static str {
+        match self {
+            DoorKind::Hinged => "hinged",
+            DoorKind::Sliding => "sliding",
+            DoorKind::French => "french",
+            DoorKind::Arched => "arched",
+        }
+    }
+
+    /// Whether the leaves of this kind are glass panes in a frame (object material `glass`).
+    pub fn is_glass(self) -> bool {
+        matches!(self, DoorKind::Sliding | DoorKind::French)
+    }
 }
 
 /// State of a door leaf. A closed leaf fills its doorway: it blocks the agent in every setting,
@@ -516,6 +567,11 @@ impl Door {
     /// Whether a closed leaf blocks the doorway.
     pub fn is_closed(&self) -> bool {
         self.state == Some(DoorState::Closed)
+    }
+
+    /// The doorway's leaf objects: none, one, or two for french doors.
+    pub fn leaves(&self) -> impl Iterator<Item = ObjectId> + '_ {
+        self.leaf.into_iter().chain(self.second_leaf)
     }
 
     /// The doorway as a floor segment `[x, z]` to `[x, z]` across its clear width, in the

@@ -848,6 +848,8 @@ fn find_doors(g: &Labels, room_ids: &[RoomId], floor: f32, open_plan_width: f32)
                 open_plan: width >= open_plan_width,
                 state: None,
                 leaf: None,
+                second_leaf: None,
+                kind: Default::default(),
             });
         }
     }

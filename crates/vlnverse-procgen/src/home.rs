@@ -11,6 +11,7 @@ use crate::storeys;
 use glam::Vec3;
 use rand_chacha::ChaCha8Rng;
 use std::collections::BTreeMap;
+use vlnverse_env::scene::DoorKind;
 use vlnverse_env::{
     Door, EnvError, Motion, ObjectId, Part, Physics, Pose, Result, Room, RoomId, RoomType, Scene,
     SceneObject, SemanticClass as C, Shape, SCENE_FORMAT_VERSION,
@@ -212,11 +213,12 @@ fn merge(mut v: Vec<(f32, f32)>) -> Vec<(f32, f32)> {
     out
 }
 
-/// Floors, walls, door frames.
-/// Floors, walls and door frames; returns the wall finish (ceilings share it).
+/// Floors, walls and door frames (arched above the doorways of `kinds` that are arches);
+/// returns the wall finish (ceilings share it).
 fn build_structure(
     cfg: &ProcgenConfig,
     plan: &Plan,
+    kinds: &[DoorKind],
     rng: &mut ChaCha8Rng,
     b: &mut Builder,
 ) -> Finish {
@@ -288,8 +290,14 @@ fn build_structure(
         }
     }
 
-    for o in plan.openings.iter().filter(|o| !o.open_plan) {
-        add_door_frame(cfg, o, rng, b);
+    for (i, o) in plan
+        .openings
+        .iter()
+        .enumerate()
+        .filter(|(_, o)| !o.open_plan)
+    {
+        let arched = kinds.get(i) == Some(&DoorKind::Arched);
+        add_door_frame(cfg, o, arched.then_some(wall.rgb), rng, b);
     }
     wall
 }
@@ -313,8 +321,17 @@ fn add_ceilings(cfg: &ProcgenConfig, plan: &Plan, wall: Finish, b: &mut Builder)
     }
 }
 
-/// Two posts and a lintel; the clear opening stays free up to the door head.
-fn add_door_frame(cfg: &ProcgenConfig, o: &Opening, rng: &mut ChaCha8Rng, b: &mut Builder) {
+/// Two posts and a lintel; the clear opening stays free up to the door head. With `arch` (the
+/// wall's colour) the lintel is the wall above the opening shaped as a round arch, springing
+/// from the door head: a column of wall over each post and [`ARCH_PIECES`] strips across the
+/// opening whose undersides step up along the arch, none below it.
+fn add_door_frame(
+    cfg: &ProcgenConfig,
+    o: &Opening,
+    arch: Option<[f32; 3]>,
+    rng: &mut ChaCha8Rng,
+    b: &mut Builder,
+) {
     let fin = palette::pick(C::DoorFrame, rng);
     let t = cfg.walls.thickness;
     let h = cfg.walls.height;
@@ -329,11 +346,15 @@ fn add_door_frame(cfg: &ProcgenConfig, o: &Opening, rng: &mut ChaCha8Rng, b: &mu
             fin.rgb,
         ));
     }
-    parts.push(box_part(
-        Vec3::new(0.0, (head + h) * 0.5, 0.0),
-        Vec3::new(o.width + 2.0 * fw, h - head, t),
-        fin.rgb,
-    ));
+    if let Some(wall) = arch {
+        parts.extend(arch_parts(o.width, fw, head, h, t, wall));
+    } else {
+        parts.push(box_part(
+            Vec3::new(0.0, (head + h) * 0.5, 0.0),
+            Vec3::new(o.width + 2.0 * fw, h - head, t),
+            fin.rgb,
+        ));
+    }
     let (x, z) = o.position();
     // Local x runs along the wall.
     let yaw = if o.along_z {
@@ -350,6 +371,47 @@ fn add_door_frame(cfg: &ProcgenConfig, o: &Opening, rng: &mut ChaCha8Rng, b: &mu
         25.0,
         None,
     );
+}
+
+/// Strips of wall across an arched opening.
+pub(crate) const ARCH_PIECES: usize = 8;
+/// Wall kept above the crown of an arch (m).
+const ARCH_CROWN_WALL: f32 = 0.08;
+
+/// The wall above an opening `w` wide between posts `fw` wide, from the door head `head` to the
+/// wall top `h`, `t` thick, as a round arch springing from the head (an elliptical one where
+/// the wall is too low for a semicircle): a column over each post and [`ARCH_PIECES`] strips,
+/// each as low as the arch allows at its edge nearer the crown, so nothing hangs below the arch.
+fn arch_parts(w: f32, fw: f32, head: f32, h: f32, t: f32, rgb: [f32; 3]) -> Vec<Part> {
+    let r = w * 0.5;
+    let rise = r.min(h - head - ARCH_CROWN_WALL).max(0.0);
+    // Height of the arch's underside at `x` across the opening.
+    let under = |x: f32| head + rise * (1.0 - (x / r).powi(2)).max(0.0).sqrt();
+    let mut parts = Vec::with_capacity(ARCH_PIECES + 2);
+    for s in [-1.0f32, 1.0] {
+        parts.push(box_part(
+            Vec3::new(s * (r + fw * 0.5), (head + h) * 0.5, 0.0),
+            Vec3::new(fw, h - head, t),
+            rgb,
+        ));
+    }
+    let step = w / ARCH_PIECES as f32;
+    for k in 0..ARCH_PIECES {
+        let (x0, x1) = (-r + k as f32 * step, -r + (k + 1) as f32 * step);
+        // The edge nearer the crown, where the arch is highest over the strip.
+        let near = if x0 * x1 <= 0.0 {
+            0.0
+        } else {
+            x0.abs().min(x1.abs())
+        };
+        let y0 = under(near).min(h - 0.01);
+        parts.push(box_part(
+            Vec3::new((x0 + x1) * 0.5, (y0 + h) * 0.5, 0.0),
+            Vec3::new(step, h - y0, t),
+            rgb,
+        ));
+    }
+    parts
 }
 
 /// Free box on both sides of an opening: along the wall it covers the gap plus `margin`, across
@@ -394,7 +456,9 @@ pub(crate) fn generate(cfg: &ProcgenConfig, seed: u64, id: &str) -> Result<Scene
     let mut b = Builder {
         objects: Vec::with_capacity(256),
     };
-    let wall = build_structure(cfg, &plan, &mut rng, &mut b);
+    // From streams of their own: which doorways are arches, sliding or french doors.
+    let kinds = crate::doors::kinds(&plan, seed);
+    let wall = build_structure(cfg, &plan, &kinds, &mut rng, &mut b);
     furnish::furnish(cfg, &plan, &mut rng, &mut b);
     let mut flight = None;
     if let Some(up) = &upper {
@@ -406,7 +470,7 @@ pub(crate) fn generate(cfg: &ProcgenConfig, seed: u64, id: &str) -> Result<Scene
         add_ceilings(cfg, &plan, wall, &mut b);
     }
     // From their own stream, clear of the furniture; the decoration then keeps clear of them.
-    let leaves = crate::doors::add_leaves(cfg, &plan, seed, &mut b);
+    let leaves = crate::doors::add_leaves(cfg, &plan, &kinds, seed, &mut b);
     if cfg.walls.decor {
         crate::decor::add_decor(cfg, &plan, seed, &mut b);
     }
@@ -496,14 +560,15 @@ fn build_upper(
         objects: Vec::with_capacity(192),
     };
     let landing = (up.plan.rooms.len() - 1) as RoomId;
-    let wall = build_structure(cfg, &up.plan, &mut rng, &mut b);
+    let kinds = crate::doors::kinds(&up.plan, upper_seed);
+    let wall = build_structure(cfg, &up.plan, &kinds, &mut rng, &mut b);
     storeys::cut_hole(&mut b.objects, C::Floor, landing, &up.stairs.flight);
     furnish::furnish(cfg, &up.plan, &mut rng, &mut b);
     storeys::add_railings(&up.stairs, landing, &mut rng, &mut b);
     if cfg.walls.ceiling {
         add_ceilings(cfg, &up.plan, wall, &mut b);
     }
-    let leaves = crate::doors::add_leaves(cfg, &up.plan, upper_seed, &mut b);
+    let leaves = crate::doors::add_leaves(cfg, &up.plan, &kinds, upper_seed, &mut b);
     if cfg.walls.decor {
         crate::decor::add_decor(cfg, &up.plan, upper_seed, &mut b);
     }
@@ -555,7 +620,7 @@ fn doors_of(
         .iter()
         .zip(leaves)
         .enumerate()
-        .map(|(i, (o, (state, leaf)))| {
+        .map(|(i, (o, l))| {
             let (x, z) = o.position();
             Door {
                 id: first + i as u32,
@@ -567,8 +632,10 @@ fn doors_of(
                     room_offset + o.rooms[1] as RoomId,
                 ],
                 open_plan: o.open_plan,
-                state,
-                leaf: leaf.map(|l| l + leaf_offset),
+                state: l.state,
+                leaf: l.leaf.map(|l| l + leaf_offset),
+                second_leaf: l.second.map(|l| l + leaf_offset),
+                kind: l.kind,
             }
         })
         .collect()

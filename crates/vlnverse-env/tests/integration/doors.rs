@@ -60,6 +60,8 @@ fn two_rooms(state: DoorState) -> Scene {
             open_plan: false,
             state: Some(state),
             leaf: Some(LEAF),
+            second_leaf: None,
+            kind: Default::default(),
         }],
         objects,
         storeys: Default::default(),

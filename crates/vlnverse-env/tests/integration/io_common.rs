@@ -145,6 +145,8 @@ pub fn fixture_scene() -> Scene {
             open_plan: false,
             state: None,
             leaf: None,
+            second_leaf: None,
+            kind: Default::default(),
         }],
         objects: vec![wall, table, ball, statue],
         storeys: Default::default(),

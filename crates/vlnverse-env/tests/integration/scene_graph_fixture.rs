@@ -98,6 +98,8 @@ pub fn home() -> Scene {
             open_plan: false,
             state: None,
             leaf: None,
+            second_leaf: None,
+            kind: Default::default(),
         },
         Door {
             id: 2,
@@ -108,6 +110,8 @@ pub fn home() -> Scene {
             open_plan: true,
             state: None,
             leaf: None,
+            second_leaf: None,
+            kind: Default::default(),
         },
     ];
     let objects = vec![

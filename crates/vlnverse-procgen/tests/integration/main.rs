@@ -4,6 +4,7 @@ mod baked_light_file;
 mod clutter;
 mod decor;
 mod doors;
+mod doors_kinds;
 mod homes;
 mod look;
 mod navigable;
