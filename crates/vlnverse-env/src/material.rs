@@ -10,7 +10,7 @@
 //! glTF multiplies `baseColorFactor`, `baseColorTexture` and `COLOR_0`.
 
 use crate::scene::{Scene, SceneObject};
-use crate::vocab::{RoomType, SemanticClass};
+use crate::vocab::SemanticClass;
 use glam::Vec3;
 use std::sync::OnceLock;
 
@@ -631,7 +631,7 @@ pub fn picture_uv(p: Vec3, n: Vec3, lo: Vec3, hi: Vec3) -> [f32; 2] {
 }
 
 /// The material of an object's surfaces: from its class (walls, floors, ceilings), its
-/// material word, and for walls and bedroom floors a choice seeded by the scene seed, so homes
+/// material word, and for walls a choice seeded by the scene seed, so homes
 /// differ in look as they differ in layout; a recorded feature's surface where it draws one
 /// ([`feature_surface`]: for a worktop's stone see [`part_surfaces`]).
 pub fn surface_of(scene: &Scene, o: &SceneObject) -> Surface {
@@ -665,19 +665,14 @@ pub fn surface_of(scene: &Scene, o: &SceneObject) -> Surface {
             }
         }
         SemanticClass::Ceiling => Surface::Plaster,
-        SemanticClass::Floor => {
-            let bedroom = o
-                .room
-                .and_then(|r| scene.room(r))
-                .is_some_and(|r| matches!(r.kind, RoomType::Bedroom | RoomType::Office));
-            match o.material.as_str() {
-                "tile" | "stone" | "marble" => Surface::Tiles,
-                "carpet" => Surface::Carpet,
-                _ if bedroom && pick(2 + o.id as u64) == 0 => Surface::Carpet,
-                "wood" | "wooden" => Surface::WoodFloor,
-                _ => Surface::Plain,
-            }
-        }
+        // A floor looks like what its material word says (carpet is a material of its own).
+        SemanticClass::Floor => match o.material.as_str() {
+            "tile" | "stone" | "marble" => Surface::Tiles,
+            "carpet" => Surface::Carpet,
+            "concrete" => Surface::Plaster,
+            "wood" | "wooden" => Surface::WoodFloor,
+            _ => Surface::Plain,
+        },
         SemanticClass::DoorFrame => Surface::Wood,
         SemanticClass::Rug => Surface::Rug,
         _ if o.material == "canvas" => Surface::Painting,

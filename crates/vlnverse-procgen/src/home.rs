@@ -135,8 +135,44 @@ pub(crate) fn box_part(center: Vec3, size: Vec3, rgb: [f32; 3]) -> Part {
     }
 }
 
-fn floor_finish(kind: RoomType, rng: &mut ChaCha8Rng) -> Finish {
+/// Salt of the floor coverings' random stream.
+const FLOOR_SALT: u64 = 0xf100_c0fe_7ed0_0004;
+
+/// Carpets: soft, plain colours (the texture adds the fleck).
+const CARPET: &[Finish] = &[
+    f("beige", "carpet", [0.62, 0.55, 0.44]),
+    f("grey", "carpet", [0.42, 0.42, 0.44]),
+    f("blue", "carpet", [0.16, 0.24, 0.42]),
+    f("brown", "carpet", [0.33, 0.23, 0.15]),
+    f("green", "carpet", [0.26, 0.36, 0.26]),
+    f("white", "carpet", [0.8, 0.77, 0.7]),
+    f("red", "carpet", [0.45, 0.1, 0.1]),
+];
+/// Stone tiles of halls.
+const STONE: &[Finish] = &[
+    f("grey", "stone", [0.52, 0.52, 0.5]),
+    f("beige", "stone", [0.7, 0.64, 0.52]),
+    f("white", "stone", [0.8, 0.79, 0.76]),
+];
+
+/// Chance that a room of `kind` has a carpet, else stone tiles for halls, or what it has.
+fn covering(kind: RoomType) -> (f32, &'static [Finish]) {
+    match kind {
+        RoomType::Bedroom => (0.55, CARPET),
+        RoomType::HomeTheater => (0.7, CARPET),
+        RoomType::Office | RoomType::Library => (0.35, CARPET),
+        RoomType::Hallway | RoomType::EntranceHall => (0.3, STONE),
+        _ => (0.0, CARPET),
+    }
+}
+
+/// A room's floor: wood by default, tiles in kitchens and wet rooms, concrete in garages (one
+/// draw from `rng`, as before coverings), then from `cover` (a stream of its own, so nothing
+/// else in the home moves) carpet in some bedrooms, studies, home theaters and libraries and
+/// stone tiles in some halls.
+fn floor_finish(kind: RoomType, rng: &mut ChaCha8Rng, cover: &mut ChaCha8Rng) -> Finish {
     use rand::seq::IndexedRandom;
+    use rand::Rng;
     const WOOD: &[Finish] = &[
         f("wooden", "wood", [0.5, 0.33, 0.18]),
         f("brown", "wood", [0.32, 0.2, 0.1]),
@@ -149,15 +185,23 @@ fn floor_finish(kind: RoomType, rng: &mut ChaCha8Rng) -> Finish {
     ];
     // A garage's bare concrete.
     const CONCRETE: &[Finish] = &[
-        f("grey", "stone", [0.42, 0.42, 0.43]),
-        f("grey", "stone", [0.55, 0.55, 0.54]),
+        f("grey", "concrete", [0.42, 0.42, 0.43]),
+        f("grey", "concrete", [0.55, 0.55, 0.54]),
     ];
     let list = match kind {
         RoomType::Kitchen | RoomType::Bathroom | RoomType::LaundryRoom | RoomType::Pantry => TILE,
         RoomType::Garage => CONCRETE,
         _ => WOOD,
     };
-    *list.choose(rng).unwrap_or(&list[0])
+    let base = *list.choose(rng).unwrap_or(&list[0]);
+    let (p, other) = covering(kind);
+    // Both draws for every room, so each room's covering depends on its order alone.
+    let (x, pick) = (cover.random::<f32>(), cover.random::<u32>());
+    if x < p {
+        other[pick as usize % other.len()]
+    } else {
+        base
+    }
 }
 
 fn wall_finish(rng: &mut ChaCha8Rng) -> Finish {
@@ -213,19 +257,22 @@ fn merge(mut v: Vec<(f32, f32)>) -> Vec<(f32, f32)> {
     out
 }
 
-/// Floors, walls and door frames (arched above the doorways of `kinds` that are arches);
-/// returns the wall finish (ceilings share it).
+/// Floors (their coverings from a stream seeded by `seed`), walls and door frames (arched above
+/// the doorways of `kinds` that are arches); returns the wall finish (ceilings share it).
 fn build_structure(
     cfg: &ProcgenConfig,
     plan: &Plan,
     kinds: &[DoorKind],
+    seed: u64,
     rng: &mut ChaCha8Rng,
     b: &mut Builder,
 ) -> Finish {
+    use rand::SeedableRng;
     let t = cfg.walls.thickness;
     let h = cfg.walls.height;
+    let mut cover = ChaCha8Rng::seed_from_u64(seed ^ FLOOR_SALT);
     for (i, room) in plan.rooms.iter().enumerate() {
-        let fin = floor_finish(room.kind, rng);
+        let fin = floor_finish(room.kind, rng, &mut cover);
         let (cx, cz) = room.rect.center();
         let size = Vec3::new(room.rect.w(), 0.05, room.rect.d());
         b.add_finish(
@@ -458,7 +505,7 @@ pub(crate) fn generate(cfg: &ProcgenConfig, seed: u64, id: &str) -> Result<Scene
     };
     // From streams of their own: which doorways are arches, sliding or french doors.
     let kinds = crate::doors::kinds(&plan, seed);
-    let wall = build_structure(cfg, &plan, &kinds, &mut rng, &mut b);
+    let wall = build_structure(cfg, &plan, &kinds, seed, &mut rng, &mut b);
     furnish::furnish(cfg, &plan, &mut rng, &mut b);
     let mut flight = None;
     if let Some(up) = &upper {
@@ -561,7 +608,7 @@ fn build_upper(
     };
     let landing = (up.plan.rooms.len() - 1) as RoomId;
     let kinds = crate::doors::kinds(&up.plan, upper_seed);
-    let wall = build_structure(cfg, &up.plan, &kinds, &mut rng, &mut b);
+    let wall = build_structure(cfg, &up.plan, &kinds, upper_seed, &mut rng, &mut b);
     storeys::cut_hole(&mut b.objects, C::Floor, landing, &up.stairs.flight);
     furnish::furnish(cfg, &up.plan, &mut rng, &mut b);
     storeys::add_railings(&up.stairs, landing, &mut rng, &mut b);

@@ -248,7 +248,7 @@ pub(crate) fn fabric(rng: &mut ChaCha8Rng) -> [f32; 3] {
 /// Coulomb friction of a material word.
 pub(crate) fn friction(material: &str) -> f32 {
     match material {
-        "fabric" | "leather" => 0.7,
+        "fabric" | "leather" | "carpet" => 0.7,
         "metal" | "glass" => 0.35,
         "plastic" => 0.45,
         "paper" => 0.55,
