@@ -286,6 +286,7 @@ const CURTAINS: &[Finish] = &[
     f("green", "fabric", [0.4, 0.52, 0.38]),
     f("red", "fabric", [0.6, 0.22, 0.2]),
     f("grey", "fabric", [0.55, 0.55, 0.57]),
+    f("purple", "fabric", [0.34, 0.16, 0.42]),
 ];
 
 const SKIRTING: &[Finish] = &[

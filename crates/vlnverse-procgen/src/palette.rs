@@ -45,6 +45,7 @@ const FABRIC: &[Finish] = &[
     f("brown", "leather", [0.28, 0.14, 0.06]),
     f("black", "leather", [0.04, 0.04, 0.04]),
     f("white", "fabric", [0.85, 0.85, 0.85]),
+    f("purple", "fabric", [0.2, 0.06, 0.28]),
 ];
 const CHAIR: &[Finish] = &[
     f("wooden", "wood", [0.45, 0.27, 0.13]),
@@ -141,6 +142,7 @@ const RUG: &[Finish] = &[
     f("green", "fabric", [0.14, 0.34, 0.16]),
     f("yellow", "fabric", [0.75, 0.6, 0.15]),
     f("brown", "fabric", [0.3, 0.17, 0.08]),
+    f("purple", "fabric", [0.24, 0.08, 0.3]),
 ];
 const WICKER: &[Finish] = &[
     f("brown", "wicker", [0.4, 0.25, 0.12]),
@@ -164,6 +166,7 @@ const TOWEL: &[Finish] = &[
     f("pink", "fabric", [0.85, 0.45, 0.55]),
     f("yellow", "fabric", [0.85, 0.72, 0.2]),
     f("green", "fabric", [0.15, 0.45, 0.2]),
+    f("purple", "fabric", [0.3, 0.12, 0.4]),
 ];
 
 /// Candidate finishes of a class.
@@ -291,4 +294,56 @@ pub(crate) mod tone {
     pub const SOOT: [f32; 3] = [0.03, 0.03, 0.03];
     /// Aquarium water.
     pub const WATER: [f32; 3] = [0.2, 0.45, 0.55];
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::SeedableRng;
+
+    /// Hue in degrees of a linear RGB (0 for greys).
+    fn hue(rgb: [f32; 3]) -> f32 {
+        let [r, g, b] = rgb;
+        let (hi, lo) = (r.max(g).max(b), r.min(g).min(b));
+        if hi - lo < 1e-6 {
+            return 0.0;
+        }
+        let d = hi - lo;
+        let h = if hi == r {
+            ((g - b) / d).rem_euclid(6.0)
+        } else if hi == g {
+            (b - r) / d + 2.0
+        } else {
+            (r - g) / d + 4.0
+        };
+        h * 60.0
+    }
+
+    #[test]
+    fn purple_finishes_and_their_tones_read_as_purple() {
+        let purples: Vec<Finish> = [FABRIC, RUG, TOWEL]
+            .iter()
+            .flat_map(|l| l.iter())
+            .filter(|f| f.color == "purple")
+            .copied()
+            .collect();
+        assert_eq!(purples.len(), 3);
+        let mut shades = std::collections::BTreeSet::new();
+        for fin in purples {
+            for seed in 0..200 {
+                let t = crate::tones::toned(fin, &ChaCha8Rng::seed_from_u64(seed));
+                assert_eq!(t.color, "purple");
+                let h = hue(t.rgb);
+                // Between blue (240) and magenta-red (345), with some saturation.
+                let sat = 1.0
+                    - t.rgb.iter().copied().fold(1.0, f32::min)
+                        / t.rgb.iter().copied().fold(0.0, f32::max);
+                assert!((255.0..345.0).contains(&h) && sat > 0.25, "{t:?}: hue {h}");
+                shades.insert(t.shade);
+            }
+        }
+        for s in ["lavender", "plum", "violet"] {
+            assert!(shades.contains(&Some(s)), "{shades:?}");
+        }
+    }
 }
