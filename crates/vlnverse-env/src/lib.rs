@@ -17,8 +17,9 @@ pub mod vocab;
 
 pub use error::{EnvError, Result};
 pub use scene::{
-    segments_cross, Aabb, Door, DoorState, Level, LevelId, MeshData, Motion, ObjectId, Part,
-    Physics, Pose, Room, RoomId, Scene, SceneObject, Shape, Stairs, Storeys, SCENE_FORMAT_VERSION,
+    segments_cross, Aabb, Door, DoorKind, DoorState, Level, LevelId, MeshData, Motion, ObjectId,
+    Part, Physics, Pose, Room, RoomId, Scene, SceneObject, Shape, Stairs, Storeys,
+    SCENE_FORMAT_VERSION,
 };
 pub use scene_source::SceneSource;
 pub use vocab::{ClassKind, RoomType, SemanticClass};

@@ -17,7 +17,9 @@ use rand_chacha::ChaCha8Rng;
 use std::cell::RefCell;
 use std::collections::BTreeMap;
 use vlnverse_env::scene_graph::{is_landmark, side_of_heading, Relation};
-use vlnverse_env::{Door, Room, RoomId, RoomType, Scene, SceneObject, SemanticClass as C};
+use vlnverse_env::{
+    Door, DoorKind, Room, RoomId, RoomType, Scene, SceneObject, SemanticClass as C,
+};
 use vlnverse_score::episode::{GroundedObject, Role, Side};
 
 /// Where grounded references are seen from: a path segment (or the last point) and its
@@ -764,7 +766,7 @@ pub(crate) fn is_closed_leaf(scene: &Scene, o: &SceneObject) -> bool {
         && scene
             .doors
             .iter()
-            .any(|d| d.leaf == Some(o.id) && d.is_closed())
+            .any(|d| d.leaves().any(|l| l == o.id) && d.is_closed())
 }
 
 /// The opening a path crosses from room `a` into room `b` near `at`, described ("the
@@ -777,6 +779,11 @@ pub(crate) fn door_np(
     rng: &mut ChaCha8Rng,
 ) -> Option<String> {
     let door = door_between(scene, a, b, at)?;
+    // A glass door or an arch goes by its kind, as people tell it from the other doors.
+    if let Some(noun) = door_kind_noun(door.kind, rng) {
+        let open = door.leaf.is_some() && rng.random_bool(0.3);
+        return Some(format!("the {}{noun}", if open { "open " } else { "" }));
+    }
     // A doorway with a leaf in it is a door, and people name its colour now and then.
     if let Some(leaf) = door_leaf(scene, door) {
         let plain = match rng.random_range(0..5) {
@@ -806,12 +813,8 @@ pub(crate) fn door_np(
         });
     }
     let bank: &[&str] = if door.open_plan {
-        &[
-            "the archway",
-            "the open archway",
-            "the wide opening",
-            "the opening",
-        ]
+        // (Not "the archway": an arched doorway is a kind of its own, `DoorKind::Arched`.)
+        &["the wide opening", "the opening"]
     } else if door.width < 0.85 {
         &["the narrow doorway", "the narrow door", "the small doorway"]
     } else if door.width > 1.1 {
@@ -825,6 +828,18 @@ pub(crate) fn door_np(
         ]
     };
     Some(pick(rng, bank).to_string())
+}
+
+/// The noun a doorway of kind `kind` goes by when its kind is said ("sliding glass door",
+/// "French door", "archway"); `None` for a plain hinged door.
+pub(crate) fn door_kind_noun(kind: DoorKind, rng: &mut ChaCha8Rng) -> Option<&'static str> {
+    let bank = match kind {
+        DoorKind::Hinged => return None,
+        DoorKind::Sliding => &ph::DOOR_SLIDING,
+        DoorKind::French => &ph::DOOR_FRENCH,
+        DoorKind::Arched => &ph::DOOR_ARCHED,
+    };
+    Some(pick(rng, bank))
 }
 
 /// The nearest corner or wall of the room holding `p`, seen facing `heading`: "in the corner",

@@ -4,8 +4,8 @@
 //! the way people do. Every object named is grounded.
 
 use super::describe::{
-    door_between, door_np, end_place, is_closed_leaf, object_np, room_np, unique_landmarks_in,
-    NpOptions, RoomNaming, Viewpoint,
+    door_between, door_kind_noun, door_np, end_place, is_closed_leaf, object_np, room_np,
+    unique_landmarks_in, NpOptions, RoomNaming, Viewpoint,
 };
 use super::door_order;
 use super::lexicon::{class_names, number_word, object_names, ordinal_word, plural};
@@ -25,7 +25,9 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::collections::{BTreeMap, BTreeSet};
 use vlnverse_env::scene_graph::{is_landmark, rooms_along_path, side_of_heading, Landmark};
-use vlnverse_env::{ClassKind, ObjectId, RoomId, RoomType, Scene, SceneObject, SemanticClass as C};
+use vlnverse_env::{
+    ClassKind, DoorKind, ObjectId, RoomId, RoomType, Scene, SceneObject, SemanticClass as C,
+};
 use vlnverse_score::episode::{GroundedObject, Instruction, Role, Side};
 use vlnverse_score::{DataError, Result};
 
@@ -181,17 +183,22 @@ fn distance_phrase(d: f32, w: Writer, rng: &mut ChaCha8Rng) -> String {
     let n = d.round().max(1.0) as u32;
     let steps = (d / 0.75).round().max(2.0) as u32;
     let about = pick(rng, &ph::ABOUT);
+    let half = (0.35..0.65).contains(&d.fract());
     let form = if w == Writer::Precise {
         rng.random_range(0..3)
     } else {
         rng.random_range(0..8)
     };
     match form {
+        // One metre is said in the singular ("about a metre", not "about 1 metres").
+        0 | 1 if n == 1 && !(form == 1 && half) => {
+            format!("{about} {}", pick(rng, &ph::ONE_METRE))
+        }
         0 => format!(
             "{about} {}",
             fill(pick(rng, &ph::METRES), &[("n", &n.to_string())])
         ),
-        1 if (0.35..0.65).contains(&d.fract()) => {
+        1 if half => {
             format!(
                 "{about} {} and a half metres",
                 number_word(d.trunc() as u32)
@@ -401,7 +408,7 @@ fn nth_door_np(n: door_order::NthDoor, rng: &mut ChaCha8Rng) -> Option<String> {
         None
     } else if n.last && rng.random_bool(0.5) {
         Some(if rng.random_bool(0.3) {
-            "farthest"
+            pick(rng, &["farthest", "furthest"])
         } else {
             "last"
         })
@@ -448,7 +455,23 @@ fn room_change(
         return pick(rng, &["go out into {room}", "walk out into {room}"])
             .replace("{room}", &to_np);
     }
-    if scene.room(to).map(|r| r.kind) == Some(RoomType::Balcony) && rng.random_bool(0.6) {
+    let outside = matches!(
+        scene.room(to).map(|r| r.kind),
+        Some(RoomType::Balcony | RoomType::Porch)
+    );
+    if outside && rng.random_bool(0.6) {
+        // Out through the glass door people name ("step out through the sliding door onto
+        // the balcony"), or just outside.
+        let glass = door_between(scene, from, to, at)
+            .filter(|d| d.kind.is_glass() && rng.random_bool(0.5))
+            .and_then(|d| door_kind_noun(d.kind, rng));
+        if let Some(noun) = glass {
+            let door = format!("the {noun}");
+            return fill(
+                pick(rng, &ph::OUT_THROUGH_DOOR),
+                &[("door", &door), ("room", &to_np)],
+            );
+        }
         return fill(pick(rng, &ph::GO_OUTSIDE), &[("room", &to_np)]);
     }
     if let Some(d) = nth.filter(|_| rng.random_bool(0.5)) {
@@ -600,7 +623,7 @@ impl<'c, 's> Route<'c, 's> {
                 let at = pts[w[1].0.min(pts.len() - 1)];
                 door_between(ctx.scene, w[0].1, w[1].1, at)
             })
-            .filter_map(|d| d.leaf)
+            .flat_map(|d| d.leaves())
             .collect();
         landmarks.retain(|l| !walked.contains(&l.object));
         Route {
@@ -1093,7 +1116,7 @@ fn door_by_room(
         return None;
     }
     let scene = route.ctx.scene;
-    let door = scene.doors.iter().find(|d| d.leaf == Some(o.id))?;
+    let door = scene.doors.iter().find(|d| d.leaves().any(|l| l == o.id))?;
     let p = route.pts[path_index.min(route.n() - 1)];
     let here = scene.room_at(p.x, p.y)?.id;
     if !door.rooms.contains(&here) || !rng.random_bool(0.5) {
@@ -1105,13 +1128,28 @@ fn door_by_room(
         return None;
     }
     let room = kind.words();
-    let bank = [
-        "the {r} door",
-        "the door to the {r}",
-        "the door into the {r}",
-        "the door that opens into the {r}",
-    ];
-    Some(pick(rng, &bank).replace("{r}", &room))
+    // A glass leaf is named as a glass door: "the sliding door to the porch".
+    let noun = match door.kind {
+        DoorKind::Sliding => pick(rng, &ph::DOOR_SLIDING),
+        DoorKind::French => pick(rng, &ph::DOOR_FRENCH_LEAF),
+        DoorKind::Hinged | DoorKind::Arched => "door",
+    };
+    // ("the bathroom door", but not "the porch sliding glass door")
+    let bank: &[&str] = if noun == "door" {
+        &[
+            "the {r} {n}",
+            "the {n} to the {r}",
+            "the {n} into the {r}",
+            "the {n} that opens into the {r}",
+        ]
+    } else {
+        &[
+            "the {n} to the {r}",
+            "the {n} into the {r}",
+            "the {n} that opens into the {r}",
+        ]
+    };
+    Some(pick(rng, bank).replace("{r}", &room).replace("{n}", noun))
 }
 
 /// The other landmarks of `o`'s class passed on the same side of the same leg as `l` (at most
@@ -1799,6 +1837,9 @@ fn room_size_remark(
     let floor = room_facts::floor_kind(scene, r.id).map(|k| match k {
         FloorKind::Wood => ph::FLOOR_WOOD,
         FloorKind::Tile => ph::FLOOR_TILE,
+        FloorKind::Carpet => ph::FLOOR_CARPET,
+        FloorKind::Stone => ph::FLOOR_STONE,
+        FloorKind::Concrete => ph::FLOOR_CONCRETE,
     });
     // Its openings, counted as doors, doorways or openings.
     let (openings, closed) = match openings::opening_count(scene, r.id) {
@@ -2247,5 +2288,19 @@ mod tests {
         assert!(forms.iter().any(|f| f.contains("three")));
         assert!(forms.iter().any(|f| f.contains("steps")));
         assert!(forms.iter().any(|f| f.contains("feet")));
+    }
+
+    #[test]
+    fn one_metre_is_said_in_the_singular() {
+        let mut rng = ChaCha8Rng::seed_from_u64(2);
+        let forms: std::collections::BTreeSet<String> = (0..300)
+            .map(|_| distance_phrase(1.3, Writer::Plain, &mut rng))
+            .collect();
+        assert!(forms
+            .iter()
+            .any(|f| f.ends_with("a metre") || f.ends_with("one metre")));
+        for f in &forms {
+            assert!(!f.contains(" 1 met") && !f.contains("one metres"), "{f}");
+        }
     }
 }

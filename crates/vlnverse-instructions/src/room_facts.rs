@@ -1,5 +1,6 @@
 //! What a room looks like, read from its structure objects: how many windows it has and what
-//! its floor is made of ("The room has two windows.", "It has a tiled floor.").
+//! its floor is made of ("The room has two windows.", "It has a tiled floor.", "The floor is
+//! carpeted.").
 
 use vlnverse_env::{RoomId, Scene, SemanticClass as C};
 
@@ -10,6 +11,12 @@ pub(crate) enum FloorKind {
     Wood,
     /// Tiles ("a tiled floor").
     Tile,
+    /// Carpet ("a carpeted floor").
+    Carpet,
+    /// Stone tiles ("a stone floor").
+    Stone,
+    /// Bare concrete ("a concrete floor").
+    Concrete,
 }
 
 /// The windows of `room`: one per glass pane (a window is a pane and its frame, both of class
@@ -37,6 +44,9 @@ pub(crate) fn floor_kind(scene: &Scene, room: RoomId) -> Option<FloorKind> {
     match slab.material.as_str() {
         "wood" => Some(FloorKind::Wood),
         "tile" => Some(FloorKind::Tile),
+        "carpet" => Some(FloorKind::Carpet),
+        "stone" => Some(FloorKind::Stone),
+        "concrete" => Some(FloorKind::Concrete),
         _ => None,
     }
 }
@@ -92,6 +102,13 @@ mod tests {
             floor_kind(&scene(vec![slab("wood"), skirting.clone()]), 0),
             Some(FloorKind::Wood)
         );
+        for (m, k) in [
+            ("carpet", FloorKind::Carpet),
+            ("stone", FloorKind::Stone),
+            ("concrete", FloorKind::Concrete),
+        ] {
+            assert_eq!(floor_kind(&scene(vec![slab(m)]), 0), Some(k));
+        }
         assert_eq!(floor_kind(&scene(vec![slab("plaster")]), 0), None);
         assert_eq!(floor_kind(&scene(vec![skirting]), 1), None);
     }

@@ -774,6 +774,13 @@ fn a_room_remark_gives_its_true_windows_and_floor() {
                         "the room has a wooden floor"
                         | "the floor is wooden"
                         | "this room has a hardwood floor" => Some("wood"),
+                        "the room has a carpeted floor" | "the floor is carpeted" => Some("carpet"),
+                        "the room has a stone floor" | "this room has a stone tile floor" => {
+                            Some("stone")
+                        }
+                        "the room has a concrete floor" | "the floor is bare concrete" => {
+                            Some("concrete")
+                        }
                         _ => None,
                     };
                     if let Some(kind) = kind {

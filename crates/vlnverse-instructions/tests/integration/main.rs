@@ -1,5 +1,6 @@
 //! Integration tests of `vlnverse-instructions`, linked into one test binary.
 
+mod door_kinds;
 mod instructions_fixture;
 
 #[cfg(feature = "llm")]
