@@ -1562,7 +1562,7 @@ fn furnish_room(
         }
     }
     if cfg.furniture.pieces > 0.0 {
-        add_pieces(&mut st, room.kind, rng, b);
+        add_pieces(&mut st, plan, room.kind, rng, b);
     }
     tracing::trace!(room = i, free = st.grid.free_cells(), "room furnished");
 }
@@ -1596,7 +1596,13 @@ fn add_group(
 /// The room's feature pieces ([`pieces`]), drawn from an rng of their own seeded by the home's
 /// stream and the room, so that the main stream, and every room furnished after this one, is
 /// the same with or without them.
-fn add_pieces(st: &mut RoomState, kind: RoomType, rng: &ChaCha8Rng, b: &mut Builder) {
+fn add_pieces(
+    st: &mut RoomState,
+    plan: &Plan,
+    kind: RoomType,
+    rng: &ChaCha8Rng,
+    b: &mut Builder,
+) {
     let salt = u64::from(st.id).wrapping_mul(0x9E37_79B9_7F4A_7C15);
     let mut own = ChaCha8Rng::seed_from_u64(crate::tones::stream_hash(rng) ^ salt);
     let area = st.interior.area();
@@ -1618,6 +1624,105 @@ fn add_pieces(st: &mut RoomState, kind: RoomType, rng: &ChaCha8Rng, b: &mut Buil
             Spot::Centre => Mode::Center,
         };
         add_group(st, &mut Group::one(m, mode), kind, &mut own, b);
+    }
+    lay_doormats(st, plan, &mut own, b);
+    if kind == RoomType::Hallway {
+        lay_runner(st, &mut own, b);
+    }
+}
+
+/// Chance that a doorway from the house to a porch or a garage has a doormat on the house side.
+const DOORMAT_CHANCE: f64 = 0.85;
+/// Chance that a long hallway has a runner down its middle.
+const RUNNER_CHANCE: f64 = 0.7;
+/// Least length (m) of a hallway's floor that gets a runner.
+const RUNNER_MIN_HALL: f32 = 3.2;
+
+/// A doormat on this room's side of each framed doorway to a porch or a garage (the doors
+/// people come in by), across the doorway against the wall. It is flat, so it blocks nothing.
+fn lay_doormats(st: &RoomState, plan: &Plan, rng: &mut ChaCha8Rng, b: &mut Builder) {
+    let me = st.id as usize;
+    let outdoorsy = |k: RoomType| matches!(k, RoomType::Porch | RoomType::Garage);
+    if outdoorsy(plan.rooms[me].kind) {
+        return;
+    }
+    for o in plan.openings.iter().filter(|o| o.rooms.contains(&me)) {
+        let other = if o.rooms[0] == me {
+            o.rooms[1]
+        } else {
+            o.rooms[0]
+        };
+        if o.open_plan || !outdoorsy(plan.rooms[other].kind) || !rng.random_bool(DOORMAT_CHANCE) {
+            continue;
+        }
+        let m = crate::things::doormat(rng, o.width);
+        let (x, z) = o.position();
+        let (cx, cz) = st.interior.center();
+        let off = m.d * 0.5 + 0.03;
+        let (px, pz, yaw) = if o.along_z {
+            let face = if cx > x {
+                st.interior.x0
+            } else {
+                st.interior.x1
+            };
+            (face + (cx - x).signum() * off, z, FRAC_PI_2)
+        } else {
+            let face = if cz > z {
+                st.interior.z0
+            } else {
+                st.interior.z1
+            };
+            (x, face + (cz - z).signum() * off, 0.0)
+        };
+        let pose = Pose {
+            position: [px, 0.0, pz],
+            rotation: Quat::from_rotation_y(yaw).to_array(),
+        };
+        b.add_model(&m, st.id, pose, None);
+    }
+}
+
+/// A runner down the middle of a long hallway, clear of everything already on its floor
+/// (narrowed where a piece of furniture stands out from a wall, left out where even a narrow
+/// one would run under something). It is flat, so it blocks nothing.
+fn lay_runner(st: &RoomState, rng: &mut ChaCha8Rng, b: &mut Builder) {
+    let (w, d) = (st.interior.w(), st.interior.d());
+    let (len, across) = (w.max(d), w.min(d));
+    if len < RUNNER_MIN_HALL || !rng.random_bool(RUNNER_CHANCE) {
+        return;
+    }
+    let (cx, cz) = st.interior.center();
+    let length = len - 0.8;
+    let taken: Vec<Rect> = b
+        .objects
+        .iter()
+        .filter(|o| o.room == Some(st.id) && !o.class.is_structure())
+        .map(|o| Rect {
+            x0: o.bbox.min[0],
+            x1: o.bbox.max[0],
+            z0: o.bbox.min[2],
+            z1: o.bbox.max[2],
+        })
+        .collect();
+    let along_x = w >= d;
+    let widest = (across * 0.5).clamp(0.6, 0.9);
+    for width in [widest, 0.6] {
+        let foot = if along_x {
+            Rect::centered(cx, cz, length, width)
+        } else {
+            Rect::centered(cx, cz, width, length)
+        };
+        if width > across - 0.3 || taken.iter().any(|t| t.overlaps(&foot, 0.0)) {
+            continue;
+        }
+        let m = crate::things::runner(rng, length, width);
+        let yaw = if along_x { 0.0 } else { FRAC_PI_2 };
+        let pose = Pose {
+            position: [cx, 0.0, cz],
+            rotation: Quat::from_rotation_y(yaw).to_array(),
+        };
+        b.add_model(&m, st.id, pose, None);
+        return;
     }
 }
 

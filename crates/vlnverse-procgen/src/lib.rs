@@ -14,6 +14,7 @@ mod palette;
 mod pieces;
 mod rect;
 mod storeys;
+mod things;
 mod tones;
 
 pub use config::{

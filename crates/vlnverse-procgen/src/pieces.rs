@@ -68,6 +68,15 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::ArcadeMachine, 0.04, Wall, 24.0),
                 p(C::ChristmasTree, 0.2, Wall, 0.0),
                 p(C::WallSconce, 0.3, Wall, 0.0),
+                p(C::GrandPiano, 0.15, Centre, 28.0),
+                p(C::Tapestry, 0.12, Wall, 0.0),
+                p(C::CatTree, 0.15, Corner, 0.0),
+                p(C::RoomDivider, 0.06, Wall, 20.0),
+                p(C::Telescope, 0.05, Corner, 0.0),
+                p(C::DeerHead, 0.05, Wall, 0.0),
+                p(C::Bar, 0.05, Wall, 28.0),
+                p(C::Jukebox, 0.03, Wall, 24.0),
+                p(C::AirHockeyTable, 0.04, Centre, 32.0),
             ];
             L
         }
@@ -76,6 +85,7 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::KitchenIsland, 0.55, Centre, 11.0),
                 p(C::FireExtinguisher, 0.2, Wall, 0.0),
                 p(C::WineRack, 0.15, Wall, 0.0),
+                p(C::WaterCooler, 0.05, Wall, 0.0),
             ];
             L
         }
@@ -89,6 +99,10 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::WineRack, 0.3, Wall, 0.0),
                 p(C::WallSconce, 0.3, Wall, 0.0),
                 p(C::ChristmasTree, 0.1, Wall, 0.0),
+                p(C::Tapestry, 0.1, Wall, 0.0),
+                p(C::Bar, 0.1, Wall, 16.0),
+                p(C::Barrel, 0.05, Corner, 0.0),
+                p(C::GrandPiano, 0.05, Centre, 24.0),
             ];
             L
         }
@@ -101,6 +115,12 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::ChaiseLounge, 0.06, Wall, 12.0),
                 p(C::WallSconce, 0.2, Wall, 0.0),
                 p(C::Poster, 0.1, Wall, 0.0),
+                p(C::BunkBed, 0.1, Wall, 13.0),
+                p(C::RockingHorse, 0.06, Corner, 0.0),
+                p(C::Dollhouse, 0.06, Corner, 0.0),
+                p(C::RoomDivider, 0.05, Wall, 14.0),
+                p(C::Tapestry, 0.08, Wall, 0.0),
+                p(C::CatTree, 0.03, Corner, 0.0),
             ];
             L
         }
@@ -114,6 +134,12 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::MassageTable, 0.05, Wall, 9.0),
                 p(C::Cactus, 0.1, Corner, 0.0),
                 p(C::ArcadeMachine, 0.04, Wall, 0.0),
+                p(C::Flag, 0.15, Wall, 0.0),
+                p(C::WaterCooler, 0.1, Wall, 0.0),
+                p(C::Telescope, 0.08, Corner, 0.0),
+                p(C::DeerHead, 0.06, Wall, 0.0),
+                p(C::Dartboard, 0.08, Wall, 0.0),
+                p(C::RoomDivider, 0.04, Wall, 12.0),
             ];
             L
         }
@@ -123,6 +149,9 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::FireExtinguisher, 0.1, Wall, 0.0),
                 p(C::Lockers, 0.4, Wall, 0.0),
                 p(C::Poster, 0.3, Wall, 0.0),
+                p(C::Elliptical, 0.5, Wall, 0.0),
+                p(C::RowingMachine, 0.6, Wall, 0.0),
+                p(C::WaterCooler, 0.3, Wall, 0.0),
             ];
             L
         }
@@ -131,6 +160,8 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::Ladder, 0.25, Wall, 0.0),
                 p(C::FireExtinguisher, 0.05, Wall, 0.0),
                 p(C::WineRack, 0.4, Wall, 0.0),
+                p(C::Barrel, 0.25, Corner, 0.0),
+                p(C::VacuumCleaner, 0.15, Corner, 0.0),
             ];
             L
         }
@@ -145,6 +176,11 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::WallSconce, 0.5, Wall, 0.0),
                 p(C::Poster, 0.6, Wall, 0.0),
                 p(C::Poster, 0.3, Wall, 0.0),
+                p(C::Jukebox, 0.2, Wall, 0.0),
+                p(C::PinballMachine, 0.3, Wall, 0.0),
+                p(C::AirHockeyTable, 0.3, Wall, 16.0),
+                p(C::Bar, 0.2, Wall, 16.0),
+                p(C::Dartboard, 0.2, Wall, 0.0),
             ];
             L
         }
@@ -156,6 +192,11 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::Statue, 0.1, Corner, 12.0),
                 p(C::ChaiseLounge, 0.1, Wall, 12.0),
                 p(C::WallSconce, 0.35, Wall, 0.0),
+                p(C::DeerHead, 0.15, Wall, 0.0),
+                p(C::Telescope, 0.12, Corner, 0.0),
+                p(C::Tapestry, 0.15, Wall, 0.0),
+                p(C::GrandPiano, 0.15, Centre, 20.0),
+                p(C::Flag, 0.1, Wall, 0.0),
             ];
             L
         }
@@ -166,6 +207,13 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::FireExtinguisher, 0.3, Wall, 0.0),
                 p(C::Grill, 0.15, Wall, 0.0),
                 p(C::Poster, 0.15, Wall, 0.0),
+                p(C::LawnMower, 0.6, Wall, 0.0),
+                p(C::Kayak, 0.4, Wall, 0.0),
+                p(C::Dartboard, 0.25, Wall, 0.0),
+                p(C::WaterCooler, 0.1, Wall, 0.0),
+                p(C::Flag, 0.15, Wall, 0.0),
+                p(C::Barrel, 0.1, Corner, 0.0),
+                p(C::AirHockeyTable, 0.3, Wall, 0.0),
             ];
             L
         }
@@ -175,6 +223,10 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::PorchSwing, 0.9, Wall, 0.0),
                 p(C::RockingChair, 0.4, Corner, 0.0),
                 p(C::Lounger, 0.1, Wall, 0.0),
+                p(C::Wreath, 0.3, Wall, 0.0),
+                p(C::Fountain, 0.5, Wall, 0.0),
+                p(C::Flag, 0.3, Wall, 0.0),
+                p(C::HotTub, 0.4, Wall, 0.0),
             ];
             L
         }
@@ -187,6 +239,11 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::Easel, 0.15, Corner, 0.0),
                 p(C::MassageTable, 0.15, Wall, 0.0),
                 p(C::ArcadeMachine, 0.3, Wall, 0.0),
+                p(C::AirHockeyTable, 0.3, Wall, 0.0),
+                p(C::PinballMachine, 0.3, Wall, 0.0),
+                p(C::Jukebox, 0.2, Wall, 0.0),
+                p(C::Dartboard, 0.3, Wall, 0.0),
+                p(C::Bar, 0.2, Wall, 0.0),
             ];
             L
         }
@@ -198,6 +255,9 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::FireExtinguisher, 0.1, Wall, 0.0),
                 p(C::Urn, 0.06, Corner, 0.0),
                 p(C::WallSconce, 0.3, Wall, 0.0),
+                p(C::Tapestry, 0.08, Wall, 0.0),
+                p(C::DeerHead, 0.05, Wall, 0.0),
+                p(C::WaterCooler, 0.03, Wall, 0.0),
             ];
             L
         }
@@ -211,6 +271,11 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::Lockers, 0.12, Wall, 0.0),
                 p(C::WallSconce, 0.35, Wall, 0.0),
                 p(C::ChristmasTree, 0.05, Wall, 0.0),
+                p(C::Wreath, 0.25, Wall, 0.0),
+                p(C::DeerHead, 0.08, Wall, 0.0),
+                p(C::Flag, 0.08, Wall, 0.0),
+                p(C::Tapestry, 0.06, Wall, 0.0),
+                p(C::Fountain, 0.2, Centre, 10.0),
             ];
             L
         }
@@ -220,11 +285,15 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::Ladder, 0.3, Wall, 0.0),
                 p(C::FireExtinguisher, 0.1, Wall, 0.0),
                 p(C::Lockers, 0.12, Wall, 0.0),
+                p(C::VacuumCleaner, 0.35, Corner, 0.0),
             ];
             L
         }
         RoomType::Closet => {
-            const L: &[Piece] = &[p(C::Ladder, 0.2, Wall, 0.0)];
+            const L: &[Piece] = &[
+                p(C::Ladder, 0.2, Wall, 0.0),
+                p(C::VacuumCleaner, 0.2, Wall, 0.0),
+            ];
             L
         }
         RoomType::Balcony => {
@@ -232,10 +301,16 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
                 p(C::Hammock, 0.2, Wall, 0.0),
                 p(C::Grill, 0.35, Wall, 0.0),
                 p(C::Lounger, 0.25, Wall, 0.0),
+                p(C::HotTub, 0.25, Wall, 6.0),
+                p(C::Fountain, 0.35, Wall, 0.0),
+                p(C::Telescope, 0.15, Corner, 0.0),
             ];
             L
         }
-        RoomType::Bathroom => &[],
+        RoomType::Bathroom => {
+            const L: &[Piece] = &[p(C::HotTub, 0.1, Corner, 8.0)];
+            L
+        }
     }
 }
 
@@ -358,8 +433,9 @@ pub(crate) fn model(class: C, ceiling: f32, rng: &mut ChaCha8Rng) -> Model {
         C::Cactus => cactus(rng),
         C::Urn => urn(rng),
         C::Lounger => lounger(rng),
-        // Every class of `pieces` is above; anything else gets the clutter model.
-        _ => crate::models::clutter(class, rng),
+        // Every class of `pieces` is above or in `things`; anything else gets the clutter
+        // model.
+        _ => crate::things::model(class, rng).unwrap_or_else(|| crate::models::clutter(class, rng)),
     }
 }
 

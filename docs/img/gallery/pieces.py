@@ -22,6 +22,8 @@ PIECES = ["recliner", "rocking_chair", "chaise_lounge", "pool_table", "ping_pong
           "birdcage", "cactus", "urn", "china_cabinet", "chandelier", "kitchen_island",
           "console_table", "fire_extinguisher", "dryer", "ladder", "easel", "massage_table",
           "grill", "lounger", "hammock"]
+# Classes that hang above a metre: their lowest point is higher.
+HUNG = ("chandelier", "wall_sconce", "wreath", "deer_head", "dartboard")
 XTASK = os.environ.get("XTASK", "target/release/xtask")
 TILE = 168
 
@@ -34,7 +36,7 @@ def first_objects(scenes, classes):
             c = o["class"]
             # Ground floor only (the navigable map below is the ground floor's); a chandelier
             # hangs from its ceiling, a sconce on a wall.
-            low = 2.6 if c in ("chandelier", "wall_sconce") else 1.0
+            low = 2.6 if c in HUNG else 1.0
             if c in classes and c not in found and o["bbox"]["min"][1] < low:
                 found[c] = (f"{scenes}/{name}", scene, o)
     return found

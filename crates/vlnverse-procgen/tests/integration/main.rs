@@ -12,4 +12,5 @@ mod navigable;
 mod pieces;
 mod storeys;
 mod support;
+mod things;
 mod variants;

@@ -51,7 +51,9 @@ fn is_piece(s: &Scene, o: &vlnverse_env::SceneObject) -> bool {
             .and_then(|r| s.room(r))
             .is_some_and(|r| r.kind == RoomType::HomeTheater)
     };
-    PIECES.contains(&o.class) && !(o.class == C::Recliner && theater())
+    // Classes from the doormat on (issue 26's things) are all placed by the pieces stage.
+    (PIECES.contains(&o.class) || o.class.id() >= C::Doormat.id())
+        && !(o.class == C::Recliner && theater())
 }
 
 fn homes(pieces: f32, n: usize) -> Vec<Scene> {

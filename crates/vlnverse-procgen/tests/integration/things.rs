@@ -1,0 +1,148 @@
+//! The things issue 26 added (doormats, hallway runners, grand pianos, hot tubs, game
+//! machines...): each turns up in the `vlnverse` preset, and the mats lie where people expect
+//! them: a doormat inside a door from a porch or a garage, a runner down a hallway.
+
+use rayon::prelude::*;
+use std::collections::BTreeMap;
+use std::sync::LazyLock;
+use vlnverse_env::{RoomType as R, Scene, SceneObject, SceneSource, SemanticClass as C};
+use vlnverse_procgen::{HomeGenerator, Preset};
+
+static HOMES: LazyLock<Vec<Scene>> = LazyLock::new(|| {
+    let g = HomeGenerator::from_preset(Preset::Vlnverse).expect("vlnverse preset");
+    (0..g.len())
+        .into_par_iter()
+        .map(|i| g.scene(i).expect("scene"))
+        .collect()
+});
+
+fn is_thing(c: C) -> bool {
+    c.id() >= C::Doormat.id()
+}
+
+fn room_kind(s: &Scene, o: &SceneObject) -> R {
+    o.room
+        .and_then(|r| s.room(r))
+        .map(|r| r.kind)
+        .unwrap_or_else(|| panic!("{}: {} stands in no room", s.id, o.name))
+}
+
+/// Centre and size of an object's floor footprint.
+fn foot(o: &SceneObject) -> ([f32; 2], [f32; 2]) {
+    let (lo, hi) = (o.bbox.min, o.bbox.max);
+    (
+        [(lo[0] + hi[0]) * 0.5, (lo[2] + hi[2]) * 0.5],
+        [hi[0] - lo[0], hi[2] - lo[2]],
+    )
+}
+
+#[test]
+fn every_new_thing_turns_up_several_times_in_the_preset() {
+    let mut count: BTreeMap<C, usize> = C::ALL
+        .iter()
+        .filter(|c| is_thing(**c))
+        .map(|&c| (c, 0))
+        .collect();
+    for s in HOMES.iter() {
+        for o in s.objects.iter().filter(|o| is_thing(o.class)) {
+            *count.entry(o.class).or_default() += 1;
+            let room = o.room.and_then(|r| s.room(r)).expect("a room");
+            let (c, _) = foot(o);
+            assert!(
+                room.contains(c[0], c[1]),
+                "{}: {} outside its room",
+                s.id,
+                o.name
+            );
+        }
+    }
+    let rare: Vec<_> = count.iter().filter(|(_, n)| **n < 3).collect();
+    assert!(rare.is_empty(), "placed fewer than 3 times: {rare:?}");
+}
+
+#[test]
+fn doormats_lie_inside_a_door_from_a_porch_or_a_garage() {
+    let outdoorsy = |k: R| matches!(k, R::Porch | R::Garage);
+    let mut mats = 0;
+    for s in HOMES.iter() {
+        for o in s.objects.iter().filter(|o| o.class == C::Doormat) {
+            mats += 1;
+            assert!(
+                o.bbox.max[1] - o.bbox.min[1] < 0.02,
+                "{}: thick {}",
+                s.id,
+                o.name
+            );
+            assert!(!outdoorsy(room_kind(s, o)), "{}: {} outdoors", s.id, o.name);
+            let (c, _) = foot(o);
+            let at_door = s.doors.iter().any(|d| {
+                let other = if Some(d.rooms[0]) == o.room {
+                    d.rooms[1]
+                } else if Some(d.rooms[1]) == o.room {
+                    d.rooms[0]
+                } else {
+                    return false;
+                };
+                let near = (d.position[0] - c[0]).hypot(d.position[2] - c[1]) < 0.6;
+                near && s.room(other).is_some_and(|r| outdoorsy(r.kind))
+            });
+            assert!(at_door, "{}: {} at no door from outside", s.id, o.name);
+        }
+    }
+    assert!(mats >= 5, "only {mats} doormats");
+}
+
+#[test]
+fn runners_run_down_hallways_under_nothing() {
+    let mut runners = 0;
+    for s in HOMES.iter() {
+        for o in s.objects.iter().filter(|o| o.class == C::Runner) {
+            runners += 1;
+            assert_eq!(room_kind(s, o), R::Hallway, "{}: {}", s.id, o.name);
+            assert!(
+                o.bbox.max[1] - o.bbox.min[1] < 0.02,
+                "{}: thick {}",
+                s.id,
+                o.name
+            );
+            let room = o.room.and_then(|r| s.room(r)).expect("a room");
+            let xs = room.polygon.iter().map(|p| p[0]);
+            let zs = room.polygon.iter().map(|p| p[1]);
+            let span = |v: &mut dyn Iterator<Item = f32>| {
+                let (lo, hi) = v.fold((f32::MAX, f32::MIN), |(a, b), x| (a.min(x), b.max(x)));
+                hi - lo
+            };
+            let (rw, rd) = (span(&mut xs.clone()), span(&mut zs.clone()));
+            let (_, size) = foot(o);
+            assert_eq!(
+                size[0] > size[1],
+                rw > rd,
+                "{}: {} across the hall",
+                s.id,
+                o.name
+            );
+            // Nothing standing on the floor of the hall lies on it (door leaves, hung
+            // pictures and curtains aside).
+            let (lo, hi) = (o.bbox.min, o.bbox.max);
+            let under = s.objects.iter().find(|p| {
+                p.room == o.room
+                    && p.id != o.id
+                    && !p.class.is_structure()
+                    && !matches!(p.class, C::Door | C::Curtain | C::PictureFrame)
+                    && p.bbox.min[1] < 0.3
+                    && p.bbox.min[0] < hi[0]
+                    && lo[0] < p.bbox.max[0]
+                    && p.bbox.min[2] < hi[2]
+                    && lo[2] < p.bbox.max[2]
+            });
+            assert!(
+                under.is_none(),
+                "{}: {} under {:?}",
+                s.id,
+                o.name,
+                under.map(|p| &p.name)
+            );
+        }
+    }
+    assert!(runners >= 10, "only {runners} runners");
+}
