@@ -51,6 +51,8 @@ const PANE_T: f32 = 0.01;
 const STILE: f32 = 0.06;
 /// Height of a french door's bottom rail (m).
 const FRENCH_RAIL: f32 = 0.18;
+/// Tint of a glass door's pane: darker than a window's glowing pane, so it reads as glass.
+const PANE_RGB: [f32; 3] = [0.42, 0.52, 0.58];
 /// How far a sliding door's pull bar stands out of each face (m).
 const PULL_OUT: f32 = 0.012;
 /// Gap between the two leaves of french doors (m).
@@ -269,7 +271,7 @@ fn glass_leaf_parts(kind: DoorKind, lw: f32, lh: f32, free: f32, rgb: [f32; 3]) 
         box_part(
             Vec3::new(0.0, (p0 + p1) * 0.5, 0.0),
             Vec3::new(inner_w, p1 - p0, PANE_T),
-            tone::GLASS,
+            PANE_RGB,
         ),
     ];
     for s in [-1.0f32, 1.0] {

@@ -421,7 +421,7 @@ fn add_door_frame(
 }
 
 /// Strips of wall across an arched opening.
-pub(crate) const ARCH_PIECES: usize = 8;
+pub(crate) const ARCH_PIECES: usize = 12;
 /// Wall kept above the crown of an arch (m).
 const ARCH_CROWN_WALL: f32 = 0.08;
 
