@@ -494,9 +494,10 @@ pub struct Door {
     /// every other kind.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub second_leaf: Option<ObjectId>,
-    /// What kind of doorway this is (`hinged` in scenes written before doors had kinds, and for
-    /// open-plan openings, which have no door).
-    #[serde(default)]
+    /// What kind of doorway this is. `hinged` (the default) is not written, so open-plan
+    /// openings, bare doorways, hinged doors and scenes written before doors had kinds carry no
+    /// `kind` in `scene.json`.
+    #[serde(default, skip_serializing_if = "DoorKind::is_hinged")]
     pub kind: DoorKind,
 }
 
@@ -534,6 +535,11 @@ impl DoorKind {
             DoorKind::French => "french",
             DoorKind::Arched => "arched",
         }
+    }
+
+    /// Whether this is the default kind, `hinged` (not written to `scene.json`).
+    pub fn is_hinged(&self) -> bool {
+        *self == DoorKind::Hinged
     }
 
     /// Whether the leaves of this kind are glass panes in a frame (object material `glass`).
