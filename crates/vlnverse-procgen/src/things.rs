@@ -247,7 +247,7 @@ pub(crate) fn runner(rng: &mut ChaCha8Rng, len: f32, w: f32) -> Model {
 fn grand_piano(rng: &mut ChaCha8Rng) -> Model {
     let fin = pick(LACQUER, rng);
     let c = fin.rgb;
-    let (w, d) = (r(rng, 1.45, 1.55), r(rng, 1.6, 1.9));
+    let (w, d) = (r(rng, 1.45, 1.55), r(rng, 1.55, 1.8));
     let mut p = Vec::new();
     let (y, body_h) = (0.62, 0.3);
     // The body: a straight front part and a narrower rounded tail (the piano's bent side).
@@ -316,7 +316,7 @@ fn hot_tub(rng: &mut ChaCha8Rng) -> Model {
     let h = 0.9;
     let mut p = Vec::new();
     bcube(&mut p, 0.0, 0.0, 0.0, [s, h - 0.08, s], 0.03, c);
-    bcube(&mut p, 0.0, h - 0.08, 0.0, [s, 0.08, s], 0.02, tone::LINEN);
+    bcube(&mut p, 0.0, h - 0.08, 0.0, [s, 0.08, s], 0.015, tone::LINEN);
     cube(
         &mut p,
         0.0,
@@ -409,7 +409,12 @@ fn tapestry(rng: &mut ChaCha8Rng) -> Model {
         Quat::from_rotation_z(FRAC_PI_2),
         tone::WOOD,
     );
-    Model::new(C::Tapestry, fin, [w + 0.12, y + h + 0.04, 0.04], 2.0, p)
+    // The rod's brackets stand out from the wall.
+    for sx in [-1.0, 1.0] {
+        let at = [sx * (w * 0.5 + 0.03), y + h - 0.01, -0.01];
+        cube(&mut p, at[0], at[1], at[2], [0.03, 0.06, 0.06], tone::WOOD);
+    }
+    Model::new(C::Tapestry, fin, [w + 0.12, y + h + 0.05, 0.06], 2.0, p)
 }
 
 /// A folding screen: four tall panels standing in a zigzag, each a frame round a lighter
@@ -482,7 +487,7 @@ fn deer_head(rng: &mut ChaCha8Rng) -> Model {
         y - 0.2,
         0.18,
         [0.32, 0.42, 0.04],
-        0.01,
+        0.008,
         tone::WOOD,
     );
     // Neck out of the shield, the head pointing forward and a little down.
@@ -594,7 +599,7 @@ fn elliptical(rng: &mut ChaCha8Rng) -> Model {
 fn rowing_machine(rng: &mut ChaCha8Rng) -> Model {
     let fin = pick(GYM, rng);
     let c = fin.rgb;
-    let d = r(rng, 2.0, 2.3);
+    let d = r(rng, 1.8, 1.95);
     let mut p = Vec::new();
     cube(&mut p, 0.0, 0.0, d * 0.5 - 0.05, [0.5, 0.06, 0.1], c);
     tilted(
@@ -606,7 +611,7 @@ fn rowing_machine(rng: &mut ChaCha8Rng) -> Model {
     );
     disc_z(&mut p, [0.0, 0.35, -d * 0.5 + 0.25], 0.27, 0.18, c);
     cube(&mut p, 0.0, 0.0, -d * 0.5 + 0.2, [0.5, 0.06, 0.1], c);
-    bcube(&mut p, 0.0, 0.26, 0.1, [0.3, 0.06, 0.3], 0.02, tone::SOOT);
+    bcube(&mut p, 0.0, 0.26, 0.1, [0.3, 0.06, 0.3], 0.012, tone::SOOT);
     for s in [-1.0, 1.0] {
         cube(
             &mut p,
@@ -870,7 +875,7 @@ fn barrel(rng: &mut ChaCha8Rng) -> Model {
 /// guard rail along the top bunk and a ladder at one end.
 fn bunk_bed(rng: &mut ChaCha8Rng) -> Model {
     let fin = pick(BLANKET, rng);
-    let wood = pick(&BAR[..], rng).rgb;
+    let wood = pick(BAR, rng).rgb;
     let (w, d, h) = (r(rng, 2.0, 2.1), 1.0, r(rng, 1.65, 1.8));
     let mut p = Vec::new();
     for sx in [-1.0, 1.0] {
@@ -925,7 +930,7 @@ fn bunk_bed(rng: &mut ChaCha8Rng) -> Model {
             y + 0.28,
             0.0,
             [0.35, 0.1, d * 0.6],
-            0.03,
+            0.02,
             tone::WHITE,
         );
     }
@@ -986,7 +991,7 @@ fn rocking_horse(rng: &mut ChaCha8Rng) -> Model {
             );
         }
     }
-    bcube(&mut p, 0.0, 0.37, 0.0, [len * 0.55, 0.2, 0.2], 0.05, c);
+    bcube(&mut p, 0.0, 0.37, 0.0, [len * 0.55, 0.2, 0.2], 0.04, c);
     tilted(
         &mut p,
         [len * 0.3, 0.65, 0.0],
@@ -1097,39 +1102,58 @@ fn kayak(rng: &mut ChaCha8Rng) -> Model {
     let fin = pick(BRIGHT, rng);
     let c = fin.rgb;
     let len = r(rng, 2.5, 2.8);
-    let y = 0.9;
+    let y = 1.0;
     let mut p = Vec::new();
-    let body = len - 0.5;
-    bcube(&mut p, 0.0, y, 0.0, [body, 0.3, 0.55], 0.1, c);
+    // Two brackets out of the wall under the hull (nothing stands on the floor).
     for s in [-1.0, 1.0] {
-        // The bow and stern: a box turned 45 degrees on end, tapering the hull to a point.
-        let tip = Quat::from_rotation_y(FRAC_PI_4);
-        tilted(
+        cube(
             &mut p,
-            [s * body * 0.5, y + 0.15, 0.0],
-            [0.19, 0.13, 0.19],
-            tip,
-            c,
+            s * len * 0.25,
+            y - 0.1,
+            0.2,
+            [0.05, 0.3, 0.04],
+            tone::METAL,
         );
         cube(
             &mut p,
-            s * body * 0.3,
+            s * len * 0.25,
+            y - 0.04,
             0.0,
-            0.3,
-            [0.04, y + 0.05, 0.06],
+            [0.05, 0.04, 0.42],
             tone::METAL,
+        );
+    }
+    let body = len - 0.6;
+    bcube(&mut p, 0.0, y, 0.0, [body, 0.28, 0.42], 0.06, c);
+    for s in [-1.0, 1.0] {
+        // The bow and stern: a box turned 45 degrees on end, tapering the hull to a point,
+        // and a thinner one beyond it.
+        let tip = Quat::from_rotation_y(FRAC_PI_4);
+        tilted(
+            &mut p,
+            [s * body * 0.5, y + 0.13, 0.0],
+            [0.14, 0.12, 0.14],
+            tip,
+            c,
+        );
+        tilted(
+            &mut p,
+            [s * (body * 0.5 + 0.17), y + 0.14, 0.0],
+            [0.07, 0.08, 0.07],
+            tip,
+            c,
         );
     }
     bcube(
         &mut p,
         0.0,
-        y + 0.28,
-        -0.02,
-        [0.7, 0.04, 0.36],
-        0.05,
+        y + 0.26,
+        -0.01,
+        [0.7, 0.04, 0.3],
+        0.008,
         tone::SOOT,
     );
-    Model::new(C::Kayak, fin, [len, y + 0.32, 0.66], 20.0, p)
+    Model::new(C::Kayak, fin, [len, y + 0.3, 0.44], 20.0, p)
 }
 
 /// A telescope on a tripod, its tube tilted up towards a window.
