@@ -169,6 +169,11 @@ pub struct FurnitureConfig {
     /// island, console table, dryer...; 0 = none), in `[0, 4]`. Pieces are placed last from an
     /// rng of their own, so they never move the rest of a home.
     pub pieces: f32,
+    /// Factor on the chance of each set of furniture (a matching second armchair, stools along
+    /// an island, a double vanity, twin beds, bedside sconces, two desks; 0 = none), in
+    /// `[0, 4]`. Sets are placed last from an rng of their own, so they never move the rest of
+    /// a home.
+    pub sets: f32,
     /// Most small objects on one surface, in `[0, 8]`.
     pub small_objects_max: usize,
     /// Probability that a surface gets small objects at all.
@@ -278,6 +283,7 @@ impl Default for FurnitureConfig {
             attempts: 24,
             clutter: 1.0,
             pieces: 1.0,
+            sets: 1.0,
             small_objects_max: 7,
             small_object_probability: 0.95,
             nav_radius: 0.4,
@@ -618,6 +624,12 @@ impl ProcgenConfig {
             f.pieces.is_finite() && (0.0..=4.0).contains(&f.pieces),
             "furniture.pieces",
             f.pieces,
+            "must be in [0, 4]",
+        )?;
+        check(
+            f.sets.is_finite() && (0.0..=4.0).contains(&f.sets),
+            "furniture.sets",
+            f.sets,
             "must be in [0, 4]",
         )?;
         check(

@@ -35,7 +35,7 @@ const FURNITURE_MIN_FREE: f32 = 0.12;
 /// Random spots tried for each small object on its surface.
 const SMALL_TRIES: usize = 16;
 /// Distance kept between furniture and walls (m).
-const WALL_GAP: f32 = 0.01;
+pub(crate) const WALL_GAP: f32 = 0.01;
 
 /// One object of a group, in the group frame.
 #[derive(Clone, Debug)]
@@ -138,17 +138,17 @@ fn rotate(x: f32, z: f32, yaw: f32) -> (f32, f32) {
     (v.x, v.z)
 }
 
-struct RoomState<'a> {
-    cfg: &'a ProcgenConfig,
-    id: RoomId,
-    interior: Rect,
-    keepout: Vec<Rect>,
-    placed: Vec<Rect>,
-    grid: NavGrid,
-    seeds: Vec<(f32, f32)>,
+pub(crate) struct RoomState<'a> {
+    pub(crate) cfg: &'a ProcgenConfig,
+    pub(crate) id: RoomId,
+    pub(crate) interior: Rect,
+    pub(crate) keepout: Vec<Rect>,
+    pub(crate) placed: Vec<Rect>,
+    pub(crate) grid: NavGrid,
+    pub(crate) seeds: Vec<(f32, f32)>,
     /// Fewest free grid cells a placement must leave (the clutter stage keeps a share of the
     /// room walkable).
-    min_free: usize,
+    pub(crate) min_free: usize,
 }
 
 /// A placed group item, ready to become a scene object.
@@ -1563,6 +1563,9 @@ fn furnish_room(
     }
     if cfg.furniture.pieces > 0.0 {
         add_pieces(&mut st, plan, room.kind, rng, b);
+    }
+    if cfg.furniture.sets > 0.0 {
+        crate::sets::add_sets(&mut st, room.kind, rng, b);
     }
     tracing::trace!(room = i, free = st.grid.free_cells(), "room furnished");
 }

@@ -13,6 +13,7 @@ mod navgrid;
 mod palette;
 mod pieces;
 mod rect;
+mod sets;
 mod storeys;
 mod things;
 mod tones;

@@ -10,6 +10,7 @@ mod homes;
 mod look;
 mod navigable;
 mod pieces;
+mod sets_homes;
 mod storeys;
 mod support;
 mod things;

@@ -59,6 +59,8 @@ fn is_piece(s: &Scene, o: &vlnverse_env::SceneObject) -> bool {
 fn homes(pieces: f32, n: usize) -> Vec<Scene> {
     let mut cfg = Preset::Vlnverse.config().expect("vlnverse preset");
     cfg.furniture.pieces = pieces;
+    // Sets come after the pieces and stand by some of them (stools at an island).
+    cfg.furniture.sets = 0.0;
     let base = cfg.scenes.seed;
     let g = HomeGenerator::new(cfg).expect("config");
     (0..n)
