@@ -63,15 +63,11 @@ pub(crate) fn add_sets(st: &mut RoomState, kind: RoomType, rng: &ChaCha8Rng, b: 
                 bar_stools(st, rng, b, C::Bar, &[-1.0]);
             }
         }
-        RoomType::Kitchen => {
-            if chance(rng, 0.9) {
-                bar_stools(st, rng, b, C::KitchenIsland, &[1.0, -1.0]);
-            }
+        RoomType::Kitchen if chance(rng, 0.9) => {
+            bar_stools(st, rng, b, C::KitchenIsland, &[1.0, -1.0]);
         }
-        RoomType::Bathroom => {
-            if chance(rng, 0.6) && area >= VANITY_AREA {
-                double_vanity(st, rng, b);
-            }
+        RoomType::Bathroom if chance(rng, 0.6) && area >= VANITY_AREA => {
+            double_vanity(st, rng, b);
         }
         RoomType::Bedroom => {
             if chance(rng, 0.5) {
@@ -82,15 +78,11 @@ pub(crate) fn add_sets(st: &mut RoomState, kind: RoomType, rng: &ChaCha8Rng, b: 
                 bedside_sconces(st, rng, b);
             }
         }
-        RoomType::DiningRoom | RoomType::HomeTheater | RoomType::Room => {
-            if chance(rng, 0.9) {
-                bar_stools(st, rng, b, C::Bar, &[-1.0]);
-            }
+        RoomType::DiningRoom | RoomType::HomeTheater | RoomType::Room if chance(rng, 0.9) => {
+            bar_stools(st, rng, b, C::Bar, &[-1.0]);
         }
-        RoomType::Office => {
-            if chance(rng, 0.45) && area >= DESKS_AREA {
-                two_desks(st, rng, b);
-            }
+        RoomType::Office if chance(rng, 0.45) && area >= DESKS_AREA => {
+            two_desks(st, rng, b);
         }
         _ => {}
     }
