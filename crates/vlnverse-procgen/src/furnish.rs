@@ -1599,13 +1599,7 @@ fn add_group(
 /// The room's feature pieces ([`pieces`]), drawn from an rng of their own seeded by the home's
 /// stream and the room, so that the main stream, and every room furnished after this one, is
 /// the same with or without them.
-fn add_pieces(
-    st: &mut RoomState,
-    plan: &Plan,
-    kind: RoomType,
-    rng: &ChaCha8Rng,
-    b: &mut Builder,
-) {
+fn add_pieces(st: &mut RoomState, plan: &Plan, kind: RoomType, rng: &ChaCha8Rng, b: &mut Builder) {
     let salt = u64::from(st.id).wrapping_mul(0x9E37_79B9_7F4A_7C15);
     let mut own = ChaCha8Rng::seed_from_u64(crate::tones::stream_hash(rng) ^ salt);
     let area = st.interior.area();
