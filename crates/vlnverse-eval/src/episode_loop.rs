@@ -714,7 +714,7 @@ impl EpisodeState {
             collisions: self.collisions,
             steps: self.steps,
             stops: self.stops.clone(),
-            actions: Some(self.actions.iter().map(|a| a.name().to_string()).collect()),
+            actions: Some(self.actions.iter().map(|a| a.name().into()).collect()),
         }
     }
 

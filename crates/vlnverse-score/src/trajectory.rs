@@ -10,6 +10,7 @@
 //!
 //! [`write_jsonl`] writes the first format.
 
+use std::borrow::Cow;
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -44,9 +45,11 @@ pub struct Trajectory {
     /// once per sub-goal; empty means "only the final stop, if `stopped`".
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub stops: Vec<u32>,
-    /// Action names, when recorded.
+    /// Action names, when recorded. A simulator's own names are borrowed (`"move_forward"`), so
+    /// the records of a long evaluation do not hold a string allocation per step; names read
+    /// from a file are owned.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub actions: Option<Vec<String>>,
+    pub actions: Option<Vec<Cow<'static, str>>>,
 }
 
 impl Trajectory {

@@ -58,7 +58,7 @@ fn python_random_agent_drives_episodes_through_the_protocol() {
             assert!(
                 acts.iter()
                     .all(|a| ["stop", "move_forward", "turn_left", "turn_right"]
-                        .contains(&a.as_str()))
+                        .contains(&a.as_ref()))
             );
         }
         results.push(std::fs::read(out_dir.join("trajectories.jsonl")).unwrap());
