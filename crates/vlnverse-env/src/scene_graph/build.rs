@@ -46,7 +46,7 @@ impl SceneGraph {
             let door = scene
                 .doors
                 .iter()
-                .find(|d| d.leaf == Some(obj.id))
+                .find(|d| d.leaves().any(|l| l == obj.id))
                 .and_then(|d| {
                     Some(DoorNode {
                         id: d.id,

@@ -33,14 +33,18 @@ pub struct Landmark {
     pub point: Vec2,
 }
 
-/// Whether an object is worth naming along a path: furniture (not rugs: the agent walks over
-/// them) at least 0.3 m across (`LANDMARK_MIN_FURNITURE_SIZE`), or a small object at least
-/// 0.5 m (`LANDMARK_MIN_SMALL_SIZE`); never structure or unknown.
+/// Whether an object is worth naming along a path: furniture (not rugs, runners or doormats:
+/// the agent walks over them) at least 0.3 m across (`LANDMARK_MIN_FURNITURE_SIZE`), or a small
+/// object at least 0.5 m (`LANDMARK_MIN_SMALL_SIZE`); never structure or unknown.
 pub fn is_landmark(o: &SceneObject) -> bool {
     let size = o.bbox.size().max_element();
     match o.class.kind() {
         ClassKind::Furniture => {
-            o.class != SemanticClass::Rug && size >= LANDMARK_MIN_FURNITURE_SIZE
+            // A rug, a runner or a doormat lies flat underfoot: walked over, not passed on a side.
+            !matches!(
+                o.class,
+                SemanticClass::Rug | SemanticClass::Runner | SemanticClass::Doormat
+            ) && size >= LANDMARK_MIN_FURNITURE_SIZE
         }
         ClassKind::Small => size >= LANDMARK_MIN_SMALL_SIZE,
         ClassKind::Structure | ClassKind::Unknown => false,

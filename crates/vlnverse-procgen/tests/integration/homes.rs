@@ -170,7 +170,7 @@ fn doors_are_wide_and_never_blocked() {
             );
             let zone = door_clearance(d, 1.0, 2.0);
             // Only the door's own leaf, when closed, stands in its doorway.
-            let own_closed = |o: &SceneObject| d.is_closed() && d.leaf == Some(o.id);
+            let own_closed = |o: &SceneObject| d.is_closed() && d.leaves().any(|l| l == o.id);
             // A doormat or a runner lies flat under a doorway's clearance: it blocks nothing.
             let flat = |o: &SceneObject| matches!(o.class, C::Doormat | C::Runner);
             for o in s.items().filter(|o| !own_closed(o) && !flat(o)) {
@@ -279,9 +279,11 @@ fn objects_are_well_formed() {
             if let Some(r) = o.room {
                 assert!(s.room(r).is_some());
             }
-            let door = s.doors.iter().find(|d| d.leaf == Some(o.id));
+            let door = s.doors.iter().find(|d| d.leaves().any(|l| l == o.id));
             assert_eq!(door.is_some(), o.class == C::Door, "{}: {}", s.id, o.name);
-            if let Some(d) = door.filter(|d| d.is_closed()) {
+            // (A closed pair of french doors is centred as a pair.)
+            let single = |d: &&vlnverse_env::Door| d.second_leaf.is_none();
+            if let Some(d) = door.filter(|d| d.is_closed()).filter(single) {
                 // A closed leaf is centred in its doorway, between the two rooms.
                 let c = o.bbox.center();
                 assert!(
