@@ -1134,21 +1134,15 @@ fn door_by_room(
         DoorKind::French => pick(rng, &ph::DOOR_FRENCH_LEAF),
         DoorKind::Hinged | DoorKind::Arched => "door",
     };
-    // ("the bathroom door", but not "the porch sliding glass door")
-    let bank: &[&str] = if noun == "door" {
-        &[
-            "the {r} {n}",
-            "the {n} to the {r}",
-            "the {n} into the {r}",
-            "the {n} that opens into the {r}",
-        ]
-    } else {
-        &[
-            "the {n} to the {r}",
-            "the {n} into the {r}",
-            "the {n} that opens into the {r}",
-        ]
-    };
+    let bank = [
+        "the {r} {n}",
+        "the {n} to the {r}",
+        "the {n} into the {r}",
+        "the {n} that opens into the {r}",
+    ];
+    // "the bathroom door", but not "the porch sliding glass door": only a plain door takes the
+    // first form.
+    let bank = &bank[usize::from(noun != "door")..];
     Some(pick(rng, bank).replace("{r}", &room).replace("{n}", noun))
 }
 
