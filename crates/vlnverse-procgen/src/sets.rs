@@ -404,20 +404,7 @@ fn double_vanity(st: &mut RoomState, rng: &mut ChaCha8Rng, b: &mut Builder) {
     let mut sides = [1.0f32, -1.0];
     sides.shuffle(rng);
     for side in sides {
-        let start = b.objects.len();
-        let dx = side * (w + 0.02);
-        copy(b, s, beside(&b.objects[s], dx, 0.0, 0.0));
-        if let Some(m) = mirror {
-            let (mx, mz) = local(&b.objects[s], at(&b.objects[m]));
-            let p = beside(&b.objects[s], mx + dx, mz, 0.0);
-            copy(
-                b,
-                m,
-                Pose::from_yaw(p.translation(), b.objects[m].pose.yaw()),
-            );
-        }
-        let anchors: Vec<usize> = std::iter::once(s).chain(mirror).collect();
-        if settle(st, b, start, &anchors) {
+        if twin_beside(st, b, s, mirror, side * (w + 0.02)) {
             return;
         }
     }
@@ -525,20 +512,32 @@ fn two_desks(st: &mut RoomState, rng: &mut ChaCha8Rng, b: &mut Builder) {
         .into_iter()
         .flat_map(|side| DESK_GAPS.map(|g| side * (w + g)));
     for dx in spots {
-        let start = b.objects.len();
-        copy(b, desk, beside(&b.objects[desk], dx, 0.0, 0.0));
-        if let Some(c) = chair {
-            let (cx, cz) = local(&b.objects[desk], at(&b.objects[c]));
-            let p = beside(&b.objects[desk], cx + dx, cz, 0.0);
-            copy(
-                b,
-                c,
-                Pose::from_yaw(p.translation(), b.objects[c].pose.yaw()),
-            );
-        }
-        let anchors: Vec<usize> = std::iter::once(desk).chain(chair).collect();
-        if settle(st, b, start, &anchors) {
+        if twin_beside(st, b, desk, chair, dx) {
             return;
         }
     }
+}
+
+/// A copy of object `first` `dx` along its own width, with a copy of `with` (its mirror, its
+/// chair) where `with` stands from it, kept if the set settles ([`settle`]).
+fn twin_beside(
+    st: &mut RoomState,
+    b: &mut Builder,
+    first: usize,
+    with: Option<usize>,
+    dx: f32,
+) -> bool {
+    let start = b.objects.len();
+    copy(b, first, beside(&b.objects[first], dx, 0.0, 0.0));
+    if let Some(c) = with {
+        let (cx, cz) = local(&b.objects[first], at(&b.objects[c]));
+        let p = beside(&b.objects[first], cx + dx, cz, 0.0);
+        copy(
+            b,
+            c,
+            Pose::from_yaw(p.translation(), b.objects[c].pose.yaw()),
+        );
+    }
+    let anchors: Vec<usize> = std::iter::once(first).chain(with).collect();
+    settle(st, b, start, &anchors)
 }
