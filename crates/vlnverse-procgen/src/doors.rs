@@ -790,27 +790,8 @@ mod tests {
                 ],
             })
             .collect();
-        let doors = plan
-            .openings
-            .iter()
-            .zip(leaves)
-            .enumerate()
-            .map(|(i, (o, l))| {
-                let (x, z) = o.position();
-                Door {
-                    id: i as u32,
-                    position: [x, 0.0, z],
-                    width: o.width,
-                    normal: o.normal(&plan),
-                    rooms: o.rooms.map(|r| r as RoomId),
-                    open_plan: false,
-                    state: l.state,
-                    leaf: l.leaf,
-                    second_leaf: l.second,
-                    kind: l.kind,
-                }
-            })
-            .collect();
+        // (Every opening here is framed, so the home's own doors_of gives them as built.)
+        let doors = crate::home::doors_of(&plan, leaves, 0.0, 0, 0, 0);
         Scene {
             format_version: vlnverse_env::SCENE_FORMAT_VERSION,
             id: "ring".into(),

@@ -655,7 +655,7 @@ fn rooms_of(
 
 /// The scene doors of a plan's openings on the floor at `y`: room ids after `room_offset`, leaf
 /// ids after `leaf_offset`, door ids from `first`.
-fn doors_of(
+pub(crate) fn doors_of(
     plan: &Plan,
     leaves: Vec<crate::doors::DoorLeaf>,
     y: f32,
