@@ -1,10 +1,9 @@
 //! Feature pieces (pool tables, grandfather clocks, kitchen islands...): placed from an rng of
 //! their own, so turning them on adds objects and moves no furniture.
 
-use rayon::prelude::*;
 use std::collections::BTreeSet;
 use vlnverse_env::{ClassKind, RoomType, Scene, SemanticClass as C};
-use vlnverse_procgen::{scene_seed, HomeGenerator, Preset};
+use vlnverse_procgen::Preset;
 
 const PIECES: [C; 34] = [
     C::Recliner,
@@ -61,15 +60,7 @@ fn homes(pieces: f32, n: usize) -> Vec<Scene> {
     cfg.furniture.pieces = pieces;
     // Sets come after the pieces and stand by some of them (stools at an island).
     cfg.furniture.sets = 0.0;
-    let base = cfg.scenes.seed;
-    let g = HomeGenerator::new(cfg).expect("config");
-    (0..n)
-        .into_par_iter()
-        .map(|i| {
-            g.generate(scene_seed(base, i), &format!("home_{i:04}"))
-                .expect("scene")
-        })
-        .collect()
+    crate::support::first_homes(cfg, n)
 }
 
 /// The furniture and small objects but the pieces, as (class, room, box) in scene order.

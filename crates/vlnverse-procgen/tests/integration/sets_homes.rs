@@ -2,10 +2,9 @@
 //! twin beds, bedside sconces, two desks): placed from an rng of their own, so turning them on
 //! adds objects and moves nothing placed before; the second of a pair is the same model.
 
-use rayon::prelude::*;
 use std::collections::BTreeMap;
 use vlnverse_env::{ClassKind, RoomType, Scene, SceneObject, SemanticClass as C};
-use vlnverse_procgen::{scene_seed, HomeGenerator, Preset};
+use vlnverse_procgen::Preset;
 
 /// The classes a set adds (a new nightstand comes between twin beds, a desk with its chair).
 const SET_CLASSES: [C; 11] = [
@@ -25,15 +24,7 @@ const SET_CLASSES: [C; 11] = [
 fn homes(sets: f32, n: usize) -> Vec<Scene> {
     let mut cfg = Preset::Vlnverse.config().expect("vlnverse preset");
     cfg.furniture.sets = sets;
-    let base = cfg.scenes.seed;
-    let g = HomeGenerator::new(cfg).expect("config");
-    (0..n)
-        .into_par_iter()
-        .map(|i| {
-            g.generate(scene_seed(base, i), &format!("home_{i:04}"))
-                .expect("scene")
-        })
-        .collect()
+    crate::support::first_homes(cfg, n)
 }
 
 /// The furniture and small objects, as (class, "class room box") in scene order. Door leaves,

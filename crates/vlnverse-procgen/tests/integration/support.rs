@@ -1,8 +1,10 @@
 //! Helpers for checking homes that may stand on two floors: each floor's view, the rooms a
 //! flight of stairs joins, and reachability through doors and stairs.
 
+use rayon::prelude::*;
 use std::collections::VecDeque;
 use vlnverse_env::{Door, LevelId, RoomId, Scene};
+use vlnverse_procgen::{scene_seed, HomeGenerator, ProcgenConfig};
 
 /// Each floor of a home as a scene of its own (`Scene::level_view`), the ground floor first.
 pub fn floors(s: &Scene) -> Vec<Scene> {
@@ -70,5 +72,19 @@ pub fn ground_plan_rooms(s: &Scene) -> Vec<&vlnverse_env::Room> {
     s.rooms
         .iter()
         .filter(|r| s.room_level(r.id) == Some(0) && Some(r.id) != hall)
+        .collect()
+}
+
+/// The first `n` homes of `cfg` (as the preset's own scenes with that config: `home_0000`, ...,
+/// each from the config's base seed), generated in parallel.
+pub fn first_homes(cfg: ProcgenConfig, n: usize) -> Vec<Scene> {
+    let base = cfg.scenes.seed;
+    let g = HomeGenerator::new(cfg).expect("config");
+    (0..n)
+        .into_par_iter()
+        .map(|i| {
+            g.generate(scene_seed(base, i), &format!("home_{i:04}"))
+                .expect("scene")
+        })
         .collect()
 }
