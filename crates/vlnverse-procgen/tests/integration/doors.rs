@@ -7,7 +7,7 @@ use rayon::prelude::*;
 use vlnverse_env::geodesic::geodesic_distance;
 use vlnverse_env::occupancy::{build_level_maps, OccupancyConfig};
 use vlnverse_env::{DoorState, Motion, Scene, SceneObject, SceneSource, SemanticClass as C};
-use vlnverse_procgen::{door_clearance, HomeGenerator, Preset};
+use vlnverse_procgen::{HomeGenerator, Preset};
 
 fn tiny() -> HomeGenerator {
     HomeGenerator::from_preset(Preset::Tiny).unwrap()
@@ -114,28 +114,9 @@ fn open_leaves_keep_the_doorway_clear_and_touch_no_furniture() {
         for d in s.doors.iter().filter(|d| d.leaf.is_some()) {
             let o = leaf(&s, d);
             if d.state == Some(DoorState::Open) {
-                // Not in its own doorway's clear width (the agent's passage) nor in any
-                // other doorway's clearance box.
-                for e in &s.doors {
-                    let zone = door_clearance(e, clearance, 2.0);
-                    assert!(
-                        !o.bbox.intersects(&zone, 1e-3),
-                        "{}: open leaf of door {} in the clearance of door {}",
-                        s.id,
-                        d.id,
-                        e.id
-                    );
-                }
+                support::assert_leaf_clear_of_doorways(&s, o, clearance);
             }
-            for other in s.items().filter(|x| x.id != o.id && x.class != C::Rug) {
-                assert!(
-                    !o.bbox.intersects(&other.bbox, 1e-3),
-                    "{}: {} intersects {}",
-                    s.id,
-                    o.name,
-                    other.name
-                );
-            }
+            support::assert_leaf_touches_nothing(&s, o);
         }
     }
 }

@@ -10,7 +10,7 @@ use vlnverse_env::geodesic::geodesic_distance;
 use vlnverse_env::occupancy::{build_level_maps, OccupancyConfig};
 use vlnverse_env::scene::DoorKind;
 use vlnverse_env::{Door, DoorState, Scene, SceneSource, SemanticClass as C};
-use vlnverse_procgen::{door_clearance, HomeGenerator, Preset};
+use vlnverse_procgen::{HomeGenerator, Preset};
 
 fn vlnverse() -> HomeGenerator {
     HomeGenerator::from_preset(Preset::Vlnverse).unwrap()
@@ -103,25 +103,8 @@ fn open_glass_leaves_keep_clear_of_doorways_and_a_sliding_one_lies_along_the_wal
                 continue;
             }
             for o in leaves(&s, d) {
-                for e in &s.doors {
-                    let zone = door_clearance(e, clearance, 2.0);
-                    assert!(
-                        !o.bbox.intersects(&zone, 1e-3),
-                        "{}: open leaf {} in the clearance of door {}",
-                        s.id,
-                        o.name,
-                        e.id
-                    );
-                }
-                for other in s.items().filter(|x| x.id != o.id && x.class != C::Rug) {
-                    assert!(
-                        !o.bbox.intersects(&other.bbox, 1e-3),
-                        "{}: {} intersects {}",
-                        s.id,
-                        o.name,
-                        other.name
-                    );
-                }
+                support::assert_leaf_clear_of_doorways(&s, o, clearance);
+                support::assert_leaf_touches_nothing(&s, o);
                 if d.kind == DoorKind::Sliding {
                     // Flat against the wall: no more than a few centimetres proud of its face.
                     let c = Vec2::new(d.position[0], d.position[2]);

@@ -3,8 +3,8 @@
 
 use rayon::prelude::*;
 use std::collections::VecDeque;
-use vlnverse_env::{Door, LevelId, RoomId, Scene};
-use vlnverse_procgen::{scene_seed, HomeGenerator, ProcgenConfig};
+use vlnverse_env::{Door, LevelId, RoomId, Scene, SceneObject, SemanticClass as C};
+use vlnverse_procgen::{door_clearance, scene_seed, HomeGenerator, ProcgenConfig};
 
 /// Each floor of a home as a scene of its own (`Scene::level_view`), the ground floor first.
 pub fn floors(s: &Scene) -> Vec<Scene> {
@@ -87,4 +87,32 @@ pub fn first_homes(cfg: ProcgenConfig, n: usize) -> Vec<Scene> {
                 .expect("scene")
         })
         .collect()
+}
+
+/// Asserts that the open door leaf `o` stands in no doorway's clearance box (`clearance` deep,
+/// as `door_clearance` draws it): not in its own doorway's passage nor in front of another.
+pub fn assert_leaf_clear_of_doorways(s: &Scene, o: &SceneObject, clearance: f32) {
+    for e in &s.doors {
+        let zone = door_clearance(e, clearance, 2.0);
+        assert!(
+            !o.bbox.intersects(&zone, 1e-3),
+            "{}: open leaf {} in the clearance of door {}",
+            s.id,
+            o.name,
+            e.id
+        );
+    }
+}
+
+/// Asserts that the door leaf `o` overlaps no other object but rugs.
+pub fn assert_leaf_touches_nothing(s: &Scene, o: &SceneObject) {
+    for other in s.items().filter(|x| x.id != o.id && x.class != C::Rug) {
+        assert!(
+            !o.bbox.intersects(&other.bbox, 1e-3),
+            "{}: {} intersects {}",
+            s.id,
+            o.name,
+            other.name
+        );
+    }
 }
