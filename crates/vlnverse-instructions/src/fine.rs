@@ -8,6 +8,7 @@ use super::describe::{
     unique_landmarks_in, NpOptions, RoomNaming, Viewpoint,
 };
 use super::door_order;
+use super::groups;
 use super::lexicon::{class_names, number_word, object_names, ordinal_word, plural};
 use super::openings::{self, Nearest, OpeningCount};
 use super::path::{
@@ -396,6 +397,8 @@ struct Named {
     between: bool,
     /// Named by a plural noun ("the stairs", "the curtains", a group, a pair): "are", no "a".
     plural: bool,
+    /// Named by a mass noun ("the exercise equipment"): "is", but no "a" either.
+    mass: bool,
 }
 
 /// "the second door on your left", "the last doorway on your right", "the door on your left"
@@ -413,7 +416,14 @@ fn nth_door_np(n: door_order::NthDoor, rng: &mut ChaCha8Rng) -> Option<String> {
             "last"
         })
     } else {
-        Some(ordinal_word(n.ordinal as u32).filter(|_| n.ordinal <= 5)?)
+        let word = ordinal_word(n.ordinal as u32).filter(|_| n.ordinal <= 5)?;
+        // People often type a door's count in digits ("the 2nd door").
+        let digits = ["", "", "2nd", "3rd", "4th", "5th"][n.ordinal];
+        Some(if n.ordinal >= 2 && rng.random_bool(0.15) {
+            digits
+        } else {
+            word
+        })
     };
     Some(match ord {
         Some(o) => format!("the {o} {noun} on your {side}"),
@@ -783,6 +793,7 @@ fn leg_sentences(route: &Route<'_, '_>, li: usize, draft: &mut Draft) {
                 group: false,
                 between: false,
                 plural: false,
+                mass: false,
             });
         }
     }
@@ -921,12 +932,24 @@ fn leg_landmarks<'r>(
 /// on the same side of the same leg is often named with them ("the two chairs on your left").
 fn name_landmarks(route: &Route<'_, '_>, chosen: &[&Landmark], draft: &mut Draft) -> Vec<Named> {
     let mut named: Vec<Named> = Vec::new();
+    // Objects already named in a group of their kind, not named again on their own.
+    let mut in_group: Vec<ObjectId> = Vec::new();
     for l in chosen {
         let Some(o) = route.ctx.scene.object(l.object) else {
             continue;
         };
+        if in_group.contains(&o.id) {
+            continue;
+        }
         let side = env_side(l.side);
         let mates = group_mates(route, l, o);
+        if mates.is_empty() {
+            if let Some(group) = kind_group(route, l, o, draft) {
+                in_group.extend(group.1);
+                named.push(group.0);
+                continue;
+            }
+        }
         if !mates.is_empty() && draft.rng.random_bool(0.7) {
             let text = group_np(o, &mates, &mut draft.rng);
             draft
@@ -943,6 +966,7 @@ fn name_landmarks(route: &Route<'_, '_>, chosen: &[&Landmark], draft: &mut Draft
                 group: true,
                 between: false,
                 plural: true,
+                mass: false,
             });
             continue;
         }
@@ -977,6 +1001,7 @@ fn name_landmarks(route: &Route<'_, '_>, chosen: &[&Landmark], draft: &mut Draft
             group: false,
             between: false,
             plural,
+            mass: false,
         });
     }
     named
@@ -1054,6 +1079,7 @@ fn name_between(route: &Route<'_, '_>, a: &Landmark, b: &Landmark, draft: &mut D
         group: false,
         between: true,
         plural: true,
+        mass: false,
     }
 }
 
@@ -1097,6 +1123,7 @@ fn room_passed(route: &Route<'_, '_>, li: usize) -> Option<Named> {
                     group: false,
                     between: false,
                     plural: false,
+                    mass: false,
                 });
             }
         }
@@ -1175,6 +1202,74 @@ fn group_mates<'r>(
     } else {
         mates
     }
+}
+
+/// Now and then, `l` named with the landmarks of its kind but other classes passed on the same
+/// side of the same leg ("the exercise equipment on your left": a treadmill and a bike;
+/// `data/groups.toml`), grounded; the group and the objects in it. At most four objects, and
+/// only when every landmark of the kind on that side of the leg is in it.
+fn kind_group(
+    route: &Route<'_, '_>,
+    l: &Landmark,
+    o: &SceneObject,
+    draft: &mut Draft,
+) -> Option<(Named, Vec<ObjectId>)> {
+    let kind = groups::kind_of(o.class)?;
+    let side = env_side(l.side);
+    if !matches!(side, Side::Left | Side::Right) {
+        return None;
+    }
+    let li = route.leg_of(l.path_index);
+    let end = route.end_obj.map(|e| e.id);
+    let mut members: Vec<(&SceneObject, &Landmark)> = vec![(o, l)];
+    for m in &route.landmarks {
+        if m.object == o.id || route.leg_of(m.path_index) != li || env_side(m.side) != side {
+            continue;
+        }
+        let Some(x) = route.ctx.scene.object(m.object) else {
+            continue;
+        };
+        if groups::kind_of(x.class).is_some_and(|k| std::ptr::eq(k, kind)) {
+            if Some(x.id) == end || members.iter().any(|(y, _)| y.id == x.id) {
+                return None;
+            }
+            members.push((x, m));
+        }
+    }
+    let mixed = members.iter().any(|(x, _)| x.class != o.class);
+    if !mixed || members.len() > 4 || !draft.rng.random_bool(0.6) {
+        return None;
+    }
+    let names: Vec<&str> = kind.names.iter().map(String::as_str).collect();
+    let noun = pick(&mut draft.rng, &names);
+    let text = if kind.mass {
+        match draft.rng.random_range(0..3) {
+            0 | 1 => format!("the {noun}"),
+            _ => format!("some {noun}"),
+        }
+    } else {
+        let n = number_word(members.len() as u32);
+        match draft.rng.random_range(0..6) {
+            0..=2 => format!("the {noun}"),
+            3 => format!("{n} {noun}"),
+            4 => format!("the {n} {noun}"),
+            _ => format!("some {noun}"),
+        }
+    };
+    for (x, m) in &members {
+        draft
+            .grounding
+            .push(grounded(x, Role::Landmark, Some(side), m.path_index));
+    }
+    let named = Named {
+        text,
+        side,
+        group: !kind.mass,
+        between: false,
+        plural: !kind.mass,
+        mass: kind.mass,
+    };
+    Some((named, members.iter().map(|(x, _)| x.id).collect()))
 }
 
 /// The noun a group of objects of one class goes by: the first name of `objs[0]` that holds of
@@ -1512,7 +1607,7 @@ fn landmark_clause(m: &Named, rng: &mut ChaCha8Rng) -> String {
 /// (one object, not a group or a pair).
 fn first_mention(m: &Named, rng: &mut ChaCha8Rng) -> String {
     match m.text.strip_prefix("the ") {
-        Some(rest) if !m.plural && rng.random_bool(0.15) => {
+        Some(rest) if !m.plural && !m.mass && rng.random_bool(0.15) => {
             format!("{} {rest}", indefinite_article(rest))
         }
         _ => m.text.clone(),
@@ -1538,7 +1633,7 @@ fn see_sentence(m: &Named, rng: &mut ChaCha8Rng) -> String {
         if let Some(rest) = m
             .text
             .strip_prefix("the ")
-            .filter(|_| !m.plural && rng.random_bool(0.25))
+            .filter(|_| !m.plural && !m.mass && rng.random_bool(0.25))
         {
             let obj = format!("{} {rest}", indefinite_article(rest));
             return fill(pick(rng, &ph::SEE_SIDE_A), &[("obj", &obj), ("side", &sp)]);

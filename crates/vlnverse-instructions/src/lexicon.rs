@@ -31,7 +31,7 @@ pub fn object_names(o: &SceneObject) -> Vec<&'static str> {
         return names
             .iter()
             .copied()
-            .filter(|n| for_two || *n != "loveseat")
+            .filter(|n| for_two || !matches!(*n, "loveseat" | "love seat"))
             .collect();
     }
     // A bar stool is one tall enough for a counter.
@@ -47,13 +47,15 @@ pub fn object_names(o: &SceneObject) -> Vec<&'static str> {
         return names.to_vec();
     }
     let painting = o.material == "canvas";
+    // Art is what a painting is called; a photo in a frame is not.
+    let art = |n: &str| matches!(n, "artwork" | "wall art" | "piece of art");
     let mut out: Vec<&'static str> = names
         .iter()
         .copied()
-        .filter(|n| n.contains("painting") == painting)
+        .filter(|n| n.contains("painting") == painting && !art(n))
         .collect();
     if painting {
-        out.extend(names.iter().copied().filter(|n| *n == "picture"));
+        out.extend(names.iter().copied().filter(|n| *n == "picture" || art(n)));
     }
     if out.is_empty() {
         names.to_vec()
@@ -222,6 +224,13 @@ pub fn class_of_name(name: &str) -> Vec<C> {
         .copied()
         .filter(|&c| class_names(c).contains(&name))
         .collect()
+}
+
+/// What a group of things of `class` and other classes of its kind is called ("exercise
+/// equipment" for a treadmill; `data/groups.toml`); empty when the class is of no kind.
+pub fn kind_names(class: C) -> Vec<&'static str> {
+    crate::groups::kind_of(class)
+        .map_or_else(Vec::new, |k| k.names.iter().map(String::as_str).collect())
 }
 
 /// Names of a room type, the vocabulary name first.
@@ -676,6 +685,13 @@ pub fn shape_words(o: &SceneObject, peers: &[&SceneObject]) -> Vec<&'static str>
 
 /// The plural of a class name: "chairs", "benches", "bookshelves", "potted plants".
 pub fn plural(name: &str) -> String {
+    // "piece of art" -> "pieces of art"; art on a wall is counted in pieces.
+    if let Some((one, rest)) = name.split_once(" of ") {
+        return format!("{} of {rest}", plural(one));
+    }
+    if name == "wall art" {
+        return "pieces of wall art".into();
+    }
     let (head, last) = name.rsplit_once(' ').map_or(("", name), |(h, l)| (h, l));
     let p = if let Some(stem) = last.strip_suffix("shelf") {
         format!("{stem}shelves")
@@ -886,10 +902,29 @@ mod tests {
     }
 
     #[test]
+    fn a_painting_is_art_a_framed_photo_is_not() {
+        use vlnverse_env::Pose;
+        let mut frame = SceneObject::from_parts(1, C::PictureFrame, Pose::IDENTITY, Vec::new());
+        frame.material = "wood".into();
+        let photo = object_names(&frame);
+        assert!(photo.contains(&"photo frame"));
+        assert!(!photo
+            .iter()
+            .any(|n| n.contains("art") || n.contains("painting")));
+        frame.material = "canvas".into();
+        let painting = object_names(&frame);
+        for n in ["painting", "picture", "artwork", "wall art", "piece of art"] {
+            assert!(painting.contains(&n), "{n} not among {painting:?}");
+        }
+        assert!(!painting.contains(&"photo frame"));
+    }
+
+    #[test]
     fn features_add_phrases_a_sofa_for_two_is_a_loveseat_a_tall_stool_a_bar_stool() {
         use vlnverse_env::Pose;
         let mut sofa = SceneObject::from_parts(1, C::Sofa, Pose::IDENTITY, Vec::new());
         assert!(!object_names(&sofa).contains(&"loveseat"));
+        assert!(!object_names(&sofa).contains(&"love seat"));
         let uses = class_uses(C::Sofa);
         assert_eq!(distinct_uses(&sofa, &[]), uses);
         sofa.features = vec![
@@ -898,6 +933,7 @@ mod tests {
             "no such feature".into(),
         ];
         assert!(object_names(&sofa).contains(&"loveseat"));
+        assert!(object_names(&sofa).contains(&"love seat"));
         assert_eq!(
             distinct_uses(&sofa, &[])[uses.len()..],
             [
@@ -1030,6 +1066,9 @@ mod tests {
             ("wall shelf", "wall shelves"),
             ("tv", "tvs"),
             ("laundry", "laundries"),
+            ("piece of art", "pieces of art"),
+            ("wall art", "pieces of wall art"),
+            ("pair of shoes", "pairs of shoes"),
             ("tray", "trays"),
             ("box", "boxes"),
         ] {

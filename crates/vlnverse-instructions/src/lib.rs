@@ -50,6 +50,7 @@ mod data;
 mod describe;
 mod door_order;
 mod fine;
+mod groups;
 pub mod lexicon;
 #[cfg(feature = "llm")]
 pub mod llm;

@@ -152,10 +152,13 @@ fn fine_grounding_exists_near_path_and_on_stated_side() {
                         .iter()
                         .map(|n| vlnverse_instructions::lexicon::plural(n))
                         .collect();
+                    // Things of several classes are named by their kind ("the appliances").
+                    let kinds = vlnverse_instructions::lexicon::kind_names(class);
                     let forms = names
                         .iter()
                         .copied()
-                        .chain(plurals.iter().map(String::as_str));
+                        .chain(plurals.iter().map(String::as_str))
+                        .chain(kinds.iter().copied());
                     assert!(
                         forms.clone().any(|n| {
                             let k = n.split(' ').count();
