@@ -15,7 +15,7 @@
 use crate::geometry::shape_corners;
 use crate::occupancy::GridMap;
 use crate::occupancy::OccupancyConfig;
-use crate::scene::{MeshData, Pose, Scene, SceneObject, Shape};
+use crate::scene::{DoorKind, MeshData, Pose, Scene, SceneObject, Shape};
 use crate::vocab::{ClassKind, RoomType, SemanticClass};
 use glam::{Vec2, Vec3};
 use image::{Rgb, RgbImage};
@@ -818,21 +818,26 @@ fn draw_doors(img: &mut RgbImage, frame: &WorldToPixel, scene: &Scene) {
             thick_line(img, frame.to_pixel(a), frame.to_pixel(b), 6.0, DOOR_CLOSED);
         } else {
             thick_line(img, frame.to_pixel(a), frame.to_pixel(b), 4.0, DOOR_OPEN);
-            if let Some(leaf) = d.leaf.and_then(|id| scene.object(id)) {
-                draw_swing(img, frame, c, t, n, d.width, leaf);
+            // A sliding leaf moves along the wall and sweeps nothing; each leaf of a pair
+            // sweeps its own half of the opening.
+            if d.kind != DoorKind::Sliding {
+                let reach = d.width / d.leaves().count().max(1) as f32;
+                for leaf in d.leaves().filter_map(|id| scene.object(id)) {
+                    draw_swing(img, frame, (c, t, n), d.width, reach, leaf);
+                }
             }
         }
     }
 }
 
-/// The quarter circle an open leaf sweeps, from the far jamb to where the leaf stands.
+/// The quarter circle of radius `reach` (the leaf's width) an open leaf sweeps about its
+/// hinge, the jamb of the opening (centre `c`, along `t`, normal `n`) on the leaf's side.
 fn draw_swing(
     img: &mut RgbImage,
     frame: &WorldToPixel,
-    c: Vec2,
-    t: Vec2,
-    n: Vec2,
+    (c, t, n): (Vec2, Vec2, Vec2),
     width: f32,
+    reach: f32,
     leaf: &SceneObject,
 ) {
     let lc = Vec2::new(leaf.bbox.center().x, leaf.bbox.center().z);
@@ -845,7 +850,7 @@ fn draw_swing(
     let steps = 12;
     let point = |k: usize| {
         let u = k as f32 / steps as f32 * std::f32::consts::FRAC_PI_2;
-        hinge + (start * u.cos() + end * u.sin()) * width
+        hinge + (start * u.cos() + end * u.sin()) * reach
     };
     for k in 0..steps {
         thin_line(

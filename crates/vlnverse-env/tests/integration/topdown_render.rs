@@ -195,3 +195,59 @@ fn mesh_walls_are_lines_and_mesh_furniture_is_filled() {
         "{dark} wall pixels across the room"
     );
 }
+
+#[test]
+fn an_open_leaf_sweeps_its_arc_a_pair_two_half_arcs_a_sliding_leaf_none() {
+    use glam::Vec3;
+    use vlnverse_env::{Aabb, DoorKind, Pose, SceneObject};
+    let opts = TopdownOptions {
+        labels: false,
+        room_names: false,
+        ..Default::default()
+    };
+    // The fixture's door: at x = 2 across z in [-0.45, 0.45], opening onto -x. A leaf stands
+    // open into the room from the jamb on its side of the opening (thin, near the wall).
+    let leaf = |id, z: f32| {
+        let mut o = SceneObject::from_parts(id, SemanticClass::Door, Pose::IDENTITY, vec![]);
+        o.bbox = Aabb::new(
+            Vec3::new(1.9, 0.0, z - 0.02),
+            Vec3::new(1.98, 2.0, z + 0.02),
+        );
+        o
+    };
+    let with = |kind: DoorKind, leaves: &[(u32, f32)]| {
+        let mut scene = fixture_scene();
+        for &(id, z) in leaves {
+            scene.objects.push(leaf(id, z));
+        }
+        let d = &mut scene.doors[0];
+        d.kind = kind;
+        d.leaf = leaves.first().map(|l| l.0);
+        d.second_leaf = leaves.get(1).map(|l| l.0);
+        render_topdown(&scene, None, &opts)
+    };
+    let bare = render_topdown(&fixture_scene(), None, &opts);
+    // Midpoints of the arcs: a full leaf (radius 0.9) hinged at z = 0.45, and the two half
+    // leaves (radius 0.45) hinged at z = +-0.45.
+    let s = std::f32::consts::FRAC_1_SQRT_2;
+    let full = Vec2::new(2.0 - 0.9 * s, 0.45 - 0.9 * s);
+    let half_a = Vec2::new(2.0 - 0.45 * s, 0.45 - 0.45 * s);
+    let half_b = Vec2::new(2.0 - 0.45 * s, -0.45 + 0.45 * s);
+    for p in [full, half_a, half_b] {
+        assert_eq!(px(&bare, p), room_color(RoomType::DiningRoom), "{p}");
+    }
+    let hinged = with(DoorKind::Hinged, &[(90, 0.4)]);
+    assert_ne!(px(&hinged, full), px(&bare, full));
+    let pair = with(DoorKind::French, &[(90, 0.4), (91, -0.4)]);
+    assert_ne!(px(&pair, half_a), px(&bare, half_a));
+    assert_ne!(px(&pair, half_b), px(&bare, half_b));
+    assert_eq!(
+        px(&pair, full),
+        px(&bare, full),
+        "a half leaf swept a whole one's arc"
+    );
+    let sliding = with(DoorKind::Sliding, &[(90, 0.4)]);
+    for p in [full, half_a, half_b] {
+        assert_eq!(px(&sliding, p), px(&bare, p), "a sliding leaf swept {p}");
+    }
+}
