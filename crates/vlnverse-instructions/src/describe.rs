@@ -9,6 +9,7 @@ use super::lexicon::{
 };
 use super::path::{env_side, footprint, rect_distance};
 use super::phrases::{self as ph, pick};
+use super::room_facts::{self, FloorKind};
 use super::spatial;
 use super::PathContext;
 use glam::Vec2;
@@ -604,31 +605,28 @@ pub(crate) fn content_name(
     (!keep_kind || name.contains(kind.as_str())).then(|| format!("the {name}"))
 }
 
-/// "the kitchen with the tiled floor", "the carpeted bedroom": a room by the floor one sees
-/// in it (its floor surface, as rendered); `None` for a plain floor.
+/// "the kitchen with the tiled floor", "the carpeted bedroom": a room by its floor (the
+/// material of its largest slab, drawn as that material); `None` for a plain floor.
 fn room_by_floor(scene: &Scene, r: &Room, name: &str, rng: &mut ChaCha8Rng) -> Option<String> {
-    use vlnverse_env::material::{surface_of, Surface};
-    let floor = scene
-        .objects
-        .iter()
-        .find(|o| o.class == C::Floor && o.room == Some(r.id))?;
-    let bank: &[&str] = match surface_of(scene, floor) {
-        Surface::Tiles => &[
+    // The same reading of the floor as the room remarks ("The room has a carpeted floor.").
+    let bank: &[&str] = match room_facts::floor_kind(scene, r.id)? {
+        FloorKind::Tile => &[
             "the {r} with the tiled floor",
             "the {r} with the tile floor",
             "the tiled {r}",
         ],
-        Surface::Carpet => &[
+        FloorKind::Carpet => &[
             "the carpeted {r}",
             "the {r} with the carpet",
             "the {r} with the carpeted floor",
         ],
-        Surface::WoodFloor => &[
+        FloorKind::Wood => &[
             "the {r} with the wooden floor",
             "the {r} with the wood floor",
             "the {r} with the hardwood floor",
         ],
-        _ => return None,
+        FloorKind::Stone => &["the {r} with the stone floor", "the stone-floored {r}"],
+        FloorKind::Concrete => &["the {r} with the concrete floor"],
     };
     Some(pick(rng, bank).replace("{r}", name))
 }
