@@ -175,7 +175,9 @@ pub(crate) fn object_np(
             s.push(' ');
             s.push_str(&r);
         }
-    } else if rng.random_bool(0.12) {
+    } else if material_after.is_none() && rng.random_bool(0.12) {
+        // Not after "made of metal": "the stove made of metal you cook on" runs two phrases
+        // after the name together.
         let uses = distinct_uses(o, &peers);
         if !uses.is_empty() {
             s.push(' ');
