@@ -394,7 +394,8 @@ impl ViewParams {
         }
     }
 
-    #[inline]
+    /// A world point in camera space (what the lanes and [`screen_box`] compute, written out).
+    #[cfg(test)]
     fn to_camera(&self, p: Vec3) -> Vec3 {
         self.rot * (p - self.pos)
     }
@@ -942,22 +943,23 @@ impl RasterScene {
             }
             for c in &self.clusters[o.c0 as usize..o.c1 as usize] {
                 if self.cull_clusters {
-                    let hidden = (several && !frustum.intersects_aabb(&c.bbox))
-                        || match screen_box(p, &c.bbox) {
-                            Reach::Near => false,
-                            Reach::Nothing => true,
-                            Reach::Box {
-                                x0,
-                                x1,
-                                y0,
-                                y1,
-                                zmax,
-                            } => {
-                                let h = coarse.hidden(zbuf, x0, x1, y0, y1, zmax);
-                                occluded += h as usize;
-                                h
-                            }
-                        };
+                    // The box's screen rectangle first: when the box is in front of the near
+                    // plane, it also tells whether the box is beside the view.
+                    let hidden = match screen_box(p, &c.bbox) {
+                        Reach::Near => several && !frustum.intersects_aabb(&c.bbox),
+                        Reach::Nothing => true,
+                        Reach::Box {
+                            x0,
+                            x1,
+                            y0,
+                            y1,
+                            zmax,
+                        } => {
+                            let h = coarse.hidden(zbuf, x0, x1, y0, y1, zmax);
+                            occluded += h as usize;
+                            h
+                        }
+                    };
                     if hidden {
                         culled += 1;
                         continue;
@@ -1386,22 +1388,34 @@ enum Reach {
 /// 0.1 % on `1 / depth`), for occlusion culling before set-up.
 fn screen_box(p: &ViewParams, b: &Aabb) -> Reach {
     let (lo, hi) = (b.min_v(), b.max_v());
-    let (mut x0, mut x1, mut y0, mut y1) = (f32::MAX, f32::MIN, f32::MAX, f32::MIN);
-    let mut dmin = f32::MAX;
+    // The eight corners (corner `k` takes the high side on axis `j` when bit `j` of `k` is
+    // set) to camera space and projected, in lanes: the operations of
+    // [`ViewParams::to_camera`] and [`ViewParams::project`] (as `lanes::Lanes` does them).
+    let cx = [lo.x, hi.x, lo.x, hi.x, lo.x, hi.x, lo.x, hi.x];
+    let cy = [lo.y, lo.y, hi.y, hi.y, lo.y, lo.y, hi.y, hi.y];
+    let cz = [lo.z, lo.z, lo.z, lo.z, hi.z, hi.z, hi.z, hi.z];
+    let (ex, ey, ez) = (p.pos.x, p.pos.y, p.pos.z);
+    let (ra, rb, rc) = (p.rot.x_axis, p.rot.y_axis, p.rot.z_axis);
+    let (mut sx, mut sy, mut d) = ([0.0f32; 8], [0.0f32; 8], [0.0f32; 8]);
+    let mut near = false;
     for k in 0..8 {
-        let c = Vec3::new(
-            if k & 1 == 0 { lo.x } else { hi.x },
-            if k & 2 == 0 { lo.y } else { hi.y },
-            if k & 4 == 0 { lo.z } else { hi.z },
-        );
-        let q = p.to_camera(c);
-        if q.z > -p.near {
-            return Reach::Near;
-        }
-        let (sx, sy, _) = p.project(q);
-        (x0, x1, y0, y1) = (x0.min(sx), x1.max(sx), y0.min(sy), y1.max(sy));
-        dmin = dmin.min(-q.z);
+        let (a, b, c) = (cx[k] - ex, cy[k] - ey, cz[k] - ez);
+        let x = ra.x * a + rb.x * b + rc.x * c;
+        let y = ra.y * a + rb.y * b + rc.y * c;
+        let z = ra.z * a + rb.z * b + rc.z * c;
+        near |= z > -p.near;
+        let iz = 1.0 / -z;
+        sx[k] = p.cx + p.fx * x * iz;
+        sy[k] = p.cy - p.fy * y * iz;
+        d[k] = -z;
     }
+    if near {
+        return Reach::Near;
+    }
+    let lowest = |v: &[f32; 8]| v.iter().fold(f32::MAX, |m, &q| if q < m { q } else { m });
+    let highest = |v: &[f32; 8]| v.iter().fold(f32::MIN, |m, &q| if q > m { q } else { m });
+    let (x0, x1, y0, y1) = (lowest(&sx), highest(&sx), lowest(&sy), highest(&sy));
+    let dmin = lowest(&d);
     // No pixel centre in the projection's rectangle, even with twice the margin
     // [`RasterScene::setup_triangle`] gives a triangle (so every triangle inside the box would be
     // rejected there; projection is convex in front of the eye): an integer in [lo, hi] when
