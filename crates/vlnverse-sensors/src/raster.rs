@@ -1341,14 +1341,26 @@ impl RasterScene {
                         *c = byte(tr * m) | byte(tg * m) << 8 | byte(tb * m) << 16;
                     }
                 }
-                // Four bytes at a time, each pixel's fourth overwritten by the next pixel.
-                for (j, c) in packed[..n - 1].iter().enumerate() {
-                    if let Some(p) = px.get_mut(3 * j..3 * j + 4) {
-                        p.copy_from_slice(&c.to_le_bytes());
+                // Four pixels (twelve bytes) in three words, then the rest three bytes each
+                // (`packed` holds a pixel's bytes in its low 24 bits).
+                let mut out4 = px.chunks_exact_mut(12);
+                let mut in4 = packed[..n].chunks_exact(4);
+                for (o, c) in (&mut out4).zip(&mut in4) {
+                    let words = [
+                        c[0] | c[1] << 24,
+                        c[1] >> 8 | c[2] << 16,
+                        c[2] >> 16 | c[3] << 8,
+                    ];
+                    for (o, w) in o.chunks_exact_mut(4).zip(words) {
+                        o.copy_from_slice(&w.to_le_bytes());
                     }
                 }
-                if let Some(p) = px.get_mut(3 * n - 3..3 * n) {
-                    p.copy_from_slice(&packed[n - 1].to_le_bytes()[..3]);
+                for (o, c) in out4
+                    .into_remainder()
+                    .chunks_exact_mut(3)
+                    .zip(in4.remainder())
+                {
+                    o.copy_from_slice(&c.to_le_bytes()[..3]);
                 }
                 x = e;
             }
