@@ -254,36 +254,35 @@ struct Edge {
     c: i64,
 }
 
-/// An edge's bound on the span of each row, walked down the rows with exact integer steps
-/// instead of a division per row: `x` is the first (`dir = -1`, `a > 0`) or last (`dir = 1`,
-/// `a < 0`) inside pixel of the current row, and `r = e(x, y)`, in `[0, |a|)`; for a
-/// horizontal edge (`dir = 0`) `r = e(0, y)` and the row is empty when `r < 0`.
+/// A sloped edge's bound on the span of each row, walked down the rows with exact integer
+/// steps instead of a division per row: `x` is the first (a left edge, `a > 0`) or last (a
+/// right edge, `a < 0`) inside pixel of the current row, and `r = e(x, y)`, in `[0, |a|)`.
+/// (A horizontal edge bounds the rows instead: [`raster`].)
 #[derive(Clone, Copy, Debug)]
 struct Walk {
     x: i64,
     r: i64,
-    /// `|a|`, `b mod |a|` and `dir * floor(b / |a|)` (for `dir = 0`: `r` steps by `b`).
+    /// `|a|`, `b mod |a|` and `dir * floor(b / |a|)` (`dir`: -1 for a left edge, 1 for a
+    /// right one).
     a: i64,
     br: i64,
     dq: i64,
-    dir: i64,
 }
 
 impl Walk {
-    /// Start at row `y`.
+    /// A bound that never binds: its `x` stays at `x` and nothing carries.
+    const NONE: Walk = Walk {
+        x: 0,
+        r: 0,
+        a: i64::MAX,
+        br: 0,
+        dq: 0,
+    };
+
+    /// Start at row `y` (`e.a != 0`).
     #[inline]
     fn new(e: &Edge, y: i64) -> Walk {
         let er = e.b * y + e.c;
-        if e.a == 0 {
-            return Walk {
-                x: 0,
-                r: er,
-                a: 0,
-                br: e.b,
-                dq: 0,
-                dir: 0,
-            };
-        }
         let (a, dir) = if e.a > 0 { (e.a, -1) } else { (-e.a, 1) };
         // a > 0: first x with a x + er >= 0 is ceil(-er / a) = -floor(er / a);
         // a < 0: last x with er - |a| x >= 0 is floor(er / |a|). Either way r = er mod |a|.
@@ -294,17 +293,16 @@ impl Walk {
             a,
             br: e.b.rem_euclid(a),
             dq: dir * e.b.div_euclid(a),
-            dir,
         }
     }
 
-    /// Move to the next row (branch-free: whether `r` carries past `|a|` is data, not
-    /// pattern; for a horizontal edge `dq` and `a` are 0 and nothing carries).
+    /// Move to the next row (`DIR`: -1 for a left edge, 1 for a right one; branch-free:
+    /// whether `r` carries past `|a|` is data, not pattern).
     #[inline]
-    fn step(&mut self) {
+    fn step<const DIR: i64>(&mut self) {
         self.r += self.br;
-        let carry = i64::from(self.dir != 0 && self.r >= self.a);
-        self.x += self.dq + carry * self.dir;
+        let carry = i64::from(self.r >= self.a);
+        self.x += self.dq + DIR * carry;
         self.r -= carry * self.a;
     }
 }
@@ -396,7 +394,8 @@ impl ViewParams {
         }
     }
 
-    #[inline]
+    /// A world point in camera space (what the lanes and [`screen_box`] compute, written out).
+    #[cfg(test)]
     fn to_camera(&self, p: Vec3) -> Vec3 {
         self.rot * (p - self.pos)
     }
@@ -944,22 +943,23 @@ impl RasterScene {
             }
             for c in &self.clusters[o.c0 as usize..o.c1 as usize] {
                 if self.cull_clusters {
-                    let hidden = (several && !frustum.intersects_aabb(&c.bbox))
-                        || match screen_box(p, &c.bbox) {
-                            Reach::Near => false,
-                            Reach::Nothing => true,
-                            Reach::Box {
-                                x0,
-                                x1,
-                                y0,
-                                y1,
-                                zmax,
-                            } => {
-                                let h = coarse.hidden(zbuf, x0, x1, y0, y1, zmax);
-                                occluded += h as usize;
-                                h
-                            }
-                        };
+                    // The box's screen rectangle first: when the box is in front of the near
+                    // plane, it also tells whether the box is beside the view.
+                    let hidden = match screen_box(p, &c.bbox) {
+                        Reach::Near => several && !frustum.intersects_aabb(&c.bbox),
+                        Reach::Nothing => true,
+                        Reach::Box {
+                            x0,
+                            x1,
+                            y0,
+                            y1,
+                            zmax,
+                        } => {
+                            let h = coarse.hidden(zbuf, x0, x1, y0, y1, zmax);
+                            occluded += h as usize;
+                            h
+                        }
+                    };
                     if hidden {
                         culled += 1;
                         continue;
@@ -1341,14 +1341,26 @@ impl RasterScene {
                         *c = byte(tr * m) | byte(tg * m) << 8 | byte(tb * m) << 16;
                     }
                 }
-                // Four bytes at a time, each pixel's fourth overwritten by the next pixel.
-                for (j, c) in packed[..n - 1].iter().enumerate() {
-                    if let Some(p) = px.get_mut(3 * j..3 * j + 4) {
-                        p.copy_from_slice(&c.to_le_bytes());
+                // Four pixels (twelve bytes) in three words, then the rest three bytes each
+                // (`packed` holds a pixel's bytes in its low 24 bits).
+                let mut out4 = px.chunks_exact_mut(12);
+                let mut in4 = packed[..n].chunks_exact(4);
+                for (o, c) in (&mut out4).zip(&mut in4) {
+                    let words = [
+                        c[0] | c[1] << 24,
+                        c[1] >> 8 | c[2] << 16,
+                        c[2] >> 16 | c[3] << 8,
+                    ];
+                    for (o, w) in o.chunks_exact_mut(4).zip(words) {
+                        o.copy_from_slice(&w.to_le_bytes());
                     }
                 }
-                if let Some(p) = px.get_mut(3 * n - 3..3 * n) {
-                    p.copy_from_slice(&packed[n - 1].to_le_bytes()[..3]);
+                for (o, c) in out4
+                    .into_remainder()
+                    .chunks_exact_mut(3)
+                    .zip(in4.remainder())
+                {
+                    o.copy_from_slice(&c.to_le_bytes()[..3]);
                 }
                 x = e;
             }
@@ -1388,22 +1400,34 @@ enum Reach {
 /// 0.1 % on `1 / depth`), for occlusion culling before set-up.
 fn screen_box(p: &ViewParams, b: &Aabb) -> Reach {
     let (lo, hi) = (b.min_v(), b.max_v());
-    let (mut x0, mut x1, mut y0, mut y1) = (f32::MAX, f32::MIN, f32::MAX, f32::MIN);
-    let mut dmin = f32::MAX;
+    // The eight corners (corner `k` takes the high side on axis `j` when bit `j` of `k` is
+    // set) to camera space and projected, in lanes: the operations of
+    // [`ViewParams::to_camera`] and [`ViewParams::project`] (as `lanes::Lanes` does them).
+    let cx = [lo.x, hi.x, lo.x, hi.x, lo.x, hi.x, lo.x, hi.x];
+    let cy = [lo.y, lo.y, hi.y, hi.y, lo.y, lo.y, hi.y, hi.y];
+    let cz = [lo.z, lo.z, lo.z, lo.z, hi.z, hi.z, hi.z, hi.z];
+    let (ex, ey, ez) = (p.pos.x, p.pos.y, p.pos.z);
+    let (ra, rb, rc) = (p.rot.x_axis, p.rot.y_axis, p.rot.z_axis);
+    let (mut sx, mut sy, mut d) = ([0.0f32; 8], [0.0f32; 8], [0.0f32; 8]);
+    let mut near = false;
     for k in 0..8 {
-        let c = Vec3::new(
-            if k & 1 == 0 { lo.x } else { hi.x },
-            if k & 2 == 0 { lo.y } else { hi.y },
-            if k & 4 == 0 { lo.z } else { hi.z },
-        );
-        let q = p.to_camera(c);
-        if q.z > -p.near {
-            return Reach::Near;
-        }
-        let (sx, sy, _) = p.project(q);
-        (x0, x1, y0, y1) = (x0.min(sx), x1.max(sx), y0.min(sy), y1.max(sy));
-        dmin = dmin.min(-q.z);
+        let (a, b, c) = (cx[k] - ex, cy[k] - ey, cz[k] - ez);
+        let x = ra.x * a + rb.x * b + rc.x * c;
+        let y = ra.y * a + rb.y * b + rc.y * c;
+        let z = ra.z * a + rb.z * b + rc.z * c;
+        near |= z > -p.near;
+        let iz = 1.0 / -z;
+        sx[k] = p.cx + p.fx * x * iz;
+        sy[k] = p.cy - p.fy * y * iz;
+        d[k] = -z;
     }
+    if near {
+        return Reach::Near;
+    }
+    let lowest = |v: &[f32; 8]| v.iter().fold(f32::MAX, |m, &q| if q < m { q } else { m });
+    let highest = |v: &[f32; 8]| v.iter().fold(f32::MIN, |m, &q| if q > m { q } else { m });
+    let (x0, x1, y0, y1) = (lowest(&sx), highest(&sx), lowest(&sy), highest(&sy));
+    let dmin = lowest(&d);
     // No pixel centre in the projection's rectangle, even with twice the margin
     // [`RasterScene::setup_triangle`] gives a triangle (so every triangle inside the box would be
     // rejected there; projection is convex in front of the eye): an integer in [lo, hi] when
@@ -1653,37 +1677,103 @@ fn raster<const IDS: bool>(
     zbuf: &mut [f32],
     ids: &mut [u32],
 ) {
-    let (by0, by1) = (y0 as i32, y1 as i32 - 1);
+    let (by0, by1) = (y0 as i64, y1 as i64 - 1);
     for t in tris {
-        let (ya, yb) = (t.y0.max(by0), t.y1.min(by1));
+        let (mut ya, mut yb) = ((t.y0 as i64).max(by0), (t.y1 as i64).min(by1));
+        // A horizontal edge (`a = 0`) holds the rows where `b y + c >= 0`: it bounds the rows
+        // (exactly those a per-row test would keep); the others bound each row's span, a left
+        // edge (`a > 0`) from below, a right one (`a < 0`) from above.
+        let mut left = 0;
+        let mut right = 0;
+        for (i, e) in t.edges.iter().enumerate() {
+            left |= u8::from(e.a > 0) << i;
+            right |= u8::from(e.a < 0) << i;
+            if e.a != 0 {
+                continue;
+            }
+            if e.b > 0 {
+                ya = ya.max(-e.c.div_euclid(e.b));
+            } else if e.b < 0 {
+                yb = yb.min(e.c.div_euclid(-e.b));
+            } else if e.c < 0 {
+                yb = ya - 1;
+            }
+        }
         if ya > yb {
             continue;
         }
-        let mut walks = t.edges.map(|e| Walk::new(&e, ya as i64));
-        for y in ya..=yb {
-            let (mut lo, mut hi) = (t.x0 as i64, t.x1 as i64);
-            let mut empty = false;
-            for k in &mut walks {
-                // Branch-free: a left edge bounds `lo`, a right edge `hi`, a horizontal one
-                // empties the row when it is outside.
-                lo = if k.dir < 0 && k.x > lo { k.x } else { lo };
-                hi = if k.dir > 0 && k.x < hi { k.x } else { hi };
-                empty |= k.dir == 0 && k.r < 0;
-                k.step();
+        let k = |i: usize| Walk::new(&t.edges[i], ya);
+        let b = Bounds { t, ya, yb, w, y0 };
+        // A triangle with area has at least one left and one right edge.
+        match (left, right) {
+            (0b001, 0b110) => rows::<IDS, 1, 2>(b, [k(0)], [k(1), k(2)], zbuf, ids),
+            (0b010, 0b101) => rows::<IDS, 1, 2>(b, [k(1)], [k(0), k(2)], zbuf, ids),
+            (0b100, 0b011) => rows::<IDS, 1, 2>(b, [k(2)], [k(0), k(1)], zbuf, ids),
+            (0b110, 0b001) => rows::<IDS, 2, 1>(b, [k(1), k(2)], [k(0)], zbuf, ids),
+            (0b101, 0b010) => rows::<IDS, 2, 1>(b, [k(0), k(2)], [k(1)], zbuf, ids),
+            (0b011, 0b100) => rows::<IDS, 2, 1>(b, [k(0), k(1)], [k(2)], zbuf, ids),
+            _ => {
+                // One left and one right edge (the third horizontal), or (not reached) none.
+                let pick = |m: u8, none: i64| {
+                    if m != 0 {
+                        k(m.trailing_zeros() as usize)
+                    } else {
+                        Walk {
+                            x: none,
+                            ..Walk::NONE
+                        }
+                    }
+                };
+                let (l, r) = (pick(left, i64::MIN), pick(right, i64::MAX));
+                rows::<IDS, 1, 1>(b, [l], [r], zbuf, ids)
             }
-            if empty || lo > hi {
-                continue;
-            }
-            let (lo, hi) = (lo as usize, hi as usize);
-            let row = (y as usize - y0) * w;
-            let z0 = t.zb * y as f32 + t.zc + t.za * lo as f32;
-            let n = hi + 1 - lo;
-            let zs = &mut zbuf[row + lo..row + lo + n];
-            if IDS {
-                span_ids(zs, &mut ids[row + lo..row + lo + n], z0, t);
-            } else {
-                span_depth(zs, z0, t);
-            }
+        }
+    }
+}
+
+/// The rows of one triangle [`rows`] fills, and its buffers' width and first row.
+#[derive(Clone, Copy)]
+struct Bounds<'a> {
+    t: &'a ScreenTri,
+    ya: i64,
+    yb: i64,
+    w: usize,
+    y0: usize,
+}
+
+/// Fill rows `ya..=yb` of a triangle bounded by `NL` left and `NR` right edges, walked from row
+/// `ya`.
+#[inline]
+fn rows<const IDS: bool, const NL: usize, const NR: usize>(
+    b: Bounds<'_>,
+    mut left: [Walk; NL],
+    mut right: [Walk; NR],
+    zbuf: &mut [f32],
+    ids: &mut [u32],
+) {
+    let Bounds { t, ya, yb, w, y0 } = b;
+    for y in ya..=yb {
+        let (mut lo, mut hi) = (t.x0 as i64, t.x1 as i64);
+        for k in &mut left {
+            lo = if k.x > lo { k.x } else { lo };
+            k.step::<-1>();
+        }
+        for k in &mut right {
+            hi = if k.x < hi { k.x } else { hi };
+            k.step::<1>();
+        }
+        if lo > hi {
+            continue;
+        }
+        let (lo, hi) = (lo as usize, hi as usize);
+        let row = (y as usize - y0) * w;
+        let z0 = t.zb * y as f32 + t.zc + t.za * lo as f32;
+        let n = hi + 1 - lo;
+        let zs = &mut zbuf[row + lo..row + lo + n];
+        if IDS {
+            span_ids(zs, &mut ids[row + lo..row + lo + n], z0, t);
+        } else {
+            span_depth(zs, z0, t);
         }
     }
 }
@@ -2024,6 +2114,64 @@ mod tests {
             written
         };
         assert_eq!(fill(&tested), fill(&all));
+    }
+
+    #[test]
+    fn the_span_walk_fills_exactly_the_pixels_inside_every_edge() {
+        use rand::{Rng, SeedableRng};
+        let cam = crate::CameraSpec::default().camera(&vlnverse_env::Pose::default());
+        let p = ViewParams::new(&cam);
+        let at =
+            |x: f32, y: f32, z: f32| Vec3::new((x - p.cx) / p.fx * z, -(y - p.cy) / p.fy * z, -z);
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+        let mut tris = Vec::new();
+        for k in 0..6000u32 {
+            // Corners on pixel centres, edges and anywhere; every third triangle with a
+            // horizontal edge (two corners on one row), sizes from a pixel to past the image.
+            let size = [1.5f32, 6.0, 40.0, 400.0][k as usize % 4];
+            let (cx, cy) = (
+                rng.random_range(-20.0..250.0),
+                rng.random_range(-20.0..250.0),
+            );
+            let mut coord = |c: f32| {
+                let v: f32 = c + rng.random_range(-size..size);
+                match rng.random_range(0..3) {
+                    0 => v.round(),
+                    1 => v.round() + 0.5,
+                    _ => v,
+                }
+            };
+            let mut c = [0; 3].map(|_| (coord(cx), coord(cy)));
+            if k % 3 == 0 {
+                c[1].1 = c[0].1;
+            }
+            let v = c.map(|(x, y)| at(x, y, 2.0));
+            emit_tested(&p, v, [0.0, 0.0, 0.5], k + 1, &mut tris, 0);
+        }
+        let horizontal = tris
+            .iter()
+            .filter(|t| t.edges.iter().any(|e| e.a == 0))
+            .count();
+        assert!(
+            horizontal > 1000 && tris.len() > 4000,
+            "{horizontal} {}",
+            tris.len()
+        );
+        let (mut z, mut ids) = (vec![0.0f32; p.w * p.h], vec![0u32; p.w * p.h]);
+        for t in &tris {
+            z.fill(0.0);
+            ids.fill(0);
+            raster::<true>(p.w, 0, p.h, std::slice::from_ref(t), &mut z, &mut ids);
+            for y in 0..p.h {
+                for x in 0..p.w {
+                    let (xi, yi) = (x as i64, y as i64);
+                    let inside = (t.x0..=t.x1).contains(&(x as i32))
+                        && (t.y0..=t.y1).contains(&(y as i32))
+                        && t.edges.iter().all(|e| e.a * xi + e.b * yi + e.c >= 0);
+                    assert_eq!(ids[y * p.w + x] != 0, inside, "pixel ({x}, {y}) of {t:?}");
+                }
+            }
+        }
     }
 
     #[test]
