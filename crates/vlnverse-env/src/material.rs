@@ -95,11 +95,55 @@ pub enum Surface {
     Marble,
     /// Granite: speckled stone (worktops).
     Granite,
+    /// Painted snowy mountains above a pine forest.
+    PaintingMountains,
+    /// Painted ocean waves.
+    PaintingOcean,
+    /// A painted waterfall between cliffs.
+    PaintingWaterfall,
+    /// A painted city skyline: towers with lit windows.
+    PaintingCity,
+    /// A painted lighthouse on rocks by the sea.
+    PaintingLighthouse,
+    /// A painted windmill in a field.
+    PaintingWindmill,
+    /// A painted barn with a silo and a fence (a farm).
+    PaintingBarn,
+    /// A painted night sky: a crescent moon and stars over hills.
+    PaintingNightSky,
+    /// A painted bowl of fruit: apples and bananas.
+    PaintingFruit,
+    /// A painted lion's head with its mane.
+    PaintingLion,
+    /// A painted cow with black patches on a hill.
+    PaintingCow,
+    /// Two painted birds on a branch.
+    PaintingBirds,
+    /// A painted fish under water.
+    PaintingFish,
+    /// A painted black cat sitting.
+    PaintingCat,
+    /// A painted dog's head with floppy ears.
+    PaintingDog,
+    /// A painted butterfly.
+    PaintingButterfly,
+    /// Painted sunflowers.
+    PaintingSunflowers,
+    /// A painted suspension bridge over water.
+    PaintingBridge,
+    /// A painted ship: a big hull, decks and two funnels.
+    PaintingShip,
+    /// A painted portrait of a woman with long hair.
+    PaintingWoman,
+    /// A painted portrait of a man with a beard, in a suit.
+    PaintingMan,
+    /// A painted cheetah: a spotted coat.
+    PaintingCheetah,
 }
 
 impl Surface {
     /// Every surface, in index order.
-    pub const ALL: [Surface; 36] = [
+    pub const ALL: [Surface; 58] = [
         Surface::Plain,
         Surface::Plaster,
         Surface::Wallpaper,
@@ -136,6 +180,28 @@ impl Surface {
         Surface::PolkaDot,
         Surface::Marble,
         Surface::Granite,
+        Surface::PaintingMountains,
+        Surface::PaintingOcean,
+        Surface::PaintingWaterfall,
+        Surface::PaintingCity,
+        Surface::PaintingLighthouse,
+        Surface::PaintingWindmill,
+        Surface::PaintingBarn,
+        Surface::PaintingNightSky,
+        Surface::PaintingFruit,
+        Surface::PaintingLion,
+        Surface::PaintingCow,
+        Surface::PaintingBirds,
+        Surface::PaintingFish,
+        Surface::PaintingCat,
+        Surface::PaintingDog,
+        Surface::PaintingButterfly,
+        Surface::PaintingSunflowers,
+        Surface::PaintingBridge,
+        Surface::PaintingShip,
+        Surface::PaintingWoman,
+        Surface::PaintingMan,
+        Surface::PaintingCheetah,
     ];
 
     /// Position in [`Surface::ALL`].
@@ -182,6 +248,28 @@ impl Surface {
             Surface::PolkaDot => "polka_dot",
             Surface::Marble => "marble",
             Surface::Granite => "granite",
+            Surface::PaintingMountains => "painting_mountains",
+            Surface::PaintingOcean => "painting_ocean",
+            Surface::PaintingWaterfall => "painting_waterfall",
+            Surface::PaintingCity => "painting_city",
+            Surface::PaintingLighthouse => "painting_lighthouse",
+            Surface::PaintingWindmill => "painting_windmill",
+            Surface::PaintingBarn => "painting_barn",
+            Surface::PaintingNightSky => "painting_night_sky",
+            Surface::PaintingFruit => "painting_fruit",
+            Surface::PaintingLion => "painting_lion",
+            Surface::PaintingCow => "painting_cow",
+            Surface::PaintingBirds => "painting_birds",
+            Surface::PaintingFish => "painting_fish",
+            Surface::PaintingCat => "painting_cat",
+            Surface::PaintingDog => "painting_dog",
+            Surface::PaintingButterfly => "painting_butterfly",
+            Surface::PaintingSunflowers => "painting_sunflowers",
+            Surface::PaintingBridge => "painting_bridge",
+            Surface::PaintingShip => "painting_ship",
+            Surface::PaintingWoman => "painting_woman",
+            Surface::PaintingMan => "painting_man",
+            Surface::PaintingCheetah => "painting_cheetah",
         }
     }
 
@@ -222,6 +310,28 @@ impl Surface {
                 | Surface::PaintingHouse
                 | Surface::PaintingGiraffe
                 | Surface::PaintingElephant
+                | Surface::PaintingMountains
+                | Surface::PaintingOcean
+                | Surface::PaintingWaterfall
+                | Surface::PaintingCity
+                | Surface::PaintingLighthouse
+                | Surface::PaintingWindmill
+                | Surface::PaintingBarn
+                | Surface::PaintingNightSky
+                | Surface::PaintingFruit
+                | Surface::PaintingLion
+                | Surface::PaintingCow
+                | Surface::PaintingBirds
+                | Surface::PaintingFish
+                | Surface::PaintingCat
+                | Surface::PaintingDog
+                | Surface::PaintingButterfly
+                | Surface::PaintingSunflowers
+                | Surface::PaintingBridge
+                | Surface::PaintingShip
+                | Surface::PaintingWoman
+                | Surface::PaintingMan
+                | Surface::PaintingCheetah
         )
     }
 
@@ -425,7 +535,29 @@ impl Surface {
                     | Surface::PaintingZebra
                     | Surface::PaintingHouse
                     | Surface::PaintingGiraffe
-                    | Surface::PaintingElephant => pictures::texel(self, seed, x, y).unwrap_or(0.9),
+                    | Surface::PaintingElephant
+                    | Surface::PaintingMountains
+                    | Surface::PaintingOcean
+                    | Surface::PaintingWaterfall
+                    | Surface::PaintingCity
+                    | Surface::PaintingLighthouse
+                    | Surface::PaintingWindmill
+                    | Surface::PaintingBarn
+                    | Surface::PaintingNightSky
+                    | Surface::PaintingFruit
+                    | Surface::PaintingLion
+                    | Surface::PaintingCow
+                    | Surface::PaintingBirds
+                    | Surface::PaintingFish
+                    | Surface::PaintingCat
+                    | Surface::PaintingDog
+                    | Surface::PaintingButterfly
+                    | Surface::PaintingSunflowers
+                    | Surface::PaintingBridge
+                    | Surface::PaintingShip
+                    | Surface::PaintingWoman
+                    | Surface::PaintingMan
+                    | Surface::PaintingCheetah => pictures::texel(self, seed, x, y).unwrap_or(0.9),
                     Surface::Striped
                     | Surface::Checkered
                     | Surface::Plaid
@@ -521,6 +653,28 @@ pub const FEATURE_SURFACES: &[(&str, Surface, Covers)] = &[
     ("house", Surface::PaintingHouse, Covers::Canvas),
     ("giraffe", Surface::PaintingGiraffe, Covers::Canvas),
     ("elephant", Surface::PaintingElephant, Covers::Canvas),
+    ("mountains", Surface::PaintingMountains, Covers::Canvas),
+    ("ocean", Surface::PaintingOcean, Covers::Canvas),
+    ("waterfall", Surface::PaintingWaterfall, Covers::Canvas),
+    ("city", Surface::PaintingCity, Covers::Canvas),
+    ("lighthouse", Surface::PaintingLighthouse, Covers::Canvas),
+    ("windmill", Surface::PaintingWindmill, Covers::Canvas),
+    ("barn", Surface::PaintingBarn, Covers::Canvas),
+    ("night sky", Surface::PaintingNightSky, Covers::Canvas),
+    ("fruit", Surface::PaintingFruit, Covers::Canvas),
+    ("lion", Surface::PaintingLion, Covers::Canvas),
+    ("cow", Surface::PaintingCow, Covers::Canvas),
+    ("birds", Surface::PaintingBirds, Covers::Canvas),
+    ("fish", Surface::PaintingFish, Covers::Canvas),
+    ("cat", Surface::PaintingCat, Covers::Canvas),
+    ("dog", Surface::PaintingDog, Covers::Canvas),
+    ("butterfly", Surface::PaintingButterfly, Covers::Canvas),
+    ("sunflowers", Surface::PaintingSunflowers, Covers::Canvas),
+    ("bridge", Surface::PaintingBridge, Covers::Canvas),
+    ("ship", Surface::PaintingShip, Covers::Canvas),
+    ("woman", Surface::PaintingWoman, Covers::Canvas),
+    ("man", Surface::PaintingMan, Covers::Canvas),
+    ("cheetah", Surface::PaintingCheetah, Covers::Canvas),
     ("striped", Surface::Striped, Covers::Object),
     ("checkered", Surface::Checkered, Covers::Object),
     ("plaid", Surface::Plaid, Covers::Object),
@@ -751,7 +905,7 @@ mod tests {
             }
         }
         let pictures = Surface::ALL.iter().filter(|s| s.is_picture()).count();
-        assert_eq!(pictures, 13);
+        assert_eq!(pictures, 35);
         assert!(!Surface::Painting.is_picture() && !Surface::Marble.is_picture());
     }
 
@@ -794,6 +948,40 @@ mod tests {
             .filter(|w| w[0].abs_diff(w[1]) > 100)
             .count();
         assert!(flips >= 4, "{coat:?}");
+        // The night sky: a bright moon in a dark sky; the lighthouse: a bright lantern over a
+        // tower of light and dark bands; the ship: dark funnel tops over white decks and a
+        // dark hull.
+        assert!(at(Surface::PaintingNightSky, 80, 32) > 240);
+        assert!(at(Surface::PaintingNightSky, 30, 60) < 80);
+        assert!(at(Surface::PaintingLighthouse, 60, 25) > 240);
+        assert!(at(Surface::PaintingLighthouse, 64, 40) > 200);
+        assert!(at(Surface::PaintingLighthouse, 64, 50) < 80);
+        assert!(at(Surface::PaintingShip, 55, 26) < 50);
+        assert!(at(Surface::PaintingShip, 40, 60) > 220);
+        assert!(at(Surface::PaintingShip, 60, 84) < 60);
+        // The lion: a dark nose in a light face ringed by a darker mane; the cat: light eyes
+        // in a black head.
+        assert!(at(Surface::PaintingLion, 64, 73) < 50);
+        assert!(at(Surface::PaintingLion, 64, 64) > 160);
+        assert!(at(Surface::PaintingLion, 64, 20) < 110);
+        assert!(at(Surface::PaintingCat, 54, 46) > 200);
+        assert!(at(Surface::PaintingCat, 64, 36) < 60);
+        // The woman's long hair beside her neck; the man's beard under a light cheek.
+        assert!(at(Surface::PaintingWoman, 42, 80) < 70);
+        assert!(at(Surface::PaintingWoman, 70, 62) > 200);
+        assert!(at(Surface::PaintingMan, 64, 76) < 70);
+        assert!(at(Surface::PaintingMan, 56, 58) > 190);
+        // Sunflowers: a dark seed head ringed by light petals; the cow white with black
+        // patches; the cheetah spotted.
+        assert!(at(Surface::PaintingSunflowers, 36, 44) < 90);
+        assert!(at(Surface::PaintingSunflowers, 51, 44) > 220);
+        assert!(at(Surface::PaintingCow, 50, 60) < 40);
+        assert!(at(Surface::PaintingCow, 60, 70) > 220);
+        let coat: Vec<u8> = (40..76)
+            .map(|x| at(Surface::PaintingCheetah, x, 58))
+            .collect();
+        let spots = coat.windows(2).filter(|w| w[0].abs_diff(w[1]) > 80).count();
+        assert!(spots >= 4, "{coat:?}");
     }
 
     #[test]

@@ -245,6 +245,94 @@ impl ProgressLog {
     }
 }
 
+/// Where each finished episode's line lies in `progress.jsonl`, so that a run's final files
+/// are written from the log in split order, one episode at a time, instead of from every
+/// finished episode's record held in memory until the end (a train split's trajectories run
+/// to tens of megabytes). Built after the run's last append; an episode logged twice is read
+/// from its last line, as [`load_progress`] keeps it.
+pub(crate) struct ProgressLines {
+    path: PathBuf,
+    /// None when there is no log.
+    file: Option<File>,
+    /// Byte offset and length (newline excluded) of each episode's last line.
+    at: std::collections::HashMap<u64, (u64, usize)>,
+}
+
+impl ProgressLines {
+    /// Index the lines of the log at `path` (a missing file holds none). Every line must be
+    /// whole: [`load_progress`] cut a half-written one before the run appended to it.
+    pub(crate) fn index(path: &Path) -> Result<Self> {
+        use std::io::BufRead;
+        #[derive(Deserialize)]
+        struct Id {
+            episode_id: u64,
+        }
+        let file = match File::open(path) {
+            Ok(f) => f,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                return Ok(ProgressLines {
+                    path: path.to_path_buf(),
+                    file: None,
+                    at: Default::default(),
+                })
+            }
+            Err(e) => return Err(TaskError::io(path, e)),
+        };
+        let mut at = std::collections::HashMap::new();
+        let mut reader = std::io::BufReader::new(&file);
+        let mut line = Vec::new();
+        let (mut pos, mut line_no) = (0u64, 0usize);
+        loop {
+            line.clear();
+            let n = reader
+                .read_until(b'\n', &mut line)
+                .map_err(|e| TaskError::io(path, e))?;
+            if n == 0 {
+                break;
+            }
+            line_no += 1;
+            let body = line.strip_suffix(b"\n").unwrap_or(&line);
+            if !body.iter().all(u8::is_ascii_whitespace) {
+                let id: Id = serde_json::from_slice(body)
+                    .map_err(|e| TaskError::parse(path, format!("line {line_no}"), e))?;
+                at.insert(id.episode_id, (pos, body.len()));
+            }
+            pos += n as u64;
+        }
+        drop(reader);
+        Ok(ProgressLines {
+            path: path.to_path_buf(),
+            file: Some(file),
+            at,
+        })
+    }
+
+    /// The log's path.
+    pub(crate) fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Episode `id`'s line read as `T` (a whole [`EpisodeRecord`], or a part of it), `buf`
+    /// reused for its bytes; `None` when the log holds no line of it.
+    pub(crate) fn read<T: serde::de::DeserializeOwned>(
+        &self,
+        id: u64,
+        buf: &mut Vec<u8>,
+    ) -> Result<Option<T>> {
+        use std::io::{Read, Seek, SeekFrom};
+        let (Some(mut f), Some(&(offset, len))) = (self.file.as_ref(), self.at.get(&id)) else {
+            return Ok(None);
+        };
+        buf.resize(len, 0);
+        f.seek(SeekFrom::Start(offset))
+            .and_then(|_| f.read_exact(buf))
+            .map_err(|e| TaskError::io(&self.path, e))?;
+        serde_json::from_slice(buf)
+            .map(Some)
+            .map_err(|e| TaskError::parse(&self.path, format!("episode {id}"), e))
+    }
+}
+
 /// Keys an older `run.json` may hold that are no longer compared: `split_fingerprint` hashed
 /// the whole split file, so an edit to an episode the run never reached refused the resume
 /// (finished episodes are now checked one by one, [`check_unchanged`]).

@@ -23,6 +23,7 @@
 //! # Ok(()) }
 //! ```
 
+use std::borrow::Cow;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, OnceLock};
@@ -36,13 +37,14 @@ use crate::episode_loop::{check_episode, run_episode, EpisodeSettings};
 use crate::error::{Result, TaskError};
 use crate::plots;
 use crate::protocol::EvalConfig;
-use crate::resume::{self, EpisodeRecord, ProgressLog, PROGRESS_FILE, RUN_FILE};
+use crate::resume::{self, EpisodeRecord, ProgressLines, ProgressLog, PROGRESS_FILE, RUN_FILE};
 use crate::scene_context::SceneCache;
 use vlnverse_score::dataset;
 use vlnverse_score::episode::{Episode, Split, Task};
+use vlnverse_score::metrics::EpisodeMetrics;
 use vlnverse_score::report::{write_run, RunSummary};
 use vlnverse_score::sample::{sample_episodes, Sample};
-use vlnverse_score::trajectory::to_json_line;
+use vlnverse_score::trajectory::{to_json_line, Trajectory};
 use vlnverse_score::OutputLock;
 
 /// What to evaluate and where the results go: [`EvalRequest::new`] and the chainable
@@ -664,6 +666,10 @@ pub fn evaluate_with<SF: SimulatorFactory, RF: RendererFactory>(
         total_in_split,
         layers.on_episode,
     );
+    // The workers and the scenes go before the records are read back from the log: the
+    // records take room the run no longer needs instead of adding to its peak.
+    drop(shared);
+    let result = result.and_then(Finished::outcome);
     if result.is_err() {
         clean_failed_start(&req.out, created);
     }
@@ -717,9 +723,9 @@ fn evaluate_locked<SF: SimulatorFactory, RF: RendererFactory>(
     episodes: &[Episode],
     total_in_split: usize,
     on_episode: Option<&(dyn Fn() + Sync)>,
-) -> Result<EvalOutcome> {
+) -> Result<Finished> {
     let req = shared.req;
-    let mut done = open_run(req, identity, total_in_split)?;
+    let done = open_run(req, identity, total_in_split)?;
     resume::check_unchanged(&shared.split_file, episodes, &done)?;
     let todo: Vec<&Episode> = {
         let mut v: Vec<&Episode> = episodes
@@ -732,14 +738,19 @@ fn evaluate_locked<SF: SimulatorFactory, RF: RendererFactory>(
         v
     };
     let resumed = episodes.len() - todo.len();
-    let log = ProgressLog::open(&req.out.join(PROGRESS_FILE))?.for_episodes(episodes)?;
+    let progress = req.out.join(PROGRESS_FILE);
+    let log = ProgressLog::open(&progress)?.for_episodes(episodes)?;
     // The first failure stops the run (no further episodes start): a broken agent or
     // simulator would otherwise fail, or wait out its timeout, once per remaining episode.
-    let run = || -> Result<Vec<EpisodeRecord>> {
+    // A finished episode's record is in the log; only its metrics are kept here (the
+    // trajectories are read back from the log when the files are written).
+    let run = || -> Result<Vec<(u64, u32, EpisodeMetrics)>> {
         todo.par_iter()
             .with_max_len(4)
             .map(|ep| {
-                let r = shared.run(ep, &log);
+                let r = shared
+                    .run(ep, &log)
+                    .map(|rec| (rec.episode_id, rec.trajectory.steps, rec.metrics));
                 if let Some(f) = on_episode {
                     f();
                 }
@@ -748,19 +759,100 @@ fn evaluate_locked<SF: SimulatorFactory, RF: RendererFactory>(
             .collect()
     };
     let results = in_pool(req.threads, run)??;
+    drop(log);
     let mut steps_run = 0;
-    for rec in results {
-        steps_run += rec.trajectory.steps as u64;
-        done.insert(rec.episode_id, rec);
+    let mut metrics: BTreeMap<u64, EpisodeMetrics> =
+        done.into_iter().map(|(id, r)| (id, r.metrics)).collect();
+    for (id, steps, m) in results {
+        steps_run += steps as u64;
+        metrics.insert(id, m);
     }
+    let lines = ProgressLines::index(&progress)?;
+    let (ids, metrics): (Vec<u64>, Vec<EpisodeMetrics>) = episodes
+        .iter()
+        .filter_map(|e| metrics.remove(&e.episode_id).map(|m| (e.episode_id, m)))
+        .unzip();
     let agent = shared.factory.name();
-    let (summary, records) = finish_run(req, &agent, &shared.scenes, episodes, done)?;
-    Ok(EvalOutcome {
+    let summary = write_results(req, &agent, &metrics, &shared.scenes, episodes, |i| {
+        Ok(Cow::Owned(read_record(&lines, ids[i], &mut Vec::new())?))
+    })
+    .and_then(|summary| {
+        write_logged_trajectories(&req.out.join("trajectories.jsonl"), &lines, &ids)?;
+        Ok(summary)
+    })?;
+    Ok(Finished {
         summary,
-        records,
+        ids,
+        lines,
         resumed,
         steps_run,
     })
+}
+
+/// Write `trajectories.jsonl` at `path` for the episodes `ids` (split order), each read back
+/// from its line in the run's log: the same file whichever order the episodes finished (and
+/// were logged) in.
+fn write_logged_trajectories(path: &Path, lines: &ProgressLines, ids: &[u64]) -> Result<()> {
+    let mut buf = Vec::new();
+    write_trajectories(
+        path,
+        ids.iter().map(|&id| {
+            let t: Option<TrajectoryOf> = lines.read(id, &mut buf)?;
+            let t = t.ok_or_else(|| missing_line(lines.path(), id))?;
+            Ok(Cow::Owned(t.trajectory))
+        }),
+    )
+}
+
+/// The trajectory of a `progress.jsonl` line, the rest skipped.
+#[derive(serde::Deserialize)]
+struct TrajectoryOf {
+    trajectory: Trajectory,
+}
+
+/// An episode the run recorded whose line the log lost (it was edited during the run).
+fn missing_line(progress: &Path, id: u64) -> TaskError {
+    TaskError::invalid(
+        format!("{}: episode {id}", progress.display()),
+        id,
+        "the run recorded this episode but the log has no line of it (was the file changed \
+         during the run?); rerun the folder to write its results",
+    )
+}
+
+/// Episode `id`'s whole record from the log.
+fn read_record(lines: &ProgressLines, id: u64, buf: &mut Vec<u8>) -> Result<EpisodeRecord> {
+    lines
+        .read(id, buf)?
+        .ok_or_else(|| missing_line(lines.path(), id))
+}
+
+/// A run whose results are written; its records stay in the log until [`Finished::outcome`]
+/// reads them back, in split order.
+struct Finished {
+    summary: RunSummary,
+    /// The recorded episodes, in split order.
+    ids: Vec<u64>,
+    lines: ProgressLines,
+    resumed: usize,
+    steps_run: u64,
+}
+
+impl Finished {
+    fn outcome(self) -> Result<EvalOutcome> {
+        let mut buf = Vec::new();
+        let records = self
+            .ids
+            .iter()
+            .map(|&id| read_record(&self.lines, id, &mut buf))
+            .collect::<Result<Vec<_>>>()?;
+        Ok(EvalOutcome {
+            summary: self.summary,
+            records,
+            resumed: self.resumed,
+            steps_run: self.steps_run,
+        })
+    }
 }
 
 /// Make `req.out` ready for a run whose lock the caller holds: `--fresh` removes an earlier
@@ -814,24 +906,47 @@ pub fn finish_run(
         .filter_map(|e| done.remove(&e.episode_id))
         .collect();
     let metrics: Vec<_> = records.iter().map(|r| r.metrics.clone()).collect();
+    let summary = write_results(req, agent_name, &metrics, scenes, episodes, |i| {
+        Ok(Cow::Borrowed(&records[i]))
+    })?;
+    write_trajectories(
+        &req.out.join("trajectories.jsonl"),
+        records.iter().map(|r| Ok(Cow::Borrowed(&r.trajectory))),
+    )?;
+    Ok((summary, records))
+}
+
+/// Write `summary.json`, `episodes.csv`, `report.md` from the recorded episodes' `metrics`
+/// (split order) and the plots, for which `record(i)` gives the `i`th record.
+fn write_results<'r>(
+    req: &EvalRequest,
+    agent_name: &str,
+    metrics: &[EpisodeMetrics],
+    scenes: &SceneCache,
+    episodes: &[Episode],
+    record: impl FnMut(usize) -> Result<Cow<'r, EpisodeRecord>>,
+) -> Result<RunSummary> {
     let summary = RunSummary::new(
         agent_name,
         Some(req.config.setting.name()),
         req.task,
         req.split,
-        &metrics,
+        metrics,
     );
-    write_run(&req.out, &summary, &metrics)?;
-    write_trajectories(&req.out.join("trajectories.jsonl"), &records)?;
-    write_plots(req, scenes, episodes, &records)?;
-    Ok((summary, records))
+    write_run(&req.out, &summary, metrics)?;
+    write_plots(req, scenes, episodes, metrics.len(), record)?;
+    Ok(summary)
 }
 
-/// Write the records' trajectories as JSON lines (the bytes of
+/// Write trajectories as JSON lines (the bytes of
 /// [`vlnverse_score::trajectory::write_jsonl`]), atomically: line by line into a temporary
-/// file beside `path`, then renamed. Neither a copy of the trajectories nor the whole file's
-/// text is held (a train split's file runs to tens of megabytes).
-fn write_trajectories(path: &Path, records: &[EpisodeRecord]) -> Result<()> {
+/// file beside `path`, then renamed. They come one at a time (from the records, or read back
+/// from the run's log): neither the whole set nor the whole file's text is held (a train
+/// split's file runs to tens of megabytes).
+fn write_trajectories<'t>(
+    path: &Path,
+    trajectories: impl IntoIterator<Item = Result<Cow<'t, Trajectory>>>,
+) -> Result<()> {
     use std::io::Write;
     let dir = path.parent().unwrap_or(Path::new("."));
     std::fs::create_dir_all(dir).map_err(|e| TaskError::io(dir, e))?;
@@ -840,17 +955,20 @@ fn write_trajectories(path: &Path, records: &[EpisodeRecord]) -> Result<()> {
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
     let tmp = dir.join(format!(".{name}.tmp{}", std::process::id()));
-    let written = std::fs::File::create(&tmp).and_then(|f| {
+    let written = (|| -> Result<()> {
+        let f = std::fs::File::create(&tmp).map_err(|e| TaskError::io(&tmp, e))?;
         let mut w = std::io::BufWriter::new(f);
-        for r in records {
-            w.write_all(to_json_line(&r.trajectory).as_bytes())?;
-            w.write_all(b"\n")?;
+        for t in trajectories {
+            let line = to_json_line(&*t?);
+            w.write_all(line.as_bytes())
+                .and_then(|_| w.write_all(b"\n"))
+                .map_err(|e| TaskError::io(&tmp, e))?;
         }
-        w.flush()
-    });
+        w.flush().map_err(|e| TaskError::io(&tmp, e))
+    })();
     if let Err(e) = written {
         let _ = std::fs::remove_file(&tmp);
-        return Err(TaskError::io(&tmp, e));
+        return Err(e);
     }
     std::fs::rename(&tmp, path).map_err(|e| {
         let _ = std::fs::remove_file(&tmp);
@@ -948,15 +1066,17 @@ pub fn run_identity(
     Ok(identity)
 }
 
-fn write_plots(
+/// The plots of `count` recorded episodes (split order), `record(i)` the `i`th.
+fn write_plots<'r>(
     req: &EvalRequest,
     scenes: &SceneCache,
     episodes: &[Episode],
-    records: &[EpisodeRecord],
+    count: usize,
+    mut record: impl FnMut(usize) -> Result<Cow<'r, EpisodeRecord>>,
 ) -> Result<()> {
     let dir = req.out.join("plots");
-    for i in plots::sample_indices(records.len(), req.config.plots as usize) {
-        let rec = &records[i];
+    for i in plots::sample_indices(count, req.config.plots as usize) {
+        let rec = record(i)?;
         let Some(ep) = episodes.iter().find(|e| e.episode_id == rec.episode_id) else {
             continue;
         };
@@ -1002,7 +1122,11 @@ mod tests {
             .map(|t| EpisodeRecord::new(t.episode_id, t.clone(), metrics(), None))
             .collect();
         let (ours, theirs) = (dir.join("a.jsonl"), dir.join("b.jsonl"));
-        write_trajectories(&ours, &records).unwrap();
+        write_trajectories(
+            &ours,
+            records.iter().map(|r| Ok(Cow::Borrowed(&r.trajectory))),
+        )
+        .unwrap();
         write_jsonl(&theirs, &trajs).unwrap();
         assert_eq!(
             std::fs::read(&ours).unwrap(),
@@ -1011,5 +1135,72 @@ mod tests {
         let left: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
         assert_eq!(left.len(), 2, "only the two files");
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// Trajectories read back from the run's log, whichever order the episodes finished and
+    /// were logged in, are written in split order as `write_jsonl` writes them, byte for byte;
+    /// the records read back equal the ones logged. An episode logged twice is read from its
+    /// last line, as a resume keeps it.
+    #[test]
+    fn trajectories_from_the_log_are_the_same_whichever_order_episodes_finish_in() {
+        let dir = tempfile::tempdir().unwrap();
+        let records: Vec<EpisodeRecord> = (0..7u64)
+            .map(|i| {
+                let id = 100 + (i * 37) % 11;
+                let mut t = Trajectory::from_positions(
+                    id,
+                    (0..=i)
+                        .map(|k| [k as f32 * 0.1 + 1.0 / 3.0, 0.07 * i as f32, -0.5e-3])
+                        .collect(),
+                    i % 2 == 0,
+                );
+                t.headings = Some((0..=i).map(|k| k as f32 * 0.7 - 3.1).collect());
+                t.actions = Some(vec!["move_forward".into(); i as usize]);
+                t.collisions = i as u32 % 3;
+                let mut m = metrics();
+                m.episode_id = id;
+                EpisodeRecord::new(id, t, m, None)
+            })
+            .collect();
+        let split: Vec<u64> = records.iter().map(|r| r.episode_id).collect();
+        let trajs: Vec<Trajectory> = records.iter().map(|r| r.trajectory.clone()).collect();
+        let expected = dir.path().join("expected.jsonl");
+        write_jsonl(&expected, &trajs).unwrap();
+        let orders: [Vec<usize>; 3] = [
+            (0..records.len()).collect(),
+            (0..records.len()).rev().collect(),
+            vec![3, 0, 6, 2, 5, 1, 4],
+        ];
+        for (n, order) in orders.iter().enumerate() {
+            let log_path = dir.path().join(format!("progress{n}.jsonl"));
+            let log = ProgressLog::open(&log_path).unwrap();
+            if n == 2 {
+                // An earlier, different line of episode 3 (a rerun): the last line counts.
+                let mut stale = records[3].clone();
+                stale.trajectory.steps += 1;
+                log.append(&mut stale).unwrap();
+            }
+            for &i in order {
+                log.append(&mut records[i].clone()).unwrap();
+            }
+            drop(log);
+            let lines = ProgressLines::index(&log_path).unwrap();
+            let out = dir.path().join(format!("t{n}.jsonl"));
+            write_logged_trajectories(&out, &lines, &split).unwrap();
+            assert_eq!(
+                std::fs::read(&out).unwrap(),
+                std::fs::read(&expected).unwrap(),
+                "finish order {order:?}"
+            );
+            let mut buf = Vec::new();
+            for r in &records {
+                assert_eq!(&read_record(&lines, r.episode_id, &mut buf).unwrap(), r);
+            }
+            // An episode the log does not hold is an error naming it.
+            let err = write_logged_trajectories(&out, &lines, &[100, 999])
+                .unwrap_err()
+                .to_string();
+            assert!(err.contains("999"), "{err}");
+        }
     }
 }

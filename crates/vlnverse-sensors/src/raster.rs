@@ -279,20 +279,26 @@ impl Walk {
         dq: 0,
     };
 
-    /// Start at row `y` (`e.a != 0`).
+    /// Start at row `y` (`e.a != 0`); with `steps`, ready to step down the rows (without, it
+    /// stays on row `y`: one division instead of two).
     #[inline]
-    fn new(e: &Edge, y: i64) -> Walk {
+    fn new(e: &Edge, y: i64, steps: bool) -> Walk {
         let er = e.b * y + e.c;
         let (a, dir) = if e.a > 0 { (e.a, -1) } else { (-e.a, 1) };
         // a > 0: first x with a x + er >= 0 is ceil(-er / a) = -floor(er / a);
         // a < 0: last x with er - |a| x >= 0 is floor(er / |a|). Either way r = er mod |a|.
         let f = er.div_euclid(a);
+        let (br, dq) = if steps {
+            (e.b.rem_euclid(a), dir * e.b.div_euclid(a))
+        } else {
+            (0, 0)
+        };
         Walk {
             x: dir * f,
             r: er.rem_euclid(a),
             a,
-            br: e.b.rem_euclid(a),
-            dq: dir * e.b.div_euclid(a),
+            br,
+            dq,
         }
     }
 
@@ -1702,7 +1708,7 @@ fn raster<const IDS: bool>(
         if ya > yb {
             continue;
         }
-        let k = |i: usize| Walk::new(&t.edges[i], ya);
+        let k = |i: usize| Walk::new(&t.edges[i], ya, yb > ya);
         let b = Bounds { t, ya, yb, w, y0 };
         // A triangle with area has at least one left and one right edge.
         match (left, right) {
