@@ -10,7 +10,7 @@
 use std::path::PathBuf;
 
 use image::{Rgb, RgbImage};
-use vlnverse_env::material::{Covers, FEATURE_SURFACES, TEX_SIZE};
+use vlnverse_env::material::{Covers, Surface, FEATURE_SURFACES, TEX_SIZE};
 use vlnverse_env::topdown::draw_text;
 
 /// The canvas colours of `vlnverse-procgen` (`decor.rs`), linear RGB.
@@ -45,6 +45,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             *c == Covers::Canvas && (only.is_empty() || only.iter().any(|o| o == f))
         })
         .collect();
+    // Every surface's texture is built on first use, once per process.
+    let start = std::time::Instant::now();
+    let texels: usize = Surface::ALL.iter().map(|s| s.luma_encoded().len()).sum();
+    println!(
+        "{} surface textures ({texels} texels) built in {:.1} ms",
+        Surface::ALL.len(),
+        start.elapsed().as_secs_f64() * 1e3
+    );
     let side = TEX_SIZE * SCALE;
     let (cw, ch) = (side + GAP, side + LABEL + GAP);
     let rows = subjects.len().div_ceil(COLS);

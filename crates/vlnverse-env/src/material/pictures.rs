@@ -1393,7 +1393,7 @@ fn bridge(p: P) -> f32 {
     if y > cable && y < deck && x.rem_euclid(6.0) < 0.9 {
         return 0.35;
     }
-    if y > 70.0 && (x < 18.0 || x > 112.0) {
+    if y > 70.0 && !(18.0..=112.0).contains(&x) {
         // Hills at the two shores.
         return 0.36;
     }
