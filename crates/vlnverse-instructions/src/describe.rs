@@ -4,8 +4,8 @@
 //! middle, doorway). Every other object a description names is returned as grounding.
 
 use super::lexicon::{
-    color_phrases, distinct_uses, feature_modifiers, material_noun, material_words, object_names,
-    room_names, shape_words,
+    color_phrases, distinct_uses, feature_modifiers, material_noun, material_words,
+    modifier_phrases, object_names, room_names, shape_words,
 };
 use super::path::{env_side, footprint, rect_distance};
 use super::phrases::{self as ph, pick};
@@ -151,7 +151,8 @@ pub(crate) fn object_np(
     }
     // A painting's subject or a worktop's stone as a noun before the name ("the blue zebra
     // painting", "the marble counter"), now and then.
-    if let Some(m) = noun_modifier(o, &peers, name, &adj, rng) {
+    let modifier = noun_modifier(o, &peers, name, &adj, rng);
+    if let Some(m) = modifier {
         if STONE_TOPS.contains(&m) {
             // The colour and material words are the cabinet's under the stone top.
             adj.clear();
@@ -177,8 +178,13 @@ pub(crate) fn object_np(
         }
     } else if material_after.is_none() && rng.random_bool(0.12) {
         // Not after "made of metal": "the stove made of metal you cook on" runs two phrases
-        // after the name together.
-        let uses = distinct_uses(o, &peers);
+        // after the name together. Not the subject said twice: "the windmill painting of a
+        // windmill".
+        let said = modifier.map_or_else(Vec::new, |m| modifier_phrases(o, m));
+        let uses: Vec<&str> = distinct_uses(o, &peers)
+            .into_iter()
+            .filter(|u| !said.contains(u))
+            .collect();
         if !uses.is_empty() {
             s.push(' ');
             s.push_str(pick(rng, &uses));

@@ -120,6 +120,21 @@ pub fn feature_modifiers(o: &SceneObject, peers: &[&SceneObject]) -> Vec<&'stati
     distinct_feature_words(&FEATURES.modifiers, o, peers)
 }
 
+/// The phrases of the features of `o` that `word` (one of its [`feature_modifiers`]) names:
+/// after "the windmill painting", "of a windmill" would say the subject twice.
+pub(crate) fn modifier_phrases(o: &SceneObject, word: &str) -> Vec<&'static str> {
+    o.features
+        .iter()
+        .filter(|f| {
+            FEATURES
+                .modifiers
+                .get(*f)
+                .is_some_and(|w| w.iter().any(|x| x == word))
+        })
+        .flat_map(|f| feature_phrases(f))
+        .collect()
+}
+
 /// The words `table` gives the features of `o`, less those another object of `peers` of `o`'s
 /// class in its room is given too.
 fn distinct_feature_words(
@@ -859,6 +874,9 @@ mod tests {
         assert!(!uses.iter().any(|u| u.contains("landscape")), "{uses:?}");
         assert!(feature_adjectives(&canvas, &[]).is_empty());
         assert_eq!(feature_modifiers(&canvas, &[]), ["sailboat"]);
+        let twice = modifier_phrases(&canvas, "sailboat");
+        assert!(twice.contains(&"of a boat on the water"), "{twice:?}");
+        assert!(modifier_phrases(&canvas, "zebra").is_empty());
         // Grounding: no picture word for a canvas without that subject.
         let mut other = SceneObject::from_parts(2, C::PictureFrame, Pose::IDENTITY, vec![]);
         other.material = "canvas".into();
