@@ -2207,7 +2207,8 @@ fn closing_remarks(route: &Route<'_, '_>, draft: &mut Draft) {
             && ctx.whole_home.is_none_or(|h| in_home(h) == 1)
             && !plural_class(o.class);
         let p = if chatty { 0.2 } else { 0.06 };
-        if big && rng.random_bool(p) {
+        // "It's hard to miss" says "it": not of the stairs.
+        if big && !plural_class(o.class) && rng.random_bool(p) {
             sentences.push(pick(rng, &ph::CANT_MISS).to_string());
         } else if only && rng.random_bool(p) {
             let name = o.class.words();
