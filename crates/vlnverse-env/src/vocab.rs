@@ -296,6 +296,22 @@ vocabulary! {
         Kayak = (192, "kayak", Furniture),
         Telescope = (193, "telescope", Furniture),
         Jukebox = (194, "jukebox", Furniture),
+        Sectional = (195, "sectional", Furniture),
+        Buffet = (196, "buffet", Furniture),
+        CeilingFan = (197, "ceiling_fan", Furniture),
+        WaterHeater = (198, "water_heater", Furniture),
+        MiniFridge = (199, "mini_fridge", Furniture),
+        TeddyBear = (200, "teddy_bear", Furniture),
+        Bust = (201, "bust", Furniture),
+        Saxophone = (202, "saxophone", Furniture),
+        BasketballHoop = (203, "basketball_hoop", Furniture),
+        Whiteboard = (204, "whiteboard", Furniture),
+        BulletinBoard = (205, "bulletin_board", Furniture),
+        ChessTable = (206, "chess_table", Furniture),
+        Candelabra = (207, "candelabra", Furniture),
+        ExerciseBall = (208, "exercise_ball", Furniture),
+        Sword = (209, "sword", Furniture),
+        Rocks = (210, "rocks", Furniture),
     }
 }
 

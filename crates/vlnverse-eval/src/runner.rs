@@ -33,7 +33,7 @@ use vlnverse_sensors::{create_renderer, RasterRenderer, Renderer, RigConfig, Sen
 use vlnverse_sim::{PhysicsCache, RapierSimulator, SimConfig, Simulator};
 
 use crate::agent::{Agent, AgentFactory};
-use crate::episode_loop::{check_episode, run_episode, EpisodeSettings};
+use crate::episode_loop::{check_episode, run_episode, ActionKind, EpisodeSettings};
 use crate::error::{Result, TaskError};
 use crate::plots;
 use crate::protocol::EvalConfig;
@@ -827,6 +827,30 @@ fn read_record(lines: &ProgressLines, id: u64, buf: &mut Vec<u8>) -> Result<Epis
         .ok_or_else(|| missing_line(lines.path(), id))
 }
 
+/// The action names of a trajectory read from a file that are the episode loop's own
+/// ([`ActionKind::name`]) borrowed again, as the loop records them: an owned `String` a step
+/// would make the records read back at the end of a run about twice the size they had.
+fn borrow_action_names(t: &mut Trajectory) {
+    const KINDS: [ActionKind; 9] = [
+        ActionKind::Stop,
+        ActionKind::MoveForward,
+        ActionKind::TurnLeft,
+        ActionKind::TurnRight,
+        ActionKind::LookUp,
+        ActionKind::LookDown,
+        ActionKind::Velocity,
+        ActionKind::Waypoint,
+        ActionKind::Ask,
+    ];
+    for name in t.actions.iter_mut().flatten() {
+        if let Cow::Owned(s) = name {
+            if let Some(k) = KINDS.iter().find(|k| k.name() == s.as_str()) {
+                *name = Cow::Borrowed(k.name());
+            }
+        }
+    }
+}
+
 /// A run whose results are written; its records stay in the log until [`Finished::outcome`]
 /// reads them back, in split order.
 struct Finished {
@@ -844,7 +868,11 @@ impl Finished {
         let records = self
             .ids
             .iter()
-            .map(|&id| read_record(&self.lines, id, &mut buf))
+            .map(|&id| {
+                let mut r = read_record(&self.lines, id, &mut buf)?;
+                borrow_action_names(&mut r.trajectory);
+                Ok(r)
+            })
             .collect::<Result<Vec<_>>>()?;
         Ok(EvalOutcome {
             summary: self.summary,
@@ -1194,7 +1222,15 @@ mod tests {
             );
             let mut buf = Vec::new();
             for r in &records {
-                assert_eq!(&read_record(&lines, r.episode_id, &mut buf).unwrap(), r);
+                let mut back = read_record(&lines, r.episode_id, &mut buf).unwrap();
+                assert_eq!(&back, r);
+                // The loop's own names are borrowed again, as the loop records them.
+                borrow_action_names(&mut back.trajectory);
+                assert_eq!(&back, r);
+                let names = back.trajectory.actions.iter().flatten();
+                assert!(names
+                    .into_iter()
+                    .all(|n| matches!(n, Cow::Borrowed("move_forward"))));
             }
             // An episode the log does not hold is an error naming it.
             let err = write_logged_trajectories(&out, &lines, &[100, 999])

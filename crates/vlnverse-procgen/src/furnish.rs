@@ -11,6 +11,7 @@ use crate::config::ProcgenConfig;
 use crate::floorplan::{Plan, PlanRoom};
 use crate::home::{clearance_rect, Builder};
 use crate::models::{self, Model};
+use crate::more_things;
 use crate::navgrid::NavGrid;
 use crate::pieces::{self, Spot};
 use crate::rect::Rect;
@@ -1322,6 +1323,15 @@ fn small_choices(support: C, room: RoomType) -> &'static [C] {
             C::Bottle,
             C::SmallPlant,
         ],
+        (C::Buffet, _) => &[
+            C::Vase,
+            C::TableLamp,
+            C::FruitBowl,
+            C::Candle,
+            C::Bowl,
+            C::SmallPlant,
+            C::Bottle,
+        ],
         (C::ConsoleTable, _) => &[
             C::Vase,
             C::TableLamp,
@@ -1567,6 +1577,9 @@ fn furnish_room(
     if cfg.furniture.sets > 0.0 {
         crate::sets::add_sets(&mut st, room.kind, rng, b);
     }
+    if cfg.furniture.pieces > 0.0 {
+        add_more_things(&mut st, room.kind, rng, b);
+    }
     tracing::trace!(room = i, free = st.grid.free_cells(), "room furnished");
 }
 
@@ -1625,6 +1638,179 @@ fn add_pieces(st: &mut RoomState, plan: &Plan, kind: RoomType, rng: &ChaCha8Rng,
     lay_doormats(st, plan, &mut own, b);
     if kind == RoomType::Hallway {
         lay_runner(st, &mut own, b);
+    }
+}
+
+/// The room's second lot of things ([`more_things`]), placed last (after the sets) from an rng
+/// of their own seeded by the home's stream and the room, so that nothing placed before moves.
+fn add_more_things(st: &mut RoomState, kind: RoomType, rng: &ChaCha8Rng, b: &mut Builder) {
+    use more_things::Spot as S;
+    let salt = u64::from(st.id).wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ more_things::SALT;
+    let mut own = ChaCha8Rng::seed_from_u64(crate::tones::stream_hash(rng) ^ salt);
+    let area = st.interior.area();
+    let ceiling = st.cfg.walls.height - 0.03;
+    for thing in more_things::things(kind) {
+        let mut chance = thing.chance;
+        if thing.class == C::Saxophone && room_has(st, b, &more_things::INSTRUMENTS) {
+            chance = more_things::SAX_WITH_INSTRUMENTS;
+        }
+        let chance = (chance * st.cfg.furniture.pieces).clamp(0.0, 1.0);
+        if area < thing.min_area || !own.random_bool(f64::from(chance)) {
+            continue;
+        }
+        let Some(m) = more_things::model(thing.class, &mut own) else {
+            continue;
+        };
+        let mode = match thing.spot {
+            S::Wall => Mode::Wall,
+            S::Corner => Mode::Corner,
+            S::Centre => Mode::Center,
+            S::Ceiling => {
+                if st.cfg.walls.ceiling {
+                    hang_fan(st, m, ceiling, &mut own, b);
+                }
+                continue;
+            }
+            S::OnTop => {
+                stand_on_top(st, m, &more_things::CANDELABRA_ON, b);
+                continue;
+            }
+        };
+        add_group(st, &mut Group::one(m, mode), kind, &mut own, b);
+    }
+}
+
+/// Whether the room already holds an object of one of `classes`.
+fn room_has(st: &RoomState, b: &Builder, classes: &[C]) -> bool {
+    b.objects
+        .iter()
+        .any(|o| o.room == Some(st.id) && classes.contains(&o.class))
+}
+
+/// Longest room side (m) above which the light bake hangs two lamps, at the quarter points of
+/// the long axis, instead of one in the middle (`vlnverse_env::light::lamps`); a margin either
+/// side of it where a fan is left out rather than risk a panel under its blades.
+const TWO_LAMPS: f32 = 4.5;
+const TWO_LAMPS_MARGIN: f32 = 0.1;
+/// Least gap (m) between a fan's blades and the walls, and between them and the approach
+/// point inside each doorway.
+const FAN_WALL_GAP: f32 = 0.3;
+const FAN_DOOR_GAP: f32 = 1.3;
+/// Half the side of a lamp's ceiling panel (`decor.rs`) and a gap, kept clear of fan blades.
+const PANEL_CLEAR: f32 = 0.25;
+
+/// Hang a ceiling fan `m` (built from its bottom up) with its top at the ceiling: in the
+/// middle of a room with two lamps, else along the long axis clear of the one lamp's panel;
+/// left out where its blades would reach a wall or anything tall stands under them.
+fn hang_fan(st: &RoomState, m: Model, ceiling: f32, rng: &mut ChaCha8Rng, b: &mut Builder) {
+    let ir = st.interior;
+    let (cx, cz) = ir.center();
+    let long = ir.w().max(ir.d());
+    let reach = m.w.max(m.d) * 0.5;
+    let off = if long > TWO_LAMPS + TWO_LAMPS_MARGIN {
+        0.0
+    } else if long < TWO_LAMPS - TWO_LAMPS_MARGIN {
+        reach + PANEL_CLEAR
+    } else {
+        return;
+    };
+    let side = if rng.random_bool(0.5) { 1.0 } else { -1.0 };
+    let bottom = ceiling - m.h;
+    let spot = [side, -side].into_iter().find_map(|sd| {
+        let (x, z) = if ir.w() >= ir.d() {
+            (cx + sd * off, cz)
+        } else {
+            (cx, cz + sd * off)
+        };
+        let foot = Rect::centered(x, z, reach * 2.0, reach * 2.0);
+        // Clear of the walls by more than curtains and sconces stand out from them, and of
+        // the doorways by more than a door leaf swings (the leaves' checks count what
+        // hangs above them as standing on the floor).
+        let clear = ir.inset(FAN_WALL_GAP).contains_rect(&foot, 0.0)
+            && st
+                .seeds
+                .iter()
+                .all(|&(sx, sz)| foot.distance(sx, sz) >= FAN_DOOR_GAP);
+        let under = b.objects.iter().any(|o| {
+            o.room == Some(st.id)
+                && o.bbox.max[1] > bottom - 0.1
+                && foot.overlaps(&bbox_rect(&o.bbox), 0.0)
+                && !o.class.is_structure()
+        });
+        (clear && !under).then_some((x, z))
+    });
+    let Some((x, z)) = spot else {
+        return;
+    };
+    let pose = Pose {
+        position: [x, bottom, z],
+        rotation: Quat::from_rotation_y(rng.random_range(0.0..FRAC_PI_2)).to_array(),
+    };
+    b.add_model(&m, st.id, pose, None);
+}
+
+/// An object's floor footprint.
+fn bbox_rect(bb: &vlnverse_env::Aabb) -> Rect {
+    Rect {
+        x0: bb.min[0],
+        x1: bb.max[0],
+        z0: bb.min[2],
+        z1: bb.max[2],
+    }
+}
+
+/// Stand `m` on the top of the first object of the room of one of `on` (in that order) that
+/// has a clear spot for it: its middle, or most of the way to either end; turned along its
+/// long side.
+fn stand_on_top(st: &RoomState, m: Model, on: &[C], b: &mut Builder) {
+    for class in on {
+        let Some(sup) = b
+            .objects
+            .iter()
+            .find(|o| o.room == Some(st.id) && o.class == *class)
+        else {
+            continue;
+        };
+        let top = sup.bbox.max[1];
+        let r = bbox_rect(&sup.bbox);
+        let (cx, cz) = r.center();
+        let along_x = r.w() >= r.d();
+        let (long, across) = if along_x {
+            (r.w(), r.d())
+        } else {
+            (r.d(), r.w())
+        };
+        if long < m.w + 0.1 || across < m.d + 0.1 {
+            continue;
+        }
+        for t in [0.0, -0.6, 0.6] {
+            let off = t * (long - m.w - 0.06) * 0.5;
+            let (x, z) = if along_x {
+                (cx + off, cz)
+            } else {
+                (cx, cz + off)
+            };
+            let (fw, fd) = if along_x { (m.w, m.d) } else { (m.d, m.w) };
+            let foot = Rect::centered(x, z, fw + 0.06, fd + 0.06);
+            if !r.contains_rect(&foot, 0.0) {
+                continue;
+            }
+            let taken = b.objects.iter().any(|o| {
+                o.id != sup.id
+                    && !o.class.is_structure()
+                    && o.bbox.max[1] > top + 0.005
+                    && o.bbox.min[1] < top + m.h
+                    && foot.overlaps(&bbox_rect(&o.bbox), 0.0)
+            });
+            if taken {
+                continue;
+            }
+            let yaw = if along_x { 0.0 } else { FRAC_PI_2 };
+            let pose = Pose::from_yaw(Vec3::new(x, top, z), yaw);
+            let id = sup.id;
+            b.add_model(&m, st.id, pose, Some(id));
+            return;
+        }
     }
 }
 

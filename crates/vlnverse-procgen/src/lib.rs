@@ -8,6 +8,7 @@ mod furnish;
 mod gear;
 mod home;
 mod models;
+mod more_things;
 mod motifs;
 mod navgrid;
 mod palette;

@@ -3,7 +3,7 @@
 for each class, its first object on a ground floor in a scenes folder, seen by the RGB camera
 from a navigable cell of its room about two metres away, and one labelled contact sheet of them.
 
-    python3 docs/img/gallery/pieces.py SCENES_DIR OUT.png [CLASS ...]
+    python3 docs/img/gallery/pieces.py SCENES_DIR OUT.png [CLASS ... | things2]
     (needs Pillow; XTASK to override)
 """
 import json
@@ -22,8 +22,14 @@ PIECES = ["recliner", "rocking_chair", "chaise_lounge", "pool_table", "ping_pong
           "birdcage", "cactus", "urn", "china_cabinet", "chandelier", "kitchen_island",
           "console_table", "fire_extinguisher", "dryer", "ladder", "easel", "massage_table",
           "grill", "lounger", "hammock"]
+# The second lot of things (classes 195-210, vlnverse-procgen `more_things.rs`):
+# `pieces.py SCENES docs/img/gallery/things2.png things2`.
+THINGS2 = ["sectional", "buffet", "ceiling_fan", "water_heater", "mini_fridge", "teddy_bear",
+           "bust", "saxophone", "basketball_hoop", "whiteboard", "bulletin_board", "chess_table",
+           "candelabra", "exercise_ball", "sword", "rocks"]
 # Classes that hang above a metre: their lowest point is higher.
-HUNG = ("chandelier", "wall_sconce", "wreath", "deer_head", "dartboard")
+HUNG = ("chandelier", "wall_sconce", "wreath", "deer_head", "dartboard", "ceiling_fan",
+        "basketball_hoop", "bulletin_board", "sword")
 XTASK = os.environ.get("XTASK", "target/release/xtask")
 TILE = 168
 
@@ -82,4 +88,5 @@ def main(scenes, out, classes):
 
 
 if __name__ == "__main__":
-    main(sys.argv[1], sys.argv[2], sys.argv[3:] or PIECES)
+    named = sys.argv[3:] or PIECES
+    main(sys.argv[1], sys.argv[2], THINGS2 if named == ["things2"] else named)

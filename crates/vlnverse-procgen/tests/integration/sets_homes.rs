@@ -29,12 +29,20 @@ fn homes(sets: f32, n: usize) -> Vec<Scene> {
 
 /// The furniture and small objects, as (class, "class room box") in scene order. Door leaves,
 /// windows, curtains and paintings are placed after the furniture, where it leaves room, so a
-/// set may change them.
+/// set may change them; so may the things placed after the sets (classes from the sectional
+/// on, `more_things.rs`) and what stands on them.
 fn furniture(s: &Scene) -> Vec<(C, String)> {
+    let late = |c: C| c.id() >= C::Sectional.id();
     s.objects
         .iter()
         .filter(|o| matches!(o.class.kind(), ClassKind::Furniture | ClassKind::Small))
         .filter(|o| !matches!(o.class, C::Door | C::Curtain | C::PictureFrame))
+        .filter(|o| !late(o.class))
+        .filter(|o| {
+            !o.supported_by
+                .and_then(|id| s.object(id))
+                .is_some_and(|sup| late(sup.class))
+        })
         .map(|o| (o.class, format!("{:?} {:?} {:?}", o.class, o.room, o.bbox)))
         .collect()
 }

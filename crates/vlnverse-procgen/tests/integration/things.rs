@@ -146,3 +146,126 @@ fn runners_run_down_hallways_under_nothing() {
     }
     assert!(runners >= 10, "only {runners} runners");
 }
+
+/// Classes of the second lot of things (`more_things.rs`).
+fn is_late_thing(c: C) -> bool {
+    c.id() >= C::Sectional.id()
+}
+
+#[test]
+fn ceiling_fans_hang_above_the_agent_over_nothing_tall() {
+    let mut fans = 0;
+    for s in HOMES.iter() {
+        for o in s.objects.iter().filter(|o| o.class == C::CeilingFan) {
+            fans += 1;
+            let floor = s
+                .objects
+                .iter()
+                .filter(|f| f.class == C::Floor && f.room == o.room)
+                .map(|f| f.bbox.max[1])
+                .fold(f32::NEG_INFINITY, f32::max);
+            let floor = if floor.is_finite() { floor } else { 0.0 };
+            assert!(
+                o.bbox.min[1] - floor > 2.1,
+                "{}: {} hangs down to {}",
+                s.id,
+                o.name,
+                o.bbox.min[1] - floor
+            );
+            let (lo, hi) = (o.bbox.min, o.bbox.max);
+            let under = s.objects.iter().find(|p| {
+                p.room == o.room
+                    && p.id != o.id
+                    && !p.class.is_structure()
+                    && p.bbox.max[1] > lo[1] - 0.05
+                    && p.bbox.min[0] < hi[0]
+                    && lo[0] < p.bbox.max[0]
+                    && p.bbox.min[2] < hi[2]
+                    && lo[2] < p.bbox.max[2]
+            });
+            assert!(
+                under.is_none(),
+                "{}: {} over {:?}",
+                s.id,
+                o.name,
+                under.map(|p| &p.name)
+            );
+        }
+    }
+    assert!(fans >= 20, "only {fans} ceiling fans");
+}
+
+#[test]
+fn candelabras_stand_on_a_table_or_a_buffet() {
+    let mut n = 0;
+    for s in HOMES.iter() {
+        for o in s.objects.iter().filter(|o| o.class == C::Candelabra) {
+            n += 1;
+            let sup = o
+                .supported_by
+                .and_then(|id| s.object(id))
+                .unwrap_or_else(|| panic!("{}: {} stands on nothing", s.id, o.name));
+            assert!(
+                matches!(
+                    sup.class,
+                    C::DiningTable | C::Buffet | C::ConsoleTable | C::SideTable | C::CoffeeTable
+                ),
+                "{}: {} on a {:?}",
+                s.id,
+                o.name,
+                sup.class
+            );
+            assert!((o.bbox.min[1] - sup.bbox.max[1]).abs() < 0.01, "{}", s.id);
+            let (c, _) = foot(o);
+            let on = (sup.bbox.min[0]..=sup.bbox.max[0]).contains(&c[0])
+                && (sup.bbox.min[2]..=sup.bbox.max[2]).contains(&c[1]);
+            assert!(on, "{}: {} off its {:?}", s.id, o.name, sup.class);
+        }
+    }
+    assert!(n >= 10, "only {n} candelabras");
+}
+
+#[test]
+fn wall_things_hang_against_a_wall() {
+    let on_wall = [
+        C::Whiteboard,
+        C::BulletinBoard,
+        C::Sword,
+        C::BasketballHoop,
+        C::Buffet,
+        C::MiniFridge,
+    ];
+    for s in HOMES.iter() {
+        for o in s.objects.iter().filter(|o| on_wall.contains(&o.class)) {
+            let room = o.room.and_then(|r| s.room(r)).expect("a room");
+            let xs = room.polygon.iter().map(|p| p[0]);
+            let zs = room.polygon.iter().map(|p| p[1]);
+            let (x0, x1) = xs.fold((f32::MAX, f32::MIN), |(a, b), x| (a.min(x), b.max(x)));
+            let (z0, z1) = zs.fold((f32::MAX, f32::MIN), |(a, b), z| (a.min(z), b.max(z)));
+            let (lo, hi) = (o.bbox.min, o.bbox.max);
+            let gap = (lo[0] - x0).min(x1 - hi[0]).min(lo[2] - z0).min(z1 - hi[2]);
+            assert!(gap < 0.05, "{}: {} {gap} m off the walls", s.id, o.name);
+        }
+    }
+}
+
+#[test]
+fn the_second_lot_of_things_stands_in_the_rooms_that_list_them() {
+    let rooms: &[(C, &[R])] = &[
+        (
+            C::WaterHeater,
+            &[R::Garage, R::LaundryRoom, R::Closet, R::Pantry],
+        ),
+        (C::Rocks, &[R::Porch, R::Balcony, R::LivingRoom]),
+        (C::TeddyBear, &[R::Bedroom, R::Room]),
+        (C::Buffet, &[R::DiningRoom, R::Kitchen]),
+    ];
+    for s in HOMES.iter() {
+        for o in s.objects.iter().filter(|o| is_late_thing(o.class)) {
+            if let Some((_, kinds)) = rooms.iter().find(|(c, _)| *c == o.class) {
+                let k = room_kind(s, o);
+                assert!(kinds.contains(&k), "{}: {} in a {k:?}", s.id, o.name);
+            }
+        }
+    }
+}
