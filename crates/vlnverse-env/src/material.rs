@@ -20,6 +20,48 @@ mod pictures;
 /// Side of every texture in texels (a power of two: renderers wrap with a mask).
 pub const TEX_SIZE: usize = 128;
 
+/// The surfaces that are pictures on a framed canvas, as one pattern (for [`Surface::is_picture`]
+/// and the texel match, which must stay exhaustive).
+macro_rules! picture_surfaces {
+    () => {
+        Surface::PaintingSailboat
+            | Surface::PaintingBeach
+            | Surface::PaintingLake
+            | Surface::PaintingFlowers
+            | Surface::PaintingTree
+            | Surface::PaintingCircles
+            | Surface::PaintingSquares
+            | Surface::PaintingPortrait
+            | Surface::PaintingHorse
+            | Surface::PaintingZebra
+            | Surface::PaintingHouse
+            | Surface::PaintingGiraffe
+            | Surface::PaintingElephant
+            | Surface::PaintingMountains
+            | Surface::PaintingOcean
+            | Surface::PaintingWaterfall
+            | Surface::PaintingCity
+            | Surface::PaintingLighthouse
+            | Surface::PaintingWindmill
+            | Surface::PaintingBarn
+            | Surface::PaintingNightSky
+            | Surface::PaintingFruit
+            | Surface::PaintingLion
+            | Surface::PaintingCow
+            | Surface::PaintingBirds
+            | Surface::PaintingFish
+            | Surface::PaintingCat
+            | Surface::PaintingDog
+            | Surface::PaintingButterfly
+            | Surface::PaintingSunflowers
+            | Surface::PaintingBridge
+            | Surface::PaintingShip
+            | Surface::PaintingWoman
+            | Surface::PaintingMan
+            | Surface::PaintingCheetah
+    };
+}
+
 /// What a surface is made of.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Surface {
@@ -295,44 +337,7 @@ impl Surface {
     /// Whether it is a picture on a framed canvas, drawn once over the canvas (see
     /// [`picture_uv`]) rather than repeated every [`Surface::repeat`] metres.
     pub fn is_picture(self) -> bool {
-        matches!(
-            self,
-            Surface::PaintingSailboat
-                | Surface::PaintingBeach
-                | Surface::PaintingLake
-                | Surface::PaintingFlowers
-                | Surface::PaintingTree
-                | Surface::PaintingCircles
-                | Surface::PaintingSquares
-                | Surface::PaintingPortrait
-                | Surface::PaintingHorse
-                | Surface::PaintingZebra
-                | Surface::PaintingHouse
-                | Surface::PaintingGiraffe
-                | Surface::PaintingElephant
-                | Surface::PaintingMountains
-                | Surface::PaintingOcean
-                | Surface::PaintingWaterfall
-                | Surface::PaintingCity
-                | Surface::PaintingLighthouse
-                | Surface::PaintingWindmill
-                | Surface::PaintingBarn
-                | Surface::PaintingNightSky
-                | Surface::PaintingFruit
-                | Surface::PaintingLion
-                | Surface::PaintingCow
-                | Surface::PaintingBirds
-                | Surface::PaintingFish
-                | Surface::PaintingCat
-                | Surface::PaintingDog
-                | Surface::PaintingButterfly
-                | Surface::PaintingSunflowers
-                | Surface::PaintingBridge
-                | Surface::PaintingShip
-                | Surface::PaintingWoman
-                | Surface::PaintingMan
-                | Surface::PaintingCheetah
-        )
+        matches!(self, picture_surfaces!())
     }
 
     /// Whether glTF should call it metallic.
@@ -523,41 +528,7 @@ impl Surface {
                             0.72 + 0.2 * hash01(seed, block, row) + 0.08 * fbm(seed, fx, fy, 8.0)
                         }
                     }
-                    Surface::PaintingSailboat
-                    | Surface::PaintingBeach
-                    | Surface::PaintingLake
-                    | Surface::PaintingFlowers
-                    | Surface::PaintingTree
-                    | Surface::PaintingCircles
-                    | Surface::PaintingSquares
-                    | Surface::PaintingPortrait
-                    | Surface::PaintingHorse
-                    | Surface::PaintingZebra
-                    | Surface::PaintingHouse
-                    | Surface::PaintingGiraffe
-                    | Surface::PaintingElephant
-                    | Surface::PaintingMountains
-                    | Surface::PaintingOcean
-                    | Surface::PaintingWaterfall
-                    | Surface::PaintingCity
-                    | Surface::PaintingLighthouse
-                    | Surface::PaintingWindmill
-                    | Surface::PaintingBarn
-                    | Surface::PaintingNightSky
-                    | Surface::PaintingFruit
-                    | Surface::PaintingLion
-                    | Surface::PaintingCow
-                    | Surface::PaintingBirds
-                    | Surface::PaintingFish
-                    | Surface::PaintingCat
-                    | Surface::PaintingDog
-                    | Surface::PaintingButterfly
-                    | Surface::PaintingSunflowers
-                    | Surface::PaintingBridge
-                    | Surface::PaintingShip
-                    | Surface::PaintingWoman
-                    | Surface::PaintingMan
-                    | Surface::PaintingCheetah => pictures::texel(self, seed, x, y).unwrap_or(0.9),
+                    picture_surfaces!() => pictures::texel(self, seed, x, y).unwrap_or(0.9),
                     Surface::Striped
                     | Surface::Checkered
                     | Surface::Plaid

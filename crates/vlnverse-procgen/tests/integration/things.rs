@@ -130,10 +130,7 @@ fn runners_run_down_hallways_under_nothing() {
                     && !p.class.is_structure()
                     && !matches!(p.class, C::Door | C::Curtain | C::PictureFrame)
                     && p.bbox.min[1] < 0.3
-                    && p.bbox.min[0] < hi[0]
-                    && lo[0] < p.bbox.max[0]
-                    && p.bbox.min[2] < hi[2]
-                    && lo[2] < p.bbox.max[2]
+                    && overlaps_on_floor(p, lo, hi)
             });
             assert!(
                 under.is_none(),
@@ -145,6 +142,11 @@ fn runners_run_down_hallways_under_nothing() {
         }
     }
     assert!(runners >= 10, "only {runners} runners");
+}
+
+/// Whether `p`'s footprint overlaps the box from `lo` to `hi` on the floor (x and z).
+fn overlaps_on_floor(p: &vlnverse_env::SceneObject, lo: [f32; 3], hi: [f32; 3]) -> bool {
+    p.bbox.min[0] < hi[0] && lo[0] < p.bbox.max[0] && p.bbox.min[2] < hi[2] && lo[2] < p.bbox.max[2]
 }
 
 /// Classes of the second lot of things (`more_things.rs`).
@@ -178,10 +180,7 @@ fn ceiling_fans_hang_above_the_agent_over_nothing_tall() {
                     && p.id != o.id
                     && !p.class.is_structure()
                     && p.bbox.max[1] > lo[1] - 0.05
-                    && p.bbox.min[0] < hi[0]
-                    && lo[0] < p.bbox.max[0]
-                    && p.bbox.min[2] < hi[2]
-                    && lo[2] < p.bbox.max[2]
+                    && overlaps_on_floor(p, lo, hi)
             });
             assert!(
                 under.is_none(),
