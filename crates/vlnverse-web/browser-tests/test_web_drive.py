@@ -50,9 +50,7 @@ def test_web_drive_to_success_logs_csv_and_scores_sr_1(
     # episode is chosen resets the choice (seen once under load), so wait for them to settle.
     page.wait_for_load_state("networkidle")
     page.select_option("#d-episode", str(ep["episode_id"]))
-    page.wait_for_function(
-        f"document.querySelector('#d-episode').value === '{ep['episode_id']}'"
-    )
+    page.wait_for_function(f"document.querySelector('#d-episode').value === '{ep['episode_id']}'")
     page.select_option("#d-setting", "telhop")
     page.click("#d-start")
     page.wait_for_function("window.vlnDrive.state && window.vlnDrive.frames > 0")
