@@ -10,7 +10,8 @@
 //!   instructions (`fine.rs`) follow the path's legs, turns, room changes and landmarks,
 //!   written by one of several writers with varied sentence plans; objects, rooms and openings
 //!   are described in `describe.rs` with the words of [`lexicon`] (class names and uses in
-//!   `data/classes.toml`, colour shades in `data/colours.toml`); coarse ones render the scene
+//!   `data/classes.toml`, kinds named as one group in `data/groups.toml`, colour shades in
+//!   `data/colours.toml`); coarse ones render the scene
 //!   graph's unique referring expression in three styles; [`chain_parts`] joins
 //!   sub-instructions.
 //! - [`check_grounding`]: mechanical check of an instruction's grounding metadata.
