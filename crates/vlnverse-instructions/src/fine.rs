@@ -1180,28 +1180,40 @@ fn group_mates<'r>(
     l: &Landmark,
     o: &SceneObject,
 ) -> Vec<(&'r SceneObject, &'r Landmark)> {
-    let side = env_side(l.side);
     // A class named in the plural ("dumbbells", "shoes") has no plural to group by.
-    if !matches!(side, Side::Left | Side::Right) || plural_class(o.class) {
+    if plural_class(o.class) {
         return Vec::new();
     }
-    let li = route.leg_of(l.path_index);
     let end = route.end_obj.map(|e| e.id);
-    let mates: Vec<_> = route
-        .landmarks
-        .iter()
-        .filter(|m| m.object != l.object && Some(m.object) != end)
-        .filter(|m| route.leg_of(m.path_index) == li && env_side(m.side) == side)
-        .filter_map(|m| {
-            let x = route.ctx.scene.object(m.object)?;
-            (x.class == o.class).then_some((x, m))
-        })
+    let mates: Vec<_> = beside_on_leg(route, l)
+        .into_iter()
+        .filter(|(x, _)| Some(x.id) != end && x.class == o.class)
         .collect();
     if mates.len() > 3 {
         Vec::new()
     } else {
         mates
     }
+}
+
+/// The other landmarks passed on the same side of the same leg as `l`, with their objects, in
+/// the route's order; none when `l` is not passed on a side.
+fn beside_on_leg<'r>(
+    route: &'r Route<'_, '_>,
+    l: &Landmark,
+) -> Vec<(&'r SceneObject, &'r Landmark)> {
+    let side = env_side(l.side);
+    if !matches!(side, Side::Left | Side::Right) {
+        return Vec::new();
+    }
+    let li = route.leg_of(l.path_index);
+    route
+        .landmarks
+        .iter()
+        .filter(|m| m.object != l.object)
+        .filter(|m| route.leg_of(m.path_index) == li && env_side(m.side) == side)
+        .filter_map(|m| Some((route.ctx.scene.object(m.object)?, m)))
+        .collect()
 }
 
 /// Now and then, `l` named with the landmarks of its kind but other classes passed on the same
@@ -1219,16 +1231,9 @@ fn kind_group(
     if !matches!(side, Side::Left | Side::Right) {
         return None;
     }
-    let li = route.leg_of(l.path_index);
     let end = route.end_obj.map(|e| e.id);
     let mut members: Vec<(&SceneObject, &Landmark)> = vec![(o, l)];
-    for m in &route.landmarks {
-        if m.object == o.id || route.leg_of(m.path_index) != li || env_side(m.side) != side {
-            continue;
-        }
-        let Some(x) = route.ctx.scene.object(m.object) else {
-            continue;
-        };
+    for (x, m) in beside_on_leg(route, l) {
         if groups::kind_of(x.class).is_some_and(|k| std::ptr::eq(k, kind)) {
             if Some(x.id) == end || members.iter().any(|(y, _)| y.id == x.id) {
                 return None;
