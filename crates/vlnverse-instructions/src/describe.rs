@@ -66,6 +66,9 @@ pub(crate) struct NpOptions {
     pub relation: f64,
     /// Use the colour whenever the object has one.
     pub force_color: bool,
+    /// Probability of a phrase after the name on what the object is for or has ("the kettle
+    /// for boiling water", "the bed with a slatted headboard"), when no relation is said.
+    pub detail: f64,
 }
 
 /// "the tall dark brown wooden wardrobe next to the bed": the phrase and the grounding of every
@@ -176,7 +179,7 @@ pub(crate) fn object_np(
             s.push(' ');
             s.push_str(&r);
         }
-    } else if material_after.is_none() && rng.random_bool(0.12) {
+    } else if material_after.is_none() && rng.random_bool(opts.detail) {
         // Not after "made of metal": "the stove made of metal you cook on" runs two phrases
         // after the name together. Not the subject said twice: "the windmill painting of a
         // windmill".
@@ -609,8 +612,20 @@ pub(crate) fn content_name(
         return None;
     }
     let name = pick(rng, &bank);
-    let kind = scene.room(room)?.kind.words();
-    (!keep_kind || name.contains(kind.as_str())).then(|| format!("the {name}"))
+    let kind = scene.room(room)?.kind;
+    let keeps = name.contains(kind.words().as_str())
+        || kind_words_also(kind).iter().any(|w| name.contains(w));
+    (!keep_kind || keeps).then(|| format!("the {name}"))
+}
+
+/// Words that still tell a reader the room type when the type's own name is not in a room's
+/// name ("passageway" is a hallway, a "walk-in wardrobe" a closet).
+fn kind_words_also(kind: RoomType) -> &'static [&'static str] {
+    match kind {
+        RoomType::Hallway => &["passage"],
+        RoomType::Closet => &["wardrobe"],
+        _ => &[],
+    }
 }
 
 /// "the kitchen with the tiled floor", "the carpeted bedroom": a room by its floor (the

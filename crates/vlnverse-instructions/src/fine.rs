@@ -81,6 +81,7 @@ impl Writer {
                 _ => 0.15,
             },
             force_color: false,
+            detail: 0.12,
         }
     }
 }
@@ -195,6 +196,15 @@ fn distance_phrase(d: f32, w: Writer, rng: &mut ChaCha8Rng) -> String {
         0 | 1 if n == 1 && !(form == 1 && half) => {
             format!("{about} {}", pick(rng, &ph::ONE_METRE))
         }
+        // "a little more than four metres" for 4.3 m, "just under five metres" for 4.7 m.
+        0 if n >= 3 && (0.2..0.35).contains(&d.fract()) => format!(
+            "a little more than {}",
+            fill(pick(rng, &ph::METRES), &[("n", &n.to_string())])
+        ),
+        0 if n >= 3 && (0.65..0.8).contains(&d.fract()) => format!(
+            "just under {}",
+            fill(pick(rng, &ph::METRES), &[("n", &n.to_string())])
+        ),
         0 => format!(
             "{about} {}",
             fill(pick(rng, &ph::METRES), &[("n", &n.to_string())])
@@ -237,6 +247,17 @@ fn turn_clause(
             let dir = side_word(s);
             if !start && prev == Some(Turn::Slight(s)) && rng.random_bool(0.5) {
                 Some(fill(pick(rng, &ph::SLIGHT_AGAIN), &[("dir", dir)]))
+            } else if (40.0..50.0).contains(&angle.abs()) && rng.random_bool(0.2) {
+                // A bend of about 45 degrees is often given as its angle.
+                let deg = if rng.random_bool(0.5) {
+                    number_word(45)
+                } else {
+                    "45".to_string()
+                };
+                Some(fill(
+                    pick(rng, &ph::TURN_DEG),
+                    &[("dir", dir), ("deg", &deg)],
+                ))
             } else if rng.random_bool(0.05) {
                 let k = ((angle.abs() / 30.0).round() as u32).clamp(1, 2);
                 let hour = if s == Side::Right { k } else { 12 - k };
@@ -1902,7 +1923,7 @@ fn room_size_remark(
     rng: &mut ChaCha8Rng,
 ) -> Option<String> {
     let r = entered.and_then(|r| route.ctx.scene.room(r))?;
-    if route.writer == Writer::Terse || !rng.random_bool(0.05) {
+    if route.writer == Writer::Terse || !rng.random_bool(0.12) {
         return None;
     }
     // A hallway by the rooms off it, now and then.
