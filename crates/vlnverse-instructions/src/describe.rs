@@ -570,6 +570,12 @@ pub(crate) fn room_by_content(scene: &Scene, room: RoomId) -> Option<ph::Bank> {
         }
         // A long, narrow hallway.
         RoomType::Hallway if narrow_and_long(r) => Some(ph::ROOM_PASSAGE),
+        RoomType::Kitchen if r.area() < 9.0 && !open_plan(room) => Some(ph::ROOM_KITCHENETTE),
+        RoomType::Porch | RoomType::Balcony
+            if super::room_facts::floor_kind(scene, room) == Some(FloorKind::Wood) =>
+        {
+            Some(ph::ROOM_DECK)
+        }
         // A room open to the next one, with no doorway between: an area of one open space.
         RoomType::Kitchen if open_plan(room) => Some(ph::ROOM_OPEN_KITCHEN),
         RoomType::DiningRoom if open_plan(room) => Some(ph::ROOM_OPEN_DINING),
@@ -624,6 +630,7 @@ fn kind_words_also(kind: RoomType) -> &'static [&'static str] {
     match kind {
         RoomType::Hallway => &["passage"],
         RoomType::Closet => &["wardrobe"],
+        RoomType::Porch | RoomType::Balcony => &["deck"],
         _ => &[],
     }
 }

@@ -228,6 +228,8 @@ banks! {
     STOP_ON = stop_on,
     STOP_EDGE = stop_edge,
     ROOM_PASSAGE = room_passage,
+    ROOM_KITCHENETTE = room_kitchenette,
+    ROOM_DECK = room_deck,
     NOT_INTO = not_into,
     STILL_IN = still_in,
     AFTER_LEAVING = after_leaving,
