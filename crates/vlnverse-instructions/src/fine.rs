@@ -1319,7 +1319,7 @@ fn group_noun(objs: &[&SceneObject], rng: &mut ChaCha8Rng) -> &'static str {
         .copied()
         .filter(|n| *n != default && !n.contains(" of ") && !n.ends_with('s'))
         .collect();
-    if !plain.is_empty() && rng.random_bool(0.3) {
+    if !plain.is_empty() && rng.random_bool(0.45) {
         pick(rng, &plain)
     } else {
         default
@@ -1923,7 +1923,7 @@ fn room_size_remark(
     rng: &mut ChaCha8Rng,
 ) -> Option<String> {
     let r = entered.and_then(|r| route.ctx.scene.room(r))?;
-    if route.writer == Writer::Terse || !rng.random_bool(0.12) {
+    if route.writer == Writer::Terse || !rng.random_bool(0.2) {
         return None;
     }
     // A hallway by the rooms off it, now and then.
