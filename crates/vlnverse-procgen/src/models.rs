@@ -200,7 +200,8 @@ pub(crate) fn r(rng: &mut ChaCha8Rng, lo: f32, hi: f32) -> f32 {
 }
 
 /// A double (or single) bed: frame, mattress, blanket, pillows, headboard. Variants: a panel
-/// or a slatted headboard (posts, rails, slats), with or without a footboard.
+/// or a slatted headboard (posts, rails, slats), with or without a footboard; and its bedding
+/// as it is ([`BedDressing`]).
 pub(crate) fn bed(rng: &mut ChaCha8Rng, double: bool) -> Model {
     let fin = palette::pick(C::Bed, rng);
     let w = if double {
@@ -211,7 +212,9 @@ pub(crate) fn bed(rng: &mut ChaCha8Rng, double: bool) -> Model {
     let d = r(rng, 2.0, 2.15);
     let head_h = r(rng, 0.9, 1.15);
     let bedding = palette::fabric(rng);
-    let v = variant(4, &[w, d, head_h]);
+    // Four headboards times four beddings: `v % 4` picks the headboard as it always did.
+    let v = variant(16, &[w, d, head_h]);
+    let dressing = BedDressing::of(v / 4);
     let mut p = Vec::new();
     bcube(&mut p, 0.0, 0.0, -0.04, [w, 0.3, d - 0.08], 0.02, fin.rgb);
     bcube(
@@ -223,7 +226,42 @@ pub(crate) fn bed(rng: &mut ChaCha8Rng, double: bool) -> Model {
         0.04,
         tone::LINEN,
     );
-    cube(&mut p, 0.0, 0.5, -0.3, [w - 0.04, 0.03, d * 0.6], bedding);
+    if dressing == BedDressing::Quilt {
+        quilt(&mut p, w - 0.04, d * 0.6, -0.3, bedding);
+    } else {
+        cube(&mut p, 0.0, 0.5, -0.3, [w - 0.04, 0.03, d * 0.6], bedding);
+    }
+    match dressing {
+        BedDressing::FoldedBlanket => {
+            // Folded across the foot, over the blanket: a thick band in another shade.
+            let z = -d * 0.5 + 0.25;
+            bcube(
+                &mut p,
+                0.0,
+                0.53,
+                z,
+                [w - 0.03, 0.07, 0.38],
+                0.012,
+                contrast(bedding),
+            );
+        }
+        BedDressing::ThrowPillows => {
+            // Two small cushions in the blanket's colour (a darker shade of a pale one),
+            // leaning on the white pillows.
+            let cw = (w * 0.3).min(0.36);
+            for s in [-1.0, 1.0] {
+                let x = s * (w * 0.18).min(0.3);
+                let c = d * 0.5 - 0.58;
+                let rgb = if bedding.iter().sum::<f32>() > 1.35 {
+                    contrast(bedding)
+                } else {
+                    bedding
+                };
+                bcube(&mut p, x, 0.5, c, [cw, 0.28, 0.1], 0.02, rgb);
+            }
+        }
+        _ => {}
+    }
     let pillows = if double { 2 } else { 1 };
     for i in 0..pillows {
         let x = if pillows == 1 {
@@ -294,12 +332,72 @@ pub(crate) fn bed(rng: &mut ChaCha8Rng, double: bool) -> Model {
     } else {
         "slatted headboard"
     };
-    let features: &[&str] = if v & 2 != 0 {
-        &[head, "footboard"]
+    let mut features = vec![head];
+    if v & 2 != 0 {
+        features.push("footboard");
+    }
+    features.extend(dressing.feature());
+    Model::new(C::Bed, fin, [w, head_h, d], 60.0 + 20.0 * w, p).with_features(&features)
+}
+
+/// A colour that stands out against `rgb`: a dark shade of a light colour, a pale one of a
+/// dark colour (a black blanket has no darker shade).
+fn contrast(rgb: [f32; 3]) -> [f32; 3] {
+    if rgb.iter().sum::<f32>() > 1.35 {
+        shade(rgb, 0.5)
     } else {
-        &[head]
-    };
-    Model::new(C::Bed, fin, [w, head_h, d], 60.0 + 20.0 * w, p).with_features(features)
+        rgb.map(|c| c + (tone::LINEN[0] - c) * 0.55)
+    }
+}
+
+/// What lies on a bed besides its blanket and pillows.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum BedDressing {
+    Plain,
+    /// A blanket folded across the foot.
+    FoldedBlanket,
+    /// Two small cushions before the pillows.
+    ThrowPillows,
+    /// The blanket as a quilt of squares in two shades.
+    Quilt,
+}
+
+impl BedDressing {
+    fn of(k: usize) -> BedDressing {
+        match k {
+            1 => BedDressing::FoldedBlanket,
+            2 => BedDressing::ThrowPillows,
+            3 => BedDressing::Quilt,
+            _ => BedDressing::Plain,
+        }
+    }
+
+    fn feature(self) -> Option<&'static str> {
+        match self {
+            BedDressing::Plain => None,
+            BedDressing::FoldedBlanket => Some("folded blanket"),
+            BedDressing::ThrowPillows => Some("throw pillows"),
+            BedDressing::Quilt => Some("quilt"),
+        }
+    }
+}
+
+/// A quilt of `w` x `d` centred at `z` on a mattress: squares of about 35 cm in `rgb` and its
+/// [`contrast`], like a chessboard.
+fn quilt(p: &mut Vec<Part>, w: f32, d: f32, z: f32, rgb: [f32; 3]) {
+    let (nx, nz) = (
+        ((w / 0.35).round() as usize).max(2),
+        ((d / 0.35).round() as usize).max(2),
+    );
+    let (sw, sd) = (w / nx as f32, d / nz as f32);
+    for i in 0..nx {
+        for j in 0..nz {
+            let c = if (i + j) % 2 == 0 { rgb } else { contrast(rgb) };
+            let x = -w * 0.5 + sw * (i as f32 + 0.5);
+            let zz = z - d * 0.5 + sd * (j as f32 + 0.5);
+            cube(p, x, 0.5, zz, [sw, 0.03, sd], c);
+        }
+    }
 }
 
 /// A nightstand: body, drawer fronts with handles; small objects on top. Variants: one
@@ -422,11 +520,22 @@ pub(crate) fn wardrobe(rng: &mut ChaCha8Rng) -> Model {
 
 /// A dresser: body with drawer fronts; small objects on top. Variants: three full-width rows;
 /// two columns of three; four rows with a split top row; two columns of two in a contrasting
-/// colour.
+/// colour; each with plain fronts, round knobs or bar handles.
 pub(crate) fn dresser(rng: &mut ChaCha8Rng) -> Model {
     let fin = palette::pick(C::Dresser, rng);
     let (w, h, d) = (r(rng, 0.9, 1.4), r(rng, 0.75, 0.95), r(rng, 0.42, 0.52));
-    let v = variant(4, &[w, h, d]);
+    // `k % 4` is the layout as it always was, `k / 4` the pulls (none, knobs, handles).
+    let k = variant(12, &[w, h, d]);
+    let (v, pulls) = (k % 4, k / 4);
+    // Dark pulls on a light dresser, steel ones on a dark one.
+    let pull_rgb = if fin.rgb.iter().sum::<f32>() > 1.2 {
+        tone::METAL
+    } else {
+        tone::STEEL
+    };
+    // Pulls stick out of the fronts: the fronts stand 1 cm back against the body, and the
+    // pulls end 0.5 mm inside the face the kick strip below makes.
+    let back = if pulls > 0 { 0.01 } else { 0.0 };
     let mut p = Vec::new();
     bcube(&mut p, 0.0, 0.0, 0.01, [w, h, d - 0.02], 0.015, fin.rgb);
     // Drawer fronts stick out of the body: every layout covers the same strip (outer edges at
@@ -446,21 +555,33 @@ pub(crate) fn dresser(rng: &mut ChaCha8Rng) -> Model {
     for i in 0..rows {
         let rh = (h - 0.1) / rows as f32;
         let y = 0.06 + i as f32 * rh;
+        let pull_y = y + (rh - 0.03) * 0.5;
         if split.contains(&i) {
             for s in [-1.0, 1.0] {
+                let x = s * (fw + 0.01) * 0.25;
                 front(
                     &mut p,
                     d,
-                    [s * (fw + 0.01) * 0.25, y, 0.0055],
+                    [x, y, 0.0055 + back],
                     [(fw - 0.01) * 0.5, rh - 0.03, 0.009],
                     rgb,
                 );
+                pull(&mut p, d, pulls, [x, pull_y], 0.1, pull_rgb);
             }
         } else {
-            front(&mut p, d, [0.0, y, 0.005], [fw, rh - 0.03, 0.01], rgb);
+            front(
+                &mut p,
+                d,
+                [0.0, y, 0.005 + back],
+                [fw, rh - 0.03, 0.01],
+                rgb,
+            );
+            for s in [-1.0, 1.0] {
+                pull(&mut p, d, pulls, [s * fw * 0.25, pull_y], 0.16, pull_rgb);
+            }
         }
     }
-    if !split.is_empty() {
+    if !split.is_empty() || pulls > 0 {
         // Split fronts stand 0.5 mm back (their x would round the turned box's front face
         // differently); a kick strip with the full front's x and z makes that face.
         front(
@@ -477,9 +598,28 @@ pub(crate) fn dresser(rng: &mut ChaCha8Rng) -> Model {
         3 => "four drawers",
         _ => "three drawers",
     };
+    let mut features = vec![drawers];
+    features.extend(match pulls {
+        1 => Some("knobs"),
+        2 => Some("handles"),
+        _ => None,
+    });
     Model::new(C::Dresser, fin, [w, h, d], 45.0, p)
         .with_top(0.05)
-        .with_features(&[drawers])
+        .with_features(&features)
+}
+
+/// A drawer's pull on the front face of a body of depth `d`, centred at `at` (x, y): none
+/// (kind 0), a round knob (1) or a bar handle `len` long (2), 9.5 mm deep, ending 0.5 mm
+/// inside the face.
+fn pull(p: &mut Vec<Part>, d: f32, kind: usize, at: [f32; 2], len: f32, rgb: [f32; 3]) {
+    let [x, y] = at;
+    let z = -d * 0.5 + 0.0005 + 0.00475;
+    match kind {
+        1 => disc_z(p, [x, y, z], 0.022, 0.0095, rgb),
+        2 => cube(p, x, y - 0.011, z, [len, 0.022, 0.0095], rgb),
+        _ => {}
+    }
 }
 
 /// A toilet: base, bowl, seat, tank.
@@ -737,10 +877,12 @@ pub(crate) fn dishwasher(rng: &mut ChaCha8Rng) -> Model {
     Model::new(C::Dishwasher, fin, [w, h, d + 0.04], 45.0, p).with_top(0.05)
 }
 
-/// A tall kitchen cabinet (pantry): body, two doors, handles.
+/// A tall kitchen cabinet (pantry): body, two doors, handles. Variants: a solid top door; a
+/// top door of glass panes in a frame.
 pub(crate) fn kitchen_cabinet(rng: &mut ChaCha8Rng) -> Model {
     let fin = palette::pick(C::KitchenCabinet, rng);
     let (w, h, d) = (r(rng, 0.5, 0.8), r(rng, 1.9, 2.1), 0.6);
+    let glass = variant(2, &[w, h]) == 1;
     let mut p = Vec::new();
     bcube(&mut p, 0.0, 0.0, 0.01, [w, h, d - 0.02], 0.015, fin.rgb);
     front(
@@ -750,13 +892,36 @@ pub(crate) fn kitchen_cabinet(rng: &mut ChaCha8Rng) -> Model {
         [w - 0.03, h * 0.6, 0.01],
         shade(fin.rgb, 0.9),
     );
+    let (top_y, top_w, top_h) = (h * 0.62 + 0.05, w - 0.03, h * 0.36);
+    let door_rgb = shade(fin.rgb, 0.9);
     front(
         &mut p,
         d,
-        [0.0, h * 0.62 + 0.05, 0.005],
-        [w - 0.03, h * 0.36, 0.01],
-        shade(fin.rgb, 0.9),
+        [0.0, top_y, 0.005],
+        [top_w, top_h, 0.01],
+        if glass { tone::GLASS } else { door_rgb },
     );
+    if glass {
+        // The door's frame and the bars between four panes, on the glass, no further out
+        // than the handle.
+        let bar = 0.05;
+        for s in [-1.0, 1.0] {
+            let x = s * (top_w - bar) * 0.5;
+            front(&mut p, d, [x, top_y, -0.003], [bar, top_h, 0.006], door_rgb);
+            // The top bar ends 0.5 mm under the door's top, which makes the cabinet's height.
+            let y = top_y + (top_h - bar - 0.0005) * (0.5 + 0.5 * s);
+            front(&mut p, d, [0.0, y, -0.003], [top_w, bar, 0.006], door_rgb);
+        }
+        let y = top_y + (top_h - 0.03) * 0.5;
+        front(&mut p, d, [0.0, y, -0.003], [top_w, 0.03, 0.006], door_rgb);
+        front(
+            &mut p,
+            d,
+            [0.0, top_y, -0.003],
+            [0.03, top_h, 0.006],
+            door_rgb,
+        );
+    }
     front(
         &mut p,
         d,
@@ -764,7 +929,12 @@ pub(crate) fn kitchen_cabinet(rng: &mut ChaCha8Rng) -> Model {
         [0.02, 0.15, 0.02],
         tone::STEEL,
     );
-    Model::new(C::KitchenCabinet, fin, [w, h, d], 50.0, p).with_features(&["two doors"])
+    let features: &[&str] = if glass {
+        &["two doors", "glass panes"]
+    } else {
+        &["two doors"]
+    };
+    Model::new(C::KitchenCabinet, fin, [w, h, d], 50.0, p).with_features(features)
 }
 
 /// Sofa and armchair variants, from three bits of a hash: a plinth instead of legs; low arms
@@ -817,7 +987,10 @@ fn seat_feet(p: &mut Vec<Part>, v: Seating, w: f32, d: f32, h: f32, s: f32, rgb:
 pub(crate) fn sofa(rng: &mut ChaCha8Rng, w: f32) -> Model {
     let fin = palette::pick(C::Sofa, rng);
     let (h, d) = (r(rng, 0.8, 0.9), r(rng, 0.85, 0.95));
-    let v = Seating::of(variant(8, &[w, h, d]));
+    // `k % 8` is the seat as it always was; `k / 8` what lies on it (none, a blanket over an
+    // arm or folded on the seat, two more cushions).
+    let k = variant(24, &[w, h, d]);
+    let v = Seating::of(k % 8);
     let arm = 0.2;
     let mut p = Vec::new();
     seat_feet(&mut p, v, w - 0.1, d - 0.1, 0.08, 0.05, tone::METAL);
@@ -887,6 +1060,34 @@ pub(crate) fn sofa(rng: &mut ChaCha8Rng, w: f32) -> Model {
     }
     let mut features = vec![if w > 1.7 { "three seats" } else { "two seats" }];
     features.extend(v.features("metal legs"));
+    match k / 8 {
+        1 => {
+            let x = -(w - arm) * 0.5;
+            let rgb = contrast(fin.rgb);
+            if v.low_arms {
+                // Low arms are under the seat cushions: folded on the left end of the seat.
+                bcube(&mut p, x + 0.11, 0.45, -0.04, [0.38, 0.05, 0.5], 0.01, rgb);
+                features.push("blanket on seat");
+            } else {
+                // Over the left arm (seen from the front), down its inside to the seat.
+                let top = 0.08 + arm_h;
+                bcube(&mut p, x, top, -0.04, [arm - 0.01, 0.03, 0.5], 0.006, rgb);
+                let (xi, hi) = (x + arm * 0.5 + 0.012, top + 0.02 - 0.45);
+                cube(&mut p, xi, 0.45, -0.04, [0.024, hi, 0.5], rgb);
+                features.push("blanket over arm");
+            }
+        }
+        2 => {
+            // Two smaller cushions in another colour in front of the first two.
+            for s in [-1.0, 1.0] {
+                let x = s * (w * 0.5 - arm - 0.42).max(0.19);
+                let c = contrast(cushion);
+                bcube(&mut p, x, 0.45, d * 0.5 - 0.4, [0.34, 0.3, 0.1], 0.02, c);
+            }
+            features.push("four cushions");
+        }
+        _ => {}
+    }
     Model::new(C::Sofa, fin, [w, h, d], 30.0 + 25.0 * w, p).with_features(&features)
 }
 
@@ -894,7 +1095,10 @@ pub(crate) fn sofa(rng: &mut ChaCha8Rng, w: f32) -> Model {
 pub(crate) fn armchair(rng: &mut ChaCha8Rng) -> Model {
     let fin = palette::pick(C::Armchair, rng);
     let (w, h, d) = (r(rng, 0.75, 0.9), r(rng, 0.8, 0.95), r(rng, 0.75, 0.85));
-    let v = Seating::of(variant(4, &[w, h, d]));
+    // `k % 4` is the seat as it always was (an armchair has no bench variant); `k / 4` a
+    // blanket over the back.
+    let k = variant(8, &[w, h, d]);
+    let v = Seating::of(k % 4);
     let arm = 0.15;
     let mut p = Vec::new();
     seat_feet(&mut p, v, w - 0.1, d - 0.1, 0.1, 0.04, tone::WOOD);
@@ -938,7 +1142,26 @@ pub(crate) fn armchair(rng: &mut ChaCha8Rng) -> Model {
             shade(fin.rgb, 0.95),
         );
     }
-    Model::new(C::Armchair, fin, [w, h, d], 25.0, p).with_features(&v.features("wooden legs"))
+    let mut features = v.features("wooden legs");
+    if k / 4 == 1 {
+        // Over the top of the back (just under it, so the chair's height stays) and down its
+        // front to the seat cushion.
+        let rgb = contrast(fin.rgb);
+        let bw = (w - 2.0 * arm) * 0.7;
+        let zb = d * 0.5 - 0.09;
+        cube(&mut p, -0.05, h - 0.0205, zb, [bw, 0.02, 0.178], rgb);
+        let front = d * 0.5 - 0.18 - 0.011;
+        cube(
+            &mut p,
+            -0.05,
+            0.42,
+            front,
+            [bw, h - 0.0205 - 0.42 + 0.02, 0.022],
+            rgb,
+        );
+        features.push("blanket over back");
+    }
+    Model::new(C::Armchair, fin, [w, h, d], 25.0, p).with_features(&features)
 }
 
 /// A flat-screen TV on a foot: panel, screen, neck, foot.
@@ -1176,7 +1399,8 @@ pub(crate) fn chair(rng: &mut ChaCha8Rng) -> Model {
     let (w, d) = (r(rng, 0.42, 0.5), r(rng, 0.44, 0.52));
     let seat = r(rng, 0.44, 0.48);
     let h = r(rng, 0.85, 0.98);
-    let v = variant(4, &[w, d, seat, h]);
+    // `v % 4` is the back as it always was; `v / 4` a cushion on the seat.
+    let v = variant(8, &[w, d, seat, h]);
     let leg_rgb = if fin.material == "wood" {
         shade(fin.rgb, 0.8)
     } else {
@@ -1199,7 +1423,12 @@ pub(crate) fn chair(rng: &mut ChaCha8Rng) -> Model {
     }
     bcube(&mut p, 0.0, h - 0.18, back_z, [w, 0.18, 0.04], 0.0, fin.rgb);
     let below = h - seat - 0.18;
-    match v {
+    if v / 4 == 1 {
+        // Sharp like the seat: a set of chairs shares it.
+        let rgb = contrast(fin.rgb);
+        cube(&mut p, 0.0, seat, -0.015, [w - 0.08, 0.035, d - 0.1], rgb);
+    }
+    match v % 4 {
         1 => {
             for x in [-0.25, 0.0, 0.25] {
                 cube(&mut p, x * w, seat, back_z, [0.02, below, 0.02], leg_rgb);
@@ -1229,13 +1458,16 @@ pub(crate) fn chair(rng: &mut ChaCha8Rng) -> Model {
         }
         _ => {}
     }
-    let features: &[&str] = match v {
-        1 => &["spindle back"],
-        2 => &["solid back"],
-        3 => &["arms"],
-        _ => &[],
+    let mut features: Vec<&str> = match v % 4 {
+        1 => vec!["spindle back"],
+        2 => vec!["solid back"],
+        3 => vec!["arms"],
+        _ => vec![],
     };
-    Model::new(C::Chair, fin, [w, h, d], 5.0, p).with_features(features)
+    if v / 4 == 1 {
+        features.push("seat cushion");
+    }
+    Model::new(C::Chair, fin, [w, h, d], 5.0, p).with_features(&features)
 }
 
 /// An office chair: five-star base (two crossed bars), column, seat, backrest.
@@ -1324,14 +1556,17 @@ pub(crate) fn bookshelf(rng: &mut ChaCha8Rng) -> Model {
 }
 
 /// A potted plant: pot, soil, stem, foliage. Variants: one round bush; a bush with smaller
-/// clumps around its base; a bush with broad leaves sticking out. The main ball (the largest
-/// part) is in every variant and the rest stays inside its outline seen from above.
+/// clumps around its base; a bush with broad leaves sticking out; each with or without
+/// flowers. The main ball (the largest part) is in every variant and the rest stays inside
+/// its outline seen from above.
 pub(crate) fn potted_plant(rng: &mut ChaCha8Rng) -> Model {
     let fin = palette::pick(C::PottedPlant, rng);
     let pot_r = r(rng, 0.14, 0.2);
     let h = r(rng, 0.8, 1.4);
     let fol = (pot_r * 1.6).min(0.3);
-    let v = variant(3, &[pot_r, h]);
+    // `k % 3` is the bush as it always was, `k / 3` flowers.
+    let k = variant(6, &[pot_r, h]);
+    let v = k % 3;
     let mut p = Vec::new();
     cyl(&mut p, 0.0, 0.0, 0.0, pot_r, 0.35, fin.rgb);
     cyl(&mut p, 0.0, 0.35, 0.0, pot_r - 0.02, 0.01, tone::SOIL);
@@ -1361,10 +1596,46 @@ pub(crate) fn potted_plant(rng: &mut ChaCha8Rng) -> Model {
         }
         _ => {}
     }
+    let mut features = if v == 2 { vec!["broad leaves"] } else { vec![] };
+    if k / 3 == 1 {
+        // Blossoms in three colours half out of the bush, all inside its box (the ball's top
+        // and sides make the plant's box) and its outline seen from above.
+        let centre = Vec3::new(0.0, h - fol, 0.0);
+        for (i, (lat, lon)) in BLOSSOMS.iter().enumerate() {
+            let (lat, lon) = (lat.to_radians(), lon.to_radians());
+            let dir = Vec3::new(lat.cos() * lon.cos(), lat.sin(), lat.cos() * lon.sin());
+            let c = centre + dir * (fol - 0.012);
+            ball(
+                &mut p,
+                c.to_array(),
+                0.028,
+                BLOSSOM_RGB[i % BLOSSOM_RGB.len()],
+            );
+        }
+        features.push("flowers");
+    }
     let s = 2.0 * fol.max(pot_r);
-    let features: &[&str] = if v == 2 { &["broad leaves"] } else { &[] };
-    Model::new(C::PottedPlant, fin, [s, h, s], 10.0, p).with_features(features)
+    Model::new(C::PottedPlant, fin, [s, h, s], 10.0, p).with_features(&features)
 }
+
+/// Where a flowering plant's blossoms sit on its bush: latitude and longitude in degrees, none
+/// so near the top that it would stick out of the bush's box, nor so low that it would stick
+/// out of its outline seen from above (the maps).
+const BLOSSOMS: [(f32, f32); 10] = [
+    (65.0, 200.0),
+    (55.0, 0.0),
+    (55.0, 120.0),
+    (55.0, 240.0),
+    (35.0, 60.0),
+    (35.0, 180.0),
+    (35.0, 300.0),
+    (25.0, 0.0),
+    (25.0, 120.0),
+    (25.0, 240.0),
+];
+
+/// Blossom colours: red, yellow, pink.
+const BLOSSOM_RGB: [[f32; 3]; 3] = [[0.8, 0.08, 0.1], [0.95, 0.8, 0.15], [0.95, 0.5, 0.7]];
 
 /// A floor lamp: base, pole, shade. Variants: a drum shade; a tapered shade (a narrow drum over
 /// a wide rim); a drum on a tripod.
@@ -1627,6 +1898,7 @@ pub(crate) fn small(class: C, rng: &mut ChaCha8Rng) -> Model {
     let fin = palette::pick(class, rng);
     let c = fin.rgb;
     let mut p = Vec::new();
+    let mut features = Vec::new();
     let (size, mass) = match class {
         C::Cup => {
             cyl(&mut p, 0.0, 0.0, 0.0, 0.04, 0.1, c);
@@ -1659,7 +1931,21 @@ pub(crate) fn small(class: C, rng: &mut ChaCha8Rng) -> Model {
         C::Vase => {
             let h = r(rng, 0.18, 0.32);
             cyl(&mut p, 0.0, 0.0, 0.0, 0.07, h * 0.75, c);
-            cyl(&mut p, 0.0, h * 0.75, 0.0, 0.04, h * 0.25, c);
+            if variant(2, &[h]) == 1 {
+                // Flowers in place of the neck: a bunch of stems as tall as the neck (so the
+                // vase's box stays), blossoms round their tops inside the body's outline.
+                cyl(&mut p, 0.0, h * 0.75, 0.0, 0.04, h * 0.25, tone::LEAF);
+                for (i, (x, z, y)) in [(-0.03, 0.0, 0.0), (0.03, 0.012, 0.015), (0.0, -0.03, 0.008)]
+                    .into_iter()
+                    .enumerate()
+                {
+                    let rgb = BLOSSOM_RGB[i % BLOSSOM_RGB.len()];
+                    ball(&mut p, [x, h - 0.036 - y, z], 0.035, rgb);
+                }
+                features.push("flowers in vase");
+            } else {
+                cyl(&mut p, 0.0, h * 0.75, 0.0, 0.04, h * 0.25, c);
+            }
             ([0.14, h, 0.14], 0.8)
         }
         C::Bowl => {
@@ -1939,7 +2225,7 @@ pub(crate) fn small(class: C, rng: &mut ChaCha8Rng) -> Model {
             ([0.15, 0.15, 0.15], 0.5)
         }
     };
-    Model::new(class, fin, size, mass, p)
+    Model::new(class, fin, size, mass, p).with_features(&features)
 }
 
 /// Floor clutter, wall objects and the larger pieces of the rooms issue 30 added (shoes,
@@ -2535,7 +2821,7 @@ mod tests {
                 let base_maps = placed(&base);
                 let (hashed, _) = build(b, seed, None);
                 let mut hashed_is_a_variant = false;
-                for k in 0..8 {
+                for k in 0..variants(name) {
                     let (m, next) = build(b, seed, Some(k));
                     let what = format!("{name}, seed {seed}, variant {k}");
                     hashed_is_a_variant |= m.parts == hashed.parts;
@@ -2568,23 +2854,37 @@ mod tests {
         }
     }
 
+    /// The builders with variants and how many each has (the others have one).
+    const VARIANTS: &[(&str, usize)] = &[
+        ("double bed", 16),
+        ("single bed", 16),
+        ("nightstand", 3),
+        ("wardrobe", 4),
+        ("dresser", 12),
+        ("sofa 2", 24),
+        ("sofa 3", 24),
+        ("armchair", 8),
+        ("coffee table", 4),
+        ("dining table", 4),
+        ("small dining table", 4),
+        ("kitchen cabinet", 2),
+        ("side table", 4),
+        ("chair", 8),
+        ("potted plant", 6),
+        ("floor lamp", 3),
+    ];
+
+    fn variants(name: &str) -> usize {
+        VARIANTS.iter().find(|v| v.0 == name).map_or(1, |v| v.1)
+    }
+
     #[test]
     fn furniture_classes_have_visibly_different_variants() {
-        let with_variants = [
-            ("double bed", 4),
-            ("nightstand", 3),
-            ("wardrobe", 4),
-            ("dresser", 4),
-            ("sofa 3", 8),
-            ("armchair", 4),
-            ("coffee table", 4),
-            ("dining table", 4),
-            ("side table", 4),
-            ("chair", 4),
-            ("potted plant", 3),
-            ("floor lamp", 3),
-        ];
-        for (name, n) in with_variants {
+        // Two of each size are alike: the double bed and sofa stand for the single ones.
+        for &(name, n) in VARIANTS
+            .iter()
+            .filter(|v| !matches!(v.0, "single bed" | "sofa 2" | "small dining table"))
+        {
             let b = BUILDERS.iter().find(|x| x.0 == name).expect(name).1;
             let mut layouts: Vec<Vec<Part>> = Vec::new();
             for k in 0..n {

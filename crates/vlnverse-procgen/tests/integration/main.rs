@@ -5,6 +5,7 @@ mod clutter;
 mod decor;
 mod doors;
 mod doors_kinds;
+mod dressings;
 mod floors_coverings;
 mod homes;
 mod look;
