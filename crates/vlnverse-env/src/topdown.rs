@@ -118,6 +118,12 @@ pub fn room_color(kind: RoomType) -> [u8; 3] {
         RoomType::Library => [232, 222, 204],
         RoomType::Garage => [216, 216, 210],
         RoomType::Porch => [222, 238, 214],
+        RoomType::Sauna => [240, 214, 190],
+        RoomType::Spa => [210, 240, 226],
+        RoomType::WineCellar => [230, 204, 212],
+        RoomType::Playroom => [252, 226, 236],
+        RoomType::MudRoom => [222, 214, 200],
+        RoomType::Workshop => [224, 226, 200],
     }
 }
 

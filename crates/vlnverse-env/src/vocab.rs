@@ -353,6 +353,12 @@ vocabulary! {
         Library = (16, "library", Structure),
         Garage = (17, "garage", Structure),
         Porch = (18, "porch", Structure),
+        Sauna = (19, "sauna", Structure),
+        Spa = (20, "spa", Structure),
+        WineCellar = (21, "wine_cellar", Structure),
+        Playroom = (22, "playroom", Structure),
+        MudRoom = (23, "mud_room", Structure),
+        Workshop = (24, "workshop", Structure),
     }
 }
 

@@ -281,6 +281,14 @@ pub fn room_names(kind: RoomType) -> &'static [&'static str] {
         RoomType::Library => &["library", "reading room"],
         RoomType::Garage => &["garage"],
         RoomType::Porch => &["porch", "sun porch"],
+        RoomType::Sauna => &["sauna"],
+        RoomType::Spa => &["spa", "massage room", "spa room"],
+        // Not a bare "cellar": the room is on the ground floor, and a wine cellar is what a
+        // room kept for wine is called wherever it is.
+        RoomType::WineCellar => &["wine cellar", "wine room"],
+        RoomType::Playroom => &["playroom", "play room"],
+        RoomType::MudRoom => &["mud room", "mudroom"],
+        RoomType::Workshop => &["workshop"],
     }
 }
 

@@ -379,9 +379,9 @@ fn add_window(
     }
 }
 
-/// Windows on the exterior walls of every room: one per exterior face that has room for one
-/// clear of doorways and furniture, two on long faces, at most [`MAX_WINDOWS`] per room
-/// (triangles cost frame rate).
+/// Windows on the exterior walls of every room but a wine cellar: one per exterior face that
+/// has room for one clear of doorways and furniture, two on long faces, at most
+/// [`MAX_WINDOWS`] per room (triangles cost frame rate).
 fn add_windows(
     cfg: &ProcgenConfig,
     plan: &Plan,
@@ -396,8 +396,12 @@ fn add_windows(
             continue;
         };
         let kind = plan.rooms[face.room].kind;
+        // Wine is kept out of the light.
+        if kind == RoomType::WineCellar {
+            continue;
+        }
         let (wmin, wmax): (f32, f32) = match kind {
-            RoomType::Bathroom | RoomType::LaundryRoom => (0.5, 0.8),
+            RoomType::Bathroom | RoomType::LaundryRoom | RoomType::Sauna => (0.5, 0.8),
             RoomType::Hallway => (0.6, 1.0),
             _ => (0.9, 1.6),
         };
@@ -520,7 +524,9 @@ fn add_pictures(
             | RoomType::Office
             | RoomType::EntranceHall
             | RoomType::Library
-            | RoomType::HomeTheater => 1,
+            | RoomType::HomeTheater
+            | RoomType::Playroom
+            | RoomType::Spa => 1,
             _ => continue,
         };
         let mut placed = 0;

@@ -87,8 +87,10 @@ pub(crate) fn is_public(k: RoomType) -> bool {
 
 /// Rooms that are only ever reached through one neighbour of the kinds given (a closet off a
 /// bedroom or hallway, a balcony off the living room or a bedroom, a pantry off the kitchen, a
-/// garage off the kitchen, a hall or the laundry room, a porch off a hall or the living room);
-/// `None` for other rooms.
+/// garage off the kitchen, a hall or the laundry room, a porch off a hall or the living room,
+/// a sauna off a bathroom, the gym, the spa or a hallway, a wine cellar off the kitchen, the
+/// dining room, the living room or a hall, a mud room off a hall, the kitchen or the laundry
+/// room); `None` for other rooms.
 fn leaf_of(k: RoomType) -> Option<&'static [RoomType]> {
     use RoomType as R;
     match k {
@@ -97,6 +99,15 @@ fn leaf_of(k: RoomType) -> Option<&'static [RoomType]> {
         R::Pantry => Some(&[R::Kitchen]),
         R::Garage => Some(&[R::Kitchen, R::Hallway, R::EntranceHall, R::LaundryRoom]),
         R::Porch => Some(&[R::EntranceHall, R::LivingRoom, R::Hallway]),
+        R::Sauna => Some(&[R::Bathroom, R::Gym, R::Spa, R::Hallway]),
+        R::WineCellar => Some(&[
+            R::Kitchen,
+            R::DiningRoom,
+            R::LivingRoom,
+            R::Hallway,
+            R::EntranceHall,
+        ]),
+        R::MudRoom => Some(&[R::EntranceHall, R::Hallway, R::Kitchen, R::LaundryRoom]),
         _ => None,
     }
 }
@@ -111,8 +122,17 @@ pub(crate) fn may_join(a: RoomType, b: RoomType) -> bool {
 /// splitting keeps each zone together (a pantry goes with the kitchen it opens off).
 fn zone(k: RoomType) -> u8 {
     match k {
-        RoomType::LivingRoom | RoomType::Kitchen | RoomType::DiningRoom | RoomType::Pantry => 0,
-        RoomType::Hallway | RoomType::EntranceHall | RoomType::Garage | RoomType::Porch => 1,
+        RoomType::LivingRoom
+        | RoomType::Kitchen
+        | RoomType::DiningRoom
+        | RoomType::Pantry
+        | RoomType::WineCellar => 0,
+        RoomType::Hallway
+        | RoomType::EntranceHall
+        | RoomType::Garage
+        | RoomType::Porch
+        | RoomType::MudRoom
+        | RoomType::Workshop => 1,
         _ => 2,
     }
 }
@@ -304,9 +324,18 @@ fn hub_weight(k: RoomType) -> f32 {
         | RoomType::Balcony
         | RoomType::Pantry
         | RoomType::Garage
-        | RoomType::Porch => 0.03,
+        | RoomType::Porch
+        | RoomType::Sauna
+        | RoomType::WineCellar
+        | RoomType::MudRoom => 0.03,
         // Rooms kept for one use: reached, rarely walked through.
-        RoomType::Bedroom | RoomType::Gym | RoomType::HomeTheater | RoomType::Library => 0.15,
+        RoomType::Bedroom
+        | RoomType::Gym
+        | RoomType::HomeTheater
+        | RoomType::Library
+        | RoomType::Spa
+        | RoomType::Playroom
+        | RoomType::Workshop => 0.15,
         _ => 0.5,
     }
 }
@@ -431,6 +460,15 @@ pub(crate) fn generate(cfg: &ProcgenConfig, rng: &mut ChaCha8Rng) -> Option<Plan
         // Hard cases (many small rooms) get their areas redrawn now and then.
         if attempt > 0 && attempt % 50 == 0 {
             kinds = draw_rooms(cfg, rng);
+            // Past half the attempts, at most one room that hangs off given neighbours: two or
+            // three of them (a sauna, a pantry, a porch) rarely all find theirs in one plan.
+            if attempt >= LAYOUT_ATTEMPTS / 2 {
+                let mut leaves = 0;
+                kinds.retain(|(k, _)| {
+                    leaves += usize::from(leaf_of(*k).is_some());
+                    leaf_of(*k).is_none() || leaves == 1
+                });
+            }
         }
         if let Some(x) = try_layout(cfg, &kinds, rng) {
             found = Some(x);

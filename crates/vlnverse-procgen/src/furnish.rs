@@ -989,6 +989,106 @@ fn recipe(
                 out.push(vec![corner(models::potted_plant(rng))]);
             }
         }
+        RoomType::Sauna => {
+            // Wooden benches along two walls and the heater in a corner.
+            out.push(vec![wall(models::bench(rng))]);
+            out.push(vec![corner(models::clutter(C::Heater, rng))]);
+            out.push(vec![wall(models::bench(rng))]);
+            if maybe(cfg, rng, 0.5) {
+                out.push(vec![wall(models::clutter(C::TowelRack, rng))]);
+            }
+        }
+        RoomType::Spa => {
+            // A hot tub first in a large spa (it needs a wall of its own), then the massage
+            // table, free in the room when there is room to walk round it.
+            if area >= 10.0 && maybe(cfg, rng, 0.6) {
+                let tub = pieces::model(C::HotTub, 0.0, rng);
+                out.push(vec![corner(tub.clone()), wall(tub)]);
+            }
+            let table = pieces::model(C::MassageTable, 0.0, rng);
+            out.push(vec![Group::one(table.clone(), Mode::Center), wall(table)]);
+            out.push(vec![wall(models::clutter(C::TowelRack, rng))]);
+            if maybe(cfg, rng, 0.7) {
+                out.push(vec![wall(models::cabinet(rng))]);
+            }
+            if maybe(cfg, rng, 0.5) {
+                out.push(vec![corner(models::stool(rng))]);
+            }
+            if maybe(cfg, rng, 0.6) {
+                out.push(vec![corner(models::potted_plant(rng))]);
+            }
+            if maybe(cfg, rng, 0.6) {
+                out.push(vec![wall(models::side_table(rng))]);
+            }
+        }
+        RoomType::WineCellar => {
+            // Racks of bottles along the walls and barrels in the corners; a bar with stools
+            // comes with the pieces and sets.
+            out.push(vec![wall(pieces::model(C::WineRack, 0.0, rng))]);
+            out.push(vec![wall(pieces::model(C::WineRack, 0.0, rng))]);
+            if maybe(cfg, rng, 0.4) {
+                out.push(vec![wall(pieces::model(C::WineRack, 0.0, rng))]);
+            }
+            out.push(vec![corner(pieces::model(C::Barrel, 0.0, rng))]);
+            if maybe(cfg, rng, 0.5) {
+                out.push(vec![corner(pieces::model(C::Barrel, 0.0, rng))]);
+            }
+            if maybe(cfg, rng, 0.7) {
+                out.push(vec![wall(models::side_table(rng))]);
+            }
+        }
+        RoomType::Playroom => {
+            out.push(vec![corner(pieces::model(C::Dollhouse, 0.0, rng))]);
+            out.push(vec![corner(pieces::model(C::RockingHorse, 0.0, rng))]);
+            // A small desk to draw at.
+            out.push(vec![desk_group(rng, false)]);
+            out.push(vec![corner(models::clutter(C::BeanBag, rng))]);
+            if maybe(cfg, rng, 0.5) {
+                out.push(vec![corner(models::clutter(C::BeanBag, rng))]);
+            }
+            if maybe(cfg, rng, 0.6) {
+                out.push(vec![wall(models::clutter(C::Chest, rng))]);
+            }
+            if maybe(cfg, rng, 0.5) {
+                out.push(vec![wall(models::clutter(C::ShelvingUnit, rng))]);
+            }
+            if maybe(cfg, rng, 0.5) {
+                let (w, d) = (rng.random_range(1.2f32..2.0), rng.random_range(1.0f32..1.6));
+                let r = models::rug(rng, w, d);
+                out.push(vec![Group::one(r, Mode::Center)]);
+            }
+        }
+        RoomType::MudRoom => {
+            // Where coats, bags and boots come off: lockers or hooks, a bench, shoes.
+            out.push(vec![
+                wall(pieces::model(C::Lockers, 0.0, rng)),
+                wall(models::coat_rack(rng)),
+            ]);
+            out.push(vec![wall(models::bench(rng))]);
+            // A small room: the rest only now and then, so a door still swings in it.
+            if maybe(cfg, rng, 0.6) {
+                out.push(vec![wall(models::shoe_rack(rng))]);
+            }
+            if maybe(cfg, rng, 0.3) {
+                out.push(vec![corner(models::coat_rack(rng))]);
+            }
+        }
+        RoomType::Workshop => {
+            out.push(vec![wall(models::clutter(C::Workbench, rng))]);
+            out.push(vec![wall(models::clutter(C::ShelvingUnit, rng))]);
+            if maybe(cfg, rng, 0.5) {
+                out.push(vec![wall(models::clutter(C::Workbench, rng))]);
+            }
+            if maybe(cfg, rng, 0.5) {
+                out.push(vec![wall(models::clutter(C::ShelvingUnit, rng))]);
+            }
+            if maybe(cfg, rng, 0.6) {
+                out.push(vec![corner(models::stool(rng))]);
+            }
+            if maybe(cfg, rng, 0.4) {
+                out.push(vec![corner(models::trash_can(rng))]);
+            }
+        }
         RoomType::Garage => {
             let car = models::clutter(C::Car, rng);
             out.push(vec![wall(car.clone()), Group::one(car, Mode::Center)]);
@@ -1153,6 +1253,29 @@ fn clutter_recipe(cfg: &ProcgenConfig, kind: RoomType, rng: &mut ChaCha8Rng) -> 
             (C::Box, 0.1, K),
         ],
         R::Porch => &[(C::Shoes, 0.3, W), (C::UmbrellaStand, 0.3, K)],
+        R::Sauna => &[],
+        R::Spa => &[(C::LaundryBasket, 0.3, K), (C::WallShelf, 0.4, W)],
+        R::WineCellar => &[(C::Box, 0.3, K), (C::WallShelf, 0.3, W)],
+        R::Playroom => &[
+            (C::Box, 0.4, K),
+            (C::BeanBag, 0.2, K),
+            (C::Backpack, 0.2, W),
+            (C::WallShelf, 0.3, W),
+        ],
+        R::MudRoom => &[
+            (C::Shoes, 0.8, W),
+            (C::Shoes, 0.5, W),
+            (C::UmbrellaStand, 0.5, K),
+            (C::Backpack, 0.4, W),
+            (C::Slippers, 0.2, W),
+            (C::WallShelf, 0.3, W),
+        ],
+        R::Workshop => &[
+            (C::Box, 0.5, K),
+            (C::Box, 0.3, K),
+            (C::WallShelf, 0.4, W),
+            (C::Bicycle, 0.1, W),
+        ],
         R::Garage => &[
             (C::Box, 0.5, K),
             (C::Box, 0.3, K),
@@ -1180,6 +1303,21 @@ fn clutter_recipe(cfg: &ProcgenConfig, kind: RoomType, rng: &mut ChaCha8Rng) -> 
 /// Small objects that fit on a support, by support class and room.
 fn small_choices(support: C, room: RoomType) -> &'static [C] {
     match (support, room) {
+        (C::WallShelf | C::Cabinet | C::SideTable, RoomType::Spa) => &[
+            C::Towel,
+            C::Towel,
+            C::Candle,
+            C::Bottle,
+            C::SoapDispenser,
+            C::SmallPlant,
+        ],
+        (C::WallShelf | C::SideTable | C::Box, RoomType::WineCellar) => {
+            &[C::Bottle, C::Bottle, C::Cup, C::Candle, C::Bowl]
+        }
+        (C::WallShelf | C::ShelvingUnit | C::Chest | C::Box, RoomType::Playroom) => {
+            &[C::Toy, C::Toy, C::BoardGame, C::Book, C::Basket]
+        }
+        (C::WallShelf | C::ShelvingUnit, RoomType::Workshop) => &[C::Basket, C::Bottle, C::Pot],
         (C::Nightstand, _) => &[
             C::TableLamp,
             C::Book,
@@ -1867,8 +2005,9 @@ fn lay_doormats(st: &RoomState, plan: &Plan, rng: &mut ChaCha8Rng, b: &mut Build
 
 /// A runner down the middle of a long hallway, clear of everything already on its floor
 /// (narrowed where a piece of furniture stands out from a wall, left out where even a narrow
-/// one would run under something). It is flat, so it blocks nothing.
-fn lay_runner(st: &RoomState, rng: &mut ChaCha8Rng, b: &mut Builder) {
+/// one would run under something). It is flat, so it blocks nothing; what is placed after it
+/// (the second lot of things) keeps off it.
+fn lay_runner(st: &mut RoomState, rng: &mut ChaCha8Rng, b: &mut Builder) {
     let (w, d) = (st.interior.w(), st.interior.d());
     let (len, across) = (w.max(d), w.min(d));
     if len < RUNNER_MIN_HALL || !rng.random_bool(RUNNER_CHANCE) {
@@ -1905,6 +2044,7 @@ fn lay_runner(st: &RoomState, rng: &mut ChaCha8Rng, b: &mut Builder) {
             rotation: Quat::from_rotation_y(yaw).to_array(),
         };
         b.add_model(&m, st.id, pose, None);
+        st.keepout.push(foot);
         return;
     }
 }

@@ -161,15 +161,17 @@ fn covering(kind: RoomType) -> (f32, &'static [Finish]) {
         RoomType::Bedroom => (0.55, CARPET),
         RoomType::HomeTheater => (0.7, CARPET),
         RoomType::Office | RoomType::Library => (0.35, CARPET),
+        RoomType::Playroom => (0.5, CARPET),
         RoomType::Hallway | RoomType::EntranceHall => (0.3, STONE),
         _ => (0.0, CARPET),
     }
 }
 
-/// A room's floor: wood by default, tiles in kitchens and wet rooms, concrete in garages (one
-/// draw from `rng`, as before coverings), then from `cover` (a stream of its own, so nothing
-/// else in the home moves) carpet in some bedrooms, studies, home theaters and libraries and
-/// stone tiles in some halls.
+/// A room's floor: wood by default (saunas included), tiles in kitchens, wet rooms, spas and
+/// mud rooms, concrete in garages and workshops, stone in wine cellars (one draw from `rng`,
+/// as before coverings), then from `cover` (a stream of its own, so nothing else in the home
+/// moves) carpet in some bedrooms, studies, home theaters, libraries and playrooms and stone
+/// tiles in some halls.
 fn floor_finish(kind: RoomType, rng: &mut ChaCha8Rng, cover: &mut ChaCha8Rng) -> Finish {
     use rand::seq::IndexedRandom;
     use rand::Rng;
@@ -189,8 +191,14 @@ fn floor_finish(kind: RoomType, rng: &mut ChaCha8Rng, cover: &mut ChaCha8Rng) ->
         f("grey", "concrete", [0.55, 0.55, 0.54]),
     ];
     let list = match kind {
-        RoomType::Kitchen | RoomType::Bathroom | RoomType::LaundryRoom | RoomType::Pantry => TILE,
-        RoomType::Garage => CONCRETE,
+        RoomType::Kitchen
+        | RoomType::Bathroom
+        | RoomType::LaundryRoom
+        | RoomType::Pantry
+        | RoomType::Spa
+        | RoomType::MudRoom => TILE,
+        RoomType::Garage | RoomType::Workshop => CONCRETE,
+        RoomType::WineCellar => STONE,
         _ => WOOD,
     };
     let base = *list.choose(rng).unwrap_or(&list[0]);

@@ -219,7 +219,44 @@ pub(crate) fn things(kind: RoomType) -> &'static [Thing] {
             ];
             L
         }
-        RoomType::Bathroom => &[],
+        RoomType::Bathroom | RoomType::Sauna => &[],
+        RoomType::Spa => {
+            const L: &[Thing] = &[
+                t(C::CeilingFan, 0.2, Ceiling, 0.0),
+                t(C::Candelabra, 0.5, OnTop, 0.0),
+            ];
+            L
+        }
+        RoomType::WineCellar => {
+            const L: &[Thing] = &[t(C::Candelabra, 0.6, OnTop, 0.0)];
+            L
+        }
+        RoomType::Playroom => {
+            const L: &[Thing] = &[
+                t(C::TeddyBear, 0.8, Wall, 0.0),
+                t(C::Whiteboard, 0.2, Wall, 0.0),
+                t(C::BasketballHoop, 0.15, Wall, 0.0),
+                t(C::ExerciseBall, 0.1, Wall, 0.0),
+                t(C::CeilingFan, 0.1, Ceiling, 0.0),
+            ];
+            L
+        }
+        RoomType::MudRoom => {
+            const L: &[Thing] = &[
+                t(C::WaterHeater, 0.2, Wall, 0.0),
+                t(C::BulletinBoard, 0.1, Wall, 0.0),
+            ];
+            L
+        }
+        RoomType::Workshop => {
+            const L: &[Thing] = &[
+                t(C::WaterHeater, 0.3, Wall, 0.0),
+                t(C::BulletinBoard, 0.3, Wall, 0.0),
+                t(C::MiniFridge, 0.1, Wall, 0.0),
+                t(C::Whiteboard, 0.1, Wall, 0.0),
+            ];
+            L
+        }
     }
 }
 

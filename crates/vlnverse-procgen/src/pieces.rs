@@ -144,12 +144,14 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
             L
         }
         RoomType::Gym => {
+            // The machines before the rest: a gym full of lockers and posters has no wall
+            // left for an elliptical.
             const L: &[Piece] = &[
+                p(C::Elliptical, 0.5, Wall, 0.0),
                 p(C::MassageTable, 0.25, Wall, 10.0),
                 p(C::FireExtinguisher, 0.1, Wall, 0.0),
                 p(C::Lockers, 0.4, Wall, 0.0),
                 p(C::Poster, 0.3, Wall, 0.0),
-                p(C::Elliptical, 0.5, Wall, 0.0),
                 p(C::RowingMachine, 0.6, Wall, 0.0),
                 p(C::WaterCooler, 0.3, Wall, 0.0),
             ];
@@ -309,6 +311,48 @@ pub(crate) fn pieces(kind: RoomType) -> &'static [Piece] {
         }
         RoomType::Bathroom => {
             const L: &[Piece] = &[p(C::HotTub, 0.1, Corner, 8.0)];
+            L
+        }
+        RoomType::Sauna => &[],
+        RoomType::Spa => {
+            const L: &[Piece] = &[
+                p(C::WallSconce, 0.4, Wall, 0.0),
+                p(C::Fountain, 0.15, Wall, 0.0),
+                p(C::RoomDivider, 0.1, Wall, 10.0),
+            ];
+            L
+        }
+        RoomType::WineCellar => {
+            const L: &[Piece] = &[p(C::Bar, 0.4, Wall, 6.0), p(C::WallSconce, 0.4, Wall, 0.0)];
+            L
+        }
+        RoomType::Playroom => {
+            const L: &[Piece] = &[
+                p(C::Easel, 0.35, Corner, 0.0),
+                p(C::Telescope, 0.2, Corner, 0.0),
+                p(C::Poster, 0.3, Wall, 0.0),
+                p(C::FoosballTable, 0.12, Wall, 11.0),
+                p(C::AirHockeyTable, 0.08, Wall, 12.0),
+                p(C::CatTree, 0.05, Corner, 0.0),
+            ];
+            L
+        }
+        RoomType::MudRoom => {
+            const L: &[Piece] = &[
+                p(C::VacuumCleaner, 0.2, Corner, 0.0),
+                p(C::FireExtinguisher, 0.1, Wall, 0.0),
+            ];
+            L
+        }
+        RoomType::Workshop => {
+            const L: &[Piece] = &[
+                p(C::Ladder, 0.5, Wall, 0.0),
+                p(C::FireExtinguisher, 0.3, Wall, 0.0),
+                p(C::VacuumCleaner, 0.2, Corner, 0.0),
+                p(C::Poster, 0.1, Wall, 0.0),
+                p(C::Lockers, 0.1, Wall, 0.0),
+                p(C::Kayak, 0.3, Wall, 0.0),
+            ];
             L
         }
     }

@@ -78,7 +78,9 @@ pub(crate) fn add_sets(st: &mut RoomState, kind: RoomType, rng: &ChaCha8Rng, b: 
                 bedside_sconces(st, rng, b);
             }
         }
-        RoomType::DiningRoom | RoomType::HomeTheater | RoomType::Room if chance(rng, 0.9) => {
+        RoomType::DiningRoom | RoomType::HomeTheater | RoomType::Room | RoomType::WineCellar
+            if chance(rng, 0.9) =>
+        {
             bar_stools(st, rng, b, C::Bar, &[-1.0]);
         }
         RoomType::Office if chance(rng, 0.45) && area >= DESKS_AREA => {

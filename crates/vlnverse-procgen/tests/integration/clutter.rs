@@ -111,6 +111,15 @@ fn closets_balconies_and_entrance_halls_open_where_they_belong() {
                 R::Pantry => &[R::Kitchen],
                 R::Garage => &[R::Kitchen, R::Hallway, R::EntranceHall, R::LaundryRoom],
                 R::Porch => &[R::EntranceHall, R::LivingRoom, R::Hallway],
+                R::Sauna => &[R::Bathroom, R::Gym, R::Spa, R::Hallway],
+                R::WineCellar => &[
+                    R::Kitchen,
+                    R::DiningRoom,
+                    R::LivingRoom,
+                    R::Hallway,
+                    R::EntranceHall,
+                ],
+                R::MudRoom => &[R::EntranceHall, R::Hallway, R::Kitchen, R::LaundryRoom],
                 _ => continue,
             };
             let doors: Vec<_> = s.doors.iter().filter(|d| d.rooms.contains(&r.id)).collect();
@@ -153,6 +162,12 @@ fn closets_balconies_and_entrance_halls_open_where_they_belong() {
         R::Library,
         R::Garage,
         R::Porch,
+        R::Sauna,
+        R::Spa,
+        R::WineCellar,
+        R::Playroom,
+        R::MudRoom,
+        R::Workshop,
     ] {
         assert!(seen.get(&k).copied().unwrap_or(0) >= 10, "{k:?}: {seen:?}");
     }
@@ -217,4 +232,48 @@ fn gyms_pantries_theaters_libraries_and_garages_hold_their_things() {
         }
     }
     assert!(facing >= 10, "{facing} recliners face a screen");
+}
+
+/// The rooms people name in directions that issue 26 added last hold what makes them what
+/// they are: a sauna its benches and heater, a spa its massage table, a wine cellar its wine
+/// racks and a barrel (and no window), a playroom its dollhouse and rocking horse, a mud room
+/// its lockers or coat rack and a bench, a workshop its workbench.
+#[test]
+fn saunas_spas_cellars_playrooms_mud_rooms_and_workshops_hold_their_things() {
+    let homes = vlnverse_homes();
+    let (mut rooms, mut short) = (0, Vec::new());
+    let mut kinds = BTreeSet::new();
+    for s in &homes {
+        for r in &s.rooms {
+            let has = |c: C| {
+                s.objects
+                    .iter()
+                    .filter(|o| o.room == Some(r.id) && o.class == c)
+                    .count()
+            };
+            let ok = match r.kind {
+                R::Sauna => has(C::Bench) >= 1 && has(C::Heater) == 1,
+                R::Spa => has(C::MassageTable) == 1,
+                R::WineCellar => has(C::WineRack) >= 2 && has(C::Barrel) >= 1,
+                R::Playroom => has(C::Dollhouse) == 1 && has(C::RockingHorse) == 1,
+                R::MudRoom => has(C::Lockers) + has(C::CoatRack) >= 1 && has(C::Bench) >= 1,
+                R::Workshop => has(C::Workbench) >= 1,
+                _ => continue,
+            };
+            if r.kind == R::WineCellar {
+                assert_eq!(has(C::Window), 0, "{} {} has a window", s.id, r.name);
+            }
+            kinds.insert(r.kind);
+            rooms += 1;
+            if !ok {
+                short.push(format!("{} {}", s.id, r.name));
+            }
+        }
+    }
+    assert_eq!(kinds.len(), 6, "{kinds:?}");
+    assert!(
+        short.len() * 20 <= rooms,
+        "{} of {rooms}: {short:?}",
+        short.len()
+    );
 }

@@ -188,6 +188,10 @@ fn paintings_hang_at_eye_height_and_are_landmarks() {
                     | vlnverse_env::RoomType::DiningRoom
                     | vlnverse_env::RoomType::Office
                     | vlnverse_env::RoomType::EntranceHall
+                    | vlnverse_env::RoomType::Library
+                    | vlnverse_env::RoomType::HomeTheater
+                    | vlnverse_env::RoomType::Playroom
+                    | vlnverse_env::RoomType::Spa
             ));
         }
     }

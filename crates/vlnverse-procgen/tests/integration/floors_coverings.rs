@@ -42,14 +42,21 @@ fn floors_are_covered_as_their_rooms_are_and_look_like_their_material() {
         };
         assert_eq!(*surface, want, "{kind:?} floor of {material}");
         match kind {
-            RoomType::Garage => assert_eq!(material, "concrete"),
-            RoomType::Kitchen | RoomType::Bathroom => assert_eq!(material, "tile"),
+            RoomType::Garage | RoomType::Workshop => assert_eq!(material, "concrete"),
+            RoomType::Kitchen | RoomType::Bathroom | RoomType::Spa | RoomType::MudRoom => {
+                assert_eq!(material, "tile")
+            }
+            RoomType::WineCellar => assert_eq!(material, "stone"),
             _ => {}
         }
         if material == "carpet" {
             assert!(matches!(
                 kind,
-                RoomType::Bedroom | RoomType::Office | RoomType::HomeTheater | RoomType::Library
+                RoomType::Bedroom
+                    | RoomType::Office
+                    | RoomType::HomeTheater
+                    | RoomType::Library
+                    | RoomType::Playroom
             ));
         }
     }

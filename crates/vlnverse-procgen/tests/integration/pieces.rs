@@ -42,17 +42,23 @@ const PIECES: [C; 34] = [
     C::PorchSwing,
 ];
 
-/// Whether `o` was placed by the pieces stage: a piece class, but not a recliner of a home
-/// theater's row of seats (furniture of the room's own recipe, there with pieces or without).
+/// Whether `o` was placed by the pieces stage: a piece class, but not furniture of a room's own
+/// recipe, there with pieces or without (a recliner of a home theater's row of seats, a spa's
+/// massage table and hot tub, a wine cellar's racks and barrels, a playroom's dollhouse and rocking horse,
+/// a mud room's lockers).
 fn is_piece(s: &Scene, o: &vlnverse_env::SceneObject) -> bool {
-    let theater = || {
-        o.room
-            .and_then(|r| s.room(r))
-            .is_some_and(|r| r.kind == RoomType::HomeTheater)
-    };
+    use RoomType as R;
+    let room = o.room.and_then(|r| s.room(r)).map(|r| r.kind);
+    let own = matches!(
+        (o.class, room),
+        (C::Recliner, Some(R::HomeTheater))
+            | (C::MassageTable | C::HotTub, Some(R::Spa))
+            | (C::WineRack | C::Barrel, Some(R::WineCellar))
+            | (C::Dollhouse | C::RockingHorse, Some(R::Playroom))
+            | (C::Lockers, Some(R::MudRoom))
+    );
     // Classes from the doormat on (issue 26's things) are all placed by the pieces stage.
-    (PIECES.contains(&o.class) || o.class.id() >= C::Doormat.id())
-        && !(o.class == C::Recliner && theater())
+    (PIECES.contains(&o.class) || o.class.id() >= C::Doormat.id()) && !own
 }
 
 fn homes(pieces: f32, n: usize) -> Vec<Scene> {

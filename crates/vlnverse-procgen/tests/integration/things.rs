@@ -253,10 +253,17 @@ fn the_second_lot_of_things_stands_in_the_rooms_that_list_them() {
     let rooms: &[(C, &[R])] = &[
         (
             C::WaterHeater,
-            &[R::Garage, R::LaundryRoom, R::Closet, R::Pantry],
+            &[
+                R::Garage,
+                R::LaundryRoom,
+                R::Closet,
+                R::Pantry,
+                R::MudRoom,
+                R::Workshop,
+            ],
         ),
         (C::Rocks, &[R::Porch, R::Balcony, R::LivingRoom]),
-        (C::TeddyBear, &[R::Bedroom, R::Room]),
+        (C::TeddyBear, &[R::Bedroom, R::Room, R::Playroom]),
         (C::Buffet, &[R::DiningRoom, R::Kitchen]),
     ];
     for s in HOMES.iter() {
