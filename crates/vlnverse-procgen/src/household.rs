@@ -10,8 +10,9 @@
 //!   their own seeded by the home and room;
 //! - fixtures on the walls and the ceiling (light switches beside doorways, outlets, thermostats,
 //!   air vents, calendars, air conditioners, range hoods over stoves, smoke detectors): added by
-//!   [`add_fixtures`] after everything else of a floor (door leaves, windows, pictures), clear of
-//!   all of it, so that nothing placed before moves. Those below the agent's head stay within the
+//!   [`add_fixtures`] after the door leaves of a floor and before its decoration (windows,
+//!   pictures keep clear of them; the decoration must come last, `decor.rs`), clear of
+//!   everything, so that no furniture moves. Those below the agent's head stay within the
 //!   occupancy cell their wall face reaches into, as the decoration does (`decor.rs`), so the
 //!   navigable map is the same with and without them.
 //!
@@ -2209,8 +2210,8 @@ fn blocked(objects: &[SceneObject], v: [Vec3; 2]) -> bool {
     })
 }
 
-/// Add the wall and ceiling fixtures of every room of a floor, after everything else of it,
-/// from a stream of its own seeded by the floor's seed; nothing placed before moves.
+/// Add the wall and ceiling fixtures of every room of a floor, after its furniture and door
+/// leaves and before its decoration, from a stream of its own seeded by the floor's seed.
 pub(crate) fn add_fixtures(cfg: &ProcgenConfig, plan: &Plan, seed: u64, b: &mut Builder) {
     if cfg.furniture.pieces <= 0.0 {
         return;
