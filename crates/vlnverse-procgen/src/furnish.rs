@@ -10,6 +10,7 @@
 use crate::config::ProcgenConfig;
 use crate::floorplan::{Plan, PlanRoom};
 use crate::home::{clearance_rect, Builder};
+use crate::household;
 use crate::models::{self, Model};
 use crate::more_things;
 use crate::navgrid::NavGrid;
@@ -1717,6 +1718,7 @@ fn furnish_room(
     }
     if cfg.furniture.pieces > 0.0 {
         add_more_things(&mut st, room.kind, rng, b);
+        add_household(&mut st, room.kind, rng, b);
     }
     tracing::trace!(room = i, free = st.grid.free_cells(), "room furnished");
 }
@@ -1811,6 +1813,34 @@ fn add_more_things(st: &mut RoomState, kind: RoomType, rng: &ChaCha8Rng, b: &mut
             }
             S::OnTop => {
                 stand_on_top(st, m, &more_things::CANDELABRA_ON, b);
+                continue;
+            }
+        };
+        add_group(st, &mut Group::one(m, mode), kind, &mut own, b);
+    }
+}
+
+/// The room's third lot of standing things ([`household`]), placed after the second from an
+/// rng of their own, so that nothing placed before moves.
+fn add_household(st: &mut RoomState, kind: RoomType, rng: &ChaCha8Rng, b: &mut Builder) {
+    use household::Spot as S;
+    let salt = u64::from(st.id).wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ household::SALT;
+    let mut own = ChaCha8Rng::seed_from_u64(crate::tones::stream_hash(rng) ^ salt);
+    let area = st.interior.area();
+    for thing in household::things(kind) {
+        let chance = household::chance(thing, kind, |c| room_has(st, b, c));
+        let chance = (chance * st.cfg.furniture.pieces).clamp(0.0, 1.0);
+        if area < thing.min_area || !own.random_bool(f64::from(chance)) {
+            continue;
+        }
+        let Some(m) = household::model(thing.class, 0.0, &mut own) else {
+            continue;
+        };
+        let mode = match thing.spot {
+            S::Wall => Mode::Wall,
+            S::Corner => Mode::Corner,
+            S::OnTop => {
+                household::stand_on(st.id, &m, household::supports(thing.class), b);
                 continue;
             }
         };

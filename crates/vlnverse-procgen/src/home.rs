@@ -526,6 +526,7 @@ pub(crate) fn generate(cfg: &ProcgenConfig, seed: u64, id: &str) -> Result<Scene
     }
     // From their own stream, clear of the furniture; the decoration then keeps clear of them.
     let leaves = crate::doors::add_leaves(cfg, &plan, &kinds, seed, &mut b);
+    crate::household::add_fixtures(cfg, &plan, seed, &mut b);
     if cfg.walls.decor {
         crate::decor::add_decor(cfg, &plan, seed, &mut b);
     }
@@ -624,6 +625,7 @@ fn build_upper(
         add_ceilings(cfg, &up.plan, wall, &mut b);
     }
     let leaves = crate::doors::add_leaves(cfg, &up.plan, &kinds, upper_seed, &mut b);
+    crate::household::add_fixtures(cfg, &up.plan, upper_seed, &mut b);
     if cfg.walls.decor {
         crate::decor::add_decor(cfg, &up.plan, upper_seed, &mut b);
     }

@@ -7,6 +7,7 @@ mod floorplan;
 mod furnish;
 mod gear;
 mod home;
+mod household;
 mod models;
 mod more_things;
 mod motifs;

@@ -3,7 +3,7 @@
 for each class, its first object on a ground floor in a scenes folder, seen by the RGB camera
 from a navigable cell of its room about two metres away, and one labelled contact sheet of them.
 
-    python3 docs/img/gallery/pieces.py SCENES_DIR OUT.png [CLASS ... | things2]
+    python3 docs/img/gallery/pieces.py SCENES_DIR OUT.png [CLASS ... | things2 | things3]
     (needs Pillow; XTASK to override)
 """
 import json
@@ -27,9 +27,18 @@ PIECES = ["recliner", "rocking_chair", "chaise_lounge", "pool_table", "ping_pong
 THINGS2 = ["sectional", "buffet", "ceiling_fan", "water_heater", "mini_fridge", "teddy_bear",
            "bust", "saxophone", "basketball_hoop", "whiteboard", "bulletin_board", "chess_table",
            "candelabra", "exercise_ball", "sword", "rocks"]
+# The third lot (classes 211-239, vlnverse-procgen `household.rs`):
+# `pieces.py SCENES docs/img/gallery/things3.png things3`.
+THINGS3 = ["light_switch", "outlet", "thermostat", "air_vent", "smoke_detector", "calendar",
+           "air_conditioner", "range_hood", "futon", "daybed", "trophy_case", "amplifier",
+           "microphone", "violin", "toolbox", "wheelbarrow", "shovel", "garden_hose", "suitcase",
+           "mop_bucket", "broom", "bathroom_scale", "firewood", "spice_rack", "sewing_machine",
+           "typewriter", "record_player", "radio", "knife_block"]
 # Classes that hang above a metre: their lowest point is higher.
 HUNG = ("chandelier", "wall_sconce", "wreath", "deer_head", "dartboard", "ceiling_fan",
-        "basketball_hoop", "bulletin_board", "sword")
+        "basketball_hoop", "bulletin_board", "sword", "light_switch", "thermostat",
+        "smoke_detector", "calendar", "air_conditioner", "range_hood", "spice_rack",
+        "sewing_machine", "typewriter", "record_player", "radio", "knife_block")
 XTASK = os.environ.get("XTASK", "target/release/xtask")
 TILE = 168
 
@@ -42,7 +51,7 @@ def first_objects(scenes, classes):
             c = o["class"]
             # Ground floor only (the navigable map below is the ground floor's); a chandelier
             # hangs from its ceiling, a sconce on a wall.
-            low = 2.6 if c in HUNG else 1.0
+            low = 2.7 if c == "smoke_detector" else 2.6 if c in HUNG else 1.0
             if c in classes and c not in found and o["bbox"]["min"][1] < low:
                 found[c] = (f"{scenes}/{name}", scene, o)
     return found
@@ -89,4 +98,5 @@ def main(scenes, out, classes):
 
 if __name__ == "__main__":
     named = sys.argv[3:] or PIECES
-    main(sys.argv[1], sys.argv[2], THINGS2 if named == ["things2"] else named)
+    lots = {"things2": THINGS2, "things3": THINGS3}
+    main(sys.argv[1], sys.argv[2], lots[named[0]] if named[0] in lots else named)

@@ -275,3 +275,215 @@ fn the_second_lot_of_things_stands_in_the_rooms_that_list_them() {
         }
     }
 }
+
+/// Height of the floor of `o`'s room (upper floors stand on a slab; the skirting boards, also
+/// of class floor, stand higher).
+fn floor_of(s: &Scene, o: &SceneObject) -> f32 {
+    let floor = s
+        .objects
+        .iter()
+        .filter(|f| f.class == C::Floor && f.room == o.room)
+        .map(|f| f.bbox.max[1])
+        .fold(f32::INFINITY, f32::min);
+    if floor.is_finite() {
+        floor
+    } else {
+        0.0
+    }
+}
+
+/// How far `o` stands out of the nearest wall of its room, and its depth across that wall.
+fn off_wall(s: &Scene, o: &SceneObject) -> (f32, f32) {
+    let room = o.room.and_then(|r| s.room(r)).expect("a room");
+    let xs = room.polygon.iter().map(|p| p[0]);
+    let zs = room.polygon.iter().map(|p| p[1]);
+    let (x0, x1) = xs.fold((f32::MAX, f32::MIN), |(a, b), x| (a.min(x), b.max(x)));
+    let (z0, z1) = zs.fold((f32::MAX, f32::MIN), |(a, b), z| (a.min(z), b.max(z)));
+    let (lo, hi) = (o.bbox.min, o.bbox.max);
+    [
+        (lo[0] - x0, hi[0] - lo[0]),
+        (x1 - hi[0], hi[0] - lo[0]),
+        (lo[2] - z0, hi[2] - lo[2]),
+        (z1 - hi[2], hi[2] - lo[2]),
+    ]
+    .into_iter()
+    .fold(
+        (f32::MAX, 0.0),
+        |a, b| if b.0.abs() < a.0.abs() { b } else { a },
+    )
+}
+
+#[test]
+fn wall_fixtures_lie_flat_on_a_wall_at_their_height() {
+    // (class, lowest and highest bottom above the floor)
+    let fixtures: &[(C, f32, f32)] = &[
+        (C::LightSwitch, 1.1, 1.2),
+        (C::Outlet, 0.25, 0.3),
+        (C::Thermostat, 1.35, 1.55),
+        (C::AirVent, 0.1, 2.2),
+        (C::Calendar, 1.2, 1.4),
+        (C::AirConditioner, 1.95, 2.1),
+    ];
+    let mut seen = BTreeMap::new();
+    for s in HOMES.iter() {
+        for o in s.objects.iter() {
+            let Some(&(_, y0, y1)) = fixtures.iter().find(|f| f.0 == o.class) else {
+                continue;
+            };
+            *seen.entry(o.class).or_insert(0) += 1;
+            let (gap, depth) = off_wall(s, o);
+            assert!(
+                gap.abs() < 0.003,
+                "{}: {} {gap} m off the wall",
+                s.id,
+                o.name
+            );
+            let deep = if o.class == C::AirConditioner {
+                0.25
+            } else {
+                0.021
+            };
+            assert!(depth < deep, "{}: {} {depth} m deep", s.id, o.name);
+            let y = o.bbox.min[1] - floor_of(s, o);
+            assert!((y0..=y1).contains(&y), "{}: {} at {y} m", s.id, o.name);
+        }
+    }
+    for (c, ..) in fixtures {
+        assert!(seen.get(c).copied().unwrap_or(0) >= 10, "{c:?}: {seen:?}");
+    }
+}
+
+#[test]
+fn light_switches_are_beside_a_doorway_of_their_room() {
+    for s in HOMES.iter() {
+        for o in s.objects.iter().filter(|o| o.class == C::LightSwitch) {
+            let (c, _) = foot(o);
+            let near = s.doors.iter().any(|d| {
+                d.rooms.iter().any(|r| Some(*r) == o.room)
+                    && (d.position[0] - c[0]).hypot(d.position[2] - c[1]) < d.width * 0.5 + 0.45
+            });
+            assert!(near, "{}: {} by no doorway", s.id, o.name);
+        }
+    }
+}
+
+#[test]
+fn smoke_detectors_are_on_the_ceiling_and_range_hoods_over_a_stove() {
+    let (mut detectors, mut hoods) = (0, 0);
+    for s in HOMES.iter() {
+        for o in s.objects.iter() {
+            let y = o.bbox.max[1] - floor_of(s, o);
+            if o.class == C::SmokeDetector {
+                detectors += 1;
+                let ceiling = s
+                    .objects
+                    .iter()
+                    .find(|c| c.class == C::Ceiling && c.room == o.room)
+                    .map_or(f32::NAN, |c| c.bbox.min[1]);
+                let gap = ceiling - o.bbox.max[1];
+                assert!(
+                    (0.0..0.05).contains(&gap),
+                    "{}: {} tops at {y}",
+                    s.id,
+                    o.name
+                );
+            }
+            if o.class == C::RangeHood {
+                hoods += 1;
+                let (c, _) = foot(o);
+                let stove = s.objects.iter().find(|p| {
+                    p.class == C::Stove
+                        && p.room == o.room
+                        && (p.bbox.min[0]..=p.bbox.max[0]).contains(&c[0])
+                        && (p.bbox.min[2]..=p.bbox.max[2]).contains(&c[1])
+                });
+                let stove = stove.unwrap_or_else(|| panic!("{}: {} over no stove", s.id, o.name));
+                let above = o.bbox.min[1] - stove.bbox.max[1];
+                assert!(
+                    (0.6..0.7).contains(&above),
+                    "{}: {} {above} m up",
+                    s.id,
+                    o.name
+                );
+            }
+        }
+    }
+    assert!(
+        detectors >= 20 && hoods >= 20,
+        "{detectors} detectors, {hoods} hoods"
+    );
+}
+
+#[test]
+fn the_third_lot_stands_where_it_belongs() {
+    let rooms: &[(C, &[R])] = &[
+        (C::BathroomScale, &[R::Bathroom]),
+        (C::KnifeBlock, &[R::Kitchen]),
+        (C::SpiceRack, &[R::Kitchen]),
+        (C::Wheelbarrow, &[R::Garage, R::Porch]),
+        (C::Shovel, &[R::Garage, R::Porch]),
+        (C::GardenHose, &[R::Garage, R::Porch, R::Balcony]),
+        (C::Typewriter, &[R::Office, R::Library]),
+    ];
+    let on: &[(C, &[C])] = &[
+        (C::KnifeBlock, &[C::Counter, C::KitchenIsland]),
+        (
+            C::SewingMachine,
+            &[C::Desk, C::DiningTable, C::ConsoleTable],
+        ),
+        (C::Typewriter, &[C::Desk, C::ConsoleTable, C::SideTable]),
+        (
+            C::RecordPlayer,
+            &[
+                C::ConsoleTable,
+                C::Cabinet,
+                C::Buffet,
+                C::TvStand,
+                C::Dresser,
+                C::SideTable,
+                C::Desk,
+            ],
+        ),
+        (
+            C::Radio,
+            &[
+                C::Counter,
+                C::Nightstand,
+                C::Dresser,
+                C::Desk,
+                C::KitchenIsland,
+                C::Cabinet,
+                C::ConsoleTable,
+            ],
+        ),
+    ];
+    for s in HOMES.iter() {
+        for o in s.objects.iter() {
+            if let Some((_, kinds)) = rooms.iter().find(|(c, _)| *c == o.class) {
+                let k = room_kind(s, o);
+                assert!(kinds.contains(&k), "{}: {} in a {k:?}", s.id, o.name);
+            }
+            if let Some((_, sups)) = on.iter().find(|(c, _)| *c == o.class) {
+                let sup = o
+                    .supported_by
+                    .and_then(|id| s.object(id))
+                    .unwrap_or_else(|| panic!("{}: {} stands on nothing", s.id, o.name));
+                assert!(
+                    sups.contains(&sup.class),
+                    "{}: {} on {:?}",
+                    s.id,
+                    o.name,
+                    sup.class
+                );
+                assert!((o.bbox.min[1] - sup.bbox.max[1]).abs() < 0.02, "{}", s.id);
+            }
+            if o.class == C::Firewood && room_kind(s, o) != R::Porch {
+                let fire = s
+                    .objects
+                    .iter()
+                    .any(|p| p.class == C::Fireplace && p.room == o.room);
+                assert!(fire, "{}: {} in a room with no fireplace", s.id, o.name);
+            }
+        }
+    }
+}
