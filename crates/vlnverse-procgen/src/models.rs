@@ -610,13 +610,14 @@ pub(crate) fn dresser(rng: &mut ChaCha8Rng) -> Model {
 }
 
 /// A drawer's pull on the front face of a body of depth `d`, centred at `at` (x, y): none
-/// (kind 0), a round knob (1) or a bar handle `len` long (2), 9.5 mm deep, ending 0.5 mm
+/// (kind 0), a knob (1) or a bar handle `len` long (2), 9.5 mm deep, ending 0.5 mm
 /// inside the face.
 fn pull(p: &mut Vec<Part>, d: f32, kind: usize, at: [f32; 2], len: f32, rgb: [f32; 3]) {
     let [x, y] = at;
     let z = -d * 0.5 + 0.0005 + 0.00475;
     match kind {
-        1 => disc_z(p, [x, y, z], 0.022, 0.0095, rgb),
+        // Square: a box is 12 triangles, a disc 64.
+        1 => cube(p, x, y - 0.02, z, [0.04, 0.04, 0.0095], rgb),
         2 => cube(p, x, y - 0.011, z, [len, 0.022, 0.0095], rgb),
         _ => {}
     }
@@ -1604,13 +1605,10 @@ pub(crate) fn potted_plant(rng: &mut ChaCha8Rng) -> Model {
         for (i, (lat, lon)) in BLOSSOMS.iter().enumerate() {
             let (lat, lon) = (lat.to_radians(), lon.to_radians());
             let dir = Vec3::new(lat.cos() * lon.cos(), lat.sin(), lat.cos() * lon.sin());
-            let c = centre + dir * (fol - 0.012);
-            ball(
-                &mut p,
-                c.to_array(),
-                0.028,
-                BLOSSOM_RGB[i % BLOSSOM_RGB.len()],
-            );
+            // Small boxes, not balls: a ball is 144 triangles, a box 12.
+            let c = centre + dir * (fol - 0.01);
+            let rgb = BLOSSOM_RGB[i % BLOSSOM_RGB.len()];
+            cube(&mut p, c.x, c.y - 0.0225, c.z, [0.045; 3], rgb);
         }
         features.push("flowers");
     }
@@ -1626,12 +1624,12 @@ const BLOSSOMS: [(f32, f32); 10] = [
     (55.0, 0.0),
     (55.0, 120.0),
     (55.0, 240.0),
-    (35.0, 60.0),
-    (35.0, 180.0),
-    (35.0, 300.0),
-    (25.0, 0.0),
-    (25.0, 120.0),
-    (25.0, 240.0),
+    (45.0, 60.0),
+    (45.0, 180.0),
+    (45.0, 300.0),
+    (35.0, 0.0),
+    (35.0, 120.0),
+    (35.0, 240.0),
 ];
 
 /// Blossom colours: red, yellow, pink.
@@ -1940,7 +1938,7 @@ pub(crate) fn small(class: C, rng: &mut ChaCha8Rng) -> Model {
                     .enumerate()
                 {
                     let rgb = BLOSSOM_RGB[i % BLOSSOM_RGB.len()];
-                    ball(&mut p, [x, h - 0.036 - y, z], 0.035, rgb);
+                    cube(&mut p, x, h - 0.0505 - y, z, [0.05; 3], rgb);
                 }
                 features.push("flowers in vase");
             } else {

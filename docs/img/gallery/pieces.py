@@ -96,7 +96,60 @@ def main(scenes, out, classes):
     print(f"{len(tiles)} classes -> {out}")
 
 
+# What lies on some furniture, a dresser's pulls, a pantry's glass panes (vlnverse-procgen
+# `models.rs`), one tile per feature: `pieces.py SCENES docs/img/gallery/features.png features`.
+FEATURES = ["folded blanket", "throw pillows", "quilt", "blanket over arm", "blanket on seat",
+            "four cushions", "blanket over back", "seat cushion", "knobs", "handles", "flowers",
+            "flowers in vase", "glass panes"]
+# Small things are seen from nearer.
+NEAR = {"flowers in vase": 1.2, "seat cushion": 1.6, "knobs": 1.6, "handles": 1.6}
+
+
+def features_sheet(scenes, out):
+    """Like `main`, but the first object with each feature in FEATURES, labelled with it."""
+    found = {}
+    for name in sorted(os.listdir(scenes)):
+        scene = json.load(open(f"{scenes}/{name}/scene.json"))
+        for o in scene["objects"]:
+            for f in o.get("features", []):
+                if f in FEATURES and f not in found and o["bbox"]["min"][1] < 1.0:
+                    found[f] = (f"{scenes}/{name}", scene, o)
+    tiles = []
+    for f in FEATURES:
+        if f not in found:
+            continue
+        scene_dir, scene, o = found[f]
+        room = next(r for r in scene["rooms"] if r["id"] == o["room"])
+        b = o["bbox"]; cx = (b["min"][0] + b["max"][0]) / 2; cz = (b["min"][2] + b["max"][2]) / 2
+        want = NEAR.get(f, 2.0)
+        best = None
+        for x, z in free_cells(scene_dir):
+            d = math.hypot(x - cx, z - cz)
+            if want - 0.6 <= d <= want + 0.8 and inside(room["polygon"], x, z):
+                if best is None or abs(d - want) < best[0]:
+                    best = (abs(d - want), x, z)
+        if best is None:
+            continue
+        _, x, z = best
+        yaw = math.degrees(math.atan2(-(cx - x), -(cz - z)))
+        subprocess.run([XTASK, "render", "--scene", scene_dir, "--position", f"{x:.2f},0,{z:.2f}",
+                        "--yaw", f"{yaw:.1f}", "--out", "/tmp/pieces-view"], check=True,
+                       capture_output=True)
+        im = Image.open("/tmp/pieces-view/rgb.png").convert("RGB").resize((TILE * 3 // 2,) * 2)
+        ImageDraw.Draw(im).text((4, 4), f"{o['class']}: {f}", fill=(255, 255, 255))
+        tiles.append(im)
+    cols, t = 4, TILE * 3 // 2
+    sheet = Image.new("RGB", (cols * t, -(-len(tiles) // cols) * t))
+    for k, im in enumerate(tiles):
+        sheet.paste(im, ((k % cols) * t, (k // cols) * t))
+    sheet.convert("P", palette=Image.Palette.ADAPTIVE, colors=256).save(out, optimize=True)
+    print(f"{len(tiles)} features -> {out}")
+
+
 if __name__ == "__main__":
     named = sys.argv[3:] or PIECES
-    lots = {"things2": THINGS2, "things3": THINGS3}
-    main(sys.argv[1], sys.argv[2], lots[named[0]] if named[0] in lots else named)
+    if named == ["features"]:
+        features_sheet(sys.argv[1], sys.argv[2])
+    else:
+        lots = {"things2": THINGS2, "things3": THINGS3}
+        main(sys.argv[1], sys.argv[2], lots[named[0]] if named[0] in lots else named)

@@ -40,21 +40,6 @@ fn boxes(o: &SceneObject, height: f32, bottom: Option<f32>) -> usize {
         .count()
 }
 
-/// Spheres of radius `r`.
-fn spheres(o: &SceneObject, r: f32) -> usize {
-    o.parts
-        .iter()
-        .filter(|p| matches!(p.shape, Shape::Sphere { radius } if near(radius, r)))
-        .count()
-}
-
-fn cylinders(o: &SceneObject) -> usize {
-    o.parts
-        .iter()
-        .filter(|p| matches!(p.shape, Shape::Cylinder { .. }))
-        .count()
-}
-
 /// Whether `o`, which has `feature`, has the parts that show it.
 fn shows(o: &SceneObject, feature: &str) -> bool {
     match feature {
@@ -72,11 +57,12 @@ fn shows(o: &SceneObject, feature: &str) -> bool {
         // A 2 cm layer over the back.
         "blanket over back" => boxes(o, 0.02, None) == 1,
         "seat cushion" => boxes(o, 0.035, None) == 1,
-        // A dresser has no round parts but its knobs, two a row or one a drawer.
-        "knobs" => cylinders(o) >= 4,
+        // Knobs 4 cm square, two a row or one a drawer.
+        "knobs" => boxes(o, 0.04, None) >= 4,
         "handles" => boxes(o, 0.022, None) >= 4,
-        "flowers" => spheres(o, 0.028) == 10,
-        "flowers in vase" => spheres(o, 0.035) == 3,
+        // Blossoms: small boxes, 4.5 cm on a plant, 5 cm in a vase.
+        "flowers" => boxes(o, 0.045, None) == 10,
+        "flowers in vase" => boxes(o, 0.05, None) == 3,
         // The frame and bars of four panes.
         "glass panes" => boxes(o, 0.03, None) == 1 && boxes(o, 0.05, None) == 2,
         other => panic!("no check for {other:?}"),
