@@ -237,6 +237,23 @@ pub(crate) fn things(kind: RoomType) -> &'static [Thing] {
             const L: &[Thing] = &[t(C::BathroomScale, 0.35, Wall, 0.0)];
             L
         }
+        RoomType::MudRoom => {
+            const L: &[Thing] = &[
+                t(C::Broom, 0.2, Corner, 0.0),
+                t(C::MopBucket, 0.1, Corner, 0.0),
+                t(C::Suitcase, 0.1, Wall, 0.0),
+            ];
+            L
+        }
+        RoomType::Workshop => {
+            const L: &[Thing] = &[
+                t(C::Toolbox, 0.5, Wall, 0.0),
+                t(C::Broom, 0.2, Corner, 0.0),
+            ];
+            L
+        }
+        // A sauna, a spa, a wine cellar and a playroom have their own pieces and no more.
+        RoomType::Sauna | RoomType::Spa | RoomType::WineCellar | RoomType::Playroom => &[],
     }
 }
 
@@ -2089,6 +2106,13 @@ fn fixtures(kind: RoomType) -> &'static [(C, f32)] {
         ],
         R::Closet | R::Pantry => &[(C::LightSwitch, 0.2)],
         R::Bathroom => &[(C::LightSwitch, 0.3), (C::AirVent, 0.15)],
+        R::Sauna => &[(C::LightSwitch, 0.3)],
+        R::Spa => &[(C::LightSwitch, 0.3), (C::AirVent, 0.15)],
+        // A cellar keeps the wine at one temperature.
+        R::WineCellar => &[(C::LightSwitch, 0.3), (C::Thermostat, 0.3)],
+        R::Playroom => &[(C::LightSwitch, 0.3), (C::Outlet, 0.15)],
+        R::MudRoom => &[(C::LightSwitch, 0.3), (C::Outlet, 0.15)],
+        R::Workshop => &[(C::LightSwitch, 0.4), (C::Outlet, 0.4)],
     }
 }
 
