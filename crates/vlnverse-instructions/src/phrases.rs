@@ -430,9 +430,16 @@ mod tests {
         for e in TURN_AROUND.iter() {
             let l = e.to_lowercase();
             assert!(
-                ["around", "opposite", "u-turn", "turn back", "180 degrees", "eighty degrees"]
-                    .iter()
-                    .any(|k| l.contains(k)),
+                [
+                    "around",
+                    "opposite",
+                    "u-turn",
+                    "turn back",
+                    "180 degrees",
+                    "eighty degrees"
+                ]
+                .iter()
+                .any(|k| l.contains(k)),
                 "`{e}`"
             );
         }

@@ -246,10 +246,7 @@ pub(crate) fn things(kind: RoomType) -> &'static [Thing] {
             L
         }
         RoomType::Workshop => {
-            const L: &[Thing] = &[
-                t(C::Toolbox, 0.5, Wall, 0.0),
-                t(C::Broom, 0.2, Corner, 0.0),
-            ];
+            const L: &[Thing] = &[t(C::Toolbox, 0.5, Wall, 0.0), t(C::Broom, 0.2, Corner, 0.0)];
             L
         }
         // A sauna, a spa, a wine cellar and a playroom have their own pieces and no more.

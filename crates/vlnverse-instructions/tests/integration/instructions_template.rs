@@ -261,9 +261,16 @@ fn fine_follows_the_turns_of_the_path() {
             .instruction_text
             .to_lowercase();
         assert!(
-            ["around", "opposite", "u-turn", "turn back", "180 degrees", "eighty degrees"]
-                .iter()
-                .any(|k| b.contains(k)),
+            [
+                "around",
+                "opposite",
+                "u-turn",
+                "turn back",
+                "180 degrees",
+                "eighty degrees"
+            ]
+            .iter()
+            .any(|k| b.contains(k)),
             "{b}"
         );
     }
