@@ -154,6 +154,8 @@ fn synthesizer_combines_sub_instructions() {
         .objects
         .iter()
         .filter(|o| coarse_expression(&w.ctx(s), o.id, Style::Casual).is_ok())
+        // Only targets the path reaches: the template checks its grounding against the path.
+        .filter(|o| t.coarse(&w.ctx(s), o.id, Style::Casual, 2).is_ok())
         .map(|o| o.id)
         .take(2)
         .collect();
