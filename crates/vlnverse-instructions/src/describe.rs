@@ -66,9 +66,6 @@ pub(crate) struct NpOptions {
     pub relation: f64,
     /// Use the colour whenever the object has one.
     pub force_color: bool,
-    /// Probability of a phrase after the name on what the object is for or has ("the kettle
-    /// for boiling water", "the bed with a slatted headboard"), when no relation is said.
-    pub detail: f64,
 }
 
 /// "the tall dark brown wooden wardrobe next to the bed": the phrase and the grounding of every
@@ -179,7 +176,7 @@ pub(crate) fn object_np(
             s.push(' ');
             s.push_str(&r);
         }
-    } else if material_after.is_none() && rng.random_bool(opts.detail) {
+    } else if material_after.is_none() && rng.random_bool(0.12) {
         // Not after "made of metal": "the stove made of metal you cook on" runs two phrases
         // after the name together. Not the subject said twice: "the windmill painting of a
         // windmill".
@@ -572,7 +569,7 @@ pub(crate) fn room_by_content(scene: &Scene, room: RoomId) -> Option<ph::Bank> {
         RoomType::Hallway if narrow_and_long(r) => Some(ph::ROOM_PASSAGE),
         RoomType::Kitchen if r.area() < 9.0 && !open_plan(room) => Some(ph::ROOM_KITCHENETTE),
         RoomType::Porch | RoomType::Balcony
-            if super::room_facts::floor_kind(scene, room) == Some(FloorKind::Wood) =>
+            if room_facts::floor_kind(scene, room) == Some(FloorKind::Wood) =>
         {
             Some(ph::ROOM_DECK)
         }

@@ -81,7 +81,6 @@ impl Writer {
                 _ => 0.15,
             },
             force_color: false,
-            detail: 0.12,
         }
     }
 }
@@ -186,6 +185,7 @@ fn distance_phrase(d: f32, w: Writer, rng: &mut ChaCha8Rng) -> String {
     let steps = (d / 0.75).round().max(2.0) as u32;
     let about = pick(rng, &ph::ABOUT);
     let half = (0.35..0.65).contains(&d.fract());
+    let metres = |rng: &mut ChaCha8Rng| fill(pick(rng, &ph::METRES), &[("n", &n.to_string())]);
     let form = if w == Writer::Precise {
         rng.random_range(0..3)
     } else {
@@ -197,18 +197,11 @@ fn distance_phrase(d: f32, w: Writer, rng: &mut ChaCha8Rng) -> String {
             format!("{about} {}", pick(rng, &ph::ONE_METRE))
         }
         // "a little more than four metres" for 4.3 m, "just under five metres" for 4.7 m.
-        0 if n >= 3 && (0.2..0.35).contains(&d.fract()) => format!(
-            "a little more than {}",
-            fill(pick(rng, &ph::METRES), &[("n", &n.to_string())])
-        ),
-        0 if n >= 3 && (0.65..0.8).contains(&d.fract()) => format!(
-            "just under {}",
-            fill(pick(rng, &ph::METRES), &[("n", &n.to_string())])
-        ),
-        0 => format!(
-            "{about} {}",
-            fill(pick(rng, &ph::METRES), &[("n", &n.to_string())])
-        ),
+        0 if n >= 3 && (0.2..0.35).contains(&d.fract()) => {
+            format!("a little more than {}", metres(rng))
+        }
+        0 if n >= 3 && (0.65..0.8).contains(&d.fract()) => format!("just under {}", metres(rng)),
+        0 => format!("{about} {}", metres(rng)),
         1 if half => {
             format!(
                 "{about} {} and a half metres",
@@ -249,15 +242,7 @@ fn turn_clause(
                 Some(fill(pick(rng, &ph::SLIGHT_AGAIN), &[("dir", dir)]))
             } else if (40.0..50.0).contains(&angle.abs()) && rng.random_bool(0.2) {
                 // A bend of about 45 degrees is often given as its angle.
-                let deg = if rng.random_bool(0.5) {
-                    number_word(45)
-                } else {
-                    "45".to_string()
-                };
-                Some(fill(
-                    pick(rng, &ph::TURN_DEG),
-                    &[("dir", dir), ("deg", &deg)],
-                ))
+                Some(turn_by_degrees(45, dir, rng))
             } else if rng.random_bool(0.05) {
                 let k = ((angle.abs() / 30.0).round() as u32).clamp(1, 2);
                 let hour = if s == Side::Right { k } else { 12 - k };
@@ -281,21 +266,24 @@ fn turn_clause(
                 Some(fill(pick(rng, &ph::TURN_AGAIN), &[("dir", dir)]))
             } else if w == Writer::Precise && rng.random_bool(0.3) {
                 let deg = ((angle.abs() / 15.0).round() * 15.0) as u32;
-                let deg = if rng.random_bool(0.5) {
-                    number_word(deg)
-                } else {
-                    deg.to_string()
-                };
-                Some(fill(
-                    pick(rng, &ph::TURN_DEG),
-                    &[("dir", dir), ("deg", &deg)],
-                ))
+                Some(turn_by_degrees(deg, dir, rng))
             } else {
                 let bank = if start { ph::START_TURN } else { ph::TURN };
                 Some(fill(pick(rng, &bank), &[("dir", dir)]))
             }
         }
     }
+}
+
+/// "turn 90 degrees to the left", "turn right about forty-five degrees": the angle as a number
+/// or in words.
+fn turn_by_degrees(deg: u32, dir: &str, rng: &mut ChaCha8Rng) -> String {
+    let deg = if rng.random_bool(0.5) {
+        number_word(deg)
+    } else {
+        deg.to_string()
+    };
+    fill(pick(rng, &ph::TURN_DEG), &[("dir", dir), ("deg", &deg)])
 }
 
 /// "walk forward about 3 metres", "stroll on slowly".
