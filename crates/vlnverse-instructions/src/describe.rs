@@ -176,7 +176,14 @@ pub(crate) fn object_np(
             s.push(' ');
             s.push_str(&r);
         }
-    } else if material_after.is_none() && rng.random_bool(0.12) {
+    } else if material_after.is_none()
+        && rng.random_bool(if o.class == C::PictureFrame {
+            // What a painting shows is how people tell it ("the painting of a lighthouse").
+            0.3
+        } else {
+            0.12
+        })
+    {
         // Not after "made of metal": "the stove made of metal you cook on" runs two phrases
         // after the name together. Not the subject said twice: "the windmill painting of a
         // windmill".
@@ -577,14 +584,15 @@ pub(crate) fn room_by_content(scene: &Scene, room: RoomId) -> Option<ph::Bank> {
         RoomType::Kitchen if open_plan(room) => Some(ph::ROOM_OPEN_KITCHEN),
         RoomType::DiningRoom if open_plan(room) => Some(ph::ROOM_OPEN_DINING),
         RoomType::LivingRoom if open_plan(room) => Some(ph::ROOM_OPEN_LIVING),
-        RoomType::Office
+        // An office or a spare room kept for games, or for painting.
+        RoomType::Office | RoomType::Room
             if [C::PoolTable, C::PingPongTable, C::FoosballTable]
                 .iter()
                 .any(|&c| holds(room, c)) =>
         {
             Some(ph::ROOM_GAME)
         }
-        RoomType::Office if holds(room, C::Easel) => Some(ph::ROOM_STUDIO),
+        RoomType::Office | RoomType::Room if holds(room, C::Easel) => Some(ph::ROOM_STUDIO),
         _ => None,
     }
 }
@@ -616,9 +624,13 @@ pub(crate) fn content_name(
     }
     let name = pick(rng, &bank);
     let kind = scene.room(room)?.kind;
-    let keeps = name.contains(kind.words().as_str())
-        || kind_words_also(kind).iter().any(|w| name.contains(w));
-    (!keep_kind || keeps).then(|| format!("the {name}"))
+    (!keep_kind || tells_kind(name, kind)).then(|| format!("the {name}"))
+}
+
+/// Whether the room name `name` still tells a reader the room type `kind`: it holds the type's
+/// own words or [`kind_words_also`].
+fn tells_kind(name: &str, kind: RoomType) -> bool {
+    name.contains(kind.words().as_str()) || kind_words_also(kind).iter().any(|w| name.contains(w))
 }
 
 /// Words that still tell a reader the room type when the type's own name is not in a room's
@@ -749,8 +761,7 @@ impl RoomNaming {
             return None;
         }
         let name: &'static str = pick(rng, bank.entries());
-        let kind = scene.room(room)?.kind.words();
-        if keep_kind && !name.contains(kind.as_str()) {
+        if keep_kind && !tells_kind(name, scene.room(room)?.kind) {
             return None;
         }
         self.nouns.borrow_mut().insert(room, name);

@@ -315,7 +315,11 @@ fn move_clause(len: f32, w: Writer, landmark: bool, rng: &mut ChaCha8Rng) -> Str
     if rng.random_bool(p) {
         let d = distance_phrase(len, w, rng);
         // "walk on for three metres" reads worse than "walk on three metres".
-        let join = if d.starts_with("a ") || verb.ends_with(" on") || rng.random_bool(0.5) {
+        let join = if d.starts_with("a ")
+            || d.starts_with("for ")
+            || verb.ends_with(" on")
+            || rng.random_bool(0.5)
+        {
             " "
         } else {
             " for "
@@ -493,7 +497,8 @@ fn room_change(
         }
         return fill(pick(rng, &ph::GO_OUTSIDE), &[("room", &to_np)]);
     }
-    if let Some(d) = nth.filter(|_| rng.random_bool(0.5)) {
+    // People count doors along a hallway whenever they can ("the second door on your left").
+    if let Some(d) = nth.filter(|_| rng.random_bool(0.8)) {
         return fill(
             pick(rng, &ph::THROUGH_DOOR),
             &[("door", &d), ("room", &to_np)],
@@ -836,9 +841,10 @@ fn leg_sentences(route: &Route<'_, '_>, li: usize, draft: &mut Draft) {
     }
     hold_back_landmark(route, li, &mut named, draft);
     let changes = room_changes(route, li, &mut draft.rng);
-    let entered = route
-        .rooms_entered_on(li)
-        .next_back()
+    let entered_at = route.rooms_entered_on(li).next_back();
+    let entered = entered_at.map(|k| route.rooms[k].1);
+    let left = entered_at
+        .and_then(|k| k.checked_sub(1))
         .map(|k| route.rooms[k].1);
     let mv = movement(
         route,
@@ -858,7 +864,7 @@ fn leg_sentences(route: &Route<'_, '_>, li: usize, draft: &mut Draft) {
         entered,
         &mut draft.rng,
     );
-    out.extend(room_size_remark(route, entered, &mut draft.rng));
+    out.extend(room_size_remark(route, left, entered, &mut draft.rng));
     // A room passed by its doorway is not the way: now and then said so.
     if let Some(room) = passed_room.filter(|_| draft.rng.random_bool(0.6)) {
         out.push(fill(
@@ -1904,9 +1910,11 @@ fn plan_walk_on(
     out
 }
 
-/// Now and then a word on the size of the room just entered.
+/// Now and then a word on the room just entered (from room `left`): its size, windows, floor,
+/// doors or furniture.
 fn room_size_remark(
     route: &Route<'_, '_>,
+    left: Option<RoomId>,
     entered: Option<RoomId>,
     rng: &mut ChaCha8Rng,
 ) -> Option<String> {
@@ -1933,6 +1941,7 @@ fn room_size_remark(
     // Its size, its windows or its floor, whichever the room has to say.
     let scene = route.ctx.scene;
     let windows = match room_facts::window_count(scene, r.id) {
+        0 if r.kind != RoomType::Hallway => Some((ph::ROOM_NO_WINDOW, 0)),
         1 => Some((ph::ROOM_WINDOW, 1)),
         n @ 2..=4 => Some((ph::ROOM_WINDOWS, n)),
         _ => None,
@@ -1953,7 +1962,24 @@ fn room_size_remark(
     };
     // A kind of furniture it holds several of.
     let several = furniture_counts(scene, r.id);
-    let mut said: Vec<(Bank, usize)> = size.into_iter().chain(floor).map(|b| (b, 0)).collect();
+    // A hallway with no furniture in it.
+    let empty = (r.kind == RoomType::Hallway
+        && !scene
+            .items()
+            .any(|o| o.room == Some(r.id) && o.class.kind() == ClassKind::Furniture))
+    .then_some(ph::HALL_EMPTY);
+    // The floor underfoot changing from the last room's to this one's.
+    let floors = left
+        .and_then(|l| room_facts::floor_kind(scene, l))
+        .zip(room_facts::floor_kind(scene, r.id))
+        .filter(|(a, b)| a != b);
+    let mut said: Vec<(Bank, usize)> = size
+        .into_iter()
+        .chain(floor)
+        .chain(empty)
+        .chain(floors.map(|_| ph::FLOOR_CHANGE))
+        .map(|b| (b, 0))
+        .collect();
     said.extend(windows);
     said.extend(openings);
     if !several.is_empty() {
@@ -1963,9 +1989,18 @@ fn room_size_remark(
         return None;
     }
     let (bank, n) = said[rng.random_range(0..said.len())];
+    if let Some((from, to)) = floors.filter(|_| bank == ph::FLOOR_CHANGE) {
+        return Some(fill(
+            pick(rng, &bank),
+            &[("from", from.material()), ("to", to.material())],
+        ));
+    }
     if bank == ph::ROOM_HAS {
         let (o, count) = several[rng.random_range(0..several.len())];
         let obj = plural(count_noun(scene, r.id, o, rng));
+        if count >= 5 && rng.random_bool(0.5) {
+            return Some(fill(pick(rng, &ph::ROOM_HAS_MANY), &[("obj", &obj)]));
+        }
         let num = number_word(count as u32);
         return Some(fill(pick(rng, &bank), &[("num", &num), ("obj", &obj)]));
     }
@@ -2088,12 +2123,13 @@ fn stop_sentence(route: &Route<'_, '_>, draft: &mut Draft) -> String {
         );
         draft.grounding.push(grounded(o, Role::Target, side, n - 1));
         draft.grounding.extend(extra);
-        // A rug is stood on, or at its edge.
+        // A rug is stood on, or at its edge (within 30 cm of its outline, on it or off it).
         let rug = (o.class == vlnverse_env::SemanticClass::Rug)
             .then(|| rect_distance(end, lo, hi))
             .filter(|&d| d < 0.6 && rng.random_bool(0.6));
         let bank = if let Some(d) = rug {
-            if d <= 0.0 {
+            let inside = (end - lo).min(hi - end).min_element();
+            if d <= 0.0 && inside > 0.3 {
                 &ph::STOP_ON
             } else {
                 &ph::STOP_EDGE
@@ -2161,6 +2197,16 @@ fn stop_in_doorway(route: &Route<'_, '_>, heading: Vec2, rng: &mut ChaCha8Rng) -
     }
     if !rng.random_bool(0.5) {
         return None;
+    }
+    // Where the floor changes from one material to another, that is what people go by.
+    let floor = |r: RoomId| room_facts::floor_kind(scene, r);
+    if let (Some(from), Some(to)) = (floor(behind), floor(ahead)) {
+        if from != to && rng.random_bool(0.3) {
+            return Some(fill(
+                pick(rng, &ph::STOP_FLOOR_CHANGE),
+                &[("from", from.material()), ("to", to.material())],
+            ));
+        }
     }
     let kind = |r: RoomId| scene.room(r).map(|r| r.kind);
     let room = format!("the {}", kind(ahead)?.words());
@@ -2237,7 +2283,7 @@ fn closing_remarks(route: &Route<'_, '_>, draft: &mut Draft) {
             }
         }
     }
-    if writer != Writer::Terse && rng.random_bool(0.12) {
+    if writer != Writer::Terse && rng.random_bool(0.25) {
         if let Some(room) = room_beyond(
             ctx,
             route.end,
@@ -2263,7 +2309,9 @@ fn walk_time(pts: &[Vec2], rng: &mut ChaCha8Rng) -> String {
     let secs = pts.windows(2).map(|w| w[0].distance(w[1])).sum::<f32>();
     match secs {
         s if s < 8.0 => "a few seconds".to_string(),
-        s if (25.0..35.0).contains(&s) => "about half a minute".to_string(),
+        s if (25.0..35.0).contains(&s) => {
+            pick(rng, &["about half a minute", "about thirty seconds"]).to_string()
+        }
         s if s < 50.0 => format!(
             "{} {} seconds",
             pick(rng, &["about", "around"]),

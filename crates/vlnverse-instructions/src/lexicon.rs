@@ -262,7 +262,7 @@ pub fn room_names(kind: RoomType) -> &'static [&'static str] {
         RoomType::DiningRoom => &["dining room", "dining area"],
         RoomType::Bedroom => &["bedroom"],
         RoomType::Bathroom => &["bathroom", "restroom", "washroom"],
-        RoomType::Hallway => &["hallway", "hall", "corridor"],
+        RoomType::Hallway => &["hallway", "hall", "corridor", "passageway"],
         RoomType::Office => &["office", "study"],
         RoomType::LaundryRoom => &["laundry room", "laundry", "utility room"],
         RoomType::Closet => &["closet", "storage room"],
@@ -288,7 +288,7 @@ pub fn room_names(kind: RoomType) -> &'static [&'static str] {
         RoomType::WineCellar => &["wine cellar", "wine room"],
         RoomType::Playroom => &["playroom", "play room"],
         RoomType::MudRoom => &["mud room", "mudroom"],
-        RoomType::Workshop => &["workshop"],
+        RoomType::Workshop => &["workshop", "workroom"],
     }
 }
 

@@ -31,7 +31,7 @@ const TEXT: &str = include_str!("../data/phrases.toml");
 /// Every placeholder a bank may declare: the keys the code fills with [`fill`].
 pub(crate) const PLACEHOLDERS: &[&str] = &[
     "obj", "room", "from", "mid", "door", "dir", "side", "dist", "deg", "clock", "n", "t", "where",
-    "ord", "num", "name", "names", "desc", "sup", "rel", "a", "m", "c", "use", "f",
+    "ord", "num", "name", "names", "desc", "sup", "rel", "a", "m", "c", "use", "f", "to",
 ];
 
 /// One bank of phrases: a name for the code, its entries in the data file. Dereferences to the
@@ -133,6 +133,10 @@ banks! {
     ROOM_SMALL = room_small,
     ROOM_BIG = room_big,
     HALL_LONG = hall_long,
+    HALL_EMPTY = hall_empty,
+    ROOM_NO_WINDOW = room_no_window,
+    ROOM_HAS_MANY = room_has_many,
+    FLOOR_CHANGE = floor_change,
     NUMBERED = numbered,
     AND = and,
     NEXT = next,
@@ -227,6 +231,7 @@ banks! {
     DIAGONAL = diagonal,
     STOP_ON = stop_on,
     STOP_EDGE = stop_edge,
+    STOP_FLOOR_CHANGE = stop_floor_change,
     ROOM_PASSAGE = room_passage,
     ROOM_KITCHENETTE = room_kitchenette,
     ROOM_DECK = room_deck,

@@ -19,6 +19,19 @@ pub(crate) enum FloorKind {
     Concrete,
 }
 
+impl FloorKind {
+    /// The floor's material as one word ("the floor changes from tile to carpet").
+    pub(crate) fn material(self) -> &'static str {
+        match self {
+            FloorKind::Wood => "wood",
+            FloorKind::Tile => "tile",
+            FloorKind::Carpet => "carpet",
+            FloorKind::Stone => "stone",
+            FloorKind::Concrete => "concrete",
+        }
+    }
+}
+
 /// The windows of `room`: one per glass pane (a window is a pane and its frame, both of class
 /// window; the frame is not counted again).
 pub(crate) fn window_count(scene: &Scene, room: RoomId) -> usize {

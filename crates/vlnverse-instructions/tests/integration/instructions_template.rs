@@ -731,10 +731,20 @@ fn windows_in(scene: &Scene, room: u32) -> usize {
         .count()
 }
 
+/// Whether `room` is a hallway with no furniture in it.
+fn empty_hallway(scene: &Scene, room: u32) -> bool {
+    scene
+        .room(room)
+        .is_some_and(|r| r.kind == vlnverse_env::RoomType::Hallway)
+        && !scene
+            .items()
+            .any(|o| o.room == Some(room) && o.class.kind() == vlnverse_env::ClassKind::Furniture)
+}
+
 #[test]
 fn a_room_remark_gives_its_true_windows_and_floor() {
     let g = gen();
-    let (mut windows, mut floors) = (0, 0);
+    let (mut windows, mut floors, mut none, mut empty, mut changes) = (0, 0, 0, 0, 0);
     for (wi, w) in worlds(5).iter().enumerate() {
         for s in paths(w, 10, 300 + wi as u64) {
             let path3: Vec<glam::Vec3> = s.path.iter().map(|p| glam::Vec3::from(*p)).collect();
@@ -770,6 +780,57 @@ fn a_room_remark_gives_its_true_windows_and_floor() {
                                 || sentence == format!("there are {word} windows in this room")
                         })
                     };
+                    // No window: only said of a room that is not a hallway.
+                    if [
+                        "there are no windows in this room",
+                        "the room has no windows",
+                        "it is an interior room with no windows",
+                    ]
+                    .contains(&sentence.as_str())
+                    {
+                        none += 1;
+                        assert!(
+                            entered.iter().any(|&r| windows_in(&w.scene, r) == 0
+                                && w.scene.room(r).map(|x| x.kind)
+                                    != Some(vlnverse_env::RoomType::Hallway)),
+                            "no windowless room entered: {t}"
+                        );
+                    }
+                    if [
+                        "the hallway is empty",
+                        "it is an empty hallway",
+                        "there is no furniture in this hallway",
+                    ]
+                    .contains(&sentence.as_str())
+                    {
+                        empty += 1;
+                        assert!(
+                            entered.iter().any(|&r| empty_hallway(&w.scene, r)),
+                            "no empty hallway entered: {t}"
+                        );
+                    }
+                    // "The floor changes from wood to tile here": two rooms one after the
+                    // other on the path with those floors.
+                    let change = sentence
+                        .strip_prefix("the floor changes from ")
+                        .and_then(|x| x.strip_suffix(" here"))
+                        .or_else(|| sentence.strip_prefix("here the floor changes from "))
+                        .or_else(|| sentence.strip_prefix("you will notice the floor change from "))
+                        .and_then(|x| x.split_once(" to "));
+                    if let Some((a, b)) = change {
+                        changes += 1;
+                        let order: Vec<u32> = rooms_along_path(&w.scene, &path3)
+                            .iter()
+                            .map(|&(_, r)| r)
+                            .collect();
+                        assert!(
+                            order
+                                .windows(2)
+                                .any(|p| floor_of(p[0]).as_deref() == Some(a)
+                                    && floor_of(p[1]).as_deref() == Some(b)),
+                            "no room with a {a} floor followed by one with {b}: {t}"
+                        );
+                    }
                     if let Some(n) = n {
                         windows += 1;
                         assert!(
@@ -806,10 +867,76 @@ fn a_room_remark_gives_its_true_windows_and_floor() {
             }
         }
     }
+    // An empty hallway is rare in these homes: what is said of one is checked above.
     assert!(
-        windows >= 3 && floors >= 3,
-        "only {windows} window and {floors} floor remarks"
+        windows >= 3 && floors >= 3 && none >= 1 && changes >= 1,
+        "only {windows} window, {none} no-window, {changes} floor-change and {floors} floor \
+         remarks ({empty} empty-hallway)"
     );
+}
+
+/// "stop where the floor changes from tile to carpet": the goal is in a doorway between a room
+/// with the first floor and one with the second.
+#[test]
+fn a_stop_where_the_floor_changes_is_in_a_doorway_between_those_floors() {
+    let g = gen();
+    let floor_of = |scene: &Scene, r: u32| {
+        scene
+            .objects
+            .iter()
+            .filter(|o| o.class == vlnverse_env::SemanticClass::Floor && o.room == Some(r))
+            .max_by(|a, b| {
+                let area = |o: &vlnverse_env::SceneObject| o.bbox.size().x * o.bbox.size().z;
+                area(a).total_cmp(&area(b))
+            })
+            .map(|o| o.material.clone())
+    };
+    let mut said = 0;
+    for (wi, w) in worlds(6).iter().enumerate() {
+        for s in paths(w, 12, 700 + wi as u64) {
+            let end = s.path.last().unwrap();
+            let end = Vec2::new(end[0], end[2]);
+            for seed in 0..40 {
+                let t = g.fine(&w.ctx(&s), seed).unwrap().instruction_text;
+                // The stop, not a remark on a room entered ("Here the floor changes ..."):
+                // "stop where the floor changes from X to Y", "wait where the X floor changes
+                // to Y", "stop where the X meets the Y", "stop on the line between the X and
+                // the Y".
+                const MATERIALS: [&str; 5] = ["wood", "tile", "carpet", "stone", "concrete"];
+                let Some(told) = sentences(&t).into_iter().find_map(|x| {
+                    let x = x.to_lowercase();
+                    let stop = x.contains("stop") || x.contains("wait");
+                    let at = ["floor changes", " meets the ", "line between the "]
+                        .iter()
+                        .filter_map(|k| x.find(k))
+                        .min()?;
+                    let head = x[..at].rfind("where").or_else(|| x[..at].rfind("line"))?;
+                    let named: Vec<&str> = x[head..]
+                        .split(|c: char| !c.is_alphanumeric())
+                        .filter(|w| MATERIALS.contains(w))
+                        .collect();
+                    (stop && named.len() == 2).then(|| (named[0].to_string(), named[1].to_string()))
+                }) else {
+                    continue;
+                };
+                let (from, to) = told;
+                said += 1;
+                let door = w.scene.doors.iter().find(|d| {
+                    let c = Vec2::new(d.position[0], d.position[2]);
+                    let floors: Vec<Option<String>> =
+                        d.rooms.iter().map(|&r| floor_of(&w.scene, r)).collect();
+                    c.distance(end) < 1.0
+                        && floors.contains(&Some(from.clone()))
+                        && floors.contains(&Some(to.clone()))
+                });
+                assert!(
+                    door.is_some(),
+                    "no doorway from {from} to {to} at the goal: {t}"
+                );
+            }
+        }
+    }
+    assert!(said > 0, "no stop where the floor changes");
 }
 
 /// A count after the stop ("There are three chairs in the room.") gives the true number of the
