@@ -300,7 +300,8 @@ class Trainer:
         }
         if finished:
             for key in ("success", "ne", "spl"):
-                vals = [float(m[key]) for m in finished if key in m]
+                # `ne` is None for an episode that ended where the goal cannot be reached.
+                vals = [float(m[key]) for m in finished if m.get(key) is not None]
                 if vals:
                     rec[f"mean_{key}"] = float(np.mean(vals))
         return rec

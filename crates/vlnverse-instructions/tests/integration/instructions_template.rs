@@ -731,6 +731,19 @@ fn windows_in(scene: &Scene, room: u32) -> usize {
         .count()
 }
 
+/// The material of `room`'s largest floor slab ("wood", "tile").
+fn floor_material(scene: &Scene, room: u32) -> Option<String> {
+    scene
+        .objects
+        .iter()
+        .filter(|o| o.class == vlnverse_env::SemanticClass::Floor && o.room == Some(room))
+        .max_by(|a, b| {
+            let area = |o: &vlnverse_env::SceneObject| o.bbox.size().x * o.bbox.size().z;
+            area(a).total_cmp(&area(b))
+        })
+        .map(|o| o.material.clone())
+}
+
 /// Whether `room` is a hallway with no furniture in it.
 fn empty_hallway(scene: &Scene, room: u32) -> bool {
     scene
@@ -753,18 +766,7 @@ fn a_room_remark_gives_its_true_windows_and_floor() {
                 .skip(1)
                 .map(|&(_, r)| r)
                 .collect();
-            let floor_of = |r: u32| {
-                w.scene
-                    .objects
-                    .iter()
-                    .filter(|o| o.class == vlnverse_env::SemanticClass::Floor && o.room == Some(r))
-                    .max_by(|a, b| {
-                        let area =
-                            |o: &vlnverse_env::SceneObject| o.bbox.size().x * o.bbox.size().z;
-                        area(a).total_cmp(&area(b))
-                    })
-                    .map(|o| o.material.clone())
-            };
+            let floor_of = |r: u32| floor_material(&w.scene, r);
             for seed in 0..90 {
                 let t = g.fine(&w.ctx(&s), seed).unwrap().instruction_text;
                 for sentence in sentences(&t) {
@@ -880,17 +882,6 @@ fn a_room_remark_gives_its_true_windows_and_floor() {
 #[test]
 fn a_stop_where_the_floor_changes_is_in_a_doorway_between_those_floors() {
     let g = gen();
-    let floor_of = |scene: &Scene, r: u32| {
-        scene
-            .objects
-            .iter()
-            .filter(|o| o.class == vlnverse_env::SemanticClass::Floor && o.room == Some(r))
-            .max_by(|a, b| {
-                let area = |o: &vlnverse_env::SceneObject| o.bbox.size().x * o.bbox.size().z;
-                area(a).total_cmp(&area(b))
-            })
-            .map(|o| o.material.clone())
-    };
     let mut said = 0;
     for (wi, w) in worlds(6).iter().enumerate() {
         for s in paths(w, 12, 700 + wi as u64) {
@@ -923,8 +914,11 @@ fn a_stop_where_the_floor_changes_is_in_a_doorway_between_those_floors() {
                 said += 1;
                 let door = w.scene.doors.iter().find(|d| {
                     let c = Vec2::new(d.position[0], d.position[2]);
-                    let floors: Vec<Option<String>> =
-                        d.rooms.iter().map(|&r| floor_of(&w.scene, r)).collect();
+                    let floors: Vec<Option<String>> = d
+                        .rooms
+                        .iter()
+                        .map(|&r| floor_material(&w.scene, r))
+                        .collect();
                     c.distance(end) < 1.0
                         && floors.contains(&Some(from.clone()))
                         && floors.contains(&Some(to.clone()))
