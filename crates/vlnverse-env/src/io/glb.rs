@@ -16,7 +16,9 @@
 
 use super::glb_light::GlbColours;
 use crate::error::{EnvError, Result};
-use crate::geometry::{mesh_with_normals, triangulate_cells, TriMesh};
+use crate::geometry::{
+    mesh_with_normals, triangle_count_cells, triangulate_cells, vertex_count_cells, TriMesh,
+};
 use crate::light::{bake, cell_of, BakedLight};
 use crate::material::{box_uv, part_surfaces, picture_uv, Surface, TEX_SIZE};
 use crate::scene::{MeshData, MeshTexture, Motion, Pose, Scene, SceneObject, Shape};
@@ -615,15 +617,16 @@ fn light_from(scene: &Scene, colours: &GlbColours) -> Option<BakedLight> {
                     .glb_mesh
                     .and_then(|g| colours.primitives(g as usize).first())
                     .and_then(Option::as_ref);
-                let tri = mesh_with_normals(&m.positions, &m.indices);
                 match light {
-                    Some(l) if l.len() == tri.positions.len() => parts.push(l.clone()),
-                    _ if tri.indices.is_empty() => parts.push(Vec::new()),
+                    Some(l) if l.len() == m.positions.len() => parts.push(l.clone()),
+                    _ if m.indices.is_empty() => parts.push(Vec::new()),
                     _ => return None,
                 }
                 continue;
             }
-            let tri = triangulate_cells(&p.shape, cell);
+            // What `triangulate_cells` gives the part, counted (the writer's vertices).
+            let vertices = vertex_count_cells(&p.shape, cell);
+            let drawn = triangle_count_cells(&p.shape, cell) > 0;
             let key = (p.color.map(f32::to_bits), surface);
             let g = match groups.iter().position(|g| g.0 == key) {
                 Some(g) => g,
@@ -632,8 +635,7 @@ fn light_from(scene: &Scene, colours: &GlbColours) -> Option<BakedLight> {
                     groups.len() - 1
                 }
             };
-            let drawn = !tri.indices.is_empty();
-            groups[g].1.push((k, tri.positions.len(), drawn));
+            groups[g].1.push((k, vertices, drawn));
             parts.push(Vec::new());
         }
         let mut prims = mesh.map_or(&[][..], |m| colours.primitives(m)).iter();
