@@ -84,6 +84,30 @@ pub fn triangle_count_cells(shape: &Shape, cell: Option<f32>) -> usize {
     }
 }
 
+/// Number of vertices [`triangulate_cells`] produces for a shape (without building them: the
+/// light read back from a file is matched part by part on these counts).
+pub fn vertex_count_cells(shape: &Shape, cell: Option<f32>) -> usize {
+    match shape {
+        Shape::Cuboid {
+            half_extents: h,
+            bevel,
+        } => {
+            if cut_bevel(*h, *bevel, cell) > 0.0 {
+                // Ten quads of their own four corners.
+                return 2 * BEVELLED_BOX_TRIANGLES;
+            }
+            // Each face a grid of (cells + 1) x (cells + 1) corners along its two axes.
+            let [x, y, z] = h.map(|h| cells(h, cell) + 1);
+            (2 * (z * y + x * z + x * y)) as usize
+        }
+        Shape::Cylinder { .. } => {
+            (2 * (CYLINDER_SEGMENTS + 1) + 2 * (CYLINDER_SEGMENTS + 2)) as usize
+        }
+        Shape::Sphere { .. } => ((SPHERE_BANDS + 1) * (2 * SPHERE_BANDS + 1)) as usize,
+        Shape::Mesh(m) => m.positions.len(),
+    }
+}
+
 /// Corners of a conservative local bounding box of a shape (8 points).
 pub fn shape_corners(shape: &Shape) -> Vec<Vec3> {
     let h = match shape {
@@ -501,6 +525,9 @@ mod tests {
                 triangle_count_cells(&s, Some(0.3)),
                 "{s:?}"
             );
+            for (mesh, cell) in [(&m, None), (&fine, Some(0.3))] {
+                assert_eq!(mesh.positions.len(), vertex_count_cells(&s, cell), "{s:?}");
+            }
             if let Shape::Cuboid { bevel, .. } = s {
                 let want = if bevel > 0.0 {
                     BEVELLED_BOX_TRIANGLES

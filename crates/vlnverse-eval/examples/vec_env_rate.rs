@@ -30,24 +30,63 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut last = env.reset_all()?;
     // Warm-up (scene loads), then the timed steps.
     let mut t0 = Instant::now();
+    // Resets over the whole run (the `n` of `reset_all` included), to normalise a profile's
+    // instructions per reset as well as per step.
+    let mut resets = n;
+    // What the environments did (episodes, steps, distances, rewards, actions): the same
+    // config and seed must give the same digest, whatever the build.
+    let mut digest = Digest(0xcbf2_9ce4_8422_2325);
+    for s in &last {
+        digest.add(s);
+    }
     for k in 0..steps + 20 {
         if k == 20 {
             t0 = Instant::now();
         }
-        let actions = last
+        let actions: Vec<_> = last
             .iter()
             .map(|s| {
                 let over = s.info.terminated || s.info.truncated;
                 (!over).then_some(EnvAction::Act(s.info.expert_action))
             })
             .collect();
+        resets += actions.iter().filter(|a| a.is_none()).count();
         last = env.step(actions)?;
+        for s in &last {
+            digest.add(s);
+        }
     }
     let secs = t0.elapsed().as_secs_f64();
     println!(
-        "{n} envs: {:.0} steps/s ({} steps in {secs:.2} s)",
+        "{n} envs: {:.0} steps/s ({} steps in {secs:.2} s; {} batches and {resets} resets in all)",
         (n * steps) as f64 / secs,
-        n * steps
+        n * steps,
+        steps + 20
     );
+    println!("digest {:016x}", digest.0);
     Ok(())
+}
+
+/// FNV-style hash of every step's outcome.
+struct Digest(u64);
+
+impl Digest {
+    fn word(&mut self, v: u64) {
+        self.0 = (self.0 ^ v).wrapping_mul(0x0000_0100_0000_01b3);
+    }
+
+    fn add(&mut self, s: &vlnverse_eval::EnvStep) {
+        let i = &s.info;
+        self.word(i.episode_id);
+        self.word(u64::from(i.steps));
+        self.word(u64::from(i.distance_to_goal.to_bits()));
+        self.word(u64::from(i.reward.to_bits()));
+        for b in format!("{:?}", i.expert_action).bytes() {
+            self.word(u64::from(b));
+        }
+        self.word(u64::from(i.terminated) << 1 | u64::from(i.truncated));
+        for v in s.pose.position {
+            self.word(u64::from(v.to_bits()));
+        }
+    }
 }

@@ -48,7 +48,7 @@ impl DistanceField {
                 first: Vec::new(),
             };
         };
-        let grid = Grid::new(map);
+        let grid = Grid::with_sat(map);
         let res = sweep(&grid, root);
         let mut first = vec![u32::MAX; n];
         for &c in &res.order {

@@ -16,7 +16,9 @@
 
 use super::glb_light::GlbColours;
 use crate::error::{EnvError, Result};
-use crate::geometry::{mesh_with_normals, triangulate_cells, TriMesh};
+use crate::geometry::{
+    mesh_with_normals, triangle_count_cells, triangulate_cells, vertex_count_cells, TriMesh,
+};
 use crate::light::{bake, cell_of, BakedLight};
 use crate::material::{box_uv, part_surfaces, picture_uv, Surface, TEX_SIZE};
 use crate::scene::{MeshData, MeshTexture, Motion, Pose, Scene, SceneObject, Shape};
@@ -600,11 +602,14 @@ fn light_from(scene: &Scene, colours: &GlbColours) -> Option<BakedLight> {
         // Node `i` is object `i`.
         let mesh = colours.node_mesh(i)?;
         let cell = cell_of(scene, o);
-        // Parts grouped by colour in order of first appearance, as the writer groups them
-        // (one surface per object); each group is one primitive unless it has no triangles.
+        // Parts grouped by material (colour and surface), in order of first appearance, as the
+        // writer groups them (a sink's or a counter's worktop has a surface of its own, maybe
+        // in the same colour as the rest); each group is one primitive unless it has no
+        // triangles.
+        let surfaces = part_surfaces(scene, o);
         let first = parts.len();
-        let mut groups: Vec<([u32; 3], Vec<(usize, usize, bool)>)> = Vec::new();
-        for p in &o.parts {
+        let mut groups: Vec<(([u32; 3], Surface), Vec<(usize, usize, bool)>)> = Vec::new();
+        for (p, &surface) in o.parts.iter().zip(&surfaces) {
             let k = parts.len();
             if let Shape::Mesh(m) = &p.shape {
                 // A mesh part's light: the first primitive of its own glTF mesh.
@@ -612,16 +617,17 @@ fn light_from(scene: &Scene, colours: &GlbColours) -> Option<BakedLight> {
                     .glb_mesh
                     .and_then(|g| colours.primitives(g as usize).first())
                     .and_then(Option::as_ref);
-                let tri = mesh_with_normals(&m.positions, &m.indices);
                 match light {
-                    Some(l) if l.len() == tri.positions.len() => parts.push(l.clone()),
-                    _ if tri.indices.is_empty() => parts.push(Vec::new()),
+                    Some(l) if l.len() == m.positions.len() => parts.push(l.clone()),
+                    _ if m.indices.is_empty() => parts.push(Vec::new()),
                     _ => return None,
                 }
                 continue;
             }
-            let tri = triangulate_cells(&p.shape, cell);
-            let key = p.color.map(f32::to_bits);
+            // What `triangulate_cells` gives the part, counted (the writer's vertices).
+            let vertices = vertex_count_cells(&p.shape, cell);
+            let drawn = triangle_count_cells(&p.shape, cell) > 0;
+            let key = (p.color.map(f32::to_bits), surface);
             let g = match groups.iter().position(|g| g.0 == key) {
                 Some(g) => g,
                 None => {
@@ -629,8 +635,7 @@ fn light_from(scene: &Scene, colours: &GlbColours) -> Option<BakedLight> {
                     groups.len() - 1
                 }
             };
-            let drawn = !tri.indices.is_empty();
-            groups[g].1.push((k, tri.positions.len(), drawn));
+            groups[g].1.push((k, vertices, drawn));
             parts.push(Vec::new());
         }
         let mut prims = mesh.map_or(&[][..], |m| colours.primitives(m)).iter();
@@ -1057,4 +1062,52 @@ pub fn restore_mesh_parts(scene: &mut Scene, glb: &GlbContents, path: &Path) -> 
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::occupancy::synthetic::grid_home;
+    use crate::scene::Part;
+    use crate::vocab::SemanticClass;
+
+    /// A sink whose worktop is stone ("marble top") in the cabinet's colour: the writer gives
+    /// the two parts a primitive each (one material per colour and surface), and the light
+    /// read back must split them the same way (reading them as one primitive found no light
+    /// there, and the home was baked again on every load; `home_0160` of the preset was such
+    /// a home).
+    #[test]
+    fn parts_of_one_colour_on_two_surfaces_get_their_light_back() {
+        let mut scene = grid_home(1, 1, 4.0, 3);
+        scene.source = "procgen".into();
+        let colour = [0.55, 0.5, 0.45];
+        let cuboid = |h: [f32; 3], y: f32| Part {
+            shape: Shape::Cuboid {
+                half_extents: h,
+                bevel: 0.0,
+            },
+            transform: Pose::from_yaw(Vec3::new(0.0, y, 0.0), 0.0),
+            color: colour,
+        };
+        let id = scene.objects.iter().map(|o| o.id).max().unwrap_or(0) + 1;
+        let mut sink = SceneObject::from_parts(
+            id,
+            SemanticClass::Sink,
+            Pose::from_yaw(Vec3::new(1.0, 0.0, 1.0), 0.0),
+            vec![
+                cuboid([0.4, 0.4, 0.3], 0.4),
+                cuboid([0.42, 0.02, 0.32], 0.82),
+            ],
+        );
+        sink.features = vec!["marble top".into()];
+        let surfaces = part_surfaces(&scene, &sink);
+        assert_ne!(
+            surfaces[0], surfaces[1],
+            "the worktop has a surface of its own"
+        );
+        scene.objects.push(sink);
+        let glb = write_glb(&scene);
+        let read = read_baked_light(&scene, &glb, "scene.glb".as_ref()).unwrap();
+        assert_eq!(read.as_ref(), Some(&*bake(&scene)));
+    }
 }

@@ -311,9 +311,13 @@ pub(crate) fn decode(
         texels: Vec::new(),
         origin: Vec::new(),
     };
-    for _ in 0..3 * n {
-        d.pos.push(Vec3::from_array(r.f32s::<3>()?));
-    }
+    // The corners in one read (the body's length is checked above), three floats each.
+    let word = |c: &[u8]| f32::from_le_bytes([c[0], c[1], c[2], c[3]]);
+    d.pos.extend(
+        r.take(3 * n * 12)?
+            .chunks_exact(12)
+            .map(|c| Vec3::new(word(&c[..4]), word(&c[4..8]), word(&c[8..]))),
+    );
     for i in 0..n {
         let s = r.u32()?;
         if s as usize >= n_tri {
