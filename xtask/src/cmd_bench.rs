@@ -52,6 +52,8 @@ pub enum Kind {
         /// What one measured item is (`home`, ...).
         per: &'static str,
     },
+    /// A plain ratio of two figures of the same repetition (see the detail).
+    Ratio,
 }
 
 /// One figure from one repetition of a case.
@@ -84,6 +86,16 @@ impl Sample {
             name: name.into(),
             value: bytes as f64 / items.max(1) as f64,
             kind: Kind::Size { per },
+            detail,
+        }
+    }
+
+    /// A ratio of two figures measured in the same repetition.
+    pub fn ratio(name: &str, ratio: f64, detail: String) -> Self {
+        Sample {
+            name: name.into(),
+            value: ratio,
+            kind: Kind::Ratio,
             detail,
         }
     }
@@ -260,12 +272,14 @@ pub fn format_value(v: f64, kind: Kind) -> String {
         Kind::Time { per } => format!("{}/{per}", duration(v)),
         Kind::Rate { unit } => format!("{} {unit}/s", si(v).trim_end()),
         Kind::Size { per } => format!("{}B/{per}", si(v)),
+        Kind::Ratio => format!("{v:.3}x"),
     }
 }
 
 fn print_row(f: &Figure) {
     let range = match f.kind {
         Kind::Time { .. } => format!("{} .. {}", duration(f.min), duration(f.max)),
+        Kind::Ratio => format!("{:.3} .. {:.3}", f.min, f.max),
         Kind::Rate { .. } | Kind::Size { .. } => {
             format!("{} .. {}", si(f.min).trim_end(), si(f.max).trim_end())
         }

@@ -26,6 +26,9 @@ use vlnverse_task::{Episode, Task, Trajectory};
 
 use super::{Case, Repetition, Sample, Scale};
 
+#[path = "eval_memory.rs"]
+mod eval_memory;
+
 /// Every case, in the order the table shows them.
 pub fn all() -> Vec<Case> {
     vec![
@@ -83,6 +86,12 @@ pub fn all() -> Vec<Case> {
             what: "8 environments in train order, teacher actions, RGB-D: tiny (5 homes), and the train split of VLNVERSE_BENCH_DATASET when set (a generated vlnverse dataset)",
             max_reps: 5,
             setup: vec_env,
+        },
+        Case {
+            name: "eval_memory",
+            what: "peak RSS of an oracle evaluation (a child process, coarse, strict) over N homes and the same episodes over 3N: a generated 4/12-home dataset, or a sample of VLNVERSE_BENCH_DATASET's coarse test and train",
+            max_reps: 3,
+            setup: eval_memory::eval_memory,
         },
         Case {
             name: "generate",
