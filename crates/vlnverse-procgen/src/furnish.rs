@@ -1784,12 +1784,12 @@ fn add_pieces(st: &mut RoomState, plan: &Plan, kind: RoomType, rng: &ChaCha8Rng,
 /// The room's second lot of things ([`more_things`]), placed last (after the sets) from an rng
 /// of their own seeded by the home's stream and the room, so that nothing placed before moves.
 fn add_more_things(st: &mut RoomState, kind: RoomType, rng: &ChaCha8Rng, b: &mut Builder) {
-    use more_things::Spot as S;
+    use crate::room_things::{things, Lot, Spot as S};
     let salt = u64::from(st.id).wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ more_things::SALT;
     let mut own = ChaCha8Rng::seed_from_u64(crate::tones::stream_hash(rng) ^ salt);
     let area = st.interior.area();
     let ceiling = st.cfg.walls.height - 0.03;
-    for thing in more_things::things(kind) {
+    for thing in things(Lot::Second, kind) {
         let mut chance = thing.chance;
         if thing.class == C::Saxophone && room_has(st, b, &more_things::INSTRUMENTS) {
             chance = more_things::SAX_WITH_INSTRUMENTS;
@@ -1823,11 +1823,11 @@ fn add_more_things(st: &mut RoomState, kind: RoomType, rng: &ChaCha8Rng, b: &mut
 /// The room's third lot of standing things ([`household`]), placed after the second from an
 /// rng of their own, so that nothing placed before moves.
 fn add_household(st: &mut RoomState, kind: RoomType, rng: &ChaCha8Rng, b: &mut Builder) {
-    use household::Spot as S;
+    use crate::room_things::{things, Lot, Spot as S};
     let salt = u64::from(st.id).wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ household::SALT;
     let mut own = ChaCha8Rng::seed_from_u64(crate::tones::stream_hash(rng) ^ salt);
     let area = st.interior.area();
-    for thing in household::things(kind) {
+    for thing in things(Lot::Third, kind) {
         let chance = household::chance(thing, kind, |c| room_has(st, b, c));
         let chance = (chance * st.cfg.furniture.pieces).clamp(0.0, 1.0);
         if area < thing.min_area || !own.random_bool(f64::from(chance)) {
@@ -1843,6 +1843,8 @@ fn add_household(st: &mut RoomState, kind: RoomType, rng: &ChaCha8Rng, b: &mut B
                 household::stand_on(st.id, &m, household::supports(thing.class), b);
                 continue;
             }
+            // The file's check keeps the third lot off the ceiling and out of the room's middle.
+            S::Centre | S::Ceiling => continue,
         };
         add_group(st, &mut Group::one(m, mode), kind, &mut own, b);
     }

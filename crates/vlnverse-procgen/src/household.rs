@@ -24,6 +24,7 @@ use crate::floorplan::Plan;
 use crate::home::Builder;
 use crate::models::{ball, bcube, cube, cyl, disc_z, front, r, turned, Model};
 use crate::palette::{f, shade, tone, Finish};
+use crate::room_things::Thing;
 use glam::{Quat, Vec3};
 use rand::seq::{IndexedRandom, SliceRandom};
 use rand::{Rng, SeedableRng};
@@ -38,35 +39,6 @@ pub(crate) const SALT: u64 = 0x40A5_E401_D7A1_6E5D;
 /// Salt of the fixtures' rng (one stream a floor, seeded by its seed).
 const FIXTURE_SALT: u64 = 0xF1C7_0BE5_5A17_C4E5;
 
-/// Where a standing thing goes in its room.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Spot {
-    /// Back to a wall.
-    Wall,
-    /// In a corner.
-    Corner,
-    /// On the top of one of the room's pieces of furniture (the list [`supports`] gives).
-    OnTop,
-}
-
-/// One line of a room's list: the class, its chance (times `furniture.pieces`), where it goes
-/// and the least room floor area (m²) it needs.
-pub(crate) struct Thing {
-    pub class: C,
-    pub chance: f32,
-    pub spot: Spot,
-    pub min_area: f32,
-}
-
-const fn t(class: C, chance: f32, spot: Spot, min_area: f32) -> Thing {
-    Thing {
-        class,
-        chance,
-        spot,
-        min_area,
-    }
-}
-
 /// Chance of an amp, a microphone or a violin in a room that already has an instrument: they
 /// stand where the music is.
 pub(crate) const WITH_INSTRUMENTS: f32 = 0.35;
@@ -75,184 +47,6 @@ pub(crate) const INSTRUMENTS: [C; 5] =
     [C::Guitar, C::DrumKit, C::GrandPiano, C::Piano, C::Saxophone];
 /// Chance of firewood in a room with a fireplace.
 pub(crate) const BY_THE_FIRE: f32 = 0.5;
-
-/// The standing things a room of kind `kind` may get, in the order they are tried.
-pub(crate) fn things(kind: RoomType) -> &'static [Thing] {
-    use Spot::{Corner, OnTop, Wall};
-    match kind {
-        RoomType::LivingRoom => {
-            const L: &[Thing] = &[
-                t(C::RecordPlayer, 0.35, OnTop, 0.0),
-                t(C::Firewood, 0.0, Wall, 0.0),
-                t(C::Futon, 0.06, Wall, 16.0),
-                t(C::TrophyCase, 0.03, Wall, 16.0),
-                t(C::Violin, 0.02, Corner, 0.0),
-                t(C::Amplifier, 0.01, Wall, 0.0),
-                t(C::Microphone, 0.0, Wall, 0.0),
-            ];
-            L
-        }
-        RoomType::Kitchen => {
-            const L: &[Thing] = &[
-                t(C::KnifeBlock, 0.5, OnTop, 0.0),
-                t(C::Radio, 0.15, OnTop, 0.0),
-                t(C::SpiceRack, 0.3, Wall, 0.0),
-                t(C::Broom, 0.06, Corner, 0.0),
-                t(C::MopBucket, 0.03, Corner, 0.0),
-            ];
-            L
-        }
-        RoomType::DiningRoom => {
-            const L: &[Thing] = &[
-                t(C::RecordPlayer, 0.1, OnTop, 0.0),
-                t(C::SewingMachine, 0.02, OnTop, 0.0),
-            ];
-            L
-        }
-        RoomType::Bedroom => {
-            const L: &[Thing] = &[
-                t(C::Suitcase, 0.1, Wall, 0.0),
-                t(C::Radio, 0.05, OnTop, 0.0),
-                t(C::RecordPlayer, 0.08, OnTop, 0.0),
-                t(C::SewingMachine, 0.08, OnTop, 0.0),
-                t(C::Daybed, 0.05, Wall, 12.0),
-                t(C::Futon, 0.03, Wall, 12.0),
-                t(C::Violin, 0.02, Corner, 0.0),
-                t(C::Amplifier, 0.02, Wall, 0.0),
-            ];
-            L
-        }
-        RoomType::Office => {
-            const L: &[Thing] = &[
-                t(C::Typewriter, 0.4, OnTop, 0.0),
-                t(C::SewingMachine, 0.3, OnTop, 0.0),
-                t(C::TrophyCase, 0.08, Wall, 0.0),
-                t(C::Radio, 0.05, OnTop, 0.0),
-                t(C::Futon, 0.1, Wall, 12.0),
-                t(C::Daybed, 0.06, Wall, 12.0),
-            ];
-            L
-        }
-        RoomType::Gym => {
-            const L: &[Thing] = &[t(C::TrophyCase, 0.2, Wall, 0.0)];
-            L
-        }
-        RoomType::HomeTheater => {
-            const L: &[Thing] = &[
-                t(C::Futon, 0.15, Wall, 0.0),
-                t(C::Microphone, 0.15, Wall, 0.0),
-                t(C::Amplifier, 0.08, Wall, 0.0),
-            ];
-            L
-        }
-        RoomType::Library => {
-            const L: &[Thing] = &[
-                t(C::Typewriter, 0.2, OnTop, 0.0),
-                t(C::RecordPlayer, 0.3, OnTop, 0.0),
-                t(C::Firewood, 0.0, Wall, 0.0),
-                t(C::Daybed, 0.12, Wall, 12.0),
-                t(C::TrophyCase, 0.1, Wall, 0.0),
-                t(C::Violin, 0.06, Corner, 0.0),
-            ];
-            L
-        }
-        RoomType::Garage => {
-            const L: &[Thing] = &[
-                t(C::Toolbox, 0.8, Wall, 0.0),
-                t(C::Shovel, 0.6, Wall, 0.0),
-                t(C::Wheelbarrow, 0.7, Wall, 0.0),
-                t(C::GardenHose, 0.35, Wall, 0.0),
-                t(C::Radio, 0.15, OnTop, 0.0),
-                t(C::Broom, 0.15, Corner, 0.0),
-                t(C::MopBucket, 0.08, Corner, 0.0),
-                t(C::Amplifier, 0.06, Wall, 0.0),
-            ];
-            L
-        }
-        RoomType::Porch => {
-            const L: &[Thing] = &[
-                t(C::GardenHose, 0.3, Wall, 0.0),
-                t(C::Shovel, 0.2, Wall, 0.0),
-                t(C::Wheelbarrow, 0.35, Wall, 0.0),
-                t(C::Broom, 0.1, Corner, 0.0),
-                t(C::Firewood, 0.05, Wall, 0.0),
-                t(C::Daybed, 0.08, Wall, 10.0),
-            ];
-            L
-        }
-        RoomType::Room => {
-            const L: &[Thing] = &[
-                t(C::Futon, 0.25, Wall, 0.0),
-                t(C::SewingMachine, 0.2, OnTop, 0.0),
-                t(C::RecordPlayer, 0.3, OnTop, 0.0),
-                t(C::Daybed, 0.15, Wall, 10.0),
-                t(C::TrophyCase, 0.1, Wall, 0.0),
-                t(C::Amplifier, 0.06, Wall, 0.0),
-                t(C::Microphone, 0.08, Wall, 0.0),
-                t(C::Violin, 0.04, Corner, 0.0),
-                t(C::Suitcase, 0.04, Wall, 0.0),
-            ];
-            L
-        }
-        RoomType::Hallway => {
-            const L: &[Thing] = &[
-                t(C::Suitcase, 0.03, Wall, 0.0),
-                t(C::TrophyCase, 0.02, Wall, 0.0),
-            ];
-            L
-        }
-        RoomType::EntranceHall => {
-            const L: &[Thing] = &[t(C::Suitcase, 0.1, Wall, 0.0)];
-            L
-        }
-        RoomType::LaundryRoom => {
-            const L: &[Thing] = &[
-                t(C::MopBucket, 0.35, Corner, 0.0),
-                t(C::Broom, 0.25, Corner, 0.0),
-                t(C::Toolbox, 0.15, Wall, 0.0),
-            ];
-            L
-        }
-        RoomType::Closet => {
-            const L: &[Thing] = &[
-                t(C::Suitcase, 0.2, Wall, 0.0),
-                t(C::MopBucket, 0.12, Corner, 0.0),
-                t(C::Broom, 0.12, Corner, 0.0),
-                t(C::Toolbox, 0.05, Wall, 0.0),
-            ];
-            L
-        }
-        RoomType::Pantry => {
-            const L: &[Thing] = &[
-                t(C::Broom, 0.25, Corner, 0.0),
-                t(C::MopBucket, 0.15, Corner, 0.0),
-            ];
-            L
-        }
-        RoomType::Balcony => {
-            const L: &[Thing] = &[t(C::GardenHose, 0.1, Wall, 0.0)];
-            L
-        }
-        RoomType::Bathroom => {
-            const L: &[Thing] = &[t(C::BathroomScale, 0.35, Wall, 0.0)];
-            L
-        }
-        RoomType::MudRoom => {
-            const L: &[Thing] = &[
-                t(C::Broom, 0.2, Corner, 0.0),
-                t(C::MopBucket, 0.1, Corner, 0.0),
-                t(C::Suitcase, 0.1, Wall, 0.0),
-            ];
-            L
-        }
-        RoomType::Workshop => {
-            const L: &[Thing] = &[t(C::Toolbox, 0.5, Wall, 0.0), t(C::Broom, 0.2, Corner, 0.0)];
-            L
-        }
-        // A sauna, a spa, a wine cellar and a playroom have their own pieces and no more.
-        RoomType::Sauna | RoomType::Spa | RoomType::WineCellar | RoomType::Playroom => &[],
-    }
-}
 
 /// The chance of `th` in a room, given what the room already holds: the music things where
 /// the instruments are, firewood only by a fireplace (or on a porch).
@@ -2496,6 +2290,7 @@ fn footprint(m: &Model) -> crate::rect::Rect {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::room_things::{things, Lot, Spot};
 
     #[test]
     fn every_class_builds_its_own_model_and_others_none() {
@@ -2522,7 +2317,7 @@ mod tests {
     fn every_room_lists_only_this_module_classes() {
         let mut rng = ChaCha8Rng::seed_from_u64(3);
         for &kind in RoomType::ALL {
-            for th in things(kind) {
+            for th in things(Lot::Third, kind) {
                 assert!(model(th.class, FLUSH, &mut rng).is_some(), "{:?}", th.class);
                 assert!((0.0..=1.0).contains(&th.chance));
                 assert_eq!(th.spot == Spot::OnTop, !supports(th.class).is_empty());

@@ -15,6 +15,7 @@ mod navgrid;
 mod palette;
 mod pieces;
 mod rect;
+mod room_things;
 mod sets;
 mod storeys;
 mod things;

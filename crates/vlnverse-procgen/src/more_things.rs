@@ -18,247 +18,16 @@ use rand::seq::IndexedRandom;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, TAU};
-use vlnverse_env::{RoomType, SemanticClass as C, Shape};
+use vlnverse_env::{SemanticClass as C, Shape};
 
 /// Salt of these things' rng, apart from the pieces' and the sets' ones.
 pub(crate) const SALT: u64 = 0x7A1E_5C0D_B0A7_5EED;
-
-/// Where a thing goes in its room.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Spot {
-    /// Back to a wall.
-    Wall,
-    /// In a corner.
-    Corner,
-    /// Free in the room, away from the walls.
-    Centre,
-    /// Hung from the ceiling, above the agent's height.
-    Ceiling,
-    /// On the top of a table or a buffet of the room.
-    OnTop,
-}
-
-/// One line of a room's list: the class, its chance (times `furniture.pieces`), where it goes
-/// and the least room floor area (m²) it needs.
-pub(crate) struct Thing {
-    pub class: C,
-    pub chance: f32,
-    pub spot: Spot,
-    pub min_area: f32,
-}
-
-const fn t(class: C, chance: f32, spot: Spot, min_area: f32) -> Thing {
-    Thing {
-        class,
-        chance,
-        spot,
-        min_area,
-    }
-}
 
 /// Chance of a saxophone in a room that already has an instrument (a guitar, a piano, a drum
 /// kit): it stands where the music is.
 pub(crate) const SAX_WITH_INSTRUMENTS: f32 = 0.6;
 /// Instruments a saxophone keeps company with.
 pub(crate) const INSTRUMENTS: [C; 4] = [C::Guitar, C::DrumKit, C::GrandPiano, C::Piano];
-
-/// The things a room of kind `kind` may get, in the order they are tried. Most go against a
-/// wall: a room's corners are mostly taken by the time they come.
-pub(crate) fn things(kind: RoomType) -> &'static [Thing] {
-    use Spot::{Ceiling, Centre, Corner, OnTop, Wall};
-    match kind {
-        RoomType::LivingRoom => {
-            const L: &[Thing] = &[
-                t(C::CeilingFan, 0.12, Ceiling, 0.0),
-                t(C::Sectional, 0.3, Wall, 22.0),
-                t(C::Saxophone, 0.02, Corner, 0.0),
-                t(C::ChessTable, 0.03, Centre, 24.0),
-                t(C::Candelabra, 0.1, OnTop, 0.0),
-                t(C::Bust, 0.03, Wall, 20.0),
-                t(C::Sword, 0.02, Wall, 0.0),
-                t(C::Rocks, 0.02, Wall, 0.0),
-                t(C::ExerciseBall, 0.03, Wall, 0.0),
-            ];
-            L
-        }
-        RoomType::Kitchen => {
-            const L: &[Thing] = &[
-                t(C::BulletinBoard, 0.05, Wall, 0.0),
-                t(C::Buffet, 0.04, Wall, 12.0),
-                t(C::Candelabra, 0.05, OnTop, 0.0),
-            ];
-            L
-        }
-        RoomType::DiningRoom => {
-            const L: &[Thing] = &[
-                t(C::Buffet, 0.9, Wall, 0.0),
-                t(C::Candelabra, 0.5, OnTop, 0.0),
-                t(C::CeilingFan, 0.03, Ceiling, 0.0),
-                t(C::Sword, 0.03, Wall, 0.0),
-            ];
-            L
-        }
-        RoomType::Bedroom => {
-            const L: &[Thing] = &[
-                t(C::CeilingFan, 0.05, Ceiling, 0.0),
-                t(C::TeddyBear, 0.05, Wall, 0.0),
-                t(C::BulletinBoard, 0.015, Wall, 0.0),
-                t(C::Whiteboard, 0.015, Wall, 0.0),
-                t(C::ExerciseBall, 0.03, Wall, 0.0),
-                t(C::Saxophone, 0.01, Corner, 0.0),
-                t(C::BasketballHoop, 0.01, Wall, 12.0),
-                t(C::MiniFridge, 0.01, Wall, 0.0),
-            ];
-            L
-        }
-        RoomType::Office => {
-            const L: &[Thing] = &[
-                t(C::Whiteboard, 0.2, Wall, 0.0),
-                t(C::BulletinBoard, 0.2, Wall, 0.0),
-                t(C::CeilingFan, 0.1, Ceiling, 0.0),
-                t(C::MiniFridge, 0.12, Wall, 0.0),
-                t(C::ExerciseBall, 0.2, Wall, 0.0),
-                t(C::Bust, 0.05, Wall, 0.0),
-                t(C::Sword, 0.04, Wall, 0.0),
-                t(C::ChessTable, 0.04, Centre, 12.0),
-            ];
-            L
-        }
-        RoomType::Gym => {
-            const L: &[Thing] = &[
-                t(C::ExerciseBall, 0.8, Wall, 0.0),
-                t(C::CeilingFan, 0.2, Ceiling, 0.0),
-                t(C::MiniFridge, 0.2, Wall, 0.0),
-                t(C::BasketballHoop, 0.2, Wall, 0.0),
-                t(C::Whiteboard, 0.1, Wall, 0.0),
-            ];
-            L
-        }
-        RoomType::HomeTheater => {
-            const L: &[Thing] = &[
-                t(C::MiniFridge, 0.35, Wall, 0.0),
-                t(C::Sectional, 0.4, Wall, 14.0),
-                t(C::Saxophone, 0.02, Corner, 0.0),
-            ];
-            L
-        }
-        RoomType::Library => {
-            const L: &[Thing] = &[
-                t(C::Bust, 0.3, Wall, 0.0),
-                t(C::ChessTable, 0.25, Centre, 12.0),
-                t(C::Sword, 0.15, Wall, 0.0),
-                t(C::Candelabra, 0.15, OnTop, 0.0),
-                t(C::CeilingFan, 0.1, Ceiling, 0.0),
-                t(C::Saxophone, 0.02, Corner, 0.0),
-            ];
-            L
-        }
-        RoomType::Garage => {
-            const L: &[Thing] = &[
-                t(C::WaterHeater, 0.6, Wall, 0.0),
-                t(C::BasketballHoop, 0.4, Wall, 0.0),
-                t(C::MiniFridge, 0.25, Wall, 0.0),
-                t(C::BulletinBoard, 0.15, Wall, 0.0),
-                t(C::ExerciseBall, 0.05, Wall, 0.0),
-            ];
-            L
-        }
-        RoomType::Porch => {
-            const L: &[Thing] = &[
-                t(C::CeilingFan, 0.5, Ceiling, 0.0),
-                t(C::Rocks, 0.7, Wall, 0.0),
-            ];
-            L
-        }
-        RoomType::Room => {
-            const L: &[Thing] = &[
-                t(C::CeilingFan, 0.25, Ceiling, 0.0),
-                t(C::MiniFridge, 0.25, Wall, 0.0),
-                t(C::ChessTable, 0.2, Centre, 12.0),
-                t(C::Sectional, 0.15, Wall, 16.0),
-                t(C::BasketballHoop, 0.15, Wall, 0.0),
-                t(C::ExerciseBall, 0.1, Wall, 0.0),
-                t(C::TeddyBear, 0.05, Wall, 0.0),
-                t(C::Whiteboard, 0.05, Wall, 0.0),
-                t(C::Saxophone, 0.03, Corner, 0.0),
-            ];
-            L
-        }
-        RoomType::Hallway => {
-            const L: &[Thing] = &[t(C::Bust, 0.05, Wall, 0.0), t(C::Sword, 0.04, Wall, 0.0)];
-            L
-        }
-        RoomType::EntranceHall => {
-            const L: &[Thing] = &[
-                t(C::Bust, 0.1, Wall, 0.0),
-                t(C::Sword, 0.08, Wall, 0.0),
-                t(C::Candelabra, 0.2, OnTop, 0.0),
-                t(C::BulletinBoard, 0.05, Wall, 0.0),
-            ];
-            L
-        }
-        RoomType::LaundryRoom => {
-            const L: &[Thing] = &[
-                t(C::WaterHeater, 0.5, Wall, 0.0),
-                t(C::BulletinBoard, 0.05, Wall, 0.0),
-            ];
-            L
-        }
-        RoomType::Closet => {
-            const L: &[Thing] = &[t(C::WaterHeater, 0.25, Wall, 0.0)];
-            L
-        }
-        RoomType::Pantry => {
-            const L: &[Thing] = &[t(C::WaterHeater, 0.1, Wall, 0.0)];
-            L
-        }
-        RoomType::Balcony => {
-            const L: &[Thing] = &[
-                t(C::Rocks, 0.6, Wall, 0.0),
-                t(C::ExerciseBall, 0.03, Wall, 0.0),
-            ];
-            L
-        }
-        RoomType::Bathroom | RoomType::Sauna => &[],
-        RoomType::Spa => {
-            const L: &[Thing] = &[
-                t(C::CeilingFan, 0.2, Ceiling, 0.0),
-                t(C::Candelabra, 0.5, OnTop, 0.0),
-            ];
-            L
-        }
-        RoomType::WineCellar => {
-            const L: &[Thing] = &[t(C::Candelabra, 0.6, OnTop, 0.0)];
-            L
-        }
-        RoomType::Playroom => {
-            const L: &[Thing] = &[
-                t(C::TeddyBear, 0.8, Wall, 0.0),
-                t(C::Whiteboard, 0.2, Wall, 0.0),
-                t(C::BasketballHoop, 0.15, Wall, 0.0),
-                t(C::ExerciseBall, 0.1, Wall, 0.0),
-                t(C::CeilingFan, 0.1, Ceiling, 0.0),
-            ];
-            L
-        }
-        RoomType::MudRoom => {
-            const L: &[Thing] = &[
-                t(C::WaterHeater, 0.2, Wall, 0.0),
-                t(C::BulletinBoard, 0.1, Wall, 0.0),
-            ];
-            L
-        }
-        RoomType::Workshop => {
-            const L: &[Thing] = &[
-                t(C::WaterHeater, 0.3, Wall, 0.0),
-                t(C::BulletinBoard, 0.3, Wall, 0.0),
-                t(C::MiniFridge, 0.1, Wall, 0.0),
-                t(C::Whiteboard, 0.1, Wall, 0.0),
-            ];
-            L
-        }
-    }
-}
 
 /// Supports a candelabra stands on, in order of preference.
 pub(crate) const CANDELABRA_ON: [C; 5] = [
@@ -1325,7 +1094,9 @@ fn rocks(rng: &mut ChaCha8Rng) -> Model {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::room_things::{things, Lot};
     use rand::SeedableRng;
+    use vlnverse_env::RoomType;
 
     #[test]
     fn every_class_builds_its_own_model_and_others_none() {
@@ -1358,7 +1129,7 @@ mod tests {
     fn every_room_lists_only_this_module_classes() {
         let mut rng = ChaCha8Rng::seed_from_u64(3);
         for &kind in RoomType::ALL {
-            for th in things(kind) {
+            for th in things(Lot::Second, kind) {
                 assert!(model(th.class, &mut rng).is_some(), "{:?}", th.class);
                 assert!((0.0..=1.0).contains(&th.chance));
             }
