@@ -20,7 +20,7 @@ use glam::Vec3;
 use rand::seq::IndexedRandom;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use vlnverse_env::{Pose, RoomId, RoomType, Scene, SceneObject, SemanticClass as C};
+use vlnverse_env::{Aabb, Pose, RoomId, RoomType, Scene, SceneObject, SemanticClass as C};
 
 /// Salt of the decoration's random stream.
 const SALT: u64 = 0xdec0_7a7e_5eed_0001;
@@ -231,11 +231,12 @@ fn doorways(cfg: &ProcgenConfig, plan: &Plan, face: &Face, clear: f32) -> Vec<(f
 
 /// Whether any placed object other than the room shell reaches into a world box.
 fn blocked(objects: &[SceneObject], v: [Vec3; 2]) -> bool {
+    let v = Aabb::new(v[0], v[1]);
     objects.iter().any(|o| {
         !matches!(
             o.class,
             C::Floor | C::Wall | C::Ceiling | C::DoorFrame | C::Rug
-        ) && (0..3).all(|k| o.bbox.min[k] < v[1][k] && o.bbox.max[k] > v[0][k])
+        ) && o.bbox.intersects(&v, 0.0)
     })
 }
 

@@ -375,10 +375,9 @@ pub(crate) fn stand_on(room: RoomId, m: &Model, on: &[C], b: &mut Builder) -> bo
                 };
                 let lo = Vec3::new(x - fw * 0.5 - 0.03, top + 0.005, z - fd * 0.5 - 0.03);
                 let hi = Vec3::new(x + fw * 0.5 + 0.03, top + m.h, z + fd * 0.5 + 0.03);
+                let room_for = Aabb::new(lo, hi);
                 let taken = b.objects.iter().any(|o| {
-                    o.id != id
-                        && !o.class.is_structure()
-                        && (0..3).all(|k| o.bbox.min[k] < hi[k] && o.bbox.max[k] > lo[k])
+                    o.id != id && !o.class.is_structure() && o.bbox.intersects(&room_for, 0.0)
                 });
                 if taken {
                     continue;
@@ -2019,10 +2018,10 @@ fn doorways(
 
 /// Whether the box `v` meets an object other than the floors, walls and ceilings.
 fn blocked(objects: &[SceneObject], v: [Vec3; 2]) -> bool {
-    objects.iter().any(|o| {
-        !matches!(o.class, C::Floor | C::Wall | C::Ceiling)
-            && (0..3).all(|k| o.bbox.min[k] < v[1][k] && o.bbox.max[k] > v[0][k])
-    })
+    let v = Aabb::new(v[0], v[1]);
+    objects
+        .iter()
+        .any(|o| !matches!(o.class, C::Floor | C::Wall | C::Ceiling) && o.bbox.intersects(&v, 0.0))
 }
 
 /// Add the wall and ceiling fixtures of every room of a floor, after its furniture and door
@@ -2271,10 +2270,11 @@ fn over_stove(
     let (hw, hd) = if across_x { (m.d, m.w) } else { (m.w, m.d) };
     let lo = Vec3::new(bx - hw * 0.5, bottom - 0.02, bz - hd * 0.5);
     let hi = Vec3::new(bx + hw * 0.5, ceiling - 0.01, bz + hd * 0.5);
+    let hood = Aabb::new(lo, hi);
     let clash = b.objects.iter().any(|o| {
         o.id != stove.id
             && !matches!(o.class, C::Floor | C::Wall | C::Ceiling)
-            && (0..3).all(|k| o.bbox.min[k] < hi[k] && o.bbox.max[k] > lo[k])
+            && o.bbox.intersects(&hood, 0.0)
     });
     if !clash {
         b.add_model(&m, i as RoomId, pose, None);
