@@ -107,16 +107,24 @@ impl<'a> Grid<'a> {
     #[inline]
     pub fn los(&self, a: usize, b: usize) -> bool {
         match &self.sat {
-            Some(sat) => self.los_boxed(a, b, sat),
-            None => self.los_walk(a, b),
+            Some(sat) => self.walk(a, b, Some(sat)),
+            None => self.walk(a, b, None),
         }
     }
 
-    /// [`Grid::los_walk`]'s walk, ended early once the box between the cell it has reached and
-    /// `b` holds only free cells (looked at first, then every [`BOX_STRIDE`] steps): the walk is
-    /// monotone, so every cell it would still look at (those it enters and those beside a
-    /// corner it passes) lies in that box. The same answer, often without walking the line.
-    fn los_boxed(&self, a: usize, b: usize, sat: &Sat) -> bool {
+    /// [`Grid::los`] cell by cell, never ended early (the tests' reference).
+    #[cfg(test)]
+    pub fn los_walk(&self, a: usize, b: usize) -> bool {
+        self.walk(a, b, None)
+    }
+
+    /// The supercover walk from `a` to `b`. With `sat` it ends early once the box between the
+    /// cell it has reached and `b` holds only free cells (looked at first, then every
+    /// [`BOX_STRIDE`] steps): the walk is monotone, so every cell it would still look at (those
+    /// it enters and those beside a corner it passes) lies in that box. The same answer, often
+    /// without walking the line. Inlined into both callers, each with `sat` known.
+    #[inline(always)]
+    fn walk(&self, a: usize, b: usize, sat: Option<&Sat>) -> bool {
         let (x0, y0) = self.xy(a);
         let (x1, y1) = self.xy(b);
         let (dx, dy) = ((x1 - x0).abs(), (y1 - y0).abs());
@@ -127,7 +135,7 @@ impl<'a> Grid<'a> {
             (-(self.w as isize), -1)
         };
         // The box from the cell `nx`, `ny` steps before `b` to `b`.
-        let clear_to_b = |nx: i64, ny: i64| {
+        let clear_to_b = |sat: &Sat, nx: i64, ny: i64| {
             let (cx, cy) = (x1 - ux * nx, y1 - uy * ny);
             sat.all_free(
                 cx.min(x1) as usize,
@@ -138,60 +146,20 @@ impl<'a> Grid<'a> {
         };
         let cells = self.cells;
         let mut i = a as isize;
+        // decision = (1 + 2 ix) dy - (1 + 2 iy) dx, kept incrementally.
         let mut decision = dy - dx;
         let (mut nx, mut ny) = (dx, dy);
         let mut until_box = 0u32;
         while nx > 0 || ny > 0 {
-            if until_box == 0 {
-                if clear_to_b(nx, ny) {
-                    return true;
+            if let Some(sat) = sat {
+                if until_box == 0 {
+                    if clear_to_b(sat, nx, ny) {
+                        return true;
+                    }
+                    until_box = BOX_STRIDE;
                 }
-                until_box = BOX_STRIDE;
+                until_box -= 1;
             }
-            until_box -= 1;
-            if decision == 0 {
-                if cells[(i + sx) as usize] != CellState::Free
-                    || cells[(i + sy) as usize] != CellState::Free
-                {
-                    return false;
-                }
-                i += sx + sy;
-                decision += 2 * dy - 2 * dx;
-                nx -= 1;
-                ny -= 1;
-            } else if decision < 0 {
-                i += sx;
-                decision += 2 * dy;
-                nx -= 1;
-            } else {
-                i += sy;
-                decision -= 2 * dx;
-                ny -= 1;
-            }
-            if cells[i as usize] != CellState::Free {
-                return false;
-            }
-        }
-        true
-    }
-
-    /// [`Grid::los`] cell by cell.
-    pub fn los_walk(&self, a: usize, b: usize) -> bool {
-        let (x0, y0) = self.xy(a);
-        let (x1, y1) = self.xy(b);
-        let (dx, dy) = ((x1 - x0).abs(), (y1 - y0).abs());
-        let sx: isize = if x1 > x0 { 1 } else { -1 };
-        let sy: isize = if y1 > y0 {
-            self.w as isize
-        } else {
-            -(self.w as isize)
-        };
-        let cells = self.cells;
-        let mut i = a as isize;
-        // decision = (1 + 2 ix) dy - (1 + 2 iy) dx, kept incrementally.
-        let mut decision = dy - dx;
-        let (mut nx, mut ny) = (dx, dy);
-        while nx > 0 || ny > 0 {
             if decision == 0 {
                 if cells[(i + sx) as usize] != CellState::Free
                     || cells[(i + sy) as usize] != CellState::Free
