@@ -1,7 +1,9 @@
 //! The Rust-only rate of a vector environment: `N` environments with the default RGB-D rig,
 //! every environment following the teacher's action, with next-step autoreset.
 //!
-//! `cargo run --release -p vlnverse-eval --example vec_env_rate -- DATASET [N] [STEPS]`
+//! `cargo run --release -p vlnverse-eval --example vec_env_rate -- DATASET [N] [STEPS] [REPEAT]`
+//! (`REPEAT`: episodes an environment draws in one home before it moves on, default
+//! [`vlnverse_eval::DEFAULT_HOME_REPEAT`]; 1 draws every episode from the whole split)
 //! (the Python benchmark `crates/vlnverse-py/bench/bench_vec.py` compares against it).
 
 use std::path::PathBuf;
@@ -15,6 +17,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let dataset = PathBuf::from(args.next().unwrap_or_else(|| "datasets/tiny".into()));
     let n: usize = args.next().map(|s| s.parse()).transpose()?.unwrap_or(8);
     let steps: usize = args.next().map(|s| s.parse()).transpose()?.unwrap_or(200);
+    let home_repeat: u32 = args
+        .next()
+        .map(|s| s.parse())
+        .transpose()?
+        .unwrap_or(vlnverse_eval::DEFAULT_HOME_REPEAT);
     let mut protocol = EvalConfig::for_setting(vlnverse_eval::Setting::Telhop);
     protocol.action_space = vlnverse_eval::ActionSpace::Discrete;
     let mut env = RapierVecEnv::new(VecEnvConfig {
@@ -26,6 +33,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         order: EpisodeOrder::Train,
         episode_ids: None,
         reward: Default::default(),
+        home_repeat,
     })?;
     let mut last = env.reset_all()?;
     // Warm-up (scene loads), then the timed steps.

@@ -37,5 +37,5 @@ pub use runner::{
 pub use scene_context::{SceneCache, SceneContext};
 pub use vec_env::{
     EnvAction, EnvStep, EpisodeOrder, RapierVecEnv, RewardConfig, StepInfo, VecEnv, VecEnvConfig,
-    MAX_ENVS,
+    DEFAULT_HOME_REPEAT, MAX_ENVS,
 };

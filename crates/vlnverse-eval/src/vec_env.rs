@@ -10,7 +10,8 @@
 //!   given list) to whichever environment resets next, in environment order, so the first
 //!   `len` resets of the whole batch visit every episode exactly once; after that it starts
 //!   another pass (`StepInfo::pass`). [`EpisodeOrder::Train`] draws episodes uniformly with a
-//!   per-environment seeded generator, one episode ahead: the home of each environment's next
+//!   per-environment seeded generator, staying in one home for [`VecEnvConfig::home_repeat`]
+//!   episodes before drawing a home again, one episode ahead: the home of each environment's next
 //!   episode is read and prepared for the renderer, and the episode checked (its goals'
 //!   distance fields built), on a thread of its own while the batch steps, so a reset rarely
 //!   waits for a home or a field (the draws, and so the episodes, are the same).
@@ -47,7 +48,7 @@ pub enum EpisodeOrder {
     /// Every episode once, in order, shared by all environments.
     #[default]
     Eval,
-    /// Uniform draws, seeded per environment.
+    /// Uniform draws, seeded per environment, [`VecEnvConfig::home_repeat`] episodes a home.
     Train,
 }
 
@@ -103,7 +104,16 @@ pub struct VecEnvConfig {
     pub episode_ids: Option<Vec<u64>>,
     /// Reward shaping.
     pub reward: RewardConfig,
+    /// Train order: episodes an environment draws in one home before it draws a home again
+    /// (Habitat's `group_by_scene` with `max_scene_repeat_episodes`); 1 draws every episode
+    /// from the whole split. Each draw is still uniform over the split's episodes.
+    pub home_repeat: u32,
 }
+
+/// Train order's default [`VecEnvConfig::home_repeat`]: about 750 steps in a home for a
+/// `vlnverse` fine episode (~47 steps), so a home switch's loading is paid once every
+/// sixteen episodes instead of at almost every reset.
+pub const DEFAULT_HOME_REPEAT: u32 = 16;
 
 /// A driver's action for one environment.
 #[derive(Debug, Clone, PartialEq)]
@@ -183,7 +193,16 @@ struct Slot<S> {
     rng: ChaCha8Rng,
     /// Train order: episodes drawn from `rng` but not yet begun, oldest first.
     ahead: VecDeque<(Arc<Episode>, Pinned)>,
+    /// Train order: the home of the last draw and how many more draws stay in it.
+    visit: Visit,
     run: Option<Running>,
+}
+
+/// Train order: where an environment's draws stay for a while.
+#[derive(Debug, Clone, Copy, Default)]
+struct Visit {
+    home: usize,
+    left: u32,
 }
 
 /// A batch of environments over one dataset split.
@@ -192,6 +211,10 @@ pub struct VecEnv<S: Simulator> {
     settings: EpisodeSettings,
     split_file: PathBuf,
     episodes: Vec<Arc<Episode>>,
+    /// Per episode, the index of its home in `by_home`.
+    home_of: Vec<usize>,
+    /// Per home (in order of first appearance), its episodes' indices.
+    by_home: Vec<Vec<usize>>,
     scenes: Arc<SceneCache>,
     slots: Vec<Slot<S>>,
     cursor: usize,
@@ -275,6 +298,49 @@ impl RapierVecEnv {
     }
 }
 
+/// Per episode the index of its home, and per home (in order of first appearance) its
+/// episodes' indices.
+fn group_by_home(episodes: &[Arc<Episode>]) -> (Vec<usize>, Vec<Vec<usize>>) {
+    let mut index = std::collections::HashMap::new();
+    let mut by_home: Vec<Vec<usize>> = Vec::new();
+    let home_of = episodes
+        .iter()
+        .enumerate()
+        .map(|(k, ep)| {
+            let h = *index.entry(ep.scene_id.as_str()).or_insert_with(|| {
+                by_home.push(Vec::new());
+                by_home.len() - 1
+            });
+            by_home[h].push(k);
+            h
+        })
+        .collect();
+    (home_of, by_home)
+}
+
+/// Train order's next episode (an index into the split): a draw over the whole split when the
+/// visit is over, else a draw among the visited home's episodes. A home is drawn in proportion
+/// to its episodes, so every draw is uniform over the split's episodes.
+fn draw(
+    rng: &mut ChaCha8Rng,
+    visit: &mut Visit,
+    home_of: &[usize],
+    by_home: &[Vec<usize>],
+    repeat: u32,
+) -> usize {
+    if visit.left == 0 {
+        let k = rng.random_range(0..home_of.len());
+        *visit = Visit {
+            home: home_of[k],
+            left: repeat - 1,
+        };
+        return k;
+    }
+    visit.left -= 1;
+    let eps = &by_home[visit.home];
+    eps[rng.random_range(0..eps.len())]
+}
+
 /// Most environments one [`VecEnv`] holds: each has a simulator and a renderer (1024 rendering
 /// ones took 3.5 GB), so a mistyped count is refused.
 pub const MAX_ENVS: usize = 256;
@@ -350,10 +416,19 @@ impl<S: Simulator> VecEnv<S> {
                     i as u64,
                 )),
                 ahead: VecDeque::new(),
+                visit: Visit::default(),
                 run: None,
             });
         }
         let train = cfg.order == EpisodeOrder::Train;
+        if cfg.home_repeat == 0 {
+            return Err(invalid(
+                "home_repeat",
+                cfg.home_repeat,
+                "must be at least 1 (1 draws every episode from the whole split)",
+            ));
+        }
+        let (home_of, by_home) = group_by_home(&episodes);
         // Room for the homes shown and, in train order, those prepared ahead.
         let capacity = cfg.num_envs * if train { 1 + AHEAD } else { 1 } + 2;
         // Train order comes back to homes the cache has let go: their stairs' end fields are
@@ -378,6 +453,8 @@ impl<S: Simulator> VecEnv<S> {
             settings,
             split_file,
             episodes,
+            home_of,
+            by_home,
             slots,
             cursor: 0,
             prefetch,
@@ -415,6 +492,7 @@ impl<S: Simulator> VecEnv<S> {
         for (i, s) in self.slots.iter_mut().enumerate() {
             s.rng = ChaCha8Rng::seed_from_u64(crate::episode_loop::episode_seed(seed, i as u64));
             s.ahead.clear();
+            s.visit = Visit::default();
         }
         self.cursor = 0;
     }
@@ -432,7 +510,14 @@ impl<S: Simulator> VecEnv<S> {
             EpisodeOrder::Train => {
                 let slot = &mut self.slots[i];
                 while slot.ahead.len() <= AHEAD {
-                    let ep = self.episodes[slot.rng.random_range(0..n)].clone();
+                    let k = draw(
+                        &mut slot.rng,
+                        &mut slot.visit,
+                        &self.home_of,
+                        &self.by_home,
+                        self.cfg.home_repeat,
+                    );
+                    let ep = self.episodes[k].clone();
                     let pin = Pinned::default();
                     // The first draw is begun now; later ones are prepared meanwhile.
                     if let (Some(p), false) = (&self.prefetch, slot.ahead.is_empty()) {

@@ -13,6 +13,7 @@ use vlnverse_task::dataset;
 use vlnverse_task::episode::{Split, Task};
 use vlnverse_task::eval::{
     ActionSpace, EnvAction, EnvStep, EpisodeOrder, RapierVecEnv, RewardConfig, VecEnvConfig,
+    DEFAULT_HOME_REPEAT,
 };
 use vlnverse_task::vocab::{Vocab, VOCAB_FILE};
 
@@ -429,7 +430,8 @@ impl NativeVecEnv {
         dataset, task, split, *, num_envs = 1, setting = "telhop", action_space = "discrete",
         profile = "vlnverse", sensors = None, mode = "eval", seed = 0, max_steps = None,
         success_distance = None, reward = "sparse", episode_ids = None, render = true,
-        normalize_depth = true, instruction_length = 200, backend = None
+        normalize_depth = true, instruction_length = 200, backend = None,
+        home_repeat = DEFAULT_HOME_REPEAT
     ))]
     #[allow(clippy::too_many_arguments)]
     fn new(
@@ -452,6 +454,7 @@ impl NativeVecEnv {
         normalize_depth: bool,
         instruction_length: usize,
         backend: Option<&str>,
+        home_repeat: u32,
     ) -> PyResult<Self> {
         let task: Task = parse("task", task)?;
         let split: Split = parse("split", split)?;
@@ -506,6 +509,7 @@ impl NativeVecEnv {
             order,
             episode_ids,
             reward,
+            home_repeat,
         };
         let (vocab, vocab_source) = load_vocab(&dataset, task, split)?;
         let env = py.detach(|| guarded("VecEnv", || RapierVecEnv::new(cfg).map_err(py_err)))?;

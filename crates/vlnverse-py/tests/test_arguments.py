@@ -21,6 +21,8 @@ from vlnverse import VLNVerseError
         ({"episode_ids": []}, "invalid episode_ids"),
         ({"profile": 5}, "profile must be a str"),
         ({"success_distance": float("nan")}, "invalid success_distance"),
+        ({"home_repeat": 0}, r"invalid home_repeat 0: must be \[1, 1000000\]"),
+        ({"home_repeat": 2.5}, "home_repeat must be an int"),
     ],
 )
 def test_bad_arguments_are_named(dataset: Path, kwargs: dict[str, Any], match: str) -> None:

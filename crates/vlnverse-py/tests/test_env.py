@@ -101,6 +101,23 @@ def test_eval_mode_visits_every_episode_once_in_order(dataset: Path) -> None:
     envs.close()
 
 
+def test_train_mode_stays_in_a_home_for_home_repeat_episodes(dataset: Path) -> None:
+    # Episodes of 1 step (max_steps=1): every step after the first resets every environment.
+    envs = vlnverse.make_vec(dataset, "fine", "train", num_envs=2, mode="train", seed=4,
+                             home_repeat=3, max_steps=1, render=False)
+    _, info = envs.reset(seed=4)
+    homes: list[list[str]] = [[str(h)] for h in info["scene_id"]]
+    for k in range(2 * 12 - 1):
+        _, _, term, trunc, info = envs.step(info["expert_action"])
+        if k % 2 == 1:  # an autoreset step: each environment began its next episode
+            for i in range(2):
+                homes[i].append(str(info["scene_id"][i]))
+    visits = [h[j:j + 3] for h in homes for j in range(0, len(h), 3)]
+    assert all(len(v) == 3 and len(set(v)) == 1 for v in visits), visits
+    assert len({v[0] for v in visits}) > 1, visits
+    envs.close()
+
+
 def test_next_step_autoreset_follows_gymnasium(dataset: Path) -> None:
     envs = vlnverse.make_vec(dataset, "fine", "val_unseen", num_envs=2, render=False)
     assert envs.metadata["autoreset_mode"] == gymnasium.vector.AutoresetMode.NEXT_STEP

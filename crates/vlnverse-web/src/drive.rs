@@ -375,6 +375,7 @@ fn drive(
         order: EpisodeOrder::Eval,
         episode_ids: Some(vec![spec.episode_id]),
         reward: RewardConfig::default(),
+        home_repeat: 1,
     })
     .map_err(env_err)?;
     let agent = env.settings().agent.clone();

@@ -83,7 +83,7 @@ pub fn all() -> Vec<Case> {
         },
         Case {
             name: "vec_env",
-            what: "8 environments in train order, teacher actions, RGB-D: tiny (5 homes), and the train split of VLNVERSE_BENCH_DATASET when set (a generated vlnverse dataset)",
+            what: "8 environments in train order, teacher actions, RGB-D: tiny (5 homes), and the train split of VLNVERSE_BENCH_DATASET when set (a generated vlnverse dataset), with the default home_repeat and with 1 (a new home at almost every reset)",
             max_reps: 5,
             setup: vec_env,
         },
@@ -657,8 +657,13 @@ fn home_switch(scale: Scale) -> anyhow::Result<Repetition> {
 
 /// Environment steps and seconds of 8 environments in train order over `dataset`'s train
 /// split (fine task), teacher actions, the default RGB-D rig: `steps` batches after 20 of
-/// warm-up.
-fn vec_env_rate(dataset: &std::path::Path, seed: u64, steps: usize) -> anyhow::Result<(f64, f64)> {
+/// warm-up; `home_repeat` episodes in a home before an environment draws another.
+fn vec_env_rate(
+    dataset: &std::path::Path,
+    seed: u64,
+    steps: usize,
+    home_repeat: u32,
+) -> anyhow::Result<(f64, f64)> {
     use vlnverse_task::eval::{EnvAction, EpisodeOrder, EvalConfig, RapierVecEnv, VecEnvConfig};
     let mut protocol = EvalConfig::for_setting(vlnverse_task::eval::Setting::Telhop);
     protocol.action_space = vlnverse_task::eval::ActionSpace::Discrete;
@@ -673,6 +678,7 @@ fn vec_env_rate(dataset: &std::path::Path, seed: u64, steps: usize) -> anyhow::R
         order: EpisodeOrder::Train,
         episode_ids: None,
         reward: Default::default(),
+        home_repeat,
     })?;
     let mut last = env.reset_all()?;
     let mut t0 = Instant::now();
@@ -724,7 +730,8 @@ fn vec_env(scale: Scale) -> anyhow::Result<Repetition> {
         rep += 1;
         let detail = format!("8 envs, {steps} batches after 20, fine train split, seed {rep}");
         // Alternated in one repetition: tiny, then the many-home dataset.
-        let (n, secs) = vec_env_rate(&tiny, rep, steps)?;
+        let repeat = vlnverse_task::eval::DEFAULT_HOME_REPEAT;
+        let (n, secs) = vec_env_rate(&tiny, rep, steps, repeat)?;
         let mut out = vec![Sample::rate(
             "vec_env/tiny_train",
             n,
@@ -733,14 +740,24 @@ fn vec_env(scale: Scale) -> anyhow::Result<Repetition> {
             detail.clone(),
         )];
         if let Some(d) = &many {
-            let (n, secs) = vec_env_rate(d, rep, steps)
+            let (n, secs) = vec_env_rate(d, rep, steps, repeat)
                 .with_context(|| format!("VLNVERSE_BENCH_DATASET={}", d.display()))?;
             out.push(Sample::rate(
                 "vec_env/dataset_train",
                 n,
                 secs,
                 "steps",
-                format!("{detail}, {}", d.display()),
+                format!("{detail}, {}, {repeat} episodes a home visit", d.display()),
+            ));
+            // Every episode drawn from the whole split: a home switch at almost every reset.
+            let (n, secs) = vec_env_rate(d, rep, steps, 1)
+                .with_context(|| format!("VLNVERSE_BENCH_DATASET={}", d.display()))?;
+            out.push(Sample::rate(
+                "vec_env/dataset_train_uniform",
+                n,
+                secs,
+                "steps",
+                format!("{detail}, {}, home_repeat 1", d.display()),
             ));
         }
         Ok(out)

@@ -34,6 +34,7 @@ fn config(dir: &std::path::Path, order: EpisodeOrder, envs: usize) -> VecEnvConf
         order,
         episode_ids: None,
         reward: Default::default(),
+        home_repeat: 1,
     }
 }
 
@@ -105,4 +106,38 @@ fn train_order_draws_from_each_environments_generator_and_prepared_homes_change_
         assert_eq!(got.len(), want[0].len(), "environment {i}");
         assert!(got == want[0], "environment {i}: other episodes or pixels");
     }
+}
+
+#[test]
+fn home_repeat_keeps_each_environment_in_one_home_for_that_many_episodes() {
+    let dir = tempfile::tempdir().unwrap();
+    let episodes = make_dataset(dir.path(), Task::Fine, 4, 3, 5);
+    let home: std::collections::HashMap<u64, String> = episodes
+        .iter()
+        .map(|e| (e.episode_id, e.scene_id.clone()))
+        .collect();
+    let mut cfg = config(dir.path(), EpisodeOrder::Train, 2);
+    cfg.home_repeat = 3;
+    let mut env = RapierVecEnv::new(cfg).unwrap();
+    let mut visited = std::collections::BTreeSet::new();
+    for i in 0..2 {
+        let homes: Vec<String> = (0..12)
+            .map(|_| home[&env.reset_env(i).unwrap().info.episode_id].clone())
+            .collect();
+        for (k, visit) in homes.chunks(3).enumerate() {
+            assert!(
+                visit.iter().all(|h| *h == visit[0]),
+                "environment {i}, visit {k}: {visit:?}"
+            );
+            visited.insert(visit[0].clone());
+        }
+    }
+    assert!(visited.len() > 1, "every visit went to {visited:?}");
+
+    let mut cfg = config(dir.path(), EpisodeOrder::Train, 1);
+    cfg.home_repeat = 0;
+    let err = RapierVecEnv::new(cfg)
+        .err()
+        .expect("home_repeat 0 is refused");
+    assert!(err.to_string().contains("home_repeat"), "{err}");
 }

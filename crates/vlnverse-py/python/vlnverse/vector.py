@@ -47,7 +47,10 @@ class VectorEnv(GymVectorEnv):
     ``mode="eval"`` hands out the split's episodes in file order to whichever environment
     resets next, so the first ``len(split)`` episodes started by the batch are each episode
     once (``infos["pass"]`` counts later passes); ``mode="train"`` draws episodes with a
-    per-environment generator seeded from ``seed``.
+    per-environment generator seeded from ``seed``: every draw is uniform over the split, and an
+    environment stays in one home for ``home_repeat`` episodes before it draws a home again
+    (Habitat's ``group_by_scene``), so loading a home is paid once per ``home_repeat``
+    episodes. ``home_repeat=1`` draws every episode from the whole split.
 
     ``infos`` holds, per environment: ``episode_id``, ``scene_id``, geodesic
     ``distance_to_goal`` (m), ``collided`` / ``collision`` (a noticeable collision, counted
@@ -81,6 +84,7 @@ class VectorEnv(GymVectorEnv):
         episode_ids: list[int] | None = None,
         backend: str | None = None,
         copy: bool = True,
+        home_repeat: int = 16,
     ) -> None:
         self._native: NativeVecEnv | None = None
         native = NativeVecEnv(
@@ -106,6 +110,7 @@ class VectorEnv(GymVectorEnv):
             normalize_depth=bool(normalize_depth),
             instruction_length=check.check_int("instruction_length", instruction_length, 1, 4096),
             backend=backend,
+            home_repeat=check.check_int("home_repeat", home_repeat, 1, 1_000_000),
         )
         self._native = native
         self.spec_native: dict[str, Any] = native.spec()
