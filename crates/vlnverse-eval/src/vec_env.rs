@@ -105,15 +105,18 @@ pub struct VecEnvConfig {
     /// Reward shaping.
     pub reward: RewardConfig,
     /// Train order: episodes an environment draws in one home before it draws a home again
-    /// (Habitat's `group_by_scene` with `max_scene_repeat_episodes`); 1 draws every episode
-    /// from the whole split. Each draw is still uniform over the split's episodes.
+    /// (Habitat's `group_by_scene` with `max_scene_repeat_episodes`), none drawn twice in a
+    /// pass over the home's episodes; 1 draws every episode from the whole split. Each draw is
+    /// still uniform over the split's episodes.
     pub home_repeat: u32,
 }
 
-/// Train order's default [`VecEnvConfig::home_repeat`]: about 750 steps in a home for a
-/// `vlnverse` fine episode (~47 steps), so a home switch's loading is paid once every
-/// sixteen episodes instead of at almost every reset.
-pub const DEFAULT_HOME_REPEAT: u32 = 16;
+/// Train order's default [`VecEnvConfig::home_repeat`]: about 1,500 steps in a home at a
+/// `vlnverse` fine episode's ~47, a pass and a half over a fine train home's 22 episodes, so
+/// loading a home is paid once every 32 episodes instead of at almost every reset. VLN-CE's
+/// teacher-forcing trainer stays in a scene for all its episodes (~177 in R2R's train split),
+/// Habitat's default for 10,000 steps.
+pub const DEFAULT_HOME_REPEAT: u32 = 32;
 
 /// A driver's action for one environment.
 #[derive(Debug, Clone, PartialEq)]
@@ -199,10 +202,13 @@ struct Slot<S> {
 }
 
 /// Train order: where an environment's draws stay for a while.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Default)]
 struct Visit {
     home: usize,
+    /// Draws left in this home.
     left: u32,
+    /// The home's episodes not yet drawn in this pass over them.
+    deck: Vec<usize>,
 }
 
 /// A batch of environments over one dataset split.
@@ -319,8 +325,9 @@ fn group_by_home(episodes: &[Arc<Episode>]) -> (Vec<usize>, Vec<Vec<usize>>) {
 }
 
 /// Train order's next episode (an index into the split): a draw over the whole split when the
-/// visit is over, else a draw among the visited home's episodes. A home is drawn in proportion
-/// to its episodes, so every draw is uniform over the split's episodes.
+/// visit is over, else a draw among the visited home's episodes not yet drawn in this pass over
+/// them (a new pass once all were). A home is drawn in proportion to its episodes and a visit
+/// lasts `repeat` draws whatever the home, so every draw is uniform over the split's episodes.
 fn draw(
     rng: &mut ChaCha8Rng,
     visit: &mut Visit,
@@ -330,15 +337,22 @@ fn draw(
 ) -> usize {
     if visit.left == 0 {
         let k = rng.random_range(0..home_of.len());
-        *visit = Visit {
-            home: home_of[k],
-            left: repeat - 1,
-        };
+        visit.home = home_of[k];
+        visit.left = repeat - 1;
+        visit.deck.clear();
+        if repeat > 1 {
+            visit
+                .deck
+                .extend(by_home[visit.home].iter().filter(|&&e| e != k));
+        }
         return k;
     }
     visit.left -= 1;
-    let eps = &by_home[visit.home];
-    eps[rng.random_range(0..eps.len())]
+    if visit.deck.is_empty() {
+        visit.deck.extend(&by_home[visit.home]);
+    }
+    let j = rng.random_range(0..visit.deck.len());
+    visit.deck.swap_remove(j)
 }
 
 /// Most environments one [`VecEnv`] holds: each has a simulator and a renderer (1024 rendering

@@ -121,15 +121,19 @@ fn home_repeat_keeps_each_environment_in_one_home_for_that_many_episodes() {
     let mut env = RapierVecEnv::new(cfg).unwrap();
     let mut visited = std::collections::BTreeSet::new();
     for i in 0..2 {
-        let homes: Vec<String> = (0..12)
-            .map(|_| home[&env.reset_env(i).unwrap().info.episode_id].clone())
+        let ids: Vec<u64> = (0..12)
+            .map(|_| env.reset_env(i).unwrap().info.episode_id)
             .collect();
-        for (k, visit) in homes.chunks(3).enumerate() {
+        // A visit of 3 in a home of 3 episodes: each of them once.
+        for (k, visit) in ids.chunks(3).enumerate() {
+            let homes: Vec<&String> = visit.iter().map(|id| &home[id]).collect();
             assert!(
-                visit.iter().all(|h| *h == visit[0]),
-                "environment {i}, visit {k}: {visit:?}"
+                homes.iter().all(|h| *h == homes[0]),
+                "environment {i}, visit {k}: {homes:?}"
             );
-            visited.insert(visit[0].clone());
+            let distinct: std::collections::BTreeSet<_> = visit.iter().collect();
+            assert_eq!(distinct.len(), 3, "environment {i}, visit {k}: {visit:?}");
+            visited.insert(homes[0].clone());
         }
     }
     assert!(visited.len() > 1, "every visit went to {visited:?}");

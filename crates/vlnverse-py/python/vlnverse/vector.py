@@ -49,8 +49,9 @@ class VectorEnv(GymVectorEnv):
     once (``infos["pass"]`` counts later passes); ``mode="train"`` draws episodes with a
     per-environment generator seeded from ``seed``: every draw is uniform over the split, and an
     environment stays in one home for ``home_repeat`` episodes before it draws a home again
-    (Habitat's ``group_by_scene``), so loading a home is paid once per ``home_repeat``
-    episodes. ``home_repeat=1`` draws every episode from the whole split.
+    (Habitat's ``group_by_scene``; none drawn twice in a pass over the home's episodes), so
+    loading a home is paid once per ``home_repeat`` episodes. ``home_repeat=1`` draws every
+    episode from the whole split.
 
     ``infos`` holds, per environment: ``episode_id``, ``scene_id``, geodesic
     ``distance_to_goal`` (m), ``collided`` / ``collision`` (a noticeable collision, counted
@@ -84,7 +85,7 @@ class VectorEnv(GymVectorEnv):
         episode_ids: list[int] | None = None,
         backend: str | None = None,
         copy: bool = True,
-        home_repeat: int = 16,
+        home_repeat: int = 32,
     ) -> None:
         self._native: NativeVecEnv | None = None
         native = NativeVecEnv(
