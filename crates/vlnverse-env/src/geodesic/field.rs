@@ -18,8 +18,6 @@ pub struct DistanceField {
     /// Distance (cells) from the root cell centre along anchors; infinite when unreachable.
     g: Vec<f32>,
     parent: Vec<u32>,
-    /// First vertex after the root on each cell's anchor chain.
-    first: Vec<u32>,
 }
 
 impl DistanceField {
@@ -45,24 +43,16 @@ impl DistanceField {
                 goal: None,
                 g: vec![f32::INFINITY; n],
                 parent: vec![u32::MAX; n],
-                first: Vec::new(),
             };
         };
         let grid = Grid::with_sat(map);
         let res = sweep(&grid, root);
-        let mut first = vec![u32::MAX; n];
-        for &c in &res.order {
-            let c = c as usize;
-            let p = res.parent[c] as usize;
-            first[c] = if p == root { c as u32 } else { first[p] };
-        }
         DistanceField {
             map: map.clone(),
             root: Some(root),
             goal: None,
             g: res.g,
             parent: res.parent,
-            first,
         }
     }
 
@@ -87,12 +77,24 @@ impl DistanceField {
             + self.map.len() * std::mem::size_of::<crate::occupancy::CellState>()
             + self.g.capacity() * 4
             + self.parent.capacity() * 4
-            + self.first.capacity() * 4
     }
 
     /// Number of cells with a finite distance.
     pub fn reachable_cells(&self) -> usize {
         self.g.iter().filter(|d| d.is_finite()).count()
+    }
+
+    /// The first vertex after the root on the anchor chain of `a` (reachable, not the root): a
+    /// walk of a few vertices, kept per cell it cost 4 bytes a cell of every field.
+    fn first_vertex(&self, a: usize, root: usize) -> usize {
+        let mut v = a;
+        loop {
+            let p = self.parent[v] as usize;
+            if p == root || p == v {
+                return v;
+            }
+            v = p;
+        }
     }
 
     fn center(&self, i: usize) -> Vec2 {
@@ -125,7 +127,7 @@ impl DistanceField {
         let core = if a == root {
             s.on_grid.distance(goal.on_grid)
         } else {
-            let v1 = self.first[a] as usize;
+            let v1 = self.first_vertex(a, root);
             s.on_grid.distance(self.center(a))
                 + (self.g[a] - self.g[v1]) * res
                 + self.center(v1).distance(goal.on_grid)

@@ -265,6 +265,7 @@ pub(crate) struct SearchResult {
     pub g: Vec<f32>,
     pub parent: Vec<u32>,
     /// Cells in the order they were closed (parents always come before children).
+    #[cfg(test)]
     pub order: Vec<u32>,
 }
 
@@ -370,20 +371,34 @@ pub(crate) fn lazy_theta(
 /// Lazy Theta* sweep from `root` over every reachable cell (a distance field); `grid` best
 /// made with [`Grid::with_sat`] (a sweep checks a line of sight from every cell it closes).
 pub(crate) fn sweep(grid: &Grid<'_>, root: usize) -> SearchResult {
-    let mut sc = Scratch::new();
-    lazy_theta(grid, root, None, &mut sc);
-    let seen = 2 * sc.gen;
-    let mut g = std::mem::take(&mut sc.g);
-    for (gi, &m) in g.iter_mut().zip(&sc.mark) {
-        if m < seen {
-            *gi = f32::INFINITY;
+    SWEEP.with(|sc| {
+        let sc = &mut *sc.borrow_mut();
+        lazy_theta(grid, root, None, sc);
+        // Cells this sweep did not reach hold older sweeps' values: infinite, no parent.
+        let seen = 2 * sc.gen;
+        let reached = |m: u32| m >= seen;
+        SearchResult {
+            g: sc
+                .g
+                .iter()
+                .zip(&sc.mark)
+                .map(|(&g, &m)| if reached(m) { g } else { f32::INFINITY })
+                .collect(),
+            parent: sc
+                .parent
+                .iter()
+                .zip(&sc.mark)
+                .map(|(&p, &m)| if reached(m) { p } else { u32::MAX })
+                .collect(),
+            #[cfg(test)]
+            order: sc.order.clone(),
         }
-    }
-    SearchResult {
-        g,
-        parent: std::mem::take(&mut sc.parent),
-        order: std::mem::take(&mut sc.order),
-    }
+    })
+}
+
+thread_local! {
+    /// Sweep buffers reused by this thread's sweeps (a sweep allocates only what it returns).
+    static SWEEP: std::cell::RefCell<Scratch> = std::cell::RefCell::new(Scratch::new());
 }
 
 #[cfg(test)]
