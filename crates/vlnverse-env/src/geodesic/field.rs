@@ -1,6 +1,6 @@
 //! Distance field from one goal to every reachable cell.
 
-use super::search::{sweep, Grid};
+use super::search::{sweep, Grid, Reached};
 use super::{check_finite, resolve, Endpoint, GeodesicDistance, GeodesicPath};
 use crate::error::Result;
 use crate::occupancy::GridMap;
@@ -9,14 +9,19 @@ use glam::Vec2;
 /// Geodesic distance from every cell of a map to one goal (any-angle Lazy Theta* run without a
 /// target from the goal's cell). Each reachable cell stores its distance and its *anchor*, the
 /// visible vertex it walks to in a straight line, so a query is O(1) and exact (Euclidean) when
-/// the goal is in sight.
+/// the goal is in sight. Only reachable cells hold a distance and an anchor (about a third of
+/// a home's map), found by their rank among them.
 #[derive(Clone, Debug)]
 pub struct DistanceField {
     map: GridMap,
     root: Option<usize>,
     goal: Option<Endpoint>,
-    /// Distance (cells) from the root cell centre along anchors; infinite when unreachable.
+    /// The reachable cells.
+    reached: Reached,
+    /// Per reachable cell, in cell order: distance (cells) from the root cell centre along
+    /// anchors.
     g: Vec<f32>,
+    /// Per reachable cell, in cell order: its anchor's cell index (the root's is the root).
     parent: Vec<u32>,
 }
 
@@ -41,8 +46,9 @@ impl DistanceField {
                 map: map.clone(),
                 root: None,
                 goal: None,
-                g: vec![f32::INFINITY; n],
-                parent: vec![u32::MAX; n],
+                reached: Reached::none(n),
+                g: Vec::new(),
+                parent: Vec::new(),
             };
         };
         let grid = Grid::with_sat(map);
@@ -51,6 +57,7 @@ impl DistanceField {
             map: map.clone(),
             root: Some(root),
             goal: None,
+            reached: res.reached,
             g: res.g,
             parent: res.parent,
         }
@@ -75,13 +82,28 @@ impl DistanceField {
     pub fn bytes(&self) -> usize {
         std::mem::size_of::<Self>()
             + self.map.len() * std::mem::size_of::<crate::occupancy::CellState>()
+            + self.reached.bytes()
             + self.g.capacity() * 4
             + self.parent.capacity() * 4
     }
 
+    /// Distance (cells) of cell `i` from the root along anchors; infinite when unreachable.
+    #[inline]
+    fn g(&self, i: usize) -> f32 {
+        self.reached.slot(i).map_or(f32::INFINITY, |k| self.g[k])
+    }
+
+    /// The anchor of reachable cell `i`.
+    #[inline]
+    fn parent(&self, i: usize) -> usize {
+        self.reached
+            .slot(i)
+            .map_or(u32::MAX as usize, |k| self.parent[k] as usize)
+    }
+
     /// Number of cells with a finite distance.
     pub fn reachable_cells(&self) -> usize {
-        self.g.iter().filter(|d| d.is_finite()).count()
+        self.g.len()
     }
 
     /// The first vertex after the root on the anchor chain of `a` (reachable, not the root): a
@@ -89,7 +111,7 @@ impl DistanceField {
     fn first_vertex(&self, a: usize, root: usize) -> usize {
         let mut v = a;
         loop {
-            let p = self.parent[v] as usize;
+            let p = self.parent(v);
             if p == root || p == v {
                 return v;
             }
@@ -106,7 +128,7 @@ impl DistanceField {
         if !p.is_finite() {
             return None;
         }
-        resolve(&self.map, p, |i| self.g[i].is_finite())
+        resolve(&self.map, p, |i| self.reached.slot(i).is_some())
     }
 
     /// Geodesic distance from `p` to the field's goal (O(1)).
@@ -122,14 +144,14 @@ impl DistanceField {
         let (Some(root), Some(s)) = (self.root, self.start_endpoint(p)) else {
             return GeodesicDistance::Unreachable;
         };
-        let a = self.parent[s.cell] as usize;
+        let a = self.parent(s.cell);
         let res = self.map.resolution;
         let core = if a == root {
             s.on_grid.distance(goal.on_grid)
         } else {
             let v1 = self.first_vertex(a, root);
             s.on_grid.distance(self.center(a))
-                + (self.g[a] - self.g[v1]) * res
+                + (self.g(a) - self.g(v1)) * res
                 + self.center(v1).distance(goal.on_grid)
         };
         GeodesicDistance::Reachable(core + s.snap_len() + goal.snap_len())
@@ -144,7 +166,7 @@ impl DistanceField {
         if s.snap_len() > 0.0 {
             return Some(s.on_grid);
         }
-        let a = self.parent[s.cell] as usize;
+        let a = self.parent(s.cell);
         Some(if a == root {
             goal.on_grid
         } else {
@@ -165,10 +187,10 @@ impl DistanceField {
         if s.snap_len() > 0.0 {
             pts.push(s.on_grid);
         }
-        let mut c = self.parent[s.cell] as usize;
+        let mut c = self.parent(s.cell);
         while c != root {
             pts.push(self.center(c));
-            c = self.parent[c] as usize;
+            c = self.parent(c);
         }
         pts.push(goal.on_grid);
         if goal.snap_len() > 0.0 {

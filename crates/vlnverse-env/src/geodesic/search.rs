@@ -260,8 +260,41 @@ impl Scratch {
     }
 }
 
-/// Result of a full sweep: distance (cells) and parent of every reachable cell.
+/// Cells a sweep reached: a bit a cell and, per word of 64, the count of set bits before it,
+/// so a reached cell's slot in per-reached-cell arrays is a popcount away.
+#[derive(Clone, Debug)]
+pub(crate) struct Reached {
+    bits: Vec<u64>,
+    before: Vec<u32>,
+}
+
+impl Reached {
+    /// No cell of `n` reached.
+    pub fn none(n: usize) -> Reached {
+        let words = n.div_ceil(64);
+        Reached {
+            bits: vec![0; words],
+            before: vec![0; words],
+        }
+    }
+
+    /// The slot of cell `i` among the reached cells (in cell order), None when not reached.
+    #[inline]
+    pub fn slot(&self, i: usize) -> Option<usize> {
+        let w = *self.bits.get(i / 64)?;
+        let bit = 1u64 << (i % 64);
+        (w & bit != 0).then(|| self.before[i / 64] as usize + (w & (bit - 1)).count_ones() as usize)
+    }
+
+    /// Bytes held, by capacity.
+    pub fn bytes(&self) -> usize {
+        self.bits.capacity() * 8 + self.before.capacity() * 4
+    }
+}
+
+/// Result of a full sweep: distance (cells) and parent of every reachable cell, in cell order.
 pub(crate) struct SearchResult {
+    pub reached: Reached,
     pub g: Vec<f32>,
     pub parent: Vec<u32>,
     /// Cells in the order they were closed (parents always come before children).
@@ -374,22 +407,29 @@ pub(crate) fn sweep(grid: &Grid<'_>, root: usize) -> SearchResult {
     SWEEP.with(|sc| {
         let sc = &mut *sc.borrow_mut();
         lazy_theta(grid, root, None, sc);
-        // Cells this sweep did not reach hold older sweeps' values: infinite, no parent.
+        // Marked this sweep (every cell seen is closed once the heap is empty); the others hold
+        // older sweeps' values.
         let seen = 2 * sc.gen;
-        let reached = |m: u32| m >= seen;
+        let words = sc.mark.len().div_ceil(64);
+        let (mut bits, mut before) = (Vec::with_capacity(words), Vec::with_capacity(words));
+        let mut g = Vec::with_capacity(sc.order.len());
+        let mut parent = Vec::with_capacity(sc.order.len());
+        for (w, marks) in sc.mark.chunks(64).enumerate() {
+            before.push(g.len() as u32);
+            let mut word = 0u64;
+            for (j, &m) in marks.iter().enumerate() {
+                if m >= seen {
+                    word |= 1 << j;
+                    g.push(sc.g[w * 64 + j]);
+                    parent.push(sc.parent[w * 64 + j]);
+                }
+            }
+            bits.push(word);
+        }
         SearchResult {
-            g: sc
-                .g
-                .iter()
-                .zip(&sc.mark)
-                .map(|(&g, &m)| if reached(m) { g } else { f32::INFINITY })
-                .collect(),
-            parent: sc
-                .parent
-                .iter()
-                .zip(&sc.mark)
-                .map(|(&p, &m)| if reached(m) { p } else { u32::MAX })
-                .collect(),
+            reached: Reached { bits, before },
+            g,
+            parent,
             #[cfg(test)]
             order: sc.order.clone(),
         }
