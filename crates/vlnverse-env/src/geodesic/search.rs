@@ -506,6 +506,33 @@ mod tests {
     }
 
     #[test]
+    fn reached_cells_are_ranked_in_cell_order() {
+        // Two rooms, the right one walled off: its free cells are never reached.
+        let mut map = GridMap::new(130, 7, 0.05, Vec2::ZERO, CellState::Free).unwrap();
+        for y in 0..7 {
+            map.set(70, y, CellState::Occupied);
+        }
+        map.set(3, 3, CellState::Occupied);
+        let res = sweep(&Grid::with_sat(&map), 0);
+        let mut next = 0;
+        for i in 0..map.len() {
+            let (x, y) = (i % 130, i / 130);
+            let reachable = x < 70 && (x, y) != (3, 3);
+            match res.reached.slot(i) {
+                Some(k) => {
+                    assert!(reachable, "cell ({x}, {y}) reached");
+                    assert_eq!(k, next, "cell ({x}, {y})");
+                    assert!(res.g[k].is_finite());
+                    next += 1;
+                }
+                None => assert!(!reachable, "cell ({x}, {y}) not reached"),
+            }
+        }
+        assert_eq!(next, res.g.len());
+        assert_eq!(res.reached.slot(map.len() + 64), None);
+    }
+
+    #[test]
     fn a_sweep_with_boxes_is_the_sweep_without() {
         for (k, p) in [0.05, 0.25].into_iter().enumerate() {
             let map = random_map(57, 38, p, 10 + k as u64);
