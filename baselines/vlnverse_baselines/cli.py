@@ -40,6 +40,9 @@ def _parser() -> argparse.ArgumentParser:
     t.add_argument("--rollout-length", type=int, default=32,
                    help="online: environment steps per update (truncated BPTT)")
     t.add_argument("--num-envs", type=int, default=4)
+    t.add_argument("--home-repeat", type=int, default=32,
+                   help="online: episodes an environment runs in one home before it draws "
+                        "another (1: every episode drawn from the whole split)")
     t.add_argument("--batch-size", type=int, default=4, help="offline: trajectories per update")
     t.add_argument("--lr", type=float, default=1e-4)
     t.add_argument("--no-cosine", action="store_true", help="constant learning rate")
@@ -106,6 +109,7 @@ def train(args: argparse.Namespace) -> int:
                      setting=args.setting, data=args.data, epochs=args.epochs,
                      updates_per_epoch=args.updates_per_epoch,
                      rollout_length=args.rollout_length, num_envs=args.num_envs,
+                     home_repeat=args.home_repeat,
                      batch_size=args.batch_size, lr=args.lr, cosine=not args.no_cosine,
                      schedule_ratio=args.schedule_ratio, decay_every=args.decay_every,
                      max_steps=args.max_steps, inflection_weight=args.inflection_weight,
@@ -135,7 +139,8 @@ def train(args: argparse.Namespace) -> int:
 
         envs = vlnverse.VectorEnv(args.dataset, args.task, args.split, num_envs=args.num_envs,
                                   mode="train", setting=args.setting, max_steps=args.max_steps,
-                                  seed=args.seed, episode_ids=ids, copy=False)
+                                  seed=args.seed, episode_ids=ids, copy=False,
+                                  home_repeat=tc.home_repeat)
         try:
             trainer.fit_online(envs)
         finally:

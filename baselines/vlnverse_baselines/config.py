@@ -91,6 +91,8 @@ class TrainConfig:
     updates_per_epoch: int = 50
     rollout_length: int = 32
     num_envs: int = 4
+    # Online: episodes an environment runs in one home before it draws another (VectorEnv).
+    home_repeat: int = 32
     batch_size: int = 4
     lr: float = 1e-4
     weight_decay: float = 1e-2
@@ -115,7 +117,8 @@ class TrainConfig:
         if self.setting not in ("telhop", "strict", "lenient"):
             raise ConfigError(f"setting: expected telhop, strict or lenient, got {self.setting!r}")
         for name in ("epochs", "updates_per_epoch", "rollout_length", "num_envs", "batch_size",
-                     "decay_every", "max_steps", "dagger_capacity", "dagger_batch", "threads"):
+                     "decay_every", "max_steps", "dagger_capacity", "dagger_batch", "threads",
+                     "home_repeat"):
             value = getattr(self, name)
             if not isinstance(value, int) or value < 1:
                 raise ConfigError(f"{name}: expected a positive integer, got {value!r}")
