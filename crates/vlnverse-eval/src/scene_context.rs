@@ -35,6 +35,9 @@ pub struct SceneContext {
     pub navigable: Arc<GridMap>,
     graph: OnceLock<Arc<SceneGraph>>,
     mesh: OnceLock<Arc<SceneMesh>>,
+    /// The light `scene.glb` holds (a loaded home), for its mesh: kept here while the home is,
+    /// not in the process-wide light cache, which would keep every home ever loaded.
+    light: Option<Arc<vlnverse_env::light::BakedLight>>,
     /// The scene's folder, when loaded from one (the renderer may find it prepared there).
     dir: Option<PathBuf>,
     /// Per goal, its field once built (`None`: it could not be).
@@ -53,6 +56,7 @@ impl SceneContext {
             navigable: Arc::new(navigable),
             graph: OnceLock::new(),
             mesh: OnceLock::new(),
+            light: None,
             dir: None,
             fields: Mutex::new(BTreeMap::new()),
             levels: None,
@@ -152,7 +156,8 @@ impl SceneContext {
                 format!("no scene folder {}", dir.display()),
             ));
         }
-        let scene = vlnverse_env::io::load_scene(&dir)?;
+        let (scene, light) = vlnverse_env::io::load_scene_and_light(&dir)?;
+        let light = light.map(Arc::new);
         let navigable = GridMap::load_ros(navigable_map_path(dataset, scene_id))?;
         if scene.is_multi_level() {
             // The upper floors' maps beside the ground floor's (`navigable_level<k>.yaml`).
@@ -167,11 +172,13 @@ impl SceneContext {
             }
             return Ok(SceneContext {
                 dir: Some(dir),
+                light,
                 ..SceneContext::with_levels(scene, levels)?
             });
         }
         Ok(SceneContext {
             dir: Some(dir),
+            light,
             ..SceneContext::new(scene, navigable)
         })
     }
@@ -192,7 +199,10 @@ impl SceneContext {
         if let Some(m) = self.mesh.get() {
             return Ok(m.clone());
         }
-        let mut m = SceneMesh::new(&self.scene)?;
+        let mut m = match &self.light {
+            Some(light) => SceneMesh::with_light(&self.scene, light)?,
+            None => SceneMesh::new(&self.scene)?,
+        };
         m.prepared_file = self
             .dir
             .as_ref()
@@ -389,6 +399,28 @@ mod tests {
     use vlnverse_env::occupancy::{build_level_maps, OccupancyConfig};
     use vlnverse_env::SceneSource;
     use vlnverse_procgen::{HomeGenerator, Preset};
+
+    /// A loaded home's mesh is lit with the light its `scene.glb` holds, kept by the context
+    /// (not the process-wide cache): the same colours as the mesh of the scene loaded the old
+    /// way, whose light went through that cache.
+    #[test]
+    fn a_loaded_home_is_lit_with_its_own_light() {
+        let mut pc = Preset::Tiny.config().unwrap();
+        pc.scenes.count = 1;
+        let scene = HomeGenerator::new(pc).unwrap().scene(0).unwrap();
+        let id = scene.id.clone();
+        let dir = tempfile::tempdir().unwrap();
+        let scenes = dir.path().join("scenes");
+        vlnverse_env::io::write_scene_bundle(&scenes, scene, &OccupancyConfig::default()).unwrap();
+        let (_, light) = vlnverse_env::io::load_scene_and_light(scenes.join(&id)).unwrap();
+        assert!(light.is_some(), "a generated home holds its light");
+        let ctx = SceneContext::load(dir.path(), &id).unwrap();
+        assert!(ctx.light.is_some());
+        let mesh = ctx.mesh().unwrap();
+        let old = SceneMesh::new(&vlnverse_env::io::load_scene(scenes.join(&id)).unwrap()).unwrap();
+        assert!(mesh.color == old.color, "other colours");
+        assert!(mesh.positions == old.positions);
+    }
 
     /// A home on two floors let go by a cache keeping end fields gets its stairs' end fields
     /// back when loaded again (the same fields, not swept again); without the budget, or for

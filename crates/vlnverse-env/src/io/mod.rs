@@ -13,7 +13,8 @@ pub use bundle::{
 };
 pub use scene_dir::{
     is_complete_scene_dir, is_complete_scene_dir_with, is_temp_leftover, list_scene_dirs,
-    load_scene, remove_temp_leftovers, write_scene_dir, BUNDLE_FILES, SCENE_GLB, SCENE_JSON,
+    load_scene, load_scene_and_light, remove_temp_leftovers, write_scene_dir, BUNDLE_FILES,
+    SCENE_GLB, SCENE_JSON,
 };
 
 use crate::error::{EnvError, Result};

@@ -147,6 +147,20 @@ fn check_glb_header(bytes: &[u8], path: &Path) -> Result<()> {
 /// Errors name the file and what is wrong (missing file, corrupt `.glb`, invalid JSON with its
 /// line and column, wrong `format_version`).
 pub fn load_scene(dir: impl AsRef<Path>) -> Result<Scene> {
+    let (scene, light) = load_scene_and_light(dir)?;
+    if let Some(light) = light {
+        crate::light::remember(&scene, light);
+    }
+    Ok(scene)
+}
+
+/// [`load_scene`] that hands the light baked at generation to the caller instead of the
+/// process-wide cache: a caller that keeps it while it holds the home (and builds its mesh with
+/// it) does not add every home it ever loaded to that cache. `None` for a scene without baked
+/// light, or whose light does not fit it (then the renderers bake, as before).
+pub fn load_scene_and_light(
+    dir: impl AsRef<Path>,
+) -> Result<(Scene, Option<crate::light::BakedLight>)> {
     let dir = dir.as_ref();
     let json_path = dir.join(SCENE_JSON);
     let glb_path = dir.join(SCENE_GLB);
@@ -165,12 +179,12 @@ pub fn load_scene(dir: impl AsRef<Path>) -> Result<Scene> {
     }
     // The light baked at generation: kept for the renderers, so they do not bake it again. A
     // file whose light does not fit (or does not parse) leaves them to bake, as before.
-    if crate::light::is_lit(&scene) {
-        if let Ok(Some(light)) = read_baked_light(&scene, &glb, &glb_path) {
-            crate::light::remember(&scene, light);
-        }
-    }
-    Ok(scene)
+    let light = if crate::light::is_lit(&scene) {
+        read_baked_light(&scene, &glb, &glb_path).ok().flatten()
+    } else {
+        None
+    };
+    Ok((scene, light))
 }
 
 /// Whether `dir` is a finished scene folder: every file of [`BUNDLE_FILES`] is present,
