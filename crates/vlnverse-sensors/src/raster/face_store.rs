@@ -13,6 +13,7 @@
 //! exactly.
 
 use super::faces::{round_byte, FaceOrigin, FaceTexture};
+use std::cell::RefCell;
 use std::sync::OnceLock;
 use vlnverse_env::material::TEX_SIZE;
 
@@ -184,6 +185,30 @@ fn from_two_bits(b: &[u8], n: usize) -> Option<Vec<u8>> {
     Some(out)
 }
 
+thread_local! {
+    /// A zstd context and the buffer packed differences unpack into, per thread: unpacking a
+    /// face allocates only the texels it keeps, not a context and a buffer that are freed at
+    /// once (short-lived blocks between kept ones leave holes in the heap).
+    static UNPACK: RefCell<Option<(zstd::bulk::Decompressor<'static>, Vec<u8>)>> =
+        const { RefCell::new(None) };
+}
+
+/// The differences of a face of `n` texels from its stored bytes (None when they do not unpack
+/// to exactly that: the frame is larger than its codes and other differences, or corrupt).
+fn unpack_differences(stored: &[u8], n: usize) -> Option<Vec<u8>> {
+    UNPACK.with(|cell| {
+        let mut cell = cell.borrow_mut();
+        if cell.is_none() {
+            *cell = Some((zstd::bulk::Decompressor::new().ok()?, Vec::new()));
+        }
+        let (z, buf) = cell.as_mut()?;
+        buf.clear();
+        buf.reserve(n.div_ceil(4) + n);
+        z.decompress_to_buffer(stored, buf).ok()?;
+        from_two_bits(buf, n)
+    })
+}
+
 /// The texels of a `w`-wide face from their differences (in place).
 fn undo_differences(d: &mut [u8], w: usize, o: FaceOrigin, luma: &[u8]) {
     let (mut tprev, mut t, mut p) = (vec![0.0; w], vec![0.0; w], vec![0u8; w]);
@@ -250,13 +275,10 @@ impl FaceTexels {
             Some(cell) => cell.get_or_init(|| {
                 // The frame's size was checked when read ([`FaceTexels::read`]).
                 let n = f.w * f.h;
-                let mut t = zstd::bulk::decompress(stored, n.div_ceil(4) + n)
-                    .ok()
-                    .and_then(|b| from_two_bits(&b, n))
-                    .unwrap_or_else(|| {
-                        tracing::warn!("face texture {i} does not unpack; drawn black");
-                        vec![0; f.w * f.h]
-                    });
+                let mut t = unpack_differences(stored, n).unwrap_or_else(|| {
+                    tracing::warn!("face texture {i} does not unpack; drawn black");
+                    vec![0; f.w * f.h]
+                });
                 undo_differences(&mut t, f.w, f.origin, super::surface_luma());
                 t.into_boxed_slice()
             }),
