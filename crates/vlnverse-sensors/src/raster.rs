@@ -51,6 +51,7 @@ mod face_store;
 mod faces;
 mod lanes;
 mod prepared;
+mod unzstd;
 
 use prepared::Prepared;
 pub use prepared::{PREPARED_FILE, PREPARED_VERSION};

@@ -186,25 +186,20 @@ fn from_two_bits(b: &[u8], n: usize) -> Option<Vec<u8>> {
 }
 
 thread_local! {
-    /// A zstd context and the buffer packed differences unpack into, per thread: unpacking a
-    /// face allocates only the texels it keeps, not a context and a buffer that are freed at
-    /// once (short-lived blocks between kept ones leave holes in the heap).
-    static UNPACK: RefCell<Option<(zstd::bulk::Decompressor<'static>, Vec<u8>)>> =
-        const { RefCell::new(None) };
+    /// The buffer packed differences unpack into, per thread: unpacking a face allocates only
+    /// the texels it keeps, not a buffer freed at once (short-lived blocks between kept ones
+    /// leave holes in the heap).
+    static UNPACKED: RefCell<Vec<u8>> = const { RefCell::new(Vec::new()) };
 }
 
 /// The differences of a face of `n` texels from its stored bytes (None when they do not unpack
 /// to exactly that: the frame is larger than its codes and other differences, or corrupt).
 fn unpack_differences(stored: &[u8], n: usize) -> Option<Vec<u8>> {
-    UNPACK.with(|cell| {
-        let mut cell = cell.borrow_mut();
-        if cell.is_none() {
-            *cell = Some((zstd::bulk::Decompressor::new().ok()?, Vec::new()));
-        }
-        let (z, buf) = cell.as_mut()?;
+    UNPACKED.with(|cell| {
+        let buf = &mut *cell.borrow_mut();
         buf.clear();
         buf.reserve(n.div_ceil(4) + n);
-        z.decompress_to_buffer(stored, buf).ok()?;
+        super::unzstd::with_decompressor(|z| z.decompress_to_buffer(stored, buf))?.ok()?;
         from_two_bits(buf, n)
     })
 }

@@ -254,7 +254,7 @@ pub(crate) fn decode(
         .filter(|&p| p <= rest.len())
         .ok_or_else(|| format!("packed body of {packed} bytes past the end (truncated)"))?;
     let unpack = |what: &str, v: &[u8], len: u64| {
-        let out = zstd::bulk::decompress(v, len as usize)
+        let out = super::unzstd::decompress(v, len as usize)
             .map_err(|e| format!("cannot unpack the {what} (damaged): {e}"))?;
         if out.len() as u64 != len {
             return Err(format!(
