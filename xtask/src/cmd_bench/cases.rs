@@ -655,6 +655,30 @@ fn home_switch(scale: Scale) -> anyhow::Result<Repetition> {
     }))
 }
 
+/// A dataset of `tasks` generated into `out` with the template instructions, no progress
+/// printed (what a bench case needs before it measures).
+fn generate_quietly(
+    source: &dyn SceneSource,
+    cfg: &vlnverse_task::generate::GenerateConfig,
+    out: &std::path::Path,
+    tasks: Vec<Task>,
+) -> anyhow::Result<()> {
+    run_pipeline(
+        source,
+        cfg,
+        &RunOptions {
+            out: out.to_path_buf(),
+            tasks,
+            shard: (0, 1),
+            occupancy: OccupancyConfig::default(),
+        },
+        &TemplateGenerator::default(),
+        &StageTimes::default(),
+        &|_| {},
+    )?;
+    Ok(())
+}
+
 /// Environment steps and seconds of 8 environments in train order over `dataset`'s train
 /// split (fine task), teacher actions, the default RGB-D rig: `steps` batches after 20 of
 /// warm-up; `home_repeat` episodes in a home before an environment draws another.
@@ -711,18 +735,11 @@ fn vec_env(scale: Scale) -> anyhow::Result<Repetition> {
     let tiny: PathBuf =
         std::env::temp_dir().join(format!("vlnverse-bench-vec-env-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&tiny);
-    run_pipeline(
+    generate_quietly(
         &HomeGenerator::from_preset(Preset::Tiny)?,
         &GeneratePreset::Tiny.config()?,
-        &RunOptions {
-            out: tiny.clone(),
-            tasks: vec![Task::Fine],
-            shard: (0, 1),
-            occupancy: OccupancyConfig::default(),
-        },
-        &TemplateGenerator::default(),
-        &StageTimes::default(),
-        &|_| {},
+        &tiny,
+        vec![Task::Fine],
     )
     .with_context(|| format!("generating the tiny preset into {}", tiny.display()))?;
     let folders = HomeFolders {

@@ -23,10 +23,8 @@ use std::process::{Command, Stdio};
 use std::time::Duration;
 
 use anyhow::Context;
-use vlnverse_env::occupancy::OccupancyConfig;
 use vlnverse_procgen::{HomeGenerator, Preset};
-use vlnverse_task::generate::{run as run_pipeline, GeneratePreset, RunOptions, StageTimes};
-use vlnverse_task::instructions::TemplateGenerator;
+use vlnverse_task::generate::GeneratePreset;
 use vlnverse_task::{Split, Task};
 
 use super::{HomeFolders, Repetition, Sample, Scale};
@@ -170,20 +168,10 @@ pub fn eval_memory(scale: Scale) -> anyhow::Result<Repetition> {
         Some(d) => (PathBuf::from(d), scale.pick(300, 60)),
         None => {
             let dataset = root.join("dataset");
-            run_pipeline(
-                &homes()?,
-                &dataset_config()?,
-                &RunOptions {
-                    out: dataset.clone(),
-                    tasks: vec![Task::Coarse],
-                    shard: (0, 1),
-                    occupancy: OccupancyConfig::default(),
-                },
-                &TemplateGenerator::default(),
-                &StageTimes::default(),
-                &|_| {},
-            )
-            .with_context(|| format!("generating the case's dataset into {}", dataset.display()))?;
+            super::generate_quietly(&homes()?, &dataset_config()?, &dataset, vec![Task::Coarse])
+                .with_context(|| {
+                    format!("generating the case's dataset into {}", dataset.display())
+                })?;
             (dataset, scale.pick(EPISODES, EPISODES / 2))
         }
     };
