@@ -197,10 +197,12 @@ thread_local! {
 fn unpack_differences(stored: &[u8], n: usize) -> Option<Vec<u8>> {
     UNPACKED.with(|cell| {
         let buf = &mut *cell.borrow_mut();
-        buf.clear();
-        buf.reserve(n.div_ceil(4) + n);
-        super::unzstd::with_decompressor(|z| z.decompress_to_buffer(stored, buf))?.ok()?;
-        from_two_bits(buf, n)
+        // At most the codes and a difference a texel, as before: a larger frame is refused.
+        buf.resize(n.div_ceil(4) + n, 0);
+        let len =
+            super::unzstd::with_decompressor(|z| z.decompress_to_buffer(stored, &mut buf[..]))?
+                .ok()?;
+        from_two_bits(&buf[..len], n)
     })
 }
 
