@@ -40,13 +40,12 @@ impl DistanceField {
 
     /// Field rooted at the centre of cell `root` (a free cell), without a goal point.
     pub(crate) fn from_root(map: &GridMap, root: Option<usize>) -> DistanceField {
-        let n = map.len();
         let Some(root) = root else {
             return DistanceField {
                 map: map.clone(),
                 root: None,
                 goal: None,
-                reached: Reached::none(n),
+                reached: Reached::default(),
                 g: Vec::new(),
                 parent: Vec::new(),
             };

@@ -261,23 +261,15 @@ impl Scratch {
 }
 
 /// Cells a sweep reached: a bit a cell and, per word of 64, the count of set bits before it,
-/// so a reached cell's slot in per-reached-cell arrays is a popcount away.
-#[derive(Clone, Debug)]
+/// so a reached cell's slot in per-reached-cell arrays is a popcount away. The default reaches
+/// no cell.
+#[derive(Clone, Debug, Default)]
 pub(crate) struct Reached {
     bits: Vec<u64>,
     before: Vec<u32>,
 }
 
 impl Reached {
-    /// No cell of `n` reached.
-    pub fn none(n: usize) -> Reached {
-        let words = n.div_ceil(64);
-        Reached {
-            bits: vec![0; words],
-            before: vec![0; words],
-        }
-    }
-
     /// The slot of cell `i` among the reached cells (in cell order), None when not reached.
     #[inline]
     pub fn slot(&self, i: usize) -> Option<usize> {
