@@ -11,8 +11,14 @@
 //! differences", which follow), packed with zstd. Unpacking computes the same prediction from
 //! the rows already unpacked, with the same float operations, so it gives back every texel
 //! exactly.
+//!
+//! A face unpacked for drawing is kept in blocks of [`BLOCK`] x [`BLOCK`] texels (one cache
+//! line each, [`blocked_index`]) rather than in rows: the pixels of a run sample a face along
+//! a line that crosses its rows (a floor seen at a slant), and in rows every such pixel would
+//! touch a line of its own. The small faces kept as they are fit in the cache whole.
 
 use super::faces::{round_byte, FaceOrigin, FaceTexture};
+use std::borrow::Cow;
 use std::cell::RefCell;
 use std::sync::OnceLock;
 use vlnverse_env::material::TEX_SIZE;
@@ -28,6 +34,47 @@ const PREDICTED: u32 = 1;
 /// Bytes per face in the stored table: length, how, surface, origin, other differences.
 const TABLE: usize = 20;
 
+/// Side in texels of the square blocks an unpacked face is kept in (64 bytes: a cache line).
+pub(crate) const BLOCK: u32 = 8;
+
+/// Where texel `(tu, tv)` of a face kept in blocks, `bw` blocks wide, is: its block's
+/// `BLOCK * BLOCK` bytes in row-major order of blocks, and row-major inside the block.
+#[inline(always)]
+pub(crate) fn blocked_index(tu: u32, tv: u32, bw: u32) -> u32 {
+    ((tv / BLOCK) * bw + tu / BLOCK) * (BLOCK * BLOCK) + (tv % BLOCK) * BLOCK + tu % BLOCK
+}
+
+/// Bytes of a `w x h` face kept in blocks (its sides rounded up to whole blocks).
+fn blocked_len(w: usize, h: usize) -> usize {
+    let b = BLOCK as usize;
+    w.div_ceil(b) * h.div_ceil(b) * b * b
+}
+
+/// The rows of a `w x h` face kept in blocks ([`to_blocks`]).
+fn from_blocks(blocks: &[u8], w: usize, h: usize) -> Vec<u8> {
+    let bw = (w as u32).div_ceil(BLOCK);
+    (0..h as u32)
+        .flat_map(|tv| (0..w as u32).map(move |tu| blocked_index(tu, tv, bw) as usize))
+        .map(|at| blocks[at])
+        .collect()
+}
+
+/// The texels of a `w`-wide face (rows, one after the other) in blocks ([`blocked_index`]);
+/// the texels past the face's sides are 0 and never drawn.
+fn to_blocks(rows: &[u8], w: usize) -> Box<[u8]> {
+    let b = BLOCK as usize;
+    let h = rows.len() / w.max(1);
+    let bw = w.div_ceil(b);
+    let mut out = vec![0u8; blocked_len(w, h)].into_boxed_slice();
+    for (j, row) in rows.chunks_exact(w.max(1)).enumerate() {
+        for (bx, piece) in row.chunks(b).enumerate() {
+            let at = ((j / b * bw + bx) * b + j % b) * b;
+            out[at..at + piece.len()].copy_from_slice(piece);
+        }
+    }
+    out
+}
+
 /// One face texture: its stored bytes `data[at..at + len]`.
 #[derive(Debug)]
 struct Face {
@@ -36,8 +83,18 @@ struct Face {
     w: usize,
     h: usize,
     origin: FaceOrigin,
-    /// For a packed face: its texels once unpacked.
-    unpacked: Option<OnceLock<Box<[u8]>>>,
+    held: Held,
+}
+
+/// How a face's texels are held.
+#[derive(Debug)]
+enum Held {
+    /// In rows, as stored (a small face).
+    Rows,
+    /// In blocks ([`to_blocks`]): a larger face of a scene prepared here.
+    Blocks,
+    /// Packed as stored, and in blocks once unpacked for drawing.
+    Packed(OnceLock<Box<[u8]>>),
 }
 
 /// Every face texture of a scene, face `i` being the `i`-th in the order of their first texel
@@ -158,10 +215,11 @@ fn two_bits(d: &[u8]) -> Vec<u8> {
     codes
 }
 
-/// The `n` differences of [`two_bits`]'s bytes; `None` when they do not fit `n`.
-fn from_two_bits(b: &[u8], n: usize) -> Option<Vec<u8>> {
+/// The `n` differences of [`two_bits`]'s bytes, into `out`; `None` when they do not fit `n`.
+fn from_two_bits_into(b: &[u8], n: usize, out: &mut Vec<u8>) -> Option<()> {
     let (codes, other) = b.split_at_checked(n.div_ceil(4))?;
-    let mut out = vec![0u8; 4 * codes.len()];
+    out.clear();
+    out.resize(4 * codes.len(), 0);
     for (o, c) in out.chunks_exact_mut(4).zip(codes) {
         o.copy_from_slice(&QUADS[*c as usize]);
     }
@@ -182,7 +240,14 @@ fn from_two_bits(b: &[u8], n: usize) -> Option<Vec<u8>> {
         return None;
     }
     out.truncate(n);
-    Some(out)
+    Some(())
+}
+
+/// The `n` differences of [`two_bits`]'s bytes; `None` when they do not fit `n`.
+#[cfg(test)]
+fn from_two_bits(b: &[u8], n: usize) -> Option<Vec<u8>> {
+    let mut out = Vec::new();
+    from_two_bits_into(b, n, &mut out).map(|()| out)
 }
 
 thread_local! {
@@ -190,11 +255,14 @@ thread_local! {
     /// the texels it keeps, not a buffer freed at once (short-lived blocks between kept ones
     /// leave holes in the heap).
     static UNPACKED: RefCell<Vec<u8>> = const { RefCell::new(Vec::new()) };
+    /// The rows a face unpacks into before they go into blocks, per thread (as above).
+    static ROWS: RefCell<Vec<u8>> = const { RefCell::new(Vec::new()) };
 }
 
-/// The differences of a face of `n` texels from its stored bytes (None when they do not unpack
-/// to exactly that: the frame is larger than its codes and other differences, or corrupt).
-fn unpack_differences(stored: &[u8], n: usize) -> Option<Vec<u8>> {
+/// The differences of a face of `n` texels from its stored bytes, into `out` (None when they
+/// do not unpack to exactly that: the frame is larger than its codes and other differences,
+/// or corrupt).
+fn unpack_differences(stored: &[u8], n: usize, out: &mut Vec<u8>) -> Option<()> {
     UNPACKED.with(|cell| {
         let buf = &mut *cell.borrow_mut();
         // At most the codes and a difference a texel, as before: a larger frame is refused.
@@ -202,7 +270,7 @@ fn unpack_differences(stored: &[u8], n: usize) -> Option<Vec<u8>> {
         let len =
             super::unzstd::with_decompressor(|z| z.decompress_to_buffer(stored, &mut buf[..]))?
                 .ok()?;
-        from_two_bits(&buf[..len], n)
+        from_two_bits_into(&buf[..len], n, out)
     })
 }
 
@@ -221,38 +289,53 @@ fn undo_differences(d: &mut [u8], w: usize, o: FaceOrigin, luma: &[u8]) {
     }
 }
 
+impl Face {
+    /// The texels of this packed face (face `i`, stored as `stored`) in rows, into `rows`;
+    /// black, with a warning, when they do not unpack (the frame's size was checked when
+    /// read: [`FaceTexels::read`]).
+    fn unpack_rows(&self, i: usize, stored: &[u8], rows: &mut Vec<u8>) {
+        let n = self.w * self.h;
+        if unpack_differences(stored, n, rows).is_none() {
+            tracing::warn!("face texture {i} does not unpack; drawn black");
+            rows.clear();
+            rows.resize(n, 0);
+        }
+        undo_differences(rows, self.w, self.origin, super::surface_luma());
+    }
+}
+
 impl FaceTexels {
     /// The baked texels as they are: `texels` of `faces` (one after the other, in order of
-    /// `base`) with their surface textures `origin`.
-    pub(crate) fn raw(
-        mut texels: Vec<u8>,
-        faces: &[FaceTexture],
-        origin: &[FaceOrigin],
-    ) -> FaceTexels {
-        let mut at = 0;
+    /// `base`) with their surface textures `origin`; faces of [`RAW_BELOW`] texels or more
+    /// go into blocks.
+    pub(crate) fn raw(texels: Vec<u8>, faces: &[FaceTexture], origin: &[FaceOrigin]) -> FaceTexels {
+        let mut data = Vec::with_capacity(texels.len());
         let faces: Vec<Face> = faces
             .iter()
             .enumerate()
             .map(|(i, f)| {
-                let (w, h) = (f.w as usize, f.h as usize);
-                let face = Face {
+                let (w, h, base) = (f.w as usize, f.h as usize, f.base as usize);
+                let rows = texels.get(base..base + w * h).unwrap_or(&[]);
+                let at = data.len();
+                let held = if rows.len() >= RAW_BELOW {
+                    data.extend_from_slice(&to_blocks(rows, w));
+                    Held::Blocks
+                } else {
+                    data.extend_from_slice(rows);
+                    Held::Rows
+                };
+                Face {
                     at,
-                    len: w * h,
+                    len: data.len() - at,
                     w,
                     h,
                     origin: origin.get(i).copied().unwrap_or_default(),
-                    unpacked: None,
-                };
-                at += w * h;
-                face
+                    held,
+                }
             })
             .collect();
-        texels.truncate(at);
-        texels.shrink_to_fit();
-        FaceTexels {
-            data: texels,
-            faces,
-        }
+        data.shrink_to_fit();
+        FaceTexels { data, faces }
     }
 
     /// Number of faces.
@@ -261,24 +344,45 @@ impl FaceTexels {
         self.faces.len()
     }
 
-    /// The texels of face `i` (empty for an index out of range).
-    pub(crate) fn texels(&self, i: usize) -> &[u8] {
+    /// The texels of face `i` in rows (empty for an index out of range); made again for
+    /// every call unless the face is held in rows.
+    pub(crate) fn texels(&self, i: usize) -> Cow<'_, [u8]> {
         let Some(f) = self.faces.get(i) else {
-            return &[];
+            return Cow::Borrowed(&[]);
         };
         let stored = &self.data[f.at..f.at + f.len];
-        match &f.unpacked {
-            None => stored,
-            Some(cell) => cell.get_or_init(|| {
-                // The frame's size was checked when read ([`FaceTexels::read`]).
-                let n = f.w * f.h;
-                let mut t = unpack_differences(stored, n).unwrap_or_else(|| {
-                    tracing::warn!("face texture {i} does not unpack; drawn black");
-                    vec![0; f.w * f.h]
+        match &f.held {
+            Held::Rows => Cow::Borrowed(stored),
+            Held::Blocks => Cow::Owned(from_blocks(stored, f.w, f.h)),
+            Held::Packed(_) => {
+                let mut rows = Vec::new();
+                f.unpack_rows(i, stored, &mut rows);
+                Cow::Owned(rows)
+            }
+        }
+    }
+
+    /// The texels of face `i` as drawn, and whether they are in blocks ([`blocked_index`]) or
+    /// in rows (a small face); a packed face is unpacked the first time it is asked for.
+    /// Empty for an index out of range.
+    pub(crate) fn drawn(&self, i: usize) -> (&[u8], bool) {
+        let Some(f) = self.faces.get(i) else {
+            return (&[], false);
+        };
+        let stored = &self.data[f.at..f.at + f.len];
+        match &f.held {
+            Held::Rows => (stored, false),
+            Held::Blocks => (stored, true),
+            Held::Packed(cell) => {
+                let blocks = cell.get_or_init(|| {
+                    ROWS.with(|rows| {
+                        let rows = &mut *rows.borrow_mut();
+                        f.unpack_rows(i, stored, rows);
+                        to_blocks(rows, f.w)
+                    })
                 });
-                undo_differences(&mut t, f.w, f.origin, super::surface_luma());
-                t.into_boxed_slice()
-            }),
+                (blocks, true)
+            }
         }
     }
 
@@ -289,7 +393,10 @@ impl FaceTexels {
             + self
                 .faces
                 .iter()
-                .filter_map(|f| f.unpacked.as_ref()?.get().map(|t| t.len()))
+                .filter_map(|f| match &f.held {
+                    Held::Packed(cell) => cell.get().map(|t| t.len()),
+                    _ => None,
+                })
                 .sum::<usize>()
     }
 
@@ -300,8 +407,8 @@ impl FaceTexels {
             + self
                 .faces
                 .iter()
-                .filter(|f| f.unpacked.is_some())
-                .map(|f| f.w * f.h)
+                .filter(|f| matches!(f.held, Held::Packed(_)))
+                .map(|f| blocked_len(f.w, f.h))
                 .sum::<usize>()
     }
 
@@ -321,7 +428,7 @@ impl FaceTexels {
         for (i, f) in self.faces.iter().enumerate() {
             let t = self.texels(i);
             let (how, stored, other) = if t.len() >= RAW_BELOW {
-                let d = two_bits(&differences(t, f.w, f.origin, luma));
+                let d = two_bits(&differences(&t, f.w, f.origin, luma));
                 let other = d.len() - t.len().div_ceil(4);
                 let p = zstd::bulk::compress(&d, LEVEL).map_err(|e| e.to_string())?;
                 (PREDICTED, p, other as u32)
@@ -380,8 +487,8 @@ impl FaceTexels {
                      {surfaces} surfaces of {TEX_SIZE}x{TEX_SIZE} texels)"
                 ));
             }
-            let unpacked = match how {
-                RAW if len == n => None,
+            let held = match how {
+                RAW if len == n => Held::Rows,
                 PREDICTED => {
                     let size = zstd::zstd_safe::get_frame_content_size(&data[at..at + len])
                         .ok()
@@ -393,7 +500,7 @@ impl FaceTexels {
                              other differences"
                         ));
                     }
-                    Some(OnceLock::new())
+                    Held::Packed(OnceLock::new())
                 }
                 _ => {
                     return Err(format!(
@@ -407,7 +514,7 @@ impl FaceTexels {
                 w,
                 h,
                 origin: FaceOrigin { surface, tu0, tv0 },
-                unpacked,
+                held,
             });
             at += len;
         }
@@ -459,7 +566,7 @@ mod tests {
     }
 
     #[test]
-    fn stored_faces_read_back_the_same_texels_unpacked_when_first_asked_for() {
+    fn stored_faces_read_back_the_same_texels_unpacked_into_blocks_when_first_drawn() {
         let dims = [
             (2, 5),
             (100, 50),
@@ -483,17 +590,32 @@ mod tests {
         assert!(read.held() < raw.held(), "packed faces held packed");
         let packed: usize = dims
             .iter()
-            .map(|&(w, h)| (w * h) as usize)
-            .filter(|&n| n >= RAW_BELOW)
+            .filter(|&&(w, h)| (w * h) as usize >= RAW_BELOW)
+            .map(|&(w, h)| blocked_len(w as usize, h as usize))
             .sum();
         assert_eq!(read.held_at_most(), read.held() + packed);
         for (i, face) in f.iter().enumerate() {
             let want = &t[face.base as usize..(face.base + face.w * face.h) as usize];
-            assert_eq!(read.texels(i), want, "face {i}");
-            assert_eq!(raw.texels(i), want, "face {i}");
+            for faces in [&read, &raw] {
+                assert_eq!(faces.texels(i), want, "face {i}");
+                // As drawn: every texel where the resolve looks for it.
+                let (drawn, blocked) = faces.drawn(i);
+                assert_eq!(blocked, want.len() >= RAW_BELOW, "face {i}");
+                let bw = face.w.div_ceil(BLOCK);
+                for (k, texel) in want.iter().enumerate() {
+                    let (tu, tv) = (k as u32 % face.w, k as u32 / face.w);
+                    let at = if blocked {
+                        blocked_index(tu, tv, bw)
+                    } else {
+                        tv * face.w + tu
+                    };
+                    assert_eq!(drawn[at as usize], *texel, "face {i}, ({tu}, {tv})");
+                }
+            }
         }
         assert_eq!(read.held(), read.held_at_most(), "every face unpacked");
         assert!(read.texels(dims.len()).is_empty());
+        assert!(read.drawn(dims.len()).0.is_empty());
     }
 
     #[test]

@@ -446,7 +446,7 @@ mod tests {
         let body = encode(&d, &faces, &[false], &m, luma).expect("encoded");
         let mut b = Vec::new();
         let r = decode(&body, &m, m.content_key(), luma).expect("decoded");
-        (0..r.faces.len()).for_each(|i| b.extend_from_slice(r.faces.texels(i)));
+        (0..r.faces.len()).for_each(|i| b.extend_from_slice(&r.faces.texels(i)));
         r.draw.pos.iter().for_each(|p| {
             p.to_array()
                 .iter()
