@@ -19,6 +19,7 @@ mod cmd_serve;
 mod cmd_stats;
 mod cmd_test;
 mod cmd_topdown;
+mod malloc_arena;
 mod progress;
 mod split_args;
 
@@ -77,6 +78,9 @@ fn main() {
         .with_target(false)
         .init();
     let cli = Cli::parse();
+    if let Command::Evaluate(_) = &cli.command {
+        malloc_arena::one_arena();
+    }
     let result = match cli.command {
         Command::Scenes(a) => cmd_scenes::run(a),
         Command::SceneInfo(a) => cmd_scene_info::run(a),

@@ -1,5 +1,6 @@
 //! Integration tests of `xtask`, linked into one test binary (one link, shared fixtures).
 
 mod crate_layers;
+mod malloc_arena;
 mod real_scene_e2e;
 mod scenes_cli;
