@@ -6,7 +6,8 @@
 //! heap and fragmentation do not carry into the other's figure. Its peak is the kernel's
 //! high-water mark of the child's resident set, `VmHWM` of `/proc/<pid>/status`, read every
 //! 20 ms while the child runs (the last read before it exits is the figure; a rise in its last
-//! 20 ms would be missed). That is safe Rust and needs no new dependency, but it is Linux-only:
+//! 20 ms would be missed). The child runs with one glibc malloc arena, as every `xtask evaluate`
+//! does (`malloc_arena.rs`). That is safe Rust and needs no new dependency, but it is Linux-only:
 //! elsewhere the case stops with an error that says so. (`getrusage(RUSAGE_CHILDREN)` or
 //! `wait4` would give the exact figure but need `unsafe` or a crate xtask does not depend on.)
 //!
