@@ -1215,9 +1215,6 @@ impl RasterScene {
         rgb: &mut [u8],
         mut sem: Option<&mut [u16]>,
     ) {
-        // Float -> int by the magic-number trick (adding 1.5 * 2^23 leaves the rounded value
-        // in the low mantissa bits): no saturating conversions, no branches in the hot loop.
-        const MAGIC: f32 = 12_582_912.0;
         const TEXELS: usize = TEX_SIZE * TEX_SIZE;
         let slots = &setup.slots[..];
         // `v` in [0, 255]: its rounded value.
@@ -1381,6 +1378,10 @@ impl RasterScene {
     }
 }
 
+/// Float -> int by the magic-number trick (adding 1.5 * 2^23 leaves the rounded value in the low
+/// mantissa bits): no saturating conversions, no branches in the resolve's hot loops.
+const MAGIC: f32 = 12_582_912.0;
+
 /// A run of pixels of one face-textured slot in a row: their `1 / depth` and offsets from the
 /// run's first pixel, and each texture coordinate over depth as `a * offset + b`.
 struct FaceRun<'a> {
@@ -1396,8 +1397,6 @@ impl FaceRun<'_> {
     /// on vector lanes once inlined).
     #[inline(always)]
     fn indices(&self, index: &mut [u32], at: impl Fn(u32, u32) -> u32) {
-        // Float -> int by the magic-number trick, as in `resolve_rgb`.
-        const MAGIC: f32 = 12_582_912.0;
         let ((a1, b1), (a2, b2), (umax, vmax)) = (self.u, self.v, self.max);
         for ((i, iz), j) in index.iter_mut().zip(self.zr).zip(self.lanes) {
             let inv = 1.0 / *iz;

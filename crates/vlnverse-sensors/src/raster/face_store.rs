@@ -50,7 +50,7 @@ fn blocked_len(w: usize, h: usize) -> usize {
     w.div_ceil(b) * h.div_ceil(b) * b * b
 }
 
-/// The rows of a `w x h` face kept in blocks ([`to_blocks`]).
+/// The rows of a `w x h` face kept in blocks ([`blocks_into`]).
 fn from_blocks(blocks: &[u8], w: usize, h: usize) -> Vec<u8> {
     let bw = (w as u32).div_ceil(BLOCK);
     (0..h as u32)
@@ -59,20 +59,21 @@ fn from_blocks(blocks: &[u8], w: usize, h: usize) -> Vec<u8> {
         .collect()
 }
 
-/// The texels of a `w`-wide face (rows, one after the other) in blocks ([`blocked_index`]);
-/// the texels past the face's sides are 0 and never drawn.
-fn to_blocks(rows: &[u8], w: usize) -> Box<[u8]> {
+/// The texels of a `w`-wide face (rows, one after the other) in blocks ([`blocked_index`]),
+/// added to `out`; the texels past the face's sides are 0 and never drawn.
+fn blocks_into(rows: &[u8], w: usize, out: &mut Vec<u8>) {
     let b = BLOCK as usize;
     let h = rows.len() / w.max(1);
     let bw = w.div_ceil(b);
-    let mut out = vec![0u8; blocked_len(w, h)].into_boxed_slice();
+    let start = out.len();
+    out.resize(start + blocked_len(w, h), 0);
+    let out = &mut out[start..];
     for (j, row) in rows.chunks_exact(w.max(1)).enumerate() {
         for (bx, piece) in row.chunks(b).enumerate() {
             let at = ((j / b * bw + bx) * b + j % b) * b;
             out[at..at + piece.len()].copy_from_slice(piece);
         }
     }
-    out
 }
 
 /// One face texture: its stored bytes `data[at..at + len]`.
@@ -91,7 +92,7 @@ struct Face {
 enum Held {
     /// In rows, as stored (a small face).
     Rows,
-    /// In blocks ([`to_blocks`]): a larger face of a scene prepared here.
+    /// In blocks ([`blocks_into`]): a larger face of a scene prepared here.
     Blocks,
     /// Packed as stored, and in blocks once unpacked for drawing.
     Packed(OnceLock<Box<[u8]>>),
@@ -318,7 +319,7 @@ impl FaceTexels {
                 let rows = texels.get(base..base + w * h).unwrap_or(&[]);
                 let at = data.len();
                 let held = if rows.len() >= RAW_BELOW {
-                    data.extend_from_slice(&to_blocks(rows, w));
+                    blocks_into(rows, w, &mut data);
                     Held::Blocks
                 } else {
                     data.extend_from_slice(rows);
@@ -378,7 +379,9 @@ impl FaceTexels {
                     ROWS.with(|rows| {
                         let rows = &mut *rows.borrow_mut();
                         f.unpack_rows(i, stored, rows);
-                        to_blocks(rows, f.w)
+                        let mut blocks = Vec::with_capacity(blocked_len(f.w, f.h));
+                        blocks_into(rows, f.w, &mut blocks);
+                        blocks.into_boxed_slice()
                     })
                 });
                 (blocks, true)
