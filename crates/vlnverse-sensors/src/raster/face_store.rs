@@ -69,9 +69,17 @@ fn blocks_into(rows: &[u8], w: usize, out: &mut Vec<u8>) {
     out.resize(start + blocked_len(w, h), 0);
     let out = &mut out[start..];
     for (j, row) in rows.chunks_exact(w.max(1)).enumerate() {
-        for (bx, piece) in row.chunks(b).enumerate() {
-            let at = ((j / b * bw + bx) * b + j % b) * b;
-            out[at..at + piece.len()].copy_from_slice(piece);
+        let first = (j / b * bw * b + j % b) * b;
+        // Whole pieces of a block's row as fixed-size moves, then the face's ragged edge.
+        let mut pieces = row.chunks_exact(BLOCK as usize);
+        for (bx, piece) in (&mut pieces).enumerate() {
+            let at = first + bx * b * b;
+            out[at..at + BLOCK as usize].copy_from_slice(piece);
+        }
+        let rest = pieces.remainder();
+        if !rest.is_empty() {
+            let at = first + w / b * b * b;
+            out[at..at + rest.len()].copy_from_slice(rest);
         }
     }
 }
@@ -576,6 +584,7 @@ mod tests {
             (1, 1),
             (64, 63),
             (300, 240),
+            (128, 40),
             (1, 5000),
             (5000, 1),
         ];
