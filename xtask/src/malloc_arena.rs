@@ -12,6 +12,7 @@
 //! dependency. A value the user set is kept; elsewhere than Linux with glibc this does nothing.
 
 /// The environment variable glibc reads its arena limit from.
+#[cfg(all(target_os = "linux", target_env = "gnu"))]
 const VAR: &str = "MALLOC_ARENA_MAX";
 
 /// Executes this binary again with `MALLOC_ARENA_MAX=1` unless the variable is set (by the
