@@ -40,7 +40,7 @@ pub struct Args {
     #[arg(long)]
     pub teacher_hints: bool,
     /// Also answer requests for this host name (repeatable; `NAME` or `NAME:PORT`). Only
-    /// 127.0.0.1, localhost, [::1] and the bound address are answered otherwise (DNS rebinding).
+    /// 127.0.0.1, localhost, `[::1]` and the bound address are answered otherwise (DNS rebinding).
     #[arg(long = "allow-host", value_name = "NAME")]
     pub allow_host: Vec<String>,
 }
