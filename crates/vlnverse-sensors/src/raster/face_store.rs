@@ -71,10 +71,10 @@ fn blocks_into(rows: &[u8], w: usize, out: &mut Vec<u8>) {
     for (j, row) in rows.chunks_exact(w.max(1)).enumerate() {
         let first = (j / b * bw * b + j % b) * b;
         // Whole pieces of a block's row as fixed-size moves, then the face's ragged edge.
-        let mut pieces = row.chunks_exact(BLOCK as usize);
+        let mut pieces = row.chunks_exact(b);
         for (bx, piece) in (&mut pieces).enumerate() {
             let at = first + bx * b * b;
-            out[at..at + BLOCK as usize].copy_from_slice(piece);
+            out[at..at + b].copy_from_slice(piece);
         }
         let rest = pieces.remainder();
         if !rest.is_empty() {
@@ -318,13 +318,26 @@ impl FaceTexels {
     /// `base`) with their surface textures `origin`; faces of [`RAW_BELOW`] texels or more
     /// go into blocks.
     pub(crate) fn raw(texels: Vec<u8>, faces: &[FaceTexture], origin: &[FaceOrigin]) -> FaceTexels {
-        let mut data = Vec::with_capacity(texels.len());
+        let rows_of = |f: &FaceTexture| {
+            let (w, h, base) = (f.w as usize, f.h as usize, f.base as usize);
+            texels.get(base..base + w * h).unwrap_or(&[])
+        };
+        // Allocated once, to the byte: the blocks' padding would otherwise grow the buffer
+        // (a copy) and `shrink_to_fit` copy it again.
+        let size = faces
+            .iter()
+            .map(|f| match rows_of(f).len() {
+                n if n >= RAW_BELOW => blocked_len(f.w as usize, f.h as usize),
+                n => n,
+            })
+            .sum();
+        let mut data = Vec::with_capacity(size);
         let faces: Vec<Face> = faces
             .iter()
             .enumerate()
             .map(|(i, f)| {
-                let (w, h, base) = (f.w as usize, f.h as usize, f.base as usize);
-                let rows = texels.get(base..base + w * h).unwrap_or(&[]);
+                let (w, h) = (f.w as usize, f.h as usize);
+                let rows = rows_of(f);
                 let at = data.len();
                 let held = if rows.len() >= RAW_BELOW {
                     blocks_into(rows, w, &mut data);
@@ -343,7 +356,7 @@ impl FaceTexels {
                 }
             })
             .collect();
-        data.shrink_to_fit();
+        debug_assert_eq!(data.len(), data.capacity());
         FaceTexels { data, faces }
     }
 
