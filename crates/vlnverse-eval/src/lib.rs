@@ -4,6 +4,7 @@ mod agent;
 pub mod agents;
 mod end_fields;
 mod episode_loop;
+mod episode_store;
 mod error;
 pub mod oracle;
 mod plots;

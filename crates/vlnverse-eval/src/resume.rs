@@ -67,11 +67,21 @@ impl EpisodeRecord {
 /// A stable hash (hex) of one episode as the split file holds it: start, goals, instruction,
 /// path and the rest.
 pub fn episode_fingerprint(ep: &Episode) -> Result<String> {
+    fingerprint_key(ep).map(fingerprint_text)
+}
+
+/// [`episode_fingerprint`] as a number (a log keeps one per episode of its run).
+fn fingerprint_key(ep: &Episode) -> Result<u64> {
     let json = serde_json::to_vec(ep)
         .map_err(|e| TaskError::invalid("episode", ep.episode_id, e.to_string()))?;
     let mut key = vlnverse_env::cache::ContentKey::new();
     key.bytes(&json);
-    Ok(format!("{:016x}", key.finish()))
+    Ok(key.finish())
+}
+
+/// A fingerprint as `run.json` and the log write it.
+fn fingerprint_text(key: u64) -> String {
+    format!("{key:016x}")
 }
 
 /// Refuse a resume in which an episode already finished in the folder (`done`) is not the
@@ -198,7 +208,7 @@ pub struct ProgressLog {
     path: PathBuf,
     file: Mutex<File>,
     /// [`episode_fingerprint`] by episode id, stamped on each record appended.
-    fingerprints: BTreeMap<u64, String>,
+    fingerprints: BTreeMap<u64, u64>,
 }
 
 impl ProgressLog {
@@ -221,7 +231,7 @@ impl ProgressLog {
     pub fn for_episodes(mut self, episodes: &[Episode]) -> Result<Self> {
         for ep in episodes {
             self.fingerprints
-                .insert(ep.episode_id, episode_fingerprint(ep)?);
+                .insert(ep.episode_id, fingerprint_key(ep)?);
         }
         Ok(self)
     }
@@ -229,8 +239,8 @@ impl ProgressLog {
     /// Stamp `rec` with its episode's fingerprint (when the log has one), append it and
     /// make it durable.
     pub fn append(&self, rec: &mut EpisodeRecord) -> Result<()> {
-        if let Some(f) = self.fingerprints.get(&rec.episode_id) {
-            rec.episode_fingerprint = Some(f.clone());
+        if let Some(&f) = self.fingerprints.get(&rec.episode_id) {
+            rec.episode_fingerprint = Some(fingerprint_text(f));
         }
         let mut line = serde_json::to_string(&*rec)
             .map_err(|e| TaskError::invalid("episode record", rec.episode_id, e.to_string()))?;

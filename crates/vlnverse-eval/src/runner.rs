@@ -34,6 +34,7 @@ use vlnverse_sim::{PhysicsCache, RapierSimulator, SimConfig, Simulator};
 
 use crate::agent::{Agent, AgentFactory};
 use crate::episode_loop::{check_episode, run_episode, ActionKind, EpisodeSettings};
+use crate::episode_store::{EpisodeStore, Slot};
 use crate::error::{Result, TaskError};
 use crate::plots;
 use crate::protocol::EvalConfig;
@@ -640,10 +641,7 @@ pub fn evaluate_with<SF: SimulatorFactory, RF: RendererFactory>(
             .map(|(i, e)| (e.episode_id, i))
             .collect(),
         split_file,
-        scenes: SceneCache::new(
-            &req.dataset,
-            req.threads.unwrap_or_else(rayon::current_num_threads) + SCENE_CACHE_SLACK,
-        ),
+        scenes: SceneCache::new(&req.dataset, workers(req) + SCENE_CACHE_SLACK),
         pool: Mutex::new(Vec::new()),
     };
     // Make one agent, simulator and renderer before anything is written: a bad profile, rig
@@ -665,7 +663,7 @@ pub fn evaluate_with<SF: SimulatorFactory, RF: RendererFactory>(
     let result = evaluate_locked(
         &shared,
         &identity,
-        &episodes,
+        episodes,
         total_in_split,
         layers.on_episode,
     );
@@ -682,6 +680,11 @@ pub fn evaluate_with<SF: SimulatorFactory, RF: RendererFactory>(
         let _ = std::fs::remove_dir(&req.out);
     }
     result
+}
+
+/// Worker threads of a run of `req`.
+fn workers(req: &EvalRequest) -> usize {
+    req.threads.unwrap_or_else(rayon::current_num_threads)
 }
 
 /// The episodes `req` asks for: the first `episodes`, a `sample`, or all.
@@ -723,26 +726,27 @@ fn clean_failed_start(out: &Path, created: bool) {
 fn evaluate_locked<SF: SimulatorFactory, RF: RendererFactory>(
     shared: &Shared<'_, SF, RF>,
     identity: &[(&'static str, serde_json::Value)],
-    episodes: &[Episode],
+    episodes: Vec<Episode>,
     total_in_split: usize,
     on_episode: Option<&(dyn Fn() + Sync)>,
 ) -> Result<Finished> {
     let req = shared.req;
     let done = open_run(req, identity, total_in_split)?;
-    resume::check_unchanged(&shared.split_file, episodes, &done)?;
-    let todo: Vec<&Episode> = {
-        let mut v: Vec<&Episode> = episodes
-            .iter()
-            .filter(|e| !done.contains_key(&e.episode_id))
-            .collect();
-        // Scene order keeps each worker in one scene for long stretches, and the scene
-        // cache small.
-        v.sort_by(|a, b| a.scene_id.cmp(&b.scene_id));
-        v
-    };
-    let resumed = episodes.len() - todo.len();
+    resume::check_unchanged(&shared.split_file, &episodes, &done)?;
     let progress = req.out.join(PROGRESS_FILE);
-    let log = ProgressLog::open(&progress)?.for_episodes(episodes)?;
+    let log = ProgressLog::open(&progress)?.for_episodes(&episodes)?;
+    // From here on the episodes are held packed by scene, a scene's unpacked while workers
+    // are in it: the split's size does not add to the run's memory.
+    let store = EpisodeStore::pack(episodes, workers(req) + SCENE_CACHE_SLACK)?;
+    // Scene order keeps each worker in one scene for long stretches, and the scene cache
+    // small.
+    let todo: Vec<Slot> = store
+        .in_scene_order()
+        .into_iter()
+        .filter(|(id, _)| !done.contains_key(id))
+        .map(|(_, slot)| slot)
+        .collect();
+    let resumed = store.len() - todo.len();
     // The first failure stops the run (no further episodes start): a broken agent or
     // simulator would otherwise fail, or wait out its timeout, once per remaining episode.
     // A finished episode's record is in the log; only its metrics are kept here (the
@@ -750,9 +754,10 @@ fn evaluate_locked<SF: SimulatorFactory, RF: RendererFactory>(
     let run = || -> Result<Vec<(u64, u32, EpisodeMetrics)>> {
         todo.par_iter()
             .with_max_len(4)
-            .map(|ep| {
-                let r = shared
-                    .run(ep, &log)
+            .map(|&slot| {
+                let r = store
+                    .get(slot)
+                    .and_then(|ep| shared.run(&ep, &log))
                     .map(|rec| (rec.episode_id, rec.trajectory.steps, rec.metrics));
                 if let Some(f) = on_episode {
                     f();
@@ -771,12 +776,13 @@ fn evaluate_locked<SF: SimulatorFactory, RF: RendererFactory>(
         metrics.insert(id, m);
     }
     let lines = ProgressLines::index(&progress)?;
-    let (ids, metrics): (Vec<u64>, Vec<EpisodeMetrics>) = episodes
-        .iter()
-        .filter_map(|e| metrics.remove(&e.episode_id).map(|m| (e.episode_id, m)))
+    let (ids, metrics): (Vec<u64>, Vec<EpisodeMetrics>) = store
+        .in_split_order()
+        .filter_map(|(id, _)| metrics.remove(&id).map(|m| (id, m)))
         .unzip();
     let agent = shared.factory.name();
-    let summary = write_results(req, &agent, &metrics, &shared.scenes, episodes, |i| {
+    let find = |id| Ok(store.find(id)?.map(|e| Cow::Owned(e.clone())));
+    let summary = write_results(req, &agent, &metrics, &shared.scenes, find, |i| {
         Ok(Cow::Owned(read_record(&lines, ids[i], &mut Vec::new())?))
     })
     .and_then(|summary| {
@@ -937,7 +943,13 @@ pub fn finish_run(
         .filter_map(|e| done.remove(&e.episode_id))
         .collect();
     let metrics: Vec<_> = records.iter().map(|r| r.metrics.clone()).collect();
-    let summary = write_results(req, agent_name, &metrics, scenes, episodes, |i| {
+    let find = |id| {
+        Ok(episodes
+            .iter()
+            .find(|e| e.episode_id == id)
+            .map(Cow::Borrowed))
+    };
+    let summary = write_results(req, agent_name, &metrics, scenes, find, |i| {
         Ok(Cow::Borrowed(&records[i]))
     })?;
     write_trajectories(
@@ -948,13 +960,14 @@ pub fn finish_run(
 }
 
 /// Write `summary.json`, `episodes.csv`, `report.md` from the recorded episodes' `metrics`
-/// (split order) and the plots, for which `record(i)` gives the `i`th record.
-fn write_results<'r>(
+/// (split order) and the plots, for which `record(i)` gives the `i`th record and `find` an
+/// episode by id.
+fn write_results<'r, 'e>(
     req: &EvalRequest,
     agent_name: &str,
     metrics: &[EpisodeMetrics],
     scenes: &SceneCache,
-    episodes: &[Episode],
+    find: impl Fn(u64) -> Result<Option<Cow<'e, Episode>>>,
     record: impl FnMut(usize) -> Result<Cow<'r, EpisodeRecord>>,
 ) -> Result<RunSummary> {
     let summary = RunSummary::new(
@@ -965,7 +978,7 @@ fn write_results<'r>(
         metrics,
     );
     write_run(&req.out, &summary, metrics)?;
-    write_plots(req, scenes, episodes, metrics.len(), record)?;
+    write_plots(req, scenes, find, metrics.len(), record)?;
     Ok(summary)
 }
 
@@ -1098,17 +1111,17 @@ pub fn run_identity(
 }
 
 /// The plots of `count` recorded episodes (split order), `record(i)` the `i`th.
-fn write_plots<'r>(
+fn write_plots<'r, 'e>(
     req: &EvalRequest,
     scenes: &SceneCache,
-    episodes: &[Episode],
+    find: impl Fn(u64) -> Result<Option<Cow<'e, Episode>>>,
     count: usize,
     mut record: impl FnMut(usize) -> Result<Cow<'r, EpisodeRecord>>,
 ) -> Result<()> {
     let dir = req.out.join("plots");
     for i in plots::sample_indices(count, req.config.plots as usize) {
         let rec = record(i)?;
-        let Some(ep) = episodes.iter().find(|e| e.episode_id == rec.episode_id) else {
+        let Some(ep) = find(rec.episode_id)? else {
             continue;
         };
         let ctx = scenes.get(&ep.scene_id)?;
@@ -1116,7 +1129,7 @@ fn write_plots<'r>(
             &ctx.scene,
             Some(&ctx.navigable),
             ctx.levels().map(|l| &**l),
-            ep,
+            &ep,
             &rec.trajectory,
             &rec.metrics,
         );
