@@ -27,7 +27,7 @@ pub use frame::{Channels, Frame, Intrinsics, View};
 #[cfg(feature = "wgpu")]
 pub use gpu::{shared_context, GpuContext, GpuRenderer};
 pub use lidar::LidarScan;
-pub use raster::{RasterRenderer, RasterScene, ONCE_CACHE_MB, SCENE_CACHE_MB, SCENE_CACHE_MB_VAR};
+pub use raster::{RasterRenderer, RasterScene, SCENE_CACHE_MB, SCENE_CACHE_MB_VAR};
 pub use raycast::{Hit, RaycastRenderer, SceneRaycaster};
 pub use renderer::{create_renderer, Renderer};
 pub use rig::{AgentState, CollisionInfo, Observation, Observations, SensorRig};

@@ -76,16 +76,18 @@ pub const SCENE_CACHE_MB: usize = 256;
 /// Environment variable with the megabytes of prepared scenes kept by [`RasterScene::shared`]
 /// (0: none).
 pub const SCENE_CACHE_MB_VAR: &str = "VLNVERSE_RASTER_CACHE_MB";
-/// Megabytes of prepared scenes kept by [`RasterScene::shared_once`] (renderers made by
-/// [`RasterRenderer::visiting_once`]): the homes in use and a few more, for users that finish
-/// with a home before going to the next, as an evaluation in scene order does. Their memory
-/// stays flat in the number of homes visited, where the [`SCENE_CACHE_MB`] cache fills first.
-pub const ONCE_CACHE_MB: usize = 32;
+/// The prepared scenes of [`RasterScene::shared_once`] by [`SceneMesh::content_key`]: weak
+/// references, so a scene lives exactly while a renderer shows it.
+type InUse = Mutex<Vec<(u64, Weak<RasterScene>)>>;
 
-/// The cache of [`RasterScene::shared_once`].
-fn once_cache() -> &'static SharedLru<RasterScene> {
-    static CACHE: OnceLock<SharedLru<RasterScene>> = OnceLock::new();
-    CACHE.get_or_init(|| cache::shared_lru(ONCE_CACHE_MB << 20))
+/// The scenes of [`RasterScene::shared_once`] in use, the dead ones dropped from the list.
+fn scenes_in_use() -> std::sync::MutexGuard<'static, Vec<(u64, Weak<RasterScene>)>> {
+    static IN_USE: InUse = Mutex::new(Vec::new());
+    let mut list = IN_USE
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    list.retain(|(_, w)| w.strong_count() > 0);
+    list
 }
 
 /// Projected vertices stay within `[-guard, guard]` pixels (else they are clipped); `guard` is at
@@ -761,13 +763,41 @@ impl RasterScene {
         Self::shared_in(cache, mesh)
     }
 
-    /// [`RasterScene::shared`] from a process-wide cache of its own, of [`ONCE_CACHE_MB`]
-    /// megabytes, for users that do not come back to a home once they left it (an evaluation
-    /// runs a split in scene order): environments in one home still share one prepared scene,
-    /// and what is kept does not grow with the homes visited. The same scene as
+    /// [`RasterScene::load_or_new`] for users that do not come back to a home once they left
+    /// it (an evaluation runs a split in scene order): renderers in one home share one
+    /// prepared scene, and a scene no renderer shows any more is dropped, not kept for later.
+    /// What is held is the homes in use, however many homes pass. The same scene as
     /// [`RasterScene::shared`] gives.
     pub fn shared_once(mesh: Arc<SceneMesh>) -> Arc<Self> {
-        Self::shared_in(once_cache(), mesh)
+        let same = |s: &RasterScene| std::ptr::eq(s.mesh.as_ptr(), Arc::as_ptr(&mesh));
+        let live = |list: &[(u64, Weak<RasterScene>)], hit: &dyn Fn(u64, &RasterScene) -> bool| {
+            list.iter()
+                .filter_map(|(k, w)| w.upgrade().map(|s| (*k, s)))
+                .find(|(k, s)| hit(*k, s))
+                .map(|(_, s)| s)
+        };
+        if let Some(s) = live(&scenes_in_use(), &|_, s| same(s)) {
+            return s;
+        }
+        let key = mesh.content_key();
+        if let Some(s) = live(&scenes_in_use(), &|k, _| k == key) {
+            return s;
+        }
+        // Made outside the lock (see `cache::get_or_insert`); two renderers asking at once may
+        // both make it, and the first one kept serves both.
+        let made = Arc::new(RasterScene::load_or_new_keyed(mesh, Some(key)));
+        let mut list = scenes_in_use();
+        if let Some(first) = live(&list, &|k, _| k == key) {
+            return first;
+        }
+        list.push((key, Arc::downgrade(&made)));
+        made
+    }
+
+    /// Prepared scenes of [`RasterScene::shared_once`] alive now.
+    #[cfg(test)]
+    fn in_use_count() -> usize {
+        scenes_in_use().len()
     }
 
     /// A prepared scene of `mesh` from `cache`, prepared (or loaded) and kept there if missing.
@@ -2042,9 +2072,10 @@ impl RasterRenderer {
         RasterRenderer::default()
     }
 
-    /// A renderer with no scene yet whose prepared scenes come from the small cache of
-    /// [`RasterScene::shared_once`]: for users that finish with a home before the next (an
-    /// evaluation in scene order). The same images as [`RasterRenderer::new`]'s.
+    /// A renderer with no scene yet whose prepared scenes come from
+    /// [`RasterScene::shared_once`], which keeps only the homes renderers show: for users that
+    /// finish with a home before the next (an evaluation in scene order). The same images as
+    /// [`RasterRenderer::new`]'s.
     pub fn visiting_once() -> Self {
         RasterRenderer {
             scene: None,
@@ -2073,11 +2104,8 @@ impl Renderer for RasterRenderer {
     }
 
     fn scene_preparer(&self) -> Option<fn(Arc<SceneMesh>)> {
-        if self.once {
-            Some(|mesh| drop(RasterScene::shared_once(mesh)))
-        } else {
-            Some(|mesh| drop(RasterScene::shared(mesh)))
-        }
+        // A scene prepared ahead for a visiting-once renderer would be dropped at once.
+        (!self.once).then_some(|mesh| drop(RasterScene::shared(mesh)))
     }
 
     fn render(&mut self, views: &[View]) -> Result<Vec<Frame>> {
@@ -2266,10 +2294,10 @@ mod tests {
         dir.join(name)
     }
 
-    /// The visit-once cache: renderers in one home share one prepared scene, it draws what the
-    /// main cache's scene draws, and it keeps to its budget however many homes pass through it.
+    /// Visiting once: renderers in one home share one prepared scene, it draws what the main
+    /// cache's scene draws, and only the homes shown are kept however many homes pass.
     #[test]
-    fn the_visit_once_cache_shares_a_home_and_keeps_its_budget() {
+    fn visiting_once_shares_a_home_and_keeps_only_the_homes_shown() {
         use crate::{CameraSpec, Channels};
         use vlnverse_env::Pose;
         let (scene, mesh) = home_mesh(0);
@@ -2292,15 +2320,34 @@ mod tests {
         assert_eq!(got.rgb, want.rgb);
         assert_eq!(got.depth, want.depth);
         assert_eq!(got.instance, want.instance);
-        // Homes passing through: each is kept, accounted by what it holds, within the budget.
-        let mut held = sa.bytes();
+        // Homes passing through: each lives while shown, and only then.
+        let alone = Arc::downgrade(sa);
         for i in 1..4 {
             let (_, m) = home_mesh(i);
-            held += RasterScene::shared_once(m).bytes();
+            let s = RasterScene::shared_once(m.clone());
+            assert!(
+                Arc::ptr_eq(&s, &RasterScene::shared_once(m)),
+                "home {i} shared"
+            );
+            assert_eq!(RasterScene::in_use_count(), 2, "home 0 and home {i}");
         }
-        let c = once_cache().lock().expect("lock");
-        assert_eq!((c.len(), c.bytes()), (4, held));
-        assert!(c.bytes() <= ONCE_CACHE_MB << 20);
+        assert_eq!(RasterScene::in_use_count(), 1, "home 0 alone");
+        let (_, m) = home_mesh(4);
+        a.set_scene(m.clone()).expect("scene");
+        assert!(
+            alone.upgrade().is_some(),
+            "still shown by the other renderer"
+        );
+        b.set_scene(m).expect("scene");
+        assert!(
+            alone.upgrade().is_none(),
+            "dropped once no renderer shows it"
+        );
+        assert_eq!(RasterScene::in_use_count(), 1, "home 4 alone");
+        assert!(
+            a.scene_preparer().is_none(),
+            "nothing is prepared ahead to be dropped"
+        );
     }
 
     /// Every face texture's texels, one after the other.
