@@ -2095,6 +2095,15 @@ impl Renderer for RasterRenderer {
     }
 
     fn set_scene(&mut self, mesh: Arc<SceneMesh>) -> Result<()> {
+        // The home shown so far is let go first, so that a renderer moving on never holds two
+        // (visiting once, that frees it unless another renderer shows it).
+        if self
+            .scene
+            .as_ref()
+            .is_some_and(|s| !std::ptr::eq(s.mesh.as_ptr(), Arc::as_ptr(&mesh)))
+        {
+            self.scene = None;
+        }
         self.scene = Some(if self.once {
             RasterScene::shared_once(mesh)
         } else {
