@@ -234,7 +234,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     .config(cfg);
     let pb = crate::progress::bar(n as u64, "evaluating");
     let t0 = Instant::now();
+    let trimmer = crate::malloc_arena::Trimmer::start(crate::malloc_arena::TRIM_PERIOD);
     let out = evaluate_with(&req, &*factory, Layers::default().on_episode(&|| pb.inc(1)))?;
+    drop(trimmer);
     pb.finish_and_clear();
     let secs = t0.elapsed().as_secs_f64();
     let s = &out.summary.summary;
