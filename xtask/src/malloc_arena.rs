@@ -141,7 +141,7 @@ mod tests {
         release_freed();
         let after = resident();
         assert!(
-            before > after + (MB / 2 << 20),
+            before > after + ((MB / 2) << 20),
             "resident {before} bytes before the trim, {after} after"
         );
         assert_eq!(std::hint::black_box(&last)[BLOCK - 1], 0xff);
