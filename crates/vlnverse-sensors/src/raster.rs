@@ -78,11 +78,11 @@ pub const SCENE_CACHE_MB: usize = 256;
 pub const SCENE_CACHE_MB_VAR: &str = "VLNVERSE_RASTER_CACHE_MB";
 /// The prepared scenes of [`RasterScene::shared_once`] by [`SceneMesh::content_key`]: weak
 /// references, so a scene lives exactly while a renderer shows it.
-type InUse = Mutex<Vec<(u64, Weak<RasterScene>)>>;
+type InUse = Vec<(u64, Weak<RasterScene>)>;
 
 /// The scenes of [`RasterScene::shared_once`] in use, the dead ones dropped from the list.
-fn scenes_in_use() -> std::sync::MutexGuard<'static, Vec<(u64, Weak<RasterScene>)>> {
-    static IN_USE: InUse = Mutex::new(Vec::new());
+fn scenes_in_use() -> std::sync::MutexGuard<'static, InUse> {
+    static IN_USE: Mutex<InUse> = Mutex::new(Vec::new());
     let mut list = IN_USE
         .lock()
         .unwrap_or_else(std::sync::PoisonError::into_inner);
@@ -769,25 +769,25 @@ impl RasterScene {
     /// What is held is the homes in use, however many homes pass. The same scene as
     /// [`RasterScene::shared`] gives.
     pub fn shared_once(mesh: Arc<SceneMesh>) -> Arc<Self> {
-        let same = |s: &RasterScene| std::ptr::eq(s.mesh.as_ptr(), Arc::as_ptr(&mesh));
-        let live = |list: &[(u64, Weak<RasterScene>)], hit: &dyn Fn(u64, &RasterScene) -> bool| {
+        /// The first scene of `list` still alive for which `hit` holds.
+        fn live(list: &InUse, hit: impl Fn(u64, &RasterScene) -> bool) -> Option<Arc<RasterScene>> {
             list.iter()
                 .filter_map(|(k, w)| w.upgrade().map(|s| (*k, s)))
                 .find(|(k, s)| hit(*k, s))
                 .map(|(_, s)| s)
-        };
-        if let Some(s) = live(&scenes_in_use(), &|_, s| same(s)) {
+        }
+        if let Some(s) = live(&scenes_in_use(), |_, s| s.is_of(&mesh)) {
             return s;
         }
         let key = mesh.content_key();
-        if let Some(s) = live(&scenes_in_use(), &|k, _| k == key) {
+        if let Some(s) = live(&scenes_in_use(), |k, _| k == key) {
             return s;
         }
         // Made outside the lock (see `cache::get_or_insert`); two renderers asking at once may
         // both make it, and the first one kept serves both.
         let made = Arc::new(RasterScene::load_or_new_keyed(mesh, Some(key)));
         let mut list = scenes_in_use();
-        if let Some(first) = live(&list, &|k, _| k == key) {
+        if let Some(first) = live(&list, |k, _| k == key) {
             return first;
         }
         list.push((key, Arc::downgrade(&made)));
@@ -800,12 +800,17 @@ impl RasterScene {
         scenes_in_use().len()
     }
 
+    /// Whether this scene was prepared from this very mesh (environments sharing one loaded
+    /// home): no need to hash it. A scene's weak reference keeps its mesh's block allocated
+    /// even after the mesh is dropped, so no other mesh can be at that address while the scene
+    /// lives.
+    fn is_of(&self, mesh: &Arc<SceneMesh>) -> bool {
+        std::ptr::eq(self.mesh.as_ptr(), Arc::as_ptr(mesh))
+    }
+
     /// A prepared scene of `mesh` from `cache`, prepared (or loaded) and kept there if missing.
     fn shared_in(cache: &SharedLru<RasterScene>, mesh: Arc<SceneMesh>) -> Arc<Self> {
-        // The very mesh a kept scene was prepared from (environments sharing one loaded home):
-        // no need to hash it. A kept scene's weak reference keeps the mesh's block allocated
-        // even after the mesh is dropped, so no other mesh can be at that address.
-        let same = |s: &RasterScene| std::ptr::eq(s.mesh.as_ptr(), Arc::as_ptr(&mesh));
+        let same = |s: &RasterScene| s.is_of(&mesh);
         // Kept scenes grow as views unpack their face textures: accounted by what they hold
         // now on every visit, a hit too (a working set of hits alone would outgrow the budget).
         if let Some(hit) = cache.lock().ok().and_then(|mut c| {
@@ -2097,11 +2102,7 @@ impl Renderer for RasterRenderer {
     fn set_scene(&mut self, mesh: Arc<SceneMesh>) -> Result<()> {
         // The home shown so far is let go first, so that a renderer moving on never holds two
         // (visiting once, that frees it unless another renderer shows it).
-        if self
-            .scene
-            .as_ref()
-            .is_some_and(|s| !std::ptr::eq(s.mesh.as_ptr(), Arc::as_ptr(&mesh)))
-        {
+        if self.scene.as_ref().is_some_and(|s| !s.is_of(&mesh)) {
             self.scene = None;
         }
         self.scene = Some(if self.once {
