@@ -11,14 +11,10 @@ use std::sync::{Arc, Mutex, PoisonError};
 use flate2::read::DeflateDecoder;
 use flate2::write::DeflateEncoder;
 use flate2::Compression;
+use vlnverse_env::cache::ByteLru;
 use vlnverse_score::episode::Episode;
 
 use crate::error::{Result, TaskError};
-
-/// One scene's episodes, in split order, as deflated JSON.
-struct Group {
-    packed: Box<[u8]>,
-}
 
 /// Where an episode is in a [`EpisodeStore`]: its group and its place there.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -31,49 +27,45 @@ pub(crate) struct Slot {
 pub(crate) struct EpisodeStore {
     /// Per episode in split order: its id and slot.
     order: Vec<(u64, Slot)>,
-    /// Groups in scene-id order.
-    groups: Vec<Group>,
-    /// Groups unpacked lately, newest last (at most `keep`).
-    open: Mutex<Vec<(u32, Arc<[Episode]>)>>,
-    keep: usize,
+    /// Each scene's episodes (split order) as deflated JSON, scenes in scene-id order.
+    groups: Vec<Box<[u8]>>,
+    /// Groups unpacked lately, by group index, each counted as one (so at most `keep`).
+    open: Mutex<ByteLru<Vec<Episode>>>,
 }
 
 impl EpisodeStore {
     /// Pack `episodes` (split order), keeping up to `keep` unpacked groups at a time (one per
     /// worker and one more serve a run in scene order).
     pub(crate) fn pack(episodes: Vec<Episode>, keep: usize) -> Result<Self> {
-        let mut by_scene: BTreeMap<String, Vec<usize>> = BTreeMap::new();
-        for (i, e) in episodes.iter().enumerate() {
-            by_scene.entry(e.scene_id.clone()).or_default().push(i);
-        }
         let mut order = vec![(0, Slot { group: 0, index: 0 }); episodes.len()];
-        let mut slots: Vec<Option<Episode>> = episodes.into_iter().map(Some).collect();
-        let mut groups = Vec::with_capacity(by_scene.len());
-        for (g, members) in by_scene.into_values().enumerate() {
-            let group: Vec<Episode> = members
-                .iter()
-                .enumerate()
-                .map(|(k, &i)| {
-                    let e = slots[i].take().expect("each episode is in one group");
-                    order[i] = (
-                        e.episode_id,
-                        Slot {
+        // Each episode with its place in split order, by scene.
+        let mut by_scene: BTreeMap<String, Vec<(usize, Episode)>> = BTreeMap::new();
+        for (i, e) in episodes.into_iter().enumerate() {
+            by_scene.entry(e.scene_id.clone()).or_default().push((i, e));
+        }
+        let groups = by_scene
+            .into_values()
+            .enumerate()
+            .map(|(g, members)| {
+                let group: Vec<Episode> = members
+                    .into_iter()
+                    .enumerate()
+                    .map(|(k, (i, e))| {
+                        let slot = Slot {
                             group: g as u32,
                             index: k as u32,
-                        },
-                    );
-                    e
-                })
-                .collect();
-            groups.push(Group {
-                packed: deflate(&group)?,
-            });
-        }
+                        };
+                        order[i] = (e.episode_id, slot);
+                        e
+                    })
+                    .collect();
+                deflate(&group)
+            })
+            .collect::<Result<_>>()?;
         Ok(EpisodeStore {
             order,
             groups,
-            open: Mutex::new(Vec::new()),
-            keep: keep.max(1),
+            open: Mutex::new(ByteLru::new(keep.max(1))),
         })
     }
 
@@ -111,31 +103,21 @@ impl EpisodeStore {
         }
     }
 
-    fn group(&self, g: u32) -> Result<Arc<[Episode]>> {
+    fn group(&self, g: u32) -> Result<Arc<Vec<Episode>>> {
         let lock = || self.open.lock().unwrap_or_else(PoisonError::into_inner);
-        {
-            let mut open = lock();
-            if let Some(i) = open.iter().position(|(k, _)| *k == g) {
-                let hit = open.remove(i);
-                let eps = hit.1.clone();
-                open.push(hit);
-                return Ok(eps);
-            }
+        if let Some(hit) = lock().get(u64::from(g)) {
+            return Ok(hit);
         }
         // Unpacked outside the lock: two threads may both unpack a group; either copy serves.
-        let eps: Arc<[Episode]> = inflate(&self.groups[g as usize].packed)?.into();
-        let mut open = lock();
-        if open.len() >= self.keep {
-            open.remove(0);
-        }
-        open.push((g, eps.clone()));
+        let eps = Arc::new(inflate(&self.groups[g as usize])?);
+        lock().insert(u64::from(g), eps.clone(), 1);
         Ok(eps)
     }
 }
 
 /// An episode of a [`EpisodeStore`], holding its scene's unpacked group.
 pub(crate) struct EpisodeRef {
-    group: Arc<[Episode]>,
+    group: Arc<Vec<Episode>>,
     index: usize,
 }
 

@@ -9,8 +9,8 @@
 //! 20 ms would be missed). That is safe Rust and needs no new dependency, but it is Linux-only:
 //! elsewhere the case stops with an error that says so. (`getrusage(RUSAGE_CHILDREN)` or
 //! `wait4` would give the exact figure but need `unsafe` or a crate xtask does not depend on.)
-//! The child runs with one glibc malloc arena, as every `xtask evaluate` does
-//! (`malloc_arena.rs`).
+//! The child runs with one glibc malloc arena and gives freed memory back every 250 ms, as
+//! every `xtask evaluate` does (`malloc_arena.rs`).
 //!
 //! The homes: by default the case generates a small dataset of its own from the `vlnverse`
 //! preset's homes (coarse task only, 4 test homes and 12 train homes, the same number of
