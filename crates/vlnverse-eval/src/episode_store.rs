@@ -23,6 +23,13 @@ pub(crate) struct Slot {
     index: u32,
 }
 
+impl Slot {
+    /// The episode's scene, as the rank of its id among the store's scenes.
+    pub(crate) fn scene(self) -> u32 {
+        self.group
+    }
+}
+
 /// Episodes packed by scene; see the module doc.
 pub(crate) struct EpisodeStore {
     /// Per episode in split order: its id and slot.

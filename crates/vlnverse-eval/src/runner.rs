@@ -156,6 +156,34 @@ pub const MAX_THREADS: usize = 1024;
 /// with either, 137 and 459 with none) and keeps a home less.
 const SCENE_CACHE_SLACK: usize = 1;
 
+/// Episodes per worker a batch of homes holds at least before it ends at a home boundary
+/// ([`home_batches`]).
+const BATCH_PER_WORKER: usize = 8;
+
+/// `todo` (in scene order) cut at home boundaries into batches: a home with at least `min`
+/// episodes alone, the homes between such homes together, `min` episodes or more a batch
+/// (the last may hold fewer).
+fn home_batches(todo: &[Slot], min: usize) -> Vec<&[Slot]> {
+    let mut batches = Vec::new();
+    let (mut start, mut home) = (0, 0);
+    for i in 1..=todo.len() {
+        if i < todo.len() && todo[i].scene() == todo[i - 1].scene() {
+            continue;
+        }
+        // `todo[home..i]` is one home's episodes; `todo[start..home]` the small homes before it.
+        if i - home >= min && home > start {
+            batches.push(&todo[start..home]);
+            start = home;
+        }
+        if i - start >= min || i == todo.len() {
+            batches.push(&todo[start..i]);
+            start = i;
+        }
+        home = i;
+    }
+    batches
+}
+
 /// Files of a run folder that [`evaluate`] writes (`plots/` besides).
 pub const RUN_FILES: [&str; 6] = [
     RUN_FILE,
@@ -751,20 +779,31 @@ fn evaluate_locked<SF: SimulatorFactory, RF: RendererFactory>(
     // simulator would otherwise fail, or wait out its timeout, once per remaining episode.
     // A finished episode's record is in the log; only its metrics are kept here (the
     // trajectories are read back from the log when the files are written).
+    let run_one = |slot: Slot| {
+        let r = store
+            .get(slot)
+            .and_then(|ep| shared.run(&ep, &log))
+            .map(|rec| (rec.episode_id, rec.trajectory.steps, rec.metrics));
+        if let Some(f) = on_episode {
+            f();
+        }
+        r
+    };
+    // Home by home: the workers share a home's episodes, handed out in order, and the next
+    // home starts once they are done, so one home is held at a time, whatever the split's
+    // size. Homes with few episodes go in batches, to keep every worker busy.
     let run = || -> Result<Vec<(u64, u32, EpisodeMetrics)>> {
-        todo.par_iter()
-            .with_max_len(4)
-            .map(|&slot| {
-                let r = store
-                    .get(slot)
-                    .and_then(|ep| shared.run(&ep, &log))
-                    .map(|rec| (rec.episode_id, rec.trajectory.steps, rec.metrics));
-                if let Some(f) = on_episode {
-                    f();
-                }
-                r
-            })
-            .collect()
+        let mut results = Vec::with_capacity(todo.len());
+        for batch in home_batches(&todo, BATCH_PER_WORKER * workers(req)) {
+            let done: Vec<_> = batch
+                .iter()
+                .par_bridge()
+                .map(|&slot| run_one(slot))
+                .collect::<Result<_>>()?;
+            results.extend(done);
+            shared.scenes.clear();
+        }
+        Ok(results)
     };
     let results = in_pool(req.threads, run)??;
     drop(log);
@@ -1147,6 +1186,33 @@ mod tests {
 
     /// The trajectories file written from the records, line by line, is the file
     /// `write_jsonl` writes from the trajectories, byte for byte; no temporary file is left.
+    /// Batches end at home boundaries once they hold `min` episodes: a large home alone, small
+    /// homes together, the rest last; every episode once, in order.
+    #[test]
+    fn home_batches_hold_a_home_alone_or_small_homes_together() {
+        let episodes: Vec<Episode> = [("a", 5), ("b", 1), ("c", 2), ("d", 6), ("e", 1)]
+            .iter()
+            .flat_map(|&(scene, n)| (0..n).map(move |_| scene))
+            .enumerate()
+            .map(|(i, scene)| {
+                let mut e = Episode::default();
+                e.episode_id = i as u64;
+                e.scene_id = scene.into();
+                e
+            })
+            .collect();
+        let store = EpisodeStore::pack(episodes, 1).unwrap();
+        let todo: Vec<Slot> = store.in_scene_order().into_iter().map(|(_, s)| s).collect();
+        let sizes =
+            |min| -> Vec<usize> { home_batches(&todo, min).iter().map(|b| b.len()).collect() };
+        assert_eq!(sizes(4), [5, 3, 6, 1]);
+        assert_eq!(sizes(1), [5, 1, 2, 6, 1]);
+        assert_eq!(sizes(100), [15]);
+        let flat: Vec<Slot> = home_batches(&todo, 3).concat();
+        assert_eq!(flat, todo);
+        assert!(home_batches(&[], 3).is_empty());
+    }
+
     #[test]
     fn trajectories_are_written_as_write_jsonl_writes_them() {
         let dir = std::env::temp_dir().join(format!("vlnverse-eval-traj-{}", std::process::id()));

@@ -23,6 +23,10 @@ const FIELD_CACHE: usize = 48;
 /// A goal's distance field, built by the first thread that asks for it.
 type FieldCell = Arc<OnceLock<Option<Arc<DistanceField>>>>;
 
+/// A scene's place in a [`SceneCache`], filled by the first thread that asks for the scene
+/// while the others wait (empty when that load failed: the next to ask tries again).
+type SceneSlot = Arc<Mutex<Option<Arc<SceneContext>>>>;
+
 fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
     m.lock().unwrap_or_else(PoisonError::into_inner)
 }
@@ -34,7 +38,8 @@ pub struct SceneContext {
     /// Its navigable (agent-dilated) map.
     pub navigable: Arc<GridMap>,
     graph: OnceLock<Arc<SceneGraph>>,
-    mesh: OnceLock<Arc<SceneMesh>>,
+    /// Built by the first thread that asks; the others wait for it instead of building it too.
+    mesh: Mutex<Option<Arc<SceneMesh>>>,
     /// The light `scene.glb` holds (a loaded home), for its mesh: kept here while the home is,
     /// not in the process-wide light cache, which would keep every home ever loaded.
     light: Option<Arc<vlnverse_env::light::BakedLight>>,
@@ -55,7 +60,7 @@ impl SceneContext {
             scene: Arc::new(scene),
             navigable: Arc::new(navigable),
             graph: OnceLock::new(),
-            mesh: OnceLock::new(),
+            mesh: Mutex::new(None),
             light: None,
             dir: None,
             fields: Mutex::new(BTreeMap::new()),
@@ -191,12 +196,13 @@ impl SceneContext {
     }
 
     /// The scene prepared for rendering, built on first use and shared by every environment
-    /// that shows this scene (two asking at once may both build it; one is kept). A scene
-    /// loaded from its folder names the rasteriser's prepared file there
+    /// that shows this scene (a thread asking while another builds it waits for that one). A
+    /// scene loaded from its folder names the rasteriser's prepared file there
     /// ([`vlnverse_sensors::raster::PREPARED_FILE`]), so the renderer loads what generation
     /// prepared instead of preparing it again.
     pub fn mesh(&self) -> Result<Arc<SceneMesh>> {
-        if let Some(m) = self.mesh.get() {
+        let mut held = lock(&self.mesh);
+        if let Some(m) = held.as_ref() {
             return Ok(m.clone());
         }
         let mut m = match &self.light {
@@ -207,8 +213,7 @@ impl SceneContext {
             .dir
             .as_ref()
             .map(|d| d.join(vlnverse_sensors::raster::PREPARED_FILE));
-        let m = Arc::new(m);
-        Ok(self.mesh.get_or_init(|| m).clone())
+        Ok(held.insert(Arc::new(m)).clone())
     }
 
     /// Whether the distance field to a goal point is cached now (built by
@@ -255,7 +260,7 @@ pub struct SceneCache {
     dataset: PathBuf,
     capacity: usize,
     /// Most recently used last.
-    entries: Mutex<VecDeque<(String, Arc<SceneContext>)>>,
+    entries: Mutex<VecDeque<(String, SceneSlot)>>,
     loads: std::sync::atomic::AtomicUsize,
     /// The stairs' end fields of homes let go, given back when they are loaded again
     /// ([`SceneCache::keeping_end_fields`], [`SceneCache::sharing_end_fields`]; none kept by
@@ -309,58 +314,75 @@ impl SceneCache {
 
     /// Let the least recently used scenes go until one more fits, keeping their stairs' end
     /// fields.
-    fn make_room(&self, e: &mut VecDeque<(String, Arc<SceneContext>)>) {
+    fn make_room(&self, e: &mut VecDeque<(String, SceneSlot)>) {
         while e.len() >= self.capacity {
-            let Some((id, ctx)) = e.pop_front() else {
+            let Some((id, slot)) = e.pop_front() else {
                 break;
             };
-            if let Some(m) = ctx.levels() {
-                lock(&self.end_fields).keep(&self.end_key(&id), m);
-            }
+            self.keep_end_fields(&id, &slot);
         }
     }
 
-    /// The scene `id`, loaded if it is not cached.
-    pub fn get(&self, id: &str) -> Result<Arc<SceneContext>> {
-        {
-            let mut e = lock(&self.entries);
-            if let Some(i) = e.iter().position(|(k, _)| k == id) {
-                let hit = e.remove(i).expect("index from position");
-                let ctx = hit.1.clone();
-                e.push_back(hit);
-                return Ok(ctx);
-            }
+    /// The stairs' end fields of a scene let go, kept for when it comes back (none when it is
+    /// still being loaded: its loader keeps it).
+    fn keep_end_fields(&self, id: &str, slot: &SceneSlot) {
+        let Ok(held) = slot.try_lock() else {
+            return;
+        };
+        if let Some(m) = held.as_ref().and_then(|ctx| ctx.levels()) {
+            lock(&self.end_fields).keep(&self.end_key(id), m);
         }
-        // Loaded outside the lock: other scenes stay available meanwhile.
+    }
+
+    /// The place of scene `id`, made (empty) if the cache has none, marked most recently used.
+    fn slot(&self, id: &str) -> SceneSlot {
+        let mut e = lock(&self.entries);
+        if let Some(i) = e.iter().position(|(k, _)| k == id) {
+            let hit = e.remove(i).expect("index from position");
+            let slot = hit.1.clone();
+            e.push_back(hit);
+            return slot;
+        }
+        self.make_room(&mut e);
+        let slot = SceneSlot::default();
+        e.push_back((id.to_string(), slot.clone()));
+        slot
+    }
+
+    /// The scene `id`, loaded if it is not cached. Threads asking for a scene another thread
+    /// is loading wait for that load instead of loading it again; other scenes stay available
+    /// meanwhile.
+    pub fn get(&self, id: &str) -> Result<Arc<SceneContext>> {
+        let slot = self.slot(id);
+        let mut held = lock(&slot);
+        if let Some(ctx) = held.as_ref() {
+            return Ok(ctx.clone());
+        }
         let ctx = Arc::new(SceneContext::load(&self.dataset, id)?);
         if let Some(m) = ctx.levels() {
             lock(&self.end_fields).give(&self.end_key(id), m);
         }
         self.loads
             .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        let mut e = lock(&self.entries);
-        if let Some((_, c)) = e.iter().find(|(k, _)| k == id) {
-            return Ok(c.clone());
-        }
-        self.make_room(&mut e);
-        e.push_back((id.to_string(), ctx.clone()));
-        Ok(ctx)
+        Ok(held.insert(ctx).clone())
     }
 
     /// Scene `id` as `ctx` (loaded from this cache's dataset earlier and still held by its
     /// caller), marked most recently used: the one cached when the cache holds it, else `ctx`,
     /// put back without loading it again.
     pub fn keep(&self, id: &str, ctx: Arc<SceneContext>) -> Arc<SceneContext> {
-        let mut e = lock(&self.entries);
-        if let Some(i) = e.iter().position(|(k, _)| k == id) {
-            let hit = e.remove(i).expect("index from position");
-            let cached = hit.1.clone();
-            e.push_back(hit);
-            return cached;
+        let slot = self.slot(id);
+        let mut held = lock(&slot);
+        held.get_or_insert(ctx).clone()
+    }
+
+    /// Let every scene go (their stairs' end fields kept as when the cache makes room). A
+    /// scene still held elsewhere stays alive until its holder lets it go.
+    pub fn clear(&self) {
+        let gone: Vec<_> = lock(&self.entries).drain(..).collect();
+        for (id, slot) in gone {
+            self.keep_end_fields(&id, &slot);
         }
-        self.make_room(&mut e);
-        e.push_back((id.to_string(), ctx.clone()));
-        ctx
     }
 
     /// Scenes held now.
@@ -383,12 +405,7 @@ impl Drop for SceneCache {
     /// The homes still held leave too: their stairs' end fields are kept like those of homes
     /// let go (for the next cache sharing the store).
     fn drop(&mut self) {
-        let entries = std::mem::take(&mut *lock(&self.entries));
-        for (id, ctx) in entries {
-            if let Some(m) = ctx.levels() {
-                lock(&self.end_fields).keep(&self.end_key(&id), m);
-            }
-        }
+        self.clear();
     }
 }
 
@@ -503,6 +520,49 @@ mod tests {
             .iter()
             .flatten()
             .all(Option::is_none));
+    }
+
+    /// Threads asking for one home at once share one load and one mesh; a home that cannot be
+    /// loaded fails for each asker, and is loaded once it can be; `clear` lets every home go.
+    #[test]
+    fn threads_entering_a_home_together_load_it_and_its_mesh_once() {
+        let mut pc = Preset::Tiny.config().unwrap();
+        pc.scenes.count = 1;
+        let scene = HomeGenerator::new(pc).unwrap().scene(0).unwrap();
+        let id = scene.id.clone();
+        let dir = tempfile::tempdir().unwrap();
+        let cache = SceneCache::new(dir.path(), 2);
+        assert!(cache.get(&id).is_err(), "no scene folder yet");
+        assert!(cache.get(&id).is_err());
+        assert_eq!(cache.loads(), 0);
+        vlnverse_env::io::write_scene_bundle(
+            dir.path().join("scenes"),
+            scene,
+            &OccupancyConfig::default(),
+        )
+        .unwrap();
+        let got: Vec<(Arc<SceneContext>, Arc<SceneMesh>)> = std::thread::scope(|s| {
+            let asks: Vec<_> = (0..4)
+                .map(|_| {
+                    s.spawn(|| {
+                        let ctx = cache.get(&id).unwrap();
+                        let mesh = ctx.mesh().unwrap();
+                        (ctx, mesh)
+                    })
+                })
+                .collect();
+            asks.into_iter().map(|h| h.join().unwrap()).collect()
+        });
+        assert_eq!(cache.loads(), 1, "one load for four threads");
+        assert!(got
+            .iter()
+            .all(|(c, m)| Arc::ptr_eq(c, &got[0].0) && Arc::ptr_eq(m, &got[0].1)));
+        assert_eq!(cache.len(), 1);
+        cache.clear();
+        assert!(cache.is_empty());
+        let again = cache.get(&id).unwrap();
+        assert!(!Arc::ptr_eq(&again, &got[0].0), "loaded again after clear");
+        assert_eq!(cache.loads(), 2);
     }
 
     /// Threads asking for one goal's field at once share one field (built once); a goal with

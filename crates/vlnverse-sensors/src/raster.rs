@@ -779,18 +779,19 @@ impl RasterScene {
         if let Some(s) = live(&scenes_in_use(), |_, s| s.is_of(&mesh)) {
             return s;
         }
+        // One scene made at a time, outside the in-use list's lock: renderers entering a home
+        // together (an evaluation's workers) wait for the first one's instead of each making
+        // and holding a copy.
+        static MAKING: Mutex<()> = Mutex::new(());
+        let _making = MAKING
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
         let key = mesh.content_key();
         if let Some(s) = live(&scenes_in_use(), |k, _| k == key) {
             return s;
         }
-        // Made outside the lock (see `cache::get_or_insert`); two renderers asking at once may
-        // both make it, and the first one kept serves both.
         let made = Arc::new(RasterScene::load_or_new_keyed(mesh, Some(key)));
-        let mut list = scenes_in_use();
-        if let Some(first) = live(&list, |k, _| k == key) {
-            return first;
-        }
-        list.push((key, Arc::downgrade(&made)));
+        scenes_in_use().push((key, Arc::downgrade(&made)));
         made
     }
 
