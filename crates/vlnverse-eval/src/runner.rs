@@ -150,10 +150,11 @@ pub struct EvalOutcome {
 /// mistyped count is refused instead of spawning threads without end.
 pub const MAX_THREADS: usize = 1024;
 
-/// Scenes the cache holds beyond one per worker thread (it holds `threads + this`). Episodes
-/// run in scene order, so a worker rarely goes back to a home: one spare home loads no home
-/// more often than two did (coarse test and train of the `vlnverse` preset: 113 and 362 loads
-/// with either, 137 and 459 with none) and keeps a home less.
+/// Scenes the cache holds beyond one per worker thread (it holds `threads + this`) while the
+/// split is checked and while a batch of small homes runs; a run lets its homes go after each
+/// batch ([`home_batches`]). When the split is checked in scene order, one spare home loaded no
+/// home more often than two did (coarse test and train of the `vlnverse` preset: 113 and 362
+/// loads with either, 137 and 459 with none).
 const SCENE_CACHE_SLACK: usize = 1;
 
 /// Episodes per worker a batch of homes holds at least before it ends at a home boundary
@@ -247,12 +248,14 @@ pub fn rapier_simulator(cfg: &SimConfig) -> Result<RapierSimulator> {
 }
 
 /// Megabytes of physics worlds kept for the simulators of [`evaluation_simulator`] (unless
-/// [`vlnverse_sim::physics_cache::PHYSICS_CACHE_MB_VAR`] says otherwise). An evaluation runs a
-/// split in scene order, so a home's world is asked for again only while workers are still in
-/// that home: a few homes' worth is all it uses. (The process-wide cache of
-/// [`RapierSimulator::new`] keeps 512 MB for training, which comes back to homes; an
-/// evaluation on it kept every home it had visited, growing with the split.)
-pub const EVAL_PHYSICS_CACHE_MB: usize = 16;
+/// [`vlnverse_sim::physics_cache::PHYSICS_CACHE_MB_VAR`] says otherwise) besides the newest
+/// world, which is always kept. An evaluation runs a split home by home, so a home's world is
+/// asked for again only while the workers are in that home: the newest is all it uses (16 MB,
+/// the budget before runs went home by home, added 10 MB to a coarse test run's peak and took
+/// no less time). (The process-wide cache of [`RapierSimulator::new`] keeps 512 MB for
+/// training, which comes back to homes; an evaluation on it kept every home it had visited,
+/// growing with the split.)
+pub const EVAL_PHYSICS_CACHE_MB: usize = 0;
 
 /// The physics worlds of [`evaluation_simulator`]s, process-wide (budget read once).
 fn evaluation_physics() -> Arc<PhysicsCache> {

@@ -77,10 +77,11 @@ impl DistanceField {
         self.goal.map(|e| e.point)
     }
 
-    /// Bytes the field holds (its map's cells and its per-cell arrays, by capacity).
+    /// Bytes the field holds: its per-cell arrays, by capacity. Its map's cells are not
+    /// counted: they are shared with the map the field was computed on ([`GridMap`]'s clones
+    /// share them).
     pub fn bytes(&self) -> usize {
         std::mem::size_of::<Self>()
-            + self.map.len() * std::mem::size_of::<crate::occupancy::CellState>()
             + self.reached.bytes()
             + self.g.capacity() * 4
             + self.parent.capacity() * 4

@@ -40,6 +40,7 @@ use crate::error::{EnvError, Result};
 use crate::scene::{LevelId, Scene};
 use glam::Vec2;
 use serde::{Deserialize, Serialize};
+use std::sync::Arc;
 
 pub use edt::{dilate, keep_best_island, keep_largest_island, squared_distance_transform};
 
@@ -148,6 +149,9 @@ impl CellState {
 }
 
 /// A 2-D grid over the floor plane. See the [module docs](self) for the frame conventions.
+///
+/// Clones share their cells until one of them is changed (a distance field keeps the map it
+/// was computed on; a home's dozens of fields then hold one copy of its cells, not dozens).
 #[derive(Clone, Debug, PartialEq)]
 pub struct GridMap {
     /// Number of columns (along +x).
@@ -158,7 +162,7 @@ pub struct GridMap {
     pub resolution: f32,
     /// World `(x, z)` of the min corner of cell `(0, 0)`.
     pub origin: Vec2,
-    cells: Vec<CellState>,
+    cells: Arc<Vec<CellState>>,
 }
 
 impl GridMap {
@@ -176,7 +180,7 @@ impl GridMap {
             height,
             resolution,
             origin,
-            cells: vec![fill; width as usize * height as usize],
+            cells: Arc::new(vec![fill; width as usize * height as usize]),
         })
     }
 
@@ -202,7 +206,7 @@ impl GridMap {
             height,
             resolution,
             origin,
-            cells,
+            cells: Arc::new(cells),
         })
     }
 
@@ -213,7 +217,7 @@ impl GridMap {
 
     /// Mutable row-major cells.
     pub fn cells_mut(&mut self) -> &mut [CellState] {
-        &mut self.cells
+        Arc::make_mut(&mut self.cells).as_mut_slice()
     }
 
     /// Number of cells.
@@ -254,7 +258,7 @@ impl GridMap {
     pub fn set(&mut self, col: u32, row: u32, state: CellState) {
         if col < self.width && row < self.height {
             let i = self.index(col, row);
-            self.cells[i] = state;
+            Arc::make_mut(&mut self.cells)[i] = state;
         }
     }
 
@@ -592,6 +596,25 @@ mod tests {
 
     fn open(w: u32, h: u32) -> GridMap {
         GridMap::new(w, h, 0.1, Vec2::new(-1.0, -2.0), CellState::Free).unwrap()
+    }
+
+    /// Clones share their cells until one is changed, which then changes only itself.
+    #[test]
+    fn clones_share_cells_until_one_changes() {
+        let mut a = open(4, 3);
+        let b = a.clone();
+        assert!(std::ptr::eq(a.cells(), b.cells()));
+        a.set(1, 2, CellState::Occupied);
+        assert_eq!(a.state(1, 2), CellState::Occupied);
+        assert_eq!(b.state(1, 2), CellState::Free);
+        let mut c = b.clone();
+        c.cells_mut()[0] = CellState::Unknown;
+        assert_eq!(
+            (b.cells()[0], c.cells()[0]),
+            (CellState::Free, CellState::Unknown)
+        );
+        assert!(!std::ptr::eq(b.cells(), c.cells()));
+        assert_ne!(a, b);
     }
 
     #[test]
