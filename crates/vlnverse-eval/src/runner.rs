@@ -1187,8 +1187,6 @@ mod tests {
 
     use crate::plots::tests::metrics;
 
-    /// The trajectories file written from the records, line by line, is the file
-    /// `write_jsonl` writes from the trajectories, byte for byte; no temporary file is left.
     /// Batches end at home boundaries once they hold `min` episodes: a large home alone, small
     /// homes together, the rest last; every episode once, in order.
     #[test]
@@ -1197,11 +1195,10 @@ mod tests {
             .iter()
             .flat_map(|&(scene, n)| (0..n).map(move |_| scene))
             .enumerate()
-            .map(|(i, scene)| {
-                let mut e = Episode::default();
-                e.episode_id = i as u64;
-                e.scene_id = scene.into();
-                e
+            .map(|(i, scene)| Episode {
+                episode_id: i as u64,
+                scene_id: scene.into(),
+                ..Episode::default()
             })
             .collect();
         let store = EpisodeStore::pack(episodes, 1).unwrap();
@@ -1216,6 +1213,8 @@ mod tests {
         assert!(home_batches(&[], 3).is_empty());
     }
 
+    /// The trajectories file written from the records, line by line, is the file
+    /// `write_jsonl` writes from the trajectories, byte for byte; no temporary file is left.
     #[test]
     fn trajectories_are_written_as_write_jsonl_writes_them() {
         let dir = std::env::temp_dir().join(format!("vlnverse-eval-traj-{}", std::process::id()));
