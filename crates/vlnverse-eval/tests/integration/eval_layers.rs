@@ -193,3 +193,66 @@ fn a_wrapped_simulator_and_a_blind_renderer_run_under_the_same_loop() {
         }
     }
 }
+
+/// Draws nothing and writes down, for every frame, the home it shows.
+struct Watching {
+    scene: String,
+    log: Arc<std::sync::Mutex<Vec<String>>>,
+    blind: Blind,
+}
+
+impl Renderer for Watching {
+    fn name(&self) -> String {
+        "watching".into()
+    }
+    fn set_scene(&mut self, mesh: Arc<SceneMesh>) -> vlnverse_sensors::Result<()> {
+        self.scene = mesh.scene_id.clone();
+        Ok(())
+    }
+    fn render(&mut self, views: &[View]) -> vlnverse_sensors::Result<Vec<Frame>> {
+        self.log.lock().unwrap().push(self.scene.clone());
+        self.blind.render(views)
+    }
+}
+
+/// Two workers run a split home by home: once a frame of the next home is drawn, no frame of
+/// an earlier home is (so the run holds one home at a time), and every episode runs.
+#[test]
+fn two_workers_run_a_split_home_by_home() {
+    let dir = tempfile::tempdir().unwrap();
+    let episodes = eval_support::make_dataset(dir.path(), Task::Fine, 3, 16, 5);
+    let homes: std::collections::BTreeSet<&str> =
+        episodes.iter().map(|e| e.scene_id.as_str()).collect();
+    assert_eq!(homes.len(), 3);
+    let cfg = EvalConfig {
+        setting: Setting::Lenient,
+        rig: eval_support::small_rig(dir.path()),
+        plots: 0,
+        ..Default::default()
+    };
+    let oracle = builtin("oracle", None, &cfg).unwrap();
+    let log = Arc::new(std::sync::Mutex::new(Vec::new()));
+    let watching = {
+        let log = log.clone();
+        move |_rig: &RigConfig| -> vlnverse_eval::Result<Box<dyn Renderer>> {
+            Ok(Box::new(Watching {
+                scene: String::new(),
+                log: log.clone(),
+                blind: Blind {
+                    frames: Arc::new(AtomicUsize::new(0)),
+                },
+            }))
+        }
+    };
+    let req = eval_support::fine_test(dir.path(), "run", &cfg, None, 2);
+    let out = evaluate_with(&req, &*oracle, Layers::default().renderers(watching)).unwrap();
+    assert_eq!(out.records.len(), episodes.len());
+    let log = log.lock().unwrap();
+    let mut shown: Vec<&str> = log.iter().map(String::as_str).collect();
+    shown.dedup();
+    assert_eq!(
+        shown,
+        homes.iter().copied().collect::<Vec<_>>(),
+        "homes in the order their frames were drawn"
+    );
+}
