@@ -115,16 +115,21 @@ fn wrapped<RF: RendererFactory>(
 
 const RUN_FILES: [&str; 3] = ["summary.json", "episodes.csv", "trajectories.jsonl"];
 
+/// The lenient setting on the small ray-cast rig, no plots.
+fn lenient_small(dir: &std::path::Path) -> EvalConfig {
+    EvalConfig {
+        setting: Setting::Lenient,
+        rig: eval_support::small_rig(dir),
+        plots: 0,
+        ..Default::default()
+    }
+}
+
 #[test]
 fn a_wrapped_simulator_and_a_blind_renderer_run_under_the_same_loop() {
     let dir = tempfile::tempdir().unwrap();
     eval_support::make_dataset(dir.path(), Task::Fine, 2, 4, 21);
-    let cfg = EvalConfig {
-        setting: Setting::Lenient,
-        rig: eval_support::small_rig(dir.path()),
-        plots: 0,
-        ..Default::default()
-    };
+    let cfg = lenient_small(dir.path());
     let oracle = builtin("oracle", None, &cfg).unwrap();
     let req = |out: &str| eval_support::fine_test(dir.path(), out, &cfg, None, 2);
 
@@ -224,12 +229,7 @@ fn two_workers_run_a_split_home_by_home() {
     let homes: std::collections::BTreeSet<&str> =
         episodes.iter().map(|e| e.scene_id.as_str()).collect();
     assert_eq!(homes.len(), 3);
-    let cfg = EvalConfig {
-        setting: Setting::Lenient,
-        rig: eval_support::small_rig(dir.path()),
-        plots: 0,
-        ..Default::default()
-    };
+    let cfg = lenient_small(dir.path());
     let oracle = builtin("oracle", None, &cfg).unwrap();
     let log = Arc::new(std::sync::Mutex::new(Vec::new()));
     let watching = {
