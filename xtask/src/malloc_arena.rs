@@ -42,9 +42,10 @@ pub fn one_arena() {
     }
 }
 
-/// How often [`Trimmer`] gives freed memory back. At 250 ms, coarse test and train of the
-/// `vlnverse` preset peak at 120.5 and 132.8 MB, against 124.5 and 149.2 MB untrimmed (1 s:
-/// 119.4 and 135.4); a 1,200-episode sample takes the same time (docs/vec-env-performance.md).
+/// How often [`Trimmer`] gives freed memory back. When it was chosen (the eighth pass of
+/// docs/vec-env-performance.md, before runs went home by home), coarse test and train of the
+/// `vlnverse` preset peaked at 120.5 and 132.8 MB at 250 ms, against 124.5 and 149.2 MB
+/// untrimmed (1 s: 119.4 and 135.4), and a 1,200-episode sample took the same time.
 pub const TRIM_PERIOD: std::time::Duration = std::time::Duration::from_millis(250);
 
 /// Gives the memory glibc keeps after it was freed back to the system, every [`TRIM_PERIOD`]

@@ -417,14 +417,23 @@ mod tests {
     use vlnverse_env::SceneSource;
     use vlnverse_procgen::{HomeGenerator, Preset};
 
+    /// The `tiny` preset's first home, with this share of homes on two floors (the preset's
+    /// when `None`).
+    fn first_tiny_home(two_storey_share: Option<f32>) -> Scene {
+        let mut pc = Preset::Tiny.config().unwrap();
+        pc.scenes.count = 1;
+        if let Some(share) = two_storey_share {
+            pc.floors.two_storey_share = share;
+        }
+        HomeGenerator::new(pc).unwrap().scene(0).unwrap()
+    }
+
     /// A loaded home's mesh is lit with the light its `scene.glb` holds, kept by the context
     /// (not the process-wide cache): the same colours as the mesh of the scene loaded the old
     /// way, whose light went through that cache.
     #[test]
     fn a_loaded_home_is_lit_with_its_own_light() {
-        let mut pc = Preset::Tiny.config().unwrap();
-        pc.scenes.count = 1;
-        let scene = HomeGenerator::new(pc).unwrap().scene(0).unwrap();
+        let scene = first_tiny_home(None);
         let id = scene.id.clone();
         let dir = tempfile::tempdir().unwrap();
         let scenes = dir.path().join("scenes");
@@ -526,9 +535,7 @@ mod tests {
     /// loaded fails for each asker, and is loaded once it can be; `clear` lets every home go.
     #[test]
     fn threads_entering_a_home_together_load_it_and_its_mesh_once() {
-        let mut pc = Preset::Tiny.config().unwrap();
-        pc.scenes.count = 1;
-        let scene = HomeGenerator::new(pc).unwrap().scene(0).unwrap();
+        let scene = first_tiny_home(None);
         let id = scene.id.clone();
         let dir = tempfile::tempdir().unwrap();
         let cache = SceneCache::new(dir.path(), 2);
@@ -569,10 +576,7 @@ mod tests {
     /// non-finite coordinates is the field's error, every time, and nothing is cached for it.
     #[test]
     fn a_goal_field_is_built_once_for_threads_asking_together() {
-        let mut pc = Preset::Tiny.config().unwrap();
-        pc.scenes.count = 1;
-        pc.floors.two_storey_share = 0.0;
-        let scene = HomeGenerator::new(pc).unwrap().scene(0).unwrap();
+        let scene = first_tiny_home(Some(0.0));
         let maps = build_level_maps(&scene, &OccupancyConfig::default()).unwrap();
         let nav = maps[0].navigable.clone();
         let cells: Vec<Vec2> = nav
@@ -605,10 +609,7 @@ mod tests {
     /// measures, at every free cell of both floors.
     #[test]
     fn a_field_across_floors_shares_the_goal_field_and_measures_the_same() {
-        let mut pc = Preset::Tiny.config().unwrap();
-        pc.scenes.count = 1;
-        pc.floors.two_storey_share = 1.0;
-        let scene = HomeGenerator::new(pc).unwrap().scene(0).unwrap();
+        let scene = first_tiny_home(Some(1.0));
         assert!(scene.is_multi_level());
         let navigable: Vec<GridMap> = build_level_maps(&scene, &OccupancyConfig::default())
             .unwrap()
