@@ -180,6 +180,7 @@ impl Frustum {
     }
 
     /// Whether a box may be visible (conservative: false only when surely outside).
+    #[inline]
     pub fn intersects_aabb(&self, b: &Aabb) -> bool {
         let (lo, hi) = (b.min_v(), b.max_v());
         self.planes.iter().all(|p| {

@@ -33,6 +33,10 @@
 //!
 //! Views of a batch render in parallel (rayon); a batch smaller than twice the thread count
 //! splits each view's resolve into bands of rows as well.
+//!
+//! The fill and the resolve are compiled twice on x86-64: for the baseline (SSE2) and for
+//! x86-64-v3 (AVX2), chosen at run time by what the CPU has (`raster/isa.rs`; [`ISA_VAR`] set
+//! to `baseline` forces the first). Both give the same pixels, bit for bit.
 
 use crate::camera::Camera;
 use crate::error::{Result, SensorError};
@@ -49,10 +53,13 @@ use vlnverse_env::Aabb;
 
 mod face_store;
 mod faces;
+mod isa;
 mod lanes;
 mod prepared;
 mod unzstd;
 
+use isa::Isa;
+pub use isa::ISA_VAR;
 use prepared::Prepared;
 pub use prepared::{PREPARED_FILE, PREPARED_VERSION};
 
@@ -284,7 +291,7 @@ impl Walk {
 
     /// Start at row `y` (`e.a != 0`); with `steps`, ready to step down the rows (without, it
     /// stays on row `y`: one division instead of two).
-    #[inline]
+    #[inline(always)]
     fn new(e: &Edge, y: i64, steps: bool) -> Walk {
         let er = e.b * y + e.c;
         let (a, dir) = if e.a > 0 { (e.a, -1) } else { (-e.a, 1) };
@@ -307,7 +314,7 @@ impl Walk {
 
     /// Move to the next row (`DIR`: -1 for a left edge, 1 for a right one; branch-free:
     /// whether `r` carries past `|a|` is data, not pattern).
-    #[inline]
+    #[inline(always)]
     fn step<const DIR: i64>(&mut self) {
         self.r += self.br;
         let carry = i64::from(self.r >= self.a);
@@ -410,7 +417,7 @@ impl ViewParams {
     }
 
     /// Pixel coordinates (continuous) of a camera-space point in front of the camera.
-    #[inline]
+    #[inline(always)]
     fn project(&self, p: Vec3) -> (f32, f32, f32) {
         let iz = 1.0 / -p.z;
         (
@@ -838,6 +845,11 @@ impl RasterScene {
     /// Render one view on the calling thread's rayon pool, split into `bands` bands of rows
     /// (1 = no split).
     pub fn render_view(&self, view: &View, bands: usize) -> Frame {
+        self.render_view_on(Isa::detect(), view, bands)
+    }
+
+    /// [`Self::render_view`] with the copy `isa` of the fill and resolve (`raster/isa.rs`).
+    fn render_view_on(&self, isa: Isa, view: &View, bands: usize) -> Frame {
         let c = &view.camera;
         let p = ViewParams::new(c);
         let (w, h) = (p.w, p.h);
@@ -855,7 +867,8 @@ impl RasterScene {
             (true, true) => vec![0u32; n],
             (true, false) => take(&SPARE_IDS, n, 0),
         };
-        let tris = self.setup(c, &p, ch.rgb, &mut zbuf, ids_needed.then_some(&mut ids[..]));
+        let ids_out = ids_needed.then_some(&mut ids[..]);
+        let tris = self.setup_on(isa, c, &p, ch.rgb, &mut zbuf, ids_out);
         let mut rgb = if ch.rgb { vec![0u8; 3 * n] } else { Vec::new() };
         let mut sem = if ch.semantic {
             vec![0u16; n]
@@ -879,7 +892,7 @@ impl RasterScene {
                 });
             }
         }
-        let run = |b: Band<'_>| self.resolve_band(&p, &tris, b, ch.depth, ch.instance);
+        let run = |b: Band<'_>| self.resolve_band_on(isa, &p, &tris, b, ch.depth, ch.instance);
         if work.len() == 1 {
             work.into_iter().for_each(run);
         } else {
@@ -914,12 +927,47 @@ impl RasterScene {
         }
     }
 
+    /// [`Self::setup`] in the copy `isa`.
+    #[allow(unsafe_code)] // a function built for CPU features; see the SAFETY note
+    fn setup_on(
+        &self,
+        isa: Isa,
+        c: &Camera,
+        p: &ViewParams,
+        shade: bool,
+        zbuf: &mut [f32],
+        ids: Option<&mut [u32]>,
+    ) -> Setup {
+        match isa {
+            Isa::Baseline => self.setup(c, p, shade, zbuf, ids),
+            // SAFETY: `Isa::V3` is chosen only on a CPU with every feature `setup_v3` is built
+            // for (`Isa::widest`).
+            #[cfg(target_arch = "x86_64")]
+            Isa::V3 => unsafe { self.setup_v3(c, p, shade, zbuf, ids) },
+        }
+    }
+
+    /// [`Self::setup`] built for x86-64-v3 (the same pixels, 8-wide lanes).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
+    fn setup_v3(
+        &self,
+        c: &Camera,
+        p: &ViewParams,
+        shade: bool,
+        zbuf: &mut [f32],
+        ids: Option<&mut [u32]>,
+    ) -> Setup {
+        self.setup(c, p, shade, zbuf, ids)
+    }
+
     /// Cull, clip, project and fill every triangle that may be seen into `zbuf` (and `ids`),
     /// object by object, nearest objects (by distance from the eye to their box) first; each
     /// cluster is filled as soon as it is set up, so that an object or cluster whose box, at
     /// its nearest depth, lies behind the coarse depth of what was drawn so far is skipped
     /// before any of its triangles is transformed (occlusion culling; exact: the depth test
     /// would have let none of its pixels through).
+    #[inline(always)]
     fn setup(
         &self,
         c: &Camera,
@@ -1081,6 +1129,7 @@ impl RasterScene {
 
     /// The attribute planes of triangle `t` in this view (see [`Slot`]); `plane` is its
     /// `1 / depth` plane.
+    #[inline(always)]
     fn slot(&self, p: &ViewParams, t: usize, plane: [f64; 3]) -> Slot {
         let l = &self.look[t];
         let (fx, fy, cx, cy) = (p.fx as f64, p.fy as f64, p.cx as f64, p.cy as f64);
@@ -1112,6 +1161,7 @@ impl RasterScene {
     /// Clip, project and emit one triangle (corners `v` in camera space) that the tests of
     /// its corners kept ([`lanes::Lanes`]); `projected`: its corners projected, when all are
     /// in front of the near plane. Its `1 / depth` plane when it may be visible.
+    #[inline(always)]
     fn setup_triangle(
         &self,
         p: &ViewParams,
@@ -1178,7 +1228,42 @@ impl RasterScene {
         plane64
     }
 
-    /// Resolve one band of rows (filled by [`Self::setup`]) into the outputs.
+    /// [`Self::resolve_band`] in the copy `isa`.
+    #[allow(unsafe_code)] // a function built for CPU features; see the SAFETY note
+    fn resolve_band_on(
+        &self,
+        isa: Isa,
+        p: &ViewParams,
+        setup: &Setup,
+        b: Band<'_>,
+        want_depth: bool,
+        want_instance: bool,
+    ) {
+        match isa {
+            Isa::Baseline => self.resolve_band(p, setup, b, want_depth, want_instance),
+            // SAFETY: as in `setup_on`.
+            #[cfg(target_arch = "x86_64")]
+            Isa::V3 => unsafe { self.resolve_band_v3(p, setup, b, want_depth, want_instance) },
+        }
+    }
+
+    /// [`Self::resolve_band`] built for x86-64-v3.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
+    fn resolve_band_v3(
+        &self,
+        p: &ViewParams,
+        setup: &Setup,
+        b: Band<'_>,
+        want_depth: bool,
+        want_instance: bool,
+    ) {
+        self.resolve_band(p, setup, b, want_depth, want_instance)
+    }
+
+    /// Resolve one band of rows (filled by [`Self::setup`]) into the outputs. Inlined into
+    /// each copy (`raster/isa.rs`), as is everything it calls in its loops.
+    #[inline(always)]
     fn resolve_band(
         &self,
         p: &ViewParams,
@@ -1225,6 +1310,7 @@ impl RasterScene {
         }
     }
 
+    #[inline(always)]
     fn resolve_depth(&self, p: &ViewParams, zbuf: &mut [f32], want_depth: bool) {
         let (inv_far, far) = (1.0 / p.far, p.far);
         if want_depth {
@@ -1241,6 +1327,7 @@ impl RasterScene {
     /// Colour of every pixel of a band from its slot and `1 / depth`, and with `sem` its
     /// class.
     #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
     fn resolve_rgb(
         &self,
         setup: &Setup,
@@ -1475,6 +1562,7 @@ enum Reach {
 /// The pixels a box can cover and the largest `1 / depth` a triangle inside it can write
 /// (with margins far above the rounding of a triangle's own projection: a pixel on every side,
 /// 0.1 % on `1 / depth`), for occlusion culling before set-up.
+#[inline(always)]
 fn screen_box(p: &ViewParams, b: &Aabb) -> Reach {
     let (lo, hi) = (b.min_v(), b.max_v());
     // The eight corners (corner `k` takes the high side on axis `j` when bit `j` of `k` is
@@ -1545,6 +1633,7 @@ struct Coarse {
 }
 
 impl Coarse {
+    #[inline(always)]
     fn new(w: usize, h: usize, inv_far: f32) -> Self {
         let (tw, th) = (w.div_ceil(TILE), h.div_ceil(TILE));
         Coarse {
@@ -1558,6 +1647,7 @@ impl Coarse {
 
     /// Whether nothing writing at most `zmax` over pixels `x0..=x1`, `y0..=y1` can pass the
     /// depth test of `zbuf`.
+    #[inline(always)]
     fn hidden(
         &mut self,
         zbuf: &[f32],
@@ -1587,6 +1677,7 @@ impl Coarse {
     }
 
     /// Mark the tiles over pixels `x0..=x1`, `y0..=y1` as drawn into.
+    #[inline(always)]
     fn touch(&mut self, x0: usize, x1: usize, y0: usize, y1: usize) {
         let (tx0, tx1) = (x0 / TILE, x1 / TILE);
         for ty in y0 / TILE..=y1 / TILE {
@@ -1598,6 +1689,7 @@ impl Coarse {
 /// Clip a polygon against plane `k` of [`ViewParams::plane`] (Sutherland-Hodgman). New points
 /// are always interpolated from the inside vertex, so an edge shared by two triangles is cut at
 /// bit-identical points and the fill stays watertight.
+#[inline(always)]
 fn clip(p: &ViewParams, poly: &Poly, k: usize) -> Poly {
     let mut out = Poly {
         v: [Vec3::ZERO; 9],
@@ -1628,11 +1720,13 @@ fn clip(p: &ViewParams, poly: &Poly, k: usize) -> Poly {
 }
 
 /// Project, snap and set up one triangle in front of the near plane.
+#[inline(always)]
 fn emit(p: &ViewParams, v: [Vec3; 3], plane: [f32; 3], tag: u32, out: &mut Vec<ScreenTri>) {
     emit_tested(p, v, plane, tag, out, SMALL_BOX)
 }
 
 /// [`emit`], testing the pixel centres of boxes of at most `small` pixels.
+#[inline(always)]
 fn emit_tested(
     p: &ViewParams,
     v: [Vec3; 3],
@@ -1646,7 +1740,7 @@ fn emit_tested(
 
 /// [`emit_tested`] with the `1 / depth` plane asked for only once the triangle is found to
 /// cover a pixel centre it may hold (none: nothing is emitted).
-#[inline]
+#[inline(always)]
 fn emit_with(
     p: &ViewParams,
     v: [Vec3; 3],
@@ -1746,6 +1840,7 @@ fn emit_with(
 }
 
 /// Fill rows `y0..y1` (the buffers hold exactly those rows) with the nearest triangle per pixel.
+#[inline(always)]
 fn raster<const IDS: bool>(
     w: usize,
     y0: usize,
@@ -1820,7 +1915,7 @@ struct Bounds<'a> {
 
 /// Fill rows `ya..=yb` of a triangle bounded by `NL` left and `NR` right edges, walked from row
 /// `ya`.
-#[inline]
+#[inline(always)]
 fn rows<const IDS: bool, const NL: usize, const NR: usize>(
     b: Bounds<'_>,
     mut left: [Walk; NL],
@@ -1857,7 +1952,7 @@ fn rows<const IDS: bool, const NL: usize, const NR: usize>(
 
 /// The smallest value of rows `r0..r1`, columns `c0..c0 + TILE` (clipped to the row) of a
 /// buffer `w` wide: eight independent lanes with branch-free selects, which vectorise.
-#[inline]
+#[inline(always)]
 fn tile_min(z: &[f32], w: usize, r0: usize, r1: usize, c0: usize) -> f32 {
     let mut m = [f32::INFINITY; TILE];
     if c0 + TILE <= w {
@@ -1885,7 +1980,7 @@ const LANES: [f32; 8] = [0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0];
 
 /// Depth-test a span and write depth and tag: blocks of 8 pixels with branch-free selects (no
 /// NaN-aware `max`) that the compiler turns into SIMD, then the rest one by one.
-#[inline]
+#[inline(always)]
 fn span_ids(zs: &mut [f32], ids: &mut [u32], z0: f32, t: &ScreenTri) {
     let (za, lo, hi, tag) = (t.za, t.zlo, t.zhi, t.tag);
     let ids = &mut ids[..zs.len()];
@@ -1926,7 +2021,7 @@ fn span_ids(zs: &mut [f32], ids: &mut [u32], z0: f32, t: &ScreenTri) {
 }
 
 /// [`span_ids`] without ids.
-#[inline]
+#[inline(always)]
 fn span_depth(zs: &mut [f32], z0: f32, t: &ScreenTri) {
     let (za, lo, hi) = (t.za, t.zlo, t.zhi);
     let mut zc = zs.chunks_exact_mut(8);
@@ -1957,7 +2052,7 @@ trait ClampRange {
 }
 
 impl ClampRange for f32 {
-    #[inline]
+    #[inline(always)]
     fn clamp_range(self, lo: f32, hi: f32) -> f32 {
         let v = if self < lo { lo } else { self };
         if v > hi {
@@ -1969,20 +2064,20 @@ impl ClampRange for f32 {
 }
 
 /// `ceil` and `floor` of snapped coordinates (|v| < 2^53) without a libm call on baseline x86-64.
-#[inline]
+#[inline(always)]
 fn fast_ceil(v: f64) -> f64 {
     let t = v as i64 as f64;
     t + f64::from(u8::from(t < v))
 }
 
 /// `floor` of a snapped coordinate (|v| < 2^53) as an integer.
-#[inline]
+#[inline(always)]
 fn floor_i64(v: f64) -> i64 {
     let t = v as i64;
     t - i64::from(t as f64 > v)
 }
 
-#[inline]
+#[inline(always)]
 fn fast_floor(v: f64) -> f64 {
     let t = v as i64 as f64;
     t - f64::from(u8::from(t > v))
@@ -2430,6 +2525,61 @@ mod tests {
             }
         }
         let _ = std::fs::remove_file(&file);
+    }
+
+    /// The wider copy of the fill and resolve (`raster/isa.rs`) draws exactly the baseline's
+    /// pixels: colour, depth, classes and objects, with and without instance ids, RGB and
+    /// depth-only views, one band or several.
+    #[test]
+    fn both_copies_of_the_fill_and_resolve_draw_the_same_pixels() {
+        use crate::{CameraSpec, Channels};
+        use vlnverse_env::Pose;
+        let Some(wide) = Isa::widest() else {
+            eprintln!("this CPU runs only the baseline copy: nothing to compare");
+            return;
+        };
+        let rgb_and_classes = Channels {
+            rgb: true,
+            semantic: true,
+            ..Default::default()
+        };
+        let mut compared = 0;
+        for home in 0..2 {
+            let (scene, mesh) = home_mesh(home);
+            let s = RasterScene::new(mesh);
+            let b = scene.bounds();
+            for k in 0..12 {
+                let t = (k as f32 + 0.5) / 12.0;
+                let at = Vec3::new(
+                    b.min[0] + (b.max[0] - b.min[0]) * t,
+                    scene.floor_height,
+                    b.min[2] + (b.max[2] - b.min[2]) * (1.0 - t),
+                );
+                let pose = Pose::from_yaw(at, k as f32 * 1.3);
+                for (spec, channels) in [
+                    (CameraSpec::default(), Channels::ALL),
+                    (CameraSpec::default(), rgb_and_classes),
+                    (CameraSpec::depth(), Channels::DEPTH),
+                ] {
+                    let view = View {
+                        camera: spec.camera(&pose),
+                        channels,
+                    };
+                    for bands in [1, 4] {
+                        let want = s.render_view_on(Isa::Baseline, &view, bands);
+                        let got = s.render_view_on(wide, &view, bands);
+                        let at = format!("home {home}, view {k}, {channels:?}, {bands} bands");
+                        assert_eq!(got.rgb, want.rgb, "{at}");
+                        let bits = |v: &[f32]| v.iter().map(|d| d.to_bits()).collect::<Vec<_>>();
+                        assert_eq!(bits(&got.depth), bits(&want.depth), "{at}");
+                        assert_eq!(got.semantic, want.semantic, "{at}");
+                        assert_eq!(got.instance, want.instance, "{at}");
+                        compared += 1;
+                    }
+                }
+            }
+        }
+        assert_eq!(compared, 2 * 12 * 3 * 2);
     }
 
     #[test]

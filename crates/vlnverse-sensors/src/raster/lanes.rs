@@ -30,6 +30,7 @@ pub(super) struct Lanes {
 
 impl Lanes {
     /// Lanes for a view (zeros until [`Lanes::load`]).
+    #[inline(always)]
     pub(super) fn new() -> Self {
         let zero = [[0.0; CLUSTER]; 3];
         Lanes {
@@ -58,6 +59,7 @@ impl Lanes {
     /// Transform, project and test the triangles of one block made by [`pack`] (up to
     /// [`CLUSTER`] triangles); with `cull`, back faces are not kept. Lanes past the block's
     /// triangles hold what an earlier block left or padding: ask only for the block's own.
+    #[inline(always)]
     pub(super) fn load_packed(&mut self, p: &ViewParams, block: &[f32], cull: bool) {
         let m = (block.len() / ROWS).min(CLUSTER);
         let row = |r: usize| &block[r * m..r * m + m];
@@ -128,7 +130,7 @@ impl Lanes {
 
     /// Which of the first `n` triangles of the last [`Lanes::load_packed`] may cover a pixel
     /// centre, as bits (bit `i` for triangle `i`).
-    #[inline]
+    #[inline(always)]
     pub(super) fn kept(&self, n: usize) -> u32 {
         const _: () = assert!(CLUSTER <= 32);
         self.keep
@@ -139,14 +141,14 @@ impl Lanes {
     }
 
     /// Whether triangle `i` faces away from the eye.
-    #[inline]
+    #[inline(always)]
     pub(super) fn back(&self, i: usize) -> bool {
         self.back.get(i).copied().unwrap_or(false)
     }
 
     /// Triangle `i`'s corners in camera space, and projected when they are all in front of
     /// the near plane.
-    #[inline]
+    #[inline(always)]
     pub(super) fn triangle(&self, i: usize) -> ([Vec3; 3], Option<[(f32, f32); 3]>) {
         let i = i.min(CLUSTER - 1);
         let v = [0, 1, 2].map(|k| Vec3::new(self.x[k][i], self.y[k][i], self.z[k][i]));
@@ -189,7 +191,7 @@ pub(super) fn pack(pos: &[Vec3], normals: &[Vec3], out: &mut Vec<f32>) -> usize 
     ROWS * m
 }
 
-#[inline]
+#[inline(always)]
 fn min3(a: f32, b: f32, c: f32) -> f32 {
     let m = if b < a { b } else { a };
     if c < m {
@@ -199,7 +201,7 @@ fn min3(a: f32, b: f32, c: f32) -> f32 {
     }
 }
 
-#[inline]
+#[inline(always)]
 fn max3(a: f32, b: f32, c: f32) -> f32 {
     let m = if b > a { b } else { a };
     if c > m {
@@ -212,7 +214,7 @@ fn max3(a: f32, b: f32, c: f32) -> f32 {
 /// No integer in `[lo, hi]` (no pixel centre in a box): `floor(hi) < lo`, branch-free, for
 /// `|hi|` below 2^22 (where adding and taking away 1.5 x 2^23 rounds to an integer exactly);
 /// "not sure" (false) beyond, which only sends a triangle on to the exact set-up.
-#[inline]
+#[inline(always)]
 fn none(lo: f32, hi: f32) -> bool {
     const MAGIC: f32 = 12_582_912.0;
     const LIMIT: f32 = 4_194_304.0;
