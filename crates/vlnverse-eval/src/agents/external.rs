@@ -171,6 +171,7 @@ pub struct ExternalAgent {
     timeout: Duration,
     /// Step of the message last sent (for errors).
     step: Option<u32>,
+    /// Folder for observations sent as files; made at the first one, removed on drop.
     tmp: PathBuf,
     encoding: ObsEncoding,
     stderr_tail: Arc<Mutex<VecDeque<String>>>,
@@ -234,7 +235,6 @@ impl ExternalAgent {
             std::process::id(),
             COUNTER.fetch_add(1, Ordering::Relaxed)
         ));
-        std::fs::create_dir_all(&tmp).map_err(|e| TaskError::io(&tmp, e))?;
         Ok(ExternalAgent {
             cmd: cmd.into(),
             child,
@@ -402,6 +402,9 @@ impl ExternalAgent {
         let bytes = bytes.map_err(|e| self.err(format!("observation `{name}` ({kind}): {e}")))?;
         let mut v = json!({"kind": kind, "width": w, "height": h, "dtype": dtype, "shape": shape});
         if files {
+            // Made at the first file, so an agent reading inline data leaves no folder behind
+            // even when its process is killed.
+            std::fs::create_dir_all(&self.tmp).map_err(|e| TaskError::io(&self.tmp, e))?;
             let path = self.tmp.join(format!("{name}.{ext}"));
             std::fs::write(&path, bytes).map_err(|e| TaskError::io(&path, e))?;
             v["encoding"] = json!("file");
@@ -641,6 +644,10 @@ mod tests {
         let png = std::fs::read(v["path"].as_str().unwrap()).unwrap();
         let img = image::load_from_memory(&png).unwrap().to_rgb8();
         assert_eq!(img.as_raw(), &frame().rgb);
+        let folder = a.tmp.clone();
+        assert!(folder.is_dir());
+        drop(a);
+        assert!(!folder.exists(), "the files' folder goes with the agent");
     }
 
     /// Base64: the standard alphabet with padding over the raw little-endian array.
@@ -649,6 +656,8 @@ mod tests {
         let a = agent(ObsEncoding::Base64);
         let v = a.frame_entry("instance", "instance", &frame()).unwrap();
         assert_eq!(v["encoding"], "base64");
+        // No folder for inline data (none is left behind if the process is killed).
+        assert!(!a.tmp.exists());
         assert_eq!(v["shape"], json!([2, 3]));
         let raw = STANDARD.decode(v["data"].as_str().unwrap()).unwrap();
         assert_eq!(raw, [4u8, 3, 2, 1].repeat(6));
