@@ -174,6 +174,8 @@ struct Report<'a> {
     threads: usize,
     /// Threads of rayon's global pool (what the parallel cases use).
     rayon_threads: usize,
+    /// The rasteriser's copy of its fill and resolve (`x86-64-v3` or `baseline`).
+    raster_copy: &'static str,
     seconds: f64,
     figures: &'a [Figure],
 }
@@ -313,10 +315,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let rayon_threads = rayon::current_num_threads();
     println!(
         "bench: {} case(s), median of {reps} repetitions{} on {threads} hardware threads \
-         (rayon pool {rayon_threads}); figures vary with machine load, compare runs on the same \
-         idle machine",
+         (rayon pool {rayon_threads}, rasteriser copy {}); figures vary with machine load, \
+         compare runs on the same idle machine",
         selected.len(),
         if args.quick { " (quick)" } else { "" },
+        vlnverse_sensors::raster::copy_in_use(),
     );
     println!(
         "{:<27} {:>20}  {:>22}  work per repetition",
@@ -346,6 +349,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             reps,
             threads,
             rayon_threads,
+            raster_copy: vlnverse_sensors::raster::copy_in_use(),
             seconds,
             figures: &figures,
         };

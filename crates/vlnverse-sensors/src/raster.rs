@@ -63,6 +63,12 @@ pub use isa::ISA_VAR;
 use prepared::Prepared;
 pub use prepared::{PREPARED_FILE, PREPARED_VERSION};
 
+/// Which copy of the fill and resolve this process runs: `x86-64-v3` (AVX2) or `baseline`
+/// (see [`ISA_VAR`]); for benchmarks to print beside their figures.
+pub fn copy_in_use() -> &'static str {
+    Isa::detect().name()
+}
+
 /// Every surface texture's grey part, encoded ([`Surface::luma_encoded`]), one after the other
 /// ([`Surface::ALL`] order): made once and shared by every prepared scene.
 fn surface_luma() -> &'static [u8] {

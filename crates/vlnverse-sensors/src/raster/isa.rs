@@ -38,6 +38,15 @@ impl Isa {
         }
     }
 
+    /// A short name: `x86-64-v3` or `baseline`.
+    pub(super) fn name(self) -> &'static str {
+        match self {
+            Isa::Baseline => "baseline",
+            #[cfg(target_arch = "x86_64")]
+            Isa::V3 => "x86-64-v3",
+        }
+    }
+
     /// The wider copy when this CPU can run it.
     pub(super) fn widest() -> Option<Isa> {
         #[cfg(target_arch = "x86_64")]
