@@ -141,7 +141,7 @@ pub struct SceneTaskContext<'a> {
     /// Stage timers.
     pub times: &'a StageTimes,
     /// A home on several floors: the samplers of its levels and the map across them (then
-    /// every task samples through [`super::cross`]); `None` for a single-storey home.
+    /// every task samples through `cross`); `None` for a single-storey home.
     pub floors: Option<&'a Floors<'a>>,
 }
 

@@ -1,7 +1,7 @@
 //! The native part of the `vlnverse` Python package (`vlnverse._native`).
 //!
 //! Python users import `vlnverse`, whose Gymnasium classes (in `python/vlnverse/`) wrap what
-//! is here: [`env::NativeVecEnv`], a batch of environments stepped in Rust with the GIL
+//! is here: `env::NativeVecEnv`, a batch of environments stepped in Rust with the GIL
 //! released and observations written into preallocated NumPy arrays, and a few functions that
 //! mirror the CLI (`load_episodes`, `score`, the run folder of `evaluate`). Every error reaches
 //! Python as `vlnverse.VLNVerseError` (a `ValueError`) with the message the CLI prints; a Rust

@@ -434,7 +434,7 @@ pub async fn serve_on(
 ///
 /// Each connection must send a request's headers within `header_timeout` of the
 /// configuration or is closed, and at most `max_connections` are served at once: a further
-/// one is answered at once with a 503 JSON error and closed ([`refuse_busy`]), so clients
+/// one is answered at once with a 503 JSON error and closed (`refuse_busy`), so clients
 /// that open connections and send headers slowly cannot hold the server, and a client over
 /// the limit learns why instead of waiting in the listen queue.
 pub async fn serve_on_with(

@@ -188,7 +188,7 @@ pub const STDERR_TAIL_LINES: usize = 10;
 
 impl ExternalAgent {
     /// Start `sh -c cmd` with piped stdin/stdout; its stderr is passed through to ours, and
-    /// the last [`STDERR_TAIL_LINES`] lines are kept for the error when the agent dies.
+    /// the last `STDERR_TAIL_LINES` lines are kept for the error when the agent dies.
     pub fn spawn(cmd: &str, encoding: ObsEncoding) -> Result<Self> {
         let mut child = Command::new("sh")
             .arg("-c")
