@@ -358,13 +358,30 @@ impl SceneCache {
         if let Some(ctx) = held.as_ref() {
             return Ok(ctx.clone());
         }
-        let ctx = Arc::new(SceneContext::load(&self.dataset, id)?);
+        let ctx = match SceneContext::load(&self.dataset, id) {
+            Ok(ctx) => Arc::new(ctx),
+            Err(e) => {
+                drop(held);
+                self.forget_if_empty(id, &slot);
+                return Err(e);
+            }
+        };
         if let Some(m) = ctx.levels() {
             lock(&self.end_fields).give(&self.end_key(id), m);
         }
         self.loads
             .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         Ok(held.insert(ctx).clone())
+    }
+
+    /// Drop `id`'s entry after a failed load, so that it neither counts as held nor pushes a
+    /// home out; left when another thread has filled it or is loading it meanwhile.
+    fn forget_if_empty(&self, id: &str, slot: &SceneSlot) {
+        let mut e = lock(&self.entries);
+        let empty = slot.try_lock().is_ok_and(|held| held.is_none());
+        if empty {
+            e.retain(|(k, s)| !(k == id && Arc::ptr_eq(s, slot)));
+        }
     }
 
     /// Scene `id` as `ctx` (loaded from this cache's dataset earlier and still held by its
@@ -542,6 +559,7 @@ mod tests {
         assert!(cache.get(&id).is_err(), "no scene folder yet");
         assert!(cache.get(&id).is_err());
         assert_eq!(cache.loads(), 0);
+        assert!(cache.is_empty(), "a failed load holds no entry");
         vlnverse_env::io::write_scene_bundle(
             dir.path().join("scenes"),
             scene,
