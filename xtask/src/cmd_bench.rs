@@ -174,7 +174,7 @@ struct Report<'a> {
     threads: usize,
     /// Threads of rayon's global pool (what the parallel cases use).
     rayon_threads: usize,
-    /// The rasteriser's copy of its fill and resolve (`x86-64-v3` or `baseline`).
+    /// The rasteriser's copy of its fill and resolve (`avx2` or `baseline`).
     raster_copy: &'static str,
     seconds: f64,
     figures: &'a [Figure],

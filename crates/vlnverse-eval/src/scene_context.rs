@@ -374,12 +374,14 @@ impl SceneCache {
         Ok(held.insert(ctx).clone())
     }
 
-    /// Drop `id`'s entry after a failed load, so that it neither counts as held nor pushes a
-    /// home out; left when another thread has filled it or is loading it meanwhile.
+    /// Drop `id`'s entry after a failed load, so that it does not count as held or take a
+    /// place in the cache (making room for it may already have let the least recently used
+    /// home go). Left when another thread holds the slot: it is waiting to load it, or has.
     fn forget_if_empty(&self, id: &str, slot: &SceneSlot) {
         let mut e = lock(&self.entries);
-        let empty = slot.try_lock().is_ok_and(|held| held.is_none());
-        if empty {
+        // Slots are cloned only under the entries lock: two holders are the entry and us.
+        let alone = Arc::strong_count(slot) == 2;
+        if alone && slot.try_lock().is_ok_and(|held| held.is_none()) {
             e.retain(|(k, s)| !(k == id && Arc::ptr_eq(s, slot)));
         }
     }

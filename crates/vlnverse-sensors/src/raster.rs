@@ -34,8 +34,8 @@
 //! Views of a batch render in parallel (rayon); a batch smaller than twice the thread count
 //! splits each view's resolve into bands of rows as well.
 //!
-//! The fill and the resolve are compiled twice on x86-64: for the baseline (SSE2) and for
-//! x86-64-v3 (AVX2), chosen at run time by what the CPU has (`raster/isa.rs`; [`ISA_VAR`] set
+//! The fill and the resolve are compiled twice on x86-64: for the baseline (SSE2) and with
+//! AVX2, chosen at the first frame by what the CPU has (`raster/isa.rs`; [`ISA_VAR`] set
 //! to `baseline` forces the first). Both give the same pixels, bit for bit.
 
 use crate::camera::Camera;
@@ -59,15 +59,9 @@ mod prepared;
 mod unzstd;
 
 use isa::Isa;
-pub use isa::ISA_VAR;
+pub use isa::{copy_in_use, ISA_VAR};
 use prepared::Prepared;
 pub use prepared::{PREPARED_FILE, PREPARED_VERSION};
-
-/// Which copy of the fill and resolve this process runs: `x86-64-v3` (AVX2) or `baseline`
-/// (see [`ISA_VAR`]); for benchmarks to print beside their figures.
-pub fn copy_in_use() -> &'static str {
-    Isa::detect().name()
-}
 
 /// Every surface texture's grey part, encoded ([`Surface::luma_encoded`]), one after the other
 /// ([`Surface::ALL`] order): made once and shared by every prepared scene.
@@ -946,17 +940,17 @@ impl RasterScene {
     ) -> Setup {
         match isa {
             Isa::Baseline => self.setup(c, p, shade, zbuf, ids),
-            // SAFETY: `Isa::V3` is chosen only on a CPU with every feature `setup_v3` is built
+            // SAFETY: an `Isa::Avx2` exists only on a CPU with every feature `setup_avx2` is built
             // for (`Isa::widest`).
             #[cfg(target_arch = "x86_64")]
-            Isa::V3 => unsafe { self.setup_v3(c, p, shade, zbuf, ids) },
+            Isa::Avx2(_) => unsafe { self.setup_avx2(c, p, shade, zbuf, ids) },
         }
     }
 
-    /// [`Self::setup`] built for x86-64-v3 (the same pixels, 8-wide lanes).
+    /// [`Self::setup`] built with AVX2 (the same pixels, 8-wide lanes).
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
-    fn setup_v3(
+    fn setup_avx2(
         &self,
         c: &Camera,
         p: &ViewParams,
@@ -1249,14 +1243,16 @@ impl RasterScene {
             Isa::Baseline => self.resolve_band(p, setup, b, want_depth, want_instance),
             // SAFETY: as in `setup_on`.
             #[cfg(target_arch = "x86_64")]
-            Isa::V3 => unsafe { self.resolve_band_v3(p, setup, b, want_depth, want_instance) },
+            Isa::Avx2(_) => unsafe {
+                self.resolve_band_avx2(p, setup, b, want_depth, want_instance)
+            },
         }
     }
 
-    /// [`Self::resolve_band`] built for x86-64-v3.
+    /// [`Self::resolve_band`] built with AVX2.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
-    fn resolve_band_v3(
+    fn resolve_band_avx2(
         &self,
         p: &ViewParams,
         setup: &Setup,
@@ -1268,7 +1264,7 @@ impl RasterScene {
     }
 
     /// Resolve one band of rows (filled by [`Self::setup`]) into the outputs. Inlined into
-    /// each copy (`raster/isa.rs`), as is everything it calls in its loops.
+    /// each copy (`raster/isa.rs`), as are the functions it calls in its loops.
     #[inline(always)]
     fn resolve_band(
         &self,
