@@ -2396,6 +2396,23 @@ mod tests {
         (scene, mesh)
     }
 
+    /// `n` poses on the floor along a diagonal of the home's box, turning `turn` radians more
+    /// at each.
+    fn diagonal_poses(scene: &vlnverse_env::Scene, n: usize, turn: f32) -> Vec<vlnverse_env::Pose> {
+        let b = scene.bounds();
+        (0..n)
+            .map(|k| {
+                let t = (k as f32 + 0.5) / n as f32;
+                let at = Vec3::new(
+                    b.min[0] + (b.max[0] - b.min[0]) * t,
+                    scene.floor_height,
+                    b.min[2] + (b.max[2] - b.min[2]) * (1.0 - t),
+                );
+                vlnverse_env::Pose::from_yaw(at, k as f32 * turn)
+            })
+            .collect()
+    }
+
     fn temp_file(name: &str) -> std::path::PathBuf {
         let dir = std::env::temp_dir().join(format!("vlnverse-raster-{}", std::process::id()));
         std::fs::create_dir_all(&dir).expect("temp dir");
@@ -2468,7 +2485,6 @@ mod tests {
     #[test]
     fn a_prepared_file_loads_the_same_scene_and_the_same_pixels() {
         use crate::{CameraSpec, Channels};
-        use vlnverse_env::Pose;
         let (scene, mesh) = home_mesh(0);
         let made = RasterScene::new(mesh.clone());
         assert!(made.face_texture_bytes() > 1, "the home has face textures");
@@ -2506,16 +2522,9 @@ mod tests {
         let mut named = (*mesh).clone();
         named.prepared_file = Some(file.clone());
         let via = RasterScene::load_or_new(Arc::new(named));
-        let b = scene.bounds();
-        for k in 0..8 {
-            let t = (k as f32 + 0.5) / 8.0;
-            let at = Vec3::new(
-                b.min[0] + (b.max[0] - b.min[0]) * t,
-                scene.floor_height,
-                b.min[2] + (b.max[2] - b.min[2]) * (1.0 - t),
-            );
+        for (k, pose) in diagonal_poses(&scene, 8, 0.8).iter().enumerate() {
             let view = View {
-                camera: CameraSpec::default().camera(&Pose::from_yaw(at, k as f32 * 0.8)),
+                camera: CameraSpec::default().camera(pose),
                 channels: Channels::ALL,
             };
             let want = made.render_view(&view, 1);
@@ -2535,7 +2544,6 @@ mod tests {
     #[test]
     fn both_copies_of_the_fill_and_resolve_draw_the_same_pixels() {
         use crate::{CameraSpec, Channels};
-        use vlnverse_env::Pose;
         let Some(wide) = Isa::widest() else {
             eprintln!("this CPU runs only the baseline copy: nothing to compare");
             return;
@@ -2549,22 +2557,14 @@ mod tests {
         for home in 0..2 {
             let (scene, mesh) = home_mesh(home);
             let s = RasterScene::new(mesh);
-            let b = scene.bounds();
-            for k in 0..12 {
-                let t = (k as f32 + 0.5) / 12.0;
-                let at = Vec3::new(
-                    b.min[0] + (b.max[0] - b.min[0]) * t,
-                    scene.floor_height,
-                    b.min[2] + (b.max[2] - b.min[2]) * (1.0 - t),
-                );
-                let pose = Pose::from_yaw(at, k as f32 * 1.3);
+            for (k, pose) in diagonal_poses(&scene, 12, 1.3).iter().enumerate() {
                 for (spec, channels) in [
                     (CameraSpec::default(), Channels::ALL),
                     (CameraSpec::default(), rgb_and_classes),
                     (CameraSpec::depth(), Channels::DEPTH),
                 ] {
                     let view = View {
-                        camera: spec.camera(&pose),
+                        camera: spec.camera(pose),
                         channels,
                     };
                     for bands in [1, 4] {
