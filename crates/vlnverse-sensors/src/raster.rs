@@ -1660,12 +1660,14 @@ impl Coarse {
         zmax: f32,
     ) -> bool {
         let (tx0, tx1, ty0, ty1) = (x0 / TILE, x1 / TILE, y0 / TILE, y1 / TILE);
-        (ty0..=ty1).all(|ty| {
-            (tx0..=tx1).all(|tx| {
+        // Plain loops, not `all` with closures: a closure is compiled on its own and would run
+        // the baseline copy inside the AVX2 one (`raster/isa.rs`).
+        for ty in ty0..=ty1 {
+            for tx in tx0..=tx1 {
                 // A stale minimum is a lower bound of the true one.
                 let i = ty * self.tw + tx;
                 if zmax <= self.hiz[i] {
-                    return true;
+                    continue;
                 }
                 if !self.dirty[i] {
                     return false;
@@ -1673,9 +1675,12 @@ impl Coarse {
                 self.dirty[i] = false;
                 let r1 = ((ty + 1) * TILE).min(self.h);
                 self.hiz[i] = tile_min(zbuf, self.w, ty * TILE, r1, tx * TILE);
-                zmax <= self.hiz[i]
-            })
-        })
+                if zmax > self.hiz[i] {
+                    return false;
+                }
+            }
+        }
+        true
     }
 
     /// Mark the tiles over pixels `x0..=x1`, `y0..=y1` as drawn into.
@@ -1817,10 +1822,7 @@ fn emit_with(
     // their centres: test them here, as the fill would, and leave out one that would fill
     // nothing (no slot, no fill, no group for it).
     let (px0, px1, py0, py1) = (x0, x1, y0, y1);
-    if (px1 - px0 + 1) * (py1 - py0 + 1) <= small
-        && !(py0..=py1)
-            .any(|y| (px0..=px1).any(|x| edges.iter().all(|e| e.a * x + e.b * y + e.c >= 0)))
-    {
+    if (px1 - px0 + 1) * (py1 - py0 + 1) <= small && !covers_a_centre(&edges, px0, px1, py0, py1) {
         return;
     }
     let Some(plane) = plane() else {
@@ -1950,6 +1952,23 @@ fn rows<const IDS: bool, const NL: usize, const NR: usize>(
             span_depth(zs, z0, t);
         }
     }
+}
+
+/// Whether a pixel centre of columns `x0..=x1`, rows `y0..=y1` is inside all three `edges`
+/// (plain loops: see [`Coarse::hidden`]).
+#[inline(always)]
+fn covers_a_centre(edges: &[Edge; 3], x0: i64, x1: i64, y0: i64, y1: i64) -> bool {
+    for y in y0..=y1 {
+        for x in x0..=x1 {
+            let inside = (edges[0].a * x + edges[0].b * y + edges[0].c >= 0)
+                & (edges[1].a * x + edges[1].b * y + edges[1].c >= 0)
+                & (edges[2].a * x + edges[2].b * y + edges[2].c >= 0);
+            if inside {
+                return true;
+            }
+        }
+    }
+    false
 }
 
 /// The smallest value of rows `r0..r1`, columns `c0..c0 + TILE` (clipped to the row) of a
