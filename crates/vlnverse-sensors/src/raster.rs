@@ -981,16 +981,15 @@ impl RasterScene {
         // when no part of the near plane can be inside the object.
         let reach =
             p.near * (1.0 + (p.cx / p.fx).powi(2) + (p.cy / p.fy).powi(2)).sqrt() * 1.001 + 1e-4;
-        let mut order: Vec<(f32, usize)> = self
-            .objects
-            .iter()
-            .enumerate()
-            .filter(|(_, o)| o.count > 0 && frustum.intersects_aabb(&o.bbox))
-            .map(|(i, o)| {
+        // A loop rather than `filter` and `map` closures, which the AVX2 copy would call out
+        // of line (`raster/isa.rs`).
+        let mut order: Vec<(f32, usize)> = Vec::with_capacity(self.objects.len());
+        for (i, o) in self.objects.iter().enumerate() {
+            if o.count > 0 && frustum.intersects_aabb(&o.bbox) {
                 let q = p.pos.clamp(o.bbox.min_v(), o.bbox.max_v());
-                (q.distance_squared(p.pos), i)
-            })
-            .collect();
+                order.push((q.distance_squared(p.pos), i));
+            }
+        }
         // Ties (and NaN-free keys) broken by object index: the order is deterministic.
         order.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         let spare = SPARE_SETUP
@@ -1146,10 +1145,14 @@ impl RasterScene {
             ]
         };
         let (u, v) = (lin(l.wu), lin(l.wv));
-        let k = [0, 1, 2].map(|i| {
+        // Loops rather than `map` closures, which the AVX2 copy would call out of line.
+        let mut k = [[0.0f32; 3]; ATTRS];
+        for (i, ki) in k.iter_mut().enumerate() {
             let (a0, a1, a2) = (l.at[i] as f64, l.du[i] as f64, l.dv[i] as f64);
-            [0, 1, 2].map(|j| (a0 * plane[j] + a1 * u[j] + a2 * v[j]) as f32)
-        });
+            for (j, kij) in ki.iter_mut().enumerate() {
+                *kij = (a0 * plane[j] + a1 * u[j] + a2 * v[j]) as f32;
+            }
+        }
         Slot {
             k,
             tex: l.tex,

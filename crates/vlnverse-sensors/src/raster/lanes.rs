@@ -151,8 +151,23 @@ impl Lanes {
     #[inline(always)]
     pub(super) fn triangle(&self, i: usize) -> ([Vec3; 3], Option<[(f32, f32); 3]>) {
         let i = i.min(CLUSTER - 1);
-        let v = [0, 1, 2].map(|k| Vec3::new(self.x[k][i], self.y[k][i], self.z[k][i]));
-        let s = self.front[i].then(|| [0, 1, 2].map(|k| (self.sx[k][i], self.sy[k][i])));
+        // Written out rather than `map` closures, which the AVX2 copy would call out of line.
+        let (x, y, z) = (&self.x, &self.y, &self.z);
+        let v = [
+            Vec3::new(x[0][i], y[0][i], z[0][i]),
+            Vec3::new(x[1][i], y[1][i], z[1][i]),
+            Vec3::new(x[2][i], y[2][i], z[2][i]),
+        ];
+        let s = if self.front[i] {
+            let (sx, sy) = (&self.sx, &self.sy);
+            Some([
+                (sx[0][i], sy[0][i]),
+                (sx[1][i], sy[1][i]),
+                (sx[2][i], sy[2][i]),
+            ])
+        } else {
+            None
+        };
         (v, s)
     }
 }
