@@ -848,8 +848,28 @@ impl RasterScene {
         self.render_view_on(Isa::detect(), view, bands)
     }
 
-    /// [`Self::render_view`] with the copy `isa` of the fill and resolve (`raster/isa.rs`).
+    /// [`Self::render_view`] with the copy `isa` of the fill and resolve (`raster/isa.rs`);
+    /// the buffers are set up in that copy too.
+    #[allow(unsafe_code)] // a function built for CPU features; see the SAFETY note
     fn render_view_on(&self, isa: Isa, view: &View, bands: usize) -> Frame {
+        match isa {
+            Isa::Baseline => self.render_view_in(isa, view, bands),
+            // SAFETY: as in `setup_on`.
+            #[cfg(target_arch = "x86_64")]
+            Isa::Avx2(_) => unsafe { self.render_view_avx2(isa, view, bands) },
+        }
+    }
+
+    /// [`Self::render_view_in`] built with AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,bmi1,bmi2,lzcnt,popcnt")]
+    fn render_view_avx2(&self, isa: Isa, view: &View, bands: usize) -> Frame {
+        self.render_view_in(isa, view, bands)
+    }
+
+    /// The body of [`Self::render_view_on`]: buffers, fill, resolve in bands.
+    #[inline(always)]
+    fn render_view_in(&self, isa: Isa, view: &View, bands: usize) -> Frame {
         let c = &view.camera;
         let p = ViewParams::new(c);
         let (w, h) = (p.w, p.h);
