@@ -1698,7 +1698,9 @@ impl Coarse {
                 self.dirty[i] = false;
                 let r1 = ((ty + 1) * TILE).min(self.h);
                 self.hiz[i] = tile_min(zbuf, self.w, ty * TILE, r1, tx * TILE);
-                if zmax > self.hiz[i] {
+                // As `all` did: a NaN `zmax` is never hidden.
+                let covered = zmax <= self.hiz[i];
+                if !covered {
                     return false;
                 }
             }
