@@ -237,5 +237,10 @@ mod tests {
         assert!(f.intersects_aabb(&front));
         assert!(!f.intersects_aabb(&behind));
         assert!(!f.intersects_aabb(&far));
+        let nan = Aabb {
+            min: [f32::NAN; 3],
+            max: [f32::NAN; 3],
+        };
+        assert!(!f.intersects_aabb(&nan), "a NaN box is outside");
     }
 }

@@ -2582,6 +2582,21 @@ mod tests {
         let _ = std::fs::remove_file(&file);
     }
 
+    /// The coarse depth hides a box only when every tile it covers is nearer than the box's
+    /// nearest depth, after bringing a tile drawn into up to date; a NaN depth is never hidden.
+    #[test]
+    fn the_coarse_depth_hides_only_what_is_behind_and_never_a_nan_depth() {
+        let (w, h) = (16, 16);
+        let mut c = Coarse::new(w, h, 0.1);
+        let zbuf = vec![0.5f32; w * h];
+        assert!(!c.hidden(&zbuf, 0, 15, 0, 15, 0.2), "nothing drawn yet");
+        c.touch(0, 15, 0, 15);
+        assert!(c.hidden(&zbuf, 0, 15, 0, 15, 0.2), "behind what was drawn");
+        assert!(!c.hidden(&zbuf, 0, 15, 0, 15, 0.6), "in front of it");
+        c.touch(0, 15, 0, 15);
+        assert!(!c.hidden(&zbuf, 0, 15, 0, 15, f32::NAN));
+    }
+
     /// The wider copy of the fill and resolve (`raster/isa.rs`) draws exactly the baseline's
     /// pixels: colour, depth, classes and objects, with and without instance ids, RGB and
     /// depth-only views, one band or several.
