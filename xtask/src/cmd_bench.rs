@@ -313,13 +313,13 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     );
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     let rayon_threads = rayon::current_num_threads();
+    let raster_copy = vlnverse_sensors::raster::copy_in_use();
     println!(
         "bench: {} case(s), median of {reps} repetitions{} on {threads} hardware threads \
-         (rayon pool {rayon_threads}, rasteriser copy {}); figures vary with machine load, \
-         compare runs on the same idle machine",
+         (rayon pool {rayon_threads}, rasteriser copy {raster_copy}); figures vary with \
+         machine load, compare runs on the same idle machine",
         selected.len(),
         if args.quick { " (quick)" } else { "" },
-        vlnverse_sensors::raster::copy_in_use(),
     );
     println!(
         "{:<27} {:>20}  {:>22}  work per repetition",
@@ -349,7 +349,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             reps,
             threads,
             rayon_threads,
-            raster_copy: vlnverse_sensors::raster::copy_in_use(),
+            raster_copy,
             seconds,
             figures: &figures,
         };
